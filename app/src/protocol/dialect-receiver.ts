@@ -1,0 +1,70 @@
+// The Mega's line-acceptance state machine: numbering, duplicates, resend and resync (protocol/mega.md §2).
+
+import { parseCommand } from './dialect-command';
+import { parseFrame } from './dialect-frame';
+import { errorByCode, isLineError } from './errors';
+import type { SplitLine } from './line-splitter';
+import { formatOk } from './dialect-reply';
+
+export type Acceptance =
+  | { kind: 'none' }
+  | { kind: 'reply'; lines: string[] }
+  | { kind: 'execute'; body: string; n?: number };
+
+export interface FlowCounters {
+  movesFree(): number;
+  windowFree(): number;
+}
+
+export class LineReceiver {
+  last = 0;
+  resyncing = false;
+
+  constructor(private readonly flow: FlowCounters) {}
+
+  ok(): string {
+    return formatOk(this.last, this.flow.movesFree(), this.flow.windowFree());
+  }
+
+  accept(line: SplitLine): Acceptance {
+    if (!line.overflow && line.text === '') return { kind: 'none' };
+    const frame = parseFrame(line);
+    if (!frame.ok) {
+      const message = errorByCode(frame.error)!.message;
+      if (frame.numbered && isLineError(frame.error)) return this.#askResend(frame.error, message);
+      return { kind: 'reply', lines: [`Error:E${frame.error} ${message}`, this.ok()] };
+    }
+    if (frame.body === '') return { kind: 'reply', lines: [this.ok()] };
+    const setLine = this.#m110(frame.body, frame.n);
+    if (setLine !== null) {
+      this.last = setLine;
+      this.resyncing = false;
+      return { kind: 'reply', lines: [this.ok()] };
+    }
+    if (frame.n === undefined) return { kind: 'execute', body: frame.body };
+    if (frame.n === this.last + 1) {
+      this.last = frame.n;
+      this.resyncing = false;
+      return { kind: 'execute', body: frame.body, n: frame.n };
+    }
+    if (frame.n <= this.last || this.resyncing) return { kind: 'reply', lines: [this.ok()] };
+    return this.#askResend(6, errorByCode(6)!.message);
+  }
+
+  #askResend(code: number, message: string): Acceptance {
+    this.resyncing = true;
+    return {
+      kind: 'reply',
+      lines: [`Error:E${code} ${message}, Last Line: ${this.last}`, `Resend: ${this.last + 1}`, this.ok()],
+    };
+  }
+
+  /** M110 [N<n>] sets the line number: to its N parameter, else to the frame's own number. */
+  #m110(body: string, n: number | undefined): number | null {
+    const parsed = parseCommand(body);
+    if (!parsed.ok || parsed.command.word !== 'M110' || !('params' in parsed.command)) return null;
+    const p = parsed.command.params.N;
+    if (typeof p === 'number' && p >= 0 && p % 1000 === 0) return p / 1000;
+    return n ?? null;
+  }
+}

@@ -1,0 +1,166 @@
+// Replies and reports of the Mega dialect: typed parse (host side) and canonical format (Mega side).
+
+import { formatMilli, parseMilli } from './dialect-command';
+import { formatDeciC, parseDeciC, SENSOR_COUNT } from './nano';
+
+export type JobState = 'idle' | 'uploading' | 'ready' | 'running' | 'paused' | 'done' | 'aborted' | 'failed' | 'interrupted';
+export type ProbeState = 'triggered' | 'open' | 'alarm' | 'deployed' | 'stowed';
+type Xyz = [number, number, number];
+
+export type Reply =
+  | { kind: 'ok'; n?: number; p?: number; b?: number }
+  | { kind: 'error'; code: number; message: string }
+  | { kind: 'resend'; n: number }
+  | { kind: 'temps'; deciC: number[]; limitDeciC: number[] }
+  | { kind: 'position'; um: Xyz; steps: Xyz }
+  | { kind: 'job'; state: JobState; fields: Record<string, string> }
+  | { kind: 'probe'; state: ProbeState }
+  | { kind: 'probePoint'; um: Xyz }
+  | { kind: 'test'; mode: 'quick' | 'full'; fields: Record<string, string> }
+  | { kind: 'fault'; code: number; message: string }
+  | { kind: 'echo'; text: string }
+  | { kind: 'busy' }
+  | { kind: 'start' }
+  | { kind: 'firmware'; name: string; protocol: number }
+  | { kind: 'cap'; name: string; value: number }
+  | { kind: 'other'; text: string };
+
+const JOB_STATES = new Set(['idle', 'uploading', 'ready', 'running', 'paused', 'done', 'aborted', 'failed', 'interrupted']);
+const PROBE_STATES = new Set(['triggered', 'open', 'alarm', 'deployed', 'stowed']);
+const MM = '(-?[0-9]{1,7}\\.[0-9]{3})';
+const POSITION = new RegExp(`^X:${MM} Y:${MM} Z:${MM} E:${MM} Count X:(-?[0-9]{1,10}) Y:(-?[0-9]{1,10}) Z:(-?[0-9]{1,10})$`);
+const BED = new RegExp(`^Bed X: ${MM} Y: ${MM} Z: ${MM}$`);
+const DECI = '(-?[0-9]{1,3}\\.[0-9])';
+const TEMP_PAIR = new RegExp(`^T([0-5]):${DECI} /${DECI}$`);
+
+export function formatOk(n: number, p: number, b: number): string {
+  return `ok N${n} P${p} B${b}`;
+}
+
+/** `key=value` words; null if any word is not that shape. */
+function parseFields(rest: string): Record<string, string> | null {
+  const fields: Record<string, string> = {};
+  for (const word of rest.split(' ').filter(Boolean)) {
+    const m = /^([a-z_]+)=(\S+)$/.exec(word);
+    if (!m) return null;
+    fields[m[1]] = m[2];
+  }
+  return fields;
+}
+
+function formatFields(fields: Record<string, string>): string {
+  return Object.entries(fields).map(([k, v]) => ` ${k}=${v}`).join('');
+}
+
+function parseTemps(line: string): Reply | null {
+  const words = line.split(' ');
+  // `T:<max> /<limit>` then six `T<i>:<v> /<limit>` pairs
+  if (words.length !== 2 + SENSOR_COUNT * 2 || !/^T:-?[0-9]{1,3}\.[0-9]$/.test(words[0])) return null;
+  const deciC: number[] = [];
+  const limitDeciC: number[] = [];
+  for (let i = 0; i < SENSOR_COUNT; i++) {
+    const m = TEMP_PAIR.exec(`${words[2 + i * 2]} ${words[3 + i * 2]}`);
+    if (!m || Number(m[1]) !== i) return null;
+    deciC.push(parseDeciC(m[2])!);
+    limitDeciC.push(parseDeciC(m[3])!);
+  }
+  return { kind: 'temps', deciC, limitDeciC };
+}
+
+function milli3(ms: string[]): Xyz {
+  return [parseMilli(ms[0])!, parseMilli(ms[1])!, parseMilli(ms[2])!];
+}
+
+/** Parses one line from the Mega; null when a known prefix carries a malformed payload. */
+export function parseReply(line: string): Reply | null {
+  if (line === 'ok' || line.startsWith('ok ')) {
+    const m = /^ok N([0-9]{1,10}) P([0-9]{1,5}) B([0-9]{1,5})$/.exec(line);
+    return m ? { kind: 'ok', n: Number(m[1]), p: Number(m[2]), b: Number(m[3]) } : { kind: 'ok' };
+  }
+  if (line.startsWith('Error:')) {
+    const m = /^Error:E([0-9]{1,4}) (.*)$/.exec(line);
+    return m ? { kind: 'error', code: Number(m[1]), message: m[2] } : { kind: 'error', code: 0, message: line.slice(6) };
+  }
+  if (line.startsWith('Resend:') || line.startsWith('rs ')) {
+    const m = /^(?:Resend: ?|rs )([0-9]{1,10})$/.exec(line);
+    return m ? { kind: 'resend', n: Number(m[1]) } : null;
+  }
+  if (line.startsWith('T:')) return parseTemps(line);
+  if (line.startsWith('X:')) {
+    const m = POSITION.exec(line);
+    if (!m) return null;
+    return { kind: 'position', um: milli3([m[1], m[2], m[3]]), steps: [Number(m[5]), Number(m[6]), Number(m[7])] };
+  }
+  if (line.startsWith('Bed X:')) {
+    const m = BED.exec(line);
+    return m ? { kind: 'probePoint', um: milli3([m[1], m[2], m[3]]) } : null;
+  }
+  if (line.startsWith('JOB:')) {
+    const m = /^JOB:([a-z]+)(.*)$/.exec(line);
+    const fields = m && JOB_STATES.has(m[1]) ? parseFields(m[2]) : null;
+    return fields ? { kind: 'job', state: m![1] as JobState, fields } : null;
+  }
+  if (line.startsWith('PROBE:')) {
+    const s = line.slice(6);
+    return PROBE_STATES.has(s) ? { kind: 'probe', state: s as ProbeState } : null;
+  }
+  if (line.startsWith('TEST:')) {
+    const m = /^TEST:(quick|full)(.*)$/.exec(line);
+    const fields = m ? parseFields(m[2]) : null;
+    return fields ? { kind: 'test', mode: m![1] as 'quick' | 'full', fields } : null;
+  }
+  if (line.startsWith('FAULT:')) {
+    const m = /^FAULT:E([0-9]{1,4}) (.*)$/.exec(line);
+    return m ? { kind: 'fault', code: Number(m[1]), message: m[2] } : null;
+  }
+  if (line.startsWith('echo:')) return { kind: 'echo', text: line.slice(5) };
+  if (line.startsWith('busy:')) return { kind: 'busy' };
+  if (line === 'start') return { kind: 'start' };
+  if (line.startsWith('FIRMWARE_NAME:')) {
+    const m = /^FIRMWARE_NAME:(.+?) PROTOCOL_VERSION:([0-9]{1,5})(?: |$)/.exec(line);
+    return m ? { kind: 'firmware', name: m[1], protocol: Number(m[2]) } : null;
+  }
+  if (line.startsWith('Cap:')) {
+    const m = /^Cap:([A-Z0-9_]+):([0-9]{1,10})$/.exec(line);
+    return m ? { kind: 'cap', name: m[1], value: Number(m[2]) } : null;
+  }
+  return { kind: 'other', text: line };
+}
+
+export interface FirmwareInfo {
+  machine: string;
+}
+
+/** Canonical line for a reply; the Mega and the simulated printer print exactly this. */
+export function formatReply(r: Reply, info: FirmwareInfo = { machine: 'UV-LED exposure printer' }): string {
+  switch (r.kind) {
+    case 'ok': return r.n === undefined ? 'ok' : formatOk(r.n, r.p ?? 0, r.b ?? 0);
+    case 'error': return `Error:E${r.code} ${r.message}`;
+    case 'resend': return `Resend: ${r.n}`;
+    case 'temps': {
+      let hot = 0;
+      r.deciC.forEach((v, i) => { if (v > r.deciC[hot]) hot = i; });
+      const pairs = r.deciC.map((v, i) => ` T${i}:${formatDeciC(v)} /${formatDeciC(r.limitDeciC[i])}`).join('');
+      return `T:${formatDeciC(r.deciC[hot])} /${formatDeciC(r.limitDeciC[hot])}${pairs}`;
+    }
+    case 'position': {
+      const [x, y, z] = r.um.map(formatMilli);
+      return `X:${x} Y:${y} Z:${z} E:0.000 Count X:${r.steps[0]} Y:${r.steps[1]} Z:${r.steps[2]}`;
+    }
+    case 'probePoint': {
+      const [x, y, z] = r.um.map(formatMilli);
+      return `Bed X: ${x} Y: ${y} Z: ${z}`;
+    }
+    case 'job': return `JOB:${r.state}${formatFields(r.fields)}`;
+    case 'probe': return `PROBE:${r.state}`;
+    case 'test': return `TEST:${r.mode}${formatFields(r.fields)}`;
+    case 'fault': return `FAULT:E${r.code} ${r.message}`;
+    case 'echo': return `echo:${r.text}`;
+    case 'busy': return 'busy: processing';
+    case 'start': return 'start';
+    case 'firmware':
+      return `FIRMWARE_NAME:${r.name} PROTOCOL_VERSION:${r.protocol} MACHINE_TYPE:${info.machine} LEDS:4 SENSORS:6`;
+    case 'cap': return `Cap:${r.name}:${r.value}`;
+    case 'other': return r.text;
+  }
+}

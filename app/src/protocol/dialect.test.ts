@@ -1,0 +1,72 @@
+import { describe, expect, it } from 'vitest';
+import { formatMilli, parseCommand } from './dialect-command';
+import { DIALECT_MAX_LINE, encodeFrame, parseFrame } from './dialect-frame';
+import { LineReceiver } from './dialect-receiver';
+import { formatReply, parseReply } from './dialect-reply';
+import { LineSplitter } from './line-splitter';
+import { loadVectors, vectorCounter } from './vectors.fixture';
+
+const v = loadVectors('mega.json');
+const count = vectorCounter('mega.json');
+
+function split(line: string) {
+  const out = new LineSplitter(DIALECT_MAX_LINE).push(line + '\n');
+  expect(out).toHaveLength(1);
+  return out[0];
+}
+
+describe('mega dialect vectors', () => {
+  it('agrees on limits', () => {
+    expect(DIALECT_MAX_LINE).toBe(v.maxLine);
+    count();
+  });
+
+  it.each(v.frames.map((c: any) => [c.line, c]))('frame %j', (_l, c: any) => {
+    expect(parseFrame(split(c.line))).toEqual({ ok: true, ...c.frame });
+    if (c.canonical) expect(c.frame.n === undefined ? c.frame.body : encodeFrame(c.frame.n, c.frame.body)).toBe(c.line);
+    count();
+  });
+
+  it.each(v.frameErrors.map((c: any) => [c.line, c]))('frame error %j', (_l, c: any) => {
+    const f = parseFrame(split(c.line));
+    expect(f.ok).toBe(false);
+    if (!f.ok) {
+      expect(f.error).toBe(c.error);
+      expect(f.n).toBe(c.n);
+    }
+    count();
+  });
+
+  it.each(v.commands.map((c: any) => [c.body, c]))('command %j', (_b, c: any) => {
+    const r = parseCommand(c.body);
+    if (c.error) expect(r).toEqual({ ok: false, error: c.error });
+    else expect(r).toEqual({ ok: true, command: c.command });
+    count();
+  });
+
+  it.each(v.sessions.map((s: any) => [s.name, s]))('session: %s', (_n, s: any) => {
+    const rx = new LineReceiver({ movesFree: () => v.movesFree, windowFree: () => v.window });
+    for (const step of s.steps) {
+      const a = rx.accept(split(step.rx));
+      if (step.execute !== undefined) expect(a).toMatchObject({ kind: 'execute', body: step.execute });
+      else if (step.reply.length === 0) expect(a).toEqual({ kind: 'none' });
+      else expect(a).toEqual({ kind: 'reply', lines: step.reply });
+    }
+    count();
+  });
+
+  it.each(v.replies.map((c: any) => [c.line, c]))('reply %j', (_l, c: any) => {
+    expect(parseReply(c.line)).toEqual(c.reply);
+    if (c.canonical) expect(formatReply(c.reply)).toBe(c.line);
+    count();
+  });
+
+  it.each(v.badReplies.map((c: any) => [c.why, c]))('bad report (%s) is rejected', (_w, c: any) => {
+    expect(parseReply(c.line)).toBeNull();
+    count();
+  });
+
+  it('formats millimetres with three decimals', () => {
+    expect([0, 1, -1, 12345, -2000000000].map(formatMilli)).toEqual(['0.000', '0.001', '-0.001', '12.345', '-2000000.000']);
+  });
+});

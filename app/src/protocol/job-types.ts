@@ -1,0 +1,44 @@
+// The exposure job as the app, the ESP body (protocol/print-job.schema.json) and the planner see it.
+
+export type StrategyName = 'raster' | 'serpentine' | 'shortest' | 'random';
+
+export type Dose =
+  | { map: 'linear' | 'threshold'; level?: number; fullUs: number }
+  | { map: 'linear' | 'threshold'; level?: number; targetUJcm2: number; irradianceUWcm2: number[] };
+
+export interface PrintJob {
+  name?: string;
+  grid: { cols: number; rows: number };
+  pitchUm: { x: number; y: number };
+  originUm: { x: number; y: number };
+  dose: Dose;
+  leds: { offsets: [number, number][]; gainPermille?: number[] };
+  thermal?: { coeffCentiPctPerC: number; refDeciC: number };
+  strategy: { name: StrategyName; seed?: number };
+  /** rows arrays of cols values 0-255, row 0 first. */
+  gridData: ArrayLike<number>[];
+}
+
+/** Header of a job text, everything but the cells. */
+export interface JobHeader {
+  cols: number;
+  rows: number;
+  pitchUm: [number, number];
+  originUm: [number, number];
+  map: 'linear' | 'threshold';
+  level: number;
+  fullUs?: number;
+  targetUJcm2?: number;
+  irradianceUWcm2?: number[];
+  gainPermille: number[];
+  thermal: [number, number];
+  offsets: [number, number][];
+  strategy: StrategyName;
+  seed: number;
+}
+
+export const JOB_LIMITS = {
+  maxSide: 4096,
+  maxCellsPerRecord: 32,
+  maxGap: 4,
+} as const;

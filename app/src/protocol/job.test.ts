@@ -1,0 +1,27 @@
+import { describe, expect, it } from 'vitest';
+import { encodeJob } from './job-encode';
+import { verifyJobText, type Segment } from './job-verify';
+import { loadVectors, vectorCounter } from './vectors.fixture';
+
+const v = loadVectors('job.json');
+const count = vectorCounter('job.json');
+
+describe('job format vectors', () => {
+  it.each(v.jobs.map((c: any) => [c.name, c]))('%s: encodes byte-exact and verifies', (_n, c: any) => {
+    const text = encodeJob(c.job);
+    expect(text).toBe(c.text);
+    expect(text.endsWith(`end ${c.crc}\n`)).toBe(true);
+    const cells = c.job.gridData.map((row: number[]) => row.map(() => 0));
+    const { error, header } = verifyJobText(text, (s: Segment) => s.cells.forEach((x, i) => (cells[s.row][s.col + i] = x)));
+    expect(error).toBeNull();
+    expect(header).toMatchObject({ cols: c.job.grid.cols, rows: c.job.grid.rows });
+    expect(cells).toEqual(c.job.gridData);
+    count();
+  });
+
+  it.each(v.invalid.map((c: any) => [c.why, c]))('invalid (%s) is refused', (_w, c: any) => {
+    const { error } = verifyJobText(c.text);
+    expect(error?.code).toBe(c.error);
+    count();
+  });
+});

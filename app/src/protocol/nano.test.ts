@@ -1,0 +1,65 @@
+import { describe, expect, it } from 'vitest';
+import { LineSplitter } from './line-splitter';
+import {
+  flashColour, formatNanoCommand, formatNanoReply, NANO_COLOURS, NANO_MAX_LINE,
+  nanoLineUsable, parseNanoCommand, parseNanoReply,
+} from './nano';
+import { loadVectors, vectorCounter } from './vectors.fixture';
+
+const v = loadVectors('nano.json');
+const count = vectorCounter('nano.json');
+
+/** Runs raw bytes through the Nano's framing and parser, as the firmware does. */
+function nanoReceive(bytes: string) {
+  const split = new LineSplitter(NANO_MAX_LINE).push(bytes);
+  return split.filter((l) => l.text !== '' || l.overflow).map((l) => (nanoLineUsable(l) ? parseNanoCommand(l.text) : null));
+}
+
+describe('nano link vectors', () => {
+  it('agrees on limits and colours', () => {
+    expect(NANO_MAX_LINE).toBe(v.maxLine);
+    expect(NANO_COLOURS).toEqual(v.colours);
+    count();
+  });
+
+  it.each(v.commands.map((c: { line: string }) => [c.line, c]))('command %j encodes, parses and flashes', (_l, c: any) => {
+    expect(formatNanoCommand(c.command)).toBe(c.line);
+    expect(nanoReceive(c.line)).toEqual([c.command]);
+    expect(flashColour(c.command.op)).toBe(c.flash);
+    count();
+  });
+
+  it.each(v.parseOnly.map((c: { line: string }) => [c.line, c]))('lenient line %j parses', (_l, c: any) => {
+    expect(nanoReceive(c.line)).toEqual([c.command]);
+    count();
+  });
+
+  it.each(v.malformed.map((c: { line: string; why: string }) => [c.why, c]))('malformed (%s) does nothing', (_w, c: any) => {
+    expect(nanoReceive(c.line)).toEqual([null]);
+    expect(nanoReceive(c.line + 'S\n')).toEqual([null, { op: 'S' }]);
+    count();
+  });
+
+  it.each(v.replies.map((c: { line: string }) => [c.line, c]))('reply %j round-trips', (_l, c: any) => {
+    expect(parseNanoReply(c.line)).toEqual(c.reply);
+    expect(formatNanoReply(c.reply)).toBe(c.line);
+    count();
+  });
+
+  it.each(v.badReplies.map((c: { line: string }) => [c.line]))('bad reply %j is rejected', (line: string) => {
+    expect(parseNanoReply(line)).toBeNull();
+    count();
+  });
+
+  it.each(v.streams.map((c: { name: string }) => [c.name, c]))('stream: %s', (_n, c: any) => {
+    // Every split point must give the same lines.
+    for (let cut = 0; cut <= c.bytes.length; cut++) {
+      const s = new LineSplitter(NANO_MAX_LINE);
+      const lines = [...s.push(c.bytes.slice(0, cut)), ...s.push(c.bytes.slice(cut))];
+      const kept = lines.filter((l) => l.text !== '' || l.overflow);
+      expect(kept.filter(nanoLineUsable).map((l) => l.text)).toEqual(c.lines);
+      expect(kept.filter((l) => !nanoLineUsable(l)).length).toBe(c.dropped);
+    }
+    count();
+  });
+});

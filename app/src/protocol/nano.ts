@@ -1,0 +1,140 @@
+// Codec for the Mega <-> Nano printhead link (protocol/nano.md).
+
+import { isPrintable } from './bytes';
+import type { SplitLine } from './line-splitter';
+
+export const NANO_MAX_LINE = 63;
+export const LED_COUNT = 4;
+export const SENSOR_COUNT = 6;
+
+export type NanoCommand =
+  | { op: 'S' | 'D' | 'U' | 'X' | 'P' | 'T' | 'R' | 'E' | 'V' }
+  | { op: 'F'; mask: number; durations: [number, number, number, number] };
+
+export type NanoReply =
+  | { op: 'S'; mask: number }
+  | { op: 'P'; triggered: boolean }
+  | { op: 'T'; deciC: number[] }
+  | { op: 'E'; flags: number }
+  | { op: 'V'; protocol: number; firmware: string };
+
+export type Colour = 'green' | 'dim_white' | 'purple' | 'cyan' | 'orange' | 'red';
+
+export const NANO_COLOURS: Record<Colour, [number, number, number]> = {
+  green: [0, 40, 0],
+  dim_white: [24, 24, 24],
+  purple: [96, 0, 128],
+  cyan: [0, 96, 96],
+  orange: [160, 48, 0],
+  red: [128, 0, 0],
+};
+
+export const FAULT = {
+  OVERTEMP: 1,
+  SENSOR: 2,
+  CAPPED: 4,
+  BUSY: 8,
+  REFUSED: 16,
+  MALFORMED: 32,
+  WATCHDOG: 64,
+  CUTOFF: 128,
+} as const;
+
+const FLASH: Record<NanoCommand['op'], Colour> = {
+  S: 'dim_white', T: 'dim_white', E: 'dim_white', V: 'dim_white',
+  F: 'purple', D: 'cyan', U: 'cyan', X: 'cyan', P: 'cyan', R: 'orange',
+};
+
+export function flashColour(op: NanoCommand['op']): Colour {
+  return FLASH[op];
+}
+
+const U32_MAX = 4294967295;
+
+/** Unsigned decimal, 1-10 digits, leading zeros allowed; null if not. */
+function parseU32(s: string): number | null {
+  if (!/^[0-9]{1,10}$/.test(s)) return null;
+  const v = Number(s);
+  return v <= U32_MAX ? v : null;
+}
+
+/** Whether the Nano treats a split line as a command candidate (not dropped as malformed). */
+export function nanoLineUsable(line: SplitLine): boolean {
+  return !line.overflow && isPrintable(line.text);
+}
+
+/** Parses one line (without terminator). null = malformed: the Nano drops it. */
+export function parseNanoCommand(line: string): NanoCommand | null {
+  if (line.length === 1 && 'SDUXPTREV'.includes(line)) {
+    return { op: line as 'S' };
+  }
+  if (!line.startsWith('F:')) return null;
+  const fields = line.slice(2).split(',');
+  if (fields.length !== 5) return null;
+  const nums = fields.map(parseU32);
+  if (nums.some((n) => n === null)) return null;
+  const [mask, d0, d1, d2, d3] = nums as number[];
+  if (mask > 15) return null;
+  return { op: 'F', mask, durations: [d0, d1, d2, d3] };
+}
+
+export function formatNanoCommand(cmd: NanoCommand): string {
+  if (cmd.op === 'F') return `F:${cmd.mask},${cmd.durations.join(',')}\n`;
+  return `${cmd.op}\n`;
+}
+
+/** Formats tenths of a degree as the link's one-decimal Celsius. */
+export function formatDeciC(v: number): string {
+  const a = Math.abs(v);
+  return `${v < 0 ? '-' : ''}${Math.floor(a / 10)}.${a % 10}`;
+}
+
+/** Parses `-?d{1,3}.d` into tenths; null if not that shape. */
+export function parseDeciC(s: string, maxIntDigits = 3): number | null {
+  const m = /^(-?)([0-9]+)\.([0-9])$/.exec(s);
+  if (!m || m[2].length > maxIntDigits) return null;
+  const v = Number(m[2]) * 10 + Number(m[3]);
+  return m[1] ? -v : v;
+}
+
+export function formatNanoReply(r: NanoReply): string {
+  switch (r.op) {
+    case 'S': return `S:${r.mask}\n`;
+    case 'P': return `P:${r.triggered ? 1 : 0}\n`;
+    case 'T': return `T:${r.deciC.map(formatDeciC).join(',')}\n`;
+    case 'E': return `E:${r.flags}\n`;
+    case 'V': return `V:${r.protocol},${r.firmware}\n`;
+  }
+}
+
+/** Parses a reply line (with or without its '\n'); null if malformed. */
+export function parseNanoReply(raw: string): NanoReply | null {
+  if (!raw.endsWith('\n')) return null;
+  const line = raw.slice(0, -1);
+  const m = /^([SPTEV]):(.*)$/.exec(line);
+  if (!m) return null;
+  const body = m[2];
+  switch (m[1]) {
+    case 'S': {
+      const v = /^[0-9]{1,2}$/.test(body) ? Number(body) : -1;
+      return v >= 0 && v <= 15 ? { op: 'S', mask: v } : null;
+    }
+    case 'P':
+      return body === '1' || body === '0' ? { op: 'P', triggered: body === '1' } : null;
+    case 'T': {
+      const parts = body.split(',');
+      if (parts.length !== SENSOR_COUNT) return null;
+      const vals = parts.map((p) => parseDeciC(p));
+      return vals.every((v) => v !== null) ? { op: 'T', deciC: vals as number[] } : null;
+    }
+    case 'E': {
+      const v = /^[0-9]{1,3}$/.test(body) ? Number(body) : -1;
+      return v >= 0 && v <= 255 ? { op: 'E', flags: v } : null;
+    }
+    case 'V': {
+      const v = /^([0-9]{1,5}),([0-9A-Za-z.+-]{1,20})$/.exec(body);
+      return v ? { op: 'V', protocol: Number(v[1]), firmware: v[2] } : null;
+    }
+  }
+  return null;
+}

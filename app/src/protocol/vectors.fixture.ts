@@ -1,0 +1,21 @@
+// Test-only: loads protocol/vectors/*.json and counts how many cases a suite checked.
+
+import { readFileSync } from 'node:fs';
+import { fileURLToPath } from 'node:url';
+import { afterAll } from 'vitest';
+
+const DIR = fileURLToPath(new URL('../../../protocol/vectors/', import.meta.url));
+
+// eslint-disable-next-line @typescript-eslint/no-explicit-any
+export function loadVectors(file: string): any {
+  return JSON.parse(readFileSync(DIR + file, 'utf8'));
+}
+
+/** Call once per case; the total is printed when the file's tests end. */
+export function vectorCounter(file: string): () => void {
+  let n = 0;
+  afterAll(() => console.log(`[vectors] ${file}: ${n} cases checked (TypeScript)`));
+  return () => {
+    n++;
+  };
+}

@@ -1,0 +1,450 @@
+#!/usr/bin/env python3
+"""Authoring tool for the protocol test vectors: an independent reference (Python's own
+zlib CRC-32 and a hand XOR) that writes nano.json, mega.json, job.json and esp.json.
+
+The JSON files are the contract; both the TypeScript and the C++ suites read them. Run
+`python3 protocol/vectors/author.py` after changing a case here, and commit both.
+Strings are byte strings: every character stands for one byte (Latin-1).
+"""
+import json
+import os
+import zlib
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def cs(s):
+    x = 0
+    for ch in s.encode("latin-1"):
+        x ^= ch
+    return x
+
+
+def numbered(n, body):
+    head = f"N{n} {body}"
+    return f"{head}*{cs(head)}"
+
+
+def write(name, doc):
+    with open(os.path.join(HERE, name), "w", encoding="utf-8") as f:
+        json.dump(doc, f, indent=1, ensure_ascii=True)
+        f.write("\n")
+
+
+# ---------------------------------------------------------------- Nano link
+NANO_COLOURS = {
+    "green": [0, 40, 0], "dim_white": [24, 24, 24], "purple": [96, 0, 128],
+    "cyan": [0, 96, 96], "orange": [160, 48, 0], "red": [128, 0, 0],
+}
+
+nano_commands = [
+    {"line": "S\n", "command": {"op": "S"}, "flash": "dim_white"},
+    {"line": "F:15,100,200,300,400\n", "command": {"op": "F", "mask": 15, "durations": [100, 200, 300, 400]}, "flash": "purple"},
+    {"line": "F:0,0,0,0,0\n", "command": {"op": "F", "mask": 0, "durations": [0, 0, 0, 0]}, "flash": "purple"},
+    {"line": "F:5,10,0,4294967295,0\n", "command": {"op": "F", "mask": 5, "durations": [10, 0, 4294967295, 0]}, "flash": "purple"},
+    {"line": "D\n", "command": {"op": "D"}, "flash": "cyan"},
+    {"line": "U\n", "command": {"op": "U"}, "flash": "cyan"},
+    {"line": "X\n", "command": {"op": "X"}, "flash": "cyan"},
+    {"line": "P\n", "command": {"op": "P"}, "flash": "cyan"},
+    {"line": "T\n", "command": {"op": "T"}, "flash": "dim_white"},
+    {"line": "R\n", "command": {"op": "R"}, "flash": "orange"},
+    {"line": "E\n", "command": {"op": "E"}, "flash": "dim_white"},
+    {"line": "V\n", "command": {"op": "V"}, "flash": "dim_white"},
+]
+nano_parse_only = [
+    {"line": "S\r\n", "command": {"op": "S"}},
+    {"line": "F:015,0100,0,00,0\r\n", "command": {"op": "F", "mask": 15, "durations": [100, 0, 0, 0]}},
+    {"line": "F:8,0,0,0,10000000\n", "command": {"op": "F", "mask": 8, "durations": [0, 0, 0, 10000000]}},
+]
+nano_malformed = [
+    {"line": "s\n", "why": "lower case"},
+    {"line": "Q\n", "why": "unknown command"},
+    {"line": "S1\n", "why": "trailing characters"},
+    {"line": "S \n", "why": "trailing space"},
+    {"line": "F:16,1,1,1,1\n", "why": "mask over 15"},
+    {"line": "F:15,1,1,1\n", "why": "three durations"},
+    {"line": "F:15,1,1,1,1,1\n", "why": "five durations"},
+    {"line": "F:15,1,1,1,4294967296\n", "why": "duration over 32 bits"},
+    {"line": "F:15,1,1,1,12345678901\n", "why": "eleven digits"},
+    {"line": "F:15,-1,1,1,1\n", "why": "negative"},
+    {"line": "F:15,1,,1,1\n", "why": "empty field"},
+    {"line": "F:15,1,1,1,1,\n", "why": "trailing comma"},
+    {"line": "F15,1,1,1,1\n", "why": "no colon"},
+    {"line": "F:+5,1,1,1,1\n", "why": "plus sign"},
+    {"line": "F: 5,1,1,1,1\n", "why": "space"},
+    {"line": "F:\n", "why": "no fields"},
+    {"line": "T\u00ff\n", "why": "byte outside 0x20-0x7E"},
+    {"line": "S\r\r\n", "why": "two carriage returns"},
+]
+nano_replies = [
+    {"line": "S:0\n", "reply": {"op": "S", "mask": 0}},
+    {"line": "S:15\n", "reply": {"op": "S", "mask": 15}},
+    {"line": "S:9\n", "reply": {"op": "S", "mask": 9}},
+    {"line": "P:1\n", "reply": {"op": "P", "triggered": True}},
+    {"line": "P:0\n", "reply": {"op": "P", "triggered": False}},
+    {"line": "T:23.5,24.0,-5.2,100.0,22.1,0.0\n", "reply": {"op": "T", "deciC": [235, 240, -52, 1000, 221, 0]}},
+    {"line": "T:-50.0,125.0,-0.5,0.5,999.9,-99.9\n", "reply": {"op": "T", "deciC": [-500, 1250, -5, 5, 9999, -999]}},
+    {"line": "E:0\n", "reply": {"op": "E", "flags": 0}},
+    {"line": "E:161\n", "reply": {"op": "E", "flags": 161}},
+    {"line": "V:1,0.1.0\n", "reply": {"op": "V", "protocol": 1, "firmware": "0.1.0"}},
+]
+nano_bad_replies = [
+    {"line": "S:16\n"}, {"line": "S:\n"}, {"line": "S15\n"}, {"line": "P:2\n"},
+    {"line": "T:23.5,24.0,-5.2,100.0,22.1\n"}, {"line": "T:23,24.0,-5.2,100.0,22.1,0.0\n"},
+    {"line": "T:23.55,24.0,-5.2,100.0,22.1,0.0\n"}, {"line": "T:1000.0,24.0,-5.2,100.0,22.1,0.0\n"},
+    {"line": "T:-0.0x,24.0,-5.2,100.0,22.1,0.0\n"}, {"line": "E:256\n"}, {"line": "V:1\n"},
+    {"line": "Q:1\n"}, {"line": "S:1"},
+]
+nano_streams = [
+    {"name": "lines split anywhere", "bytes": "S\nT\r\n\nP\n", "lines": ["S", "T", "P"], "dropped": 0},
+    {"name": "overlong line dropped whole", "bytes": "S\n" + "F:15," + "1" * 59 + "\nP\n", "lines": ["S", "P"], "dropped": 1},
+    {"name": "63 bytes is the limit", "bytes": "A" * 63 + "\n" + "B" * 64 + "\nS\n", "lines": ["A" * 63, "S"], "dropped": 1},
+    {"name": "bad byte poisons its line only", "bytes": "S\u0000\nT\nP\u00ff\n", "lines": ["T"], "dropped": 2},
+    {"name": "unterminated tail stays pending", "bytes": "S\nT", "lines": ["S"], "dropped": 0},
+]
+write("nano.json", {
+    "link": "nano", "version": 1,
+    "maxLine": 63,
+    "colours": NANO_COLOURS,
+    "commands": nano_commands,
+    "parseOnly": nano_parse_only,
+    "malformed": nano_malformed,
+    "replies": nano_replies,
+    "badReplies": nano_bad_replies,
+    "streams": nano_streams,
+})
+
+# ---------------------------------------------------------------- Mega dialect
+frames = [
+    {"line": numbered(1, "G28"), "frame": {"n": 1, "body": "G28"}, "canonical": True},
+    {"line": numbered(0, "M110"), "frame": {"n": 0, "body": "M110"}, "canonical": True},
+    {"line": numbered(2147483647, "M105"), "frame": {"n": 2147483647, "body": "M105"}, "canonical": True},
+    {"line": numbered(12, "r 3 0 00ff10"), "frame": {"n": 12, "body": "r 3 0 00ff10"}, "canonical": True},
+    {"line": numbered(7, "G1 X10.5 Y-2 ; move"), "frame": {"n": 7, "body": "G1 X10.5 Y-2"}, "canonical": False},
+    {"line": "N3   M105*" + str(cs("N3   M105")), "frame": {"n": 3, "body": "M105"}, "canonical": False},
+    {"line": "M105", "frame": {"body": "M105"}, "canonical": True},
+    {"line": "  g28 x ", "frame": {"body": "g28 x"}, "canonical": False},
+    {"line": "; only a comment", "frame": {"body": ""}, "canonical": False},
+]
+frame_errors = [
+    {"line": "N1 G28*19", "error": 2, "n": 1},
+    {"line": "N1 G28*", "error": 2, "n": 1},
+    {"line": "N1 G28*256", "error": 2, "n": 1},
+    {"line": "N1 G28*1x", "error": 2, "n": 1},
+    {"line": "N1 G28", "error": 3, "n": 1},
+    {"line": "G28*18", "error": 4},
+    {"line": "N1 G\u00ff28*" + str(cs("N1 G\u00ff28")), "error": 1, "n": 1},
+    {"line": "M105\u0007", "error": 1},
+    {"line": "N2147483648 M105*" + str(cs("N2147483648 M105")), "error": 2},
+    {"line": "N1G28*" + str(cs("N1G28")), "error": 2},
+    {"line": "N" + "1" * 3 + " " + "G1 X1" * 19, "error": 5, "n": 111},
+    {"line": "G1 X1" * 20, "error": 5},
+]
+commands = [
+    {"body": "G28", "command": {"word": "G28", "params": {}}},
+    {"body": "G1 X10.5 Y-2 F3000", "command": {"word": "G1", "params": {"X": 10500, "Y": -2000, "F": 3000000}}},
+    {"body": "g28 x y", "command": {"word": "G28", "params": {"X": None, "Y": None}}},
+    {"body": "G0 X1.23456 Y-0.0005 Z.5", "error": 11},
+    {"body": "G0 X1.23456 Y-0.0005 Z0.5", "command": {"word": "G0", "params": {"X": 1235, "Y": -1, "Z": 500}}},
+    {"body": "G0 X2000000 Y-2000000.000", "command": {"word": "G0", "params": {"X": 2000000000, "Y": -2000000000}}},
+    {"body": "G0 X2000000.001", "error": 11},
+    {"body": "M155 S2", "command": {"word": "M155", "params": {"S": 2000}}},
+    {"body": "M820 X-1 S1", "command": {"word": "M820", "params": {"X": -1000, "S": 1000}}},
+    {"body": "M23 PCB_TOP.UVJ", "command": {"word": "M23", "text": "PCB_TOP.UVJ"}},
+    {"body": "M28 job-3.uvj", "command": {"word": "M28", "text": "job-3.uvj"}},
+    {"body": "M30 a b", "error": 11},
+    {"body": "M23", "error": 11},
+    {"body": "M850 bed.x 200", "command": {"word": "M850", "text": "bed.x 200"}},
+    {"body": "M850 led.offset.1", "command": {"word": "M850", "text": "led.offset.1"}},
+    {"body": "M1000 S", "command": {"word": "M1000", "params": {"S": None}}},
+    {"body": "G1 X1 X2", "error": 11},
+    {"body": "G1 X1e3", "error": 11},
+    {"body": "G1 X--1", "error": 11},
+    {"body": "G1 X1.", "error": 11},
+    {"body": "G1 #1", "error": 11},
+    {"body": "G", "error": 10},
+    {"body": "Q5", "error": 10},
+    {"body": "G1X10", "error": 10},
+    {"body": "M99999", "error": 10},
+]
+
+
+def ok(last, p=8, b=8):
+    return f"ok N{last} P{p} B{b}"
+
+
+def err(code, msg, last):
+    return [f"Error:E{code} {msg}, Last Line: {last}", f"Resend: {last + 1}", ok(last)]
+
+
+sessions = [
+    {"name": "in-order lines execute", "steps": [
+        {"rx": numbered(1, "M105"), "execute": "M105"},
+        {"rx": numbered(2, "G28"), "execute": "G28"},
+        {"rx": "M114", "execute": "M114"},
+        {"rx": numbered(3, "M114"), "execute": "M114"},
+    ]},
+    {"name": "corrupt line inside a full window resyncs", "steps": [
+        {"rx": numbered(1, "M105"), "execute": "M105"},
+        {"rx": "N2 M105*0", "reply": err(2, "checksum mismatch", 1)},
+        {"rx": numbered(3, "M105"), "reply": [ok(1)]},
+        {"rx": numbered(4, "M114"), "reply": [ok(1)]},
+        {"rx": "N5 G28*0", "reply": err(2, "checksum mismatch", 1)},
+        {"rx": numbered(2, "M105"), "execute": "M105"},
+        {"rx": numbered(3, "M105"), "execute": "M105"},
+        {"rx": numbered(5, "M105"), "reply": err(6, "line number is not last line number+1", 3)},
+    ]},
+    {"name": "duplicates are acknowledged, not executed", "steps": [
+        {"rx": numbered(1, "G28"), "execute": "G28"},
+        {"rx": numbered(2, "G1 X1"), "execute": "G1 X1"},
+        {"rx": numbered(1, "G28"), "reply": [ok(2)]},
+        {"rx": numbered(2, "G1 X1"), "reply": [ok(2)]},
+        {"rx": numbered(3, "M105"), "execute": "M105"},
+    ]},
+    {"name": "M110 sets the line number and ends resync", "steps": [
+        {"rx": numbered(1, "M105"), "execute": "M105"},
+        {"rx": "N2 M105", "reply": err(3, "line number without checksum", 1)},
+        {"rx": numbered(100, "M110"), "reply": [ok(100)]},
+        {"rx": numbered(101, "M105"), "execute": "M105"},
+        {"rx": "M110 N0", "reply": [ok(0)]},
+        {"rx": numbered(1, "M105"), "execute": "M105"},
+    ]},
+    {"name": "errors on plain lines ask for no resend", "steps": [
+        {"rx": "G28*18", "reply": ["Error:E4 checksum without line number", ok(0)]},
+        {"rx": "M105\u0007", "reply": ["Error:E1 invalid byte in line", ok(0)]},
+        {"rx": "G1 X1" * 20, "reply": ["Error:E5 line too long", ok(0)]},
+        {"rx": "", "reply": []},
+        {"rx": numbered(1, "M105"), "execute": "M105"},
+    ]},
+    {"name": "an overlong numbered line asks for a resend", "steps": [
+        {"rx": numbered(1, "M105"), "execute": "M105"},
+        {"rx": "N2 " + "G1 X1" * 19, "reply": err(5, "line too long", 1)},
+        {"rx": numbered(2, "M105"), "execute": "M105"},
+    ]},
+]
+
+replies = [
+    {"line": "ok N4 P8 B7", "reply": {"kind": "ok", "n": 4, "p": 8, "b": 7}, "canonical": True},
+    {"line": "ok", "reply": {"kind": "ok"}, "canonical": False},
+    {"line": "ok T:20.0 /0.0", "reply": {"kind": "ok"}, "canonical": False},
+    {"line": "Error:E2 checksum mismatch, Last Line: 4", "reply": {"kind": "error", "code": 2, "message": "checksum mismatch, Last Line: 4"}, "canonical": True},
+    {"line": "Error:E10 unknown command: M999x", "reply": {"kind": "error", "code": 10, "message": "unknown command: M999x"}, "canonical": True},
+    {"line": "Error:Printer halted. kill() called!", "reply": {"kind": "error", "code": 0, "message": "Printer halted. kill() called!"}, "canonical": False},
+    {"line": "Resend: 5", "reply": {"kind": "resend", "n": 5}, "canonical": True},
+    {"line": "rs 5", "reply": {"kind": "resend", "n": 5}, "canonical": False},
+    {"line": "T:31.2 /60.0 T0:24.0 /60.0 T1:31.2 /60.0 T2:23.9 /60.0 T3:24.1 /60.0 T4:22.0 /55.0 T5:-3.5 /55.0",
+     "reply": {"kind": "temps", "deciC": [240, 312, 239, 241, 220, -35], "limitDeciC": [600, 600, 600, 600, 550, 550]}, "canonical": True},
+    {"line": "X:10.000 Y:20.500 Z:-0.125 E:0.000 Count X:800 Y:1640 Z:-50",
+     "reply": {"kind": "position", "um": [10000, 20500, -125], "steps": [800, 1640, -50]}, "canonical": True},
+    {"line": "JOB:running file=PCB.UVJ stop=120/4000 elapsed=12 remaining=345 leds=5",
+     "reply": {"kind": "job", "state": "running", "fields": {"file": "PCB.UVJ", "stop": "120/4000", "elapsed": "12", "remaining": "345", "leds": "5"}}, "canonical": True},
+    {"line": "JOB:idle", "reply": {"kind": "job", "state": "idle", "fields": {}}, "canonical": True},
+    {"line": "PROBE:triggered", "reply": {"kind": "probe", "state": "triggered"}, "canonical": True},
+    {"line": "Bed X: 10.000 Y: 20.000 Z: 0.125", "reply": {"kind": "probePoint", "um": [10000, 20000, 125]}, "canonical": True},
+    {"line": "TEST:quick x=pass x_steps=16002 y=fail y_steps=15873",
+     "reply": {"kind": "test", "mode": "quick", "fields": {"x": "pass", "x_steps": "16002", "y": "fail", "y_steps": "15873"}}, "canonical": True},
+    {"line": "FAULT:E31 over-temperature T3 71.2", "reply": {"kind": "fault", "code": 31, "message": "over-temperature T3 71.2"}, "canonical": True},
+    {"line": "echo:Done saving file.", "reply": {"kind": "echo", "text": "Done saving file."}, "canonical": True},
+    {"line": "busy: processing", "reply": {"kind": "busy"}, "canonical": True},
+    {"line": "start", "reply": {"kind": "start"}, "canonical": True},
+    {"line": "FIRMWARE_NAME:UVExposure 0.1.0 (Mega) PROTOCOL_VERSION:1 MACHINE_TYPE:UV-LED exposure printer LEDS:4 SENSORS:6",
+     "reply": {"kind": "firmware", "name": "UVExposure 0.1.0 (Mega)", "protocol": 1}, "canonical": True},
+    {"line": "Cap:RX_WINDOW:8", "reply": {"kind": "cap", "name": "RX_WINDOW", "value": 8}, "canonical": True},
+    {"line": "MESH:row 0 0.010 -0.020 0.000", "reply": {"kind": "other", "text": "MESH:row 0 0.010 -0.020 0.000"}, "canonical": False},
+]
+bad_reports = [
+    {"line": "T:31.2 /60.0 T0:24.0 /60.0", "why": "fewer than six sensors"},
+    {"line": "X:10.000 Y:20.500", "why": "no Z"},
+    {"line": "Resend: x", "why": "not a number"},
+]
+write("mega.json", {
+    "link": "mega", "version": 1,
+    "maxLine": 96, "window": 8, "movesFree": 8,
+    "frames": frames, "frameErrors": frame_errors,
+    "commands": commands, "sessions": sessions,
+    "replies": replies, "badReplies": bad_reports,
+})
+
+# ---------------------------------------------------------------- Job format
+def segments(row):
+    out, c, n = [], 0, len(row)
+    while c < n:
+        if row[c] == 0:
+            c += 1
+            continue
+        start = end = c
+        while True:
+            nxt = end + 1
+            while nxt < n and row[nxt] == 0:
+                nxt += 1
+            if nxt < n and nxt - end - 1 <= 4 and nxt - start + 1 <= 32:
+                end = nxt
+            else:
+                break
+        out.append((start, row[start:end + 1]))
+        c = end + 1
+    return out
+
+
+def job_text(job):
+    d, l = job["dose"], job["leds"]
+    lines = ["uvj 1",
+             f"grid {job['grid']['cols']} {job['grid']['rows']}",
+             f"pitch {job['pitchUm']['x']} {job['pitchUm']['y']}",
+             f"origin {job['originUm']['x']} {job['originUm']['y']}",
+             "map linear" if d["map"] == "linear" else f"map threshold {d['level']}",
+             f"full {d['fullUs']}" if "fullUs" in d else
+             "target " + " ".join(str(v) for v in [d["targetUJcm2"]] + d["irradianceUWcm2"]),
+             "gain " + " ".join(str(g) for g in l.get("gainPermille", [1000] * 4)),
+             "thermal {} {}".format(job.get("thermal", {}).get("coeffCentiPctPerC", 0), job.get("thermal", {}).get("refDeciC", 250)),
+             "leds " + " ".join(f"{dx} {dy}" for dx, dy in l["offsets"]),
+             f"strategy {job['strategy']['name']} {job['strategy'].get('seed', 0) if job['strategy']['name'] == 'random' else 0}"]
+    for r, row in enumerate(job["gridData"]):
+        for col, cells in segments(row):
+            lines.append(f"r {r} {col} " + "".join(f"{v:02x}" for v in cells))
+    body = "".join(x + "\n" for x in lines)
+    crc = zlib.crc32(body.encode("ascii")) & 0xFFFFFFFF
+    return body + f"end {crc:08x}\n", f"{crc:08x}"
+
+
+def base_job(**over):
+    job = {
+        "grid": {"cols": 4, "rows": 2}, "pitchUm": {"x": 100, "y": 100}, "originUm": {"x": 10000, "y": 10000},
+        "dose": {"map": "threshold", "level": 128, "fullUs": 4000},
+        "leds": {"offsets": [[0, 0], [0, 1], [0, 2], [0, 3]]},
+        "strategy": {"name": "serpentine"},
+        "gridData": [[0, 255, 255, 0], [0, 0, 128, 0]],
+    }
+    job.update(over)
+    return job
+
+
+def gap_row():
+    row = [0] * 80
+    for c in [3, 8, 9, 14, 19, 20, 21, 22, 23, 24, 25, 26, 27, 28, 29, 30, 31, 32, 33, 34, 35, 36, 37, 38, 39, 40, 41, 42, 43, 44, 45, 46, 60, 79]:
+        row[c] = (c * 37) % 255 + 1
+    return row
+
+
+jobs = [
+    {"name": "seed-like two-row threshold job", "job": base_job()},
+    {"name": "all-zero grid has no records", "job": base_job(gridData=[[0, 0, 0, 0], [0, 0, 0, 0]])},
+    {"name": "linear map, gains, thermal, target dose",
+     "job": base_job(grid={"cols": 3, "rows": 3}, pitchUm={"x": 50, "y": 75}, originUm={"x": 0, "y": 12345},
+                     dose={"map": "linear", "targetUJcm2": 150000, "irradianceUWcm2": [30000, 31000, 29500, 30500]},
+                     leds={"offsets": [[0, 0], [0, 10], [0, 20], [0, 30]], "gainPermille": [1000, 980, 1020, 1005]},
+                     thermal={"coeffCentiPctPerC": -35, "refDeciC": 250},
+                     strategy={"name": "random", "seed": 4294967295},
+                     gridData=[[1, 2, 3], [0, 0, 0], [255, 0, 17]])},
+    {"name": "gaps of 4 merge, gaps of 5 split, 32-cell cap",
+     "job": base_job(grid={"cols": 80, "rows": 1}, leds={"offsets": [[0, 0], [0, 0], [-3, 0], [4096, -4096]]},
+                     strategy={"name": "shortest"}, gridData=[gap_row()])},
+    {"name": "raster, full row of 40",
+     "job": base_job(grid={"cols": 40, "rows": 2}, dose={"map": "linear", "fullUs": 10000000},
+                     strategy={"name": "raster"}, gridData=[[255] * 40, [0] * 39 + [1]])},
+]
+for j in jobs:
+    j["text"], j["crc"] = job_text(j["job"])
+
+good = jobs[0]["text"]
+good_lines = good.split("\n")[:-1]
+
+
+def rebuild(lines):
+    """Rejoin records and recompute the end CRC so only the named fault is present."""
+    body = "".join(x + "\n" for x in lines if not x.startswith("end "))
+    crc = zlib.crc32(body.encode("latin-1")) & 0xFFFFFFFF
+    return body + f"end {crc:08x}\n"
+
+
+def replace(i, new):
+    ls = list(good_lines)
+    ls[i] = new
+    return rebuild(ls)
+
+
+def drop(i):
+    ls = list(good_lines)
+    del ls[i]
+    return rebuild(ls)
+
+
+invalid_jobs = [
+    {"why": "hash mismatch", "text": good[:-3] + ("00\n" if not good.endswith("00\n") else "11\n"), "error": 24},
+    {"why": "missing end", "text": "".join(x + "\n" for x in good_lines[:-1]), "error": 25},
+    {"why": "bytes after end", "text": good + "r 0 0 ff\n", "error": 25},
+    {"why": "unterminated last line", "text": good[:-1], "error": 25},
+    {"why": "wrong version", "text": replace(0, "uvj 2"), "error": 23},
+    {"why": "header out of order", "text": rebuild([good_lines[0], good_lines[2], good_lines[1]] + good_lines[3:]), "error": 23},
+    {"why": "missing header record", "text": drop(6), "error": 23},
+    {"why": "grid too large", "text": replace(1, "grid 4097 2"), "error": 23},
+    {"why": "grid zero", "text": replace(1, "grid 0 2"), "error": 23},
+    {"why": "leading zero", "text": replace(2, "pitch 0100 100"), "error": 23},
+    {"why": "double space", "text": replace(2, "pitch 100  100"), "error": 23},
+    {"why": "trailing space", "text": replace(2, "pitch 100 100 "), "error": 23},
+    {"why": "threshold level 0", "text": replace(4, "map threshold 0"), "error": 23},
+    {"why": "linear with a level", "text": replace(4, "map linear 128"), "error": 23},
+    {"why": "full over cap", "text": replace(5, "full 10000001"), "error": 23},
+    {"why": "target with three irradiances", "text": replace(5, "target 100 1 1 1"), "error": 23},
+    {"why": "gain zero", "text": replace(6, "gain 0 1000 1000 1000"), "error": 23},
+    {"why": "unknown strategy", "text": replace(9, "strategy spiral 0"), "error": 23},
+    {"why": "seed on a non-random strategy", "text": replace(9, "strategy serpentine 7"), "error": 23},
+    {"why": "segment past the grid", "text": replace(10, "r 0 3 ffff"), "error": 23},
+    {"why": "row past the grid", "text": replace(11, "r 2 2 80"), "error": 23},
+    {"why": "segments out of order", "text": rebuild(good_lines[:10] + [good_lines[11], good_lines[10]]), "error": 23},
+    {"why": "overlapping segments", "text": rebuild(good_lines[:11] + ["r 0 2 ff"] + good_lines[11:]), "error": 23},
+    {"why": "odd hex length", "text": replace(10, "r 0 1 fff"), "error": 23},
+    {"why": "upper-case hex", "text": replace(10, "r 0 1 FFFF"), "error": 23},
+    {"why": "segment over 32 cells", "text": replace(10, "r 0 1 " + "ff" * 33), "error": 23},
+    {"why": "empty segment", "text": replace(10, "r 0 1 "), "error": 23},
+    {"why": "unknown record", "text": rebuild(good_lines[:10] + ["z 1"] + good_lines[10:]), "error": 23},
+    {"why": "header after data", "text": rebuild(good_lines[:11] + ["gain 1000 1000 1000 1000"] + good_lines[11:]), "error": 23},
+    {"why": "crc not 8 hex digits", "text": "".join(x + "\n" for x in good_lines[:-1]) + "end 1234\n", "error": 23},
+]
+write("job.json", {"version": 1, "maxCellsPerRecord": 32, "maxGap": 4, "jobs": jobs, "invalid": invalid_jobs})
+
+# ---------------------------------------------------------------- ESP API
+def body(obj):
+    return json.dumps(obj, separators=(",", ":"))
+
+
+def drop_key(obj, *path):
+    obj = json.loads(json.dumps(obj))
+    cur = obj
+    for k in path[:-1]:
+        cur = cur[k]
+    del cur[path[-1]]
+    return obj
+
+
+def set_key(obj, value, *path):
+    obj = json.loads(json.dumps(obj))
+    cur = obj
+    for k in path[:-1]:
+        cur = cur[k]
+    cur[path[-1]] = value
+    return obj
+
+
+bj = base_job()
+esp_requests = [
+    {"name": "valid job", "body": body(bj), "status": 202, "text": job_text(bj)[0]},
+    {"name": "valid target-dose job", "body": body(jobs[2]["job"]), "status": 202, "text": jobs[2]["text"]},
+    {"name": "not JSON", "body": "{\"grid\":", "status": 400, "error": "bad_json"},
+    {"name": "not an object", "body": "[1,2]", "status": 400, "error": "bad_job", "path": ""},
+    {"name": "missing gridData", "body": body(drop_key(bj, "gridData")), "status": 400, "error": "bad_job", "path": "/gridData"},
+    {"name": "unknown field", "body": body(set_key(bj, 1, "colour")), "status": 400, "error": "bad_job", "path": "/colour"},
+    {"name": "cell over 255", "body": body(set_key(bj, [[0, 256, 0, 0], [0, 0, 0, 0]], "gridData")), "status": 400, "error": "bad_job", "path": "/gridData/0/1"},
+    {"name": "cell not an integer", "body": body(set_key(bj, [[0, 1.5, 0, 0], [0, 0, 0, 0]], "gridData")), "status": 400, "error": "bad_job", "path": "/gridData/0/1"},
+    {"name": "row of the wrong length", "body": body(set_key(bj, [[0, 1, 0, 0], [0, 0, 0]], "gridData")), "status": 400, "error": "bad_job", "path": "/gridData/1"},
+    {"name": "too few rows", "body": body(set_key(bj, [[0, 1, 0, 0]], "gridData")), "status": 400, "error": "bad_job", "path": "/gridData"},
+    {"name": "threshold without level", "body": body(drop_key(bj, "dose", "level")), "status": 400, "error": "bad_job", "path": "/dose/level"},
+    {"name": "both full and target", "body": body(set_key(bj, 5, "dose", "targetUJcm2")), "status": 400, "error": "bad_job", "path": "/dose"},
+    {"name": "pitch zero", "body": body(set_key(bj, 0, "pitchUm", "x")), "status": 400, "error": "bad_job", "path": "/pitchUm/x"},
+    {"name": "three LED offsets", "body": body(set_key(bj, [[0, 0], [0, 1], [0, 2]], "leds", "offsets")), "status": 400, "error": "bad_job", "path": "/leds/offsets"},
+    {"name": "unknown strategy", "body": body(set_key(bj, "spiral", "strategy", "name")), "status": 400, "error": "bad_job", "path": "/strategy/name"},
+    {"name": "bad name", "body": body(set_key(bj, "a/b", "name")), "status": 400, "error": "bad_job", "path": "/name"},
+    {"name": "grid over 262144 cells", "body": body(set_key(bj, {"cols": 1024, "rows": 257}, "grid")), "status": 413, "error": "too_large"},
+]
+write("esp.json", {"version": 1, "maxBody": 1200000, "maxCells": 262144, "requests": esp_requests})
+print("wrote nano.json mega.json job.json esp.json")
