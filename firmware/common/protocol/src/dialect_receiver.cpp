@@ -1,0 +1,106 @@
+// The Mega's line-acceptance state machine: numbering, duplicates, resend and resync (protocol/mega.md §2).
+#include "dialect_receiver.h"
+
+#include <string.h>
+
+#include "dialect_command.h"
+#include "error_codes.h"
+#include "text_scan.h"
+
+namespace uv {
+
+size_t LineReceiver::formatOk(char* out) const {
+  size_t n = 0;
+  memcpy(out, "ok N", 4);
+  n = 4;
+  n += putUnsigned(last_, out + n);
+  out[n++] = ' ';
+  out[n++] = 'P';
+  n += putUnsigned(flow_.movesFree(), out + n);
+  out[n++] = ' ';
+  out[n++] = 'B';
+  n += putUnsigned(flow_.windowFree(), out + n);
+  out[n] = '\0';
+  return n;
+}
+
+void LineReceiver::ok(ReplySink& sink) const {
+  char buf[40];
+  formatOk(buf);
+  sink.line(buf);
+}
+
+static size_t errorLine(uint8_t code, char* out) {
+  memcpy(out, "Error:E", 7);
+  size_t n = 7 + putUnsigned(code, out + 7);
+  out[n++] = ' ';
+  errorMessage(code, out + n, 48);
+  return n + strlen(out + n);
+}
+
+void LineReceiver::askResend(uint8_t code, ReplySink& sink) {
+  resyncing_ = true;
+  char buf[96];
+  size_t n = errorLine(code, buf);
+  memcpy(buf + n, ", Last Line: ", 13);
+  n += 13;
+  n += putUnsigned(last_, buf + n);
+  buf[n] = '\0';
+  sink.line(buf);
+  memcpy(buf, "Resend: ", 8);
+  buf[8 + putUnsigned(last_ + 1, buf + 8)] = '\0';
+  sink.line(buf);
+  ok(sink);
+}
+
+bool LineReceiver::m110(const Frame& f, uint32_t& setTo) const {
+  Command c;
+  if (parseCommand(f.body, f.bodyLen, c) != 0 || !c.is('M', 110)) return false;
+  if (c.hasValue('N') && c.value('N') >= 0 && c.value('N') % 1000 == 0) {
+    setTo = static_cast<uint32_t>(c.value('N') / 1000);
+    return true;
+  }
+  setTo = f.n;
+  return f.hasN;
+}
+
+Acceptance LineReceiver::accept(const char* text, uint8_t len, bool overflow, ReplySink& sink, Frame& f) {
+  if (!overflow && len == 0) return Acceptance::None;
+  f = parseFrame(text, len, overflow);
+  if (f.error) {
+    if (f.numbered && isLineError(f.error)) {
+      askResend(f.error, sink);
+    } else {
+      char buf[96];
+      errorLine(f.error, buf);
+      sink.line(buf);
+      ok(sink);
+    }
+    return Acceptance::Replied;
+  }
+  if (f.bodyLen == 0) {
+    ok(sink);
+    return Acceptance::Replied;
+  }
+  uint32_t setTo = 0;
+  if (m110(f, setTo)) {
+    last_ = setTo;
+    resyncing_ = false;
+    ok(sink);
+    return Acceptance::Replied;
+  }
+  if (!f.hasN) return Acceptance::Execute;
+  if (f.n == last_ + 1) {
+    last_ = f.n;
+    resyncing_ = false;
+    return Acceptance::Execute;
+  }
+  if (f.n <= last_ || resyncing_) {
+    ok(sink);
+    return Acceptance::Replied;
+  }
+  askResend(kLineSequence, sink);
+  return Acceptance::Replied;
+}
+
+}  // namespace uv

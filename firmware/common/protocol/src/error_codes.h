@@ -1,0 +1,48 @@
+// The dialect's stable numeric error codes (protocol/errors.csv); never renumber.
+#pragma once
+#include <stdint.h>
+
+namespace uv {
+
+enum ErrorCode : uint8_t {
+  kInvalidByte = 1,
+  kChecksumMismatch = 2,
+  kNoChecksum = 3,
+  kNoLineNumber = 4,
+  kLineTooLong = 5,
+  kLineSequence = 6,
+  kUnknownCommand = 10,
+  kBadParameter = 11,
+  kBusy = 12,
+  kHalted = 13,
+  kNotHomed = 14,
+  kSoftLimit = 15,
+  kNoSd = 20,
+  kFileNotFound = 21,
+  kFileError = 22,
+  kJobMalformed = 23,
+  kJobHashMismatch = 24,
+  kJobIncomplete = 25,
+  kNoJob = 26,
+  kNoResume = 27,
+  kNanoTimeout = 30,
+  kOverTemperature = 31,
+  kSensorFault = 32,
+  kExposureRefused = 33,
+  kProbeAlarm = 40,
+  kProbeNoTrigger = 41,
+  kEndstopHit = 42,
+  kSelftestFailed = 43,
+  kConfigInvalid = 50,
+};
+
+// Codes 1-6 are line-level: a numbered line with one of them is asked for again.
+inline bool isLineError(uint8_t code) { return code >= 1 && code <= 6; }
+
+// Copies the table's message for a code into out (NUL-terminated, truncated to size);
+// returns false for an unknown code. Messages live in flash on AVR.
+bool errorMessage(uint8_t code, char* out, uint8_t size);
+// The table's name, e.g. "checksum_mismatch"; for tests and host tools.
+bool errorName(uint8_t code, char* out, uint8_t size);
+
+}  // namespace uv

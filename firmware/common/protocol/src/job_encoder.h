@@ -1,0 +1,31 @@
+// Encodes a job header and rows of cells as the canonical job text of protocol/job.md, one record at a time.
+#pragma once
+#include <stdint.h>
+
+#include "job_types.h"
+
+namespace uv {
+
+// Receives each record without '\n' (NUL-terminated, at most 80 bytes).
+class RecordSink {
+ public:
+  virtual void record(const char* text, uint8_t len) = 0;
+};
+
+// Feed the header, then every row in order, then finish(). Only one row is held by the caller.
+class JobEncoder {
+ public:
+  explicit JobEncoder(RecordSink& sink) : sink_(sink) {}
+
+  void header(const JobHeader& h);
+  void row(uint16_t rowIndex, const uint8_t* cells, uint16_t cols);
+  void finish();
+
+ private:
+  void emit(const char* text, uint8_t len);
+
+  RecordSink& sink_;
+  uint32_t crc_ = 0;
+};
+
+}  // namespace uv

@@ -1,0 +1,107 @@
+// Host tests of the job encoder and verifier against protocol/vectors/job.json.
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "job_encoder.h"
+#include "job_verifier.h"
+#include "vectors_fixture.h"
+
+using namespace uv;
+using namespace uvtest;
+
+namespace {
+
+const json V = loadVectors("job.json");
+VectorCounter counted("job.json");
+
+struct Text : RecordSink {
+  std::string text;
+  void record(const char* t, uint8_t len) override { text += std::string(t, len) + "\n"; }
+};
+
+struct Cells : SegmentSink {
+  std::vector<std::vector<int>> grid;
+  void segment(uint16_t row, uint16_t col, const char* hex, uint8_t n) override {
+    for (uint8_t i = 0; i < n; i++) grid[row][col + i] = hexCell(hex, i);
+  }
+};
+
+// The ESP's path: a parsed job body to a JobHeader (defaults as protocol/esp.md).
+JobHeader headerFrom(const json& j) {
+  JobHeader h{};
+  h.cols = j["grid"]["cols"];
+  h.rows = j["grid"]["rows"];
+  h.pitchUm[0] = j["pitchUm"]["x"];
+  h.pitchUm[1] = j["pitchUm"]["y"];
+  h.originUm[0] = j["originUm"]["x"];
+  h.originUm[1] = j["originUm"]["y"];
+  const json& d = j["dose"];
+  h.map = d["map"] == "linear" ? DoseMap::Linear : DoseMap::Threshold;
+  h.level = d.value("level", 0);
+  h.byTarget = d.contains("targetUJcm2");
+  h.fullUs = d.value("fullUs", 0u);
+  h.targetUJcm2 = d.value("targetUJcm2", 0u);
+  for (int i = 0; i < 4; i++) {
+    if (h.byTarget) h.irradianceUWcm2[i] = d["irradianceUWcm2"][i];
+    h.gainPermille[i] = j["leds"].contains("gainPermille") ? j["leds"]["gainPermille"][i].get<int>() : 1000;
+    h.offsets[i][0] = j["leds"]["offsets"][i][0];
+    h.offsets[i][1] = j["leds"]["offsets"][i][1];
+  }
+  h.thermalCoeff = j.contains("thermal") ? j["thermal"]["coeffCentiPctPerC"].get<int>() : 0;
+  h.thermalRefDeciC = j.contains("thermal") ? j["thermal"]["refDeciC"].get<int>() : 250;
+  static const char* const names[] = {"raster", "serpentine", "shortest", "random"};
+  for (int i = 0; i < 4; i++)
+    if (j["strategy"]["name"] == names[i]) h.strategy = static_cast<Strategy>(i);
+  h.seed = j["strategy"].value("seed", 0u);
+  return h;
+}
+
+uint8_t verify(const std::string& text, SegmentSink* sink) {
+  JobVerifier v(sink);
+  size_t start = 0;
+  for (;;) {
+    size_t nl = text.find('\n', start);
+    if (nl == std::string::npos) break;
+    if (v.push(text.data() + start, static_cast<uint8_t>(nl - start))) return v.error();
+    start = nl + 1;
+  }
+  if (start != text.size()) return 25;  // last line has no newline
+  return v.finish();
+}
+
+}  // namespace
+
+TEST(JobVectors, EncodeByteExactAndVerify) {
+  for (const json& c : V["jobs"]) {
+    const json& job = c["job"];
+    Text out;
+    JobEncoder enc(out);
+    enc.header(headerFrom(job));
+    std::vector<uint8_t> row;
+    for (size_t r = 0; r < job["gridData"].size(); r++) {
+      row.assign(job["gridData"][r].begin(), job["gridData"][r].end());
+      enc.row(static_cast<uint16_t>(r), row.data(), static_cast<uint16_t>(row.size()));
+    }
+    enc.finish();
+    EXPECT_EQ(out.text, c["text"].get<std::string>()) << c["name"];
+
+    Cells cells;
+    cells.grid.assign(job["grid"]["rows"].get<size_t>(), std::vector<int>(job["grid"]["cols"].get<size_t>(), 0));
+    EXPECT_EQ(verify(c["text"], &cells), 0) << c["name"];
+    EXPECT_EQ(json(cells.grid), job["gridData"]) << c["name"];
+    counted();
+  }
+}
+
+TEST(JobVectors, InvalidJobsRefused) {
+  for (const json& c : V["invalid"]) {
+    EXPECT_EQ(verify(bytes(c["text"]), nullptr), c["error"].get<int>()) << c["why"];
+    counted();
+  }
+}
+
+TEST(JobVerifierMemory, StaysSmallForTheMega) {
+  // The Mega verifies a spooled job with one of these and one 97-byte line buffer; 128 bytes is 1.6 % of its RAM.
+  EXPECT_LE(sizeof(JobVerifier), 128u);
+}

@@ -1,0 +1,209 @@
+// Streaming verifier of job text (protocol/job.md): record syntax, order, bounds and the whole-job CRC.
+#include "job_verifier.h"
+
+#include <string.h>
+
+#include "crc32.h"
+#include "error_codes.h"
+#include "text_scan.h"
+
+namespace uv {
+
+namespace {
+
+const char* const kStrategies[] = {"raster", "serpentine", "shortest", "random"};
+
+// Cursor over single-space separated words.
+struct Words {
+  const char* p;
+  const char* end;
+  bool bad = false;
+
+  // Next word as [w, wEnd); false at the end or on an empty word.
+  bool next(const char*& w, const char*& wEnd) {
+    if (p >= end) return false;
+    w = p;
+    while (p < end && *p != ' ') p++;
+    wEnd = p;
+    if (p < end) {
+      p++;
+      if (p == end) bad = true;  // trailing space
+    }
+    if (w == wEnd) bad = true;
+    return !bad;
+  }
+  bool done() const { return p >= end && !bad; }
+  bool is(const char* literal) {
+    const char *w, *e;
+    return next(w, e) && static_cast<size_t>(e - w) == strlen(literal) && memcmp(w, literal, e - w) == 0;
+  }
+  // `0|-?[1-9][0-9]*` within [lo, hi].
+  bool integer(int32_t lo, int32_t hi, int32_t& out) {
+    const char *w, *e;
+    if (!next(w, e)) return false;
+    bool neg = *w == '-';
+    if (neg) w++;
+    if (w == e || (*w == '0' && (e - w > 1 || neg))) return false;
+    uint32_t v = 0;
+    if (scanUnsigned(w, e, 10, 0xFFFFFFFFu, v) != e) return false;
+    int64_t s = neg ? -static_cast<int64_t>(v) : static_cast<int64_t>(v);
+    if (s < lo || s > hi) return false;
+    out = static_cast<int32_t>(s);
+    return true;
+  }
+  bool u32(uint32_t lo, uint32_t hi, uint32_t& out) {
+    const char *w, *e;
+    if (!next(w, e) || (*w == '0' && e - w > 1)) return false;
+    if (scanUnsigned(w, e, 10, 0xFFFFFFFFu, out) != e) return false;
+    return out >= lo && out <= hi;
+  }
+};
+
+int8_t hexDigit(char c) {
+  if (c >= '0' && c <= '9') return static_cast<int8_t>(c - '0');
+  if (c >= 'a' && c <= 'f') return static_cast<int8_t>(c - 'a' + 10);
+  return -1;
+}
+
+}  // namespace
+
+uint8_t hexCell(const char* hex, uint8_t index) {
+  return static_cast<uint8_t>(hexDigit(hex[index * 2]) << 4 | hexDigit(hex[index * 2 + 1]));
+}
+
+const char* strategyName(Strategy s) { return kStrategies[static_cast<uint8_t>(s)]; }
+
+uint8_t JobVerifier::push(const char* record, uint8_t len) {
+  if (error_) return error_;
+  lineNo_++;
+  if (ended_) return fail(kJobIncomplete);
+  const char* end = record + len;
+  if (len >= 4 && memcmp(record, "end ", 4) == 0) return endRecord(record + 4, end);
+  if (len == 3 && memcmp(record, "end", 3) == 0) return fail(kJobMalformed);
+  bool ok = index_ < 10 ? headerRecord(record, end) : segment(record, end);
+  if (!ok) return fail(kJobMalformed);
+  crc_ = crc32Update(crc_, record, len);
+  crc_ = crc32Update(crc_, "\n", 1);
+  return 0;
+}
+
+uint8_t JobVerifier::finish() {
+  if (error_) return error_;
+  if (!ended_) return fail(kJobIncomplete);
+  return 0;
+}
+
+uint8_t JobVerifier::endRecord(const char* p, const char* end) {
+  if (index_ < 10 || end - p != 8) return fail(kJobMalformed);
+  for (const char* q = p; q < end; q++)
+    if (hexDigit(*q) < 0) return fail(kJobMalformed);
+  ended_ = true;
+  char hex[9];
+  crc32Hex(crc_, hex);
+  return memcmp(hex, p, 8) == 0 ? 0 : fail(kJobHashMismatch);
+}
+
+bool JobVerifier::headerRecord(const char* p, const char* end) {
+  Words w{p, end};
+  int32_t a = 0, b = 0;
+  switch (index_) {
+    case 0:
+      if (!w.is("uvj") || !w.is("1")) return false;
+      break;
+    case 1:
+      if (!w.is("grid") || !w.integer(1, kJobMaxSide, a) || !w.integer(1, kJobMaxSide, b)) return false;
+      h_.cols = static_cast<uint16_t>(a);
+      h_.rows = static_cast<uint16_t>(b);
+      break;
+    case 2:
+      if (!w.is("pitch") || !w.u32(1, 100000, h_.pitchUm[0]) || !w.u32(1, 100000, h_.pitchUm[1])) return false;
+      break;
+    case 3:
+      if (!w.is("origin") || !w.u32(0, 10000000, h_.originUm[0]) || !w.u32(0, 10000000, h_.originUm[1])) return false;
+      break;
+    case 4: {
+      if (!w.is("map")) return false;
+      Words probe = w;
+      if (probe.is("linear") && probe.done()) {
+        h_.map = DoseMap::Linear;
+        h_.level = 0;
+        w = probe;
+      } else {
+        if (!w.is("threshold") || !w.integer(1, 255, a)) return false;
+        h_.map = DoseMap::Threshold;
+        h_.level = static_cast<uint8_t>(a);
+      }
+      break;
+    }
+    case 5: {
+      Words probe = w;
+      if (probe.is("full")) {
+        w = probe;
+        h_.byTarget = false;
+        if (!w.u32(1, 10000000, h_.fullUs)) return false;
+      } else {
+        if (!w.is("target") || !w.u32(1, 100000000, h_.targetUJcm2)) return false;
+        h_.byTarget = true;
+        for (uint8_t i = 0; i < 4; i++)
+          if (!w.u32(1, 10000000, h_.irradianceUWcm2[i])) return false;
+      }
+      break;
+    }
+    case 6:
+      if (!w.is("gain")) return false;
+      for (uint8_t i = 0; i < 4; i++) {
+        if (!w.integer(1, 10000, a)) return false;
+        h_.gainPermille[i] = static_cast<uint16_t>(a);
+      }
+      break;
+    case 7:
+      if (!w.is("thermal") || !w.integer(-1000, 1000, a) || !w.integer(-400, 1250, b)) return false;
+      h_.thermalCoeff = static_cast<int16_t>(a);
+      h_.thermalRefDeciC = static_cast<int16_t>(b);
+      break;
+    case 8:
+      if (!w.is("leds")) return false;
+      for (uint8_t i = 0; i < 8; i++) {
+        if (!w.integer(-4096, 4096, a)) return false;
+        h_.offsets[i / 2][i % 2] = static_cast<int16_t>(a);
+      }
+      break;
+    case 9: {
+      if (!w.is("strategy")) return false;
+      const char *n, *ne;
+      if (!w.next(n, ne)) return false;
+      int8_t s = -1;
+      for (uint8_t i = 0; i < 4; i++)
+        if (static_cast<size_t>(ne - n) == strlen(kStrategies[i]) && memcmp(n, kStrategies[i], ne - n) == 0) s = static_cast<int8_t>(i);
+      if (s < 0 || !w.u32(0, 0xFFFFFFFFu, h_.seed)) return false;
+      h_.strategy = static_cast<Strategy>(s);
+      if (h_.strategy != Strategy::Random && h_.seed != 0) return false;
+      break;
+    }
+  }
+  if (!w.done()) return false;
+  index_++;
+  return true;
+}
+
+bool JobVerifier::segment(const char* p, const char* end) {
+  Words w{p, end};
+  int32_t row = 0, col = 0;
+  const char *hex, *hexEnd;
+  if (!w.is("r") || !w.integer(0, h_.rows - 1, row) || !w.integer(0, h_.cols - 1, col) || !w.next(hex, hexEnd) || !w.done()) {
+    return false;
+  }
+  size_t digits = static_cast<size_t>(hexEnd - hex);
+  if (digits == 0 || digits % 2 || digits > kJobMaxCellsPerRecord * 2u) return false;
+  for (const char* q = hex; q < hexEnd; q++)
+    if (hexDigit(*q) < 0) return false;
+  uint8_t cells = static_cast<uint8_t>(digits / 2);
+  if (col + cells > h_.cols) return false;
+  if (row < prevRow_ || (row == prevRow_ && col < prevEnd_)) return false;
+  prevRow_ = row;
+  prevEnd_ = static_cast<uint16_t>(col + cells);
+  if (sink_) sink_->segment(static_cast<uint16_t>(row), static_cast<uint16_t>(col), hex, cells);
+  return true;
+}
+
+}  // namespace uv

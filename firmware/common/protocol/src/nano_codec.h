@@ -1,0 +1,59 @@
+// Codec for the Mega <-> Nano printhead link (protocol/nano.md): commands, replies, colours.
+#pragma once
+#include <stddef.h>
+#include <stdint.h>
+
+namespace uv {
+
+constexpr uint8_t kNanoMaxLine = 63;
+constexpr uint8_t kLedCount = 4;
+constexpr uint8_t kSensorCount = 6;
+
+struct NanoCommand {
+  char op;  // one of S F D U X P T R E V
+  uint8_t mask;
+  uint32_t durations[kLedCount];
+};
+
+struct NanoReply {
+  char op;  // one of S P T E V
+  uint8_t mask;
+  bool triggered;
+  int16_t deciC[kSensorCount];
+  uint8_t flags;
+  uint16_t protocol;
+  char firmware[21];
+};
+
+enum class Colour : uint8_t { Green, DimWhite, Purple, Cyan, Orange, Red };
+
+struct Rgb {
+  uint8_t r, g, b;
+};
+
+// Fault bits of the E reply.
+namespace fault {
+constexpr uint8_t kOvertemp = 1, kSensor = 2, kCapped = 4, kBusy = 8, kRefused = 16,
+                  kMalformed = 32, kWatchdog = 64, kCutoff = 128;
+constexpr uint8_t kActive = kOvertemp | kSensor;
+}  // namespace fault
+
+Rgb colourRgb(Colour c);
+Colour flashColour(char op);
+
+// A line (without terminator) the Nano may parse: not overflowed, printable.
+bool nanoLineUsable(const char* text, uint8_t len, bool overflow);
+
+// Parses one command line. false = malformed (the Nano drops it).
+bool parseNanoCommand(const char* line, uint8_t len, NanoCommand& out);
+// Writes the command with its '\n' and a NUL; returns the length without the NUL.
+size_t formatNanoCommand(const NanoCommand& cmd, char* out, size_t size);
+
+// Writes one-decimal Celsius for tenths; returns the length.
+size_t formatDeciC(int16_t deciC, char* out);
+
+size_t formatNanoReply(const NanoReply& reply, char* out, size_t size);
+// Parses a reply line including its '\n'. false = malformed.
+bool parseNanoReply(const char* line, size_t len, NanoReply& out);
+
+}  // namespace uv

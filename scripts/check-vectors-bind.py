@@ -1,0 +1,87 @@
+#!/usr/bin/env python3
+"""Proves the protocol vectors bind both implementations: for every section of every vector
+file, change one expected byte in a copy and check that the TypeScript suite AND the C++
+suite both fail on it. Usage: check-vectors-bind.py <protocol_tests binary>"""
+import json
+import os
+import random
+import shutil
+import subprocess
+import sys
+import tempfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+VECTORS = os.path.join(ROOT, "protocol", "vectors")
+# The field that holds the expected bytes in each section.
+EXPECTED = {
+    "nano.json": {"commands": "line", "parseOnly": "line", "replies": "line", "streams": "lines"},
+    "mega.json": {"frames": "frame", "frameErrors": "error", "commands": "command", "sessions": "steps",
+                  "replies": "reply"},
+    "job.json": {"jobs": "text", "invalid": "error"},
+    "esp.json": {"requests": "text"},
+}
+CXX_FILES = {"nano.json", "mega.json", "job.json"}  # esp.json's C++ side lands with the ESP firmware
+
+
+def mutate(value, rng):
+    """Changes one byte (or number) somewhere inside an expected value."""
+    if isinstance(value, str):
+        i = rng.randrange(len(value))
+        ch = value[i]
+        new = "0" if ch != "0" else "1"
+        if ch.isalpha():
+            new = "x" if ch != "x" else "y"
+        return value[:i] + new + value[i + 1:]
+    if isinstance(value, bool):
+        return not value
+    if isinstance(value, int):
+        return value + 1
+    if isinstance(value, list):
+        value = list(value)
+        if not value:
+            return ["x"]
+        i = rng.randrange(len(value))
+        value[i] = mutate(value[i], rng)
+        return value
+    if isinstance(value, dict):
+        value = dict(value)
+        k = rng.choice(sorted(value))
+        value[k] = mutate(value[k], rng)
+        return value
+    return "x"
+
+
+def fails(cmd, env):
+    return subprocess.run(cmd, env=env, cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL).returncode != 0
+
+
+def main():
+    cxx = sys.argv[1]
+    rng = random.Random(20261121)
+    checked, problems = 0, []
+    for file, sections in EXPECTED.items():
+        original = json.load(open(os.path.join(VECTORS, file)))
+        for section, field in sections.items():
+            cases = [c for c in original[section] if field in c]
+            case = rng.choice(cases)
+            with tempfile.TemporaryDirectory() as tmp:
+                for f in os.listdir(VECTORS):
+                    shutil.copy(os.path.join(VECTORS, f), tmp)
+                doc = json.loads(json.dumps(original))
+                target = doc[section][original[section].index(case)]
+                target[field] = mutate(target[field], rng)
+                json.dump(doc, open(os.path.join(tmp, file), "w"))
+                env = dict(os.environ, UV_VECTORS_DIR=tmp)
+                ts = fails(["npx", "vitest", "run", "app/src/protocol", "--reporter=dot"], env)
+                cc = fails([cxx], env) if file in CXX_FILES else True
+                checked += 1
+                verdict = "both fail" if ts and cc else f"NOT CAUGHT (ts failed={ts}, c++ failed={cc})"
+                print(f"  {file} {section}.{field}: {verdict}")
+                if not (ts and cc):
+                    problems.append(f"{file} {section}")
+    print(f"{checked - len(problems)} passed, {len(problems)} failed")
+    sys.exit(1 if problems else 0)
+
+
+if __name__ == "__main__":
+    main()
