@@ -15,6 +15,7 @@ const char* const kStrategies[] = {"raster", "serpentine", "shortest", "random"}
 
 // Cursor over single-space separated words.
 struct Words {
+  Words(const char* begin, const char* stop) : p(begin), end(stop) {}
   const char* p;
   const char* end;
   bool bad = false;

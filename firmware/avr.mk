@@ -1,0 +1,56 @@
+# Builds one board's firmware with Debian's avr-gcc and Arduino core: make -f firmware/avr.mk BOARD=nano|mega
+# (run from the repository root). Users build with PlatformIO (platformio.ini); this is the same code.
+ARDUINO_DIR ?= /usr/share/arduino/hardware/arduino/avr
+BOARD ?= nano
+
+ifeq ($(BOARD),nano)
+MCU := atmega328p
+VARIANT := standard
+else ifeq ($(BOARD),mega)
+MCU := atmega2560
+VARIANT := mega
+else
+$(error BOARD must be nano or mega)
+endif
+
+OUT := build/avr
+OBJ := $(OUT)/obj/$(BOARD)
+CORE := $(ARDUINO_DIR)/cores/arduino
+COMMON := firmware/common/protocol/src
+BOARD_SRC := firmware/$(BOARD)/src
+
+CPPFLAGS := -mmcu=$(MCU) -DF_CPU=16000000L -DARDUINO=10819 -DARDUINO_ARCH_AVR \
+  -I$(CORE) -I$(ARDUINO_DIR)/variants/$(VARIANT) -I$(COMMON) -I$(BOARD_SRC) $(EXTRA_DEFS)
+OPT := -Os -ffunction-sections -fdata-sections -flto
+CFLAGS := $(OPT) -std=gnu11
+CXXFLAGS := $(OPT) -std=gnu++11 -fno-exceptions -fno-threadsafe-statics -DDECIMAL_DIG=__DECIMAL_DIG__
+WARN := -Wall -Wextra -Wno-missing-field-initializers
+ASFLAGS := -x assembler-with-cpp
+
+CORE_SRCS := $(wildcard $(CORE)/*.c $(CORE)/*.cpp $(CORE)/*.S)
+APP_SRCS := $(filter-out %_test.cpp,$(wildcard $(COMMON)/*.cpp $(BOARD_SRC)/*.cpp))
+CORE_OBJS := $(patsubst $(CORE)/%,$(OBJ)/core/%.o,$(CORE_SRCS))
+APP_OBJS := $(patsubst %,$(OBJ)/app/%.o,$(APP_SRCS))
+
+all: $(OUT)/$(BOARD).elf $(OUT)/$(BOARD).hex
+
+$(OUT)/$(BOARD).elf: $(CORE_OBJS) $(APP_OBJS)
+	avr-gcc -mmcu=$(MCU) $(OPT) -Wl,--gc-sections -o $@ $(APP_OBJS) $(CORE_OBJS) -lm
+
+$(OUT)/$(BOARD).hex: $(OUT)/$(BOARD).elf
+	avr-objcopy -O ihex -R .eeprom $< $@
+
+$(OBJ)/core/%.c.o: $(CORE)/%.c
+	@mkdir -p $(dir $@)
+	avr-gcc $(CPPFLAGS) $(CFLAGS) -c $< -o $@
+$(OBJ)/core/%.cpp.o: $(CORE)/%.cpp
+	@mkdir -p $(dir $@)
+	avr-g++ $(CPPFLAGS) $(CXXFLAGS) -c $< -o $@
+$(OBJ)/core/%.S.o: $(CORE)/%.S
+	@mkdir -p $(dir $@)
+	avr-gcc $(CPPFLAGS) $(ASFLAGS) -c $< -o $@
+$(OBJ)/app/%.cpp.o: %.cpp
+	@mkdir -p $(dir $@)
+	avr-g++ $(CPPFLAGS) $(CXXFLAGS) $(WARN) -Werror -c $< -o $@
+
+.PHONY: all
