@@ -4,7 +4,7 @@ import { DIALECT_MAX_LINE, encodeFrame, parseFrame } from './dialect-frame';
 import { LineReceiver } from './dialect-receiver';
 import { formatReply, parseReply } from './dialect-reply';
 import { LineSplitter } from './line-splitter';
-import { loadVectors, vectorCounter } from './vectors.fixture';
+import { cases, loadVectors, vectorCounter } from './vectors.fixture';
 
 const v = loadVectors('mega.json');
 const count = vectorCounter('mega.json');
@@ -21,13 +21,13 @@ describe('mega dialect vectors', () => {
     count();
   });
 
-  it.each(v.frames.map((c: any) => [c.line, c]))('frame %j', (_l, c: any) => {
+  it.each(cases(v.frames, 'line'))('frame %j', (_l, c: any) => {
     expect(parseFrame(split(c.line))).toEqual({ ok: true, ...c.frame });
     if (c.canonical) expect(c.frame.n === undefined ? c.frame.body : encodeFrame(c.frame.n, c.frame.body)).toBe(c.line);
     count();
   });
 
-  it.each(v.frameErrors.map((c: any) => [c.line, c]))('frame error %j', (_l, c: any) => {
+  it.each(cases(v.frameErrors, 'line'))('frame error %j', (_l, c: any) => {
     const f = parseFrame(split(c.line));
     expect(f.ok).toBe(false);
     if (!f.ok) {
@@ -37,14 +37,14 @@ describe('mega dialect vectors', () => {
     count();
   });
 
-  it.each(v.commands.map((c: any) => [c.body, c]))('command %j', (_b, c: any) => {
+  it.each(cases(v.commands, 'body'))('command %j', (_b, c: any) => {
     const r = parseCommand(c.body);
     if (c.error) expect(r).toEqual({ ok: false, error: c.error });
     else expect(r).toEqual({ ok: true, command: c.command });
     count();
   });
 
-  it.each(v.sessions.map((s: any) => [s.name, s]))('session: %s', (_n, s: any) => {
+  it.each(cases(v.sessions, 'name'))('session: %s', (_n, s: any) => {
     const rx = new LineReceiver({ movesFree: () => v.movesFree, windowFree: () => v.window });
     for (const step of s.steps) {
       const a = rx.accept(split(step.rx));
@@ -55,13 +55,13 @@ describe('mega dialect vectors', () => {
     count();
   });
 
-  it.each(v.replies.map((c: any) => [c.line, c]))('reply %j', (_l, c: any) => {
+  it.each(cases(v.replies, 'line'))('reply %j', (_l, c: any) => {
     expect(parseReply(c.line)).toEqual(c.reply);
     if (c.canonical) expect(formatReply(c.reply)).toBe(c.line);
     count();
   });
 
-  it.each(v.badReplies.map((c: any) => [c.why, c]))('bad report (%s) is rejected', (_w, c: any) => {
+  it.each(cases(v.badReplies, 'why'))('bad report (%s) is rejected', (_w, c: any) => {
     expect(parseReply(c.line)).toBeNull();
     count();
   });

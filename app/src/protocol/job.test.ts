@@ -1,13 +1,13 @@
 import { describe, expect, it } from 'vitest';
 import { encodeJob } from './job-encode';
 import { verifyJobText, type Segment } from './job-verify';
-import { loadVectors, vectorCounter } from './vectors.fixture';
+import { cases, loadVectors, vectorCounter } from './vectors.fixture';
 
 const v = loadVectors('job.json');
 const count = vectorCounter('job.json');
 
 describe('job format vectors', () => {
-  it.each(v.jobs.map((c: any) => [c.name, c]))('%s: encodes byte-exact and verifies', (_n, c: any) => {
+  it.each(cases(v.jobs, 'name'))('%s: encodes byte-exact and verifies', (_n, c: any) => {
     const text = encodeJob(c.job);
     expect(text).toBe(c.text);
     expect(text.endsWith(`end ${c.crc}\n`)).toBe(true);
@@ -19,7 +19,7 @@ describe('job format vectors', () => {
     count();
   });
 
-  it.each(v.invalid.map((c: any) => [c.why, c]))('invalid (%s) is refused', (_w, c: any) => {
+  it.each(cases(v.invalid, 'why'))('invalid (%s) is refused', (_w, c: any) => {
     const { error } = verifyJobText(c.text);
     expect(error?.code).toBe(c.error);
     count();

@@ -4,7 +4,7 @@ import {
   flashColour, formatNanoCommand, formatNanoReply, NANO_COLOURS, NANO_MAX_LINE,
   nanoLineUsable, parseNanoCommand, parseNanoReply,
 } from './nano';
-import { loadVectors, vectorCounter } from './vectors.fixture';
+import { cases, loadVectors, vectorCounter } from './vectors.fixture';
 
 const v = loadVectors('nano.json');
 const count = vectorCounter('nano.json');
@@ -22,36 +22,36 @@ describe('nano link vectors', () => {
     count();
   });
 
-  it.each(v.commands.map((c: { line: string }) => [c.line, c]))('command %j encodes, parses and flashes', (_l, c: any) => {
+  it.each(cases(v.commands, 'line'))('command %j encodes, parses and flashes', (_l, c: any) => {
     expect(formatNanoCommand(c.command)).toBe(c.line);
     expect(nanoReceive(c.line)).toEqual([c.command]);
     expect(flashColour(c.command.op)).toBe(c.flash);
     count();
   });
 
-  it.each(v.parseOnly.map((c: { line: string }) => [c.line, c]))('lenient line %j parses', (_l, c: any) => {
+  it.each(cases(v.parseOnly, 'line'))('lenient line %j parses', (_l, c: any) => {
     expect(nanoReceive(c.line)).toEqual([c.command]);
     count();
   });
 
-  it.each(v.malformed.map((c: { line: string; why: string }) => [c.why, c]))('malformed (%s) does nothing', (_w, c: any) => {
+  it.each(cases(v.malformed, 'why'))('malformed (%s) does nothing', (_w, c: any) => {
     expect(nanoReceive(c.line)).toEqual([null]);
     expect(nanoReceive(c.line + 'S\n')).toEqual([null, { op: 'S' }]);
     count();
   });
 
-  it.each(v.replies.map((c: { line: string }) => [c.line, c]))('reply %j round-trips', (_l, c: any) => {
+  it.each(cases(v.replies, 'line'))('reply %j round-trips', (_l, c: any) => {
     expect(parseNanoReply(c.line)).toEqual(c.reply);
     expect(formatNanoReply(c.reply)).toBe(c.line);
     count();
   });
 
-  it.each(v.badReplies.map((c: { line: string }) => [c.line]))('bad reply %j is rejected', (line: string) => {
+  it.each(cases(v.badReplies, 'line'))('bad reply %j is rejected', (line) => {
     expect(parseNanoReply(line)).toBeNull();
     count();
   });
 
-  it.each(v.streams.map((c: { name: string }) => [c.name, c]))('stream: %s', (_n, c: any) => {
+  it.each(cases(v.streams, 'name'))('stream: %s', (_n, c: any) => {
     // Every split point must give the same lines.
     for (let cut = 0; cut <= c.bytes.length; cut++) {
       const s = new LineSplitter(NANO_MAX_LINE);

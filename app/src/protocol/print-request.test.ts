@@ -1,7 +1,7 @@
 import { describe, expect, it } from 'vitest';
 import { encodeJob } from './job-encode';
 import { ESP_LIMITS, validatePrintRequest } from './print-request';
-import { loadVectors, vectorCounter } from './vectors.fixture';
+import { cases, loadVectors, vectorCounter } from './vectors.fixture';
 
 const v = loadVectors('esp.json');
 const count = vectorCounter('esp.json');
@@ -12,7 +12,7 @@ describe('ESP POST /print vectors', () => {
     count();
   });
 
-  it.each(v.requests.map((c: any) => [c.name, c]))('%s', (_n, c: any) => {
+  it.each(cases(v.requests, 'name'))('%s', (_n, c: any) => {
     const r = validatePrintRequest(c.body);
     expect(r.status).toBe(c.status);
     if (r.status === 202) expect(encodeJob(r.job)).toBe(c.text);

@@ -20,3 +20,9 @@ export function vectorCounter(file: string): () => void {
     n++;
   };
 }
+
+/** `[label, case]` rows for it.each, labelled by one field of each case. */
+// eslint-disable-next-line @typescript-eslint/no-explicit-any
+export function cases(list: any[], label: string): [string, any][] {
+  return list.map((c) => [typeof c[label] === 'string' ? c[label] : JSON.stringify(c[label]), c]);
+}

@@ -1,0 +1,75 @@
+// Transport over Web Serial (Chromium's navigator.serial): USB straight to the Mega.
+
+import { bytesToLatin1, latin1ToBytes } from '../protocol/bytes';
+import type { Transport } from './transport';
+
+export const BAUD_RATE = 115200;
+/** The port's receive buffer; a job upload's replies and reports must never overflow it. */
+export const READ_BUFFER = 4096;
+
+/** The user closed the port picker without choosing: not an error to show. */
+export class PickerDismissed extends Error {}
+
+export function serialSupported(): boolean {
+  return typeof navigator !== 'undefined' && 'serial' in navigator;
+}
+
+export class SerialTransport implements Transport {
+  readonly kind = 'serial' as const;
+  #port: SerialPort | null = null;
+  #reader: ReadableStreamDefaultReader<Uint8Array> | null = null;
+  #closing = false;
+
+  async open(onBytes: (bytes: string) => void, onClosed: (error?: Error) => void): Promise<void> {
+    let port: SerialPort;
+    try {
+      port = await navigator.serial.requestPort();
+    } catch (e) {
+      if ((e as DOMException).name === 'NotFoundError') throw new PickerDismissed('no port chosen');
+      throw e;
+    }
+    await port.open({ baudRate: BAUD_RATE, bufferSize: READ_BUFFER });
+    this.#port = port;
+    this.#closing = false;
+    void this.#readLoop(port, onBytes, onClosed);
+  }
+
+  async #readLoop(port: SerialPort, onBytes: (bytes: string) => void, onClosed: (error?: Error) => void) {
+    let lost: Error | undefined;
+    // A framing, parity, break or overrun error ends one reader; the port stays readable, so take another.
+    while (port.readable && !this.#closing) {
+      this.#reader = port.readable.getReader();
+      try {
+        for (;;) {
+          const { value, done } = await this.#reader.read();
+          if (done) break;
+          if (value) onBytes(bytesToLatin1(value));
+        }
+      } catch (e) {
+        if (!this.#closing && (e as DOMException).name === 'NetworkError') lost = e as Error; // device gone
+      } finally {
+        this.#reader.releaseLock();
+        this.#reader = null;
+      }
+      if (lost) break;
+    }
+    if (!this.#closing) onClosed(lost ?? new Error('serial port closed'));
+  }
+
+  async send(bytes: string): Promise<void> {
+    const writer = this.#port?.writable?.getWriter();
+    if (!writer) throw new Error('serial port is not open');
+    try {
+      await writer.write(latin1ToBytes(bytes));
+    } finally {
+      writer.releaseLock();
+    }
+  }
+
+  async close(): Promise<void> {
+    this.#closing = true;
+    await this.#reader?.cancel().catch(() => {});
+    await this.#port?.close().catch(() => {});
+    this.#port = null;
+  }
+}

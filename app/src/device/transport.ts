@@ -1,0 +1,11 @@
+// One byte-stream interface for every way the app reaches a printer (simulated, Web Serial, ESP).
+
+export type TransportKind = 'sim' | 'serial';
+
+export interface Transport {
+  readonly kind: TransportKind;
+  /** Opens the link; `onBytes` gets everything the printer sends, `onClosed` fires once if the link drops. */
+  open(onBytes: (bytes: string) => void, onClosed: (error?: Error) => void): Promise<void>;
+  send(bytes: string): Promise<void>;
+  close(): Promise<void>;
+}

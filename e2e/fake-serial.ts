@@ -1,0 +1,75 @@
+// Test-only: replaces navigator.serial with a port whose bytes are answered in Node, as the Mega would.
+import type { Page } from '@playwright/test';
+
+export interface SerialPeer {
+  /** Bytes the page wrote to the port. */
+  receive(bytes: string): void;
+}
+
+export interface FakeSerial {
+  /** Sends bytes to the page as if the device wrote them. */
+  push(bytes: string): Promise<void>;
+  /** Everything the page wrote, as text. */
+  written(): string;
+}
+
+/**
+ * Installs the fake before any page script runs. `pick` decides what requestPort() does:
+ * 'port' hands out the fake port, 'dismiss' behaves like a closed picker.
+ */
+export async function installFakeSerial(page: Page, peer: (fake: FakeSerial) => SerialPeer, pick: 'port' | 'dismiss' = 'port'): Promise<FakeSerial> {
+  let written = '';
+  let chain = Promise.resolve();
+  const fake: FakeSerial = {
+    push(bytes) {
+      const codes = Array.from(bytes, (c) => c.charCodeAt(0));
+      chain = chain.then(() => page.evaluate((b) => (window as unknown as { __serialRx(b: number[]): void }).__serialRx(b), codes));
+      return chain;
+    },
+    written: () => written,
+  };
+  const device = peer(fake);
+  await page.exposeBinding('__serialTx', (_source, codes: number[]) => {
+    const text = String.fromCharCode(...codes);
+    written += text;
+    device.receive(text);
+  });
+  await page.addInitScript((mode) => {
+    const w = window as unknown as { __serialTx(b: number[]): Promise<void>; __serialRx(b: number[]): void };
+    class FakePort extends EventTarget {
+      readable: ReadableStream<Uint8Array> | null = null;
+      writable: WritableStream<Uint8Array> | null = null;
+      async open(options: { baudRate: number }) {
+        if (options.baudRate !== 115200) throw new Error(`unexpected baud rate ${options.baudRate}`);
+        this.readable = new ReadableStream({
+          start(controller) {
+            w.__serialRx = (bytes) => controller.enqueue(new Uint8Array(bytes));
+          },
+        });
+        this.writable = new WritableStream({
+          async write(chunk) {
+            await w.__serialTx(Array.from(chunk));
+          },
+        });
+      }
+      async close() {
+        this.readable = null;
+        this.writable = null;
+      }
+      getInfo() {
+        return { usbVendorId: 0x2341, usbProductId: 0x0042 };
+      }
+    }
+    const serial = Object.assign(new EventTarget(), {
+      async requestPort() {
+        if (mode === 'dismiss') throw new DOMException('No port selected by the user.', 'NotFoundError');
+        return new FakePort();
+      },
+      async getPorts() {
+        return [];
+      },
+    });
+    Object.defineProperty(navigator, 'serial', { value: serial, configurable: true });
+  }, pick);
+  return fake;
+}
