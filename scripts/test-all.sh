@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# Runs every test of the project: the README's test command. Each stage runs even if an earlier one
+# failed; a summary closes the run and the exit code is non-zero if anything failed.
+set -uo pipefail
+cd "$(dirname "$0")/.."
+export PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD=1
+
+bash scripts/system-deps.sh || exit 1
+[[ -d node_modules ]] || npm ci
+
+results=()
+failed=0
+
+stage() {
+  local name=$1
+  shift
+  echo
+  echo "=== $name"
+  local start=$SECONDS
+  if "$@"; then
+    results+=("PASS  $name ($((SECONDS - start)) s)")
+  else
+    results+=("FAIL  $name ($((SECONDS - start)) s)")
+    failed=$((failed + 1))
+  fi
+}
+
+host_tests() {
+  cmake -S firmware -B build/host -DCMAKE_BUILD_TYPE=Debug >/dev/null &&
+    cmake --build build/host -j"$(nproc)" >/dev/null &&
+    (cd build/host && ctest --output-on-failure) &&
+    build/host/protocol_tests --gtest_brief=1 | grep '^\[vectors\]'
+}
+
+stage "TypeScript unit tests (Vitest)" npx vitest run
+stage "Type check (svelte-check)" npm run --silent check
+stage "C++ host tests (CMake, GoogleTest)" host_tests
+stage "Vectors bind both implementations" python3 scripts/check-vectors-bind.py build/host/protocol_tests
+stage "AVR firmware images and budgets" bash scripts/build-avr.sh
+stage "End-to-end in Chromium (Playwright)" npx playwright test
+
+echo
+echo "=== Summary"
+printf '%s\n' "${results[@]}"
+echo "stages: $((${#results[@]} - failed)) passed, $failed failed"
+((failed == 0))
