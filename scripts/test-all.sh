@@ -29,13 +29,13 @@ host_tests() {
   cmake -S firmware -B build/host -DCMAKE_BUILD_TYPE=Debug >/dev/null &&
     cmake --build build/host -j"$(nproc)" >/dev/null &&
     (cd build/host && ctest --output-on-failure) &&
-    build/host/protocol_tests --gtest_brief=1 | grep '^\[vectors\]'
+    { build/host/protocol_tests --gtest_brief=1 && build/host/esp_tests --gtest_brief=1; } | grep '^\[vectors\]'
 }
 
 stage "TypeScript unit tests (Vitest)" npx vitest run
 stage "Type check (svelte-check)" npm run --silent check
 stage "C++ host tests (CMake, GoogleTest)" host_tests
-stage "Vectors bind both implementations" python3 scripts/check-vectors-bind.py build/host/protocol_tests
+stage "Vectors bind both implementations" python3 scripts/check-vectors-bind.py build/host
 stage "AVR firmware images and budgets" bash scripts/build-avr.sh
 stage "End-to-end in Chromium (Playwright)" npx playwright test
 
