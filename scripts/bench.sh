@@ -5,3 +5,8 @@ cd "$(dirname "$0")/.."
 npx tsx bench/run.ts
 echo
 bash scripts/build-avr.sh
+echo
+echo "Printhead timing, measured on the pins of build/avr/nano.elf in simavr:"
+cmake -S firmware -B build/host -DCMAKE_BUILD_TYPE=Debug >/dev/null
+cmake --build build/host -j"$(nproc)" --target nano_sim_tests >/dev/null
+build/host/nano_sim_tests --gtest_brief=1 | grep '^\[nano budget\]'

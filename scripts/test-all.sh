@@ -29,14 +29,15 @@ host_tests() {
   cmake -S firmware -B build/host -DCMAKE_BUILD_TYPE=Debug >/dev/null &&
     cmake --build build/host -j"$(nproc)" >/dev/null &&
     (cd build/host && ctest --output-on-failure) &&
+    build/host/nano_sim_tests --gtest_brief=1 | grep '^\[nano budget\]' &&
     { build/host/protocol_tests --gtest_brief=1 && build/host/esp_tests --gtest_brief=1; } | grep '^\[vectors\]'
 }
 
 stage "TypeScript unit tests (Vitest)" npx vitest run
 stage "Type check (svelte-check)" npm run --silent check
-stage "C++ host tests (CMake, GoogleTest)" host_tests
-stage "Vectors bind both implementations" python3 scripts/check-vectors-bind.py build/host
 stage "AVR firmware images and budgets" bash scripts/build-avr.sh
+stage "C++ host and simavr tests (CMake, GoogleTest)" host_tests
+stage "Vectors bind both implementations" python3 scripts/check-vectors-bind.py build/host
 stage "End-to-end in Chromium (Playwright)" npx playwright test
 
 echo

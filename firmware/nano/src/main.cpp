@@ -1,101 +1,96 @@
-// Printhead Nano entry point: reads Mega commands from the UART and answers them (protocol/nano.md).
+// Printhead Nano entry point: wires the UART, the command brain and the board drivers together.
 #include <Arduino.h>
-#include <avr/io.h>
+#include <avr/wdt.h>
 
+#include "adc_sampler.h"
+#include "config.h"
+#include "led_timer.h"
 #include "line_splitter.h"
-#include "nano_codec.h"
+#include "neopixel.h"
 #include "pins.h"
+#include "printhead.h"
+#include "probe_input.h"
+#include "servo_pulse.h"
 
 namespace {
 
-char lineBuf[uv::kNanoMaxLine + 1];
-uv::LineSplitter splitter(lineBuf, uv::kNanoMaxLine);
-uint32_t offAt[uv::kLedCount];  // micros() deadline per lit LED
-uint8_t litMask = 0;
-uint8_t latched = 0;            // latched E bits
+// Survives the C runtime's clearing of .bss, so setup() can tell a watchdog reset.
+uint8_t resetCause __attribute__((section(".noinit")));
 
-// LEDs off before anything else runs, even before the C runtime initialises memory.
-void ledsOffEarly() __attribute__((naked, used, section(".init3")));
-void ledsOffEarly() {
+// Runs before the C runtime: LEDs off first, then the watchdog is stopped so a watchdog reset
+// cannot loop while the runtime starts (the Optiboot bootloader passes MCUSR through).
+void earliest() __attribute__((naked, used, section(".init3")));
+void earliest() {
   LED_PORT &= static_cast<uint8_t>(~LED_PORT_MASK);
   LED_DDR |= LED_PORT_MASK;
+  resetCause = MCUSR;
+  MCUSR = 0;
+  wdt_disable();
 }
 
-void writeLeds(uint8_t mask) {
-  uint8_t sreg = SREG;
-  cli();
-  LED_PORT = static_cast<uint8_t>((LED_PORT & ~LED_PORT_MASK) | ((mask << LED_SHIFT) & LED_PORT_MASK));
-  SREG = sreg;
-  litMask = mask;
-}
+// Switch-offs and servo edges are kept clear of the pixel's interrupts-off write by this much.
+constexpr uint16_t kPixelQuietTicks = 1000;  // 62.5 µs
 
-int16_t readDeciC(uint8_t sensor) {
-  int32_t mv = static_cast<int32_t>(analogRead(PIN_TEMP_FIRST + sensor)) * 5000 / 1024;
-  return static_cast<int16_t>(mv - 500);  // TMP36: 10 mV/°C, 500 mV at 0 °C; tenths = mV - 500
-}
-
-void reply(const uv::NanoReply& r) {
-  char out[64];
-  size_t n = uv::formatNanoReply(r, out, sizeof out);
-  Serial.write(out, n);
-}
-
-void fire(const uv::NanoCommand& c) {
-  if (litMask) {
-    latched |= uv::fault::kBusy;
-    return;
+class Board : public nano::PrintheadIo {
+ public:
+  void fire(const nano::FirePlan& plan) override { nano::led_timer::fire(plan); }
+  void allOff() override { nano::led_timer::allOff(); }
+  uint8_t litMask() const override { return nano::led_timer::lit(); }
+  void servoPulse(uint16_t us) override { nano::servo_pulse::set(us); }
+  bool probeTriggered() override { return nano::probe_input::takeTriggered(); }
+  void reply(const char* text, uint8_t len) override {
+    // Never block: a reply that finds no room is dropped, and the Mega's time-out asks again.
+    if (Serial.availableForWrite() >= len) Serial.write(text, len);
   }
-  uint32_t now = micros();
-  uint8_t mask = 0;
-  for (uint8_t i = 0; i < uv::kLedCount; i++) {
-    if ((c.mask >> i & 1) && c.durations[i] > 0) {
-      mask |= static_cast<uint8_t>(1 << i);
-      offAt[i] = now + c.durations[i];
-    }
-  }
-  writeLeds(mask);
-}
+};
 
-void handle(const uv::NanoCommand& c) {
-  uv::NanoReply r{};
-  r.op = c.op;
-  switch (c.op) {
-    case 'S': r.mask = litMask; reply(r); break;
-    case 'F': fire(c); break;
-    case 'R': writeLeds(0); break;
-    case 'P': r.triggered = digitalRead(PIN_PROBE_SIGNAL) == HIGH; reply(r); break;
-    case 'T':
-      for (uint8_t i = 0; i < uv::kSensorCount; i++) r.deciC[i] = readDeciC(i);
-      reply(r);
-      break;
-    case 'E': r.flags = latched; latched = 0; reply(r); break;
-    case 'V': r.protocol = 1; strcpy(r.firmware, "0.1.0"); reply(r); break;
-    default: break;  // D, U, X: the servo driver comes with the printhead issue
-  }
+const nano::PrintheadConfig kConfig = {
+    NANO_MAX_EXPOSURE_US,
+    {{NANO_TEMP_LIMIT_DC, NANO_TEMP_LIMIT_DC, NANO_TEMP_LIMIT_DC, NANO_TEMP_LIMIT_DC, NANO_TEMP_LIMIT_DC, NANO_TEMP_LIMIT_DC},
+     NANO_TEMP_HYSTERESIS_DC, 100, 1750},
+    NANO_FIRMWARE_VERSION,
+};
+
+Board board;
+nano::Printhead head(board, kConfig);
+char lineBuf[uv::kNanoMaxLine + 1];
+uv::LineSplitter splitter(lineBuf, uv::kNanoMaxLine);
+uv::Colour shown = uv::Colour::Red;  // differs from the first wanted colour, so it is written once
+bool pixelWritten = false;
+
+void updatePixel(uint32_t nowMs) {
+  uv::Colour want = head.colour(nowMs);
+  if (pixelWritten && want == shown) return;
+  if (!nano::led_timer::quietFor(kPixelQuietTicks) || !nano::servo_pulse::quietFor(kPixelQuietTicks)) return;
+  uv::Rgb c = uv::colourRgb(want);
+  nano::neopixel::show(c.r, c.g, c.b);
+  shown = want;
+  pixelWritten = true;
 }
 
 }  // namespace
 
 void setup() {
-  writeLeds(0);
-  pinMode(PIN_PROBE_SIGNAL, INPUT_PULLUP);
+  nano::led_timer::allOff();
+  nano::led_timer::begin();
+  nano::neopixel::begin();
+  nano::probe_input::begin();
+  nano::adc_sampler::begin();
+  if (resetCause & _BV(WDRF)) head.watchdogReset();
   Serial.begin(115200);
+  wdt_enable(WDTO_250MS);
 }
 
 void loop() {
-  uint32_t now = micros();
-  for (uint8_t i = 0; i < uv::kLedCount; i++) {
-    if ((litMask >> i & 1) && static_cast<int32_t>(now - offAt[i]) >= 0) writeLeds(litMask & ~(1 << i));
-  }
-  while (Serial.available()) {
-    if (!splitter.push(static_cast<char>(Serial.read()))) continue;
-    if (splitter.length() == 0 && !splitter.overflow()) continue;
-    uv::NanoCommand c{};
-    if (uv::nanoLineUsable(splitter.text(), splitter.length(), splitter.overflow()) &&
-        uv::parseNanoCommand(splitter.text(), splitter.length(), c)) {
-      handle(c);
-    } else {
-      latched |= uv::fault::kMalformed;
+  wdt_reset();
+  uint32_t now = millis();
+  uint16_t mv[uv::kSensorCount];
+  if (nano::adc_sampler::take(mv)) head.readings(mv);
+  int budget = 64;  // bytes per pass, so the pixel and the watchdog are served under a flood
+  while (budget-- > 0 && Serial.available()) {
+    if (splitter.push(static_cast<char>(Serial.read()))) {
+      head.line(splitter.text(), splitter.length(), splitter.overflow(), now);
     }
   }
+  updatePixel(now);
 }

@@ -76,47 +76,57 @@ size_t formatNanoCommand(const NanoCommand& cmd, char* out, size_t size) {
   return n;
 }
 
+namespace {
+// One decimal digit of `a` at place `power`, by subtraction (AVRs have no divide instruction).
+inline char digitAt(uint16_t& a, uint16_t power) {
+  char c = '0';
+  while (a >= power) {
+    a = static_cast<uint16_t>(a - power);
+    c++;
+  }
+  return c;
+}
+}  // namespace
+
 size_t formatDeciC(int16_t deciC, char* out) {
   size_t n = 0;
-  int32_t a = deciC;
-  if (a < 0) {
-    out[n++] = '-';
-    a = -a;
-  }
-  n += putUnsigned(static_cast<uint32_t>(a / 10), out + n);
+  uint16_t a = static_cast<uint16_t>(deciC < 0 ? -static_cast<int32_t>(deciC) : deciC);
+  if (deciC < 0) out[n++] = '-';
+  char d[4] = {digitAt(a, 10000), digitAt(a, 1000), digitAt(a, 100), digitAt(a, 10)};
+  uint8_t first = 0;
+  while (first < 3 && d[first] == '0') first++;  // the whole part keeps at least one digit
+  for (uint8_t i = first; i < 4; i++) out[n++] = d[i];
   out[n++] = '.';
-  out[n++] = static_cast<char>('0' + a % 10);
+  out[n++] = static_cast<char>('0' + a);
   return n;
 }
 
 size_t formatNanoReply(const NanoReply& r, char* out, size_t size) {
-  char tmp[64];
+  if (size < kNanoReplyMax) return 0;  // written in place: the caller's buffer must fit any reply
   size_t n = 0;
-  tmp[n++] = r.op;
-  tmp[n++] = ':';
+  out[n++] = r.op;
+  out[n++] = ':';
   switch (r.op) {
-    case 'S': n += putUnsigned(r.mask, tmp + n); break;
-    case 'P': tmp[n++] = r.triggered ? '1' : '0'; break;
-    case 'E': n += putUnsigned(r.flags, tmp + n); break;
+    case 'S': n += putUnsigned(r.mask, out + n); break;
+    case 'P': out[n++] = r.triggered ? '1' : '0'; break;
+    case 'E': n += putUnsigned(r.flags, out + n); break;
     case 'T':
       for (uint8_t i = 0; i < kSensorCount; i++) {
-        if (i) tmp[n++] = ',';
-        n += formatDeciC(r.deciC[i], tmp + n);
+        if (i) out[n++] = ',';
+        n += formatDeciC(r.deciC[i], out + n);
       }
       break;
     case 'V': {
-      n += putUnsigned(r.protocol, tmp + n);
-      tmp[n++] = ',';
-      size_t f = strlen(r.firmware);
-      memcpy(tmp + n, r.firmware, f);
+      n += putUnsigned(r.protocol, out + n);
+      out[n++] = ',';
+      size_t f = strnlen(r.firmware, sizeof r.firmware - 1);
+      memcpy(out + n, r.firmware, f);
       n += f;
       break;
     }
     default: return 0;
   }
-  tmp[n++] = '\n';
-  if (n + 1 > size) return 0;
-  memcpy(out, tmp, n);
+  out[n++] = '\n';
   out[n] = '\0';
   return n;
 }

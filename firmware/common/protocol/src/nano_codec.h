@@ -52,6 +52,9 @@ size_t formatNanoCommand(const NanoCommand& cmd, char* out, size_t size);
 // Writes one-decimal Celsius for tenths; returns the length.
 size_t formatDeciC(int16_t deciC, char* out);
 
+// The longest reply: "T:" and six "-3276.8", five commas, '\n' and a NUL.
+constexpr size_t kNanoReplyMax = 56;
+// Writes the reply in place; `size` must be at least kNanoReplyMax.
 size_t formatNanoReply(const NanoReply& reply, char* out, size_t size);
 // Parses a reply line including its '\n'. false = malformed.
 bool parseNanoReply(const char* line, size_t len, NanoReply& out);

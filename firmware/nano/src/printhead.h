@@ -1,0 +1,65 @@
+// The printhead's command brain: the protocol/nano.md table, refusals, latched faults and the pixel colour.
+// Plain C++: the board drivers sit behind PrintheadIo, so all of it is tested on the host.
+#pragma once
+#include <stdint.h>
+
+#include "fire_plan.h"
+#include "nano_codec.h"
+#include "thermal_guard.h"
+
+namespace nano {
+
+// Servo pulse widths a BLTouch / CR Touch expects (protocol/nano.md).
+constexpr uint16_t kServoDeployUs = 647;
+constexpr uint16_t kServoStowUs = 1473;
+constexpr uint16_t kServoAlarmReleaseUs = 2194;
+constexpr uint16_t kFlashMs = 60;
+
+class PrintheadIo {
+ public:
+  virtual void fire(const FirePlan& plan) = 0;  // LEDs on in one port write, offs on the timer
+  virtual void allOff() = 0;                    // every LED off in one write, pending offs cleared
+  virtual uint8_t litMask() const = 0;
+  virtual void servoPulse(uint16_t us) = 0;     // 50 Hz train of this width from now on
+  virtual bool probeTriggered() = 0;            // level now, or a latched pulse since the last call
+  virtual void reply(const char* text, uint8_t len) = 0;
+};
+
+struct PrintheadConfig {
+  uint32_t capUs;
+  ThermalLimits thermal;
+  const char* firmwareVersion;
+};
+
+class Printhead {
+ public:
+  Printhead(PrintheadIo& io, const PrintheadConfig& cfg) : io_(io), cfg_(cfg), guard_(cfg.thermal) {}
+
+  // One line from the UART splitter (without terminator).
+  void line(const char* text, uint8_t len, bool overflow, uint32_t nowMs);
+  // A fresh set of oversampled readings, in mV. Cuts the LEDs on a fault.
+  void readings(const uint16_t mv[uv::kSensorCount]);
+  void watchdogReset() { latched_ |= uv::fault::kWatchdog; }
+
+  // What the pixel should show now: a command's flash, then green, or red while a fault is active.
+  uv::Colour colour(uint32_t nowMs);
+  uint8_t faults() const { return static_cast<uint8_t>(guard_.active() | latched_); }
+  const int16_t* deciC() const { return deciC_; }
+
+ private:
+  void handle(const uv::NanoCommand& c, uint32_t nowMs);
+  void fire(const uv::NanoCommand& c);
+  void send(const uv::NanoReply& r);
+
+  PrintheadIo& io_;
+  const PrintheadConfig& cfg_;
+  ThermalGuard guard_;
+  int16_t deciC_[uv::kSensorCount] = {};
+  uint8_t latched_ = 0;
+  uv::Colour flash_ = uv::Colour::Green;
+  uint32_t flashUntilMs_ = 0;
+  bool flashing_ = false;
+  bool measured_ = false;  // no F before the first full set of readings
+};
+
+}  // namespace nano

@@ -1,0 +1,166 @@
+// Host tests of the printhead command brain with a fake of its drivers.
+#include "printhead.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+using namespace nano;
+
+namespace {
+
+struct FakeIo : PrintheadIo {
+  uint8_t lit = 0;
+  std::vector<FirePlan> fired;
+  int allOffs = 0;
+  uint16_t servo = 0;
+  bool probe = false;
+  std::string out;
+  void fire(const FirePlan& p) override {
+    fired.push_back(p);
+    lit = p.onMask;
+  }
+  void allOff() override {
+    allOffs++;
+    lit = 0;
+  }
+  uint8_t litMask() const override { return lit; }
+  void servoPulse(uint16_t us) override { servo = us; }
+  bool probeTriggered() override { return probe; }
+  void reply(const char* t, uint8_t n) override { out.append(t, n); }
+};
+
+const PrintheadConfig kConfig = {10000000, {{600, 600, 600, 600, 550, 550}, 50, 100, 1750}, "0.2.0"};
+
+struct Head {
+  FakeIo io;
+  Printhead ph{io, kConfig};
+  uint16_t mv[6] = {735, 740, 745, 750, 755, 760};
+  Head() { ph.readings(mv); }
+  void send(const std::string& l, uint32_t now = 0) { ph.line(l.data(), static_cast<uint8_t>(l.size()), false, now); }
+  std::string take() {
+    std::string s = io.out;
+    io.out.clear();
+    return s;
+  }
+};
+
+}  // namespace
+
+TEST(Printhead, AnswersTheTable) {
+  Head h;
+  h.send("S");
+  EXPECT_EQ(h.take(), "S:0\n");
+  h.send("T");
+  EXPECT_EQ(h.take(), "T:23.5,24.0,24.5,25.0,25.5,26.0\n");
+  h.io.probe = true;
+  h.send("P");
+  EXPECT_EQ(h.take(), "P:1\n");
+  h.send("V");
+  EXPECT_EQ(h.take(), "V:1,0.2.0\n");
+  h.send("E");
+  EXPECT_EQ(h.take(), "E:0\n");
+  for (const char* silent : {"F:1,100,0,0,0", "R", "D", "U", "X"}) {
+    h.send(silent);
+    EXPECT_EQ(h.take(), "") << silent;
+  }
+}
+
+TEST(Printhead, FiresPlansAndReportsLitLeds) {
+  Head h;
+  h.send("F:15,100,200,300,400");
+  ASSERT_EQ(h.io.fired.size(), 1u);
+  EXPECT_EQ(h.io.fired[0].onMask, 15);
+  h.send("S");
+  EXPECT_EQ(h.take(), "S:15\n");
+  h.send("R");
+  EXPECT_EQ(h.io.allOffs, 1);
+  h.send("S");
+  EXPECT_EQ(h.take(), "S:0\n");
+}
+
+TEST(Printhead, RefusesFireWhileBusyCappedOrFaultedAndLatchesWhy) {
+  Head h;
+  h.send("F:1,100,0,0,0");
+  h.send("F:2,0,100,0,0");  // LED 0 still on
+  EXPECT_EQ(h.io.fired.size(), 1u);
+  h.io.lit = 0;
+  h.send("F:1,10000001,0,0,0");
+  EXPECT_EQ(h.io.fired.size(), 1u);
+  h.send("E");
+  EXPECT_EQ(h.take(), "E:12\n");  // BUSY | CAPPED
+  h.send("E");
+  EXPECT_EQ(h.take(), "E:0\n");  // latched bits clear once reported
+  h.mv[3] = 500 + 700;
+  h.ph.readings(h.mv);
+  h.send("F:1,100,0,0,0");
+  EXPECT_EQ(h.io.fired.size(), 1u);
+  h.send("E");
+  EXPECT_EQ(h.take(), "E:17\n");  // OVERTEMP (active) | REFUSED
+  h.send("E");
+  EXPECT_EQ(h.take(), "E:1\n");  // still hot
+}
+
+TEST(Printhead, NoFireBeforeTheFirstReadings) {
+  FakeIo io;
+  Printhead ph(io, kConfig);
+  ph.line("F:1,100,0,0,0", 13, false, 0);
+  EXPECT_TRUE(io.fired.empty());
+}
+
+TEST(Printhead, FaultDuringAFireCutsEveryLed) {
+  Head h;
+  h.send("F:15,5000000,5000000,5000000,5000000");
+  h.mv[5] = 50;  // sensor 5 opens
+  h.ph.readings(h.mv);
+  EXPECT_EQ(h.io.allOffs, 1);
+  EXPECT_EQ(h.io.lit, 0);
+  h.send("E");
+  EXPECT_EQ(h.take(), "E:130\n");  // SENSOR | CUTOFF
+}
+
+TEST(Printhead, MalformedLinesDoNothingButLatch) {
+  Head h;
+  h.send("F:16,1,1,1,1");
+  h.send("s");
+  h.ph.line("S", 1, true, 0);  // overlong
+  h.send("");                  // empty: ignored, no flag
+  EXPECT_TRUE(h.io.fired.empty());
+  EXPECT_EQ(h.take(), "");
+  h.send("E");
+  EXPECT_EQ(h.take(), "E:32\n");
+  h.send("S");
+  EXPECT_EQ(h.take(), "S:0\n");
+}
+
+TEST(Printhead, ProbeServoWidths) {
+  Head h;
+  h.send("D");
+  EXPECT_EQ(h.io.servo, 647);
+  h.send("U");
+  EXPECT_EQ(h.io.servo, 1473);
+  h.send("X");
+  EXPECT_EQ(h.io.servo, 2194);
+}
+
+TEST(Printhead, PixelFlashesTheCommandColourThenIdles) {
+  Head h;
+  EXPECT_EQ(h.ph.colour(0), uv::Colour::Green);
+  h.send("F:1,10,0,0,0", 1000);
+  EXPECT_EQ(h.ph.colour(1000), uv::Colour::Purple);
+  EXPECT_EQ(h.ph.colour(1059), uv::Colour::Purple);
+  EXPECT_EQ(h.ph.colour(1060), uv::Colour::Green);
+  h.send("R", 2000);
+  EXPECT_EQ(h.ph.colour(2010), uv::Colour::Orange);
+  h.send("Q", 2020);  // malformed: no flash
+  EXPECT_EQ(h.ph.colour(2030), uv::Colour::Orange);
+  h.mv[0] = 500 + 650;
+  h.ph.readings(h.mv);
+  EXPECT_EQ(h.ph.colour(3000), uv::Colour::Red);
+  h.send("T", 3000);
+  EXPECT_EQ(h.ph.colour(3001), uv::Colour::DimWhite);
+  EXPECT_EQ(h.ph.colour(3100), uv::Colour::Red);
+  // A flash does not come back when the millisecond clock wraps around.
+  EXPECT_EQ(h.ph.colour(3000 + 0x80000000u), uv::Colour::Red);
+}
