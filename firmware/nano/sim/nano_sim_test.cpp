@@ -328,6 +328,18 @@ TEST(NanoSim, OpenSensorIsAFault) {
   EXPECT_TRUE(rig->edges('B', 2).empty());
 }
 
+TEST(NanoSim, ExposureOverTheCapIsRefusedWhole) {
+  auto rig = bootedRig();
+  rig->clearEdges();
+  rig->send("F:3,100,10000001,0,0\n");  // LED 1 over the 10 s cap: LED 0 must not fire either
+  rig->runUs(20000);
+  for (int led = 0; led < 4; led++) EXPECT_TRUE(rig->edges('B', 2 + led).empty());
+  EXPECT_EQ(reply(*rig, "E"), "E:4");  // CAPPED
+  rig->send("F:1,10000000,0,0,0\n");   // exactly the cap is allowed
+  rig->runUs(5000);
+  EXPECT_TRUE(rig->level('B', 2));
+}
+
 TEST(NanoSim, MalformedLinesDoNothing) {
   auto rig = bootedRig();
   rig->clearEdges();
