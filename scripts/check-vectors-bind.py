@@ -19,10 +19,14 @@ EXPECTED = {
                   "replies": "reply"},
     "job.json": {"jobs": "text", "invalid": "error"},
     "esp.json": {"requests": "text"},
+    "planner-ts.json": {"cases": "plan"},
+    "planner-cpp.json": {"cases": "plan"},
+    "mesh.json": {"cases": "points"},
 }
 # The C++ test program that reads each file.
 CXX_BINARY = {"nano.json": "protocol_tests", "mega.json": "protocol_tests", "job.json": "protocol_tests",
-              "esp.json": "esp_tests"}
+              "esp.json": "esp_tests", "planner-ts.json": "planner_tests", "planner-cpp.json": "planner_tests",
+              "mesh.json": "planner_tests"}
 
 
 def mutate(value, rng):
@@ -74,7 +78,7 @@ def main():
                 target[field] = mutate(target[field], rng)
                 json.dump(doc, open(os.path.join(tmp, file), "w"))
                 env = dict(os.environ, UV_VECTORS_DIR=tmp)
-                ts = fails(["npx", "vitest", "run", "app/src/protocol", "--reporter=dot"], env)
+                ts = fails(["npx", "vitest", "run", "app/src", "--reporter=dot"], env)
                 cc = fails([os.path.join(build, CXX_BINARY[file])], env)
                 checked += 1
                 verdict = "both fail" if ts and cc else f"NOT CAUGHT (ts failed={ts}, c++ failed={cc})"

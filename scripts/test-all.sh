@@ -4,6 +4,7 @@
 set -uo pipefail
 cd "$(dirname "$0")/.."
 export PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD=1
+export NODE_OPTIONS="--import=$PWD/scripts/node20-polyfills.mjs"  # Vitest 5 on Node 20
 
 bash scripts/system-deps.sh || exit 1
 [[ -d node_modules ]] || npm ci
@@ -33,7 +34,7 @@ host_tests() {
     { build/host/protocol_tests --gtest_brief=1 && build/host/esp_tests --gtest_brief=1; } | grep '^\[vectors\]'
 }
 
-stage "TypeScript unit tests (Vitest)" npx vitest run
+stage "TypeScript unit tests (Vitest)" npm run --silent test:unit
 stage "Type check (svelte-check)" npm run --silent check
 stage "AVR firmware images and budgets" bash scripts/build-avr.sh
 stage "C++ host and simavr tests (CMake, GoogleTest)" host_tests

@@ -447,4 +447,39 @@ esp_requests = [
     {"name": "grid over 262144 cells", "body": body(set_key(bj, {"cols": 1024, "rows": 257}, "grid")), "status": 413, "error": "too_large"},
 ]
 write("esp.json", {"version": 1, "maxBody": 1200000, "maxCells": 262144, "requests": esp_requests})
-print("wrote nano.json mega.json job.json esp.json")
+# ---------------------------------------------------------------- Mesh interpolation (planner.md)
+def mesh_z(m, x, y):
+    """Exact integer reference of protocol/planner.md "Mesh interpolation"."""
+    cx = min(max(x, m["x0"]), m["x0"] + (m["nx"] - 1) * m["dx"])
+    cy = min(max(y, m["y0"]), m["y0"] + (m["ny"] - 1) * m["dy"])
+    i = min((cx - m["x0"]) // m["dx"], m["nx"] - 2)
+    j = min((cy - m["y0"]) // m["dy"], m["ny"] - 2)
+    u = cx - (m["x0"] + i * m["dx"])
+    w = cy - (m["y0"] + j * m["dy"])
+    z, dx, dy = m["z"], m["dx"], m["dy"]
+    n = (z[j][i] * (dx - u) * (dy - w) + z[j][i + 1] * u * (dy - w)
+         + z[j + 1][i] * (dx - u) * w + z[j + 1][i + 1] * u * w)
+    d = dx * dy
+    q, r = divmod(abs(n), d)
+    if 2 * r >= d:
+        q += 1
+    return -q if n < 0 else q
+
+
+meshes = [
+    {"name": "3x3 tilt", "mesh": {"nx": 3, "ny": 3, "x0": 10000, "y0": 10000, "dx": 90000, "dy": 90000,
+                                  "z": [[0, 50, 100], [-30, 20, 70], [-60, -10, 40]]}},
+    {"name": "5x4 bumps", "mesh": {"nx": 5, "ny": 4, "x0": 0, "y0": 5000, "dx": 50000, "dy": 60000,
+                                   "z": [[12, -7, 33, 0, -120], [5, 5, 5, 5, 5], [-300, 250, -1, 1, 0], [77, -77, 3, -3, 4999]]}},
+    {"name": "2x2 smallest", "mesh": {"nx": 2, "ny": 2, "x0": 1000, "y0": 1000, "dx": 3, "dy": 7, "z": [[-5, 5], [5, -5]]}},
+    {"name": "9x9 largest", "mesh": {"nx": 9, "ny": 9, "x0": 0, "y0": 0, "dx": 50000, "dy": 50000,
+                                     "z": [[(i * 37 + j * 91) % 400 - 200 for i in range(9)] for j in range(9)]}},
+]
+for m in meshes:
+    mm = m["mesh"]
+    xs = [mm["x0"] - 5000, mm["x0"], mm["x0"] + mm["dx"] // 3, mm["x0"] + mm["dx"], mm["x0"] + (mm["nx"] - 1) * mm["dx"] - 1,
+          mm["x0"] + (mm["nx"] - 1) * mm["dx"], mm["x0"] + (mm["nx"] - 1) * mm["dx"] + 123456]
+    ys = [mm["y0"] - 1, mm["y0"] + mm["dy"] // 2 + 1, mm["y0"] + (mm["ny"] - 1) * mm["dy"], mm["y0"] + 999999]
+    m["points"] = [[x, y, mesh_z(mm, x, y)] for x in xs for y in ys]
+write("mesh.json", {"version": 1, "cases": meshes})
+print("wrote nano.json mega.json job.json esp.json mesh.json")

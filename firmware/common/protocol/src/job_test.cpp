@@ -5,6 +5,7 @@
 
 #include "job_encoder.h"
 #include "job_verifier.h"
+#include "job_json_fixture.h"
 #include "vectors_fixture.h"
 
 using namespace uv;
@@ -26,36 +27,6 @@ struct Cells : SegmentSink {
     for (uint8_t i = 0; i < n; i++) grid[row][col + i] = hexCell(hex, i);
   }
 };
-
-// The ESP's path: a parsed job body to a JobHeader (defaults as protocol/esp.md).
-JobHeader headerFrom(const json& j) {
-  JobHeader h{};
-  h.cols = j["grid"]["cols"];
-  h.rows = j["grid"]["rows"];
-  h.pitchUm[0] = j["pitchUm"]["x"];
-  h.pitchUm[1] = j["pitchUm"]["y"];
-  h.originUm[0] = j["originUm"]["x"];
-  h.originUm[1] = j["originUm"]["y"];
-  const json& d = j["dose"];
-  h.map = d["map"] == "linear" ? DoseMap::Linear : DoseMap::Threshold;
-  h.level = d.value("level", 0);
-  h.byTarget = d.contains("targetUJcm2");
-  h.fullUs = d.value("fullUs", 0u);
-  h.targetUJcm2 = d.value("targetUJcm2", 0u);
-  for (int i = 0; i < 4; i++) {
-    if (h.byTarget) h.irradianceUWcm2[i] = d["irradianceUWcm2"][i];
-    h.gainPermille[i] = j["leds"].contains("gainPermille") ? j["leds"]["gainPermille"][i].get<int>() : 1000;
-    h.offsets[i][0] = j["leds"]["offsets"][i][0];
-    h.offsets[i][1] = j["leds"]["offsets"][i][1];
-  }
-  h.thermalCoeff = j.contains("thermal") ? j["thermal"]["coeffCentiPctPerC"].get<int>() : 0;
-  h.thermalRefDeciC = j.contains("thermal") ? j["thermal"]["refDeciC"].get<int>() : 250;
-  static const char* const names[] = {"raster", "serpentine", "shortest", "random"};
-  for (int i = 0; i < 4; i++)
-    if (j["strategy"]["name"] == names[i]) h.strategy = static_cast<Strategy>(i);
-  h.seed = j["strategy"].value("seed", 0u);
-  return h;
-}
 
 uint8_t verify(const std::string& text, SegmentSink* sink) {
   JobVerifier v(sink);

@@ -1,0 +1,87 @@
+// Golden planner cases: random small jobs over every strategy and several geometries, with the plan
+// this implementation makes. `npm run vectors:planner` writes them to protocol/vectors/planner-ts.json.
+
+import type { PrintJob, StrategyName } from '../protocol/job-types';
+import { headerOf } from './job-header';
+import { planJob } from './planner';
+import type { Machine } from './time-model';
+
+export const GEOMETRIES: Record<string, [number, number][]> = {
+  adjacent: [[0, 0], [0, 1], [0, 2], [0, 3]],
+  bands: [[0, 0], [0, 3], [0, 6], [0, 9]],
+  coincident: [[0, 0], [0, 0], [0, 0], [0, 0]],
+  mixed: [[0, 0], [2, 1], [-1, 1], [3, -2]],
+};
+export const STRATEGIES: StrategyName[] = ['raster', 'serpentine', 'shortest', 'random'];
+
+export const MACHINE: Machine = {
+  vmaxUmS: [150_000, 100_000],
+  accelUmS2: [3_000_000, 2_000_000],
+  settleUs: 2000,
+  overheadUs: 1500,
+  startUm: [0, 0],
+};
+
+function rng(seed: number) {
+  let x = Math.imul(seed, 0x9e3779b1) >>> 0 || 1;  // spread small consecutive seeds
+  const next = () => {
+    x ^= x << 13;
+    x >>>= 0;
+    x ^= x >>> 17;
+    x ^= x << 5;
+    x >>>= 0;
+    return x / 4294967296;
+  };
+  for (let i = 0; i < 8; i++) next();
+  return next;
+}
+
+/** A random job: a few blobs and dots of random values on a small grid. */
+export function randomJob(seed: number, geometry: [number, number][], strategy: StrategyName, size?: [number, number]): PrintJob {
+  const r = rng(seed);
+  const cols = size?.[0] ?? 4 + Math.floor(r() * 14), rows = size?.[1] ?? 4 + Math.floor(r() * 12);
+  const cells = Array.from({ length: rows }, () => new Array<number>(cols).fill(0));
+  const density = 0.2 + r() * 0.6;
+  for (let y = 0; y < rows; y++) for (let x = 0; x < cols; x++) if (r() < density) cells[y][x] = 1 + Math.floor(r() * 255);
+  const doses: PrintJob['dose'][] = [
+    { map: 'threshold', level: 1 + Math.floor(r() * 128), fullUs: 1 + Math.floor(r() * 50000) },
+    { map: 'linear', fullUs: 1 + Math.floor(r() * 50000) },
+    { map: 'linear', targetUJcm2: 1000 + Math.floor(r() * 200000), irradianceUWcm2: [0, 0, 0, 0].map(() => 1000 + Math.floor(r() * 100000)) },
+  ];
+  return {
+    grid: { cols, rows },
+    pitchUm: { x: 50 + Math.floor(r() * 150), y: 50 + Math.floor(r() * 150) },
+    originUm: { x: Math.floor(r() * 20000), y: Math.floor(r() * 20000) },
+    dose: doses[Math.floor(r() * doses.length)],
+    leds: { offsets: geometry, gainPermille: [0, 0, 0, 0].map(() => 800 + Math.floor(r() * 400)) },
+    strategy: { name: strategy, seed: Math.floor(r() * 4294967296) },
+    gridData: cells,
+  };
+}
+
+export interface GoldenCase {
+  name: string;
+  job: PrintJob;
+  machine: Machine;
+  plan: { stops: number[][]; passes: number; estimateUs: number; travelUm: [number, number] };
+}
+
+export function planCase(name: string, job: PrintJob, machine: Machine): GoldenCase {
+  const p = planJob({ header: headerOf(job), cells: job.gridData }, machine);
+  const stops: number[][] = [];
+  for (let i = 0; i < p.count; i++) stops.push([p.hx[i], p.hy[i], ...p.durations.subarray(i * 4, i * 4 + 4)]);
+  return { name, job, machine, plan: { stops, passes: p.passes, estimateUs: p.estimateUs, travelUm: p.travelUm } };
+}
+
+export function goldenCases(): GoldenCase[] {
+  const out: GoldenCase[] = [];
+  let seed = 1000;
+  for (const [g, offsets] of Object.entries(GEOMETRIES)) {
+    for (const s of STRATEGIES) {
+      for (let n = 0; n < 2; n++) out.push(planCase(`ts ${g} ${s} #${n}`, randomJob(seed++, offsets, s), MACHINE));
+    }
+  }
+  // Wide passes: the random strategy shuffles several 32-stop blocks, shortest turns around.
+  for (const s of STRATEGIES) out.push(planCase(`ts wide ${s}`, randomJob(seed++, GEOMETRIES.adjacent, s, [75, 9]), MACHINE));
+  return out;
+}

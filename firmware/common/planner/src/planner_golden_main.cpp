@@ -1,0 +1,102 @@
+// Writes protocol/vectors/planner-cpp.json: golden plans made by the C++ planner, for the TypeScript
+// suite to check (npm run vectors:planner). Host tool, not firmware.
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "grid_cells.h"
+#include "job_json_fixture.h"
+#include "planner.h"
+#include "time_model.h"
+
+using nlohmann::json;
+
+namespace {
+
+struct Rng {
+  uint64_t x;
+  explicit Rng(uint64_t seed) : x(seed * 0x9E3779B97F4A7C15ull | 1) {}
+  uint32_t next() {  // splitmix64, a different generator from the TypeScript side's
+    uint64_t z = (x += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return static_cast<uint32_t>((z ^ (z >> 31)) >> 32);
+  }
+  int below(int n) { return static_cast<int>(next() % static_cast<uint32_t>(n)); }
+};
+
+json makeJob(Rng& r, const std::vector<std::array<int, 2>>& offsets, const char* strategy) {
+  int cols = 5 + r.below(20), rows = 5 + r.below(14);
+  json grid = json::array();
+  int density = 15 + r.below(60);
+  for (int y = 0; y < rows; y++) {
+    json row = json::array();
+    for (int x = 0; x < cols; x++) row.push_back(r.below(100) < density ? 1 + r.below(255) : 0);
+    grid.push_back(row);
+  }
+  json dose;
+  switch (r.below(3)) {
+    case 0: dose = {{"map", "threshold"}, {"level", 1 + r.below(128)}, {"fullUs", 1 + r.below(80000)}}; break;
+    case 1: dose = {{"map", "linear"}, {"fullUs", 1 + r.below(80000)}}; break;
+    default:
+      dose = {{"map", "linear"}, {"targetUJcm2", 500 + r.below(300000)},
+              {"irradianceUWcm2", {500 + r.below(90000), 500 + r.below(90000), 500 + r.below(90000), 500 + r.below(90000)}}};
+  }
+  json offs = json::array();
+  for (auto o : offsets) offs.push_back({o[0], o[1]});
+  return {{"grid", {{"cols", cols}, {"rows", rows}}},
+          {"pitchUm", {{"x", 20 + r.below(200)}, {"y", 20 + r.below(200)}}},
+          {"originUm", {{"x", r.below(30000)}, {"y", r.below(30000)}}},
+          {"dose", dose},
+          {"leds", {{"offsets", offs}, {"gainPermille", {700 + r.below(600), 700 + r.below(600), 700 + r.below(600), 700 + r.below(600)}}}},
+          {"strategy", {{"name", strategy}, {"seed", r.next()}}},
+          {"gridData", grid}};
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 2) {
+    std::fprintf(stderr, "usage: planner_golden <out.json>\n");
+    return 2;
+  }
+  const std::vector<std::pair<const char*, std::vector<std::array<int, 2>>>> geometries = {
+      {"adjacent", {{{0, 0}}, {{0, 1}}, {{0, 2}}, {{0, 3}}}},
+      {"bands", {{{0, 0}}, {{0, 4}}, {{0, 8}}, {{0, 12}}}},
+      {"coincident", {{{1, 1}}, {{1, 1}}, {{1, 1}}, {{1, 1}}}},
+      {"staggered", {{{0, 0}}, {{1, 2}}, {{-2, 5}}, {{0, -1}}}},
+  };
+  const json machine = {{"vmaxUmS", {120000, 90000}}, {"accelUmS2", {2500000, 1500000}}, {"settleUs", 3000},
+                        {"overheadUs", 1200}, {"startUm", {5000, 0}}};
+  uv::Machine m{{120000, 90000}, {2500000, 1500000}, 3000, 1200, {5000, 0}};
+  Rng r(20261121);
+  json cases = json::array();
+  for (const auto& [gname, offsets] : geometries) {
+    for (const char* s : {"raster", "serpentine", "shortest", "random"}) {
+      for (int n = 0; n < 2; n++) {
+        json job = makeJob(r, offsets, s);
+        uv::JobHeader h = uvtest::headerFrom(job);
+        std::vector<std::vector<uint8_t>> rows;
+        for (const auto& row : job["gridData"]) rows.emplace_back(row.begin(), row.end());
+        uvtest::GridCells cells(rows);
+        uv::Planner planner(h, cells, m.startUm[0]);
+        uv::PlanClock clock(h, m);
+        json stops = json::array();
+        uv::Stop st;
+        while (planner.next(st)) {
+          clock.add(st);
+          stops.push_back({st.hx, st.hy, st.us[0], st.us[1], st.us[2], st.us[3]});
+        }
+        cases.push_back({{"name", std::string("c++ ") + gname + " " + s + " #" + std::to_string(n)},
+                         {"job", job},
+                         {"machine", machine},
+                         {"plan", {{"stops", stops}, {"passes", planner.passes()}, {"estimateUs", clock.totalUs()},
+                                   {"travelUm", {clock.travelUm(0), clock.travelUm(1)}}}}});
+      }
+    }
+  }
+  std::ofstream(argv[1]) << json({{"version", 1}, {"madeBy", "c++"}, {"cases", cases}}).dump() << "\n";
+  std::printf("wrote %zu cases\n", cases.size());
+  return 0;
+}

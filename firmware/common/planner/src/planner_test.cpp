@@ -1,0 +1,157 @@
+// Host tests of the C++ planner: golden plans from both implementations, exactness on random jobs,
+// and the RAM bound with no heap use.
+#include "planner.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <new>
+#include <vector>
+
+#include "grid_cells.h"
+#include "job_json_fixture.h"
+#include "mesh.h"
+#include "time_model.h"
+#include "vectors_fixture.h"
+
+using namespace uv;
+using namespace uvtest;
+
+namespace {
+std::atomic<long> allocations{0};
+}  // namespace
+
+void* operator new(size_t n) {
+  allocations++;
+  if (void* p = std::malloc(n ? n : 1)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, size_t) noexcept { std::free(p); }
+
+namespace {
+
+struct Planned {
+  std::vector<std::vector<int64_t>> stops;
+  uint16_t passes;
+  uint64_t estimate;
+  uint64_t travel[2];
+};
+
+Machine machineFrom(const json& m) {
+  Machine out{};
+  for (int a = 0; a < 2; a++) {
+    out.vmaxUmS[a] = m["vmaxUmS"][a];
+    out.accelUmS2[a] = m["accelUmS2"][a];
+    out.startUm[a] = m["startUm"][a];
+  }
+  out.settleUs = m["settleUs"];
+  out.overheadUs = m["overheadUs"];
+  return out;
+}
+
+std::vector<std::vector<uint8_t>> gridFrom(const json& job) {
+  std::vector<std::vector<uint8_t>> rows;
+  for (const auto& r : job["gridData"]) rows.emplace_back(r.begin(), r.end());
+  return rows;
+}
+
+Planned planOf(const JobHeader& h, const std::vector<std::vector<uint8_t>>& rows, const Machine& m) {
+  GridCells cells(rows);
+  Planner planner(h, cells, m.startUm[0]);
+  PlanClock clock(h, m);
+  Planned out{};
+  Stop s;
+  while (planner.next(s)) {
+    clock.add(s);
+    out.stops.push_back({s.hx, s.hy, s.us[0], s.us[1], s.us[2], s.us[3]});
+  }
+  out.passes = planner.passes();
+  out.estimate = clock.totalUs();
+  out.travel[0] = clock.travelUm(0);
+  out.travel[1] = clock.travelUm(1);
+  return out;
+}
+
+void checkGolden(const char* file) {
+  const json v = loadVectors(file);
+  ASSERT_GT(v["cases"].size(), 20u) << file;
+  for (const json& c : v["cases"]) {
+    JobHeader h = headerFrom(c["job"]);
+    auto rows = gridFrom(c["job"]);
+    Planned p = planOf(h, rows, machineFrom(c["machine"]));
+    EXPECT_EQ(json(p.stops), c["plan"]["stops"]) << c["name"];
+    EXPECT_EQ(p.passes, c["plan"]["passes"].get<int>()) << c["name"];
+    EXPECT_EQ(p.estimate, c["plan"]["estimateUs"].get<uint64_t>()) << c["name"];
+    EXPECT_EQ(json({p.travel[0], p.travel[1]}), c["plan"]["travelUm"]) << c["name"];
+  }
+  std::printf("[vectors] %s: %zu plans checked (C++)\n", file, v["cases"].size());
+}
+
+}  // namespace
+
+TEST(PlannerGolden, ReproducesTypeScriptPlans) { checkGolden("planner-ts.json"); }
+TEST(PlannerGolden, ReproducesItsOwnPlans) { checkGolden("planner-cpp.json"); }
+
+TEST(PlannerMemory, StreamsWithinItsBoundAndNeverAllocates) {
+  // A 4096-column job fed one row at a time through the cursors: the planner's state is the
+  // same at any size, and planning allocates nothing.
+  std::vector<std::vector<uint8_t>> rows(64, std::vector<uint8_t>(4096, 0));
+  for (size_t y = 0; y < rows.size(); y++)
+    for (size_t x = y % 7; x < 4096; x += 3) rows[y][x] = static_cast<uint8_t>(1 + (x * y) % 255);
+  JobHeader h{};
+  h.cols = 4096;
+  h.rows = 64;
+  h.pitchUm[0] = h.pitchUm[1] = 50;
+  h.map = DoseMap::Linear;
+  h.fullUs = 5000;
+  for (int k = 0; k < 4; k++) {
+    h.gainPermille[k] = 1000;
+    h.offsets[k][1] = static_cast<int16_t>(k * 16);  // bands
+  }
+  for (Strategy s : {Strategy::Raster, Strategy::Serpentine, Strategy::Shortest, Strategy::Random}) {
+    h.strategy = s;
+    GridCells cells(rows);
+    long before = allocations;
+    Planner planner(h, cells, 0);
+    Stop stop;
+    long stops = 0;
+    while (planner.next(stop)) stops++;
+    EXPECT_EQ(allocations - before, 0) << "the planner allocated";
+    EXPECT_GT(stops, 4096 * 16 / 3);
+    EXPECT_EQ(cells.rowsOpened, 64) << "each row is read once, by one cursor";
+  }
+  EXPECT_LE(sizeof(Planner), kPlannerMaxBytes);
+  std::printf("[planner memory] sizeof(Planner) = %zu bytes (bound %u), no heap\n", sizeof(Planner), kPlannerMaxBytes);
+}
+
+TEST(TimeModel, TrapezoidAndTriangle) {
+  EXPECT_EQ(moveTimeUs(0, 150000, 3000000), 0u);
+  EXPECT_EQ(moveTimeUs(100, 150000, 3000000), 2u * 5773u);
+  EXPECT_EQ(moveTimeUs(100000, 150000, 3000000), 666667u + 50000u);
+  EXPECT_EQ(isqrt64(0), 0u);
+  EXPECT_EQ(isqrt64(99), 9u);
+  EXPECT_EQ(isqrt64(100), 10u);
+  EXPECT_EQ(isqrt64(1000000000000000000ull), 1000000000u);
+}
+
+TEST(MeshVectors, BilinearZ) {
+  const json v = loadVectors("mesh.json");
+  VectorCounter counted("mesh.json");
+  for (const json& c : v["cases"]) {
+    Mesh m{};
+    m.nx = c["mesh"]["nx"];
+    m.ny = c["mesh"]["ny"];
+    m.x0 = c["mesh"]["x0"];
+    m.y0 = c["mesh"]["y0"];
+    m.dx = c["mesh"]["dx"];
+    m.dy = c["mesh"]["dy"];
+    for (int j = 0; j < m.ny; j++)
+      for (int i = 0; i < m.nx; i++) m.z[j][i] = c["mesh"]["z"][j][i];
+    for (const json& q : c["points"]) {
+      EXPECT_EQ(meshZ(m, q[0], q[1]), q[2].get<int>()) << c["name"] << " at " << q;
+      counted();
+    }
+  }
+}

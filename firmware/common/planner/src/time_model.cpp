@@ -1,0 +1,49 @@
+// Trapezoidal move times and the per-stop clock of protocol/planner.md "Time model", in integer µs.
+#include "time_model.h"
+
+namespace uv {
+
+namespace {
+uint64_t roundDiv(uint64_t n, uint64_t d) {
+  uint64_t q = n / d;
+  return (n - q * d) * 2 >= d ? q + 1 : q;
+}
+uint32_t absDiff(int32_t a, int32_t b) { return static_cast<uint32_t>(a > b ? a - b : b - a); }
+}  // namespace
+
+uint64_t isqrt64(uint64_t n) {
+  if (n < 2) return n;
+  uint64_t x = n, y = (x + 1) / 2;
+  while (y < x) {  // Newton's method from above
+    x = y;
+    y = (x + n / x) / 2;
+  }
+  return x;
+}
+
+uint32_t moveTimeUs(uint32_t d, uint32_t v, uint32_t a) {
+  if (d == 0) return 0;
+  if (static_cast<uint64_t>(d) * a >= static_cast<uint64_t>(v) * v) {
+    return static_cast<uint32_t>(roundDiv(static_cast<uint64_t>(d) * 1000000u, v) + roundDiv(static_cast<uint64_t>(v) * 1000000u, a));
+  }
+  return static_cast<uint32_t>(2 * isqrt64(static_cast<uint64_t>(d) * 1000000000000ull / a));
+}
+
+void PlanClock::add(const Stop& s) {
+  int32_t x = static_cast<int32_t>(h_.originUm[0]) + s.hx * static_cast<int32_t>(h_.pitchUm[0]);
+  int32_t y = static_cast<int32_t>(h_.originUm[1]) + s.hy * static_cast<int32_t>(h_.pitchUm[1]);
+  uint32_t mx = absDiff(x, x_), my = absDiff(y, y_);
+  uint32_t tx = moveTimeUs(mx, m_.vmaxUmS[0], m_.accelUmS2[0]);
+  uint32_t ty = moveTimeUs(my, m_.vmaxUmS[1], m_.accelUmS2[1]);
+  uint32_t move = tx > ty ? tx : ty;
+  uint32_t longest = 0;
+  for (uint32_t us : s.us)
+    if (us > longest) longest = us;
+  total_ += move + (move ? m_.settleUs : 0) + m_.overheadUs + longest;
+  travel_[0] += mx;
+  travel_[1] += my;
+  x_ = x;
+  y_ = y;
+}
+
+}  // namespace uv
