@@ -16,7 +16,36 @@ function blank(cols: number, rows: number): Uint8Array[] {
   return Array.from({ length: rows }, () => new Uint8Array(cols));
 }
 
-/** Horizontal and vertical traces with pads, about 15 % exposed. */
+/** A board at 50 µm cells: traces 6-14 cells (0.3-0.7 mm) wide, bends, and square pads. */
+export function boardMask(cols: number, rows: number, seed = 4): Mask {
+  const r = rng(seed);
+  const cells = blank(cols, rows);
+  const fill = (x0: number, y0: number, w: number, h: number) => {
+    for (let y = Math.max(0, y0); y < Math.min(rows, y0 + h); y++)
+      for (let x = Math.max(0, x0); x < Math.min(cols, x0 + w); x++) cells[y][x] = 255;
+  };
+  for (let t = 0; t < (cols * rows) / 6000; t++) {
+    let x = Math.floor(r() * cols), y = Math.floor(r() * rows);
+    const w = 6 + Math.floor(r() * 9);
+    fill(x - 10, y - 10, 20 + w, 20 + w); // pad at the start
+    for (let leg = 0; leg < 3; leg++) {
+      const len = 40 + Math.floor(r() * 200);
+      if (leg % 2 === 0) {
+        const dir = r() < 0.5 ? -1 : 1;
+        fill(dir > 0 ? x : x - len, y, len + w, w);
+        x += dir * len;
+      } else {
+        const dir = r() < 0.5 ? -1 : 1;
+        fill(x, dir > 0 ? y : y - len, w, len + w);
+        y += dir * len;
+      }
+    }
+    fill(x - 10, y - 10, 20 + w, 20 + w); // pad at the end
+  }
+  return { name: 'pcb', cols, rows, cells };
+}
+
+/** Horizontal and vertical one-cell traces with pads, about 15 % exposed. */
 export function pcbMask(cols: number, rows: number, seed = 1): Mask {
   const r = rng(seed);
   const cells = blank(cols, rows);

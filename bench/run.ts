@@ -1,5 +1,7 @@
-// npm run bench: every benchmark, printed as a table of medians and ratios to each group's baseline.
+// npm run bench: every benchmark, printed as tables of medians and ratios to each group's baseline.
 import { printTable } from './harness';
 import { jobCodecBench } from './job-codec.bench';
+import { p2, p7, printP2 } from './planner.bench';
 
-printTable([...jobCodecBench()]);
+printTable([...jobCodecBench(), ...p7()]);
+printP2(p2());

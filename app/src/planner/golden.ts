@@ -37,12 +37,12 @@ function rng(seed: number) {
 }
 
 /** A random job: a few blobs and dots of random values on a small grid. */
-export function randomJob(seed: number, geometry: [number, number][], strategy: StrategyName, size?: [number, number]): PrintJob {
+export function randomJob(seed: number, geometry: [number, number][], strategy: StrategyName, size?: [number, number], density?: number): PrintJob {
   const r = rng(seed);
   const cols = size?.[0] ?? 4 + Math.floor(r() * 14), rows = size?.[1] ?? 4 + Math.floor(r() * 12);
   const cells = Array.from({ length: rows }, () => new Array<number>(cols).fill(0));
-  const density = 0.2 + r() * 0.6;
-  for (let y = 0; y < rows; y++) for (let x = 0; x < cols; x++) if (r() < density) cells[y][x] = 1 + Math.floor(r() * 255);
+  const fill = density ?? 0.2 + r() * 0.6;
+  for (let y = 0; y < rows; y++) for (let x = 0; x < cols; x++) if (r() < fill) cells[y][x] = 1 + Math.floor(r() * 255);
   const doses: PrintJob['dose'][] = [
     { map: 'threshold', level: 1 + Math.floor(r() * 128), fullUs: 1 + Math.floor(r() * 50000) },
     { map: 'linear', fullUs: 1 + Math.floor(r() * 50000) },
@@ -83,5 +83,9 @@ export function goldenCases(): GoldenCase[] {
   }
   // Wide passes: the random strategy shuffles several 32-stop blocks, shortest turns around.
   for (const s of STRATEGIES) out.push(planCase(`ts wide ${s}`, randomJob(seed++, GEOMETRIES.adjacent, s, [75, 9]), MACHINE));
+  // Sparse dots over several bands: `shortest` takes the column order in some bands, rows in others.
+  for (const [g, offsets] of Object.entries(GEOMETRIES)) {
+    out.push(planCase(`ts sparse shortest ${g}`, randomJob(seed++, offsets, 'shortest', [90, 70], 0.02), MACHINE));
+  }
   return out;
 }

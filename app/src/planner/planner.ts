@@ -74,49 +74,31 @@ class StopBuffer {
   }
 }
 
-export function planJob(job: PlannerJob, machine: Machine): Plan {
-  const h = job.header;
-  const rows = job.cells;
-  const tables = durationTables(h);
+/** One pass: its head row and its stops ascending by head column, with each LED's cell value. */
+interface Pass {
+  hy: number;
+  n: number;
+  hx: Int32Array;
+  /** 4 values per stop, LED 0-3 (0 = no cell). */
+  val: Uint8Array;
+  /** Smallest and largest head column of the pass's non-zero cells. */
+  first: number;
+  last: number;
+}
+
+/** Passes in the order they open (protocol/planner.md "Passes"), stops merged ascending. */
+function buildPasses(h: JobHeader, rows: ArrayLike<number>[], tables: Uint32Array[]): Pass[] {
   const dx = h.offsets.map((o) => o[0]);
   const dy = h.offsets.map((o) => o[1]);
   const dyMin = Math.min(...dy);
   const covered = new Uint8Array(h.rows);
-  const out = new StopBuffer();
-  const rng = { x: h.seed === 0 ? 0x9e3779b9 : h.seed >>> 0 };
-  const moves = new MoveTimes(machine);
-  let curX = machine.startUm[0];
-  let curY = machine.startUm[1];
-  let estimate = 0;
-  let travelX = 0;
-  let travelY = 0;
-  let passes = 0;
-
-  // Per-pass scratch: stop columns and LED values, ascending.
-  let passHx = new Int32Array(1024);
-  let passVal = new Uint8Array(4096);
-
-  const emit = (hx: number, hy: number, v: Uint8Array, at: number) => {
-    const d0 = tables[0][v[at]], d1 = tables[1][v[at + 1]], d2 = tables[2][v[at + 2]], d3 = tables[3][v[at + 3]];
-    out.push(hx, hy, d0, d1, d2, d3);
-    const x = h.originUm[0] + hx * h.pitchUm[0];
-    const y = h.originUm[1] + hy * h.pitchUm[1];
-    const mx = Math.abs(x - curX), my = Math.abs(y - curY);
-    const move = Math.max(moves.axis(0, mx), moves.axis(1, my));
-    estimate += move + (move > 0 ? machine.settleUs : 0) + machine.overheadUs + Math.max(d0, d1, d2, d3);
-    travelX += mx;
-    travelY += my;
-    curX = x;
-    curY = y;
-  };
-
+  const passes: Pass[] = [];
   for (let r = 0; r < h.rows; r++) {
     if (covered[r]) continue;
     const row = rows[r];
     let nonEmpty = false;
     for (let c = 0; c < row.length && !nonEmpty; c++) nonEmpty = row[c] > 0;
     if (!nonEmpty) continue;
-
     const hy = r - dyMin;
     const cols: (Int32Array | null)[] = [null, null, null, null];
     const ledRows = [-1, -1, -1, -1];
@@ -127,18 +109,18 @@ export function planJob(job: PlannerJob, machine: Machine): Plan {
       ledRows[k] = rk;
       cols[k] = nonZeroColumns(rows[rk]);
     }
-
-    // Merge the LEDs' head columns ascending into the pass scratch, dropping all-zero stops.
-    const idx = [0, 0, 0, 0];
-    let n = 0;
-    let first = Infinity, last = -Infinity;
+    let first = Infinity, last = -Infinity, total = 0;
     for (let k = 0; k < 4; k++) {
       const ck = cols[k];
-      if (ck && ck.length) {
-        first = Math.min(first, ck[0] - dx[k]);
-        last = Math.max(last, ck[ck.length - 1] - dx[k]);
-      }
+      if (!ck || !ck.length) continue;
+      first = Math.min(first, ck[0] - dx[k]);
+      last = Math.max(last, ck[ck.length - 1] - dx[k]);
+      total += ck.length;
     }
+    const hx = new Int32Array(total);
+    const val = new Uint8Array(total * 4);
+    const idx = [0, 0, 0, 0];
+    let n = 0;
     for (;;) {
       let best = Infinity;
       for (let k = 0; k < 4; k++) {
@@ -146,14 +128,6 @@ export function planJob(job: PlannerJob, machine: Machine): Plan {
         if (ck && idx[k] < ck.length) best = Math.min(best, ck[idx[k]] - dx[k]);
       }
       if (best === Infinity) break;
-      if (n === passHx.length) {
-        const hx2 = new Int32Array(n * 2);
-        hx2.set(passHx);
-        passHx = hx2;
-        const v2 = new Uint8Array(n * 8);
-        v2.set(passVal);
-        passVal = v2;
-      }
       let any = false;
       for (let k = 0; k < 4; k++) {
         const ck = cols[k];
@@ -163,39 +137,140 @@ export function planJob(job: PlannerJob, machine: Machine): Plan {
           idx[k]++;
           if (tables[k][v] > 0) any = true;
         }
-        passVal[n * 4 + k] = v;
+        val[n * 4 + k] = v;
       }
-      if (any) passHx[n++] = best;
+      if (any) hx[n++] = best; // an all-dark stop is overwritten by the next one
     }
-    if (n === 0) continue;
+    passes.push({ hy, n, hx, val, first, last });
+  }
+  return passes;
+}
 
-    let descending = false;
-    if (h.strategy === 'serpentine') descending = passes % 2 === 1;
-    else if (h.strategy === 'shortest') {
-      const xf = h.originUm[0] + first * h.pitchUm[0];
-      const xl = h.originUm[0] + last * h.pitchUm[0];
-      descending = Math.abs(xf - curX) > Math.abs(xl - curX);
-    }
-    passes++;
+export const SHORTEST_BAND = 8;
 
-    if (h.strategy === 'random') {
-      const order = new Int32Array(BLOCK);
-      for (let start = 0; start < n; start += BLOCK) {
-        const len = Math.min(BLOCK, n - start);
-        for (let i = 0; i < len; i++) order[i] = start + i;
-        for (let i = len - 1; i >= 1; i--) {
-          const j = xorshift32(rng) % (i + 1);
-          const t = order[i];
-          order[i] = order[j];
-          order[j] = t;
+export function planJob(job: PlannerJob, machine: Machine): Plan {
+  const h = job.header;
+  const tables = durationTables(h);
+  const out = new StopBuffer();
+  const rng = { x: h.seed === 0 ? 0x9e3779b9 : h.seed >>> 0 };
+  const moves = new MoveTimes(machine);
+  const X = (hx: number) => h.originUm[0] + hx * h.pitchUm[0];
+  const Y = (hy: number) => h.originUm[1] + hy * h.pitchUm[1];
+  let curX = machine.startUm[0];
+  let curY = machine.startUm[1];
+  let estimate = 0;
+  let travelX = 0;
+  let travelY = 0;
+  let emitted = 0;
+
+  const longest = (v: Uint8Array, at: number) =>
+    Math.max(tables[0][v[at]], tables[1][v[at + 1]], tables[2][v[at + 2]], tables[3][v[at + 3]]);
+  /** The time model's cost of one stop from (x, y); protocol/planner.md "Time model". */
+  const stopCost = (x: number, y: number, fromX: number, fromY: number, v: Uint8Array, at: number) => {
+    const move = Math.max(moves.axis(0, Math.abs(x - fromX)), moves.axis(1, Math.abs(y - fromY)));
+    return move + (move > 0 ? machine.settleUs : 0) + machine.overheadUs + longest(v, at);
+  };
+  const emit = (hx: number, hy: number, v: Uint8Array, at: number) => {
+    out.push(hx, hy, tables[0][v[at]], tables[1][v[at + 1]], tables[2][v[at + 2]], tables[3][v[at + 3]]);
+    const x = X(hx), y = Y(hy);
+    estimate += stopCost(x, y, curX, curY, v, at);
+    travelX += Math.abs(x - curX);
+    travelY += Math.abs(y - curY);
+    curX = x;
+    curY = y;
+  };
+  /** Ascending unless the pass's far end is nearer to `x`. */
+  const nearerEndDescending = (p: Pass, x: number) => Math.abs(X(p.first) - x) > Math.abs(X(p.last) - x);
+
+  const passes = buildPasses(h, job.cells, tables);
+  if (h.strategy === 'shortest') {
+    for (let b = 0; b < passes.length; b += SHORTEST_BAND) {
+      const band = passes.slice(b, b + SHORTEST_BAND).filter((p) => p.n > 0);
+      if (band.length === 0) continue;
+      const byRows = rowOrder(band, curX);
+      const byColumns = columnOrder(band, curX, curY);
+      const cost = (order: [Pass, number][]) => {
+        let t = 0, x = curX, y = curY;
+        for (const [p, i] of order) {
+          const nx = X(p.hx[i]), ny = Y(p.hy);
+          t += stopCost(nx, ny, x, y, p.val, i * 4);
+          x = nx;
+          y = ny;
         }
-        for (let i = 0; i < len; i++) emit(passHx[order[i]], hy, passVal, order[i] * 4);
-      }
-    } else if (descending) {
-      for (let i = n - 1; i >= 0; i--) emit(passHx[i], hy, passVal, i * 4);
-    } else {
-      for (let i = 0; i < n; i++) emit(passHx[i], hy, passVal, i * 4);
+        return t;
+      };
+      const order = cost(byColumns) < cost(byRows) ? byColumns : byRows;
+      for (const [p, i] of order) emit(p.hx[i], p.hy, p.val, i * 4);
+      emitted += band.length;
     }
+  } else {
+    for (const p of passes) {
+      if (p.n === 0) continue;
+      if (h.strategy === 'random') {
+        const order = new Int32Array(BLOCK);
+        for (let start = 0; start < p.n; start += BLOCK) {
+          const len = Math.min(BLOCK, p.n - start);
+          for (let i = 0; i < len; i++) order[i] = start + i;
+          for (let i = len - 1; i >= 1; i--) {
+            const j = xorshift32(rng) % (i + 1);
+            const t = order[i];
+            order[i] = order[j];
+            order[j] = t;
+          }
+          for (let i = 0; i < len; i++) emit(p.hx[order[i]], p.hy, p.val, order[i] * 4);
+        }
+      } else if (h.strategy === 'serpentine' && emitted % 2 === 1) {
+        for (let i = p.n - 1; i >= 0; i--) emit(p.hx[i], p.hy, p.val, i * 4);
+      } else {
+        for (let i = 0; i < p.n; i++) emit(p.hx[i], p.hy, p.val, i * 4);
+      }
+      emitted++;
+    }
+  }
+
+  /** Band order A: pass after pass, each from its nearer end. */
+  function rowOrder(band: Pass[], startX: number): [Pass, number][] {
+    const order: [Pass, number][] = [];
+    let x = startX;
+    for (const p of band) {
+      const desc = nearerEndDescending(p, x);
+      for (let j = 0; j < p.n; j++) order.push([p, desc ? p.n - 1 - j : j]);
+      x = X(p.hx[desc ? 0 : p.n - 1]);
+    }
+    return order;
+  }
+
+  /** Band order B: column after column across the band's passes, each column from its nearer end in Y. */
+  function columnOrder(band: Pass[], startX: number, startY: number): [Pass, number][] {
+    const first = Math.min(...band.map((p) => p.first));
+    const last = Math.max(...band.map((p) => p.last));
+    const desc = Math.abs(X(first) - startX) > Math.abs(X(last) - startX);
+    const idx = band.map((p) => (desc ? p.n - 1 : 0));
+    const order: [Pass, number][] = [];
+    let y = startY;
+    const column: number[] = [];
+    for (;;) {
+      let best = desc ? -Infinity : Infinity;
+      band.forEach((p, q) => {
+        const i = idx[q];
+        if (i < 0 || i >= p.n) return;
+        best = desc ? Math.max(best, p.hx[i]) : Math.min(best, p.hx[i]);
+      });
+      if (!Number.isFinite(best)) break;
+      column.length = 0;
+      band.forEach((p, q) => {
+        const i = idx[q];
+        if (i >= 0 && i < p.n && p.hx[i] === best) {
+          column.push(q);
+          idx[q] += desc ? -1 : 1;
+        }
+      }); // passes are in ascending hy, so the column is too
+      const up = Math.abs(Y(band[column[0]].hy) - y) > Math.abs(Y(band[column[column.length - 1]].hy) - y);
+      if (up) column.reverse();
+      for (const q of column) order.push([band[q], idx[q] - (desc ? -1 : 1)]);
+      y = Y(band[column[column.length - 1]].hy);
+    }
+    return order;
   }
 
   return {
@@ -203,7 +278,7 @@ export function planJob(job: PlannerJob, machine: Machine): Plan {
     hx: out.hx.subarray(0, out.count),
     hy: out.hy.subarray(0, out.count),
     durations: out.durations.subarray(0, out.count * 4),
-    passes,
+    passes: emitted,
     estimateUs: estimate,
     travelUm: [travelX, travelY],
   };

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "cell_source.h"
+#include "planner.h"
 
 namespace uvtest {
 
@@ -61,7 +62,7 @@ class GridCells : public uv::CellSource {
     bool descending = false;
   };
   const std::vector<std::vector<uint8_t>>& rows_;
-  Cursor cursors_[4];
+  Cursor cursors_[uv::kPlannerCursors];
 };
 
 }  // namespace uvtest

@@ -4,24 +4,23 @@
 
 #include "cell_source.h"
 #include "job_types.h"
+#include "time_model.h"
 
 namespace uv {
 
 constexpr uint16_t kPlannerMaxRows = kJobMaxSide;
 constexpr uint8_t kRandomBlock = 32;
+constexpr uint8_t kShortestBand = 8;                 // passes per band for `shortest`
+constexpr uint8_t kPlannerCursors = 4 * kShortestBand;  // CellSource cursors the planner may use
 // The bound the host tests hold the planner to: its whole state, at any grid size.
-constexpr uint16_t kPlannerMaxBytes = 900;
-
-struct Stop {
-  int32_t hx, hy;   // head position in cells
-  uint32_t us[4];   // per LED
-};
+constexpr uint16_t kPlannerMaxBytes = 1400;
 
 // t_k(v) for one LED: round(full_k × gain_k × m(v) / 255000).
 class Durations {
  public:
   explicit Durations(const JobHeader& h);
   uint32_t us(uint8_t led, uint8_t value) const;
+  uint32_t longest(const uint8_t value[4]) const;
 
  private:
   uint64_t scale_[4];  // full_k × gain_k
@@ -31,41 +30,71 @@ class Durations {
 
 class Planner {
  public:
-  // startX: the head's bed X in µm before the first stop (for the `shortest` strategy).
-  Planner(const JobHeader& h, CellSource& cells, int32_t startXUm);
+  Planner(const JobHeader& h, CellSource& cells, const Machine& m);
 
   // The next stop in execution order; false when the job is done.
   bool next(Stop& out);
   uint16_t passes() const { return passes_; }
 
  private:
+  struct PassInfo {
+    int32_t hy;
+    int16_t row[4];       // the row each LED exposes in this pass, or -1
+    int32_t first, last;  // extent of the pass's non-zero cells in head columns
+    bool cells;           // it has non-zero cells
+    bool lit;             // it has a stop (known after pricing; assumed for single passes)
+  };
   struct Compact {
-    int16_t hx;
+    int32_t hx;
     uint8_t value[4];
   };
+  enum class Order : uint8_t { Rows, Columns };
 
-  bool openPass();
-  bool mergeNext(int32_t& hx, uint8_t value[4]);  // next stop of the pass with a non-zero duration
-  void advance(uint8_t led);
-  void fillBlock();
-  void toStop(int32_t hx, const uint8_t value[4], Stop& out);
+  bool openPass(PassInfo& p);
+  bool startBand();
+  void openCursors(uint8_t q, bool descending);
+  bool passNext(uint8_t q, bool descending, int32_t& hx, uint8_t value[4]);
+  void advance(uint8_t cursor);
+  bool startRowPass();
+  bool nextColumn();
+  bool descendingFor(const PassInfo& p, int32_t x) const;
+  uint64_t priceRows();
+  uint64_t priceColumns();
+  bool columnsDescending(int32_t x) const;
+  int32_t X(int32_t hx) const { return static_cast<int32_t>(h_.originUm[0]) + hx * static_cast<int32_t>(h_.pitchUm[0]); }
+  int32_t Y(int32_t hy) const { return static_cast<int32_t>(h_.originUm[1]) + hy * static_cast<int32_t>(h_.pitchUm[1]); }
+  void emit(int32_t hx, int32_t hy, const uint8_t value[4], Stop& out);
 
   const JobHeader& h_;
   CellSource& cells_;
+  const Machine& m_;
   Durations dose_;
   uint8_t covered_[kPlannerMaxRows / 8] = {};
-  uint16_t scan_ = 0;         // next row that may open a pass
-  int32_t hy_ = 0;
+  uint16_t scan_ = 0;  // next row that may open a pass
   int16_t dyMin_ = 0;
-  bool inPass_ = false;
-  bool descending_ = false;
-  uint16_t passes_ = 0;       // passes that emitted a stop
-  bool passEmitted_ = false;
-  int32_t curX_;              // bed X of the last stop, µm
-  bool live_[4] = {};         // cursor k has a current cell
-  uint16_t col_[4] = {};
-  uint8_t val_[4] = {};
+  int32_t curX_, curY_;  // bed position of the last stop, µm
+  uint16_t passes_ = 0;  // passes that emitted a stop
   uint32_t rng_;
+
+  PassInfo band_[kShortestBand];
+  uint8_t bandLen_ = 0;
+  Order order_ = Order::Rows;
+  bool emitting_ = false;
+  // Rows order: the pass being emitted and its direction.
+  uint8_t q_ = 0;
+  bool desc_ = false;
+  bool passCounted_ = false;
+  // Columns order: each pass's next stop, and the current column.
+  bool peek_[kShortestBand] = {};
+  Compact peekStop_[kShortestBand];
+  uint8_t column_[kShortestBand];
+  uint8_t columnLen_ = 0, columnPos_ = 0;
+  Compact columnStop_[kShortestBand];
+  bool passUsed_[kShortestBand] = {};
+
+  bool live_[kPlannerCursors] = {};
+  uint16_t col_[kPlannerCursors] = {};
+  uint8_t val_[kPlannerCursors] = {};
   Compact block_[kRandomBlock];
   uint8_t blockLen_ = 0, blockPos_ = 0;
 };

@@ -80,7 +80,7 @@ int main(int argc, char** argv) {
         std::vector<std::vector<uint8_t>> rows;
         for (const auto& row : job["gridData"]) rows.emplace_back(row.begin(), row.end());
         uvtest::GridCells cells(rows);
-        uv::Planner planner(h, cells, m.startUm[0]);
+        uv::Planner planner(h, cells, m);
         uv::PlanClock clock(h, m);
         json stops = json::array();
         uv::Stop st;

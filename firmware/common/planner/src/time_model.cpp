@@ -29,19 +29,22 @@ uint32_t moveTimeUs(uint32_t d, uint32_t v, uint32_t a) {
   return static_cast<uint32_t>(2 * isqrt64(static_cast<uint64_t>(d) * 1000000000000ull / a));
 }
 
+uint32_t stopCostUs(const Machine& m, int32_t fromX, int32_t fromY, int32_t toX, int32_t toY, uint32_t longestUs) {
+  uint32_t tx = moveTimeUs(absDiff(toX, fromX), m.vmaxUmS[0], m.accelUmS2[0]);
+  uint32_t ty = moveTimeUs(absDiff(toY, fromY), m.vmaxUmS[1], m.accelUmS2[1]);
+  uint32_t move = tx > ty ? tx : ty;
+  return move + (move ? m.settleUs : 0) + m.overheadUs + longestUs;
+}
+
 void PlanClock::add(const Stop& s) {
   int32_t x = static_cast<int32_t>(h_.originUm[0]) + s.hx * static_cast<int32_t>(h_.pitchUm[0]);
   int32_t y = static_cast<int32_t>(h_.originUm[1]) + s.hy * static_cast<int32_t>(h_.pitchUm[1]);
-  uint32_t mx = absDiff(x, x_), my = absDiff(y, y_);
-  uint32_t tx = moveTimeUs(mx, m_.vmaxUmS[0], m_.accelUmS2[0]);
-  uint32_t ty = moveTimeUs(my, m_.vmaxUmS[1], m_.accelUmS2[1]);
-  uint32_t move = tx > ty ? tx : ty;
   uint32_t longest = 0;
   for (uint32_t us : s.us)
     if (us > longest) longest = us;
-  total_ += move + (move ? m_.settleUs : 0) + m_.overheadUs + longest;
-  travel_[0] += mx;
-  travel_[1] += my;
+  total_ += stopCostUs(m_, x_, y_, x, y, longest);
+  travel_[0] += absDiff(x, x_);
+  travel_[1] += absDiff(y, y_);
   x_ = x;
   y_ = y;
 }

@@ -3,7 +3,6 @@
 #include <stdint.h>
 
 #include "job_types.h"
-#include "planner.h"
 
 namespace uv {
 
@@ -15,9 +14,18 @@ struct Machine {
   int32_t startUm[2];
 };
 
+struct Stop {
+  int32_t hx, hy;   // head position in cells
+  uint32_t us[4];   // per LED
+};
+
 uint64_t isqrt64(uint64_t n);
 // Time in µs to move d µm on one axis, from rest to rest.
 uint32_t moveTimeUs(uint32_t d, uint32_t v, uint32_t a);
+
+// One stop's time from the previous head position (bed µm): the slower axis's move, settle if
+// it moved, the per-stop overhead and the longest LED duration.
+uint32_t stopCostUs(const Machine& m, int32_t fromX, int32_t fromY, int32_t toX, int32_t toY, uint32_t longestUs);
 
 // Adds up the estimate stop by stop, as the planner emits them.
 class PlanClock {
