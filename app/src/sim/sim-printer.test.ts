@@ -1,49 +1,216 @@
 import { describe, expect, it } from 'vitest';
+import { GEOMETRIES, randomJob } from '../planner/golden';
 import { encodeFrame } from '../protocol/dialect-frame';
 import { parseReply } from '../protocol/dialect-reply';
+import { encodeJob } from '../protocol/job-encode';
+import { bedZ, DEFAULT_BED } from './bed';
+import { SimHost } from './sim-host.fixture';
 import { SimPrinter } from './sim-printer';
 
-function harness() {
-  const lines: string[] = [];
-  let buf = '';
-  const sim = new SimPrinter((bytes) => {
-    buf += bytes;
-    const parts = buf.split('\n');
-    buf = parts.pop()!;
-    lines.push(...parts);
-  });
-  return { sim, lines };
+function upload(h: SimHost, file: string, text: string): string[] {
+  const out = [...h.cmd(`M28 ${file}`)];
+  for (const record of text.trimEnd().split('\n')) out.push(...h.cmd(record));
+  out.push(...h.cmd('M29'));
+  return out;
 }
 
-describe('simulated printer', () => {
-  it('identifies itself like the Mega, window included', () => {
-    const { sim, lines } = harness();
-    sim.receive(encodeFrame(1, 'M115') + '\n');
-    expect(parseReply(lines[0])).toEqual({ kind: 'firmware', name: 'UVExposure 0.1.0 (Simulated Mega)', protocol: 1 });
-    expect(lines).toContain('Cap:RX_WINDOW:8');
-    expect(lines.at(-1)).toBe('ok N1 P8 B8');
-  });
+function smallJob(seed = 3) {
+  const job = randomJob(seed, GEOMETRIES.adjacent, 'serpentine', [24, 12], 0.4);
+  job.originUm = { x: 20000, y: 30000 };
+  job.pitchUm = { x: 50, y: 50 };
+  job.dose = { map: 'linear', fullUs: 4000 };
+  return job;
+}
 
-  it('reports six temperatures on M105 and by auto-report', () => {
-    const { sim, lines } = harness();
-    sim.receive('M105\n');
-    const temps = parseReply(lines[0]);
-    expect(temps?.kind).toBe('temps');
-    if (temps?.kind === 'temps') expect(temps.deciC).toHaveLength(6);
-    sim.receive('M155 S1\n');
-    lines.length = 0;
-    sim.tick(999);
-    expect(lines).toEqual([]);
-    sim.tick(1000);
-    expect(parseReply(lines[0])?.kind).toBe('temps');
+describe('simulated printer: link and identity', () => {
+  it('identifies itself like the Mega, window included', () => {
+    const h = new SimHost();
+    const block = h.cmd('M115');
+    expect(parseReply(block[0])).toEqual({ kind: 'firmware', name: 'UVExposure 0.1.0 (Simulated Mega)', protocol: 1 });
+    expect(block).toContain('Cap:RX_WINDOW:8');
+    expect(block.at(-1)).toBe('ok N1 P8 B8');
   });
 
   it('answers every line exactly once, errors included', () => {
-    const { sim, lines } = harness();
-    sim.receive('M999\nG1 X1e3\nN1 M105*0\n');
+    const lines: string[] = [];
+    const sim = new SimPrinter((b) => lines.push(...b.split('\n').filter(Boolean)));
+    sim.receive('M999x\nG1 X1e3\nN1 M105*0\n');
+    sim.advance(10);
     expect(lines.filter((l) => l.startsWith('ok'))).toHaveLength(3);
-    expect(lines[0]).toBe('Error:E10 unknown command: M999');
-    expect(lines[2]).toBe('Error:E11 bad or missing parameter');
+    expect(lines[0]).toBe('Error:E10 unknown command: M999x');
+    expect(lines).toContain('Error:E11 bad or missing parameter');
     expect(lines).toContain('Resend: 1');
+  });
+
+  it('reports six temperatures on M105 and by auto-report', () => {
+    const h = new SimHost();
+    expect(parseReply(h.cmd('M105')[0])?.kind).toBe('temps');
+    h.cmd('M155 S1');
+    const from = h.lines.length;
+    h.sim.advance(999);
+    expect(h.lines.slice(from).some((l) => l.startsWith('T:'))).toBe(false);
+    h.sim.advance(2);
+    expect(h.lines.slice(from).some((l) => l.startsWith('T:'))).toBe(true);
+  });
+});
+
+describe('simulated printer: motion', () => {
+  it('refuses moves before homing, then moves in the time the model gives', () => {
+    const h = new SimHost();
+    expect(h.cmd('G0 X10')[0]).toBe('Error:E14 axis not homed: X');
+    h.cmd('G28');
+    h.cmd('G0 X10 Y20');
+    h.sim.advance(1000);
+    expect(h.cmd('M114')[0]).toBe('X:10.000 Y:20.000 Z:0.000 E:0.000 Count X:800 Y:1600 Z:0');
+    expect(h.cmd('G0 X999')[0]).toBe('Error:E15 target outside soft limits: X');
+  });
+
+  it('jogs until M410 and reports endstops', () => {
+    const h = new SimHost();
+    h.cmd('G28');
+    expect(h.cmd('M119')).toContain('x_min: TRIGGERED');
+    h.cmd('M820 X1 S0'); // 5 mm/s
+    h.sim.advance(1000);
+    h.cmd('M410');
+    const x = parseReply(h.cmd('M114')[0]);
+    expect(x?.kind === 'position' && x.um[0]).toBeGreaterThan(3000);
+    expect(x?.kind === 'position' && x.um[0]).toBeLessThan(6000);
+  });
+
+  it('runs the kinematic self-test and reports steps per axis', () => {
+    const h = new SimHost();
+    h.cmd('G28');
+    expect(h.cmd('M822 Q')[0]).toBe('TEST:quick x=pass x_steps=1600 y=pass y_steps=1600');
+    const full = h.cmd('M822');
+    expect(full).toContain('busy: processing'); // it runs longer than the 2 s keep-alive
+    expect(full).toContain('TEST:full x=pass x_steps=16000 y=pass y_steps=16000');
+  });
+});
+
+describe('simulated printer: probe and mesh', () => {
+  it('probes the bed surface and builds a mesh of it', () => {
+    const h = new SimHost();
+    h.cmd('G28');
+    expect(h.cmd('M401')).toContain('PROBE:deployed');
+    h.cmd('G0 X50 Y60 Z5');
+    const bed = parseReply(h.cmd('G30')[0]);
+    expect(bed).toEqual({ kind: 'probePoint', um: [50000, 60000, bedZ(DEFAULT_BED, 50000, 60000)] });
+    const block = h.cmd('G29 X3 Y3');
+    expect(block.filter((l) => l.startsWith('Bed X:'))).toHaveLength(9);
+    const rows = block.filter((l) => l.startsWith('MESH:row'));
+    expect(rows).toHaveLength(3);
+    expect(rows[0]).toBe(`MESH:row 0 ${[10000, 100000, 190000].map((x) => (bedZ(DEFAULT_BED, x, 10000) / 1000).toFixed(3)).join(' ')}`);
+  });
+
+  it('reports a probe alarm and clears it with the alarm release', () => {
+    const h = new SimHost({ probeAlarm: true });
+    const block = h.cmd('M401');
+    expect(block).toContain('PROBE:alarm');
+    expect(block.some((l) => l.startsWith('Error:E40'))).toBe(true);
+    h.cmd('M280 P0 S160');
+    expect(h.cmd('M401')).toContain('PROBE:deployed');
+  });
+});
+
+describe('simulated printer: jobs', () => {
+  it('stores a verified upload and refuses a corrupt one', () => {
+    const h = new SimHost();
+    const text = encodeJob(smallJob());
+    expect(upload(h, 'A.UVJ', text)).toContain('echo:Done saving file.');
+    expect(h.sim.sd.files.get('A.UVJ')).toBe(text);
+    const broken = text.replace(/end [0-9a-f]{8}/, 'end 00000000');
+    const out = upload(h, 'B.UVJ', broken);
+    expect(out.some((l) => l.startsWith('Error:E24'))).toBe(true);
+    expect(h.sim.sd.files.has('B.UVJ')).toBe(false);
+    expect(h.cmd('M20')).toEqual(['Begin file list', `A.UVJ ${text.length}`, 'End file list', expect.stringMatching(/^ok/)]);
+  });
+
+  it('runs a job in exactly the planner\'s estimated time, each stop once', () => {
+    const h = new SimHost();
+    h.cmd('G28');
+    upload(h, 'J.UVJ', encodeJob(smallJob()));
+    h.cmd('M23 J.UVJ');
+    const plan = h.sim.mega.job.plan!;
+    h.cmd('M24');
+    const start = h.sim.clock.now;
+    h.waitFor(/^JOB:done/);
+    const took = h.sim.mega.job.exposures.length ? h.sim.clock.now - start : 0;
+    expect(h.sim.mega.job.exposures.map((e) => e.stop)).toEqual(Array.from({ length: plan.count }, (_, i) => i));
+    expect(Math.abs(took - plan.estimateUs)).toBeLessThanOrEqual(5000); // the last report lands on a 5 ms step
+  });
+
+  it('resumes after a power cycle with every stop exactly once', () => {
+    const h = new SimHost();
+    h.cmd('G28');
+    upload(h, 'R.UVJ', encodeJob(smallJob(9)));
+    h.cmd('M23 R.UVJ');
+    const total = h.sim.mega.job.plan!.count;
+    h.cmd('M24');
+    while (h.sim.mega.job.exposures.length < total / 2) h.sim.advance(1);
+    const before = h.sim.mega.job.exposures.map((e) => e.stop);
+    expect(before.length).toBeGreaterThan(0);
+    expect(before.length).toBeLessThan(total);
+    h.sim.powerCycle();
+    h.reconnect();
+    expect(h.cmd('M1000 S')[0]).toBe(`JOB:interrupted file=R.UVJ stop=${before.length}/${total}`);
+    expect(h.cmd('M1000')[0]).toMatch(/^Error:E14/); // must home first
+    h.cmd('G28');
+    h.cmd('M1000');
+    h.waitFor(/^JOB:done/);
+    const after = h.sim.mega.job.exposures.map((e) => e.stop);
+    expect([...before, ...after]).toEqual(Array.from({ length: total }, (_, i) => i));
+    expect(h.cmd('M1000 S')[0]).toBe('JOB:idle');
+  });
+
+  it('pauses, continues and aborts with the LEDs off', () => {
+    const h = new SimHost();
+    h.cmd('G28');
+    upload(h, 'P.UVJ', encodeJob(smallJob(4)));
+    h.cmd('M23 P.UVJ');
+    h.cmd('M24');
+    h.sim.advance(500);
+    h.cmd('M25');
+    h.waitFor(/^JOB:paused/);
+    const n = h.sim.mega.job.exposures.length;
+    h.sim.advance(2000);
+    expect(h.sim.mega.job.exposures.length).toBe(n);
+    expect(h.sim.nano.lit).toBe(0);
+    h.cmd('M24');
+    h.sim.advance(300);
+    h.cmd('M524');
+    expect(h.sim.nano.lit).toBe(0);
+    expect(h.cmd('M27')[0]).toMatch(/^JOB:aborted/);
+    expect(h.cmd('M1000 S')[0]).toBe('JOB:idle');
+  });
+});
+
+describe('simulated printer: faults', () => {
+  it('heats with LED duty, and over-temperature stops the LEDs and says why', () => {
+    const h = new SimHost({ nano: { extraHeatingCPerS: 8 } });
+    h.cmd('G28');
+    upload(h, 'H.UVJ', encodeJob(smallJob(5)));
+    h.cmd('M23 H.UVJ');
+    h.cmd('M24');
+    const fault = h.waitFor(/^FAULT:E31/, 120_000);
+    expect(fault).toMatch(/^FAULT:E31 over-temperature T\d \d+\.\d$/);
+    expect(h.sim.nano.lit).toBe(0);
+    expect(h.cmd('M27')[0]).toMatch(/^JOB:paused .*reason=overtemp/);
+    expect(h.cmd('M24')[0]).toMatch(/^Error:E31/);
+  });
+
+  it('reports a missing printhead', () => {
+    const h = new SimHost({ missingNano: true });
+    expect(h.cmd('M105')[0]).toBe('Error:E30 printhead not responding');
+    h.waitFor(/^FAULT:E30/, 5000);
+  });
+
+  it('halts on M112 until M999', () => {
+    const h = new SimHost();
+    h.sim.receive(encodeFrame(99, 'M112').replace(/^N99 /, '') + '\n');
+    h.sim.receive('M112\n');
+    h.sim.advance(5);
+    expect(h.cmd('M105')[0]).toBe('Error:E13 machine halted: send M999');
+    h.cmd('M999');
+    expect(parseReply(h.cmd('M105')[0])?.kind).toBe('temps');
   });
 });

@@ -1,112 +1,124 @@
-// The simulated printer's Mega: the dialect over a byte stream, backed by a simple thermal model.
-// Runs in a Web Worker (the app's default device) and in Node (tests, desktop hosts).
+// The simulated printer: the Mega and the Nano models together behind a byte stream, in virtual time.
+// Runs in a Web Worker (the app's default device) and in Node (tests, `npm run sim` for desktop hosts).
 
-import { parseCommand } from '../protocol/dialect-command';
-import { LineReceiver } from '../protocol/dialect-receiver';
-import { formatReply } from '../protocol/dialect-reply';
-import { DIALECT_MAX_LINE } from '../protocol/dialect-frame';
-import { ERRORS, errorByCode } from '../protocol/errors';
-import { LineSplitter } from '../protocol/line-splitter';
-import { SENSOR_COUNT } from '../protocol/nano';
+import { DEFAULT_BED, type BedShape } from './bed';
+import { VirtualClock } from './clock';
+import { FaultyLink, type LinkFaults } from './link-faults';
+import { MegaModel } from './mega';
+import { DEFAULT_NANO, NanoModel, type NanoOptions } from './nano-model';
+import { SdCard } from './sd-card';
 
 export interface SimOptions {
   firmwareName?: string;
   /** Resting temperature of each sensor, tenths of °C. */
   ambientDeciC?: number[];
+  /** Soft limits the Mega reports, tenths of °C (config thermal.limit.*). */
   limitDeciC?: number[];
   /** A slow ±0.3 °C drift on the temperatures (default on); tests turn it off for exact values. */
   drift?: boolean;
+  bed?: BedShape;
+  nano?: Partial<NanoOptions>;
+  link?: LinkFaults;
+  /** No printhead answers. */
+  missingNano?: boolean;
+  /** The probe goes into alarm on its next deploy. */
+  probeAlarm?: boolean;
+  noSd?: boolean;
 }
 
-const WINDOW = 8;
-
 export class SimPrinter {
-  readonly #splitter = new LineSplitter(DIALECT_MAX_LINE);
-  readonly #receiver: LineReceiver;
-  readonly #name: string;
-  readonly #ambient: number[];
-  readonly #limits: number[];
-  readonly #drift: boolean;
-  #tempReportMs = 0;
-  #lastTempReport = 0;
-  #now = 0;
+  clock = new VirtualClock();
+  readonly sd = new SdCard();
+  nano!: NanoModel;
+  mega!: MegaModel;
+  #link: FaultyLink;
+  #stallUntil = 0;
+  #held = '';
+  #disconnected = false;
+  onDisconnect: () => void = () => {};
 
   /** `emit` receives every byte the Mega would send. */
-  constructor(private readonly emit: (bytes: string) => void, options: SimOptions = {}) {
-    this.#name = options.firmwareName ?? 'UVExposure 0.1.0 (Simulated Mega)';
-    this.#ambient = options.ambientDeciC ?? [231, 234, 229, 236, 224, 226];
-    this.#limits = options.limitDeciC ?? [600, 600, 600, 600, 550, 550];
-    this.#drift = options.drift ?? true;
-    this.#receiver = new LineReceiver({ movesFree: () => 8, windowFree: () => WINDOW });
+  constructor(private readonly emit: (bytes: string) => void, private readonly o: SimOptions = {}) {
+    this.#link = new FaultyLink(o.link ?? {});
+    this.sd.present = !o.noSd;
+    this.#build();
+  }
+
+  #build(): void {
+    const nanoOptions: NanoOptions = { ...DEFAULT_NANO, ...this.o.nano };
+    if (this.o.ambientDeciC) nanoOptions.ambientDeciC = this.o.ambientDeciC;
+    this.nano = new NanoModel(this.clock, nanoOptions);
+    this.nano.present = !this.o.missingNano;
+    this.nano.alarmOnDeploy = !!this.o.probeAlarm;
+    this.mega = new MegaModel(this.clock, this.nano, this.sd, (b) => this.#out(b), {
+      firmwareName: this.o.firmwareName ?? 'UVExposure 0.1.0 (Simulated Mega)',
+      bed: this.o.bed ?? DEFAULT_BED,
+    });
+    if (this.o.limitDeciC) this.o.limitDeciC.forEach((l, i) => (this.mega.config[`thermal.limit.${i}`] = String(l / 10)));
+    if (this.o.drift === false) this.nano.temp.forEach((_, i) => (this.nano.temp[i] = nanoOptions.ambientDeciC[i] / 10));
   }
 
   /** Call once the port is open: a real Mega prints `start` after reset. */
   boot(): void {
-    this.#line('start');
+    this.mega.boot();
+  }
+
+  /** Power cycle: RAM state is lost, the SD card (jobs, checkpoint, config) survives. */
+  powerCycle(): void {
+    const now = this.clock.now;
+    this.clock = new VirtualClock(); // the old models' timers go with the old clock
+    this.clock.now = now;
+    this.#build();
+    this.boot();
   }
 
   /** Bytes from the host. */
   receive(bytes: string): void {
-    for (const line of this.#splitter.push(bytes)) {
-      const a = this.#receiver.accept(line);
-      if (a.kind === 'reply') a.lines.forEach((l) => this.#line(l));
-      else if (a.kind === 'execute') this.#execute(a.body);
+    if (this.#disconnected) return;
+    const passed = this.#link.pass(bytes);
+    if (this.clock.now < this.#stallUntil) this.#held += passed;
+    else this.mega.receive(passed);
+  }
+
+  /** Advances virtual time by `ms`, running everything due (tests and fast simulations). */
+  advance(ms: number): void {
+    this.advanceTo(this.clock.now + ms * 1000);
+  }
+
+  /** Advances virtual time to `us` (real-time hosts call this with their clock). */
+  advanceTo(us: number): void {
+    const f = this.o.link ?? {};
+    if (f.disconnectAfterMs !== undefined && !this.#disconnected && us >= f.disconnectAfterMs * 1000) {
+      this.clock.advanceTo(f.disconnectAfterMs * 1000);
+      this.#disconnected = true;
+      this.onDisconnect();
+      return;
+    }
+    if (f.stallEveryMs && f.stallMs) {
+      // Stalls start on every multiple of stallEveryMs; held bytes are read when one ends.
+      const period = f.stallEveryMs * 1000;
+      const start = Math.floor(us / period) * period;
+      if (us < start + f.stallMs * 1000) this.#stallUntil = start + f.stallMs * 1000;
+    }
+    this.clock.advanceTo(us);
+    if (this.#held && this.clock.now >= this.#stallUntil) {
+      const held = this.#held;
+      this.#held = '';
+      this.mega.receive(held);
     }
   }
 
-  /** Advances the simulated clock (ms); sends due auto-reports. */
+  /** Real-time hosts: advance to `nowMs` since the start. */
   tick(nowMs: number): void {
-    this.#now = nowMs;
-    if (this.#tempReportMs > 0 && nowMs - this.#lastTempReport >= this.#tempReportMs) {
-      this.#lastTempReport = nowMs;
-      this.#line(this.#temps());
-    }
+    this.advanceTo(nowMs * 1000);
   }
 
-  #line(text: string): void {
-    this.emit(text + '\n');
+  get disconnected(): boolean {
+    return this.#disconnected;
   }
 
-  #ok(): void {
-    this.#line(this.#receiver.ok());
-  }
-
-  #error(code: number, detail?: string): void {
-    const message = errorByCode(code)!.message;
-    this.#line(`Error:E${code} ${message}${detail ? `: ${detail}` : ''}`);
-    this.#ok();
-  }
-
-  #temps(): string {
-    // A small, slow drift so a chart of the simulated printer is not a flat line.
-    const t = this.#now / 1000;
-    const deciC = this.#ambient.map((a, i) => a + (this.#drift ? Math.round(3 * Math.sin(t / 7 + i)) : 0));
-    return formatReply({ kind: 'temps', deciC, limitDeciC: this.#limits.slice(0, SENSOR_COUNT) });
-  }
-
-  #execute(body: string): void {
-    const parsed = parseCommand(body);
-    if (!parsed.ok) return this.#error(parsed.error, parsed.error === 10 ? body.split(' ')[0] : undefined);
-    const { command } = parsed;
-    const params = 'params' in command ? command.params : {};
-    switch (command.word) {
-      case 'M115':
-        this.#line(formatReply({ kind: 'firmware', name: this.#name, protocol: 1 }));
-        this.#line(`Cap:RX_WINDOW:${WINDOW}`);
-        this.#line('Cap:AUTOREPORT_TEMP:1');
-        return this.#ok();
-      case 'M105':
-        this.#line(this.#temps());
-        return this.#ok();
-      case 'M155': {
-        const s = params.S;
-        if (typeof s !== 'number' || s < 0 || s > 60000) return this.#error(ERRORS.bad_parameter.code);
-        this.#tempReportMs = s;
-        this.#lastTempReport = this.#now;
-        return this.#ok();
-      }
-      default:
-        return this.#error(ERRORS.unknown_command.code, command.word);
-    }
+  #out(bytes: string): void {
+    if (this.#disconnected) return;
+    this.emit(this.#link.pass(bytes));
   }
 }

@@ -1,0 +1,170 @@
+// Runs a verified job on the simulated machine: plans it with the app's planner, then moves, settles and fires
+// stop by stop in virtual time, checkpointing after each stop so an interrupted job can resume.
+
+import { planJob, type Plan } from '../planner/planner';
+import type { Machine } from '../planner/time-model';
+import type { JobState } from '../protocol/dialect-reply';
+import type { JobHeader } from '../protocol/job-types';
+import { verifyJobText } from '../protocol/job-verify';
+import { formatNanoCommand } from '../protocol/nano';
+import type { VirtualClock } from './clock';
+import { num } from './config';
+import type { Motion, Xyz } from './motion';
+import type { NanoModel } from './nano-model';
+import type { SdCard } from './sd-card';
+
+export interface Exposure {
+  stop: number;
+  hx: number;
+  hy: number;
+  us: number[];
+}
+
+export class JobRunner {
+  state: JobState = 'idle';
+  file = '';
+  plan: Plan | null = null;
+  header: JobHeader | null = null;
+  done = 0;
+  startedAtUs = 0;
+  /** Every stop fired, in order: the tests' proof that each cell was exposed exactly once. */
+  readonly exposures: Exposure[] = [];
+  /** Why the job last paused or failed, for JOB: reports. */
+  reason = '';
+  #pauseRequested = false;
+  #step: ReturnType<VirtualClock['at']> | null = null;
+
+  constructor(
+    private readonly clock: VirtualClock,
+    private readonly motion: Motion,
+    private readonly nano: NanoModel,
+    private readonly sd: SdCard,
+    private readonly config: Record<string, string>,
+    private readonly report: (state: JobState) => void,
+  ) {}
+
+  machine(start: Xyz): Machine {
+    const v = num(this.config, 'speed.travel') * 1000;
+    return {
+      vmaxUmS: [v, v],
+      accelUmS2: [num(this.config, 'accel.x') * 1000, num(this.config, 'accel.y') * 1000],
+      settleUs: num(this.config, 'settle_ms') * 1000,
+      overheadUs: num(this.config, 'stop_overhead_us'),
+      startUm: [start[0], start[1]],
+    };
+  }
+
+  /** Loads and plans a job file; false if it is missing or does not verify. */
+  load(file: string): boolean {
+    const text = this.sd.files.get(file);
+    if (text === undefined) return false;
+    const { error, header } = verifyJobText(text);  // the header sizes the grid; a second pass fills it
+    if (error || !header) return false;
+    const cells = Array.from({ length: header.rows }, () => new Uint8Array(header.cols));
+    verifyJobText(text, (s) => cells[s.row].set(s.cells, s.col));
+    this.header = header;
+    this.plan = planJob({ header, cells }, this.machine(this.motion.now()));
+    this.file = file;
+    this.done = 0;
+    this.state = 'ready';
+    return true;
+  }
+
+  /** Starts from stop `from` (a resume starts after the checkpoint). */
+  start(from = 0): void {
+    this.done = from;
+    this.state = 'running';
+    this.#pauseRequested = false;
+    this.startedAtUs = this.clock.now;
+    this.reason = '';
+    this.report('running');
+    this.#next();
+  }
+
+  pause(reason = 'user'): void {
+    if (this.state !== 'running') return;
+    this.#pauseRequested = true;
+    this.reason = reason;
+  }
+
+  resume(): void {
+    if (this.state !== 'paused') return;
+    this.state = 'running';
+    this.reason = '';
+    this.report('running');
+    this.#next();
+  }
+
+  /** LEDs off, motion stopped, checkpoint cleared. */
+  abort(): void {
+    this.nano.allOff();
+    this.nano.command('R\n');
+    this.clock.cancel(this.#step);
+    if (this.state === 'running' || this.state === 'paused' || this.state === 'ready') {
+      this.state = 'aborted';
+      this.sd.checkpoint = null;
+      this.report('aborted');
+    }
+  }
+
+  /** Estimated time left in µs: the planner's model over the stops still to run. */
+  remainingUs(): number {
+    if (!this.plan) return 0;
+    const p = this.plan;
+    const total = p.estimateUs;
+    return this.done >= p.count ? 0 : Math.round(total * (1 - this.done / p.count));
+  }
+
+  #next(): void {
+    const p = this.plan!;
+    const h = this.header!;
+    if (this.#pauseRequested) {
+      this.#pauseRequested = false;
+      this.state = 'paused';
+      this.report('paused');
+      return;
+    }
+    if (this.done >= p.count) {
+      this.state = 'done';
+      this.sd.checkpoint = null;
+      this.report('done');
+      return;
+    }
+    const i = this.done;
+    const to: Xyz = [h.originUm[0] + p.hx[i] * h.pitchUm[0], h.originUm[1] + p.hy[i] * h.pitchUm[1], this.motion.pos[2]];
+    const from = this.motion.now();
+    const moved = to[0] !== from[0] || to[1] !== from[1];
+    this.motion.enqueue(to, num(this.config, 'speed.travel'));
+    this.motion.whenIdle(() => {
+      if (this.state !== 'running') return;
+      const settle = moved ? num(this.config, 'settle_ms') * 1000 : 0;
+      this.#step = this.clock.after(settle + num(this.config, 'stop_overhead_us'), () => this.#fire(i));
+    });
+  }
+
+  #fire(i: number): void {
+    const p = this.plan!;
+    const us = Array.from(p.durations.subarray(i * 4, i * 4 + 4));
+    let mask = 0;
+    us.forEach((d, k) => d && (mask |= 1 << k));
+    this.nano.command(formatNanoCommand({ op: 'F', mask, durations: us as [number, number, number, number] }));
+    const longest = Math.max(...us);
+    this.#step = this.clock.after(longest, () => {
+      if (this.state !== 'running') return;
+      this.exposures.push({ stop: i, hx: p.hx[i], hy: p.hy[i], us });
+      this.done = i + 1;
+      this.sd.checkpoint = { file: this.file, done: this.done, stops: p.count };
+      this.#next();
+    });
+  }
+
+  /** A fault cut the LEDs mid-stop: the stop is not counted, and the job waits for the user. */
+  faulted(reason: string): void {
+    if (this.state !== 'running') return;
+    this.clock.cancel(this.#step);
+    this.nano.allOff();
+    this.state = 'paused';
+    this.reason = reason;
+    this.report('paused');
+  }
+}

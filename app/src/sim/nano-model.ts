@@ -1,0 +1,156 @@
+// The simulated printhead Nano: LEDs with timed switch-off, a thermal model, the probe, and protocol/nano.md
+// over the same codec the firmware uses.
+
+import { FAULT, formatNanoReply, parseNanoCommand, SENSOR_COUNT, type NanoReply } from '../protocol/nano';
+import type { VirtualClock } from './clock';
+
+export interface NanoOptions {
+  /** Resting temperature of each sensor, 0.1 °C. */
+  ambientDeciC: number[];
+  /** The Nano's own cut-off per sensor, 0.1 °C, and the hysteresis. */
+  limitDeciC: number[];
+  hysteresisDeciC: number;
+  capUs: number;
+  /** °C a sensor rises per second with its LED on, and the fraction of the gap to ambient lost per second. */
+  heatingCPerS: number;
+  coolingPerS: number;
+  /** Extra heating to force an over-temperature in tests, °C/s on every LED sensor. */
+  extraHeatingCPerS: number;
+}
+
+export const DEFAULT_NANO: NanoOptions = {
+  ambientDeciC: [231, 234, 229, 236, 224, 226],
+  limitDeciC: [600, 600, 600, 600, 600, 600],
+  hysteresisDeciC: 50,
+  capUs: 10_000_000,
+  heatingCPerS: 2.5,
+  coolingPerS: 0.08,
+  extraHeatingCPerS: 0,
+};
+
+export type ProbePin = 'stowed' | 'deployed' | 'alarm';
+
+export class NanoModel {
+  lit = 0;
+  /** Temperatures in °C (floating), integrated in virtual time. */
+  readonly temp: number[];
+  probe: ProbePin = 'stowed';
+  /** Set by the Mega model while the deployed pin touches the bed. */
+  touching = false;
+  /** A fault to inject: the next deploy ends in the alarm state. */
+  alarmOnDeploy = false;
+  /** A missing Nano answers nothing. */
+  present = true;
+  #latched = 0;
+  #latchedTrigger = false;
+  #off: (ReturnType<VirtualClock['at']> | null)[] = [null, null, null, null];
+  #lastUs = 0;
+  #hot = 0;
+
+  constructor(private readonly clock: VirtualClock, private readonly o: NanoOptions = DEFAULT_NANO) {
+    this.temp = o.ambientDeciC.map((d) => d / 10);
+  }
+
+  /** One command line (with '\n'); returns the reply line, if the command has one. */
+  command(line: string): string | null {
+    if (!this.present) return null;
+    this.#integrate();
+    const cmd = parseNanoCommand(line.replace(/\r?\n$/, ''));
+    if (!cmd) {
+      this.#latched |= FAULT.MALFORMED;
+      return null;
+    }
+    const reply = (r: NanoReply) => formatNanoReply(r);
+    switch (cmd.op) {
+      case 'S': return reply({ op: 'S', mask: this.lit });
+      case 'T': return reply({ op: 'T', deciC: this.deciC() });
+      case 'P': {
+        const t = this.#latchedTrigger || this.touching;
+        this.#latchedTrigger = false;
+        return reply({ op: 'P', triggered: t });
+      }
+      case 'E': {
+        const flags = this.#active() | this.#latched;
+        this.#latched = 0;
+        return reply({ op: 'E', flags });
+      }
+      case 'V': return reply({ op: 'V', protocol: 1, firmware: '0.2.0-sim' });
+      case 'R': this.allOff(); return null;
+      case 'D': this.probe = this.alarmOnDeploy ? 'alarm' : 'deployed'; return null;
+      case 'U': if (this.probe !== 'alarm') this.probe = 'stowed'; return null;
+      case 'X': this.probe = 'stowed'; this.alarmOnDeploy = false; return null;
+      case 'F': this.#fire(cmd.mask, cmd.durations); return null;
+    }
+  }
+
+  /** The probe pin touched the bed: latch the trigger, as the pin-change interrupt does. */
+  trigger(): void {
+    this.#latchedTrigger = true;
+  }
+
+  deciC(): number[] {
+    this.#integrate();
+    return this.temp.map((t) => Math.round(t * 10));
+  }
+
+  allOff(): void {
+    this.lit = 0;
+    this.#off.forEach((e) => this.clock.cancel(e));
+    this.#off = [null, null, null, null];
+  }
+
+  #active(): number {
+    return this.#hot ? FAULT.OVERTEMP : 0;
+  }
+
+  #fire(mask: number, durations: number[]): void {
+    if (this.#active()) return void (this.#latched |= FAULT.REFUSED);
+    if (this.lit) return void (this.#latched |= FAULT.BUSY);
+    let on = 0;
+    for (let k = 0; k < 4; k++) {
+      if (!((mask >> k) & 1) || durations[k] === 0) continue;
+      if (durations[k] > this.o.capUs) return void (this.#latched |= FAULT.CAPPED);
+      on |= 1 << k;
+    }
+    this.#integrate();
+    this.lit = on;
+    for (let k = 0; k < 4; k++) {
+      if (!((on >> k) & 1)) continue;
+      this.#off[k] = this.clock.after(durations[k], () => {
+        this.#integrate();
+        this.lit &= ~(1 << k);
+        this.#off[k] = null;
+      });
+    }
+  }
+
+  /** Advances the thermal model to now, and cuts the LEDs on over-temperature like the firmware. */
+  #integrate(): void {
+    const now = this.clock.now;
+    const dt = (now - this.#lastUs) / 1e6;
+    this.#lastUs = now;
+    if (dt <= 0) return;
+    const ambient = this.o.ambientDeciC.map((d) => d / 10);
+    for (let i = 0; i < SENSOR_COUNT; i++) {
+      const led = i < 4 && (this.lit >> i) & 1 ? this.o.heatingCPerS : 0;
+      const driver = i === 4 ? this.o.heatingCPerS * 0.3 * popcount(this.lit) : 0;
+      const extra = i < 4 ? this.o.extraHeatingCPerS : 0;
+      this.temp[i] += (led + driver + extra) * dt - (this.temp[i] - ambient[i]) * (1 - Math.exp(-this.o.coolingPerS * dt));
+    }
+    for (let i = 0; i < SENSOR_COUNT; i++) {
+      const t = this.temp[i] * 10;
+      if (t >= this.o.limitDeciC[i]) this.#hot |= 1 << i;
+      else if (t < this.o.limitDeciC[i] - this.o.hysteresisDeciC) this.#hot &= ~(1 << i);
+    }
+    if (this.#hot && this.lit) {
+      this.allOff();
+      this.#latched |= FAULT.CUTOFF;
+    }
+  }
+}
+
+function popcount(m: number): number {
+  let n = 0;
+  for (; m; m &= m - 1) n++;
+  return n;
+}

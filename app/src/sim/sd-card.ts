@@ -1,0 +1,18 @@
+// The simulated SD card: files by name, and the job checkpoint that survives a reset.
+
+export interface Checkpoint {
+  file: string;
+  /** Stops completed so far. */
+  done: number;
+  stops: number;
+}
+
+export class SdCard {
+  files = new Map<string, string>();
+  checkpoint: Checkpoint | null = null;
+  present = true;
+
+  list(): [string, number][] {
+    return Array.from(this.files.entries()).map(([name, text]) => [name, text.length]);
+  }
+}
