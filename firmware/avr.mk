@@ -19,7 +19,8 @@ CORE := $(ARDUINO_DIR)/cores/arduino
 COMMON := firmware/common/protocol/src
 BOARD_SRC := firmware/$(BOARD)/src
 
-CPPFLAGS := -mmcu=$(MCU) -DF_CPU=16000000L -DARDUINO=10819 -DARDUINO_ARCH_AVR \
+# -MMD -MP: each object records its headers, so a changed header rebuilds what includes it.
+CPPFLAGS := -MMD -MP -mmcu=$(MCU) -DF_CPU=16000000L -DARDUINO=10819 -DARDUINO_ARCH_AVR \
   -I$(CORE) -I$(ARDUINO_DIR)/variants/$(VARIANT) -I$(COMMON) -I$(BOARD_SRC) $(EXTRA_DEFS)
 OPT := -Os -ffunction-sections -fdata-sections -flto
 CFLAGS := $(OPT) -std=gnu11
@@ -52,5 +53,7 @@ $(OBJ)/core/%.S.o: $(CORE)/%.S
 $(OBJ)/app/%.cpp.o: %.cpp
 	@mkdir -p $(dir $@)
 	avr-g++ $(CPPFLAGS) $(CXXFLAGS) $(WARN) -Werror -c $< -o $@
+
+-include $(CORE_OBJS:.o=.d) $(APP_OBJS:.o=.d)
 
 .PHONY: all

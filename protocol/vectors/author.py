@@ -169,12 +169,14 @@ commands = [
 ]
 
 
-def ok(last, p=8, b=8):
-    return f"ok N{last} P{p} B{b}"
+def ok(n=None, p=8, b=8):
+    """The reply block's last line: `n` is the line it answers, None when it accepts none."""
+    head = f"ok P{p} B{b}" if n is None else f"ok N{n} P{p} B{b}"
+    return f"{head}*{cs(head)}"
 
 
 def err(code, msg, last):
-    return [f"Error:E{code} {msg}, Last Line: {last}", f"Resend: {last + 1}", ok(last)]
+    return [f"Error:E{code} {msg}, Last Line: {last}", f"Resend: {last + 1}", ok()]
 
 
 sessions = [
@@ -187,8 +189,8 @@ sessions = [
     {"name": "corrupt line inside a full window resyncs", "steps": [
         {"rx": numbered(1, "M105"), "execute": "M105"},
         {"rx": "N2 M105*0", "reply": err(2, "checksum mismatch", 1)},
-        {"rx": numbered(3, "M105"), "reply": [ok(1)]},
-        {"rx": numbered(4, "M114"), "reply": [ok(1)]},
+        {"rx": numbered(3, "M105"), "reply": [ok()]},
+        {"rx": numbered(4, "M114"), "reply": [ok()]},
         {"rx": "N5 G28*0", "reply": err(2, "checksum mismatch", 1)},
         {"rx": numbered(2, "M105"), "execute": "M105"},
         {"rx": numbered(3, "M105"), "execute": "M105"},
@@ -197,7 +199,7 @@ sessions = [
     {"name": "duplicates are acknowledged, not executed", "steps": [
         {"rx": numbered(1, "G28"), "execute": "G28"},
         {"rx": numbered(2, "G1 X1"), "execute": "G1 X1"},
-        {"rx": numbered(1, "G28"), "reply": [ok(2)]},
+        {"rx": numbered(1, "G28"), "reply": [ok(1)]},
         {"rx": numbered(2, "G1 X1"), "reply": [ok(2)]},
         {"rx": numbered(3, "M105"), "execute": "M105"},
     ]},
@@ -207,12 +209,15 @@ sessions = [
         {"rx": numbered(100, "M110"), "reply": [ok(100)]},
         {"rx": numbered(101, "M105"), "execute": "M105"},
         {"rx": "M110 N0", "reply": [ok(0)]},
-        {"rx": numbered(1, "M105"), "execute": "M105"},
+        {"rx": "N1 ; a numbered comment*" + str(cs("N1 ; a numbered comment")), "reply": [ok(1)]},
+        {"rx": "; a plain comment", "reply": [ok()]},
+        {"rx": numbered(2, "M105"), "execute": "M105"},
+        {"rx": numbered(3, "M105"), "execute": "M105"},
     ]},
     {"name": "errors on plain lines ask for no resend", "steps": [
-        {"rx": "G28*18", "reply": ["Error:E4 checksum without line number", ok(0)]},
-        {"rx": "M105\u0007", "reply": ["Error:E1 invalid byte in line", ok(0)]},
-        {"rx": "G1 X1" * 20, "reply": ["Error:E5 line too long", ok(0)]},
+        {"rx": "G28*18", "reply": ["Error:E4 checksum without line number", ok()]},
+        {"rx": "M105\u0007", "reply": ["Error:E1 invalid byte in line", ok()]},
+        {"rx": "G1 X1" * 20, "reply": ["Error:E5 line too long", ok()]},
         {"rx": "", "reply": []},
         {"rx": numbered(1, "M105"), "execute": "M105"},
     ]},
@@ -224,7 +229,11 @@ sessions = [
 ]
 
 replies = [
-    {"line": "ok N4 P8 B7", "reply": {"kind": "ok", "n": 4, "p": 8, "b": 7}, "canonical": True},
+    {"line": "ok N4 P8 B7*" + str(cs("ok N4 P8 B7")), "reply": {"kind": "ok", "n": 4, "p": 8, "b": 7}, "canonical": True},
+    {"line": "ok N4 P8 B7*" + str(cs("ok N4 P8 B7") ^ 1), "reply": {"kind": "ok"}, "canonical": False},
+    {"line": "ok N5 P8 B7*" + str(cs("ok N4 P8 B7")), "reply": {"kind": "ok"}, "canonical": False},
+    {"line": "ok N4 P8 B7", "reply": {"kind": "ok"}, "canonical": False},
+    {"line": "ok P8 B7*" + str(cs("ok P8 B7")), "reply": {"kind": "ok", "p": 8, "b": 7}, "canonical": True},
     {"line": "ok", "reply": {"kind": "ok"}, "canonical": False},
     {"line": "ok T:20.0 /0.0", "reply": {"kind": "ok"}, "canonical": False},
     {"line": "Error:E2 checksum mismatch, Last Line: 4", "reply": {"kind": "error", "code": 2, "message": "checksum mismatch, Last Line: 4"}, "canonical": True},

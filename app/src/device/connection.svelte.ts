@@ -1,73 +1,133 @@
-// The app's one view of the printer: connection lifecycle as a discriminated union, plus the device state.
+// The app's one view of the printer: the connection lifecycle as a discriminated union, the device state
+// folded from every report, link health, and the job and machine actions the UI calls.
 
-import { CommandError, PrinterClient, type DeviceReport } from './printer-client';
+import type { Reply } from '../protocol/dialect-reply';
+import type { PrintJob } from '../protocol/job-types';
+import { CommandError, type LinkHealth } from './dialect-client';
+import { DialectLink } from './dialect-link';
+import { applyReport, emptyState, type DeviceState, type JobProgress } from './device-state';
+import { EspLink } from './esp-link';
+import type { PrinterLink, UploadProgress } from './link';
 import { PickerDismissed, SerialTransport } from './serial-transport';
 import { SimTransport } from './sim-transport';
-import type { Transport, TransportKind } from './transport';
+import type { TransportKind } from './transport';
 
 export type Connection =
   | { state: 'idle' }
   | { state: 'connecting'; kind: TransportKind }
   | { state: 'connected'; kind: TransportKind }
-  | { state: 'lost'; kind: TransportKind; error: string }
+  /** The link dropped. `job` is the last progress seen: the printer may still be running it. */
+  | { state: 'lost'; kind: TransportKind; error: string; job: JobProgress | null }
   | { state: 'error'; kind: TransportKind; error: string };
+
+export type Upload = { state: 'idle' } | ({ state: 'uploading' } & UploadProgress) | { state: 'failed'; error: string };
 
 export const SENSOR_NAMES = ['LED 0', 'LED 1', 'LED 2', 'LED 3', 'Driver', 'Frame'];
 
+function describe(e: unknown): string {
+  return e instanceof CommandError ? e.message : e instanceof Error ? e.message : String(e);
+}
+
 export class Printer {
   connection = $state<Connection>({ state: 'idle' });
-  firmware = $state<string | null>(null);
-  deciC = $state<number[] | null>(null);
-  limitDeciC = $state<number[] | null>(null);
-  #client: PrinterClient | null = null;
+  device = $state<DeviceState>(emptyState());
+  health = $state<LinkHealth | null>(null);
+  upload = $state<Upload>({ state: 'idle' });
+  /** Every line from the printer, newest last, for the console. */
+  log = $state<string[]>([]);
+  #link: PrinterLink | null = null;
 
-  constructor(private readonly makeTransport: (kind: TransportKind) => Transport = defaultTransport) {}
+  constructor(private readonly makeLink: (kind: TransportKind) => PrinterLink = defaultLink) {}
+
+  get firmware(): string | null {
+    return this.device.firmware;
+  }
 
   async connect(kind: TransportKind): Promise<void> {
     await this.disconnect();
     this.connection = { state: 'connecting', kind };
-    const client = new PrinterClient(this.makeTransport(kind), (r) => this.#report(r));
-    this.#client = client;
+    const link = this.makeLink(kind);
+    this.#link = link;
     try {
-      await client.open((error) => {
-        if (this.#client !== client) return;
-        this.#client = null;
-        this.connection = { state: 'lost', kind, error: error?.message ?? 'link closed' };
+      await link.open((r, line) => this.#onReply(r, line), (error) => {
+        if (this.#link !== link) return;
+        this.#link = null;
+        this.connection = { state: 'lost', kind, error: error?.message ?? 'link closed', job: this.device.job };
       });
-      await client.command('M115');
-      await client.command('M105');
-      await client.command('M155 S1');
-      if (this.#client === client) this.connection = { state: 'connected', kind };
+      await link.command('M105');
+      await link.command('M155 S1');
+      await link.command('M154 S1');
+      await link.command('M27 S1');
+      const resume = await link.command('M1000 S');
+      void resume;
+      if (this.#link === link) {
+        this.connection = { state: 'connected', kind };
+        this.health = { ...link.health };
+      }
     } catch (e) {
-      if (this.#client !== client) return;
-      this.#client = null;
+      if (this.#link !== link) return;
+      this.#link = null;
       if (e instanceof PickerDismissed) {
         this.connection = { state: 'idle' };
         return;
       }
-      const message = e instanceof CommandError ? `E${e.code} ${e.message}` : (e as Error).message;
-      this.connection = { state: 'error', kind, error: message };
-      await client.close().catch(() => {});
+      this.connection = { state: 'error', kind, error: describe(e) };
+      await link.close().catch(() => {});
     }
   }
 
   async disconnect(): Promise<void> {
-    const client = this.#client;
-    this.#client = null;
-    this.firmware = null;
-    this.deciC = null;
-    this.limitDeciC = null;
-    if (client) await client.close();
+    const link = this.#link;
+    this.#link = null;
+    this.device = emptyState();
+    this.health = null;
+    this.upload = { state: 'idle' };
+    if (link) await link.close().catch(() => {});
     this.connection = { state: 'idle' };
   }
 
-  #report(r: DeviceReport): void {
-    if (r.firmware) this.firmware = r.firmware;
-    if (r.deciC) this.deciC = r.deciC;
-    if (r.limitDeciC) this.limitDeciC = r.limitDeciC;
+  /** A raw dialect line from the console; resolves with its reply lines. */
+  async send(line: string): Promise<Reply[]> {
+    if (!this.#link) throw new Error('not connected');
+    return this.#link.command(line);
+  }
+
+  async startJob(job: PrintJob): Promise<void> {
+    const link = this.#link;
+    if (!link) throw new Error('not connected');
+    try {
+      await link.startJob(job, (p) => (this.upload = { state: 'uploading', ...p }));
+      this.upload = { state: 'idle' };
+    } catch (e) {
+      this.upload = { state: 'failed', error: describe(e) };
+      throw e;
+    }
+  }
+
+  pause = () => this.send('M25');
+  resume = () => this.send('M24');
+  abort = () => this.send('M524');
+
+  #onReply(r: Reply, line: string): void {
+    if (r.kind !== 'ok' && r.kind !== 'busy') this.log = [...this.log.slice(-499), line];
+    if (applyReport(this.device, r, Date.now())) this.device = { ...this.device };
+    if (this.#link) this.health = { ...this.#link.health };
   }
 }
 
-function defaultTransport(kind: TransportKind): Transport {
-  return kind === 'serial' ? new SerialTransport() : new SimTransport();
+function defaultLink(kind: TransportKind): PrinterLink {
+  if (kind === 'esp') return new EspLink(location.origin);
+  return new DialectLink(kind === 'serial' ? new SerialTransport() : new SimTransport());
+}
+
+/** The ESP serves the app and answers GET /status with its snapshot; anything else means no ESP here. */
+export async function servedByEsp(origin = location.origin): Promise<boolean> {
+  try {
+    const r = await fetch(`${origin}/status`, { headers: { accept: 'application/json' } });
+    if (!r.ok || !(r.headers.get('content-type') ?? '').includes('application/json')) return false;
+    const body = await r.json();
+    return typeof body === 'object' && body !== null && 'mega' in body;
+  } catch {
+    return false;
+  }
 }

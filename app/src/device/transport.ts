@@ -1,6 +1,6 @@
 // One byte-stream interface for every way the app reaches a printer (simulated, Web Serial, ESP).
 
-export type TransportKind = 'sim' | 'serial';
+export type TransportKind = 'sim' | 'serial' | 'esp';
 
 export interface Transport {
   readonly kind: TransportKind;

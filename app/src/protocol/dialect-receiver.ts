@@ -22,8 +22,9 @@ export class LineReceiver {
 
   constructor(private readonly flow: FlowCounters) {}
 
-  ok(): string {
-    return formatOk(this.last, this.flow.movesFree(), this.flow.windowFree());
+  /** The `ok` that ends a reply block for line `n`, or for no line. */
+  ok(n?: number): string {
+    return formatOk(n, this.flow.movesFree(), this.flow.windowFree());
   }
 
   accept(line: SplitLine): Acceptance {
@@ -34,20 +35,22 @@ export class LineReceiver {
       if (frame.numbered && isLineError(frame.error)) return this.#askResend(frame.error, message);
       return { kind: 'reply', lines: [`Error:E${frame.error} ${message}`, this.ok()] };
     }
-    if (frame.body === '') return { kind: 'reply', lines: [this.ok()] };
     const setLine = this.#m110(frame.body, frame.n);
     if (setLine !== null) {
       this.last = setLine;
       this.resyncing = false;
-      return { kind: 'reply', lines: [this.ok()] };
+      return { kind: 'reply', lines: [this.ok(setLine)] };
     }
-    if (frame.n === undefined) return { kind: 'execute', body: frame.body };
+    if (frame.n === undefined) {
+      return frame.body === '' ? { kind: 'reply', lines: [this.ok()] } : { kind: 'execute', body: frame.body };
+    }
     if (frame.n === this.last + 1) {
       this.last = frame.n;
       this.resyncing = false;
-      return { kind: 'execute', body: frame.body, n: frame.n };
+      return frame.body === '' ? { kind: 'reply', lines: [this.ok(frame.n)] } : { kind: 'execute', body: frame.body, n: frame.n };
     }
-    if (frame.n <= this.last || this.resyncing) return { kind: 'reply', lines: [this.ok()] };
+    if (frame.n <= this.last) return { kind: 'reply', lines: [this.ok(frame.n)] }; // a duplicate: confirm it
+    if (this.resyncing) return { kind: 'reply', lines: [this.ok()] };
     return this.#askResend(6, errorByCode(6)!.message);
   }
 

@@ -1,6 +1,7 @@
 // Replies and reports of the Mega dialect: typed parse (host side) and canonical format (Mega side).
 
 import { formatMilli, parseMilli } from './dialect-command';
+import { xorChecksum } from './dialect-frame';
 import { formatDeciC, parseDeciC, SENSOR_COUNT } from './nano';
 
 export type JobState = 'idle' | 'uploading' | 'ready' | 'running' | 'paused' | 'done' | 'aborted' | 'failed' | 'interrupted';
@@ -33,8 +34,10 @@ const BED = new RegExp(`^Bed X: ${MM} Y: ${MM} Z: ${MM}$`);
 const DECI = '(-?[0-9]{1,3}\\.[0-9])';
 const TEMP_PAIR = new RegExp(`^T([0-5]):${DECI} /${DECI}$`);
 
-export function formatOk(n: number, p: number, b: number): string {
-  return `ok N${n} P${p} B${b}`;
+/** The end of a reply block: `n` is the line it answers, undefined when it accepts none (mega.md §2). */
+export function formatOk(n: number | undefined, p: number, b: number): string {
+  const head = n === undefined ? `ok P${p} B${b}` : `ok N${n} P${p} B${b}`;
+  return `${head}*${xorChecksum(head)}`;
 }
 
 /** `key=value` words; null if any word is not that shape. */
@@ -74,8 +77,12 @@ function milli3(ms: string[]): Xyz {
 /** Parses one line from the Mega; null when a known prefix carries a malformed payload. */
 export function parseReply(line: string): Reply | null {
   if (line === 'ok' || line.startsWith('ok ')) {
-    const m = /^ok N([0-9]{1,10}) P([0-9]{1,5}) B([0-9]{1,5})$/.exec(line);
-    return m ? { kind: 'ok', n: Number(m[1]), p: Number(m[2]), b: Number(m[3]) } : { kind: 'ok' };
+    // Flow-control fields count only with an intact checksum (protocol/mega.md §2).
+    const m = /^(ok(?: N([0-9]{1,10}))? P([0-9]{1,5}) B([0-9]{1,5}))\*([0-9]{1,3})$/.exec(line);
+    if (!m || Number(m[5]) !== xorChecksum(m[1])) return { kind: 'ok' };
+    const ok: Reply = { kind: 'ok', p: Number(m[3]), b: Number(m[4]) };
+    if (m[2] !== undefined) ok.n = Number(m[2]);
+    return ok;
   }
   if (line.startsWith('Error:')) {
     const m = /^Error:E([0-9]{1,4}) (.*)$/.exec(line);
@@ -134,7 +141,7 @@ export interface FirmwareInfo {
 /** Canonical line for a reply; the Mega and the simulated printer print exactly this. */
 export function formatReply(r: Reply, info: FirmwareInfo = { machine: 'UV-LED exposure printer' }): string {
   switch (r.kind) {
-    case 'ok': return r.n === undefined ? 'ok' : formatOk(r.n, r.p ?? 0, r.b ?? 0);
+    case 'ok': return r.p === undefined ? 'ok' : formatOk(r.n, r.p, r.b ?? 0);
     case 'error': return `Error:E${r.code} ${r.message}`;
     case 'resend': return `Resend: ${r.n}`;
     case 'temps': {

@@ -40,7 +40,7 @@ export class MegaModel {
   absolute = true;
   #splitter = new LineSplitter(DIALECT_MAX_LINE);
   #receiver: LineReceiver;
-  #queue: string[] = [];
+  #queue: { body: string; n?: number }[] = [];
   #busy = false;
   #upload: { file: string; verifier: JobVerifier; lines: string[]; stream: boolean } | null = null;
   #selected = '';
@@ -81,7 +81,7 @@ export class MegaModel {
       const a = this.#receiver.accept(l);
       if (a.kind === 'reply') a.lines.forEach((t) => this.line(t));
       else if (a.kind === 'execute') {
-        this.#queue.push(a.body);
+        this.#queue.push({ body: a.body, n: a.n });
         this.#pump();
       }
     }
@@ -91,11 +91,11 @@ export class MegaModel {
 
   #pump(): void {
     while (!this.#busy && this.#queue.length) {
-      const body = this.#queue[0];
+      const { body, n } = this.#queue[0];
       this.#busy = true;
       this.#run(body, () => {
         this.#queue.shift();
-        this.line(this.#receiver.ok());
+        this.line(this.#receiver.ok(n)); // names the line it answers, never a merely queued one
         this.#busy = false;
       });
     }

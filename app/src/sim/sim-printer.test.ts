@@ -1,7 +1,7 @@
 import { describe, expect, it } from 'vitest';
 import { GEOMETRIES, randomJob } from '../planner/golden';
 import { encodeFrame } from '../protocol/dialect-frame';
-import { parseReply } from '../protocol/dialect-reply';
+import { formatOk, parseReply } from '../protocol/dialect-reply';
 import { encodeJob } from '../protocol/job-encode';
 import { bedZ, DEFAULT_BED } from './bed';
 import { SimHost } from './sim-host.fixture';
@@ -28,7 +28,7 @@ describe('simulated printer: link and identity', () => {
     const block = h.cmd('M115');
     expect(parseReply(block[0])).toEqual({ kind: 'firmware', name: 'UVExposure 0.1.0 (Simulated Mega)', protocol: 1 });
     expect(block).toContain('Cap:RX_WINDOW:8');
-    expect(block.at(-1)).toBe('ok N1 P8 B8');
+    expect(block.at(-1)).toBe(formatOk(1, 8, 8));
   });
 
   it('answers every line exactly once, errors included', () => {

@@ -9,7 +9,10 @@ void HostPort::poll(Executor& exec) {
     if (!splitter_.push(static_cast<char>(stream_.read()))) continue;
     uv::Frame frame;
     uv::Acceptance a = receiver_.accept(splitter_.text(), splitter_.length(), splitter_.overflow(), *this, frame);
-    if (a == uv::Acceptance::Execute) exec.execute(frame, *this);
+    if (a == uv::Acceptance::Execute) {
+      answering_ = frame.hasN ? static_cast<int32_t>(frame.n) : -1;
+      exec.execute(frame, *this);
+    }
   }
 }
 

@@ -19,7 +19,8 @@ class HostPort : public uv::ReplySink, public uv::FlowCounters {
   void poll(Executor& exec);
 
   void line(const char* text) override;
-  void ok() { receiver_.ok(*this); }
+  // Ends the reply block of the line being executed (protocol/mega.md §2).
+  void ok() { receiver_.ok(*this, answering_); }
   void error(uint8_t code, const char* detail = nullptr);
 
   uint8_t movesFree() const override { return 8; }
@@ -30,4 +31,5 @@ class HostPort : public uv::ReplySink, public uv::FlowCounters {
   uv::LineReceiver receiver_;
   char line_[uv::kDialectMaxLine + 1];
   uv::LineSplitter splitter_;
+  int32_t answering_ = -1;  // the number of the line being executed, -1 for a plain line
 };

@@ -9,24 +9,30 @@
 
 namespace uv {
 
-size_t LineReceiver::formatOk(char* out) const {
+size_t LineReceiver::formatOk(char* out, int32_t line) const {
   size_t n = 0;
-  memcpy(out, "ok N", 4);
-  n = 4;
-  n += putUnsigned(last_, out + n);
-  out[n++] = ' ';
+  memcpy(out, "ok ", 3);
+  n = 3;
+  if (line >= 0) {
+    out[n++] = 'N';
+    n += putUnsigned(static_cast<uint32_t>(line), out + n);
+    out[n++] = ' ';
+  }
   out[n++] = 'P';
   n += putUnsigned(flow_.movesFree(), out + n);
   out[n++] = ' ';
   out[n++] = 'B';
   n += putUnsigned(flow_.windowFree(), out + n);
+  uint8_t cs = xorChecksum(out, n);
+  out[n++] = '*';
+  n += putUnsigned(cs, out + n);
   out[n] = '\0';
   return n;
 }
 
-void LineReceiver::ok(ReplySink& sink) const {
-  char buf[40];
-  formatOk(buf);
+void LineReceiver::ok(ReplySink& sink, int32_t n) const {
+  char buf[48];
+  formatOk(buf, n);
   sink.line(buf);
 }
 
@@ -50,7 +56,7 @@ void LineReceiver::askResend(uint8_t code, ReplySink& sink) {
   memcpy(buf, "Resend: ", 8);
   buf[8 + putUnsigned(last_ + 1, buf + 8)] = '\0';
   sink.line(buf);
-  ok(sink);
+  ok(sink);  // a resend request accepts no line
 }
 
 bool LineReceiver::m110(const Frame& f, uint32_t& setTo) const {
@@ -78,24 +84,30 @@ Acceptance LineReceiver::accept(const char* text, uint8_t len, bool overflow, Re
     }
     return Acceptance::Replied;
   }
-  if (f.bodyLen == 0) {
-    ok(sink);
-    return Acceptance::Replied;
-  }
   uint32_t setTo = 0;
   if (m110(f, setTo)) {
     last_ = setTo;
     resyncing_ = false;
+    ok(sink, static_cast<int32_t>(setTo));
+    return Acceptance::Replied;
+  }
+  if (!f.hasN) {
+    if (f.bodyLen) return Acceptance::Execute;
     ok(sink);
     return Acceptance::Replied;
   }
-  if (!f.hasN) return Acceptance::Execute;
   if (f.n == last_ + 1) {
     last_ = f.n;
     resyncing_ = false;
-    return Acceptance::Execute;
+    if (f.bodyLen) return Acceptance::Execute;
+    ok(sink, static_cast<int32_t>(f.n));
+    return Acceptance::Replied;
   }
-  if (f.n <= last_ || resyncing_) {
+  if (f.n <= last_) {  // a duplicate: confirm it without running it
+    ok(sink, static_cast<int32_t>(f.n));
+    return Acceptance::Replied;
+  }
+  if (resyncing_) {
     ok(sink);
     return Acceptance::Replied;
   }

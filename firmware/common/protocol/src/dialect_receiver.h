@@ -32,9 +32,10 @@ class LineReceiver {
   // Decides what a split line means. For Execute, `frame` holds the body to run.
   Acceptance accept(const char* text, uint8_t len, bool overflow, ReplySink& sink, Frame& frame);
 
-  // `ok N<last> P<moves> B<window>` into out (at least 40 bytes); returns the length.
-  size_t formatOk(char* out) const;
-  void ok(ReplySink& sink) const;
+  // The `ok` ending a reply block for line n (n < 0: a block that accepts no line), into out
+  // (at least 48 bytes); returns the length. See protocol/mega.md §2.
+  size_t formatOk(char* out, int32_t n = -1) const;
+  void ok(ReplySink& sink, int32_t n = -1) const;
 
   uint32_t last() const { return last_; }
   bool resyncing() const { return resyncing_; }

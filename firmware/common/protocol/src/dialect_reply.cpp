@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "dialect_command.h"
+#include "dialect_frame.h"
 #include "text_scan.h"
 
 namespace uv {
@@ -141,14 +142,26 @@ bool parseReply(const char* line, uint8_t len, Reply& r) {
   if ((len == 2 && startsWith(p, end, "ok")) || startsWith(p, end, "ok ")) {
     r.kind = ReplyKind::Ok;
     uint32_t pv = 0, bv = 0;
-    const char* q = expect(p, end, "ok N");
-    if (q) q = scanUnsigned(q, end, 10, 0xFFFFFFFFu, r.n);
-    q = expect(q, end, " P");
+    const char* q = expect(p, end, "ok ");
+    if (q && q < end && *q == 'N') {
+      q = scanUnsigned(q + 1, end, 10, 0xFFFFFFFFu, r.n);
+      r.hasN = q != nullptr;
+      q = expect(q, end, " ");
+    }
+    q = expect(q, end, "P");
     if (q) q = scanUnsigned(q, end, 5, 65535, pv);
     q = expect(q, end, " B");
     if (q) q = scanUnsigned(q, end, 5, 65535, bv);
-    r.hasFlow = q == end;
-    if (!r.hasFlow) r.n = 0;
+    // The flow fields count only with an intact checksum (protocol/mega.md §2).
+    uint32_t cs = 0;
+    const char* star = q;
+    q = expect(q, end, "*");
+    if (q) q = scanUnsigned(q, end, 3, 255, cs);
+    r.hasFlow = q == end && cs == xorChecksum(line, static_cast<size_t>(star - line));
+    if (!r.hasFlow) {
+      r.n = 0;
+      r.hasN = false;
+    }
     r.p = static_cast<uint16_t>(pv);
     r.b = static_cast<uint16_t>(bv);
     return true;
@@ -288,12 +301,18 @@ size_t formatReply(const Reply& r, char* buf, size_t size) {
     case ReplyKind::Ok:
       o.put("ok");
       if (r.hasFlow) {
-        o.put(" N");
-        o.num(static_cast<int32_t>(r.n));
+        if (r.hasN) {
+          o.put(" N");
+          o.num(static_cast<int32_t>(r.n));
+        }
         o.put(" P");
         o.num(r.p);
         o.put(" B");
         o.num(r.b);
+        char t[6];
+        uint8_t cs = xorChecksum(o.buf, o.n);
+        t[0] = '*';
+        o.put(t, 1 + putUnsigned(cs, t + 1));
       }
       break;
     case ReplyKind::Error:

@@ -20,7 +20,8 @@ extern const char* const kMachineType;
 
 struct Reply {
   ReplyKind kind;
-  bool hasFlow;          // ok: the N/P/B fields were there
+  bool hasFlow;          // ok: P/B (and N, if hasN) came with an intact checksum
+  bool hasN;             // ok: it answers line n
   uint32_t n;            // ok N, resend n
   uint16_t p, b;         // ok P, B
   uint16_t code;         // error / fault code; 0 = an error without a code

@@ -77,7 +77,8 @@ json replyJson(const Reply& r) {
   std::string text(r.text ? r.text : "", r.textLen);
   switch (r.kind) {
     case ReplyKind::Ok:
-      return r.hasFlow ? json{{"kind", "ok"}, {"n", r.n}, {"p", r.p}, {"b", r.b}} : json{{"kind", "ok"}};
+      if (!r.hasFlow) return json{{"kind", "ok"}};
+      return r.hasN ? json{{"kind", "ok"}, {"n", r.n}, {"p", r.p}, {"b", r.b}} : json{{"kind", "ok"}, {"p", r.p}, {"b", r.b}};
     case ReplyKind::Error: return {{"kind", "error"}, {"code", r.code}, {"message", text}};
     case ReplyKind::Fault: return {{"kind", "fault"}, {"code", r.code}, {"message", text}};
     case ReplyKind::Resend: return {{"kind", "resend"}, {"n", r.n}};

@@ -1,0 +1,85 @@
+// One typed view of the printer, folded from every report line (protocol/mega.md §4), whatever the transport.
+
+import type { JobState, ProbeState, Reply } from '../protocol/dialect-reply';
+
+export interface JobProgress {
+  state: JobState;
+  file?: string;
+  stop?: number;
+  stops?: number;
+  elapsedS?: number;
+  remainingS?: number;
+  reason?: string;
+}
+
+export interface Fault {
+  code: number;
+  message: string;
+  atMs: number;
+}
+
+export interface DeviceState {
+  firmware: string | null;
+  window: number;
+  /** Head position in µm. */
+  position: [number, number, number] | null;
+  deciC: number[] | null;
+  limitDeciC: number[] | null;
+  probe: ProbeState | null;
+  lastProbeZUm: number | null;
+  /** LEDs lit, from the job reports. */
+  leds: number;
+  job: JobProgress | null;
+  faults: Fault[];
+  /** The latest `TEST:` result. */
+  selfTest: { mode: 'quick' | 'full'; fields: Record<string, string> } | null;
+  mesh: string[];
+}
+
+export function emptyState(): DeviceState {
+  return {
+    firmware: null, window: 1, position: null, deciC: null, limitDeciC: null, probe: null, lastProbeZUm: null,
+    leds: 0, job: null, faults: [], selfTest: null, mesh: [],
+  };
+}
+
+const MAX_FAULTS = 50;
+
+/** Applies one parsed line to the state; returns true when something changed. */
+export function applyReport(s: DeviceState, r: Reply, nowMs: number): boolean {
+  switch (r.kind) {
+    case 'firmware': s.firmware = r.name; return true;
+    case 'cap': if (r.name === 'RX_WINDOW') s.window = r.value; return true;
+    case 'temps': s.deciC = r.deciC; s.limitDeciC = r.limitDeciC; return true;
+    case 'position': s.position = r.um; return true;
+    case 'probe': s.probe = r.state; return true;
+    case 'probePoint': s.lastProbeZUm = r.um[2]; s.position = r.um; return true;
+    case 'test': s.selfTest = { mode: r.mode, fields: r.fields }; return true;
+    case 'job': {
+      const f = r.fields;
+      const [stop, stops] = (f.stop ?? '').split('/').map(Number);
+      s.job = {
+        state: r.state,
+        file: f.file,
+        stop: Number.isFinite(stop) ? stop : undefined,
+        stops: Number.isFinite(stops) ? stops : undefined,
+        elapsedS: f.elapsed !== undefined ? Number(f.elapsed) : undefined,
+        remainingS: f.remaining !== undefined ? Number(f.remaining) : undefined,
+        reason: f.reason,
+      };
+      if (f.leds !== undefined) s.leds = Number(f.leds);
+      if (r.state !== 'running') s.leds = 0;
+      return true;
+    }
+    case 'fault':
+      s.faults = [...s.faults, { code: r.code, message: r.message, atMs: nowMs }].slice(-MAX_FAULTS);
+      return true;
+    case 'other':
+      if (r.text.startsWith('MESH:grid')) s.mesh = [r.text];
+      else if (r.text.startsWith('MESH:row')) s.mesh = [...s.mesh, r.text];
+      else return false;
+      return true;
+    default:
+      return false;
+  }
+}

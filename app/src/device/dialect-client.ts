@@ -1,0 +1,240 @@
+// The host side of protocol/mega.md over a byte transport: numbered, checksummed lines sent through the
+// Mega's receive window, replies matched by the `ok N` field, resend and time-out recovery, link health.
+
+import { DIALECT_MAX_LINE, encodeFrame } from '../protocol/dialect-frame';
+import { parseReply, type Reply } from '../protocol/dialect-reply';
+import { LineSplitter } from '../protocol/line-splitter';
+import type { Transport } from './transport';
+
+export class CommandError extends Error {
+  constructor(readonly code: number, message: string) {
+    super(`E${code} ${message}`);
+  }
+}
+
+export interface LinkHealth {
+  linesSent: number;
+  bytesSent: number;
+  resends: number;
+  timeouts: number;
+  bytesRetransmitted: number;
+  /** Smoothed time from a line's first send to its acceptance, ms. */
+  rttMs: number;
+}
+
+interface Item {
+  body: string;
+  n: number;
+  frame: string;
+  firstSentMs: number;
+  sent: boolean;
+  resolve?: (payload: Reply[]) => void;
+  reject?: (e: Error) => void;
+  /** Counted by upload progress when accepted. */
+  bytes: number;
+  onAccepted?: () => void;
+  onSent?: (bytes: number) => void;
+}
+
+export interface ClientOptions {
+  /** No reply for this long while lines are out: resend from the last accepted line. */
+  replyTimeoutMs?: number;
+  now?: () => number;
+  setTimer?: (fn: () => void, ms: number) => unknown;
+  clearTimer?: (t: unknown) => void;
+}
+
+export class DialectClient {
+  readonly health: LinkHealth = { linesSent: 0, bytesSent: 0, resends: 0, timeouts: 0, bytesRetransmitted: 0, rttMs: 0 };
+  /** Lines the Mega may hold unanswered; 1 until M115 advertises its window. */
+  window = 1;
+  #splitter = new LineSplitter(4096);
+  #waiting: Item[] = [];   // not yet numbered
+  #out: Item[] = [];       // numbered, sent or due for a resend, ascending n
+  #inflight = 0;
+  #next = 1;
+  #lastAccepted = 0;
+  #block: Reply[] = [];
+  #closed: Error | null = null;
+  #timer: unknown = null;
+  #lastReplyMs = 0;
+  readonly #o: Required<ClientOptions>;
+
+  constructor(private readonly transport: Transport, private readonly onReply: (r: Reply, line: string) => void, o: ClientOptions = {}) {
+    this.#o = {
+      replyTimeoutMs: o.replyTimeoutMs ?? 3000, // above the Mega's 2 s busy: keep-alive
+      now: o.now ?? (() => performance.now()),
+      setTimer: o.setTimer ?? ((fn, ms) => setTimeout(fn, ms)),
+      clearTimer: o.clearTimer ?? ((t) => clearTimeout(t as ReturnType<typeof setTimeout>)),
+    };
+  }
+
+  async open(onClosed: (error?: Error) => void): Promise<void> {
+    await this.transport.open((bytes) => this.receive(bytes), (error) => {
+      this.#fail(error ?? new Error('link closed'));
+      onClosed(error);
+    });
+    await this.resync();
+  }
+
+  /** Sets the Mega's line number to 0 (after connecting or a reset). */
+  async resync(): Promise<void> {
+    this.#next = 0;
+    this.#lastAccepted = -1;
+    await this.command('M110 N0');
+  }
+
+  async close(): Promise<void> {
+    this.#fail(new Error('closed'));
+    await this.transport.close();
+  }
+
+  /** Sends one dialect line; resolves with the lines of its reply block once it is accepted. */
+  command(body: string): Promise<Reply[]> {
+    if (this.#closed) return Promise.reject(this.#closed);
+    if (body.length + 16 > DIALECT_MAX_LINE) return Promise.reject(new Error('line too long for the dialect'));
+    return new Promise((resolve, reject) => {
+      this.#waiting.push({ body, n: -1, frame: '', firstSentMs: 0, sent: false, resolve, reject, bytes: 0 });
+      this.#pump();
+    });
+  }
+
+  /**
+   * Streams lines (job records) through the window without a promise each; `onProgress` gets the
+   * bytes sent and the bytes the Mega accepted. Resolves when all are accepted.
+   */
+  stream(lines: string[], onProgress: (sentBytes: number, acceptedBytes: number) => void): Promise<void> {
+    if (this.#closed) return Promise.reject(this.#closed);
+    let sent = 0, accepted = 0, left = lines.length;
+    return new Promise((resolve, reject) => {
+      if (left === 0) return resolve();
+      for (const body of lines) {
+        const item: Item = { body, n: -1, frame: '', firstSentMs: 0, sent: false, bytes: 0 };
+        item.onAccepted = () => {
+          accepted += body.length + 1; // job bytes, as bytesTotal counts them
+          onProgress(sent, accepted);
+          if (--left === 0) resolve();
+        };
+        item.onSent = (b) => {
+          sent += b;
+          onProgress(sent, accepted);
+        };
+        item.reject = reject;
+        this.#waiting.push(item);
+      }
+      this.#pump();
+    });
+  }
+
+  receive(bytes: string): void {
+    for (const { text } of this.#splitter.push(bytes)) {
+      const r = parseReply(text);
+      if (!r) continue;
+      this.#lastReplyMs = this.#o.now();
+      this.onReply(r, text);
+      if (r.kind === 'cap' && r.name === 'RX_WINDOW') this.window = Math.max(1, Math.min(r.value, 32));
+      if (r.kind === 'ok') this.#endBlock(r);
+      else if (r.kind === 'resend') this.#resend(r.n);
+      else this.#block.push(r);
+    }
+    this.#pump();
+  }
+
+  #endBlock(ok: Extract<Reply, { kind: 'ok' }>): void {
+    this.#inflight = Math.max(0, this.#inflight - 1);
+    const block = this.#block;
+    this.#block = [];
+    if (ok.n === undefined || ok.n <= this.#lastAccepted) {
+      // A skipped line, a resend request, an old duplicate, or an ok whose checksum failed. Once
+      // every line sent has been answered, any still unconfirmed goes again now rather than after
+      // the time-out: the Mega confirms a duplicate (ok N<n>) without running it twice.
+      if (this.#inflight === 0 && this.#out.some((i) => i.sent)) this.#rewindTo(this.#lastAccepted + 1);
+      return;
+    }
+    // N names the line this block answers; lines run in order, so all before it are done too.
+    const now = this.#o.now();
+    while (this.#out.length && this.#out[0].n <= ok.n) {
+      const item = this.#out.shift()!;
+      const ran = item.n === ok.n;
+      const rtt = now - item.firstSentMs;
+      this.health.rttMs = this.health.rttMs ? this.health.rttMs * 0.9 + rtt * 0.1 : rtt;
+      const err = ran ? block.find((x): x is Extract<Reply, { kind: 'error' }> => x.kind === 'error') : undefined;
+      if (err && item.resolve) item.reject?.(new CommandError(err.code, err.message));
+      else item.resolve?.(ran ? block : []);
+      item.onAccepted?.();
+    }
+    this.#lastAccepted = ok.n;
+  }
+
+  #resend(n: number): void {
+    if (n <= this.#lastAccepted) return;
+    this.health.resends++;
+    this.#rewindTo(n);
+  }
+
+  /** Every numbered line from `n` on goes out again, in order (duplicates are never run twice). */
+  #rewindTo(n: number): void {
+    for (const item of this.#out) {
+      if (item.n >= n && item.sent) item.sent = false;
+    }
+  }
+
+  #pump(): void {
+    if (this.#closed) return;
+    while (this.#inflight < this.window) {
+      let item = this.#out.find((i) => !i.sent);
+      if (!item) {
+        const w = this.#waiting.shift();
+        if (!w) break;
+        w.n = this.#next++;
+        w.frame = encodeFrame(w.n, w.body) + '\n';
+        w.bytes = w.frame.length;
+        this.#out.push(w);
+        item = w;
+      } else {
+        this.health.bytesRetransmitted += item.frame.length;
+      }
+      if (!item.firstSentMs) item.firstSentMs = this.#o.now();
+      item.sent = true;
+      this.#inflight++;
+      this.health.linesSent++;
+      this.health.bytesSent += item.frame.length;
+      item.onSent?.(item.body.length + 1);
+      this.transport.send(item.frame).catch((e) => this.#fail(e as Error));
+    }
+    this.#armTimer();
+  }
+
+  #armTimer(): void {
+    if (this.#timer !== null) return;
+    if (this.#closed || !this.#out.some((i) => i.sent)) return;
+    this.#lastReplyMs = this.#lastReplyMs || this.#o.now();
+    this.#timer = this.#o.setTimer(() => this.#onTimer(), this.#o.replyTimeoutMs);
+  }
+
+  #onTimer(): void {
+    this.#timer = null;
+    if (this.#closed || !this.#out.some((i) => i.sent)) return;
+    const idle = this.#o.now() - this.#lastReplyMs;
+    if (idle >= this.#o.replyTimeoutMs) {
+      // Lost bytes took a line or its reply: start again after the last accepted line.
+      this.health.timeouts++;
+      this.#inflight = 0;
+      this.#block = [];
+      this.#rewindTo(this.#lastAccepted + 1);
+      this.#lastReplyMs = this.#o.now();
+      this.#pump();
+      return;
+    }
+    this.#timer = this.#o.setTimer(() => this.#onTimer(), this.#o.replyTimeoutMs - idle);
+  }
+
+  #fail(error: Error): void {
+    if (this.#closed) return;
+    this.#closed = error;
+    if (this.#timer !== null) this.#o.clearTimer(this.#timer);
+    for (const item of [...this.#out, ...this.#waiting]) item.reject?.(error);
+    this.#out = [];
+    this.#waiting = [];
+  }
+}

@@ -1,0 +1,24 @@
+// What the app needs from a connected printer, whatever carries it: Web Serial, the ESP, or the simulated printer.
+
+import type { Reply } from '../protocol/dialect-reply';
+import type { PrintJob } from '../protocol/job-types';
+import type { LinkHealth } from './dialect-client';
+import type { TransportKind } from './transport';
+
+export interface UploadProgress {
+  bytesSent: number;
+  bytesVerified: number;
+  bytesTotal: number;
+}
+
+export interface PrinterLink {
+  readonly kind: TransportKind;
+  readonly health: LinkHealth;
+  /** Every line the printer sends goes to `onReply`; `onClosed` fires once if the link drops. */
+  open(onReply: (r: Reply, line: string) => void, onClosed: (error?: Error) => void): Promise<void>;
+  /** One dialect line; resolves with its reply block, rejects with a CommandError. */
+  command(line: string): Promise<Reply[]>;
+  /** Uploads the job, verifies it on the printer, selects and starts it. */
+  startJob(job: PrintJob, onProgress: (p: UploadProgress) => void): Promise<void>;
+  close(): Promise<void>;
+}
