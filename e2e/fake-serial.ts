@@ -4,11 +4,15 @@ import type { Page } from '@playwright/test';
 export interface SerialPeer {
   /** Bytes the page wrote to the port. */
   receive(bytes: string): void;
+  /** The page opened the port (a real Mega resets then). */
+  open?(): void;
 }
 
 export interface FakeSerial {
   /** Sends bytes to the page as if the device wrote them. */
   push(bytes: string): Promise<void>;
+  /** The USB device vanishes: the port's reader fails with a NetworkError, as Chromium does. */
+  lose(): Promise<void>;
   /** Everything the page wrote, as text. */
   written(): string;
 }
@@ -23,19 +27,32 @@ export async function installFakeSerial(page: Page, peer: (fake: FakeSerial) => 
   const fake: FakeSerial = {
     push(bytes) {
       const codes = Array.from(bytes, (c) => c.charCodeAt(0));
-      chain = chain.then(() => page.evaluate((b) => (window as unknown as { __serialRx(b: number[]): void }).__serialRx(b), codes));
+      // After the test ends the page is gone; the printer may still be talking.
+      chain = chain.then(() => page.evaluate((b) => (window as unknown as { __serialRx(b: number[]): void }).__serialRx(b), codes)).catch(() => {});
       return chain;
     },
     written: () => written,
+    lose() {
+      chain = chain.then(() => page.evaluate(() => (window as unknown as { __serialLost(): void }).__serialLost()));
+      return chain;
+    },
   };
   const device = peer(fake);
+  await page.exposeBinding('__serialOpen', () => device.open?.());
   await page.exposeBinding('__serialTx', (_source, codes: number[]) => {
     const text = String.fromCharCode(...codes);
     written += text;
     device.receive(text);
   });
   await page.addInitScript((mode) => {
-    const w = window as unknown as { __serialTx(b: number[]): Promise<void>; __serialRx(b: number[]): void };
+    const w = window as unknown as {
+      __serialTx(b: number[]): Promise<void>;
+      __serialOpen(): Promise<void>;
+      __serialRx(b: number[]): void;
+      __serialLost(): void;
+    };
+    w.__serialRx = () => {}; // bytes before the port opens are lost, as on a real port
+    w.__serialLost = () => {};
     class FakePort extends EventTarget {
       readable: ReadableStream<Uint8Array> | null = null;
       writable: WritableStream<Uint8Array> | null = null;
@@ -43,7 +60,14 @@ export async function installFakeSerial(page: Page, peer: (fake: FakeSerial) => 
         if (options.baudRate !== 115200) throw new Error(`unexpected baud rate ${options.baudRate}`);
         this.readable = new ReadableStream({
           start(controller) {
-            w.__serialRx = (bytes) => controller.enqueue(new Uint8Array(bytes));
+            let lost = false;
+            w.__serialRx = (bytes) => {
+              if (!lost) controller.enqueue(new Uint8Array(bytes)); // a lost device sends nothing more
+            };
+            w.__serialLost = () => {
+              lost = true;
+              controller.error(new DOMException('The device has been lost.', 'NetworkError'));
+            };
           },
         });
         this.writable = new WritableStream({
@@ -51,6 +75,7 @@ export async function installFakeSerial(page: Page, peer: (fake: FakeSerial) => 
             await w.__serialTx(Array.from(chunk));
           },
         });
+        await w.__serialOpen();
       }
       async close() {
         this.readable = null;

@@ -18,7 +18,7 @@ test('connects over Web Serial to a port answered in Node as the Mega would', as
       ambientDeciC: [215, 216, 217, 218, 219, -12],
       drift: false,
     });
-    return mega;
+    return { receive: (b: string) => mega.receive(b), open: () => mega.boot() };
   });
   await page.goto('/');
   await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected');
@@ -29,7 +29,7 @@ test('connects over Web Serial to a port answered in Node as the Mega would', as
   const expected = ['21.5', '21.6', '21.7', '21.8', '21.9', '-1.2'];
   for (let i = 0; i < 6; i++) await expect(page.getByTestId(`temp-${i}`)).toHaveText(`${expected[i]} °C`);
   // The app framed every command with a line number and checksum, as protocol/mega.md asks.
-  expect(fake.written()).toMatch(/^N0 M110 N0\*\d+\nN1 M115\*\d+\nN2 M105\*\d+\nN3 M155 S1\*\d+\n$/);
+  expect(fake.written()).toMatch(/^N0 M110 N0\*\d+#[0-9a-f]{4}\nN1 M115\*\d+#[0-9a-f]{4}\nN2 M105\*\d+#[0-9a-f]{4}\nN3 M155 S1\*\d+#[0-9a-f]{4}\n/);
   await page.screenshot({ path: info.outputPath('web-serial.png'), fullPage: true });
 });
 

@@ -20,9 +20,20 @@ def cs(s):
     return x
 
 
-def numbered(n, body):
+def crc16(s):
+    """CRC-16/CCITT-FALSE: poly 0x1021, init 0xFFFF, no reflection, no final XOR."""
+    c = 0xFFFF
+    for b in s.encode("latin-1"):
+        c ^= b << 8
+        for _ in range(8):
+            c = ((c << 1) ^ 0x1021) & 0xFFFF if c & 0x8000 else (c << 1) & 0xFFFF
+    return c
+
+
+def numbered(n, body, strong=True):
+    """A numbered line as the app sends it (XOR and CRC-16), or as Marlin hosts do (XOR only)."""
     head = f"N{n} {body}"
-    return f"{head}*{cs(head)}"
+    return f"{head}*{cs(head)}#{crc16(head):04x}" if strong else f"{head}*{cs(head)}"
 
 
 def write(name, doc):
@@ -117,6 +128,8 @@ write("nano.json", {
 # ---------------------------------------------------------------- Mega dialect
 frames = [
     {"line": numbered(1, "G28"), "frame": {"n": 1, "body": "G28"}, "canonical": True},
+    {"line": numbered(1, "G28", strong=False), "frame": {"n": 1, "body": "G28"}, "canonical": False},
+    {"line": numbered(9, "M105", strong=False), "frame": {"n": 9, "body": "M105"}, "canonical": False},
     {"line": numbered(0, "M110"), "frame": {"n": 0, "body": "M110"}, "canonical": True},
     {"line": numbered(2147483647, "M105"), "frame": {"n": 2147483647, "body": "M105"}, "canonical": True},
     {"line": numbered(12, "r 3 0 00ff10"), "frame": {"n": 12, "body": "r 3 0 00ff10"}, "canonical": True},
@@ -128,6 +141,11 @@ frames = [
 ]
 frame_errors = [
     {"line": "N1 G28*19", "error": 2, "n": 1},
+    {"line": "N1 G28*18#39c4", "error": 2, "n": 1},
+    {"line": "N1 G28*18#39C3", "error": 2, "n": 1},
+    {"line": "N1 G28*18#39c", "error": 2, "n": 1},
+    {"line": "N1 G28*19#39c3", "error": 2, "n": 1},
+    {"line": "N1 G29*" + str(cs("N1 G29")) + "#39c3", "error": 2, "n": 1},
     {"line": "N1 G28*", "error": 2, "n": 1},
     {"line": "N1 G28*256", "error": 2, "n": 1},
     {"line": "N1 G28*1x", "error": 2, "n": 1},
@@ -172,7 +190,7 @@ commands = [
 def ok(n=None, p=8, b=8):
     """The reply block's last line: `n` is the line it answers, None when it accepts none."""
     head = f"ok P{p} B{b}" if n is None else f"ok N{n} P{p} B{b}"
-    return f"{head}*{cs(head)}"
+    return f"{head}*{crc16(head):04x}"
 
 
 def err(code, msg, last):
@@ -229,11 +247,12 @@ sessions = [
 ]
 
 replies = [
-    {"line": "ok N4 P8 B7*" + str(cs("ok N4 P8 B7")), "reply": {"kind": "ok", "n": 4, "p": 8, "b": 7}, "canonical": True},
-    {"line": "ok N4 P8 B7*" + str(cs("ok N4 P8 B7") ^ 1), "reply": {"kind": "ok"}, "canonical": False},
-    {"line": "ok N5 P8 B7*" + str(cs("ok N4 P8 B7")), "reply": {"kind": "ok"}, "canonical": False},
+    {"line": ok(4, 8, 7), "reply": {"kind": "ok", "n": 4, "p": 8, "b": 7}, "canonical": True},
+    {"line": "ok N4 P8 B7*%04x" % (crc16("ok N4 P8 B7") ^ 1), "reply": {"kind": "ok"}, "canonical": False},
+    {"line": "ok N5 P8 B7*%04x" % crc16("ok N4 P8 B7"), "reply": {"kind": "ok"}, "canonical": False},
+    {"line": "ok N4 P8 B7*" + str(cs("ok N4 P8 B7")), "reply": {"kind": "ok"}, "canonical": False},
     {"line": "ok N4 P8 B7", "reply": {"kind": "ok"}, "canonical": False},
-    {"line": "ok P8 B7*" + str(cs("ok P8 B7")), "reply": {"kind": "ok", "p": 8, "b": 7}, "canonical": True},
+    {"line": ok(None, 8, 7), "reply": {"kind": "ok", "p": 8, "b": 7}, "canonical": True},
     {"line": "ok", "reply": {"kind": "ok"}, "canonical": False},
     {"line": "ok T:20.0 /0.0", "reply": {"kind": "ok"}, "canonical": False},
     {"line": "Error:E2 checksum mismatch, Last Line: 4", "reply": {"kind": "error", "code": 2, "message": "checksum mismatch, Last Line: 4"}, "canonical": True},

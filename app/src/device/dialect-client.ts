@@ -92,7 +92,7 @@ export class DialectClient {
   /** Sends one dialect line; resolves with the lines of its reply block once it is accepted. */
   command(body: string): Promise<Reply[]> {
     if (this.#closed) return Promise.reject(this.#closed);
-    if (body.length + 16 > DIALECT_MAX_LINE) return Promise.reject(new Error('line too long for the dialect'));
+    if (encodeFrame(this.#next + 1_000_000, body).length > DIALECT_MAX_LINE) return Promise.reject(new Error("line too long for the dialect"));
     return new Promise((resolve, reject) => {
       this.#waiting.push({ body, n: -1, frame: '', firstSentMs: 0, sent: false, resolve, reject, bytes: 0 });
       this.#pump();
@@ -130,7 +130,9 @@ export class DialectClient {
     for (const { text } of this.#splitter.push(bytes)) {
       const r = parseReply(text);
       if (!r) continue;
-      this.#lastReplyMs = this.#o.now();
+      // Only answers to our lines (and the keep-alive of a long command) show the Mega is working
+      // through them; auto-reports arrive every second whether or not our lines were lost.
+      if (r.kind === 'ok' || r.kind === 'error' || r.kind === 'resend' || r.kind === 'busy') this.#lastReplyMs = this.#o.now();
       this.onReply(r, text);
       if (r.kind === 'cap' && r.name === 'RX_WINDOW') this.window = Math.max(1, Math.min(r.value, 32));
       if (r.kind === 'ok') this.#endBlock(r);
@@ -158,7 +160,9 @@ export class DialectClient {
       const ran = item.n === ok.n;
       const rtt = now - item.firstSentMs;
       this.health.rttMs = this.health.rttMs ? this.health.rttMs * 0.9 + rtt * 0.1 : rtt;
-      const err = ran ? block.find((x): x is Extract<Reply, { kind: 'error' }> => x.kind === 'error') : undefined;
+      // Line-level errors (codes 1-6) are the receiver's own replies; when a lost ok merged their block
+      // into this one, they say nothing about the command.
+      const err = ran ? block.find((x): x is Extract<Reply, { kind: 'error' }> => x.kind === 'error' && (x.code < 1 || x.code > 6)) : undefined;
       if (err && item.resolve) item.reject?.(new CommandError(err.code, err.message));
       else item.resolve?.(ran ? block : []);
       item.onAccepted?.();
@@ -205,18 +209,23 @@ export class DialectClient {
     this.#armTimer();
   }
 
+  /** Lines out, or replies still owed: a lost reply can leave either without anything to wake us. */
+  #waitingForReplies(): boolean {
+    return this.#inflight > 0 || this.#out.some((i) => i.sent);
+  }
+
   #armTimer(): void {
     if (this.#timer !== null) return;
-    if (this.#closed || !this.#out.some((i) => i.sent)) return;
+    if (this.#closed || !this.#waitingForReplies()) return;
     this.#lastReplyMs = this.#lastReplyMs || this.#o.now();
     this.#timer = this.#o.setTimer(() => this.#onTimer(), this.#o.replyTimeoutMs);
   }
 
   #onTimer(): void {
     this.#timer = null;
-    if (this.#closed || !this.#out.some((i) => i.sent)) return;
-    const idle = this.#o.now() - this.#lastReplyMs;
-    if (idle >= this.#o.replyTimeoutMs) {
+    if (this.#closed || !this.#waitingForReplies()) return;
+    const remaining = this.#o.replyTimeoutMs - (this.#o.now() - this.#lastReplyMs);
+    if (remaining < 1) { // within a millisecond counts as expired: never re-arm for a sliver of time
       // Lost bytes took a line or its reply: start again after the last accepted line.
       this.health.timeouts++;
       this.#inflight = 0;
@@ -226,7 +235,7 @@ export class DialectClient {
       this.#pump();
       return;
     }
-    this.#timer = this.#o.setTimer(() => this.#onTimer(), this.#o.replyTimeoutMs - idle);
+    this.#timer = this.#o.setTimer(() => this.#onTimer(), remaining);
   }
 
   #fail(error: Error): void {

@@ -4,9 +4,12 @@
 import type { Reply } from '../protocol/dialect-reply';
 import { encodeJob } from '../protocol/job-encode';
 import type { PrintJob } from '../protocol/job-types';
-import { DialectClient, type ClientOptions, type LinkHealth } from './dialect-client';
+import { CommandError, DialectClient, type ClientOptions, type LinkHealth } from './dialect-client';
 import type { PrinterLink, UploadProgress } from './link';
 import type { Transport } from './transport';
+
+const UPLOAD_ATTEMPTS = 5;
+const RETRY_CODES = [0, 21, 23, 24, 25, 26];
 
 export class DialectLink implements PrinterLink {
   readonly kind;
@@ -37,19 +40,31 @@ export class DialectLink implements PrinterLink {
   async startJob(job: PrintJob, onProgress: (p: UploadProgress) => void): Promise<void> {
     const text = encodeJob(job);
     const records = text.trimEnd().split('\n');
-    const file = `${(job.name ?? 'job').replace(/[^A-Za-z0-9_-]/g, '').slice(0, 20) || 'job'}-${++this.#jobs}.uvj`;
     const total = records.reduce((n, r) => n + r.length + 1, 0);
-    onProgress({ bytesSent: 0, bytesVerified: 0, bytesTotal: total });
-    await this.#client.command(`M28 ${file}`);
-    let verified = 0;
-    await this.#client.stream(records, (sent, accepted) => {
-      verified = accepted;
-      onProgress({ bytesSent: sent, bytesVerified: accepted, bytesTotal: total });
-    });
-    await this.#client.command('M29'); // the Mega checks every record and the CRC; it rejects a bad upload
-    onProgress({ bytesSent: verified, bytesVerified: total, bytesTotal: total });
-    await this.#client.command(`M23 ${file}`);
-    await this.#client.command('M24');
+    let sentBefore = 0;
+    for (let attempt = 1; ; attempt++) {
+      const file = `${(job.name ?? 'job').replace(/[^A-Za-z0-9_-]/g, '').slice(0, 20) || 'job'}-${++this.#jobs}.uvj`;
+      try {
+        onProgress({ bytesSent: sentBefore, bytesVerified: 0, bytesTotal: total });
+        await this.#client.command(`M28 ${file}`);
+        let sent = 0;
+        await this.#client.stream(records, (s, accepted) => {
+          sent = s;
+          onProgress({ bytesSent: sentBefore + s, bytesVerified: accepted, bytesTotal: total });
+        });
+        sentBefore += sent;
+        await this.#client.command('M29'); // the Mega checks every record and the whole-job CRC
+        onProgress({ bytesSent: sentBefore, bytesVerified: total, bytesTotal: total });
+        await this.#client.command(`M23 ${file}`);
+        await this.#client.command('M24');
+        return;
+      } catch (e) {
+        // On a noisy link a damaged line can slip past the 8-bit line checksum (mega.md): a bad record
+        // fails the CRC at M29 and the Mega deletes the file (E23-E25), a damaged M23/M24 finds no file
+        // or no job (E21, E26), a damaged error line has no code (E0). Nothing ran: do it all again.
+        if (!(e instanceof CommandError) || !RETRY_CODES.includes(e.code) || attempt === UPLOAD_ATTEMPTS) throw e;
+      }
+    }
   }
 
   close(): Promise<void> {

@@ -28,7 +28,12 @@ export class EspLink implements PrinterLink {
 
   constructor(private readonly origin: string) {}
 
-  open(onReply: (r: Reply, line: string) => void, onClosed: (error?: Error) => void): Promise<void> {
+  async open(onReply: (r: Reply, line: string) => void, onClosed: (error?: Error) => void): Promise<void> {
+    await this.#connect(onReply, onClosed);
+    await this.command('M115'); // the Mega's identity reaches us as relayed lines
+  }
+
+  #connect(onReply: (r: Reply, line: string) => void, onClosed: (error?: Error) => void): Promise<void> {
     return new Promise((resolve, reject) => {
       const ws = new WebSocket(this.origin.replace(/^http/, 'ws') + '/ws');
       this.#ws = ws;

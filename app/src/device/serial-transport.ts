@@ -18,6 +18,9 @@ export class SerialTransport implements Transport {
   readonly kind = 'serial' as const;
   #port: SerialPort | null = null;
   #reader: ReadableStreamDefaultReader<Uint8Array> | null = null;
+  // One writer for the port's life: the windowed sender writes without waiting, and the stream queues
+  // the writes in order. A writer per send would find the stream locked by the previous one.
+  #writer: WritableStreamDefaultWriter<Uint8Array> | null = null;
   #closing = false;
 
   async open(onBytes: (bytes: string) => void, onClosed: (error?: Error) => void): Promise<void> {
@@ -30,6 +33,7 @@ export class SerialTransport implements Transport {
     }
     await port.open({ baudRate: BAUD_RATE, bufferSize: READ_BUFFER });
     this.#port = port;
+    this.#writer = port.writable?.getWriter() ?? null;
     this.#closing = false;
     void this.#readLoop(port, onBytes, onClosed);
   }
@@ -57,18 +61,19 @@ export class SerialTransport implements Transport {
   }
 
   async send(bytes: string): Promise<void> {
-    const writer = this.#port?.writable?.getWriter();
-    if (!writer) throw new Error('serial port is not open');
-    try {
-      await writer.write(latin1ToBytes(bytes));
-    } finally {
-      writer.releaseLock();
-    }
+    if (!this.#writer) throw new Error('serial port is not open');
+    await this.#writer.write(latin1ToBytes(bytes));
   }
 
+  /** Releases both streams before closing, so the port is left with no locked stream. */
   async close(): Promise<void> {
     this.#closing = true;
     await this.#reader?.cancel().catch(() => {});
+    if (this.#writer) {
+      await this.#writer.close().catch(() => {});
+      this.#writer.releaseLock();
+      this.#writer = null;
+    }
     await this.#port?.close().catch(() => {});
     this.#port = null;
   }

@@ -11,6 +11,8 @@ export class SimTransport implements Transport {
     this.#worker.onmessage = (e: MessageEvent<{ type: 'rx'; bytes: string }>) => {
       if (e.data.type === 'rx') onBytes(e.data.bytes);
     };
+    const speed = Number(new URLSearchParams(location.search).get('simSpeed') ?? '1');
+    if (speed > 1) this.#worker.postMessage({ type: 'init', speed });
   }
 
   async send(bytes: string): Promise<void> {

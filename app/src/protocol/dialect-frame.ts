@@ -1,6 +1,7 @@
 // Line framing of the Mega dialect: `N<n> <body>*<cs>` or a plain body (protocol/mega.md §1).
 
 import { isPrintable } from './bytes';
+import { crc16Hex } from './crc16';
 import type { SplitLine } from './line-splitter';
 
 export const DIALECT_MAX_LINE = 96;
@@ -16,10 +17,10 @@ export function xorChecksum(text: string): number {
   return x;
 }
 
-/** `N<n> <body>*<cs>` without a newline. */
-export function encodeFrame(n: number, body: string): string {
+/** `N<n> <body>*<cs>#<crc>` without a newline; `marlin` leaves out the CRC, as Marlin hosts do. */
+export function encodeFrame(n: number, body: string, marlin = false): string {
   const head = `N${n} ${body}`;
-  return `${head}*${xorChecksum(head)}`;
+  return marlin ? `${head}*${xorChecksum(head)}` : `${head}*${xorChecksum(head)}#${crc16Hex(head)}`;
 }
 
 function stripComment(s: string): string {
@@ -50,9 +51,11 @@ export function parseFrame(line: SplitLine): Frame {
   }
   const star = text.lastIndexOf('*');
   if (star < 0) return fail(claimedNumber(text) === undefined ? 2 : 3);
-  const m = /^N([0-9]{1,10}) +(.*)$/.exec(text.slice(0, star));
-  const cs = text.slice(star + 1);
-  if (!m || !/^[0-9]{1,3}$/.test(cs) || Number(cs) !== xorChecksum(text.slice(0, star))) return fail(2);
+  const head = text.slice(0, star);
+  const m = /^N([0-9]{1,10}) +(.*)$/.exec(head);
+  const check = /^([0-9]{1,3})(?:#([0-9a-f]{4}))?$/.exec(text.slice(star + 1));
+  if (!m || !check || Number(check[1]) !== xorChecksum(head)) return fail(2);
+  if (check[2] !== undefined && check[2] !== crc16Hex(head)) return fail(2);
   const n = Number(m[1]);
   if (n > MAX_LINE_NUMBER) return fail(2);
   return { ok: true, n, body: stripComment(m[2]) };

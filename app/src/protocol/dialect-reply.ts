@@ -1,7 +1,7 @@
 // Replies and reports of the Mega dialect: typed parse (host side) and canonical format (Mega side).
 
 import { formatMilli, parseMilli } from './dialect-command';
-import { xorChecksum } from './dialect-frame';
+import { crc16Hex } from './crc16';
 import { formatDeciC, parseDeciC, SENSOR_COUNT } from './nano';
 
 export type JobState = 'idle' | 'uploading' | 'ready' | 'running' | 'paused' | 'done' | 'aborted' | 'failed' | 'interrupted';
@@ -37,7 +37,7 @@ const TEMP_PAIR = new RegExp(`^T([0-5]):${DECI} /${DECI}$`);
 /** The end of a reply block: `n` is the line it answers, undefined when it accepts none (mega.md §2). */
 export function formatOk(n: number | undefined, p: number, b: number): string {
   const head = n === undefined ? `ok P${p} B${b}` : `ok N${n} P${p} B${b}`;
-  return `${head}*${xorChecksum(head)}`;
+  return `${head}*${crc16Hex(head)}`;
 }
 
 /** `key=value` words; null if any word is not that shape. */
@@ -78,8 +78,8 @@ function milli3(ms: string[]): Xyz {
 export function parseReply(line: string): Reply | null {
   if (line === 'ok' || line.startsWith('ok ')) {
     // Flow-control fields count only with an intact checksum (protocol/mega.md §2).
-    const m = /^(ok(?: N([0-9]{1,10}))? P([0-9]{1,5}) B([0-9]{1,5}))\*([0-9]{1,3})$/.exec(line);
-    if (!m || Number(m[5]) !== xorChecksum(m[1])) return { kind: 'ok' };
+    const m = /^(ok(?: N([0-9]{1,10}))? P([0-9]{1,5}) B([0-9]{1,5}))\*([0-9a-f]{4})$/.exec(line);
+    if (!m || m[5] !== crc16Hex(m[1])) return { kind: 'ok' };
     const ok: Reply = { kind: 'ok', p: Number(m[3]), b: Number(m[4]) };
     if (m[2] !== undefined) ok.n = Number(m[2]);
     return ok;

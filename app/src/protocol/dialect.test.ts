@@ -70,3 +70,10 @@ describe('mega dialect vectors', () => {
     expect([0, 1, -1, 12345, -2000000000].map(formatMilli)).toEqual(['0.000', '0.001', '-0.001', '12.345', '-2000000.000']);
   });
 });
+
+describe('CRC-16/CCITT-FALSE', () => {
+  it('gives the standard check value', async () => {
+    const { crc16 } = await import('./crc16');
+    expect(crc16('123456789')).toBe(0x29b1);
+  });
+});

@@ -6,7 +6,7 @@ import type { Machine } from '../planner/time-model';
 import type { JobState } from '../protocol/dialect-reply';
 import type { JobHeader } from '../protocol/job-types';
 import { verifyJobText } from '../protocol/job-verify';
-import { formatNanoCommand } from '../protocol/nano';
+import { FAULT, formatNanoCommand, parseNanoReply } from '../protocol/nano';
 import type { VirtualClock } from './clock';
 import { num } from './config';
 import type { Motion, Xyz } from './motion';
@@ -41,6 +41,7 @@ export class JobRunner {
     private readonly sd: SdCard,
     private readonly config: Record<string, string>,
     private readonly report: (state: JobState) => void,
+    private readonly fault: (code: number, message: string) => void,
   ) {}
 
   machine(start: Xyz): Machine {
@@ -148,6 +149,16 @@ export class JobRunner {
     let mask = 0;
     us.forEach((d, k) => d && (mask |= 1 << k));
     this.nano.command(formatNanoCommand({ op: 'F', mask, durations: us as [number, number, number, number] }));
+    if (mask && this.nano.lit === 0) {
+      // The Mega polls S right after F: dark LEDs mean the printhead refused the exposure. Its E
+      // flags say why; over-temperature is reported as the cause, not the refusal.
+      const flags = parseNanoReply(this.nano.command('E\n') ?? '');
+      const hot = flags?.op === 'E' && flags.flags & FAULT.OVERTEMP;
+      if (hot) this.fault(31, `over-temperature at stop ${i}`);
+      else this.fault(33, `printhead refused an exposure at stop ${i}`);
+      this.faulted(hot ? 'overtemp' : 'refused');
+      return;
+    }
     const longest = Math.max(...us);
     this.#step = this.clock.after(longest, () => {
       if (this.state !== 'running') return;

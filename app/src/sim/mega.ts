@@ -59,7 +59,10 @@ export class MegaModel {
     private readonly o: MegaOptions,
   ) {
     this.motion = new Motion(clock, this.config);
-    this.job = new JobRunner(clock, this.motion, nano, sd, this.config, (s) => this.#jobChanged(s));
+    this.job = new JobRunner(clock, this.motion, nano, sd, this.config, (s) => this.#jobChanged(s), (code, message) => {
+      if (code === 31) this.#faultsShown |= FAULT.OVERTEMP; // the background poll won't say it again
+      this.line(`FAULT:E${code} ${message}`);
+    });
     this.#receiver = new LineReceiver({ movesFree: () => this.motion.movesFree, windowFree: () => WINDOW - this.#queue.length });
     this.#handlers = this.#commands();
     if (sd.present && sd.files.has('CONFIG.TXT')) this.#loadConfig();
@@ -242,6 +245,7 @@ export class MegaModel {
         }
         if (!this.#selected || !this.job.plan) return this.#error(26, done);
         if (this.job.state === 'running') return this.#error(12, done);
+        if (this.#activeFaults()) return this.#error(31, done, 'printhead faulted');
         if (!this.motion.homed[0] || !this.motion.homed[1]) return this.#error(14, done, 'home first (G28)');
         if (this.job.state !== 'ready') this.job.load(this.#selected);
         this.job.start(0);
@@ -579,6 +583,17 @@ export class MegaModel {
       this.job.faulted('overtemp');
     }
     this.#faultsShown = active & FAULT.OVERTEMP;
+    this.#softLimits();
+  }
+
+  /** The Mega's own, lower limits (config thermal.limit.*): pause before the Nano has to cut. */
+  #softLimits(): void {
+    if (this.job.state !== 'running') return;
+    const t = this.nano.deciC();
+    const over = t.findIndex((v, i) => v >= num(this.config, `thermal.limit.${i}`) * 10);
+    if (over < 0) return;
+    this.line(`FAULT:E31 over-temperature T${over} ${(t[over] / 10).toFixed(1)} (soft limit)`);
+    this.job.faulted('overtemp');
   }
 
   #missed(): void {

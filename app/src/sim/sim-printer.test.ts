@@ -186,16 +186,25 @@ describe('simulated printer: jobs', () => {
 
 describe('simulated printer: faults', () => {
   it('heats with LED duty, and over-temperature stops the LEDs and says why', () => {
-    const h = new SimHost({ nano: { extraHeatingCPerS: 8 } });
+    const h = new SimHost({ nano: { heatingCPerS: 1500 } }); // lit LEDs heat their sensors 1500 °C/s
     h.cmd('G28');
     upload(h, 'H.UVJ', encodeJob(smallJob(5)));
     h.cmd('M23 H.UVJ');
     h.cmd('M24');
     const fault = h.waitFor(/^FAULT:E31/, 120_000);
-    expect(fault).toMatch(/^FAULT:E31 over-temperature T\d \d+\.\d$/);
+    expect(fault).toMatch(/^FAULT:E31 over-temperature (T\d \d+\.\d|at stop \d+)$/);
     expect(h.sim.nano.lit).toBe(0);
     expect(h.cmd('M27')[0]).toMatch(/^JOB:paused .*reason=overtemp/);
     expect(h.cmd('M24')[0]).toMatch(/^Error:E31/);
+  });
+
+  it('refuses to start a job while the printhead is over its limit', () => {
+    const h = new SimHost({ nano: { extraHeatingCPerS: 30 } }); // hot before any LED fires
+    h.cmd('G28');
+    upload(h, 'C.UVJ', encodeJob(smallJob(6)));
+    h.cmd('M23 C.UVJ');
+    expect(h.cmd('M24')[0]).toBe('Error:E31 over-temperature: printhead faulted');
+    expect(h.sim.mega.job.exposures).toHaveLength(0);
   });
 
   it('reports a missing printhead', () => {

@@ -3,6 +3,7 @@
 
 #include <string.h>
 
+#include "crc16.h"
 #include "line_splitter.h"
 #include "text_scan.h"
 
@@ -60,9 +61,13 @@ Frame parseFrame(const char* text, uint8_t len, bool overflow) {
   const char* afterNumber = numberPrefix(text, star ? star : end, n);
   if (!star) return fail(f, afterNumber ? 3 : 2, text, end);
   uint32_t cs = 0;
+  size_t headLen = static_cast<size_t>(star - text);
   const char* csEnd = scanUnsigned(star + 1, end, 3, 255, cs);
-  if (!afterNumber || csEnd != end || cs != xorChecksum(text, static_cast<size_t>(star - text))) {
-    return fail(f, 2, text, end);
+  if (!afterNumber || !csEnd || cs != xorChecksum(text, headLen)) return fail(f, 2, text, end);
+  if (csEnd != end) {  // the optional CRC-16: `#` and 4 lower-case hex digits
+    char want[5];
+    crc16Hex(crc16(text, headLen), want);
+    if (end - csEnd != 5 || *csEnd != '#' || memcmp(csEnd + 1, want, 4) != 0) return fail(f, 2, text, end);
   }
   while (afterNumber < star && *afterNumber == ' ') afterNumber++;
   f.hasN = true;
@@ -76,7 +81,7 @@ size_t encodeFrame(uint32_t n, const char* body, char* out, size_t size) {
   char num[10];
   size_t numLen = putUnsigned(n, num);
   size_t headLen = 1 + numLen + 1 + bodyLen;
-  if (headLen + 5 > size) return 0;
+  if (headLen + 10 > size) return 0;
   size_t k = 0;
   out[k++] = 'N';
   memcpy(out + k, num, numLen);
@@ -85,8 +90,12 @@ size_t encodeFrame(uint32_t n, const char* body, char* out, size_t size) {
   memcpy(out + k, body, bodyLen);
   k += bodyLen;
   uint8_t cs = xorChecksum(out, k);
+  uint16_t crc = crc16(out, k);
   out[k++] = '*';
   k += putUnsigned(cs, out + k);
+  out[k++] = '#';
+  crc16Hex(crc, out + k);
+  k += 4;
   out[k] = '\0';
   return k;
 }

@@ -22,7 +22,7 @@ uint8_t xorChecksum(const char* text, size_t len);
 // Parses a split line (without terminator).
 Frame parseFrame(const char* text, uint8_t len, bool overflow);
 
-// Writes `N<n> <body>*<cs>` (no newline) and a NUL; returns the length or 0 if it won't fit.
+// Writes `N<n> <body>*<cs>#<crc16>` (no newline) and a NUL; returns the length or 0 if it won't fit.
 size_t encodeFrame(uint32_t n, const char* body, char* out, size_t size);
 
 }  // namespace uv

@@ -3,6 +3,7 @@
 
 #include <string.h>
 
+#include "crc16.h"
 #include "dialect_command.h"
 #include "error_codes.h"
 #include "text_scan.h"
@@ -23,9 +24,10 @@ size_t LineReceiver::formatOk(char* out, int32_t line) const {
   out[n++] = ' ';
   out[n++] = 'B';
   n += putUnsigned(flow_.windowFree(), out + n);
-  uint8_t cs = xorChecksum(out, n);
+  uint16_t crc = crc16(out, n);
   out[n++] = '*';
-  n += putUnsigned(cs, out + n);
+  crc16Hex(crc, out + n);
+  n += 4;
   out[n] = '\0';
   return n;
 }

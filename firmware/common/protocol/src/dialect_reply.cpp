@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "dialect_command.h"
+#include "crc16.h"
 #include "dialect_frame.h"
 #include "text_scan.h"
 
@@ -152,12 +153,12 @@ bool parseReply(const char* line, uint8_t len, Reply& r) {
     if (q) q = scanUnsigned(q, end, 5, 65535, pv);
     q = expect(q, end, " B");
     if (q) q = scanUnsigned(q, end, 5, 65535, bv);
-    // The flow fields count only with an intact checksum (protocol/mega.md §2).
-    uint32_t cs = 0;
+    // The flow fields count only with an intact CRC (protocol/mega.md §2).
     const char* star = q;
     q = expect(q, end, "*");
-    if (q) q = scanUnsigned(q, end, 3, 255, cs);
-    r.hasFlow = q == end && cs == xorChecksum(line, static_cast<size_t>(star - line));
+    char want[5] = "";
+    if (q) crc16Hex(crc16(line, static_cast<size_t>(star - line)), want);
+    r.hasFlow = q && end - q == 4 && memcmp(q, want, 4) == 0;
     if (!r.hasFlow) {
       r.n = 0;
       r.hasN = false;
@@ -310,9 +311,9 @@ size_t formatReply(const Reply& r, char* buf, size_t size) {
         o.put(" B");
         o.num(r.b);
         char t[6];
-        uint8_t cs = xorChecksum(o.buf, o.n);
         t[0] = '*';
-        o.put(t, 1 + putUnsigned(cs, t + 1));
+        crc16Hex(crc16(o.buf, o.n), t + 1);
+        o.put(t, 5);
       }
       break;
     case ReplyKind::Error:

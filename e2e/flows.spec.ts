@@ -1,0 +1,45 @@
+// Every user flow through each transport: Web Serial, the ESP, and the built-in simulated printer.
+import { expect, test } from '@playwright/test';
+import { openApp, TRANSPORTS } from './transports';
+
+for (const transport of TRANSPORTS) {
+  test.describe(`over ${transport}`, () => {
+    test('connects, shows the firmware and six temperatures', async ({ page }, info) => {
+      const app = await openApp(page, transport);
+      await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected');
+      await expect(page.getByTestId('firmware')).toHaveText(/^UVExposure 0\.1\.0/);
+      for (let i = 0; i < 6; i++) await expect(page.getByTestId(`temp-${i}`)).toHaveText(/^-?\d+\.\d °C$/);
+      await page.screenshot({ path: info.outputPath('connected.png'), fullPage: true });
+      app.close();
+    });
+
+    test('uploads and exposes the test pattern to the end', async ({ page }, info) => {
+      const app = await openApp(page, transport);
+      await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected');
+      await page.getByTestId('start-test').click();
+      // At 40x the job may already be done when we look.
+      await expect(page.getByTestId('job-state')).toHaveAttribute('data-state', /running|done/, { timeout: 30_000 });
+      await page.screenshot({ path: info.outputPath('running.png'), fullPage: true });
+      await expect(page.getByTestId('job-state')).toHaveAttribute('data-state', 'done', { timeout: 60_000 });
+      await expect(page.getByTestId('job-state')).toContainText(/done: stop (\d+) of \1/);
+      if (app.sim) expect(app.sim.printer.mega.job.exposures.length).toBe(app.sim.printer.mega.job.plan!.count);
+      await page.screenshot({ path: info.outputPath('done.png'), fullPage: true });
+      app.close();
+    });
+
+    test('pauses, continues and stops a job', async ({ page }) => {
+      const app = await openApp(page, transport, 4);
+      await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected');
+      await page.getByTestId('start-test').click();
+      await expect(page.getByTestId('job-state')).toHaveAttribute('data-state', 'running', { timeout: 30_000 });
+      await page.getByRole('button', { name: 'Pause' }).click();
+      await expect(page.getByTestId('job-state')).toHaveAttribute('data-state', 'paused');
+      await page.getByRole('button', { name: 'Continue' }).click();
+      await expect(page.getByTestId('job-state')).toHaveAttribute('data-state', 'running');
+      await page.getByTestId('stop-job').click();
+      await expect(page.getByTestId('job-state')).toHaveAttribute('data-state', 'aborted');
+      if (app.sim) expect(app.sim.printer.nano.lit).toBe(0);
+      app.close();
+    });
+  });
+}
