@@ -192,7 +192,7 @@ describe('simulated printer: faults', () => {
     h.cmd('M23 H.UVJ');
     h.cmd('M24');
     const fault = h.waitFor(/^FAULT:E31/, 120_000);
-    expect(fault).toMatch(/^FAULT:E31 over-temperature (T\d \d+\.\d|at stop \d+)$/);
+    expect(fault).toMatch(/^FAULT:E31 over-temperature (T\d \d+\.\d \(soft limit\)|T\d \d+\.\d|at stop \d+)$/);
     expect(h.sim.nano.lit).toBe(0);
     expect(h.cmd('M27')[0]).toMatch(/^JOB:paused .*reason=overtemp/);
     expect(h.cmd('M24')[0]).toMatch(/^Error:E31/);
