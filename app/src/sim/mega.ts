@@ -239,13 +239,13 @@ export class MegaModel {
       },
       M24: (_c, done) => {
         if (this.job.state === 'paused') {
-          if (this.#activeFaults()) return this.#error(31, done, 'printhead still faulted');
+          if (this.#tooHot()) return this.#error(31, done, 'printhead still faulted');
           this.job.resume();
           return done();
         }
         if (!this.#selected || !this.job.plan) return this.#error(26, done);
         if (this.job.state === 'running') return this.#error(12, done);
-        if (this.#activeFaults()) return this.#error(31, done, 'printhead faulted');
+        if (this.#tooHot()) return this.#error(31, done, 'printhead faulted');
         if (!this.motion.homed[0] || !this.motion.homed[1]) return this.#error(14, done, 'home first (G28)');
         if (this.job.state !== 'ready') this.job.load(this.#selected);
         this.job.start(0);
@@ -584,6 +584,12 @@ export class MegaModel {
     }
     this.#faultsShown = active & FAULT.OVERTEMP;
     this.#softLimits();
+  }
+
+  /** A hard fault on the Nano, or any sensor at or over the Mega's soft limit: no exposure may start. */
+  #tooHot(): boolean {
+    if (this.#activeFaults()) return true;
+    return this.nano.deciC().some((v, i) => v >= num(this.config, `thermal.limit.${i}`) * 10);
   }
 
   /** The Mega's own, lower limits (config thermal.limit.*): pause before the Nano has to cut. */
