@@ -7,7 +7,8 @@ PACKAGES=(
   gcc-avr avr-libc arduino-core-avr         # AVR images of the Nano and Mega firmware
   cmake g++ libgtest-dev nlohmann-json3-dev # C++ host tests
   simavr libsimavr-dev libelf-dev           # running the AVR images in simulation
-  python3                                   # vector authoring and the vector-binding check
+  python3 python3-venv                      # vector authoring, the vector-binding check, printcore's venv
+  socat                                     # `npm run sim -- --pty`
 )
 
 missing=()

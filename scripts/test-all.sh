@@ -39,6 +39,15 @@ stage "Type check (svelte-check)" npm run --silent check
 stage "AVR firmware images and budgets" bash scripts/build-avr.sh
 stage "C++ host and simavr tests (CMake, GoogleTest)" host_tests
 stage "Vectors bind both implementations" python3 scripts/check-vectors-bind.py build/host
+printcore_test() {
+  [[ -x build/venv/bin/python ]] || python3 -m venv build/venv || return 1
+  build/venv/bin/python -c 'import printrun' 2>/dev/null ||
+    build/venv/bin/pip install -q --no-deps Printrun pyserial appdirs || return 1
+  build/venv/bin/python scripts/sim-printcore-test.py 2>&1 | grep -v '^WARNING'
+  return "${PIPESTATUS[0]}"
+}
+
+stage "Desktop host: printcore over the simulated printer's pty" printcore_test
 stage "End-to-end in Chromium (Playwright)" npx playwright test
 
 echo

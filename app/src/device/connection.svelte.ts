@@ -109,7 +109,10 @@ export class Printer {
   abort = () => this.send('M524');
 
   #onReply(r: Reply, line: string): void {
-    if (r.kind !== 'ok' && r.kind !== 'busy') this.log = [...this.log.slice(-499), line];
+    if (r.kind !== 'ok' && r.kind !== 'busy') {
+      this.log.push(line); // in place: reports arrive several times a second
+      if (this.log.length > 500) this.log.splice(0, this.log.length - 500);
+    }
     if (applyReport(this.device, r, Date.now())) this.device = { ...this.device };
     if (this.#link) this.health = { ...this.#link.health };
   }

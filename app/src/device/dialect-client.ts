@@ -22,6 +22,9 @@ export interface LinkHealth {
   rttMs: number;
 }
 
+/** Commands that take longer than a round trip on the Mega (mega.md §5, "Long"). */
+const LONG_COMMANDS = /^(G28|G29|G30|G4|M822)(\s|$)/i;
+
 interface Item {
   body: string;
   n: number;
@@ -37,6 +40,8 @@ interface Item {
 }
 
 export interface ClientOptions {
+  /** Never more lines out than this, whatever the Mega advertises (1 = one line per ok). */
+  maxWindow?: number;
   /** No reply for this long while lines are out: resend from the last accepted line. */
   replyTimeoutMs?: number;
   now?: () => number;
@@ -62,6 +67,7 @@ export class DialectClient {
 
   constructor(private readonly transport: Transport, private readonly onReply: (r: Reply, line: string) => void, o: ClientOptions = {}) {
     this.#o = {
+      maxWindow: o.maxWindow ?? 32,
       replyTimeoutMs: o.replyTimeoutMs ?? 3000, // above the Mega's 2 s busy: keep-alive
       now: o.now ?? (() => performance.now()),
       setTimer: o.setTimer ?? ((fn, ms) => setTimeout(fn, ms)),
@@ -134,7 +140,7 @@ export class DialectClient {
       // through them; auto-reports arrive every second whether or not our lines were lost.
       if (r.kind === 'ok' || r.kind === 'error' || r.kind === 'resend' || r.kind === 'busy') this.#lastReplyMs = this.#o.now();
       this.onReply(r, text);
-      if (r.kind === 'cap' && r.name === 'RX_WINDOW') this.window = Math.max(1, Math.min(r.value, 32));
+      if (r.kind === 'cap' && r.name === 'RX_WINDOW') this.window = Math.max(1, Math.min(r.value, this.#o.maxWindow));
       if (r.kind === 'ok') this.#endBlock(r);
       else if (r.kind === 'resend') this.#resend(r.n);
       else this.#block.push(r);
@@ -214,17 +220,27 @@ export class DialectClient {
     return this.#inflight > 0 || this.#out.some((i) => i.sent);
   }
 
+  /**
+   * How long to wait for a reply: about four round trips (at least 250 ms), or the full time-out
+   * while a long command is out. Resending early is safe: a duplicate of a line still running only
+   * frees its slot (mega.md §2).
+   */
+  #timeoutMs(): number {
+    if (this.#out.some((i) => i.sent && LONG_COMMANDS.test(i.body))) return this.#o.replyTimeoutMs;
+    return Math.min(this.#o.replyTimeoutMs, Math.max(250, 4 * this.health.rttMs));
+  }
+
   #armTimer(): void {
     if (this.#timer !== null) return;
     if (this.#closed || !this.#waitingForReplies()) return;
     this.#lastReplyMs = this.#lastReplyMs || this.#o.now();
-    this.#timer = this.#o.setTimer(() => this.#onTimer(), this.#o.replyTimeoutMs);
+    this.#timer = this.#o.setTimer(() => this.#onTimer(), this.#timeoutMs());
   }
 
   #onTimer(): void {
     this.#timer = null;
     if (this.#closed || !this.#waitingForReplies()) return;
-    const remaining = this.#o.replyTimeoutMs - (this.#o.now() - this.#lastReplyMs);
+    const remaining = this.#timeoutMs() - (this.#o.now() - this.#lastReplyMs);
     if (remaining < 1) { // within a millisecond counts as expired: never re-arm for a sliver of time
       // Lost bytes took a line or its reply: start again after the last accepted line.
       this.health.timeouts++;

@@ -10,8 +10,23 @@ export const READ_BUFFER = 4096;
 /** The user closed the port picker without choosing: not an error to show. */
 export class PickerDismissed extends Error {}
 
+/** What the transport needs of navigator.serial (and of web-serial-polyfill's stand-in). */
+export interface SerialApi {
+  requestPort(): Promise<SerialPort>;
+}
+
 export function serialSupported(): boolean {
-  return typeof navigator !== 'undefined' && 'serial' in navigator;
+  return typeof navigator !== 'undefined' && ('serial' in navigator || 'usb' in navigator);
+}
+
+/** Chromium's Web Serial, or web-serial-polyfill over WebUSB where it is missing (Android Chrome). */
+export async function serialApi(): Promise<SerialApi> {
+  if ('serial' in navigator) return navigator.serial;
+  if ('usb' in navigator) {
+    const { serial } = await import('web-serial-polyfill'); // only loaded where it is needed
+    return serial as unknown as SerialApi;
+  }
+  throw new Error('this browser has neither Web Serial nor WebUSB: use Chrome or Edge');
 }
 
 export class SerialTransport implements Transport {
@@ -22,11 +37,14 @@ export class SerialTransport implements Transport {
   // the writes in order. A writer per send would find the stream locked by the previous one.
   #writer: WritableStreamDefaultWriter<Uint8Array> | null = null;
   #closing = false;
+  #loop: Promise<void> | null = null;
+
+  constructor(private readonly api: () => Promise<SerialApi> = serialApi) {}
 
   async open(onBytes: (bytes: string) => void, onClosed: (error?: Error) => void): Promise<void> {
     let port: SerialPort;
     try {
-      port = await navigator.serial.requestPort();
+      port = await (await this.api()).requestPort();
     } catch (e) {
       if ((e as DOMException).name === 'NotFoundError') throw new PickerDismissed('no port chosen');
       throw e;
@@ -35,7 +53,7 @@ export class SerialTransport implements Transport {
     this.#port = port;
     this.#writer = port.writable?.getWriter() ?? null;
     this.#closing = false;
-    void this.#readLoop(port, onBytes, onClosed);
+    this.#loop = this.#readLoop(port, onBytes, onClosed);
   }
 
   async #readLoop(port: SerialPort, onBytes: (bytes: string) => void, onClosed: (error?: Error) => void) {
@@ -69,6 +87,8 @@ export class SerialTransport implements Transport {
   async close(): Promise<void> {
     this.#closing = true;
     await this.#reader?.cancel().catch(() => {});
+    await this.#loop; // the loop releases the reader's lock; port.close() refuses locked streams
+    this.#loop = null;
     if (this.#writer) {
       await this.#writer.close().catch(() => {});
       this.#writer.releaseLock();

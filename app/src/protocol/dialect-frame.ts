@@ -30,7 +30,7 @@ function stripComment(s: string): string {
 
 /** The line number a damaged numbered line claims, when its prefix is intact. */
 function claimedNumber(text: string): number | undefined {
-  const m = /^N([0-9]{1,10}) /.exec(text);
+  const m = /^N(-1|[0-9]{1,10}) /.exec(text);
   if (!m) return undefined;
   const n = Number(m[1]);
   return n <= MAX_LINE_NUMBER ? n : undefined;
@@ -52,7 +52,7 @@ export function parseFrame(line: SplitLine): Frame {
   const star = text.lastIndexOf('*');
   if (star < 0) return fail(claimedNumber(text) === undefined ? 2 : 3);
   const head = text.slice(0, star);
-  const m = /^N([0-9]{1,10}) +(.*)$/.exec(head);
+  const m = /^N(-1|[0-9]{1,10}) +(.*)$/.exec(head);
   const check = /^([0-9]{1,3})(?:#([0-9a-f]{4}))?$/.exec(text.slice(star + 1));
   if (!m || !check || Number(check[1]) !== xorChecksum(head)) return fail(2);
   if (check[2] !== undefined && check[2] !== crc16Hex(head)) return fail(2);

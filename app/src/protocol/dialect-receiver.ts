@@ -18,9 +18,16 @@ export interface FlowCounters {
 
 export class LineReceiver {
   last = 0;
+  /** The highest line whose reply block has gone out (the executor calls markAnswered). */
+  answered = 0;
   resyncing = false;
 
   constructor(private readonly flow: FlowCounters) {}
+
+  /** The executor finished line `n` and is sending its reply block. */
+  markAnswered(n: number | undefined): void {
+    if (n !== undefined && n > this.answered) this.answered = n;
+  }
 
   /** The `ok` that ends a reply block for line `n`, or for no line. */
   ok(n?: number): string {
@@ -38,8 +45,9 @@ export class LineReceiver {
     const setLine = this.#m110(frame.body, frame.n);
     if (setLine !== null) {
       this.last = setLine;
+      this.answered = setLine;
       this.resyncing = false;
-      return { kind: 'reply', lines: [this.ok(setLine)] };
+      return { kind: 'reply', lines: [this.ok(setLine >= 0 ? setLine : undefined)] };
     }
     if (frame.n === undefined) {
       return frame.body === '' ? { kind: 'reply', lines: [this.ok()] } : { kind: 'execute', body: frame.body };
@@ -47,9 +55,13 @@ export class LineReceiver {
     if (frame.n === this.last + 1) {
       this.last = frame.n;
       this.resyncing = false;
-      return frame.body === '' ? { kind: 'reply', lines: [this.ok(frame.n)] } : { kind: 'execute', body: frame.body, n: frame.n };
+      if (frame.body !== '') return { kind: 'execute', body: frame.body, n: frame.n };
+      this.markAnswered(frame.n);
+      return { kind: 'reply', lines: [this.ok(frame.n)] };
     }
-    if (frame.n <= this.last) return { kind: 'reply', lines: [this.ok(frame.n)] }; // a duplicate: confirm it
+    // A duplicate: confirm a line already answered; for one still waiting or running, free the
+    // slot and let its own reply answer it (mega.md §2).
+    if (frame.n <= this.last) return { kind: 'reply', lines: [this.ok(frame.n <= this.answered ? frame.n : undefined)] };
     if (this.resyncing) return { kind: 'reply', lines: [this.ok()] };
     return this.#askResend(6, errorByCode(6)!.message);
   }
@@ -67,7 +79,7 @@ export class LineReceiver {
     const parsed = parseCommand(body);
     if (!parsed.ok || parsed.command.word !== 'M110' || !('params' in parsed.command)) return null;
     const p = parsed.command.params.N;
-    if (typeof p === 'number' && p >= 0 && p % 1000 === 0) return p / 1000;
+    if (typeof p === 'number' && p >= -1000 && p % 1000 === 0) return p / 1000;
     return n ?? null;
   }
 }

@@ -47,6 +47,10 @@ describe('mega dialect vectors', () => {
   it.each(cases(v.sessions, 'name'))('session: %s', (_n, s: any) => {
     const rx = new LineReceiver({ movesFree: () => v.movesFree, windowFree: () => v.window });
     for (const step of s.steps) {
+      if (step.answered !== undefined) {
+        rx.markAnswered(step.answered); // the executor finished that line
+        continue;
+      }
       const a = rx.accept(split(step.rx));
       if (step.execute !== undefined) expect(a).toMatchObject({ kind: 'execute', body: step.execute });
       else if (step.reply.length === 0) expect(a).toEqual({ kind: 'none' });

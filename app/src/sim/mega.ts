@@ -98,6 +98,7 @@ export class MegaModel {
       this.#busy = true;
       this.#run(body, () => {
         this.#queue.shift();
+        this.#receiver.markAnswered(n);
         this.line(this.#receiver.ok(n)); // names the line it answers, never a merely queued one
         this.#busy = false;
       });

@@ -20,7 +20,10 @@ class HostPort : public uv::ReplySink, public uv::FlowCounters {
 
   void line(const char* text) override;
   // Ends the reply block of the line being executed (protocol/mega.md §2).
-  void ok() { receiver_.ok(*this, answering_); }
+  void ok() {
+    receiver_.markAnswered(answering_);
+    receiver_.ok(*this, answering_);
+  }
   void error(uint8_t code, const char* detail = nullptr);
 
   uint8_t movesFree() const override { return 8; }

@@ -27,9 +27,15 @@ void trimBody(const char* p, const char* end, Frame& f) {
   f.bodyLen = static_cast<uint8_t>(end - p);
 }
 
-// `N<digits> ` with the number in range: where the body may start, else nullptr.
-const char* numberPrefix(const char* text, const char* end, uint32_t& n) {
-  const char* p = scanUnsigned(text + 1, end, 10, kMaxLineNumber, n);
+// `N<digits> ` (or `N-1 `) with the number in range: where the body may start, else nullptr.
+const char* numberPrefix(const char* text, const char* end, int32_t& n) {
+  if (end - text >= 4 && text[1] == '-' && text[2] == '1' && text[3] == ' ') {
+    n = -1;
+    return text + 3;
+  }
+  uint32_t u = 0;
+  const char* p = scanUnsigned(text + 1, end, 10, kMaxLineNumber, u);
+  n = static_cast<int32_t>(u);
   return (p && p < end && *p == ' ') ? p : nullptr;
 }
 
@@ -57,7 +63,7 @@ Frame parseFrame(const char* text, uint8_t len, bool overflow) {
       star = p - 1;
       break;
     }
-  uint32_t n = 0;
+  int32_t n = 0;
   const char* afterNumber = numberPrefix(text, star ? star : end, n);
   if (!star) return fail(f, afterNumber ? 3 : 2, text, end);
   uint32_t cs = 0;

@@ -12,7 +12,7 @@ struct Frame {
   uint8_t error;      // 0 = good frame, else an ErrorCode 1-6
   bool numbered;      // the line starts with 'N'
   bool hasN;          // n is known (a good numbered frame, or an intact prefix)
-  uint32_t n;
+  int32_t n;          // -1 only for printrun's `N-1 M110 N-1`
   const char* body;   // points into the line: comment stripped, trimmed
   uint8_t bodyLen;
 };

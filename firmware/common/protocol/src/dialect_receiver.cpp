@@ -52,20 +52,20 @@ void LineReceiver::askResend(uint8_t code, ReplySink& sink) {
   size_t n = errorLine(code, buf);
   memcpy(buf + n, ", Last Line: ", 13);
   n += 13;
-  n += putUnsigned(last_, buf + n);
+  n += putSigned(last_, buf + n);
   buf[n] = '\0';
   sink.line(buf);
   memcpy(buf, "Resend: ", 8);
-  buf[8 + putUnsigned(last_ + 1, buf + 8)] = '\0';
+  buf[8 + putSigned(last_ + 1, buf + 8)] = '\0';
   sink.line(buf);
   ok(sink);  // a resend request accepts no line
 }
 
-bool LineReceiver::m110(const Frame& f, uint32_t& setTo) const {
+bool LineReceiver::m110(const Frame& f, int32_t& setTo) const {
   Command c;
   if (parseCommand(f.body, f.bodyLen, c) != 0 || !c.is('M', 110)) return false;
-  if (c.hasValue('N') && c.value('N') >= 0 && c.value('N') % 1000 == 0) {
-    setTo = static_cast<uint32_t>(c.value('N') / 1000);
+  if (c.hasValue('N') && c.value('N') >= -1000 && c.value('N') % 1000 == 0) {
+    setTo = c.value('N') / 1000;
     return true;
   }
   setTo = f.n;
@@ -86,11 +86,12 @@ Acceptance LineReceiver::accept(const char* text, uint8_t len, bool overflow, Re
     }
     return Acceptance::Replied;
   }
-  uint32_t setTo = 0;
+  int32_t setTo = 0;
   if (m110(f, setTo)) {
     last_ = setTo;
+    answered_ = setTo;
     resyncing_ = false;
-    ok(sink, static_cast<int32_t>(setTo));
+    ok(sink, setTo);  // for -1, an ok without N
     return Acceptance::Replied;
   }
   if (!f.hasN) {
@@ -102,11 +103,14 @@ Acceptance LineReceiver::accept(const char* text, uint8_t len, bool overflow, Re
     last_ = f.n;
     resyncing_ = false;
     if (f.bodyLen) return Acceptance::Execute;
-    ok(sink, static_cast<int32_t>(f.n));
+    markAnswered(f.n);
+    ok(sink, f.n);
     return Acceptance::Replied;
   }
-  if (f.n <= last_) {  // a duplicate: confirm it without running it
-    ok(sink, static_cast<int32_t>(f.n));
+  if (f.n <= last_) {
+    // A duplicate: confirm a line already answered; for one still waiting or running, free the
+    // slot and let its own reply answer it (protocol/mega.md §2).
+    ok(sink, f.n <= answered_ ? f.n : -1);
     return Acceptance::Replied;
   }
   if (resyncing_) {

@@ -37,15 +37,20 @@ class LineReceiver {
   size_t formatOk(char* out, int32_t n = -1) const;
   void ok(ReplySink& sink, int32_t n = -1) const;
 
-  uint32_t last() const { return last_; }
+  int32_t last() const { return last_; }
+  // The executor finished line n and is sending its reply block.
+  void markAnswered(int32_t n) {
+    if (n > answered_) answered_ = n;
+  }
   bool resyncing() const { return resyncing_; }
 
  private:
   void askResend(uint8_t code, ReplySink& sink);
-  bool m110(const Frame& f, uint32_t& setTo) const;
+  bool m110(const Frame& f, int32_t& setTo) const;
 
   const FlowCounters& flow_;
-  uint32_t last_ = 0;
+  int32_t last_ = 0;      // -1 after `M110 N-1`
+  int32_t answered_ = 0;  // the highest line whose reply block went out
   bool resyncing_ = false;
 };
 
