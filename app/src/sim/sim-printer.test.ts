@@ -207,6 +207,15 @@ describe('simulated printer: faults', () => {
     expect(h.sim.mega.job.exposures).toHaveLength(0);
   });
 
+  it('stalls: a line sent while the printer is not reading is answered when the stall ends', () => {
+    const h = new SimHost({ link: { stallEveryMs: 1000, stallMs: 300 } });
+    h.sim.advance(1000 - h.sim.clock.now / 1000 + 10); // 10 ms into a stall
+    const sentAt = h.sim.clock.now;
+    const block = h.cmd('M105');
+    expect(parseReply(block[0])?.kind).toBe('temps');
+    expect(h.sim.clock.now - sentAt).toBeGreaterThanOrEqual(285_000); // held for the rest of the stall
+  });
+
   it('reports a missing printhead', () => {
     const h = new SimHost({ missingNano: true });
     expect(h.cmd('M105')[0]).toBe('Error:E30 printhead not responding');
