@@ -11,6 +11,7 @@
 #include <avr/interrupt.h>
 #include <avr/io.h>
 
+#include "compare_wake.h"
 #include "pins.h"
 
 namespace nano {
@@ -104,11 +105,7 @@ uint8_t lit() { return lit_; }
 bool quietFor(uint16_t ticks) {
   uint8_t sreg = SREG;
   cli();
-  // A match that happened after cli() is pending in TIFR1 and would read as far away; with
-  // wraps_ > 0 a pending match only counts a wrap, and the wake is still a whole wrap off.
-  bool pending = TIFR1 & _BV(OCF1A);
-  bool quiet = !(TIMSK1 & _BV(OCIE1A)) || (wraps_ > 1) || (wraps_ == 1 && !pending) ||
-               (wraps_ == 0 && !pending && static_cast<uint16_t>(OCR1A - TCNT1) > ticks);
+  bool quiet = compareQuietFor(TIMSK1 & _BV(OCIE1A), wraps_, TIFR1 & _BV(OCF1A), OCR1A, TCNT1, ticks);
   SREG = sreg;
   return quiet;
 }

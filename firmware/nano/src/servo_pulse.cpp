@@ -9,6 +9,7 @@
 #include <avr/interrupt.h>
 #include <avr/io.h>
 
+#include "compare_wake.h"
 #include "pins.h"
 
 namespace nano {
@@ -52,9 +53,7 @@ void set(uint16_t widthUs) {
 bool quietFor(uint16_t ticks) {
   uint8_t sreg = SREG;
   cli();
-  bool pending = TIFR1 & _BV(OCF1B);  // see led_timer::quietFor
-  bool quiet = !running_ || (wraps_ > 1) || (wraps_ == 1 && !pending) ||
-               (wraps_ == 0 && !pending && static_cast<uint16_t>(OCR1B - TCNT1) > ticks);
+  bool quiet = compareQuietFor(running_, wraps_, TIFR1 & _BV(OCF1B), OCR1B, TCNT1, ticks);
   SREG = sreg;
   return quiet;
 }

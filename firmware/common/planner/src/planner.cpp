@@ -190,9 +190,8 @@ bool Planner::nextColumn() {
   return true;
 }
 
-uint64_t Planner::priceColumns() {
-  // Simulated with the emission machinery itself, then undone: the head position is restored.
-  int32_t x0 = curX_, y0 = curY_;
+// Opens every pass of the band with stops for the Columns order and reads each one's first stop.
+void Planner::openColumns() {
   desc_ = columnsDescending(curX_);
   for (uint8_t q = 0; q < bandLen_; q++) {
     peek_[q] = false;
@@ -200,6 +199,13 @@ uint64_t Planner::priceColumns() {
     openCursors(q, desc_);
     peek_[q] = passNext(q, desc_, peekStop_[q].hx, peekStop_[q].value);
   }
+  columnLen_ = columnPos_ = 0;
+}
+
+uint64_t Planner::priceColumns() {
+  // Simulated with the emission machinery itself, then undone: the head position is restored.
+  int32_t x0 = curX_, y0 = curY_;
+  openColumns();
   uint64_t total = 0;
   while (nextColumn()) {
     for (uint8_t i = 0; i < columnLen_; i++) {
@@ -232,14 +238,7 @@ bool Planner::startBand() {
       if (priceColumns() < rows) order_ = Order::Columns;
     }
     if (order_ == Order::Columns) {
-      desc_ = columnsDescending(curX_);
-      for (uint8_t q = 0; q < bandLen_; q++) {
-        peek_[q] = false;
-        if (!band_[q].lit) continue;
-        openCursors(q, desc_);
-        peek_[q] = passNext(q, desc_, peekStop_[q].hx, peekStop_[q].value);
-      }
-      columnLen_ = columnPos_ = 0;
+      openColumns();
     } else {
       q_ = 0;
       if (!startRowPass()) continue;

@@ -56,6 +56,7 @@ class Planner {
   bool passNext(uint8_t q, bool descending, int32_t& hx, uint8_t value[4]);
   void advance(uint8_t cursor);
   bool startRowPass();
+  void openColumns();
   bool nextColumn();
   bool descendingFor(const PassInfo& p, int32_t x) const;
   uint64_t priceRows();
