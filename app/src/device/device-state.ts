@@ -10,6 +10,8 @@ export interface JobProgress {
   elapsedS?: number;
   remainingS?: number;
   reason?: string;
+  /** Streamed (M828, no SD card): exposed as it arrives, and it cannot be resumed. */
+  stream?: boolean;
 }
 
 export interface Fault {
@@ -66,6 +68,7 @@ export function applyReport(s: DeviceState, r: Reply, nowMs: number): boolean {
         elapsedS: f.elapsed !== undefined ? Number(f.elapsed) : undefined,
         remainingS: f.remaining !== undefined ? Number(f.remaining) : undefined,
         reason: f.reason,
+        stream: f.mode === 'stream',
       };
       if (f.leds !== undefined) s.leds = Number(f.leds);
       if (r.state !== 'running') s.leds = 0;

@@ -1,13 +1,15 @@
 import { describe, expect, it } from 'vitest';
 import { GEOMETRIES, randomJob } from '../planner/golden';
+import { headerOf } from '../planner/job-header';
+import { planJob } from '../planner/planner';
 import { encodeJob } from '../protocol/job-encode';
 import { SimWire } from '../sim/wire';
 import { CommandError } from './dialect-client';
 import { DialectLink } from './dialect-link';
 import type { LinkFaults } from '../sim/link-faults';
 
-function rig(link: LinkFaults = {}) {
-  const wire = new SimWire({ link });
+function rig(link: LinkFaults = {}, noSd = false) {
+  const wire = new SimWire({ link, noSd });
   const dl = new DialectLink(wire.host, wire.clientOptions);
   const lines: string[] = [];
   let closed: Error | undefined;
@@ -80,5 +82,25 @@ describe('dialect client over a simulated 115200-baud wire', () => {
     const seconds = (r.wire.printer.clock.now - start) / 1e6;
     expect(r.dl.health.resends).toBe(0);
     expect(text.length / seconds).toBeGreaterThan(0.8 * 11520 * (text.length / r.wire.carried.toPrinter));
+  });
+
+  it('streams with M828 on a Mega without SD, held back by its buffer, with no time-out and every stop once', async () => {
+    const r = rig({}, true);
+    await settle(r.wire, r.opened);
+    await settle(r.wire, r.dl.command('G28'));
+    const j = randomJob(12, GEOMETRIES.adjacent, 'serpentine', [160, 120], 0.9);
+    j.dose = { map: 'linear', fullUs: 3000 };
+    const mega = r.wire.printer.mega;
+    const plan = planJob({ header: headerOf(j), cells: j.gridData }, mega.job.machine(mega.motion.now()));
+    await settle(r.wire, r.dl.startJob(j, () => {}), 600_000);
+    expect(r.lines).toContain('echo:Streaming: exposed as it arrives, no resume');
+    expect(r.lines.filter((l) => l.startsWith('busy:')).length).toBeGreaterThan(0); // it was held back
+    expect(r.dl.health.timeouts).toBe(0);
+    expect(r.dl.health.resends).toBe(0);
+    r.wire.runUntil(() => mega.job.state === 'done', 600_000);
+    expect(mega.job.state).toBe('done');
+    expect(mega.job.exposures.map((e) => [e.hx, e.hy, ...e.us])).toEqual(
+      Array.from({ length: plan.count }, (_, i) => [plan.hx[i], plan.hy[i], ...plan.durations.subarray(i * 4, i * 4 + 4)]),
+    );
   });
 });

@@ -50,6 +50,7 @@ export interface ClientOptions {
 }
 
 export class DialectClient {
+  #busySinceOk = false;
   readonly health: LinkHealth = { linesSent: 0, bytesSent: 0, resends: 0, timeouts: 0, bytesRetransmitted: 0, rttMs: 0 };
   /** Lines the Mega may hold unanswered; 1 until M115 advertises its window. */
   window = 1;
@@ -139,6 +140,10 @@ export class DialectClient {
       // Only answers to our lines (and the keep-alive of a long command) show the Mega is working
       // through them; auto-reports arrive every second whether or not our lines were lost.
       if (r.kind === 'ok' || r.kind === 'error' || r.kind === 'resend' || r.kind === 'busy') this.#lastReplyMs = this.#o.now();
+      // A Mega that says busy is working on a line (a long command, a streamed record waiting for
+      // room): wait for its keep-alive, not for the round trip, until the next ok.
+      if (r.kind === 'busy') this.#busySinceOk = true;
+      else if (r.kind === 'ok') this.#busySinceOk = false;
       this.onReply(r, text);
       if (r.kind === 'cap' && r.name === 'RX_WINDOW') this.window = Math.max(1, Math.min(r.value, this.#o.maxWindow));
       if (r.kind === 'ok') this.#endBlock(r);
@@ -226,7 +231,7 @@ export class DialectClient {
    * frees its slot (mega.md §2).
    */
   #timeoutMs(): number {
-    if (this.#out.some((i) => i.sent && LONG_COMMANDS.test(i.body))) return this.#o.replyTimeoutMs;
+    if (this.#busySinceOk || this.#out.some((i) => i.sent && LONG_COMMANDS.test(i.body))) return this.#o.replyTimeoutMs;
     return Math.min(this.#o.replyTimeoutMs, Math.max(250, 4 * this.health.rttMs));
   }
 

@@ -42,11 +42,12 @@ export class DialectLink implements PrinterLink {
     const records = text.trimEnd().split('\n');
     const total = records.reduce((n, r) => n + r.length + 1, 0);
     let sentBefore = 0;
+    let streaming = false;
     for (let attempt = 1; ; attempt++) {
       const file = `${(job.name ?? 'job').replace(/[^A-Za-z0-9_-]/g, '').slice(0, 20) || 'job'}-${++this.#jobs}.uvj`;
       try {
         onProgress({ bytesSent: sentBefore, bytesVerified: 0, bytesTotal: total });
-        await this.#client.command(`M28 ${file}`);
+        streaming = await this.#openUpload(file);
         let sent = 0;
         await this.#client.stream(records, (s, accepted) => {
           sent = s;
@@ -55,6 +56,7 @@ export class DialectLink implements PrinterLink {
         sentBefore += sent;
         await this.#client.command('M29'); // the Mega checks every record and the whole-job CRC
         onProgress({ bytesSent: sentBefore, bytesVerified: total, bytesTotal: total });
+        if (streaming) return; // a stream is already exposing
         await this.#client.command(`M23 ${file}`);
         await this.#client.command('M24');
         return;
@@ -62,9 +64,22 @@ export class DialectLink implements PrinterLink {
         // On a noisy link a damaged line can slip past the 8-bit line checksum (mega.md): a bad record
         // fails the CRC at M29 and the Mega deletes the file (E23-E25), a damaged M23/M24 finds no file
         // or no job (E21, E26), a damaged error line has no code (E0). Nothing ran: do it all again.
-        if (!(e instanceof CommandError) || !RETRY_CODES.includes(e.code) || attempt === UPLOAD_ATTEMPTS) throw e;
+        // A stream has exposed cells already: it is never sent twice.
+        if (streaming || !(e instanceof CommandError) || !RETRY_CODES.includes(e.code) || attempt === UPLOAD_ATTEMPTS) throw e;
       }
     }
+  }
+
+  /** M28 to spool on the SD card; a Mega without one streams instead (M828), with no resume. True when streaming. */
+  async #openUpload(file: string): Promise<boolean> {
+    try {
+      await this.#client.command(`M28 ${file}`);
+      return false;
+    } catch (e) {
+      if (!(e instanceof CommandError) || e.code !== 20) throw e;
+    }
+    await this.#client.command('M828');
+    return true;
   }
 
   close(): Promise<void> {

@@ -96,6 +96,34 @@ describe('planner properties on random jobs', () => {
   });
 });
 
+describe('planning while rows arrive (stream mode)', () => {
+  it('plans a prefix of the full plan that only grows, and the whole plan once every row is in', () => {
+    let grew = 0;
+    for (const offsets of Object.values(GEOMETRIES)) {
+      for (const s of STRATEGIES) {
+        for (let seed = 0; seed < 6; seed++) {
+          const job = randomJob(70000 + seed * 13 + s.length, offsets, s);
+          const full = stopsOf({ job, machine: MACHINE }).stops;
+          const header = headerOf(job);
+          let before = 0;
+          for (let known = 0; known <= header.rows; known++) {
+            // Rows not yet arrived read as 0, as they do on a Mega still receiving them.
+            const cells = job.gridData.map((row, r) => (r < known ? row : Array.from(row, () => 0)));
+            const p = planJob({ header, cells, knownRows: known }, MACHINE);
+            const stops = Array.from({ length: p.count }, (_, i) => [p.hx[i], p.hy[i], ...p.durations.subarray(i * 4, i * 4 + 4)]);
+            expect(stops, `${s} ${JSON.stringify(offsets)} seed ${seed} rows ${known}`).toEqual(full.slice(0, p.count));
+            expect(p.count).toBeGreaterThanOrEqual(before);
+            if (p.count > before && known < header.rows) grew++;
+            before = p.count;
+          }
+          expect(before).toBe(full.length);
+        }
+      }
+    }
+    expect(grew).toBeGreaterThan(50); // stops really do become final before the last row arrives
+  });
+});
+
 describe('time model', () => {
   it('uses the trapezoid or the triangle as the distance allows', () => {
     expect(moveTimeUs(0, 150000, 3000000)).toBe(0);

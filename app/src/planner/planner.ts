@@ -8,6 +8,12 @@ export interface PlannerJob {
   header: JobHeader;
   /** rows arrays of cols values 0-255. */
   cells: ArrayLike<number>[];
+  /**
+   * For a job still arriving (stream mode, protocol/mega.md M828): only rows below this have arrived,
+   * the rest read as 0. The plan then holds only the stops that no later row can change
+   * (protocol/planner.md "Planning while rows arrive"), a prefix of the full job's plan.
+   */
+  knownRows?: number;
 }
 
 export interface Plan {
@@ -183,9 +189,16 @@ export function planJob(job: PlannerJob, machine: Machine): Plan {
   const nearerEndDescending = (p: Pass, x: number) => Math.abs(X(p.first) - x) > Math.abs(X(p.last) - x);
 
   const passes = buildPasses(h, job.cells, tables);
+  const arrived = job.knownRows ?? h.rows;
+  const dyMax = Math.max(...h.offsets.map((o) => o[1]));
+  /** A pass is settled once the last row any of its LEDs can read has arrived. */
+  const settled = (p: Pass) => arrived >= h.rows || Math.min(p.hy + dyMax, h.rows - 1) < arrived;
   if (h.strategy === 'shortest') {
     for (let b = 0; b < passes.length; b += SHORTEST_BAND) {
-      const band = passes.slice(b, b + SHORTEST_BAND).filter((p) => p.n > 0);
+      const opened = passes.slice(b, b + SHORTEST_BAND);
+      // A band still short of passes may gain one from rows yet to come.
+      if (arrived < h.rows && (opened.length < SHORTEST_BAND || !opened.every(settled))) break;
+      const band = opened.filter((p) => p.n > 0);
       if (band.length === 0) continue;
       const byRows = rowOrder(band, curX);
       const byColumns = columnOrder(band, curX, curY);
@@ -205,6 +218,7 @@ export function planJob(job: PlannerJob, machine: Machine): Plan {
     }
   } else {
     for (const p of passes) {
+      if (!settled(p)) break;
       if (p.n === 0) continue;
       if (h.strategy === 'random') {
         const order = new Int32Array(BLOCK);

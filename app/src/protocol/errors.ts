@@ -21,6 +21,7 @@ export const ERRORS = {
   job_incomplete: { code: 25, message: 'job upload incomplete' },
   no_job: { code: 26, message: 'no job selected' },
   no_resume: { code: 27, message: 'no interrupted job to resume' },
+  stream_overflow: { code: 28, message: 'stream buffer too small for this job' },
   nano_timeout: { code: 30, message: 'printhead not responding' },
   over_temperature: { code: 31, message: 'over-temperature' },
   sensor_fault: { code: 32, message: 'temperature sensor fault' },

@@ -31,6 +31,12 @@ export class JobRunner {
   readonly exposures: Exposure[] = [];
   /** Why the job last paused or failed, for JOB: reports. */
   reason = '';
+  /** Stream mode (M828): the plan is a prefix that grows as rows arrive, and there is no checkpoint. */
+  streaming = false;
+  #planComplete = true;
+  #starved = false;
+  /** Called after each exposed stop and whenever a streamed job runs out of planned stops. */
+  onProgress: (() => void) | null = null;
   #pauseRequested = false;
   #step: ReturnType<VirtualClock['at']> | null = null;
 
@@ -67,8 +73,41 @@ export class JobRunner {
     this.plan = planJob({ header, cells }, this.machine(this.motion.now()));
     this.file = file;
     this.done = 0;
+    this.streaming = false;
+    this.#planComplete = true;
     this.state = 'ready';
     return true;
+  }
+
+  /** Stream mode: runs as soon as stops are known, waiting whenever it reaches the last one planned so far. */
+  beginStream(file: string): void {
+    this.file = file;
+    this.header = null;
+    this.plan = null;
+    this.streaming = true;
+    this.#planComplete = false;
+    this.start(0);
+  }
+
+  /** A longer prefix of the streamed job's plan (protocol/planner.md "Planning while rows arrive"). */
+  extend(header: JobHeader, plan: Plan, complete: boolean): void {
+    this.header = header;
+    this.plan = plan;
+    this.#planComplete = complete;
+    if (this.#starved && this.state === 'running' && (plan.count > this.done || complete)) {
+      this.#starved = false;
+      this.#next();
+    }
+  }
+
+  /** False while a streamed job's plan is still a prefix: its end and its time left are not known yet. */
+  get planComplete(): boolean {
+    return this.#planComplete;
+  }
+
+  /** Waiting for rows in stream mode: every stop planned so far has been exposed. */
+  get starved(): boolean {
+    return this.#starved;
   }
 
   /** Starts from stop `from` (a resume starts after the checkpoint). */
@@ -84,6 +123,13 @@ export class JobRunner {
 
   pause(reason = 'user'): void {
     if (this.state !== 'running') return;
+    if (this.#starved) {
+      this.#starved = false;
+      this.state = 'paused';
+      this.reason = reason;
+      this.report('paused');
+      return;
+    }
     this.#pauseRequested = true;
     this.reason = reason;
   }
@@ -101,6 +147,7 @@ export class JobRunner {
     this.nano.allOff();
     this.nano.command('R\n');
     this.clock.cancel(this.#step);
+    this.#starved = false;
     if (this.state === 'running' || this.state === 'paused' || this.state === 'ready') {
       this.state = 'aborted';
       this.sd.checkpoint = null;
@@ -117,12 +164,17 @@ export class JobRunner {
   }
 
   #next(): void {
-    const p = this.plan!;
-    const h = this.header!;
     if (this.#pauseRequested) {
       this.#pauseRequested = false;
       this.state = 'paused';
       this.report('paused');
+      return;
+    }
+    const p = this.plan;
+    const h = this.header;
+    if (!p || !h || (this.done >= p.count && !this.#planComplete)) {
+      this.#starved = true; // extend() carries on when the rows for the next stops have arrived
+      this.onProgress?.();
       return;
     }
     if (this.done >= p.count) {
@@ -164,8 +216,9 @@ export class JobRunner {
       if (this.state !== 'running') return;
       this.exposures.push({ stop: i, hx: p.hx[i], hy: p.hy[i], us });
       this.done = i + 1;
-      this.sd.checkpoint = { file: this.file, done: this.done, stops: p.count };
-      this.#next();
+      if (!this.streaming) this.sd.checkpoint = { file: this.file, done: this.done, stops: p.count };
+      this.onProgress?.();
+      if (this.state === 'running') this.#next();
     });
   }
 

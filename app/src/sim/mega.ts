@@ -14,6 +14,7 @@ import { bedZ, type BedShape } from './bed';
 import type { VirtualClock } from './clock';
 import { CONFIG_DEFAULTS, num, validConfig } from './config';
 import { JobRunner } from './job-runner';
+import { JobStream, type StreamError } from './job-stream';
 import { Motion, type Xyz } from './motion';
 import type { NanoModel } from './nano-model';
 import type { SdCard } from './sd-card';
@@ -21,6 +22,8 @@ import type { SdCard } from './sd-card';
 const WINDOW = 8;
 const POLL_US = 500_000;
 const KEEPALIVE_US = 2_000_000;
+/** Commands still obeyed between the records of a stream (M828), so a running stream can be watched and paused. */
+const STREAM_COMMANDS = /^(M24|M25|M524|M27|M105|M114|M115|M155|M154)\b/i;
 
 type Handler = (c: Command, done: () => void) => void;
 
@@ -42,7 +45,8 @@ export class MegaModel {
   #receiver: LineReceiver;
   #queue: { body: string; n?: number }[] = [];
   #busy = false;
-  #upload: { file: string; verifier: JobVerifier; lines: string[]; stream: boolean } | null = null;
+  #upload: { file: string; verifier: JobVerifier; lines: string[] } | null = null;
+  #stream: JobStream | null = null;
   #selected = '';
   #reports = { temp: 0, pos: 0, job: 0 };
   #reportTimers: Record<string, ReturnType<VirtualClock['at']> | null> = { temp: null, pos: null, job: null };
@@ -63,6 +67,7 @@ export class MegaModel {
       if (code === 31) this.#faultsShown |= FAULT.OVERTEMP; // the background poll won't say it again
       this.line(`FAULT:E${code} ${message}`);
     });
+    this.job.onProgress = () => this.#stream?.progress();
     this.#receiver = new LineReceiver({ movesFree: () => this.motion.movesFree, windowFree: () => WINDOW - this.#queue.length });
     this.#handlers = this.#commands();
     if (sd.present && sd.files.has('CONFIG.TXT')) this.#loadConfig();
@@ -107,6 +112,13 @@ export class MegaModel {
 
   #run(body: string, done: () => void): void {
     if (this.#upload && !/^M29\b/i.test(body)) return this.#uploadRecord(body, done);
+    if (this.#stream && !/^M29\b/i.test(body) && !STREAM_COMMANDS.test(body)) {
+      const stream = this.#stream;
+      return this.#long(done, (finish) => {
+        stream.push(body, finish);
+        if (stream.holding) this.line('busy: processing'); // at once: the host must not take the wait for a lost line
+      });
+    }
     const parsed = parseCommand(body);
     if (!parsed.ok) return this.#error(parsed.error, done, parsed.error === 10 ? body.split(' ')[0] : undefined);
     const c = parsed.command;
@@ -223,12 +235,21 @@ export class MegaModel {
       M28: (c, done) => {
         if (!this.sd.present) return this.#error(20, done);
         if (this.#jobActive()) return this.#error(12, done);
-        this.#upload = { file: text(c), verifier: new JobVerifier(), lines: [], stream: false };
+        this.#upload = { file: text(c), verifier: new JobVerifier(), lines: [] };
         this.job.state = 'uploading';
         this.line(`echo:Writing to file: ${text(c)}`);
         done();
       },
-      M29: (_c, done) => this.#endUpload(done),
+      M29: (_c, done) => (this.#stream ? this.#endStream(done) : this.#endUpload(done)),
+      M828: (_c, done) => {
+        if (this.#jobActive()) return this.#error(12, done);
+        if (!this.motion.homed[0] || !this.motion.homed[1]) return this.#error(14, done, 'home first (G28)');
+        if (this.#tooHot()) return this.#error(31, done, 'printhead faulted');
+        this.#stream = new JobStream(this.job, this.job.machine(this.motion.now()), (e) => this.#recordError(e));
+        this.line('echo:Streaming: exposed as it arrives, no resume');
+        this.job.beginStream('stream');
+        done();
+      },
       M23: (c, done) => {
         if (!this.sd.files.has(text(c))) return this.#error(21, done, text(c));
         if (this.#jobActive()) return this.#error(12, done);
@@ -479,6 +500,11 @@ export class MegaModel {
     ];
   }
 
+  /** Cells a stream (M828) holds in its bounded buffer right now. */
+  get streamHeldCells(): number {
+    return this.#stream?.heldCells ?? 0;
+  }
+
   /** Mesh Z at a bed position while leveling is on, µm. */
   zOffset(x: number, y: number): number {
     return this.leveling && this.mesh ? meshZ(this.mesh, x, y) : 0;
@@ -490,8 +516,20 @@ export class MegaModel {
     const u = this.#upload!;
     const before = u.verifier.error;
     const err = u.verifier.push(record);
-    if (err && !before) this.line(`Error:E${err.code} ${errorByCode(err.code)!.message}: line ${err.line}: ${err.message}`);
+    if (err && !before) this.#recordError(err);
     u.lines.push(record);
+    done();
+  }
+
+  #recordError(err: StreamError): void {
+    this.line(`Error:E${err.code} ${errorByCode(err.code)!.message}: ${err.line ? `line ${err.line}: ` : ''}${err.message}`);
+  }
+
+  #endStream(done: () => void): void {
+    const err = this.#stream!.finish();
+    this.#stream = null;
+    if (err) this.line(`Error:E${err.code} ${errorByCode(err.code)!.message}: ${err.message}`);
+    else this.line('echo:Stream complete.');
     done();
   }
 
@@ -531,10 +569,11 @@ export class MegaModel {
       file: j.file,
       stop: `${j.done}/${j.plan.count}`,
       elapsed: String(Math.floor((this.clock.now - j.startedAtUs) / 1e6)),
-      remaining: String(Math.round(j.remainingUs() / 1e6)),
+      ...(j.planComplete ? { remaining: String(Math.round(j.remainingUs() / 1e6)) } : {}), // unknown mid-stream
       leds: String(this.nano.lit),
     };
     if (j.reason) fields.reason = j.reason;
+    if (j.streaming) fields.mode = 'stream';
     return formatReply({ kind: 'job', state: j.state, fields });
   }
 
@@ -554,12 +593,13 @@ export class MegaModel {
   }
 
   #jobActive(): boolean {
-    return this.job.state === 'running' || this.job.state === 'paused' || this.#upload !== null;
+    return this.job.state === 'running' || this.job.state === 'paused' || this.#upload !== null || this.#stream !== null;
   }
 
   #jobChanged(state: JobState): void {
     this.line(this.#jobLine());
     void state;
+    this.#stream?.progress(); // a paused, continued or aborted stream answers its waiting record
   }
 
   #activeFaults(): number {

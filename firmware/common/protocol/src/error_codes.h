@@ -25,6 +25,7 @@ enum ErrorCode : uint8_t {
   kJobIncomplete = 25,
   kNoJob = 26,
   kNoResume = 27,
+  kStreamOverflow = 28,
   kNanoTimeout = 30,
   kOverTemperature = 31,
   kSensorFault = 32,

@@ -1,0 +1,18 @@
+// A Mega without an SD card: the app falls back to stream mode (M828) and says it cannot resume.
+import { expect, test } from '@playwright/test';
+import { openApp } from './transports';
+
+test('streams the test pattern to a Mega without an SD card, each stop once', async ({ page }) => {
+  test.setTimeout(90_000);
+  const app = await openApp(page, 'web serial', 40, { noSd: true });
+  await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected');
+  await page.getByTestId('start-test').click();
+  await expect(page.getByTestId('job-state')).toHaveAttribute('data-state', /running|done/, { timeout: 30_000 });
+  await expect(page.getByTestId('job-state')).toHaveAttribute('data-state', 'done', { timeout: 60_000 });
+  const mega = app.sim!.printer.mega;
+  expect(app.sim!.printer.sd.files.size).toBe(0); // nothing spooled: there is no card
+  expect(mega.job.streaming).toBe(true);
+  expect(mega.job.exposures.map((e) => e.stop)).toEqual(Array.from({ length: mega.job.plan!.count }, (_, i) => i));
+  await expect(page.getByTestId('job-state')).toContainText('cannot be resumed');
+  app.close();
+});
