@@ -137,4 +137,34 @@ describe('stream mode (M828) on a Mega without SD', () => {
     h.waitFor(/^JOB:done/);
     expect(exposed(h)).toEqual(stops);
   });
+
+  it('after an abort drops the rest of its records, and the next command ends it', () => {
+    const j = job(GEOMETRIES.adjacent, 'serpentine', [24, 80], 0.4);
+    const { h } = noSdPrinter(j);
+    h.cmd('M828');
+    const records = encodeJob(j).trimEnd().split('\n');
+    const half = Math.floor(records.length / 2);
+    records.slice(0, half).forEach((r) => send(h, r));
+    h.cmd('M524'); // obeyed between records
+    expect(h.sim.nano.lit).toBe(0);
+    const n = h.sim.mega.job.exposures.length;
+    const rest = records.slice(half, half + 5).flatMap((r) => send(h, r));
+    expect(rest.every((l) => l.startsWith('ok'))).toBe(true); // read and dropped, no error storm
+    expect(h.sim.mega.job.exposures.length).toBe(n);
+    expect(h.cmd('M114')[0]).toMatch(/^X:/); // a host that moved on without M29 gets its commands obeyed
+    expect(h.cmd('G0 X1')).toEqual([expect.stringMatching(/^ok/)]);
+    expect(h.cmd('M828')[0]).toMatch(/^echo:Streaming/); // and a new stream can begin
+  });
+
+  it('M112 ends a stream at once: LEDs off, halted, its records refused', () => {
+    const j = job(GEOMETRIES.adjacent, 'serpentine', [24, 80], 0.4);
+    const { h } = noSdPrinter(j);
+    h.cmd('M828');
+    const records = encodeJob(j).trimEnd().split('\n');
+    records.slice(0, 30).forEach((r) => send(h, r));
+    h.cmd('M112');
+    expect(h.sim.nano.lit).toBe(0);
+    expect(h.cmd(records[30])[0]).toMatch(/^Error:E1[03]/);
+    expect(h.cmd('M828')[0]).toMatch(/^Error:E13/);
+  });
 });

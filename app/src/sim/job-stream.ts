@@ -53,7 +53,7 @@ export class JobStream {
 
   /** One record; `done` sends its `ok`, later if the buffer is full. */
   push(record: string, done: () => void): void {
-    if (this.error || !this.#live()) return done(); // after a failure or an abort the rest is only read
+    if (this.error || !this.live) return done(); // after a failure or an abort the rest is only read
     const err = this.verifier.push(record);
     if (err) {
       this.#fail(err);
@@ -73,7 +73,7 @@ export class JobStream {
 
   /** After a stop is exposed, a record arrives or the job changes state: plan on, free rows, answer the waiting record. */
   progress(): void {
-    if (!this.#live()) return this.#answer();
+    if (!this.live) return this.#answer();
     const h = this.#header;
     if (h && this.#known > this.#planned && (this.job.starved || this.#held > STREAM_BUFFER_CELLS || this.#known === h.rows)) {
       this.#planned = this.#known;
@@ -96,7 +96,7 @@ export class JobStream {
     return this.error;
   }
 
-  #live(): boolean {
+  get live(): boolean {
     return this.job.streaming && (this.job.state === 'running' || this.job.state === 'paused');
   }
 

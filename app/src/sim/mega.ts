@@ -112,6 +112,9 @@ export class MegaModel {
 
   #run(body: string, done: () => void): void {
     if (this.#upload && !/^M29\b/i.test(body)) return this.#uploadRecord(body, done);
+    // A stream that has ended (aborted, failed) reads the rest of its records and drops them; a command
+    // (records never start with G or M and a digit) shows its host has moved on, so the stream is over.
+    if (this.#stream && !this.#stream.live && /^[GM]\d/i.test(body) && !/^M29\b/i.test(body)) this.#stream = null;
     if (this.#stream && !/^M29\b/i.test(body) && !STREAM_COMMANDS.test(body)) {
       const stream = this.#stream;
       return this.#long(done, (finish) => {
@@ -656,6 +659,9 @@ export class MegaModel {
     this.nano.allOff();
     this.motion.stop();
     this.job.abort();
+    if (this.#upload) this.job.state = 'failed';
+    this.#upload = null; // an upload or a stream in progress is over; its remaining records get errors
+    this.#stream = null;
   }
 
   #loadConfig(): void {
