@@ -1,0 +1,34 @@
+import { readFileSync } from 'node:fs';
+import { expect, it } from 'vitest';
+import { CONFIG_DEFAULTS, validConfig } from './config';
+import { SimHost } from './sim-host.fixture';
+
+it('firmware/mega/CONFIG.md lists exactly the keys and defaults of the simulated Mega, in order', () => {
+  const doc = readFileSync(new URL('../../../firmware/mega/CONFIG.md', import.meta.url), 'utf8');
+  const rows = doc.split('\n').map((l) => /^\| `([a-z0-9_.]+)` \| [^|]+ \| ([^|]+) \|/.exec(l)).filter((m) => m !== null);
+  expect(rows.map((m) => [m[1], m[2].trim()])).toEqual(Object.entries(CONFIG_DEFAULTS));
+});
+
+it('takes well-formed values of known keys only', () => {
+  expect(validConfig('accel.x', '2500')).toBe(true);
+  expect(validConfig('speed.z', '2.5')).toBe(true);
+  expect(validConfig('led.offset.1', '-1,3')).toBe(true);
+  expect(validConfig('led.offset.1', '3')).toBe(false);
+  expect(validConfig('accel.x', '1,2')).toBe(false);
+  expect(validConfig('accel.x', 'fast')).toBe(false);
+  expect(validConfig('accel.w', '1')).toBe(false);
+});
+
+it('loads CONFIG.TXT as CONFIG.md says: good lines taken, every other line skipped', () => {
+  const h = new SimHost();
+  h.sim.sd.files.set('CONFIG.TXT', ['# a comment', '', 'accel.x=2500', '  speed.z = 2.5  ', 'accel.y = fast', 'nozzle = 3', 'led.offset.1 = 1,4', 'bed.x 300'].join('\n'));
+  h.cmd('M501');
+  const value = (key: string) => h.cmd(`M850 ${key}`)[0];
+  expect(value('accel.x')).toBe('M850 accel.x 2500');
+  expect(value('speed.z')).toBe('M850 speed.z 2.5');
+  expect(value('accel.y')).toBe('M850 accel.y 1500');
+  expect(value('led.offset.1')).toBe('M850 led.offset.1 1,4');
+  expect(value('bed.x')).toBe('M850 bed.x 200');
+  h.cmd('M500');
+  expect(h.sim.sd.files.get('CONFIG.TXT')!.split('\n')[0]).toBe('steps_per_mm.x = 80');
+});
