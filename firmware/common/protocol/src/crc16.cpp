@@ -1,6 +1,8 @@
 // CRC-16/CCITT-FALSE (poly 0x1021, init 0xFFFF): the strong line check of protocol/mega.md §1.
 #include "crc16.h"
 
+#include "text_scan.h"
+
 namespace uv {
 
 // Bitwise: a 512-byte table would cost RAM on the Mega; a 96-byte line takes well under 1 ms.
@@ -14,11 +16,7 @@ uint16_t crc16(const char* data, size_t len) {
 }
 
 void crc16Hex(uint16_t crc, char* out) {
-  static const char kHex[] = "0123456789abcdef";
-  for (int8_t i = 3; i >= 0; i--) {
-    out[i] = kHex[crc & 0xF];
-    crc >>= 4;
-  }
+  putHex(crc, 4, out);
   out[4] = '\0';
 }
 

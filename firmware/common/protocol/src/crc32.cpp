@@ -1,6 +1,8 @@
 // CRC-32 (IEEE 802.3, reflected, as zlib): the whole-job hash of protocol/job.md.
 #include "crc32.h"
 
+#include "text_scan.h"
+
 namespace uv {
 
 // Bitwise on purpose: a 1 KB table would cost an eighth of the Mega's RAM, or flash reads,
@@ -15,11 +17,7 @@ uint32_t crc32Update(uint32_t crc, const char* data, size_t len) {
 }
 
 void crc32Hex(uint32_t crc, char* out) {
-  static const char kHex[] = "0123456789abcdef";
-  for (int8_t i = 7; i >= 0; i--) {
-    out[i] = kHex[crc & 0xF];
-    crc >>= 4;
-  }
+  putHex(crc, 8, out);
   out[8] = '\0';
 }
 

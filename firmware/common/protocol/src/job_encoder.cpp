@@ -95,7 +95,6 @@ void JobEncoder::header(const JobHeader& h) {
 }
 
 void JobEncoder::row(uint16_t rowIndex, const uint8_t* cells, uint16_t cols) {
-  static const char kHex[] = "0123456789abcdef";
   uint16_t c = 0;
   while (c < cols) {
     if (cells[c] == 0) {
@@ -117,10 +116,7 @@ void JobEncoder::row(uint16_t rowIndex, const uint8_t* cells, uint16_t cols) {
     r.num(rowIndex);
     r.num(start);
     r.buf[r.n++] = ' ';
-    for (uint16_t i = start; i <= last; i++) {
-      r.buf[r.n++] = kHex[cells[i] >> 4];
-      r.buf[r.n++] = kHex[cells[i] & 0xF];
-    }
+    for (uint16_t i = start; i <= last; i++, r.n += 2) putHex(cells[i], 2, r.buf + r.n);
     r.buf[r.n] = '\0';
     emit(r.buf, r.n);
     c = static_cast<uint16_t>(last + 1);

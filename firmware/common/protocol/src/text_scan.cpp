@@ -66,6 +66,14 @@ size_t putSigned(int32_t v, char* out) {
   return 1 + putUnsigned(static_cast<uint32_t>(-(v + 1)) + 1u, out + 1);
 }
 
+void putHex(uint32_t v, uint8_t digits, char* out) {
+  static const char kHex[] = "0123456789abcdef";
+  for (uint8_t i = digits; i > 0; i--) {
+    out[i - 1] = kHex[v & 0xF];
+    v >>= 4;
+  }
+}
+
 bool startsWith(const char* p, const char* end, const char* literal) {
   while (*literal) {
     if (p >= end || *p != *literal) return false;

@@ -16,6 +16,9 @@ const char* scanDeci(const char* p, const char* end, uint8_t maxInt, int16_t& ou
 size_t putUnsigned(uint32_t v, char* out);
 size_t putSigned(int32_t v, char* out);
 
+// Writes the low `digits` hex digits of v, lower case, most significant first (no NUL).
+void putHex(uint32_t v, uint8_t digits, char* out);
+
 // True if [p, p+n) equals the NUL-terminated literal.
 bool startsWith(const char* p, const char* end, const char* literal);
 
