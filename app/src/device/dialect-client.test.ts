@@ -1,7 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { GEOMETRIES, randomJob } from '../planner/golden';
-import { headerOf } from '../planner/job-header';
-import { planJob } from '../planner/planner';
+import { GEOMETRIES, planCase, randomJob } from '../planner/golden';
 import { encodeJob } from '../protocol/job-encode';
 import { SimWire } from '../sim/wire';
 import { CommandError } from './dialect-client';
@@ -91,7 +89,7 @@ describe('dialect client over a simulated 115200-baud wire', () => {
     const j = randomJob(12, GEOMETRIES.adjacent, 'serpentine', [160, 120], 0.9);
     j.dose = { map: 'linear', fullUs: 3000 };
     const mega = r.wire.printer.mega;
-    const plan = planJob({ header: headerOf(j), cells: j.gridData }, mega.job.machine(mega.motion.now()));
+    const { stops } = planCase('', j, mega.job.machine(mega.motion.now())).plan;
     await settle(r.wire, r.dl.startJob(j, () => {}), 600_000);
     expect(r.lines).toContain('echo:Streaming: exposed as it arrives, no resume');
     expect(r.lines.filter((l) => l.startsWith('busy:')).length).toBeGreaterThan(0); // it was held back
@@ -99,8 +97,6 @@ describe('dialect client over a simulated 115200-baud wire', () => {
     expect(r.dl.health.resends).toBe(0);
     r.wire.runUntil(() => mega.job.state === 'done', 600_000);
     expect(mega.job.state).toBe('done');
-    expect(mega.job.exposures.map((e) => [e.hx, e.hy, ...e.us])).toEqual(
-      Array.from({ length: plan.count }, (_, i) => [plan.hx[i], plan.hy[i], ...plan.durations.subarray(i * 4, i * 4 + 4)]),
-    );
+    expect(mega.job.exposures.map((e) => [e.hx, e.hy, ...e.us])).toEqual(stops);
   });
 });

@@ -3,7 +3,7 @@
 
 import type { PrintJob, StrategyName } from '../protocol/job-types';
 import { headerOf } from './job-header';
-import { planJob } from './planner';
+import { planJob, type Plan } from './planner';
 import type { Machine } from './time-model';
 
 export const GEOMETRIES: Record<string, [number, number][]> = {
@@ -66,11 +66,14 @@ export interface GoldenCase {
   plan: { stops: number[][]; passes: number; estimateUs: number; travelUm: [number, number] };
 }
 
+/** A plan's stops as the golden vectors write them: `[hx, hy, µs LED 0, 1, 2, 3]`. */
+export function planStops(p: Plan): number[][] {
+  return Array.from({ length: p.count }, (_, i) => [p.hx[i], p.hy[i], ...p.durations.subarray(i * 4, i * 4 + 4)]);
+}
+
 export function planCase(name: string, job: PrintJob, machine: Machine): GoldenCase {
   const p = planJob({ header: headerOf(job), cells: job.gridData }, machine);
-  const stops: number[][] = [];
-  for (let i = 0; i < p.count; i++) stops.push([p.hx[i], p.hy[i], ...p.durations.subarray(i * 4, i * 4 + 4)]);
-  return { name, job, machine, plan: { stops, passes: p.passes, estimateUs: p.estimateUs, travelUm: p.travelUm } };
+  return { name, job, machine, plan: { stops: planStops(p), passes: p.passes, estimateUs: p.estimateUs, travelUm: p.travelUm } };
 }
 
 export function goldenCases(): GoldenCase[] {

@@ -1,6 +1,6 @@
 import { existsSync, readFileSync } from 'node:fs';
 import { describe, expect, it } from 'vitest';
-import { goldenCases, GEOMETRIES, MACHINE, randomJob, STRATEGIES, type GoldenCase } from './golden';
+import { goldenCases, GEOMETRIES, MACHINE, planStops, randomJob, STRATEGIES, type GoldenCase } from './golden';
 import { headerOf } from './job-header';
 import { planJob } from './planner';
 import { moveTimeUs } from './time-model';
@@ -18,7 +18,7 @@ function plan(c: Pick<GoldenCase, 'job' | 'machine'>) {
 
 function stopsOf(c: Pick<GoldenCase, 'job' | 'machine'>) {
   const p = plan(c);
-  return { p, stops: Array.from({ length: p.count }, (_, i) => [p.hx[i], p.hy[i], ...p.durations.subarray(i * 4, i * 4 + 4)]) };
+  return { p, stops: planStops(p) };
 }
 
 describe('planner golden vectors', () => {
@@ -110,7 +110,7 @@ describe('planning while rows arrive (stream mode)', () => {
             // Rows not yet arrived read as 0, as they do on a Mega still receiving them.
             const cells = job.gridData.map((row, r) => (r < known ? row : Array.from(row, () => 0)));
             const p = planJob({ header, cells, knownRows: known }, MACHINE);
-            const stops = Array.from({ length: p.count }, (_, i) => [p.hx[i], p.hy[i], ...p.durations.subarray(i * 4, i * 4 + 4)]);
+            const stops = planStops(p);
             expect(stops, `${s} ${JSON.stringify(offsets)} seed ${seed} rows ${known}`).toEqual(full.slice(0, p.count));
             expect(p.count).toBeGreaterThanOrEqual(before);
             if (p.count > before && known < header.rows) grew++;

@@ -1,7 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { GEOMETRIES, randomJob } from '../planner/golden';
-import { headerOf } from '../planner/job-header';
-import { planJob } from '../planner/planner';
+import { GEOMETRIES, planCase, randomJob } from '../planner/golden';
 import type { StrategyName } from '../protocol/job-types';
 import { encodeJob } from '../protocol/job-encode';
 import { STREAM_BUFFER_CELLS } from './job-stream';
@@ -21,8 +19,7 @@ function noSdPrinter(j: ReturnType<typeof job>) {
   h.cmd('G28');
   h.cmd('G0 X20 Y30'); // over the job's origin, so exposure can begin while the first rows arrive
   h.sim.advance(2000);
-  const plan = planJob({ header: headerOf(j), cells: j.gridData }, h.sim.mega.job.machine(h.sim.mega.motion.now()));
-  const stops = Array.from({ length: plan.count }, (_, i) => [plan.hx[i], plan.hy[i], ...plan.durations.subarray(i * 4, i * 4 + 4)]);
+  const { stops } = planCase('', j, h.sim.mega.job.machine(h.sim.mega.motion.now())).plan;
   return { h, stops };
 }
 
