@@ -132,8 +132,12 @@ export class MegaModel {
   }
 
   #error(code: number, done: () => void, detail?: string): void {
-    this.line(`Error:E${code} ${errorByCode(code)!.message}${detail ? `: ${detail}` : ''}`);
+    this.#errorLine(code, detail);
     done();
+  }
+
+  #errorLine(code: number, detail?: string): void {
+    this.line(`Error:E${code} ${errorByCode(code)!.message}${detail ? `: ${detail}` : ''}`);
   }
 
   /** A long command: keep-alive lines while it runs, done when `until` calls back. */
@@ -525,14 +529,14 @@ export class MegaModel {
   }
 
   #recordError(err: StreamError): void {
-    this.line(`Error:E${err.code} ${errorByCode(err.code)!.message}: ${err.line ? `line ${err.line}: ` : ''}${err.message}`);
+    this.#errorLine(err.code, `${err.line ? `line ${err.line}: ` : ''}${err.message}`);
   }
 
   #endStream(done: () => void): void {
     const err = this.#stream!.finish();
     this.#stream = null;
-    if (err) this.line(`Error:E${err.code} ${errorByCode(err.code)!.message}: ${err.message}`);
-    else this.line('echo:Stream complete.');
+    if (err) return this.#error(err.code, done, err.message);
+    this.line('echo:Stream complete.');
     done();
   }
 
@@ -543,8 +547,7 @@ export class MegaModel {
     const err = u.verifier.error ?? u.verifier.finish();
     if (err) {
       this.job.state = 'failed';
-      this.line(`Error:E${err.code} ${errorByCode(err.code)!.message}: ${err.message}`);
-      return done(); // a partial or unverified upload is never stored
+      return this.#error(err.code, done, err.message); // a partial or unverified upload is never stored
     }
     this.sd.files.set(u.file, u.lines.map((l) => l + '\n').join(''));
     this.job.state = 'idle';
