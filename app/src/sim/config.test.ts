@@ -1,6 +1,6 @@
 import { readFileSync } from 'node:fs';
 import { expect, it } from 'vitest';
-import { CONFIG_DEFAULTS, validConfig } from './config';
+import { CONFIG_DEFAULTS, CONFIG_RANGES, validConfig } from './config';
 import { SimHost } from './sim-host.fixture';
 
 it('firmware/mega/CONFIG.md lists exactly the keys and defaults of the simulated Mega, in order', () => {
@@ -9,7 +9,19 @@ it('firmware/mega/CONFIG.md lists exactly the keys and defaults of the simulated
   expect(rows.map((m) => [m[1], m[2].trim()])).toEqual(Object.entries(CONFIG_DEFAULTS));
 });
 
-it('takes well-formed values of known keys only', () => {
+it('has the ranges of firmware/mega/CONFIG.md', () => {
+  const doc = readFileSync(new URL('../../../firmware/mega/CONFIG.md', import.meta.url), 'utf8');
+  const rows = doc.split('\n').map((l) => /^\| `([a-z0-9_.]+)` \| [^|]+ \| [^|]+ \| (-?[\d.]+) to (-?[\d.]+)( whole| each)? \|/.exec(l)).filter((m) => m !== null);
+  const kinds = { ' whole': 'whole', ' each': 'pair', '': 'decimal' } as const;
+  expect(rows.map((m) => [m[1], [Number(m[2]), Number(m[3]), kinds[(m[4] ?? '') as keyof typeof kinds]]])).toEqual(Object.entries(CONFIG_RANGES));
+});
+
+it('takes well-formed values of known keys inside their ranges only', () => {
+  expect(validConfig('accel.x', '0')).toBe(false);
+  expect(validConfig('thermal.limit.0', '60')).toBe(true);
+  expect(validConfig('thermal.limit.0', '60.001')).toBe(false);
+  expect(validConfig('mesh.nx', '4.5')).toBe(false);
+  expect(validConfig('led.offset.0', '0,4097')).toBe(false);
   expect(validConfig('accel.x', '2500')).toBe(true);
   expect(validConfig('speed.z', '2.5')).toBe(true);
   expect(validConfig('led.offset.1', '-1,3')).toBe(true);
@@ -31,4 +43,17 @@ it('loads CONFIG.TXT as CONFIG.md says: good lines taken, every other line skipp
   expect(value('bed.x')).toBe('M850 bed.x 200');
   h.cmd('M500');
   expect(h.sim.sd.files.get('CONFIG.TXT')!.split('\n')[0]).toBe('steps_per_mm.x = 80');
+});
+
+it('keeps an EEPROM copy for a printer without a card, through a power cycle', () => {
+  const h = new SimHost({ noSd: true });
+  h.cmd('M850 bed.x 300');
+  expect(h.cmd('M500')[0]).toBe('echo:Settings stored in EEPROM only: no SD card');
+  h.sim.powerCycle();
+  h.reconnect();
+  expect(h.cmd('M850 bed.x')[0]).toBe('M850 bed.x 300');
+  h.cmd('M502');
+  expect(h.cmd('M850 bed.x')[0]).toBe('M850 bed.x 200');
+  h.cmd('M501');
+  expect(h.cmd('M850 bed.x')[0]).toBe('M850 bed.x 300');
 });

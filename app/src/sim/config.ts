@@ -49,15 +49,69 @@ export const CONFIG_DEFAULTS: Record<string, string> = {
   'report.position_ms': '0',
 };
 
+/** Each key's range, both ends included, and the numbers it takes (CONFIG.md "range"). */
+export const CONFIG_RANGES: Record<string, [number, number, 'decimal' | 'whole' | 'pair']> = {
+  'steps_per_mm.x': [1, 2000, 'decimal'],
+  'steps_per_mm.y': [1, 2000, 'decimal'],
+  'steps_per_mm.z': [1, 10000, 'decimal'],
+  'bed.x': [1, 2000, 'decimal'],
+  'bed.y': [1, 2000, 'decimal'],
+  'bed.z': [1, 500, 'decimal'],
+  'speed.travel': [1, 500, 'decimal'],
+  'speed.z': [0.1, 100, 'decimal'],
+  'speed.jog_slow': [0.1, 100, 'decimal'],
+  'speed.jog_fast': [1, 500, 'decimal'],
+  'speed.home': [1, 200, 'decimal'],
+  'accel.x': [10, 20000, 'decimal'],
+  'accel.y': [10, 20000, 'decimal'],
+  'accel.z': [1, 5000, 'decimal'],
+  'settle_ms': [0, 1000, 'whole'],
+  'stop_overhead_us': [0, 100000, 'whole'],
+  'invert.x': [0, 1, 'whole'],
+  'invert.y': [0, 1, 'whole'],
+  'invert.z': [0, 1, 'whole'],
+  'pitch.x': [1, 100000, 'whole'],
+  'pitch.y': [1, 100000, 'whole'],
+  'led.offset.0': [-4096, 4096, 'pair'],
+  'led.offset.1': [-4096, 4096, 'pair'],
+  'led.offset.2': [-4096, 4096, 'pair'],
+  'led.offset.3': [-4096, 4096, 'pair'],
+  'led.irradiance.0': [1, 2000000, 'whole'],
+  'led.irradiance.1': [1, 2000000, 'whole'],
+  'led.irradiance.2': [1, 2000000, 'whole'],
+  'led.irradiance.3': [1, 2000000, 'whole'],
+  'led.gain.0': [1, 10000, 'whole'],
+  'led.gain.1': [1, 10000, 'whole'],
+  'led.gain.2': [1, 10000, 'whole'],
+  'led.gain.3': [1, 10000, 'whole'],
+  'thermal.limit.0': [0, 60, 'decimal'],
+  'thermal.limit.1': [0, 60, 'decimal'],
+  'thermal.limit.2': [0, 60, 'decimal'],
+  'thermal.limit.3': [0, 60, 'decimal'],
+  'thermal.limit.4': [0, 60, 'decimal'],
+  'thermal.limit.5': [0, 60, 'decimal'],
+  'thermal.coeff': [-1000, 1000, 'whole'],
+  'esp.port': [2, 3, 'whole'],
+  'light.pin': [0, 69, 'whole'],
+  'mesh.nx': [3, 9, 'whole'],
+  'mesh.ny': [3, 9, 'whole'],
+  'mesh.margin': [0, 100, 'decimal'],
+  'report.position_ms': [0, 60000, 'whole'],
+};
+
 /** A key's value as a number; the defaults make every key parse. */
 export function num(config: Record<string, string>, key: string): number {
   return Number(config[key] ?? CONFIG_DEFAULTS[key]);
 }
 
-/** Validates one M850 assignment: a known key and a value of the default's kind. */
+/** Validates one M850 assignment: a known key and a well-formed value inside the key's range. */
 export function validConfig(key: string, value: string): boolean {
-  const def = CONFIG_DEFAULTS[key];
-  if (def === undefined) return false;
-  if (def.includes(',')) return /^-?\d+,-?\d+$/.test(value);
-  return /^-?\d+(\.\d+)?$/.test(value);
+  const range = CONFIG_RANGES[key];
+  if (range === undefined) return false;
+  const [lo, hi, kind] = range;
+  const inside = (v: number) => v >= lo && v <= hi;
+  if (kind === 'pair') return /^-?\d+,-?\d+$/.test(value) && value.split(',').every((v) => inside(Number(v)));
+  if (!/^-?\d+(\.\d+)?$/.test(value)) return false;
+  const milli = Math.round(Number(value) * 1000); // held in thousandths, as on the Mega
+  return inside(milli / 1000) && (kind !== 'whole' || milli % 1000 === 0);
 }

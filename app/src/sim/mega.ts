@@ -30,12 +30,16 @@ type Handler = (c: Command, done: () => void) => void;
 export interface MegaOptions {
   firmwareName: string;
   bed: BedShape;
+  /** The EEPROM as the last power cycle left it. */
+  eeprom?: Record<string, string> | null;
 }
 
 export class MegaModel {
   readonly motion: Motion;
   readonly job: JobRunner;
   config: Record<string, string> = { ...CONFIG_DEFAULTS };
+  /** The EEPROM copy M500 makes; it outlives a power cycle with the rest of the model. */
+  eeprom: Record<string, string> | null = null;
   mesh: Mesh | null = null;
   leveling = false;
   light = false;
@@ -70,7 +74,8 @@ export class MegaModel {
     this.job.onProgress = () => this.#stream?.progress();
     this.#receiver = new LineReceiver({ movesFree: () => this.motion.movesFree, windowFree: () => WINDOW - this.#queue.length });
     this.#handlers = this.#commands();
-    if (sd.present && sd.files.has('CONFIG.TXT')) this.#loadConfig();
+    this.eeprom = o.eeprom ?? null;
+    this.#loadConfig();
   }
 
   boot(): void {
@@ -316,12 +321,21 @@ export class MegaModel {
         done();
       },
       M500: (_c, done) => {
-        if (!this.sd.present) return this.#error(20, done);
+        if (this.job.state === 'running') return this.#error(12, done);
+        this.eeprom = { ...this.config };
+        if (!this.sd.present) {
+          this.line('echo:Settings stored in EEPROM only: no SD card');
+          return done();
+        }
         this.sd.files.set('CONFIG.TXT', Object.entries(this.config).map(([k, v]) => `${k} = ${v}\n`).join(''));
         this.line('echo:Settings stored');
         done();
       },
-      M501: (_c, done) => (this.#loadConfig(), done()),
+      M501: (_c, done) => {
+        if (this.job.state === 'running') return this.#error(12, done);
+        this.#loadConfig();
+        done();
+      },
       M502: (_c, done) => (Object.assign(this.config, CONFIG_DEFAULTS), done()),
       M503: (_c, done) => {
         for (const [k, v] of Object.entries(this.config)) this.line(`M850 ${k} ${v}`);
@@ -667,8 +681,10 @@ export class MegaModel {
     this.#stream = null;
   }
 
+  /** The defaults, then the EEPROM copy, then every good line of CONFIG.TXT (firmware/mega/CONFIG.md). */
   #loadConfig(): void {
-    const text = this.sd.files.get('CONFIG.TXT');
+    Object.assign(this.config, CONFIG_DEFAULTS, this.eeprom ?? {});
+    const text = this.sd.present ? this.sd.files.get('CONFIG.TXT') : undefined;
     if (!text) return;
     for (const line of text.split('\n')) {
       const m = /^\s*([a-z0-9_.]+)\s*=\s*(\S+)\s*$/.exec(line);

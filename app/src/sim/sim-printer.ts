@@ -44,7 +44,7 @@ export class SimPrinter {
     this.#build();
   }
 
-  #build(): void {
+  #build(eeprom: Record<string, string> | null = null): void {
     const nanoOptions: NanoOptions = { ...DEFAULT_NANO, ...this.o.nano };
     if (this.o.ambientDeciC) nanoOptions.ambientDeciC = this.o.ambientDeciC;
     this.nano = new NanoModel(this.clock, nanoOptions);
@@ -53,6 +53,7 @@ export class SimPrinter {
     this.mega = new MegaModel(this.clock, this.nano, this.sd, (b) => this.#out(b), {
       firmwareName: this.o.firmwareName ?? 'UVExposure 0.1.0 (Simulated Mega)',
       bed: this.o.bed ?? DEFAULT_BED,
+      eeprom,
     });
     if (this.o.limitDeciC) this.o.limitDeciC.forEach((l, i) => (this.mega.config[`thermal.limit.${i}`] = String(l / 10)));
     if (this.o.drift === false) this.nano.temp.forEach((_, i) => (this.nano.temp[i] = nanoOptions.ambientDeciC[i] / 10));
@@ -63,12 +64,12 @@ export class SimPrinter {
     this.mega.boot();
   }
 
-  /** Power cycle: RAM state is lost, the SD card (jobs, checkpoint, config) survives. */
+  /** Power cycle: RAM state is lost, the SD card (jobs, checkpoint, config) and the EEPROM survive. */
   powerCycle(): void {
     const now = this.clock.now;
     this.clock = new VirtualClock(); // the old models' timers go with the old clock
     this.clock.now = now;
-    this.#build();
+    this.#build(this.mega.eeprom); // the EEPROM survives too
     this.boot();
   }
 

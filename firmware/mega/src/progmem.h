@@ -1,0 +1,14 @@
+// Constant tables in flash on AVR (PROGMEM) and plain memory on the host, read through one macro.
+#pragma once
+#include <stdint.h>
+
+#ifdef __AVR__
+#include <avr/pgmspace.h>
+#define UV_FLASH PROGMEM
+#define uvFlashByte(p) pgm_read_byte(p)
+#define uvFlashDword(p) static_cast<int32_t>(pgm_read_dword(p))
+#else
+#define UV_FLASH
+#define uvFlashByte(p) (*(reinterpret_cast<const uint8_t*>(p)))
+#define uvFlashDword(p) (*(p))
+#endif

@@ -1,0 +1,156 @@
+// Host tests' SD card: real files in a temporary directory. What is written stays in memory until
+// sync() or close(), as in SdFat's block cache, so powerCut() loses exactly what a real card would.
+#pragma once
+#include <stdio.h>
+#include <string.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "storage.h"
+
+namespace mega {
+
+class FakeStorage : public Storage {
+ public:
+  static constexpr uint8_t kHandles = 4;
+
+  FakeStorage() {
+    char tmpl[] = "/tmp/uv-sd-XXXXXX";
+    dir_ = mkdtemp(tmpl);
+  }
+  ~FakeStorage() { std::filesystem::remove_all(dir_); }
+
+  bool inserted = true;
+  long failWritesAfter = -1;  // bytes the card still takes before every write fails; -1 = never
+
+  bool present() override { return inserted; }
+
+  FileHandle open(const char* name, Mode mode) override {
+    if (!inserted) return -1;
+    for (FileHandle h = 0; h < kHandles; h++) {
+      File& f = files_[h];
+      if (f.open) continue;
+      std::string path = dir_ + "/" + name;
+      bool there = std::filesystem::exists(path);
+      if (mode == Mode::Read && !there) return -1;
+      f = File{};
+      f.open = true;
+      f.name = name;
+      f.writable = mode != Mode::Read;
+      if (mode != Mode::Create && there) f.data = slurp(path);
+      f.dirty = mode == Mode::Create;
+      return h;
+    }
+    return -1;
+  }
+
+  int16_t read(FileHandle h, char* buf, uint16_t n) override {
+    File* f = file(h);
+    if (!f) return -1;
+    size_t left = f->pos < f->data.size() ? f->data.size() - f->pos : 0;
+    size_t k = n < left ? n : left;
+    memcpy(buf, f->data.data() + f->pos, k);
+    f->pos += k;
+    return static_cast<int16_t>(k);
+  }
+
+  bool write(FileHandle h, const char* buf, uint16_t n) override {
+    File* f = file(h);
+    if (!f || !f->writable) return false;
+    if (failWritesAfter >= 0) {
+      if (failWritesAfter < n) return false;
+      failWritesAfter -= n;
+    }
+    if (f->data.size() < f->pos + n) f->data.resize(f->pos + n);
+    memcpy(f->data.data() + f->pos, buf, n);
+    f->pos += n;
+    f->dirty = true;
+    bytesWritten += n;
+    return true;
+  }
+
+  bool seek(FileHandle h, uint32_t pos) override {
+    File* f = file(h);
+    if (!f || pos > f->data.size()) return false;
+    f->pos = pos;
+    return true;
+  }
+  uint32_t size(FileHandle h) override {
+    File* f = file(h);
+    return f ? static_cast<uint32_t>(f->data.size()) : 0;
+  }
+  bool sync(FileHandle h) override {
+    File* f = file(h);
+    if (!f) return false;
+    if (f->dirty) {
+      std::ofstream(dir_ + "/" + f->name, std::ios::binary).write(f->data.data(), static_cast<std::streamsize>(f->data.size()));
+      f->dirty = false;
+      syncs++;
+    }
+    return true;
+  }
+  void close(FileHandle h) override {
+    if (!file(h)) return;
+    sync(h);
+    files_[h].open = false;
+  }
+  bool exists(const char* name) override { return inserted && std::filesystem::exists(dir_ + "/" + name); }
+  bool remove(const char* name) override { return inserted && std::filesystem::remove(dir_ + "/" + name); }
+  bool rename(const char* from, const char* to) override {
+    if (!inserted || !exists(from) || exists(to)) return false;
+    std::filesystem::rename(dir_ + "/" + from, dir_ + "/" + to);
+    return true;
+  }
+  bool entry(uint16_t index, char* name, uint32_t& size) override {
+    if (!inserted) return false;
+    std::vector<std::filesystem::directory_entry> all(std::filesystem::directory_iterator(dir_), {});
+    std::sort(all.begin(), all.end());
+    if (index >= all.size()) return false;
+    snprintf(name, kFileNameMax + 1, "%s", all[index].path().filename().c_str());
+    size = static_cast<uint32_t>(all[index].file_size());
+    return true;
+  }
+
+  // Power fails: every open file loses what was written since its last sync.
+  void powerCut() {
+    for (File& f : files_) f.open = false;
+  }
+  uint8_t openFiles() const {
+    uint8_t n = 0;
+    for (const File& f : files_) n += f.open;
+    return n;
+  }
+  // What the card durably holds.
+  std::string contents(const std::string& name) const { return slurpString(dir_ + "/" + name); }
+  void put(const std::string& name, const std::string& text) const {
+    std::ofstream(dir_ + "/" + name, std::ios::binary) << text;
+  }
+  long bytesWritten = 0;
+  long syncs = 0;
+
+ private:
+  struct File {
+    bool open = false, writable = false, dirty = false;
+    std::string name;
+    std::vector<char> data;
+    size_t pos = 0;
+  };
+  File* file(FileHandle h) { return h >= 0 && h < kHandles && files_[h].open && inserted ? &files_[h] : nullptr; }
+  static std::vector<char> slurp(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::vector<char>(std::istreambuf_iterator<char>(in), {});
+  }
+  static std::string slurpString(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  }
+
+  std::string dir_;
+  File files_[kHandles];
+};
+
+}  // namespace mega
