@@ -1,0 +1,155 @@
+// The main loop's side of motion: moves in µm become step blocks with trapezoidal profiles, fed to
+// the step interrupt as segments; controlled and immediate stops; endstop seeks for homing.
+#include "motion.h"
+
+namespace mega {
+
+namespace {
+const Key kSteps[3] = {Key::StepsX, Key::StepsY, Key::StepsZ};
+const Key kAccel[3] = {Key::AccelX, Key::AccelY, Key::AccelZ};
+
+int32_t roundDiv(int64_t n, int64_t d) { return static_cast<int32_t>(n >= 0 ? (n + d / 2) / d : -((-n + d / 2) / d)); }
+uint32_t absU(int32_t v) { return static_cast<uint32_t>(v < 0 ? -v : v); }
+}  // namespace
+
+int32_t Motion::toSteps(uint8_t axis, int32_t um) const {
+  return roundDiv(static_cast<int64_t>(um) * c_.milli(kSteps[axis]), 1000000);
+}
+
+int32_t Motion::toUm(uint8_t axis, int32_t steps) const {
+  return roundDiv(static_cast<int64_t>(steps) * 1000000, c_.milli(kSteps[axis]));
+}
+
+uint32_t Motion::rateFor(uint8_t axis, int32_t milliMmS) const {
+  // (mm/s × 1000) × (steps/mm × 1000) / 10⁶
+  uint64_t r = static_cast<uint64_t>(milliMmS) * static_cast<uint64_t>(c_.milli(kSteps[axis])) / 1000000u;
+  return r > kMaxStepRate ? kMaxStepRate : static_cast<uint32_t>(r);
+}
+
+AxisLimits Motion::limits(uint8_t axis, uint32_t feedUmS) const {
+  int32_t vmax = c_.milli(axis == 2 ? Key::SpeedZ : Key::SpeedTravel);
+  int32_t v = feedUmS && static_cast<int32_t>(feedUmS) < vmax ? static_cast<int32_t>(feedUmS) : vmax;
+  uint64_t accel = static_cast<uint64_t>(c_.milli(kAccel[axis])) * static_cast<uint64_t>(c_.milli(kSteps[axis])) / 1000000u;
+  return AxisLimits{rateFor(axis, v), static_cast<uint32_t>(accel)};
+}
+
+void Motion::positionUm(int32_t out[3]) const {
+  int32_t s[3];
+  e_.position(s);
+  for (uint8_t a = 0; a < 3; a++) out[a] = toUm(a, s[a]);
+}
+
+void Motion::targetUm(int32_t out[3]) const {
+  for (uint8_t a = 0; a < 3; a++) out[a] = toUm(a, target_[a]);
+}
+
+void Motion::setPositionSteps(const int32_t steps[3]) {
+  e_.setPosition(steps);
+  for (uint8_t a = 0; a < 3; a++) target_[a] = steps[a];
+}
+
+bool Motion::push(const int32_t delta[3], const AxisLimits lim[3], int8_t seekAxis) {
+  if (!accepting()) return false;
+  StepBlock b{};
+  for (uint8_t a = 0; a < 3; a++) {
+    b.steps[a] = absU(delta[a]);
+    if (delta[a] < 0) b.dirNeg |= static_cast<uint8_t>(1 << a);
+    if (b.steps[a] > b.total) b.total = b.steps[a];
+  }
+  b.seekAxis = seekAxis;
+  if (b.total == 0) return true;  // already there
+  uint8_t slot = e_.pushBlock(b);
+  profiles_[slot] = profileFor(b.steps, lim);
+  for (uint8_t a = 0; a < 3; a++) target_[a] += delta[a];
+  feed();
+  return true;
+}
+
+bool Motion::moveTo(const int32_t um[3], uint32_t feedUmS) {
+  int32_t delta[3];
+  AxisLimits lim[3];
+  for (uint8_t a = 0; a < 3; a++) {
+    delta[a] = toSteps(a, um[a]) - target_[a];
+    lim[a] = limits(a, feedUmS);
+  }
+  return push(delta, lim, -1);
+}
+
+bool Motion::seek(uint8_t axis, int32_t steps, uint32_t rateStepsS) {
+  int32_t delta[3] = {0, 0, 0};
+  delta[axis] = steps;
+  AxisLimits lim[3] = {limits(0, 0), limits(1, 0), limits(2, 0)};
+  lim[axis].rate = rateStepsS;
+  return push(delta, lim, static_cast<int8_t>(axis));
+}
+
+bool Motion::moveSteps(uint8_t axis, int32_t steps, uint32_t rateStepsS) {
+  int32_t delta[3] = {0, 0, 0};
+  delta[axis] = steps;
+  AxisLimits lim[3] = {limits(0, 0), limits(1, 0), limits(2, 0)};
+  lim[axis].rate = rateStepsS;
+  return push(delta, lim, -1);
+}
+
+void Motion::feed() {
+  while (e_.segmentFree()) {
+    if (planSlot_ < 0) {
+      if (nextPlan_ == e_.blockHead()) return;
+      planSlot_ = static_cast<int8_t>(nextPlan_ % StepEngine::kBlocks);
+      nextPlan_ = static_cast<uint8_t>(nextPlan_ + 1);
+      planDone_ = 0;
+    }
+    const Profile& p = profiles_[planSlot_];
+    Segment s = nextSegment(p, planDone_);
+    bool last = planDone_ + s.steps >= p.total;
+    if (!e_.pushSegment(static_cast<uint8_t>(planSlot_), s.steps, s.interval, last)) {
+      planSlot_ = -1;  // a seek whose endstop closed: the rest of it is dropped
+      continue;
+    }
+    planDone_ += s.steps;
+    if (last) planSlot_ = -1;
+  }
+}
+
+void Motion::poll() {
+  if (stopping_ && planSlot_ < 0 && e_.idle()) {
+    stopping_ = false;
+    e_.position(target_);  // the queued moves were dropped: the next one starts from here
+  }
+  feed();
+}
+
+void Motion::stop() {
+  StepEngine::Cut c = e_.cutAfterCurrent();
+  e_.dropBlocksAfter(c.running ? c.slot : 0xff);
+  nextPlan_ = e_.blockHead();
+  planSlot_ = -1;
+  stopping_ = true;
+  if (!c.running) return;
+  Profile& p = profiles_[c.slot];
+  uint32_t rate = kTickHz / c.interval;
+  uint32_t end = c.done + stoppingSteps(p, rate);
+  if (end >= p.total) {
+    // It would not stop sooner than it ends: keep cutting it as it was.
+    if (c.done < p.total) {
+      planSlot_ = static_cast<int8_t>(c.slot);
+      planDone_ = c.done;
+    }
+  } else {
+    // Shorten the move: from here the profile's nearer end is the new one, so it decelerates.
+    p.total = end;
+    planSlot_ = static_cast<int8_t>(c.slot);
+    planDone_ = c.done;
+  }
+  feed();
+}
+
+void Motion::halt() {
+  e_.halt();
+  nextPlan_ = e_.blockHead();
+  planSlot_ = -1;
+  stopping_ = false;
+  e_.position(target_);
+}
+
+}  // namespace mega

@@ -1,0 +1,61 @@
+// The main loop's side of motion: moves in µm become step blocks with trapezoidal profiles, fed to
+// the step interrupt as segments; controlled and immediate stops; endstop seeks for homing.
+#pragma once
+#include <stdint.h>
+
+#include "config.h"
+#include "step_engine.h"
+#include "step_profile.h"
+
+namespace mega {
+
+class Motion {
+ public:
+  Motion(StepEngine& engine, const Config& config) : e_(engine), c_(config) {}
+
+  // Queues a move to `um` (bed µm) at up to `feedUmS` per axis (0: the configured speeds).
+  // False when the queue is full or a stop is still running down: try again later.
+  bool moveTo(const int32_t um[3], uint32_t feedUmS);
+  // Queues a move of `steps` on one axis towards −/+ that ends early when the axis's endstop closes.
+  bool seek(uint8_t axis, int32_t steps, uint32_t rateStepsS);
+  // Queues a move of `steps` on one axis at a given rate (homing back-off).
+  bool moveSteps(uint8_t axis, int32_t steps, uint32_t rateStepsS);
+  // Feeds the step interrupt; call every pass of the main loop. Never waits.
+  void poll();
+  // Decelerates to rest at the configured acceleration and drops every queued move (M410, jog end).
+  void stop();
+  // Stops at once (M112, a fault). The position may be off afterwards: the axes count as unhomed.
+  void halt();
+
+  bool idle() const { return !stopping_ && planSlot_ < 0 && e_.idle(); }
+  bool accepting() const { return !stopping_ && e_.blocksFree() > 0; }
+  uint8_t movesFree() const { return stopping_ ? 0 : e_.blocksFree(); }
+  void positionSteps(int32_t out[3]) const { e_.position(out); }
+  void positionUm(int32_t out[3]) const;
+  // Declares the current position (after homing).
+  void setPositionSteps(const int32_t steps[3]);
+  // Where the queued moves end, µm (the base of a relative move).
+  void targetUm(int32_t out[3]) const;
+
+  int32_t toSteps(uint8_t axis, int32_t um) const;
+  int32_t toUm(uint8_t axis, int32_t steps) const;
+  // Steps/s for a speed in thousandths of mm/s on an axis.
+  uint32_t rateFor(uint8_t axis, int32_t milliMmS) const;
+  AxisLimits limits(uint8_t axis, uint32_t feedUmS) const;
+
+ private:
+  bool push(const int32_t delta[3], const AxisLimits lim[3], int8_t seekAxis);
+  void feed();
+
+  StepEngine& e_;
+  const Config& c_;
+  Profile profiles_[StepEngine::kBlocks];
+  bool sentLast_[StepEngine::kBlocks] = {};
+  int32_t target_[3] = {};  // steps, where the queued moves end
+  int8_t planSlot_ = -1;    // the block being cut into segments
+  uint8_t nextPlan_ = 0;    // sequence number of the next block to cut
+  uint32_t planDone_ = 0;
+  bool stopping_ = false;
+};
+
+}  // namespace mega

@@ -1,0 +1,84 @@
+// Host tests' machine: runs the step engine's interrupt in simulated time, with endstop switches
+// at given step positions, and the main loop's motion.poll() every `loopUs` (or later).
+#pragma once
+#include <stdint.h>
+
+#include <functional>
+#include <vector>
+
+#include "motion.h"
+#include "step_engine.h"
+
+namespace mega {
+
+struct StepEvent {
+  uint64_t us2;  // time in half-µs ticks (the step timer's)
+  uint16_t interval;  // ticks until the interrupt after this step
+  uint8_t axes;
+  uint8_t dirNeg;
+};
+
+class MotionRig {
+ public:
+  explicit MotionRig(const Config& c) : motion(engine, c) {}
+
+  StepEngine engine;
+  Motion motion;
+  uint64_t now = 0;  // ticks (0.5 µs)
+  int32_t switchAt[3] = {INT32_MIN, INT32_MIN, INT32_MIN};  // closed while position <= this
+  uint32_t loopTicks = 2000;  // the main loop's period: 1 ms
+  std::function<uint32_t()> loopJitter;  // extra ticks before the next main loop pass
+  std::vector<StepEvent> steps;
+  bool record = true;
+  bool timerOn = false;   // the step timer runs (kept between runs, like the hardware)
+  uint64_t nextTick = 0;
+
+  uint8_t endstops() const {
+    int32_t p[3];
+    engine.position(p);
+    uint8_t bits = 0;
+    for (uint8_t a = 0; a < 3; a++)
+      if (p[a] <= switchAt[a]) bits |= static_cast<uint8_t>(1 << a);
+    return bits;
+  }
+
+  // Runs until the motion is idle, or `maxUs` passes; returns false on a time-out.
+  bool runIdle(uint64_t maxUs = 60000000) { return runUntil([&] { return motion.idle(); }, maxUs); }
+
+  bool runUntil(const std::function<bool()>& done, uint64_t maxUs) {
+    uint64_t end = now + maxUs * 2;
+    uint64_t nextLoop = now;
+    while (now < end) {
+      if (now >= nextLoop) {
+        motion.poll();
+        if (done()) return true;
+        nextLoop = now + loopTicks + (loopJitter ? loopJitter() : 0);
+        if (!timerOn && !engine.idle()) {  // the driver restarts the timer when work arrives
+          timerOn = true;
+          nextTick = now;
+        }
+      }
+      if (timerOn && now >= nextTick) {
+        StepTick t = engine.tick(endstops());
+        if (t.idle) {
+          timerOn = false;
+        } else {
+          if (t.step && record) steps.push_back(StepEvent{now, t.interval, t.step, t.dirNeg});
+          nextTick = now + t.interval;
+        }
+      }
+      uint64_t next = nextLoop;
+      if (timerOn && nextTick < next) next = nextTick;
+      now = next > now ? next : now + 1;
+    }
+    return false;
+  }
+
+  int32_t pos(uint8_t axis) const {
+    int32_t p[3];
+    engine.position(p);
+    return p[axis];
+  }
+};
+
+}  // namespace mega

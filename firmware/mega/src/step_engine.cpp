@@ -1,0 +1,156 @@
+// The step interrupt's work, as plain C++: segments, Bresenham, position and endstop seeks.
+#include "step_engine.h"
+
+#include "atomic.h"
+
+namespace mega {
+
+uint8_t StepEngine::pushBlock(const StepBlock& b) {
+  uint8_t slot = blockHead_ % kBlocks;
+  blocks_[slot] = b;
+  ended_[slot] = false;
+  UV_ATOMIC { blockHead_ = static_cast<uint8_t>(blockHead_ + 1); }
+  return slot;
+}
+
+bool StepEngine::pushSegment(uint8_t slot, uint16_t steps, uint16_t interval, bool last) {
+  bool pushed = false;
+  UV_ATOMIC {
+    if (!ended_[slot]) {
+      segs_[segHead_ % kSegments] = QueuedSegment{steps, interval, slot, last};
+      segHead_ = static_cast<uint8_t>(segHead_ + 1);
+      pushed = true;
+    }
+  }
+  return pushed;
+}
+
+void StepEngine::halt() {
+  UV_ATOMIC {
+    segTail_ = segHead_;
+    blockTail_ = blockHead_;
+    running_ = false;
+    segLeft_ = 0;
+    curSlot_ = 0xff;
+    for (bool& e : ended_) e = true;
+  }
+}
+
+StepEngine::Cut StepEngine::cutAfterCurrent() {
+  Cut c{};
+  UV_ATOMIC {
+    c.running = curSlot_ != 0xff;  // a block under way, maybe between two of its segments
+    c.slot = curSlot_;
+    c.done = blockDone_ + segLeft_;
+    c.interval = lastInterval_;
+    if (segLeft_ > 0) {
+      segHead_ = static_cast<uint8_t>(segTail_ + 1);  // if it is the block's last, the block ends with it
+    } else {
+      segHead_ = segTail_;
+    }
+  }
+  return c;
+}
+
+void StepEngine::dropBlocksAfter(uint8_t slot) {
+  UV_ATOMIC {
+    // The running block sits at blockTail_; blocks behind it have no segment running.
+    if (blockCount() && blockTail_ % kBlocks == slot) {
+      blockHead_ = static_cast<uint8_t>(blockTail_ + 1);
+    } else {
+      blockHead_ = blockTail_;
+    }
+  }
+}
+
+bool StepEngine::idle() const {
+  bool idle;
+  UV_ATOMIC { idle = !running_ && segHead_ == segTail_ && blockHead_ == blockTail_; }
+  return idle;
+}
+
+void StepEngine::position(int32_t out[3]) const {
+  UV_ATOMIC {
+    for (uint8_t a = 0; a < 3; a++) out[a] = pos_[a];
+  }
+}
+
+void StepEngine::setPosition(const int32_t steps[3]) {
+  UV_ATOMIC {
+    for (uint8_t a = 0; a < 3; a++) pos_[a] = steps[a];
+  }
+}
+
+void StepEngine::finishBlock() {
+  ended_[curSlot_] = true;
+  blockTail_ = static_cast<uint8_t>(blockTail_ + 1);
+  curSlot_ = 0xff;
+}
+
+StepTick StepEngine::tick(uint8_t endstops) {
+  StepTick t{0, dirNeg_, false, 0, false};
+  if (!running_ || segLeft_ == 0) {
+    if (segHead_ == segTail_) {
+      if (curSlot_ != 0xff) underruns_++;  // the main loop fell behind mid-block: must never happen
+      running_ = false;
+      t.idle = true;
+      return t;
+    }
+    const QueuedSegment& s = segs_[segTail_ % kSegments];
+    if (s.slot != curSlot_) {  // a new block: Bresenham from the middle, new directions
+      curSlot_ = s.slot;
+      const StepBlock& b = blocks_[curSlot_];
+      for (uint8_t a = 0; a < 3; a++) err_[a] = b.total / 2;
+      blockDone_ = 0;
+      debounce_ = 0;
+      t.dirChanged = b.dirNeg != dirNeg_;
+      dirNeg_ = b.dirNeg;
+      t.dirNeg = dirNeg_;
+      if (b.seekAxis >= 0) {
+        seekHit_ = false;
+        seekSteps_ = 0;
+      }
+    }
+    segLeft_ = s.steps;
+    running_ = true;
+  }
+  const StepBlock& b = blocks_[curSlot_];
+  const QueuedSegment& s = segs_[segTail_ % kSegments];
+  t.interval = s.interval;
+  lastInterval_ = s.interval;
+  if (b.seekAxis >= 0) {
+    // Two closed readings in a row end the seek, before the step: the position is where the
+    // switch closed.
+    debounce_ = (endstops & (1 << b.seekAxis)) ? static_cast<uint8_t>(debounce_ + 1) : 0;
+    if (debounce_ >= 2) {
+      seekHit_ = true;
+      seekSteps_ = blockDone_;
+      // Drop this block's queued segments; pushSegment refuses any more for it.
+      while (segHead_ != segTail_ && segs_[segTail_ % kSegments].slot == curSlot_) segTail_ = static_cast<uint8_t>(segTail_ + 1);
+      segLeft_ = 0;
+      running_ = false;
+      finishBlock();
+      return t;
+    }
+  }
+  for (uint8_t a = 0; a < 3; a++) {
+    err_[a] += b.steps[a];
+    if (err_[a] >= b.total) {
+      err_[a] -= b.total;
+      t.step |= static_cast<uint8_t>(1 << a);
+      pos_[a] += (dirNeg_ & (1 << a)) ? -1 : 1;
+    }
+  }
+  blockDone_++;
+  if (--segLeft_ == 0) {
+    bool last = s.last;
+    segTail_ = static_cast<uint8_t>(segTail_ + 1);
+    if (last) {
+      if (b.seekAxis >= 0) seekSteps_ = blockDone_;
+      finishBlock();
+    }
+  }
+  return t;
+}
+
+}  // namespace mega
