@@ -30,6 +30,7 @@ export const ERRORS = {
   probe_no_trigger: { code: 41, message: 'probe did not trigger' },
   endstop_hit: { code: 42, message: 'unexpected endstop hit' },
   selftest_failed: { code: 43, message: 'self-test failed' },
+  homing_failed: { code: 44, message: 'endstop not found while homing' },
   config_invalid: { code: 50, message: 'config value invalid' },
 } as const;
 

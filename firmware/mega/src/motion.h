@@ -37,6 +37,7 @@ class Motion {
   // Where the queued moves end, µm (the base of a relative move).
   void targetUm(int32_t out[3]) const;
 
+  const StepEngine& engine() const { return e_; }
   int32_t toSteps(uint8_t axis, int32_t um) const;
   int32_t toUm(uint8_t axis, int32_t steps) const;
   // Steps/s for a speed in thousandths of mm/s on an axis.

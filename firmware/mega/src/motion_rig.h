@@ -39,8 +39,9 @@ class MotionRig {
     uint8_t bits = 0;
     for (uint8_t a = 0; a < 3; a++)
       if (p[a] <= switchAt[a]) bits |= static_cast<uint8_t>(1 << a);
-    return bits;
+    return endstopOverride ? endstopOverride(bits) : bits;
   }
+  std::function<uint8_t(uint8_t)> endstopOverride;  // what the interrupt reads instead
 
   // Runs until the motion is idle, or `maxUs` passes; returns false on a time-out.
   bool runIdle(uint64_t maxUs = 60000000) { return runUntil([&] { return motion.idle(); }, maxUs); }

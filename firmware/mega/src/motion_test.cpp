@@ -208,21 +208,32 @@ TEST_F(MotionTest, AHaltStopsAtOnce) {
   EXPECT_TRUE(rig.motion.accepting());
 }
 
-TEST_F(MotionTest, ASeekEndsOneStepPastWhereTheSwitchCloses) {
+TEST_F(MotionTest, ASeekEndsExactlyWhereTheSwitchClosesAndIgnoresABounce) {
   int32_t start[3] = {4000, 0, 0};
   rig.motion.setPositionSteps(start);
   rig.switchAt[0] = 0;
   ASSERT_TRUE(rig.motion.seek(0, -5000, 800));
   ASSERT_TRUE(rig.runIdle());
   EXPECT_TRUE(rig.engine.seekHit());
-  EXPECT_EQ(rig.pos(0), -1);  // closed at 0, confirmed by a second reading a step later
-  EXPECT_EQ(rig.engine.seekSteps(), 4001u);
+  EXPECT_EQ(rig.pos(0), 0);  // closed at 0, confirmed by a second reading an interval later
+  EXPECT_EQ(rig.engine.seekSteps(), 4000u);
+  // A single closed reading (a bounce, noise on the wire) does not end a seek.
+  int32_t again[3] = {4000, 0, 0};
+  rig.motion.setPositionSteps(again);
+  rig.switchAt[0] = INT32_MIN;
+  int readings = 0;
+  rig.endstopOverride = [&](uint8_t bits) { return ++readings == 100 ? static_cast<uint8_t>(bits | 1) : bits; };
+  ASSERT_TRUE(rig.motion.seek(0, -1000, 800));
+  ASSERT_TRUE(rig.runIdle());
+  EXPECT_FALSE(rig.engine.seekHit());
+  EXPECT_EQ(rig.pos(0), 3000);
+  rig.endstopOverride = nullptr;
   // A seek that never meets its switch runs its whole length and says so.
   rig.switchAt[0] = -100000;
   ASSERT_TRUE(rig.motion.seek(0, -300, 800));
   ASSERT_TRUE(rig.runIdle());
   EXPECT_FALSE(rig.engine.seekHit());
-  EXPECT_EQ(rig.pos(0), -301);
+  EXPECT_EQ(rig.pos(0), 2700);
 }
 
 TEST_F(MotionTest, AMainLoopUpTo30msLateNeverStarvesTheStepInterrupt) {

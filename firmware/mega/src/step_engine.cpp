@@ -118,21 +118,23 @@ StepTick StepEngine::tick(uint8_t endstops) {
   const QueuedSegment& s = segs_[segTail_ % kSegments];
   t.interval = s.interval;
   lastInterval_ = s.interval;
-  if (b.seekAxis >= 0) {
-    // Two closed readings in a row end the seek, before the step: the position is where the
-    // switch closed.
-    debounce_ = (endstops & (1 << b.seekAxis)) ? static_cast<uint8_t>(debounce_ + 1) : 0;
-    if (debounce_ >= 2) {
-      seekHit_ = true;
-      seekSteps_ = blockDone_;
-      // Drop this block's queued segments; pushSegment refuses any more for it.
-      while (segHead_ != segTail_ && segs_[segTail_ % kSegments].slot == curSlot_) segTail_ = static_cast<uint8_t>(segTail_ + 1);
-      segLeft_ = 0;
-      running_ = false;
-      finishBlock();
+  if (b.seekAxis >= 0 && (endstops & (1 << b.seekAxis))) {
+    // Closed: confirm with a second reading one interval later, without stepping, so the
+    // position where the seek ends is exactly where the switch closed.
+    if (debounce_ == 0) {
+      debounce_ = 1;
       return t;
     }
+    seekHit_ = true;
+    seekSteps_ = blockDone_;
+    // Drop this block's queued segments; pushSegment refuses any more for it.
+    while (segHead_ != segTail_ && segs_[segTail_ % kSegments].slot == curSlot_) segTail_ = static_cast<uint8_t>(segTail_ + 1);
+    segLeft_ = 0;
+    running_ = false;
+    finishBlock();
+    return t;
   }
+  debounce_ = 0;
   for (uint8_t a = 0; a < 3; a++) {
     err_[a] += b.steps[a];
     if (err_[a] >= b.total) {

@@ -3,16 +3,7 @@
 
 #include <string.h>
 
-#ifdef __AVR__
-#include <avr/pgmspace.h>
-#define UV_FLASH PROGMEM
-#define UV_READ_PTR(p) reinterpret_cast<const char*>(pgm_read_ptr(&(p)))
-#define UV_STRNCPY strncpy_P
-#else
-#define UV_FLASH
-#define UV_READ_PTR(p) (p)
-#define UV_STRNCPY strncpy
-#endif
+#include "progmem.h"
 
 namespace uv {
 namespace {
@@ -55,6 +46,7 @@ UV_ERR(40, probe_alarm, "probe alarm")
 UV_ERR(41, probe_no_trigger, "probe did not trigger")
 UV_ERR(42, endstop_hit, "unexpected endstop hit")
 UV_ERR(43, selftest_failed, "self-test failed")
+UV_ERR(44, homing_failed, "endstop not found while homing")
 UV_ERR(50, config_invalid, "config value invalid")
 #undef UV_ERR
 
@@ -68,20 +60,16 @@ const Entry kTable[] UV_FLASH = {
     UV_ROW(24, job_hash_mismatch) UV_ROW(25, job_incomplete) UV_ROW(26, no_job)
     UV_ROW(27, no_resume) UV_ROW(28, stream_overflow) UV_ROW(30, nano_timeout) UV_ROW(31, over_temperature)
     UV_ROW(32, sensor_fault) UV_ROW(33, exposure_refused) UV_ROW(40, probe_alarm)
-    UV_ROW(41, probe_no_trigger) UV_ROW(42, endstop_hit) UV_ROW(43, selftest_failed)
+    UV_ROW(41, probe_no_trigger) UV_ROW(42, endstop_hit) UV_ROW(43, selftest_failed) UV_ROW(44, homing_failed)
     UV_ROW(50, config_invalid)};
 #undef UV_ROW
 
 bool copyField(uint8_t code, bool wantName, char* out, uint8_t size) {
   for (const Entry& e : kTable) {
-#ifdef __AVR__
-    uint8_t c = pgm_read_byte(&e.code);
-#else
-    uint8_t c = e.code;
-#endif
+    uint8_t c = uvFlashByte(&e.code);
     if (c != code) continue;
-    const char* src = wantName ? UV_READ_PTR(e.name) : UV_READ_PTR(e.message);
-    UV_STRNCPY(out, src, size);
+    const char* src = wantName ? uvFlashPtr(e.name) : uvFlashPtr(e.message);
+    uvFlashStrncpy(out, src, size);
     out[size - 1] = '\0';
     return true;
   }

@@ -34,6 +34,7 @@ enum ErrorCode : uint8_t {
   kProbeNoTrigger = 41,
   kEndstopHit = 42,
   kSelftestFailed = 43,
+  kHomingFailed = 44,
   kConfigInvalid = 50,
 };
 
