@@ -5,14 +5,16 @@
 #include "dialect_reply.h"
 #include "error_codes.h"
 #include "host_port.h"
-#include "nano_link.h"
+#include "printhead_link.h"
+#include "hw/serial_stream.h"
 #include "pins.h"
 
 namespace {
 
 constexpr int16_t kLimitDeciC = 600;
 
-NanoLink nano(NANO_SERIAL);
+mega::SerialStream nanoSerial(NANO_SERIAL);
+mega::PrintheadLink nano(nanoSerial);
 HostPort usb(Serial);
 HostPort esp(ESP_SERIAL_DEFAULT);
 uint32_t tempReportMs = 0;  // 0 = auto-report off
@@ -62,16 +64,17 @@ void setup() {
   Serial.begin(115200);
   NANO_SERIAL.begin(115200);
   ESP_SERIAL_DEFAULT.begin(115200);
+  nano.begin(micros());
   usb.line("start");
   esp.line("start");
 }
 
 void loop() {
   uint32_t now = millis();
-  nano.poll(now);
+  nano.poll(micros());
   usb.poll(commands);
   esp.poll(commands);
-  if (tempReportMs && now - lastTempReport >= tempReportMs && nano.online()) {
+  if (tempReportMs && now - lastTempReport >= tempReportMs && nano.tempsKnown()) {
     lastTempReport = now;
     temps(usb);
     temps(esp);

@@ -1,0 +1,109 @@
+// Host tests' printhead: the real Nano command brain (firmware/nano/src/printhead) behind the
+// Mega's ByteStream, with LEDs that switch off in simulated time and a log of every exposure, so
+// tests can count each cell's light. It can go silent, stick an LED on, or be reset.
+#pragma once
+#include <stdint.h>
+
+#include <deque>
+#include <string>
+#include <vector>
+
+#include "byte_stream.h"
+#include "line_splitter.h"
+#include "printhead.h"
+
+namespace mega {
+
+struct Exposure {
+  uint32_t startUs;
+  uint8_t mask;
+  uint32_t askedUs[4];
+  uint32_t litUs[4];  // how long each LED actually shone (less if cut off by R or a fault)
+};
+
+class FakeNano : public ByteStream, private nano::PrintheadIo {
+ public:
+  FakeNano() : head_(*this, config_), splitter_(line_, uv::kNanoMaxLine) { setTemps(250); }
+
+  // --- the Mega's side ---
+  int16_t read() override {
+    if (toMega_.empty()) return -1;
+    char c = toMega_.front();
+    toMega_.pop_front();
+    return static_cast<uint8_t>(c);
+  }
+  bool write(const char* data, uint8_t n) override {
+    if (uartFull) return false;
+    for (uint8_t i = 0; i < n; i++) {
+      if (!splitter_.push(data[i])) continue;
+      std::string l(splitter_.text(), splitter_.length());
+      lines.push_back(l);
+      if (silent) continue;
+      head_.line(splitter_.text(), splitter_.length(), splitter_.overflow(), nowUs / 1000);
+    }
+    return true;
+  }
+
+  // --- the test's side ---
+  void advance(uint32_t toUs) {
+    nowUs = toUs;
+    for (uint8_t i = 0; i < 4; i++) {
+      if ((lit_ & (1 << i)) && !stuck && nowUs >= offAt_[i]) off(i, offAt_[i]);
+    }
+  }
+  void setTemps(int16_t deciC) {
+    uint16_t mv[6];
+    for (uint16_t& m : mv) m = static_cast<uint16_t>(500 + deciC);  // TMP36: 10 mV/°C, 500 mV at 0
+    head_.readings(mv);  // over a limit, the real logic switches every LED off (CUTOFF)
+  }
+  uint8_t litMask() const override { return lit_; }
+  uint8_t lit() const { return lit_; }
+
+  bool silent = false;   // hears nothing, answers nothing
+  bool stuck = false;    // LEDs ignore their off time (a failed timer), only R turns them off
+  bool uartFull = false;
+  uint32_t nowUs = 0;
+  std::vector<Exposure> exposures;
+  std::vector<std::string> lines;  // every line the Mega sent
+  uint16_t servoUs = 0;
+  bool probe = false;
+
+ private:
+  void fire(const nano::FirePlan& p) override {
+    Exposure e{nowUs, p.onMask, {}, {}};
+    for (uint8_t k = 0; k < p.count; k++) {
+      for (uint8_t i = 0; i < 4; i++) {
+        if (!(p.events[k].mask & (1 << i))) continue;
+        e.askedUs[i] = p.events[k].tick / nano::kTicksPerUs;
+        offAt_[i] = nowUs + e.askedUs[i];
+      }
+    }
+    lit_ = p.onMask;
+    exposures.push_back(e);
+    startAt_ = nowUs;
+  }
+  void off(uint8_t i, uint32_t atUs) {
+    lit_ = static_cast<uint8_t>(lit_ & ~(1 << i));
+    exposures.back().litUs[i] = atUs - startAt_;
+  }
+  void allOff() override {
+    for (uint8_t i = 0; i < 4; i++)
+      if (lit_ & (1 << i)) off(i, nowUs);
+  }
+  void servoPulse(uint16_t us) override { servoUs = us; }
+  bool probeTriggered() override { return probe; }
+  void reply(const char* text, uint8_t len) override {
+    if (!silent) toMega_.insert(toMega_.end(), text, text + len);
+  }
+
+  nano::PrintheadConfig config_{10000000, {{600, 600, 600, 600, 600, 600}, 50, 100, 1750}, "0.1.0"};
+  nano::Printhead head_;
+  char line_[uv::kNanoMaxLine + 2];
+  uv::LineSplitter splitter_;
+  std::deque<char> toMega_;
+  uint8_t lit_ = 0;
+  uint32_t offAt_[4] = {};
+  uint32_t startAt_ = 0;
+};
+
+}  // namespace mega

@@ -1,0 +1,198 @@
+// The Mega's side of the printhead link (protocol/nano.md): polls, exposures, the probe, time-outs.
+#include "printhead_link.h"
+
+#include <string.h>
+
+namespace mega {
+
+namespace {
+bool due(uint32_t now, uint32_t at) { return static_cast<int32_t>(now - at) >= 0; }
+constexpr uint8_t kRefusals = uv::fault::kCapped | uv::fault::kBusy | uv::fault::kRefused;
+}  // namespace
+
+bool PrintheadLink::send(const uv::NanoCommand& c) {
+  char out[uv::kNanoMaxLine + 2];
+  size_t n = uv::formatNanoCommand(c, out, sizeof out);
+  if (!n || !io_.write(out, static_cast<uint8_t>(n))) return false;
+  sent_++;
+  return true;
+}
+
+bool PrintheadLink::ask(char op, uint32_t nowUs) {
+  uv::NanoCommand c{};
+  c.op = op;
+  if (!send(c)) return false;
+  inFlight_ = op;
+  askedAt_ = nowUs;
+  return true;
+}
+
+void PrintheadLink::begin(uint32_t nowUs) {
+  allOff();
+  identityWanted_ = true;
+  nextThermal_ = nowUs;
+  nextFault_ = nowUs + kFaultPollUs / 2;
+}
+
+void PrintheadLink::allOff(uint8_t why) {
+  uv::NanoCommand r{};
+  r.op = 'R';
+  offPending_ = !send(r);  // a full UART: poll() sends it before anything else
+  if (fire_ == FireState::Firing) fireFailed(why);
+}
+
+void PrintheadLink::fireFailed(uint8_t code) {
+  fire_ = FireState::Failed;
+  fireError_ = code;
+  fireCheckWanted_ = false;
+}
+
+bool PrintheadLink::fire(uint8_t mask, const uint32_t us[uv::kLedCount], uint32_t nowUs) {
+  if (fire_ == FireState::Firing || !online_ || offPending_) return false;
+  uv::NanoCommand f{};
+  f.op = 'F';
+  f.mask = mask;
+  uint32_t longest = 0;
+  for (uint8_t i = 0; i < uv::kLedCount; i++) {
+    f.durations[i] = us[i];
+    if ((mask & (1 << i)) && us[i] > longest) longest = us[i];
+  }
+  if (!send(f)) return false;
+  fire_ = FireState::Firing;
+  fireError_ = fireFlags_ = 0;
+  fireCheckWanted_ = false;
+  fireEndsAt_ = nowUs + longest;
+  // One early S confirms the Nano took it (a refused F is off at once), the next when it should be over.
+  nextStatus_ = longest > kFireFirstCheckUs ? nowUs + kFireFirstCheckUs : fireEndsAt_;
+  return true;
+}
+
+bool PrintheadLink::servo(char op) {
+  uv::NanoCommand c{};
+  c.op = op;
+  return send(c);
+}
+
+void PrintheadLink::flagsSeen(uint8_t flags) {
+  uint8_t newlyActive = static_cast<uint8_t>(flags & uv::fault::kActive & ~flags_);
+  if (newlyActive || (flags & uv::fault::kCutoff)) events_ |= kFault;
+  if (flags & uv::fault::kWatchdog) events_ |= kNanoReset;
+  flags_ = flags;
+}
+
+void PrintheadLink::missed(uint32_t nowUs) {
+  (void)nowUs;
+  if (misses_ < 255) misses_++;
+  if (misses_ < kNanoMissesOffline) return;
+  online_ = false;
+  if (!reportedOffline_) {
+    reportedOffline_ = true;
+    events_ |= kWentOffline;
+  }
+  if (fire_ == FireState::Firing) {
+    allOff();  // it may still hear this
+    fireFailed(30);
+  }
+}
+
+void PrintheadLink::handle(const uv::NanoReply& r, uint32_t nowUs) {
+  if (r.op == inFlight_) inFlight_ = 0;
+  misses_ = 0;
+  online_ = true;
+  if (reportedOffline_) {
+    reportedOffline_ = false;
+    identityWanted_ = true;  // maybe a different or reset Nano
+    events_ |= kCameBack;
+  }
+  switch (r.op) {
+    case 'T':
+      memcpy(deciC_, r.deciC, sizeof deciC_);
+      tempsKnown_ = true;
+      break;
+    case 'E':
+      flagsSeen(r.flags);
+      if (fire_ == FireState::Firing && fireCheckWanted_) {
+        fireCheckWanted_ = false;
+        if (r.flags & kRefusals) {
+          fireFlags_ = static_cast<uint8_t>(r.flags & kRefusals);
+          fireFailed(33);
+        } else if (r.flags & uv::fault::kCutoff) {
+          fireFailed(31);
+        } else {
+          fire_ = FireState::Done;
+        }
+      }
+      break;
+    case 'S':
+      if (fire_ != FireState::Firing) break;
+      if (r.mask == 0) {
+        fireCheckWanted_ = true;
+      } else if (due(nowUs, fireEndsAt_ + kFireGraceUs)) {
+        allOff(33);  // on far longer than asked: never leave an LED on
+      } else {
+        nextStatus_ = due(nowUs, fireEndsAt_) ? nowUs + kFireRepollUs : fireEndsAt_;
+      }
+      break;
+    case 'P':
+      probeTriggered_ = r.triggered;
+      probeAnswered_ = true;
+      break;
+    case 'V':
+      memcpy(firmware_, r.firmware, sizeof firmware_);
+      firmware_[sizeof firmware_ - 1] = 0;
+      identityWanted_ = false;
+      break;
+    default:
+      break;
+  }
+}
+
+void PrintheadLink::poll(uint32_t nowUs) {
+  if (offPending_) allOff();
+  for (uint8_t budget = 64; budget; budget--) {  // bounded: a chattering line cannot hold the loop
+    int16_t b = io_.read();
+    if (b < 0) break;
+    if (!splitter_.push(static_cast<char>(b)) || splitter_.overflow()) continue;
+    char reply[uv::kNanoMaxLine + 2];
+    uint8_t n = splitter_.length();
+    memcpy(reply, splitter_.text(), n);
+    reply[n++] = '\n';
+    uv::NanoReply r{};
+    if (uv::parseNanoReply(reply, n, r)) handle(r, nowUs);
+  }
+  if (inFlight_ && due(nowUs, askedAt_ + kNanoReplyTimeoutUs)) {
+    if (inFlight_ == 'V') identityWanted_ = false;  // asked once; its absence is not a fault
+    inFlight_ = 0;
+    missed(nowUs);
+  }
+  if (inFlight_) return;
+  if (fire_ == FireState::Firing) {
+    if (fireCheckWanted_) {
+      ask('E', nowUs);
+      return;
+    }
+    if (due(nowUs, nextStatus_)) {
+      ask('S', nowUs);
+      return;
+    }
+  }
+  if (probeWanted_) {
+    if (ask('P', nowUs)) probeWanted_ = false;
+    return;
+  }
+  if (identityWanted_ && due(nowUs, nextThermal_)) {
+    ask('V', nowUs);
+    nextThermal_ = nowUs + kThermalPollUs / 10;
+    return;
+  }
+  // No background E while an exposure runs: its latched bits belong to the exposure's own check.
+  if (fire_ != FireState::Firing && due(nowUs, nextFault_)) {
+    if (ask('E', nowUs)) nextFault_ = nowUs + kFaultPollUs;
+    return;
+  }
+  if (due(nowUs, nextThermal_)) {
+    if (ask('T', nowUs)) nextThermal_ = nowUs + kThermalPollUs;
+  }
+}
+
+}  // namespace mega

@@ -1,0 +1,106 @@
+// The Mega's side of the printhead link (protocol/nano.md): background temperature and fault polls,
+// exposures (F, then S until the LEDs are off, then E to learn whether it was refused), the probe,
+// and a Nano that stops answering. Every call returns at once.
+#pragma once
+#include <stdint.h>
+
+#include "byte_stream.h"
+#include "line_splitter.h"
+#include "nano_codec.h"
+
+namespace mega {
+
+constexpr uint32_t kNanoReplyTimeoutUs = 50000;  // protocol/mega.md §6
+constexpr uint8_t kNanoMissesOffline = 3;
+constexpr uint32_t kThermalPollUs = 500000;
+constexpr uint32_t kFaultPollUs = 500000;
+constexpr uint32_t kFireGraceUs = 100000;  // LEDs still on this long after the longest duration: R
+constexpr uint32_t kFireRepollUs = 1000;
+constexpr uint32_t kFireFirstCheckUs = 2000;
+
+enum class FireState : uint8_t { Idle, Firing, Done, Failed };
+
+class PrintheadLink {
+ public:
+  enum Event : uint8_t {
+    kWentOffline = 1,  // three replies missed in a row: FAULT:E30
+    kCameBack = 2,     // a reply after being offline
+    kFault = 4,        // OVERTEMP or SENSOR became active, or CUTOFF latched
+    kNanoReset = 8,    // the Nano's watchdog reset it (WATCHDOG latched)
+  };
+
+  explicit PrintheadLink(ByteStream& io) : io_(io), splitter_(line_, uv::kNanoMaxLine) {}
+
+  // After the Mega starts: LEDs off (R), then identify the Nano (V).
+  void begin(uint32_t nowUs);
+  void poll(uint32_t nowUs);
+
+  // All LEDs off now (R), ahead of anything queued. Ends a running exposure as Failed.
+  void allOff(uint8_t why = 0);
+  // Starts an exposure. False if one is running, the Nano is offline, or the UART is full.
+  bool fire(uint8_t mask, const uint32_t us[uv::kLedCount], uint32_t nowUs);
+  FireState fireState() const { return fire_; }
+  // Why the exposure failed: 30 (no answer), 31 (cut off by over-temperature), 33 (refused),
+  // or what allOff() was given.
+  uint8_t fireError() const { return fireError_; }
+  // The E flags that explained a refusal (CAPPED, BUSY, REFUSED).
+  uint8_t fireFlags() const { return fireFlags_; }
+  void clearFire() { fire_ = FireState::Idle; }
+
+  // CR Touch: 'D' deploy, 'U' stow, 'X' alarm release. False if the UART is full.
+  bool servo(char op);
+  // Asks P; probeAnswered() turns true with the reply.
+  void requestProbe() {
+    probeWanted_ = true;
+    probeAnswered_ = false;
+  }
+  bool probeAnswered() const { return probeAnswered_; }
+  bool probeTriggered() const { return probeTriggered_; }
+
+  bool online() const { return online_; }
+  bool tempsKnown() const { return tempsKnown_; }
+  const int16_t* deciC() const { return deciC_; }
+  // The active fault bits of the last E (OVERTEMP, SENSOR).
+  uint8_t activeFaults() const { return static_cast<uint8_t>(flags_ & uv::fault::kActive); }
+  const char* firmware() const { return firmware_; }
+  uint8_t takeEvents() {
+    uint8_t e = events_;
+    events_ = 0;
+    return e;
+  }
+  // Sent lines, for the tests' accounting.
+  uint32_t sent() const { return sent_; }
+
+ private:
+  bool send(const uv::NanoCommand& c);
+  bool ask(char op, uint32_t nowUs);
+  void handle(const uv::NanoReply& r, uint32_t nowUs);
+  void missed(uint32_t nowUs);
+  void fireFailed(uint8_t code);
+  void flagsSeen(uint8_t flags);
+
+  ByteStream& io_;
+  char line_[uv::kNanoMaxLine + 2];
+  uv::LineSplitter splitter_;
+  char inFlight_ = 0;        // the op whose reply we wait for, or 0
+  uint32_t askedAt_ = 0;
+  uint8_t misses_ = 0;
+  bool online_ = false;
+  bool reportedOffline_ = false;
+  bool offPending_ = false;  // an R that found the UART full
+  uint32_t nextThermal_ = 0, nextFault_ = 0;
+  bool identityWanted_ = true;
+  bool probeWanted_ = false, probeAnswered_ = false, probeTriggered_ = false;
+  bool tempsKnown_ = false;
+  int16_t deciC_[uv::kSensorCount] = {};
+  uint8_t flags_ = 0;
+  char firmware_[21] = {};
+  FireState fire_ = FireState::Idle;
+  uint8_t fireError_ = 0, fireFlags_ = 0;
+  uint32_t fireEndsAt_ = 0, nextStatus_ = 0;
+  bool fireCheckWanted_ = false;  // S said off: ask E once
+  uint8_t events_ = 0;
+  uint32_t sent_ = 0;
+};
+
+}  // namespace mega
