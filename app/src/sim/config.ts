@@ -42,7 +42,7 @@ export const CONFIG_DEFAULTS: Record<string, string> = {
   'thermal.limit.5': '50',
   'thermal.coeff': '0',
   'esp.port': '2',
-  'light.pin': '4',
+  'light.pin': '57',
   'mesh.nx': '3',
   'mesh.ny': '3',
   'mesh.margin': '10',

@@ -68,7 +68,7 @@ const KeySpec kSpecs[kKeyCount] UV_FLASH = {
     {"thermal.limit.5", 50 * k, 0, 60 * k, kDecimal},
     {"thermal.coeff", 0, -1000 * k, 1000 * k, kWhole},
     {"esp.port", 2 * k, 2 * k, 3 * k, kWhole},
-    {"light.pin", 4 * k, 0, 69 * k, kWhole},
+    {"light.pin", 57 * k, 0, 69 * k, kWhole},
     {"mesh.nx", 3 * k, 3 * k, 9 * k, kWhole},
     {"mesh.ny", 3 * k, 3 * k, 9 * k, kWhole},
     {"mesh.margin", 10 * k, 0, 100 * k, kDecimal},

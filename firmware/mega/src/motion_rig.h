@@ -54,25 +54,30 @@ class MotionRig {
         motion.poll();
         if (done()) return true;
         nextLoop = now + loopTicks + (loopJitter ? loopJitter() : 0);
-        if (!timerOn && !engine.idle()) {  // the driver restarts the timer when work arrives
-          timerOn = true;
-          nextTick = now;
-        }
       }
-      if (timerOn && now >= nextTick) {
-        StepTick t = engine.tick(endstops());
-        if (t.idle) {
-          timerOn = false;
-        } else {
-          if (t.step && record) steps.push_back(StepEvent{now, t.interval, t.step, t.dirNeg});
-          nextTick = now + t.interval;
-        }
-      }
-      uint64_t next = nextLoop;
-      if (timerOn && nextTick < next) next = nextTick;
-      now = next > now ? next : now + 1;
+      isrUntil(nextLoop);
     }
     return false;
+  }
+
+  // Runs the step interrupt up to `ticks` (it restarts when work is queued, as the driver does),
+  // leaving `now` there.
+  void isrUntil(uint64_t ticks) {
+    if (!timerOn && !engine.idle()) {
+      timerOn = true;
+      nextTick = now;
+    }
+    while (timerOn && nextTick <= ticks) {
+      now = nextTick;
+      StepTick t = engine.tick(endstops());
+      if (t.idle) {
+        timerOn = false;
+        break;
+      }
+      if (t.step && record) steps.push_back(StepEvent{now, t.interval, t.step, t.dirNeg});
+      nextTick = now + t.interval;
+    }
+    if (ticks > now) now = ticks;
   }
 
   int32_t pos(uint8_t axis) const {

@@ -1,0 +1,380 @@
+// The Mega's command core: lines from both ports in turn, long commands as state machines, reports.
+#include "machine.h"
+
+#include <string.h>
+
+#include "dialect_reply.h"
+#include "error_codes.h"
+#include "text_scan.h"
+
+namespace mega {
+
+namespace {
+// Room a command needs in its port's transmit ring before it runs: one payload line and the ok.
+constexpr uint16_t kReplyRoom = 112;
+
+// Queries that may run while another port's long command is under way.
+bool isQuery(const uv::Command& c) {
+  if (c.letter != 'M') return false;
+  switch (c.code) {
+    case 105: case 114: case 115: case 154: case 155: case 27:
+      return true;
+    default:
+      return false;
+  }
+}
+}  // namespace
+
+Machine::Machine(const MachineParts& p)
+    : motion_(p.motion), head_(p.head), config_(p.config), store_(p.store), sd_(p.sd), io_(p.io),
+      homing_(p.motion, p.config), test_(p.motion, p.config), firmwareName_(p.firmwareName), movesFree_(p.movesFree) {
+  for (uint8_t i = 0; i < kPorts; i++) ports_[i] = p.ports[i];
+}
+
+void Machine::begin(uint32_t nowUs) {
+  now_ = nowUs;
+  store_.load();
+  head_.begin(nowUs);
+  uint32_t posMs = static_cast<uint32_t>(config_.whole(Key::ReportPositionMs));
+  posPeriodUs_ = posMs * 1000;
+  posNext_ = nowUs + posPeriodUs_;
+  for (HostLink* p : ports_) p->line("start");
+}
+
+void Machine::broadcast(const char* text) {
+  for (HostLink* p : ports_) p->report(text);
+}
+
+void Machine::emergency() {
+  head_.allOff();
+  motion_.halt();
+  homing_.cancel();
+  io_.motorsEnabled(false);
+  homed_ = 0;  // steps may have been lost: home again after M999
+  halted_ = true;
+  if (long_.op != Op::None) finishLong(uv::kHalted);
+}
+
+void Machine::poll(uint32_t nowUs) {
+  now_ = nowUs;
+  for (HostLink* p : ports_)
+    if (p->poll()) emergency();
+  head_.poll(nowUs);
+  printheadEvents();
+  motion_.poll();
+  movesFree_ = motion_.movesFree();
+  store_.poll();
+  if (long_.op != Op::None) runLong();
+  // Lines run in turn from each port. While a long command runs, the other port's queries still run.
+  for (uint8_t i = 0; i < kPorts; i++) {
+    uint8_t k = static_cast<uint8_t>((next_ + i) % kPorts);
+    HostLink& port = *ports_[k];
+    const QueuedLine* line = port.front();
+    if (!line || port.room() < kReplyRoom) continue;
+    if (long_.op != Op::None) {
+      uv::Command c;
+      if (long_.port == &port || uv::parseCommand(line->body, line->len, c) || !isQuery(c)) continue;
+    }
+    Result r = execute(port, *line);
+    if (r == Result::Wait) continue;
+    if (r == Result::Done) port.ok();
+    next_ = static_cast<uint8_t>((k + 1) % kPorts);
+    break;
+  }
+  reports();
+}
+
+Machine::Result Machine::execute(HostLink& port, const QueuedLine& line) {
+  uv::Command c;
+  uint8_t err = uv::parseCommand(line.body, line.len, c);
+  if (err) {
+    char word[8] = {};
+    if (err == uv::kUnknownCommand) {
+      uint8_t n = 0;
+      while (n < line.len && n < sizeof word - 1 && line.body[n] != ' ') {
+        word[n] = line.body[n];
+        n++;
+      }
+    }
+    port.errorLine(err, word[0] ? word : nullptr);
+    return Result::Done;
+  }
+  if (halted_ && !c.is('M', 999) && !c.is('M', 112)) {
+    port.errorLine(uv::kHalted);
+    return Result::Done;
+  }
+  Result r = dispatch(port, c);
+  if (r == Result::Long) {
+    long_.port = &port;
+    long_.since = now_;
+    long_.keepalive = now_ + kKeepaliveUs;
+  }
+  return r;
+}
+
+Machine::Result Machine::dispatch(HostLink& port, const uv::Command& c) {
+  char buf[112];
+  if (c.letter == 'G') {
+    switch (c.code) {
+      case 0: case 1: return move(port, c);
+      case 4: return dwell(c);
+      case 28: return home(c);
+      case 90: absolute_ = true; return Result::Done;
+      case 91: absolute_ = false; return Result::Done;
+      default: break;
+    }
+  } else {
+    switch (c.code) {
+      case 115:
+        long_.op = Op::Emit;
+        long_.gen = Gen::Firmware;
+        long_.index = 0;
+        return Result::Long;
+      case 110: port.errorLine(uv::kBadParameter); return Result::Done;  // the receiver takes every good M110
+      case 105: return temperatures(port);
+      case 155:
+      case 154: {
+        // S in seconds (both), or P in milliseconds (M154), at least 50 ms; 0 stops.
+        int32_t ms = -1;
+        if (c.code == 154 && c.hasValue('P')) ms = c.value('P') / 1000;
+        else if (c.hasValue('S')) ms = c.value('S');  // thousandths of a second = ms
+        if (ms < 0 || ms > 60000 || (ms > 0 && ms < 50)) {
+          port.errorLine(uv::kBadParameter);
+          return Result::Done;
+        }
+        uint32_t& period = c.code == 155 ? tempPeriodUs_ : posPeriodUs_;
+        period = static_cast<uint32_t>(ms) * 1000;
+        (c.code == 155 ? tempNext_ : posNext_) = now_ + period;
+        return Result::Done;
+      }
+      case 114:
+        formatPosition(buf);
+        port.line(buf);
+        return Result::Done;
+      case 119:
+        long_.op = Op::ProbeRead;
+        head_.requestProbe();
+        return Result::Long;
+      case 17:
+        io_.motorsEnabled(true);
+        return Result::Done;
+      case 18: case 84: return release();
+      case 410:
+        motion_.stop();
+        return Result::Done;
+      case 820: return jog(port, c);
+      case 822: return selfTest(port, c);
+      case 401: return servo(port, c, 'D');
+      case 402: return servo(port, c, 'U');
+      case 280: return servo(port, c, 0);
+      case 355: return light(port, c);
+      case 850: case 500: case 501: case 502: case 503: return configCommand(port, c);
+      case 112: return Result::Done;  // acted on when it arrived
+      case 999:
+        halted_ = false;
+        return Result::Done;
+      default: break;
+    }
+  }
+  char word[8];
+  word[0] = c.letter;
+  word[1 + uv::putUnsigned(c.code, word + 1)] = 0;
+  port.errorLine(uv::kUnknownCommand, word);
+  return Result::Done;
+}
+
+void Machine::finishLong(uint8_t error, const char* detail) {
+  HostLink* port = long_.port;
+  long_.op = Op::None;
+  if (!port) return;
+  if (error) port->errorLine(error, detail);
+  port->ok();
+}
+
+bool Machine::emitNext() {
+  HostLink& port = *long_.port;
+  char buf[112];
+  uv::Reply r{};
+  switch (long_.gen) {
+    case Gen::Firmware: {
+      static const char* const kCaps[] = {"RX_WINDOW", "AUTOREPORT_TEMP", "AUTOREPORT_POS", "SDCARD", "RESUME"};
+      if (long_.index == 0) {
+        r.kind = uv::ReplyKind::Firmware;
+        r.text = firmwareName_;
+        r.textLen = static_cast<uint8_t>(strlen(firmwareName_));
+        r.value = 1;
+      } else if (long_.index <= 5) {
+        uint8_t i = static_cast<uint8_t>(long_.index - 1);
+        const uint32_t values[] = {kWindow, 1, 1, sd_.present() ? 1u : 0u, sd_.present() ? 1u : 0u};
+        r.kind = uv::ReplyKind::Cap;
+        r.text = kCaps[i];
+        r.textLen = static_cast<uint8_t>(strlen(kCaps[i]));
+        r.value = values[i];
+      } else {
+        return false;
+      }
+      uv::formatReply(r, buf, sizeof buf);
+      break;
+    }
+    case Gen::Endstops: {
+      static const char* const kNames[] = {"x_min: ", "y_min: ", "z_min: ", "z_probe: "};
+      if (long_.index >= 4) return false;
+      bool closed = long_.index < 3 ? (io_.endstops() & (1 << long_.index)) : head_.probeTriggered();
+      strcpy(buf, kNames[long_.index]);
+      strcat(buf, closed ? "TRIGGERED" : "open");
+      break;
+    }
+    case Gen::Config: {
+      if (long_.index >= kKeyCount) return false;
+      memcpy(buf, "M850 ", 5);
+      uint8_t n = static_cast<uint8_t>(5 + keyName(static_cast<Key>(long_.index), buf + 5));
+      buf[n++] = ' ';
+      config_.format(static_cast<Key>(long_.index), buf + n);
+      break;
+    }
+  }
+  if (!port.report(buf)) return true;  // no room yet: the same line next pass
+  long_.index++;
+  return true;
+}
+
+void Machine::runLong() {
+  if (long_.op != Op::Emit && static_cast<int32_t>(now_ - long_.keepalive) >= 0) {
+    long_.keepalive = now_ + kKeepaliveUs;
+    long_.port->report("busy: processing");
+    for (HostLink* p : ports_)  // a host waiting behind this command must not take the wait for a lost line
+      if (p != long_.port && p->queued()) p->report("busy: processing");
+  }
+  switch (long_.op) {
+    case Op::Emit:
+      while (long_.port->room() >= kReplyRoom)
+        if (!emitNext()) return finishLong();
+      return;
+    case Op::Dwell:
+      if (static_cast<int32_t>(now_ - long_.until) >= 0) finishLong();
+      return;
+    case Op::MoveRoom:
+      if (motion_.moveTo(long_.target, long_.feed)) finishLong();
+      return;
+    case Op::Release:
+      if (!motion_.idle()) return;
+      io_.motorsEnabled(false);
+      homed_ = 0;
+      return finishLong();
+    case Op::Home: {
+      RoutineStatus s = homing_.poll(io_.endstops());
+      homed_ = static_cast<uint8_t>(homed_ | homing_.homed());
+      if (s == RoutineStatus::Failed) {
+        const char* axis[] = {"X", "Y", "Z"};
+        return finishLong(homing_.error(), axis[homing_.failedAxis()]);
+      }
+      if (s == RoutineStatus::Done) finishLong();
+      return;
+    }
+    case Op::SelfTest: {
+      if (test_.poll() != RoutineStatus::Done) return;
+      char buf[80];
+      test_.format(buf);
+      long_.port->line(buf);
+      return finishLong(test_.allPass() ? 0 : uv::kSelftestFailed);
+    }
+    case Op::Servo:
+      // The servo needs its time to move, then P tells whether the probe raised its alarm.
+      if (static_cast<int32_t>(now_ - long_.until) < 0) return;
+      if (long_.servoOp) {
+        head_.requestProbe();
+        long_.servoOp = 0;
+        return;
+      }
+      if (!head_.online()) return finishLong(uv::kNanoTimeout);
+      if (!head_.probeAnswered()) return;
+      if (head_.probeTriggered() && long_.index == 'D') {
+        long_.port->line("PROBE:alarm");
+        return finishLong(uv::kProbeAlarm);
+      }
+      long_.port->line(long_.index == 'D' ? "PROBE:deployed" : "PROBE:stowed");
+      return finishLong();
+    case Op::ProbeRead:
+      if (!head_.online()) {
+        long_.op = Op::Emit;  // report the switches anyway; the probe reads as its last state
+        long_.gen = Gen::Endstops;
+        long_.index = 0;
+        return;
+      }
+      if (!head_.probeAnswered()) return;
+      long_.op = Op::Emit;
+      long_.gen = Gen::Endstops;
+      long_.index = 0;
+      return;
+    default:
+      return;
+  }
+}
+
+void Machine::printheadEvents() {
+  uint8_t e = head_.takeEvents();
+  if (!e) return;
+  char buf[80];
+  if (e & PrintheadLink::kWentOffline) broadcast("FAULT:E30 printhead not responding");
+  if (e & PrintheadLink::kCameBack) broadcast("echo:printhead answering again");
+  if (e & PrintheadLink::kNanoReset) broadcast("echo:printhead restarted by its watchdog");
+  if (e & PrintheadLink::kFault) {
+    head_.allOff();
+    uint8_t active = head_.activeFaults();
+    const int16_t* t = head_.deciC();
+    uint8_t hot = 0;
+    for (uint8_t i = 1; i < uv::kSensorCount; i++)
+      if (t[i] > t[hot]) hot = i;
+    size_t n;
+    if (active & uv::fault::kSensor) {
+      strcpy(buf, "FAULT:E32 temperature sensor fault");
+      n = strlen(buf);
+    } else {
+      strcpy(buf, "FAULT:E31 over-temperature T");
+      n = strlen(buf);
+      buf[n++] = static_cast<char>('0' + hot);
+      buf[n++] = ' ';
+      n += uv::formatDeciC(t[hot], buf + n);
+    }
+    buf[n] = 0;
+    broadcast(buf);
+  }
+}
+
+uint8_t Machine::formatTemps(char* out) const {
+  uv::Reply r{};
+  r.kind = uv::ReplyKind::Temps;
+  for (uint8_t i = 0; i < uv::kSensorCount; i++) {
+    r.deciC[i] = head_.deciC()[i];
+    r.limitDeciC[i] = static_cast<int16_t>(config_.milli(Key::ThermalLimit0 + i) / 100);
+  }
+  return static_cast<uint8_t>(uv::formatReply(r, out, 112));
+}
+
+uint8_t Machine::formatPosition(char* out) const {
+  uv::Reply r{};
+  r.kind = uv::ReplyKind::Position;
+  int32_t steps[3];
+  motion_.positionSteps(steps);
+  for (uint8_t a = 0; a < 3; a++) {
+    r.steps[a] = steps[a];
+    r.um[a] = motion_.toUm(a, steps[a]);
+  }
+  return static_cast<uint8_t>(uv::formatReply(r, out, 112));
+}
+
+void Machine::reports() {
+  char buf[112];
+  if (tempPeriodUs_ && static_cast<int32_t>(now_ - tempNext_) >= 0 && head_.tempsKnown()) {
+    tempNext_ = now_ + tempPeriodUs_;
+    formatTemps(buf);
+    broadcast(buf);
+  }
+  if (posPeriodUs_ && static_cast<int32_t>(now_ - posNext_) >= 0) {
+    posNext_ = now_ + posPeriodUs_;
+    formatPosition(buf);
+    broadcast(buf);
+  }
+}
+
+}  // namespace mega

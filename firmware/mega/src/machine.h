@@ -1,0 +1,117 @@
+// The Mega's command core (protocol/mega.md §5): takes accepted lines from both host ports in turn,
+// runs each command (long ones as state machines polled by the main loop, so nothing ever waits),
+// keeps the reports and the safety rules. Plain C++: the hardware sits behind its collaborators.
+#pragma once
+#include <stdint.h>
+
+#include "config.h"
+#include "config_store.h"
+#include "dialect_command.h"
+#include "host_link.h"
+#include "homing.h"
+#include "machine_io.h"
+#include "motion.h"
+#include "printhead_link.h"
+#include "self_test.h"
+
+namespace mega {
+
+constexpr uint32_t kKeepaliveUs = 2000000;  // busy: every 2 s during a long command
+constexpr uint8_t kPorts = 2;               // USB, ESP
+
+struct MachineParts {
+  HostLink* ports[kPorts];
+  Motion& motion;
+  PrintheadLink& head;
+  Config& config;
+  ConfigStore& store;
+  Storage& sd;
+  MachineIo& io;
+  const char* firmwareName;
+  uint8_t& movesFree;  // the P of every ok, which the ports read
+};
+
+class Machine {
+ public:
+  explicit Machine(const MachineParts& p);
+
+  // After power-up: the config, `start` on both ports, LEDs off.
+  void begin(uint32_t nowUs);
+  // One pass of the main loop's work. Never waits.
+  void poll(uint32_t nowUs);
+  // M112, the e-stop button: LEDs off, motion stopped, job aborted, halted until M999.
+  void emergency();
+
+  bool halted() const { return halted_; }
+  uint8_t homed() const { return homed_; }
+
+ private:
+  enum class Result : uint8_t { Done, Long, Wait };
+  enum class Op : uint8_t { None, Emit, Dwell, Home, SelfTest, Servo, ProbeRead, MoveRoom, Release };
+  enum class Gen : uint8_t { Firmware, Endstops, Config };
+
+  Result execute(HostLink& port, const QueuedLine& line);
+  Result dispatch(HostLink& port, const uv::Command& c);
+  void runLong();
+  void finishLong(uint8_t error = 0, const char* detail = nullptr);
+  bool emitNext();
+  void reports();
+  void printheadEvents();
+  void broadcast(const char* text);
+
+  // commands (machine_motion.cpp)
+  Result move(HostLink& port, const uv::Command& c);
+  Result home(const uv::Command& c);
+  Result jog(HostLink& port, const uv::Command& c);
+  Result selfTest(HostLink& port, const uv::Command& c);
+  Result dwell(const uv::Command& c);
+  Result release();
+  bool axisHomed(uint8_t axis) const { return homed_ & (1 << axis); }
+  // commands (machine_printhead.cpp)
+  Result temperatures(HostLink& port);
+  Result servo(HostLink& port, const uv::Command& c, char op);
+  Result light(HostLink& port, const uv::Command& c);
+  // commands (machine_config.cpp)
+  Result configCommand(HostLink& port, const uv::Command& c);
+  // A changed steps/mm makes the step count mean another place: that axis must home again.
+  void stepsChanged(const int32_t before[3]);
+
+  bool jobActive() const { return false; }
+  uint8_t formatTemps(char* out) const;
+  uint8_t formatPosition(char* out) const;
+
+  HostLink* ports_[kPorts];
+  Motion& motion_;
+  PrintheadLink& head_;
+  Config& config_;
+  ConfigStore& store_;
+  Storage& sd_;
+  MachineIo& io_;
+  Homing homing_;
+  SelfTest test_;
+  const char* firmwareName_;
+
+  uint32_t now_ = 0;
+  uint8_t& movesFree_;
+  uint8_t next_ = 0;  // the port whose line runs next (round robin)
+  uint8_t homed_ = 0;
+  bool halted_ = false;
+  bool absolute_ = true;
+  bool lightOn_ = false;
+
+  struct Long {
+    Op op;
+    HostLink* port;
+    uint32_t since, until, keepalive;
+    Gen gen;
+    uint8_t index;
+    char servoOp;
+    int32_t target[3];
+    uint32_t feed;
+  } long_ = {};
+
+  uint32_t tempPeriodUs_ = 0, tempNext_ = 0;
+  uint32_t posPeriodUs_ = 0, posNext_ = 0;
+};
+
+}  // namespace mega

@@ -1,0 +1,72 @@
+// Config commands of the command core: M850 set/query, M500 save, M501 load, M502 defaults, M503 report.
+#include <string.h>
+
+#include "error_codes.h"
+#include "machine.h"
+
+namespace mega {
+
+void Machine::stepsChanged(const int32_t before[3]) {
+  for (uint8_t a = 0; a < 3; a++)
+    if (config_.milli(Key::StepsX + a) != before[a]) homed_ = static_cast<uint8_t>(homed_ & ~(1 << a));
+}
+
+Machine::Result Machine::configCommand(HostLink& port, const uv::Command& c) {
+  int32_t steps[3] = {config_.milli(Key::StepsX), config_.milli(Key::StepsY), config_.milli(Key::StepsZ)};
+  switch (c.code) {
+    case 850: {
+      Key key;
+      bool query;
+      Config next = config_;
+      uint8_t err = applyM850(next, c.text, c.textLen, key, query);
+      if (err) {
+        port.errorLine(err, c.textLen ? c.text : nullptr);
+        return Result::Done;
+      }
+      if (query) {
+        char buf[48];
+        memcpy(buf, "M850 ", 5);
+        uint8_t n = static_cast<uint8_t>(5 + keyName(key, buf + 5));
+        buf[n++] = ' ';
+        config_.format(key, buf + n);
+        port.line(buf);
+        return Result::Done;
+      }
+      if (store_.saving()) return Result::Wait;  // the EEPROM copy is being written from these values
+      config_ = next;
+      break;
+    }
+    case 500: {
+      if (jobActive()) {
+        port.errorLine(uv::kBusy);
+        return Result::Done;
+      }
+      uint8_t err = store_.save();
+      if (err) port.errorLine(err, "CONFIG.TXT");
+      port.line(sd_.present() ? "echo:Settings stored" : "echo:Settings stored in EEPROM only: no SD card");
+      return Result::Done;
+    }
+    case 501:
+      if (jobActive()) {
+        port.errorLine(uv::kBusy);
+        return Result::Done;
+      }
+      if (store_.saving()) return Result::Wait;
+      store_.load();
+      break;
+    case 502:
+      if (store_.saving()) return Result::Wait;
+      config_.defaults();
+      break;
+    case 503:
+      long_.op = Op::Emit;
+      long_.gen = Gen::Config;
+      long_.index = 0;
+      return Result::Long;
+  }
+  stepsChanged(steps);
+  posPeriodUs_ = static_cast<uint32_t>(config_.whole(Key::ReportPositionMs)) * 1000;
+  return Result::Done;
+}
+
+}  // namespace mega

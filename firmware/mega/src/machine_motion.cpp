@@ -1,0 +1,119 @@
+// Motion commands of the command core: G0/G1 with soft limits, G4, G28, M18, M820 jog, M822.
+#include "error_codes.h"
+#include "machine.h"
+
+namespace mega {
+
+namespace {
+const Key kBed[3] = {Key::BedX, Key::BedY, Key::BedZ};
+const char kAxis[3] = {'X', 'Y', 'Z'};
+const char* const kAxisName[3] = {"X", "Y", "Z"};
+}  // namespace
+
+Machine::Result Machine::move(HostLink& port, const uv::Command& c) {
+  int32_t base[3], to[3];
+  motion_.targetUm(base);  // where the queued moves end: relative moves add to it
+  for (uint8_t a = 0; a < 3; a++) {
+    to[a] = base[a];
+    if (!c.has(kAxis[a])) continue;
+    if (!c.hasValue(kAxis[a])) {
+      port.errorLine(uv::kBadParameter, kAxisName[a]);
+      return Result::Done;
+    }
+    if (!axisHomed(a)) {
+      port.errorLine(uv::kNotHomed, kAxisName[a]);
+      return Result::Done;
+    }
+    to[a] = absolute_ ? c.value(kAxis[a]) : base[a] + c.value(kAxis[a]);  // thousandths of mm = µm
+  }
+  for (uint8_t a = 0; a < 3; a++) {
+    if (c.has(kAxis[a]) && (to[a] < 0 || to[a] > config_.milli(kBed[a]))) {
+      port.errorLine(uv::kSoftLimit, kAxisName[a]);
+      return Result::Done;
+    }
+  }
+  uint32_t feed = 0;
+  if (c.hasValue('F')) {
+    if (c.value('F') <= 0) {
+      port.errorLine(uv::kBadParameter, "F");
+      return Result::Done;
+    }
+    feed = static_cast<uint32_t>(c.value('F') / 60);  // mm/min in thousandths → µm/s
+    if (!feed) feed = 1;
+  }
+  io_.motorsEnabled(true);
+  if (motion_.moveTo(to, feed)) return Result::Done;  // a move answers once it is queued
+  long_.op = Op::MoveRoom;
+  for (uint8_t a = 0; a < 3; a++) long_.target[a] = to[a];
+  long_.feed = feed;
+  return Result::Long;
+}
+
+Machine::Result Machine::dwell(const uv::Command& c) {
+  uint32_t us = 0;
+  if (c.hasValue('P') && c.value('P') > 0) us = static_cast<uint32_t>(c.value('P'));         // ms in thousandths = µs
+  else if (c.hasValue('S') && c.value('S') > 0) us = static_cast<uint32_t>(c.value('S')) * 1000;  // s in thousandths = ms
+  long_.op = Op::Dwell;
+  long_.until = now_ + us;
+  return Result::Long;
+}
+
+Machine::Result Machine::home(const uv::Command& c) {
+  uint8_t axes = 0;
+  for (uint8_t a = 0; a < 3; a++)
+    if (c.has(kAxis[a])) axes = static_cast<uint8_t>(axes | (1 << a));
+  if (!axes) axes = 7;
+  homed_ = static_cast<uint8_t>(homed_ & ~axes);
+  io_.motorsEnabled(true);
+  motion_.stop();
+  homing_.start(axes);
+  long_.op = Op::Home;
+  return Result::Long;
+}
+
+Machine::Result Machine::release() {
+  motion_.stop();
+  long_.op = Op::Release;
+  return Result::Long;
+}
+
+Machine::Result Machine::jog(HostLink& port, const uv::Command& c) {
+  int8_t axis = -1;
+  for (uint8_t a = 0; a < 3; a++) {
+    if (!c.has(kAxis[a])) continue;
+    if (axis >= 0 || !c.hasValue(kAxis[a]) || (c.value(kAxis[a]) != 1000 && c.value(kAxis[a]) != -1000)) axis = 4;
+    else axis = static_cast<int8_t>(a);
+  }
+  bool fast = c.hasValue('S') && c.value('S') == 1000;
+  if (axis < 0 || axis > 2 || (c.hasValue('S') && c.value('S') != 0 && !fast)) {
+    port.errorLine(uv::kBadParameter);
+    return Result::Done;
+  }
+  if (!axisHomed(static_cast<uint8_t>(axis))) {
+    port.errorLine(uv::kNotHomed, kAxisName[axis]);
+    return Result::Done;
+  }
+  int32_t to[3];
+  motion_.positionUm(to);
+  to[axis] = c.value(kAxis[axis]) > 0 ? config_.milli(kBed[axis]) : 0;  // on until M410 or the soft limit
+  long_.feed = static_cast<uint32_t>(config_.milli(fast ? Key::SpeedJogFast : Key::SpeedJogSlow));
+  io_.motorsEnabled(true);
+  if (motion_.idle() && motion_.moveTo(to, long_.feed)) return Result::Done;
+  motion_.stop();  // a new jog replaces the one running
+  long_.op = Op::MoveRoom;
+  for (uint8_t a = 0; a < 3; a++) long_.target[a] = to[a];
+  return Result::Long;
+}
+
+Machine::Result Machine::selfTest(HostLink& port, const uv::Command& c) {
+  if (!axisHomed(0) || !axisHomed(1)) {
+    port.errorLine(uv::kNotHomed, "home first (G28)");
+    return Result::Done;
+  }
+  if (!motion_.idle()) return Result::Wait;
+  test_.start(c.has('Q'));
+  long_.op = Op::SelfTest;
+  return Result::Long;
+}
+
+}  // namespace mega

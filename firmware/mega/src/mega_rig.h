@@ -1,0 +1,144 @@
+// Host tests' whole Mega: the command core with its real collaborators (host links, motion and the
+// step interrupt's code, printhead link, config store) and fakes of what is outside the chip: two
+// hosts, the Nano (running the real Nano logic), an SD card, the EEPROM, endstops and pins.
+#pragma once
+#include <stdint.h>
+
+#include <string>
+#include <vector>
+
+#include "config_store.h"
+#include "dialect_frame.h"
+#include "eeprom_fake.h"
+#include "fake_nano.h"
+#include "host_link.h"
+#include "machine.h"
+#include "motion_rig.h"
+#include "storage_fake.h"
+
+namespace mega {
+
+// One host's end of a serial port.
+class HostPipe : public ByteStream {
+ public:
+  int16_t read() override {
+    if (toMega.empty()) return -1;
+    char c = toMega.front();
+    toMega.erase(0, 1);
+    return static_cast<uint8_t>(c);
+  }
+  bool write(const char* data, uint8_t n) override {
+    if (uartRoom >= 0 && n > uartRoom) return false;
+    fromMega.append(data, n);
+    return true;
+  }
+  // Complete lines the Mega sent since the last call.
+  std::vector<std::string> take() {
+    std::vector<std::string> out;
+    size_t nl;
+    while ((nl = fromMega.find('\n')) != std::string::npos) {
+      out.push_back(fromMega.substr(0, nl));
+      fromMega.erase(0, nl + 1);
+    }
+    return out;
+  }
+  std::string toMega, fromMega;
+  int uartRoom = -1;  // -1: the UART takes everything
+};
+
+class FakeIo : public MachineIo {
+ public:
+  explicit FakeIo(MotionRig& rig) : rig_(rig) {}
+  uint8_t endstops() override { return rig_.endstops(); }
+  void motorsEnabled(bool on) override { enabled = on; }
+  bool light(uint8_t pin, bool on) override {
+    if (pin < 2 || pin == 8) return false;
+    lightPin = pin;
+    lightOn = on;
+    return true;
+  }
+  bool enabled = false, lightOn = false;
+  uint8_t lightPin = 0;
+
+ private:
+  MotionRig& rig_;
+};
+
+class MegaRig {
+ public:
+  MegaRig() {
+    // The switches: each axis's endstop closes a little way below where the head starts.
+    rig.switchAt[0] = -1234;
+    rig.switchAt[1] = -2345;
+    rig.switchAt[2] = -456;
+  }
+
+  Config config;
+  FakeStorage sd;
+  FakeEeprom eeprom;
+  ConfigStore store{config, sd, eeprom};
+  FakeNano nano;
+  PrintheadLink head{nano};
+  MotionRig rig{config};
+  FakeIo io{rig};
+  HostPipe usb, esp;
+  uint8_t movesFree = StepEngine::kBlocks;
+  HostLink usbLink{usb, movesFree}, espLink{esp, movesFree};
+  Machine machine{MachineParts{{&usbLink, &espLink}, rig.motion, head, config, store, sd, io, "UVExposure 0.1.0 (Mega)", movesFree}};
+  uint64_t nowUs = 0;
+  std::vector<std::string> usbLines, espLines;  // everything each host has read
+
+  void begin() {
+    machine.begin(0);
+    run(1000);
+  }
+
+  // Advances simulated time in 100 µs main-loop passes, the step interrupt in between.
+  void run(uint64_t us) {
+    for (uint64_t end = nowUs + us; nowUs < end; nowUs += 100) {
+      nano.advance(static_cast<uint32_t>(nowUs));
+      machine.poll(static_cast<uint32_t>(nowUs));
+      rig.isrUntil((nowUs + 100) * 2);
+      for (std::string& l : usb.take()) usbLines.push_back(l);
+      for (std::string& l : esp.take()) espLines.push_back(l);
+    }
+  }
+
+  // Sends one numbered line on a port and runs until the ok that names it; returns the lines of
+  // its reply block (everything that port read meanwhile, the ok included).
+  std::vector<std::string> cmd(const std::string& body, bool onEsp = false, uint64_t maxUs = 120000000) {
+    std::vector<std::string>& lines = onEsp ? espLines : usbLines;
+    size_t from = lines.size();
+    uint32_t n = send(body, onEsp);
+    std::string okPrefix = "ok N" + std::to_string(n) + " ";
+    for (uint64_t t = 0; t < maxUs; t += 100) {
+      run(100);
+      for (size_t i = from; i < lines.size(); i++)
+        if (lines[i].rfind(okPrefix, 0) == 0) return std::vector<std::string>(lines.begin() + static_cast<long>(from), lines.begin() + static_cast<long>(i) + 1);
+    }
+    return {"(no ok for " + body + ")"};
+  }
+
+  // Queues one numbered line for the Mega without running anything; returns its number.
+  uint32_t send(const std::string& body, bool onEsp = false) {
+    uint32_t& n = onEsp ? espN_ : usbN_;
+    n++;
+    char frame[128];
+    uv::encodeFrame(n, body.c_str(), frame, sizeof frame);
+    (onEsp ? esp : usb).toMega += std::string(frame) + "\n";
+    return n;
+  }
+
+  // The reply block's lines other than reports and the ok.
+  static std::vector<std::string> payload(const std::vector<std::string>& block) {
+    std::vector<std::string> out;
+    for (const std::string& l : block)
+      if (l.rfind("ok", 0) != 0 && l.rfind("busy:", 0) != 0 && l.rfind("T:", 0) != 0) out.push_back(l);
+    return out;
+  }
+
+ private:
+  uint32_t usbN_ = 0, espN_ = 0;
+};
+
+}  // namespace mega
