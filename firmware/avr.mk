@@ -29,14 +29,20 @@ WARN := -Wall -Wextra -Wno-missing-field-initializers
 ASFLAGS := -x assembler-with-cpp
 
 CORE_SRCS := $(wildcard $(CORE)/*.c $(CORE)/*.cpp $(CORE)/*.S)
-APP_SRCS := $(filter-out %_test.cpp,$(wildcard $(COMMON)/*.cpp $(BOARD_SRC)/*.cpp))
+APP_SRCS := $(filter-out %_test.cpp,$(wildcard $(COMMON)/*.cpp $(BOARD_SRC)/*.cpp $(BOARD_SRC)/hw/*.cpp))
 CORE_OBJS := $(patsubst $(CORE)/%,$(OBJ)/core/%.o,$(CORE_SRCS))
 APP_OBJS := $(patsubst %,$(OBJ)/app/%.o,$(APP_SRCS))
 
 all: $(OUT)/$(BOARD).elf $(OUT)/$(BOARD).hex
 
-$(OUT)/$(BOARD).elf: $(CORE_OBJS) $(APP_OBJS)
-	avr-gcc -mmcu=$(MCU) $(OPT) -Wl,--gc-sections -o $@ $(APP_OBJS) $(CORE_OBJS) -lm
+# The core goes in an archive, as the Arduino IDE and PlatformIO build it, so only the parts the
+# firmware uses are linked (the Mega drives its host UARTs itself, without HardwareSerial0/2/3).
+$(OBJ)/core.a: $(CORE_OBJS)
+	rm -f $@
+	avr-gcc-ar rcs $@ $^
+
+$(OUT)/$(BOARD).elf: $(APP_OBJS) $(OBJ)/core.a
+	avr-gcc -mmcu=$(MCU) $(OPT) -Wl,--gc-sections -o $@ $(APP_OBJS) $(OBJ)/core.a -lm
 
 $(OUT)/$(BOARD).hex: $(OUT)/$(BOARD).elf
 	avr-objcopy -O ihex -R .eeprom $< $@

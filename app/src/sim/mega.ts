@@ -19,7 +19,7 @@ import { Motion, type Xyz } from './motion';
 import type { NanoModel } from './nano-model';
 import type { SdCard } from './sd-card';
 
-const WINDOW = 8;
+const WINDOW = 4;
 const POLL_US = 500_000;
 const KEEPALIVE_US = 2_000_000;
 /** Commands still obeyed between the records of a stream (M828), so a running stream can be watched and paused. */

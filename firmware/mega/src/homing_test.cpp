@@ -4,7 +4,7 @@
 
 #include "homing.h"
 #include "motion_rig.h"
-#include "self_test.h"
+#include "selftest.h"
 
 using namespace mega;
 

@@ -1,4 +1,4 @@
-// One host-facing port: bytes to accepted lines, the accepted-line queue and the transmit ring.
+// One host-facing port: accepted lines from the line ring, replies through the transmit ring.
 #include "host_link.h"
 
 #include <string.h>
@@ -21,22 +21,23 @@ bool isEmergencyStop(const char* line, uint8_t len) {
   return end - p == 4 || p[4] == ' ' || p[4] == '*' || p[4] == ';';
 }
 
-void HostLink::put(const char* text, uint16_t n) {
-  for (uint16_t i = 0; i < n && txCount_ < kTxRing; i++) {
-    tx_[(txHead_ + txCount_) % kTxRing] = text[i];
-    txCount_++;
+void HostLink::put(const char* text, uint8_t n) {
+  for (uint8_t i = 0; i < n && txFree(); i++) {
+    txBuf_[txIn_] = text[i];
+    txIn_ = static_cast<uint8_t>(txIn_ + 1);
   }
 }
 
 void HostLink::line(const char* text) {
-  put(text, static_cast<uint16_t>(strlen(text)));
+  size_t n = strlen(text);
+  put(text, static_cast<uint8_t>(n > 200 ? 200 : n));
   put("\n", 1);
-  pump();
+  tx_.kick();
 }
 
-uint16_t HostLink::room() const {
-  uint16_t free = static_cast<uint16_t>(kTxRing - txCount_);
-  return free > kTxReserve ? static_cast<uint16_t>(free - kTxReserve) : 0;
+uint8_t HostLink::room() const {
+  uint8_t free = txFree();
+  return free > kTxReserve ? static_cast<uint8_t>(free - kTxReserve) : 0;
 }
 
 bool HostLink::report(const char* text) {
@@ -45,53 +46,32 @@ bool HostLink::report(const char* text) {
   return true;
 }
 
-void HostLink::pump() {
-  while (txCount_) {
-    uint16_t start = txHead_;
-    uint16_t run = txCount_;
-    if (start + run > kTxRing) run = static_cast<uint16_t>(kTxRing - start);  // up to the ring's end
-    uint8_t n = run > 16 ? 16 : static_cast<uint8_t>(run);
-    while (n && !io_.write(tx_ + start, n)) n = static_cast<uint8_t>(n / 2);  // what the UART takes now
-    if (!n) return;
-    txHead_ = static_cast<uint16_t>((txHead_ + n) % kTxRing);
-    txCount_ = static_cast<uint16_t>(txCount_ - n);
-  }
-}
-
 bool HostLink::poll() {
   bool stop = false;
-  pump();
-  for (uint8_t budget = 128; budget; budget--) {
-    if (!lineWaiting_) {
-      int16_t b = io_.read();
-      if (b < 0) break;
-      if (!splitter_.push(static_cast<char>(b))) continue;
-      lineWaiting_ = true;
-      heard_ = true;
-      if (!splitter_.overflow() && isEmergencyStop(splitter_.text(), splitter_.length())) stop = true;
-    }
-    // The receiver may answer at once (errors, resend, duplicates): it needs the reserve free.
-    // A full queue holds the line back too: only a host that ignores the window meets that.
-    if (kTxRing - txCount_ < kTxReserve || count_ == kWindow) break;
-    lineWaiting_ = false;
+  // The receiver may answer at once (errors, resend, duplicates): only with the reserve free.
+  for (LineSlot* s; (s = ring_.arrived()) != nullptr && txFree() >= kTxReserve;) {
+    heard_ = true;
+    if (!s->overflow && isEmergencyStop(s->text, s->len)) stop = true;
     uv::Frame frame;
-    if (receiver_.accept(splitter_.text(), splitter_.length(), splitter_.overflow(), *this, frame) != uv::Acceptance::Execute) continue;
-    QueuedLine& q = queue_[(head_ + count_) % kWindow];
-    q.n = frame.hasN ? frame.n : -1;
-    q.len = frame.bodyLen;
-    memcpy(q.body, frame.body, frame.bodyLen);
-    q.body[frame.bodyLen] = 0;
-    count_++;
+    uv::Acceptance a = receiver_.accept(s->text, s->len, s->overflow, *this, frame);
+    if (a == uv::Acceptance::Execute) {
+      // The body is kept in place: move it to the slot's start so it reads as one string.
+      s->n = frame.hasN ? frame.n : -1;
+      uint8_t len = frame.bodyLen;
+      memmove(s->text, frame.body, len);
+      s->text[len] = 0;
+      s->len = len;
+    }
+    ring_.accepted(a != uv::Acceptance::Execute);
   }
-  pump();
   return stop;
 }
 
 void HostLink::ok() {
-  if (!count_) return;
-  int32_t n = queue_[head_].n;
-  head_ = static_cast<uint8_t>((head_ + 1) % kWindow);
-  count_--;
+  LineSlot* s = ring_.front();
+  if (!s) return;
+  int32_t n = s->n;
+  ring_.pop();
   receiver_.markAnswered(n);
   receiver_.ok(*this, n);  // after freeing the slot: B counts it free
 }

@@ -1,40 +1,47 @@
-// One host-facing port (USB or the ESP's UART): bytes to accepted lines (protocol/mega.md §1-3),
-// a queue of accepted lines as deep as the receive window, and a transmit ring that drains into the
-// UART as it takes bytes, so no reply ever waits for the wire.
+// One host-facing port (USB or the ESP's UART), protocol/mega.md §1-3: the receive interrupt fills
+// the line ring, the main loop accepts lines and runs them in order, and replies go out through a
+// transmit ring that the transmit interrupt empties, so no reply ever waits for the wire.
 #pragma once
 #include <stdint.h>
 
-#include "byte_stream.h"
 #include "dialect_receiver.h"
-#include "line_splitter.h"
+#include "line_ring.h"
 
 namespace mega {
 
-constexpr uint8_t kWindow = 8;          // Cap:RX_WINDOW
-constexpr uint16_t kTxRing = 256;
-constexpr uint16_t kTxReserve = 128;    // kept free for the receiver's own replies
+constexpr uint16_t kTxRing = 256;     // 255 usable: free-running 8-bit indices
+constexpr uint8_t kTxReserve = 96;    // kept free for the receiver's own replies (errors, resend)
 
-struct QueuedLine {
-  int32_t n;       // the line's number, -1 for a plain line
-  uint8_t len;
-  char body[uv::kDialectMaxLine + 1];  // NUL-terminated
+// Starts the transmit interrupt when bytes are waiting (hw/host_uart on the board).
+class TxPort {
+ public:
+  virtual void kick() = 0;
 };
 
 class HostLink : public uv::ReplySink, private uv::FlowCounters {
  public:
   // movesFree: the motion queue's free slots, for the P field of every ok.
-  HostLink(ByteStream& io, const uint8_t& movesFree) : io_(io), moves_(movesFree), receiver_(*this), splitter_(line_, uv::kDialectMaxLine) {}
+  HostLink(TxPort& tx, const uint8_t& movesFree) : tx_(tx), moves_(movesFree), receiver_(*this) {}
 
-  // Reads what has arrived and sends what is waiting. Returns true if an M112 arrived: the caller
-  // acts on it at once, ahead of every queued line (protocol/mega.md §5).
+  // --- interrupts ---
+  void received(char c) { ring_.received(c); }
+  // The next byte to send, or -1 when the ring is empty.
+  int16_t nextTx() {
+    if (txIn_ == txOut_) return -1;
+    char c = txBuf_[txOut_];
+    txOut_ = static_cast<uint8_t>(txOut_ + 1);
+    return static_cast<uint8_t>(c);
+  }
+
+  // --- main loop ---
+  // Accepts the lines that have arrived. Returns true if one was M112: the caller acts on it at
+  // once, ahead of every queued line (protocol/mega.md §5).
   bool poll();
-
   // The oldest accepted line not yet answered, or nullptr.
-  const QueuedLine* front() const { return count_ ? &queue_[head_] : nullptr; }
-  uint8_t queued() const { return count_; }
+  const LineSlot* front() { return ring_.front(); }
+  uint8_t queued() const { return ring_.queued(); }
   // Ends the front line's reply block with its ok and frees its slot.
   void ok();
-  // An error line for the front line, then its ok.
   void error(uint8_t code, const char* detail = nullptr) {
     errorLine(code, detail);
     ok();
@@ -42,37 +49,31 @@ class HostLink : public uv::ReplySink, private uv::FlowCounters {
   // Just the `Error:E<code> <message>[: detail]` line.
   void errorLine(uint8_t code, const char* detail = nullptr);
 
-  // Queues one line and '\n'. False (nothing queued) if the ring lacks room above the reserve.
+  // Queues one line and '\n' if it fits above the reserve; false (nothing queued) if not.
   bool report(const char* text);
-  // Free bytes in the transmit ring above the reserve.
-  uint16_t room() const;
-  // Every byte handed to the UART.
-  bool drained() const { return txCount_ == 0; }
-  // Any line arrived since the last call (a host is there).
+  // Free transmit bytes above the reserve.
+  uint8_t room() const;
   bool takeHeard() {
     bool h = heard_;
     heard_ = false;
     return h;
   }
+  uint16_t dropped() const { return ring_.dropped(); }
 
-  void line(const char* text) override;  // for the receiver and replies: uses the reserve
+  void line(const char* text) override;  // replies: may use the reserve
 
  private:
   uint8_t movesFree() const override { return moves_; }
-  uint8_t windowFree() const override { return static_cast<uint8_t>(kWindow - count_); }
-  void put(const char* text, uint16_t n);
-  void pump();
+  uint8_t windowFree() const override { return ring_.free(); }
+  uint8_t txFree() const { return static_cast<uint8_t>(255 - static_cast<uint8_t>(txIn_ - txOut_)); }
+  void put(const char* text, uint8_t n);
 
-  ByteStream& io_;
+  TxPort& tx_;
   const uint8_t& moves_;
   uv::LineReceiver receiver_;
-  char line_[uv::kDialectMaxLine + 1];
-  uv::LineSplitter splitter_;
-  bool lineWaiting_ = false;  // a split line waits for transmit room to be accepted
-  QueuedLine queue_[kWindow];
-  uint8_t head_ = 0, count_ = 0;
-  char tx_[kTxRing];
-  uint16_t txHead_ = 0, txCount_ = 0;
+  LineRing ring_;
+  char txBuf_[kTxRing];
+  volatile uint8_t txIn_ = 0, txOut_ = 0;
   bool heard_ = false;
 };
 

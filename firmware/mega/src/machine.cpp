@@ -69,11 +69,11 @@ void Machine::poll(uint32_t nowUs) {
   for (uint8_t i = 0; i < kPorts; i++) {
     uint8_t k = static_cast<uint8_t>((next_ + i) % kPorts);
     HostLink& port = *ports_[k];
-    const QueuedLine* line = port.front();
+    const LineSlot* line = port.front();
     if (!line || port.room() < kReplyRoom) continue;
     if (long_.op != Op::None) {
       uv::Command c;
-      if (long_.port == &port || uv::parseCommand(line->body, line->len, c) || !isQuery(c)) continue;
+      if (long_.port == &port || uv::parseCommand(line->text, line->len, c) || !isQuery(c)) continue;
     }
     Result r = execute(port, *line);
     if (r == Result::Wait) continue;
@@ -84,15 +84,15 @@ void Machine::poll(uint32_t nowUs) {
   reports();
 }
 
-Machine::Result Machine::execute(HostLink& port, const QueuedLine& line) {
+Machine::Result Machine::execute(HostLink& port, const LineSlot& line) {
   uv::Command c;
-  uint8_t err = uv::parseCommand(line.body, line.len, c);
+  uint8_t err = uv::parseCommand(line.text, line.len, c);
   if (err) {
     char word[8] = {};
     if (err == uv::kUnknownCommand) {
       uint8_t n = 0;
-      while (n < line.len && n < sizeof word - 1 && line.body[n] != ' ') {
-        word[n] = line.body[n];
+      while (n < line.len && n < sizeof word - 1 && line.text[n] != ' ') {
+        word[n] = line.text[n];
         n++;
       }
     }

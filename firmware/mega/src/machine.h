@@ -12,7 +12,7 @@
 #include "machine_io.h"
 #include "motion.h"
 #include "printhead_link.h"
-#include "self_test.h"
+#include "selftest.h"
 
 namespace mega {
 
@@ -50,7 +50,7 @@ class Machine {
   enum class Op : uint8_t { None, Emit, Dwell, Home, SelfTest, Servo, ProbeRead, MoveRoom, Release };
   enum class Gen : uint8_t { Firmware, Endstops, Config };
 
-  Result execute(HostLink& port, const QueuedLine& line);
+  Result execute(HostLink& port, const LineSlot& line);
   Result dispatch(HostLink& port, const uv::Command& c);
   void runLong();
   void finishLong(uint8_t error = 0, const char* detail = nullptr);

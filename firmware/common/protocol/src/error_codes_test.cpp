@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <set>
 #include <sstream>
 
 TEST(ErrorCodes, MatchErrorsCsv) {
@@ -12,6 +13,7 @@ TEST(ErrorCodes, MatchErrorsCsv) {
   std::string row;
   std::getline(in, row);  // header
   int rows = 0;
+  std::set<int> codes;
   while (std::getline(in, row)) {
     std::stringstream s(row);
     std::string code, name, message;
@@ -23,9 +25,13 @@ TEST(ErrorCodes, MatchErrorsCsv) {
     EXPECT_EQ(name, got);
     ASSERT_TRUE(uv::errorMessage(static_cast<uint8_t>(std::stoi(code)), got, sizeof got));
     EXPECT_EQ(message, got);
+    codes.insert(std::stoi(code));
     rows++;
   }
-  EXPECT_EQ(rows, 30);
-  char none[8];
-  EXPECT_FALSE(uv::errorMessage(7, none, sizeof none));
+  EXPECT_GT(rows, 0);
+  // And the other way: the firmware knows no code the table lacks.
+  for (int code = 0; code < 256; code++) {
+    char got[64];
+    EXPECT_EQ(uv::errorMessage(static_cast<uint8_t>(code), got, sizeof got), codes.count(code) == 1) << code;
+  }
 }

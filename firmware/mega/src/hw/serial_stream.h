@@ -22,3 +22,4 @@ class SerialStream : public ByteStream {
 };
 
 }  // namespace mega
+

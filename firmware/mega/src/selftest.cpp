@@ -1,5 +1,5 @@
 // The kinematic self-test (M822): out, then back to each endstop counting steps.
-#include "self_test.h"
+#include "selftest.h"
 
 #include <string.h>
 

@@ -1,0 +1,98 @@
+// The SD card behind the Storage interface, through SdFat (FAT16/FAT32 only: SdFat32 keeps the
+// exFAT code and its RAM out of the image).
+#include "hw/sd_storage.h"
+
+namespace mega {
+
+#ifdef UV_WITH_SDFAT
+
+bool SdStorage::begin(uint8_t csPin) {
+  mounted_ = sd_.begin(SdSpiConfig(csPin, DEDICATED_SPI, SD_SCK_MHZ(16)));
+  return mounted_;
+}
+
+bool SdStorage::present() { return mounted_; }
+
+FileHandle SdStorage::open(const char* name, Mode mode) {
+  if (!mounted_) return -1;
+  oflag_t flags = mode == Mode::Read ? O_RDONLY : mode == Mode::Create ? (O_RDWR | O_CREAT | O_TRUNC) : (O_RDWR | O_CREAT);
+  for (FileHandle h = 0; h < kFiles; h++) {
+    if (files_[h].isOpen()) continue;
+    return files_[h].open(name, flags) ? h : -1;
+  }
+  return -1;
+}
+
+int16_t SdStorage::read(FileHandle f, char* buf, uint16_t n) {
+  File32* file = this->file(f);
+  return file ? static_cast<int16_t>(file->read(buf, n)) : -1;
+}
+
+bool SdStorage::write(FileHandle f, const char* buf, uint16_t n) {
+  File32* file = this->file(f);
+  return file && file->write(buf, n) == n;
+}
+
+bool SdStorage::seek(FileHandle f, uint32_t pos) {
+  File32* file = this->file(f);
+  return file && file->seekSet(pos);
+}
+
+uint32_t SdStorage::size(FileHandle f) {
+  File32* file = this->file(f);
+  return file ? file->fileSize() : 0;
+}
+
+bool SdStorage::sync(FileHandle f) {
+  File32* file = this->file(f);
+  return file && file->sync();
+}
+
+void SdStorage::close(FileHandle f) {
+  File32* file = this->file(f);
+  if (file) file->close();
+}
+
+bool SdStorage::exists(const char* name) { return mounted_ && sd_.exists(name); }
+bool SdStorage::remove(const char* name) { return mounted_ && sd_.remove(name); }
+bool SdStorage::rename(const char* from, const char* to) { return mounted_ && sd_.rename(from, to); }
+
+bool SdStorage::entry(uint16_t index, char* name, uint32_t& size) {
+  if (!mounted_) return false;
+  File32 root, file;
+  if (!root.open("/")) return false;
+  uint16_t i = 0;
+  bool found = false;
+  while (file.openNext(&root, O_RDONLY)) {
+    bool listed = !file.isDir() && !file.isHidden();
+    if (listed && i++ == index) {
+      file.getName(name, kFileNameMax + 1);
+      size = file.fileSize();
+      found = true;
+    }
+    file.close();
+    if (found) break;
+  }
+  root.close();
+  return found;
+}
+
+#else  // no SdFat in this build: no card
+
+bool SdStorage::begin(uint8_t) { return false; }
+bool SdStorage::present() { return false; }
+FileHandle SdStorage::open(const char*, Mode) { return -1; }
+int16_t SdStorage::read(FileHandle, char*, uint16_t) { return -1; }
+bool SdStorage::write(FileHandle, const char*, uint16_t) { return false; }
+bool SdStorage::seek(FileHandle, uint32_t) { return false; }
+uint32_t SdStorage::size(FileHandle) { return 0; }
+bool SdStorage::sync(FileHandle) { return false; }
+void SdStorage::close(FileHandle) {}
+bool SdStorage::exists(const char*) { return false; }
+bool SdStorage::remove(const char*) { return false; }
+bool SdStorage::rename(const char*, const char*) { return false; }
+bool SdStorage::entry(uint16_t, char*, uint32_t&) { return false; }
+
+#endif
+
+}  // namespace mega

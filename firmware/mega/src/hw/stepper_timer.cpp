@@ -1,0 +1,94 @@
+// Timer1 drives the step pins from StepEngine::tick(). The interrupt first ends the previous step
+// pulse (it was high for a whole interval, far over the drivers' 2 µs), reads the endstops, asks
+// the engine, sets the direction pins (and waits their 1 µs setup time only when they changed),
+// raises the step pins and sets the next interval.
+#include "hw/stepper_timer.h"
+
+#include <Arduino.h>
+#include <util/delay.h>
+
+#include "pins.h"
+
+namespace mega {
+
+namespace {
+StepEngine* engine = nullptr;
+volatile bool running = false;
+volatile uint8_t invertBits = 0;
+volatile uint16_t worst = 0;
+uint8_t pinsDir = 0;  // what the direction pins show now
+}  // namespace
+
+uint8_t readEndstops() {
+  uint8_t bits = 0;
+  if (!(ENDSTOP_X_PIN & ENDSTOP_X_BIT)) bits |= 1;
+  if (!(ENDSTOP_YZ_PIN & ENDSTOP_Y_BIT)) bits |= 2;
+  if (!(ENDSTOP_YZ_PIN & ENDSTOP_Z_BIT)) bits |= 4;
+  return bits;
+}
+
+void stepperBegin(StepEngine& e) {
+  engine = &e;
+  const uint8_t outputs[] = {PIN_X_STEP, PIN_Y_STEP, PIN_Z_STEP, PIN_X_DIR, PIN_Y_DIR, PIN_Z_DIR};
+  for (uint8_t p : outputs) {
+    digitalWrite(p, LOW);
+    pinMode(p, OUTPUT);
+  }
+  pinMode(PIN_X_MIN, INPUT_PULLUP);
+  pinMode(PIN_Y_MIN, INPUT_PULLUP);
+  pinMode(PIN_Z_MIN, INPUT_PULLUP);
+  TCCR1A = 0;
+  TCCR1B = (1 << WGM12) | (1 << CS11);  // CTC on OCR1A, clock / 8
+  OCR1A = 0xffff;
+}
+
+void stepperInvert(uint8_t invert) { invertBits = invert; }
+
+void stepperKick() {
+  if (running || engine->idle()) return;
+  uint8_t sreg = SREG;
+  cli();
+  running = true;
+  TCNT1 = 0;
+  OCR1A = 100;  // the first step in 50 µs
+  TIFR1 = (1 << OCF1A);
+  TIMSK1 |= (1 << OCIE1A);
+  SREG = sreg;
+}
+
+uint16_t stepperWorstTicks() {
+  uint8_t sreg = SREG;
+  cli();
+  uint16_t w = worst;
+  SREG = sreg;
+  return w;
+}
+
+void stepInterrupt() {
+  STEP_XY_PORT &= static_cast<uint8_t>(~(STEP_X_BIT | STEP_Y_BIT));
+  STEP_Z_PORT &= static_cast<uint8_t>(~STEP_Z_BIT);
+  StepTick t = engine->tick(readEndstops());
+  if (t.idle) {
+    TIMSK1 &= static_cast<uint8_t>(~(1 << OCIE1A));
+    running = false;
+    return;
+  }
+  uint8_t dir = t.dirNeg ^ invertBits;
+  if (dir != pinsDir) {
+    pinsDir = dir;
+    if (dir & 1) DIR_X_PORT |= DIR_X_BIT; else DIR_X_PORT &= static_cast<uint8_t>(~DIR_X_BIT);
+    if (dir & 2) DIR_YZ_PORT |= DIR_Y_BIT; else DIR_YZ_PORT &= static_cast<uint8_t>(~DIR_Y_BIT);
+    if (dir & 4) DIR_YZ_PORT |= DIR_Z_BIT; else DIR_YZ_PORT &= static_cast<uint8_t>(~DIR_Z_BIT);
+    _delay_us(1);  // the drivers' direction setup time before a step edge
+  }
+  if (t.step & 1) STEP_XY_PORT |= STEP_X_BIT;
+  if (t.step & 2) STEP_XY_PORT |= STEP_Y_BIT;
+  if (t.step & 4) STEP_Z_PORT |= STEP_Z_BIT;
+  OCR1A = t.interval;
+  uint16_t took = TCNT1;  // ticks since this compare match
+  if (took > worst) worst = took;
+}
+
+}  // namespace mega
+
+ISR(TIMER1_COMPA_vect) { mega::stepInterrupt(); }

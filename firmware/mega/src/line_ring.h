@@ -1,0 +1,49 @@
+// A host port's receive window: the receive interrupt writes bytes straight into line slots, and the
+// main loop accepts each complete line and keeps it in its slot until it has run. So no byte is lost
+// however long the main loop takes, as long as the host keeps to the window (protocol/mega.md §3).
+#pragma once
+#include <stdint.h>
+
+#include "dialect_frame.h"
+
+namespace mega {
+
+constexpr uint8_t kWindow = 4;  // Cap:RX_WINDOW
+
+struct LineSlot {
+  char text[uv::kDialectMaxLine + 1];  // NUL-terminated once complete
+  uint8_t len;
+  bool overflow;  // the line ran over 96 bytes; text holds its first 96
+  bool dead;      // accepted but answered already (an error, a duplicate): skipped when it comes up
+  int32_t n;      // its line number once accepted, -1 for a plain line
+};
+
+class LineRing {
+ public:
+  // --- receive interrupt ---
+  void received(char c);
+  // Bytes dropped because every slot was taken (a host that ignored the window).
+  uint16_t dropped() const { return dropped_; }
+
+  // --- main loop ---
+  // The oldest complete line not yet accepted, or nullptr.
+  LineSlot* arrived() { return accept_ != fill_ ? &slots_[accept_ % kWindow] : nullptr; }
+  // Moves it into the run queue (dead: it needs no run, only its turn to be freed).
+  void accepted(bool dead);
+  // The oldest accepted line still to run, or nullptr; dead ones are freed on the way.
+  LineSlot* front();
+  void pop() { head_ = static_cast<uint8_t>(head_ + 1); }
+  uint8_t queued() const { return static_cast<uint8_t>(accept_ - head_); }
+  // Slots neither holding a complete line nor queued: what the B field reports.
+  uint8_t free() const { return static_cast<uint8_t>(kWindow - static_cast<uint8_t>(fill_ - head_)); }
+
+ private:
+  LineSlot slots_[kWindow];
+  volatile uint8_t head_ = 0, accept_ = 0, fill_ = 0;  // free-running; slot = index % kWindow
+  uint8_t len_ = 0;
+  bool overflow_ = false;
+  bool noSlot_ = false;  // the line being received has nowhere to go
+  uint16_t dropped_ = 0;
+};
+
+}  // namespace mega
