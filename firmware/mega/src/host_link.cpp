@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "error_codes.h"
+#include "progmem.h"
 #include "text_scan.h"
 
 namespace mega {
@@ -21,16 +22,16 @@ bool isEmergencyStop(const char* line, uint8_t len) {
   return end - p == 4 || p[4] == ' ' || p[4] == '*' || p[4] == ';';
 }
 
-void HostLink::put(const char* text, uint8_t n) {
+void HostLink::put(const char* text, uint8_t n, bool flash) {
   for (uint8_t i = 0; i < n && txFree(); i++) {
-    txBuf_[txIn_] = text[i];
+    txBuf_[txIn_] = flash ? static_cast<char>(uvFlashByte(text + i)) : text[i];
     txIn_ = static_cast<uint8_t>(txIn_ + 1);
   }
 }
 
-void HostLink::line(const char* text) {
-  size_t n = strlen(text);
-  put(text, static_cast<uint8_t>(n > 200 ? 200 : n));
+void HostLink::line(const char* text, bool flash) {
+  size_t n = flash ? uvStrlenP(text) : strlen(text);
+  put(text, static_cast<uint8_t>(n > 200 ? 200 : n), flash);
   put("\n", 1);
   tx_.kick();
 }
@@ -40,9 +41,9 @@ uint8_t HostLink::room() const {
   return free > kTxReserve ? static_cast<uint8_t>(free - kTxReserve) : 0;
 }
 
-bool HostLink::report(const char* text) {
-  if (strlen(text) + 1 > room()) return false;
-  line(text);
+bool HostLink::report(const char* text, bool flash) {
+  if ((flash ? uvStrlenP(text) : strlen(text)) + 1 > room()) return false;
+  line(text, flash);
   return true;
 }
 
@@ -76,9 +77,9 @@ void HostLink::ok() {
   receiver_.ok(*this, n);  // after freeing the slot: B counts it free
 }
 
-void HostLink::errorLine(uint8_t code, const char* detail) {
+void HostLink::errorLine(uint8_t code, const char* detail, bool flash) {
   char buf[112];
-  memcpy(buf, "Error:E", 7);
+  uvMemcpyP(buf, UV_P("Error:E"), 7);
   size_t n = 7 + uv::putUnsigned(code, buf + 7);
   buf[n++] = ' ';
   uv::errorMessage(code, buf + n, static_cast<uint8_t>(sizeof buf - n));
@@ -86,9 +87,10 @@ void HostLink::errorLine(uint8_t code, const char* detail) {
   if (detail) {
     memcpy(buf + n, ": ", 2);
     n += 2;
-    size_t d = strlen(detail);
+    size_t d = flash ? uvStrlenP(detail) : strlen(detail);
     if (d > sizeof buf - n - 1) d = sizeof buf - n - 1;
-    memcpy(buf + n, detail, d);
+    if (flash) uvMemcpyP(buf + n, detail, d);
+    else memcpy(buf + n, detail, d);
     n += d;
   }
   buf[n] = 0;

@@ -46,11 +46,15 @@ class HostLink : public uv::ReplySink, private uv::FlowCounters {
     errorLine(code, detail);
     ok();
   }
-  // Just the `Error:E<code> <message>[: detail]` line.
-  void errorLine(uint8_t code, const char* detail = nullptr);
+  // Just the `Error:E<code> <message>[: detail]` line; errorLineP takes a detail in flash (UV_P).
+  void errorLine(uint8_t code, const char* detail = nullptr) { errorLine(code, detail, false); }
+  void errorLineP(uint8_t code, const char* detail) { errorLine(code, detail, true); }
 
   // Queues one line and '\n' if it fits above the reserve; false (nothing queued) if not.
-  bool report(const char* text);
+  bool report(const char* text) { return report(text, false); }
+  // The same for a line in flash (UV_P).
+  bool reportP(const char* text) { return report(text, true); }
+  void lineP(const char* text) { line(text, true); }
   // Free transmit bytes above the reserve.
   uint8_t room() const;
   bool takeHeard() {
@@ -60,13 +64,16 @@ class HostLink : public uv::ReplySink, private uv::FlowCounters {
   }
   uint16_t dropped() const { return ring_.dropped(); }
 
-  void line(const char* text) override;  // replies: may use the reserve
+  void line(const char* text) override { line(text, false); }  // replies: may use the reserve
 
  private:
   uint8_t movesFree() const override { return moves_; }
   uint8_t windowFree() const override { return ring_.free(); }
   uint8_t txFree() const { return static_cast<uint8_t>(255 - static_cast<uint8_t>(txIn_ - txOut_)); }
-  void put(const char* text, uint8_t n);
+  void put(const char* text, uint8_t n, bool flash = false);
+  void line(const char* text, bool flash);
+  bool report(const char* text, bool flash);
+  void errorLine(uint8_t code, const char* detail, bool flash);
 
   TxPort& tx_;
   const uint8_t& moves_;

@@ -1,5 +1,6 @@
 // The Mega's command core: lines from both ports in turn, long commands as state machines, reports.
 #include "machine.h"
+#include "progmem.h"
 
 #include <string.h>
 
@@ -10,6 +11,8 @@
 namespace mega {
 
 namespace {
+void strcpy_flash(char* out, const char* flash) { uvMemcpyP(out, flash, uvStrlenP(flash) + 1); }
+
 // Room a command needs in its port's transmit ring before it runs: one payload line and the ok.
 constexpr uint16_t kReplyRoom = 112;
 
@@ -38,11 +41,15 @@ void Machine::begin(uint32_t nowUs) {
   uint32_t posMs = static_cast<uint32_t>(config_.whole(Key::ReportPositionMs));
   posPeriodUs_ = posMs * 1000;
   posNext_ = nowUs + posPeriodUs_;
-  for (HostLink* p : ports_) p->line("start");
+  for (HostLink* p : ports_) p->lineP(UV_P("start"));
 }
 
 void Machine::broadcast(const char* text) {
   for (HostLink* p : ports_) p->report(text);
+}
+
+void Machine::broadcastP(const char* text) {
+  for (HostLink* p : ports_) p->reportP(text);
 }
 
 void Machine::emergency() {
@@ -197,7 +204,10 @@ bool Machine::emitNext() {
   uv::Reply r{};
   switch (long_.gen) {
     case Gen::Firmware: {
-      static const char* const kCaps[] = {"RX_WINDOW", "AUTOREPORT_TEMP", "AUTOREPORT_POS", "SDCARD", "RESUME"};
+      static const char kWin[] UV_FLASH = "RX_WINDOW", kTemp[] UV_FLASH = "AUTOREPORT_TEMP", kPos[] UV_FLASH = "AUTOREPORT_POS",
+                        kSd[] UV_FLASH = "SDCARD", kResume[] UV_FLASH = "RESUME";
+      static const char* const kCaps[] UV_FLASH = {kWin, kTemp, kPos, kSd, kResume};
+      char cap[16];
       if (long_.index == 0) {
         r.kind = uv::ReplyKind::Firmware;
         r.text = firmwareName_;
@@ -207,8 +217,9 @@ bool Machine::emitNext() {
         uint8_t i = static_cast<uint8_t>(long_.index - 1);
         const uint32_t values[] = {kWindow, 1, 1, sd_.present() ? 1u : 0u, sd_.present() ? 1u : 0u};
         r.kind = uv::ReplyKind::Cap;
-        r.text = kCaps[i];
-        r.textLen = static_cast<uint8_t>(strlen(kCaps[i]));
+        strcpy_flash(cap, uvFlashPtr(kCaps[i]));
+        r.text = cap;
+        r.textLen = static_cast<uint8_t>(strlen(cap));
         r.value = values[i];
       } else {
         return false;
@@ -217,16 +228,17 @@ bool Machine::emitNext() {
       break;
     }
     case Gen::Endstops: {
-      static const char* const kNames[] = {"x_min: ", "y_min: ", "z_min: ", "z_probe: "};
+      static const char kX[] UV_FLASH = "x_min: ", kY[] UV_FLASH = "y_min: ", kZ[] UV_FLASH = "z_min: ", kProbe[] UV_FLASH = "z_probe: ";
+      static const char* const kNames[] UV_FLASH = {kX, kY, kZ, kProbe};
       if (long_.index >= 4) return false;
       bool closed = long_.index < 3 ? (io_.endstops() & (1 << long_.index)) : head_.probeTriggered();
-      strcpy(buf, kNames[long_.index]);
-      strcat(buf, closed ? "TRIGGERED" : "open");
+      strcpy_flash(buf, uvFlashPtr(kNames[long_.index]));
+      strcpy_flash(buf + strlen(buf), closed ? UV_P("TRIGGERED") : UV_P("open"));
       break;
     }
     case Gen::Config: {
       if (long_.index >= kKeyCount) return false;
-      memcpy(buf, "M850 ", 5);
+      uvMemcpyP(buf, UV_P("M850 "), 5);
       uint8_t n = static_cast<uint8_t>(5 + keyName(static_cast<Key>(long_.index), buf + 5));
       buf[n++] = ' ';
       config_.format(static_cast<Key>(long_.index), buf + n);
@@ -241,9 +253,9 @@ bool Machine::emitNext() {
 void Machine::runLong() {
   if (long_.op != Op::Emit && static_cast<int32_t>(now_ - long_.keepalive) >= 0) {
     long_.keepalive = now_ + kKeepaliveUs;
-    long_.port->report("busy: processing");
+    long_.port->reportP(UV_P("busy: processing"));
     for (HostLink* p : ports_)  // a host waiting behind this command must not take the wait for a lost line
-      if (p != long_.port && p->queued()) p->report("busy: processing");
+      if (p != long_.port && p->queued()) p->reportP(UV_P("busy: processing"));
   }
   switch (long_.op) {
     case Op::Emit:
@@ -265,8 +277,8 @@ void Machine::runLong() {
       RoutineStatus s = homing_.poll(io_.endstops());
       homed_ = static_cast<uint8_t>(homed_ | homing_.homed());
       if (s == RoutineStatus::Failed) {
-        const char* axis[] = {"X", "Y", "Z"};
-        return finishLong(homing_.error(), axis[homing_.failedAxis()]);
+        char axis[2] = {static_cast<char>('X' + homing_.failedAxis()), 0};
+        return finishLong(homing_.error(), axis);
       }
       if (s == RoutineStatus::Done) finishLong();
       return;
@@ -289,10 +301,10 @@ void Machine::runLong() {
       if (!head_.online()) return finishLong(uv::kNanoTimeout);
       if (!head_.probeAnswered()) return;
       if (head_.probeTriggered() && long_.index == 'D') {
-        long_.port->line("PROBE:alarm");
+        long_.port->lineP(UV_P("PROBE:alarm"));
         return finishLong(uv::kProbeAlarm);
       }
-      long_.port->line(long_.index == 'D' ? "PROBE:deployed" : "PROBE:stowed");
+      long_.port->lineP(long_.index == 'D' ? UV_P("PROBE:deployed") : UV_P("PROBE:stowed"));
       return finishLong();
     case Op::ProbeRead:
       if (!head_.online()) {
@@ -315,9 +327,9 @@ void Machine::printheadEvents() {
   uint8_t e = head_.takeEvents();
   if (!e) return;
   char buf[80];
-  if (e & PrintheadLink::kWentOffline) broadcast("FAULT:E30 printhead not responding");
-  if (e & PrintheadLink::kCameBack) broadcast("echo:printhead answering again");
-  if (e & PrintheadLink::kNanoReset) broadcast("echo:printhead restarted by its watchdog");
+  if (e & PrintheadLink::kWentOffline) broadcastP(UV_P("FAULT:E30 printhead not responding"));
+  if (e & PrintheadLink::kCameBack) broadcastP(UV_P("echo:printhead answering again"));
+  if (e & PrintheadLink::kNanoReset) broadcastP(UV_P("echo:printhead restarted by its watchdog"));
   if (e & PrintheadLink::kFault) {
     head_.allOff();
     uint8_t active = head_.activeFaults();
@@ -327,10 +339,10 @@ void Machine::printheadEvents() {
       if (t[i] > t[hot]) hot = i;
     size_t n;
     if (active & uv::fault::kSensor) {
-      strcpy(buf, "FAULT:E32 temperature sensor fault");
+      strcpy_flash(buf, UV_P("FAULT:E32 temperature sensor fault"));
       n = strlen(buf);
     } else {
-      strcpy(buf, "FAULT:E31 over-temperature T");
+      strcpy_flash(buf, UV_P("FAULT:E31 over-temperature T"));
       n = strlen(buf);
       buf[n++] = static_cast<char>('0' + hot);
       buf[n++] = ' ';

@@ -58,6 +58,7 @@ class Machine {
   void reports();
   void printheadEvents();
   void broadcast(const char* text);
+  void broadcastP(const char* text);  // a line in flash (UV_P)
 
   // commands (machine_motion.cpp)
   Result move(HostLink& port, const uv::Command& c);

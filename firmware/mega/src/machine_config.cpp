@@ -3,6 +3,7 @@
 
 #include "error_codes.h"
 #include "machine.h"
+#include "progmem.h"
 
 namespace mega {
 
@@ -25,7 +26,7 @@ Machine::Result Machine::configCommand(HostLink& port, const uv::Command& c) {
       }
       if (query) {
         char buf[48];
-        memcpy(buf, "M850 ", 5);
+        uvMemcpyP(buf, UV_P("M850 "), 5);
         uint8_t n = static_cast<uint8_t>(5 + keyName(key, buf + 5));
         buf[n++] = ' ';
         config_.format(key, buf + n);
@@ -42,8 +43,8 @@ Machine::Result Machine::configCommand(HostLink& port, const uv::Command& c) {
         return Result::Done;
       }
       uint8_t err = store_.save();
-      if (err) port.errorLine(err, "CONFIG.TXT");
-      port.line(sd_.present() ? "echo:Settings stored" : "echo:Settings stored in EEPROM only: no SD card");
+      if (err) port.errorLineP(err, UV_P("CONFIG.TXT"));
+      port.lineP(sd_.present() ? UV_P("echo:Settings stored") : UV_P("echo:Settings stored in EEPROM only: no SD card"));
       return Result::Done;
     }
     case 501:

@@ -1,13 +1,15 @@
 // Motion commands of the command core: G0/G1 with soft limits, G4, G28, M18, M820 jog, M822.
 #include "error_codes.h"
 #include "machine.h"
+#include "progmem.h"
 
 namespace mega {
 
 namespace {
 const Key kBed[3] = {Key::BedX, Key::BedY, Key::BedZ};
 const char kAxis[3] = {'X', 'Y', 'Z'};
-const char* const kAxisName[3] = {"X", "Y", "Z"};
+// Axis names as error details (RAM strings: errorLine copies them).
+const char kAxisName[3][2] = {"X", "Y", "Z"};
 }  // namespace
 
 Machine::Result Machine::move(HostLink& port, const uv::Command& c) {
@@ -35,7 +37,7 @@ Machine::Result Machine::move(HostLink& port, const uv::Command& c) {
   uint32_t feed = 0;
   if (c.hasValue('F')) {
     if (c.value('F') <= 0) {
-      port.errorLine(uv::kBadParameter, "F");
+      port.errorLineP(uv::kBadParameter, UV_P("F"));
       return Result::Done;
     }
     feed = static_cast<uint32_t>(c.value('F') / 60);  // mm/min in thousandths → µm/s
@@ -107,7 +109,7 @@ Machine::Result Machine::jog(HostLink& port, const uv::Command& c) {
 
 Machine::Result Machine::selfTest(HostLink& port, const uv::Command& c) {
   if (!axisHomed(0) || !axisHomed(1)) {
-    port.errorLine(uv::kNotHomed, "home first (G28)");
+    port.errorLineP(uv::kNotHomed, UV_P("home first (G28)"));
     return Result::Done;
   }
   if (!motion_.idle()) return Result::Wait;

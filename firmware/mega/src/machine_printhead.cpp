@@ -1,6 +1,7 @@
 // Printhead commands of the command core: M105, M401/M402/M280 (the CR Touch), M355 (the work light).
 #include "error_codes.h"
 #include "machine.h"
+#include "progmem.h"
 
 namespace mega {
 
@@ -43,7 +44,7 @@ Machine::Result Machine::servo(HostLink& port, const uv::Command& c, char op) {
 Machine::Result Machine::light(HostLink& port, const uv::Command& c) {
   bool on = c.hasValue('S') ? c.value('S') != 0 : true;
   if (!io_.light(static_cast<uint8_t>(config_.whole(Key::LightPin)), on)) {
-    port.errorLine(uv::kBadParameter, "light.pin is not a free pin");
+    port.errorLineP(uv::kBadParameter, UV_P("light.pin is not a free pin"));
     return Result::Done;
   }
   lightOn_ = on;

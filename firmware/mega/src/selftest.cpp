@@ -3,6 +3,7 @@
 
 #include <string.h>
 
+#include "progmem.h"
 #include "text_scan.h"
 
 namespace mega {
@@ -64,16 +65,16 @@ RoutineStatus SelfTest::poll() {
 
 uint8_t SelfTest::format(char* out) const {
   char* p = out;
-  auto put = [&p](const char* s) {
-    size_t n = strlen(s);
-    memcpy(p, s, n);
+  auto put = [&p](const char* flash) {
+    size_t n = uvStrlenP(flash);
+    uvMemcpyP(p, flash, n);
     p += n;
   };
-  put(quick_ ? "TEST:quick" : "TEST:full");
+  put(quick_ ? UV_P("TEST:quick") : UV_P("TEST:full"));
   for (uint8_t a = 0; a < 2; a++) {
-    put(a ? " y=" : " x=");
-    put(pass_[a] ? "pass" : "fail");
-    put(a ? " y_steps=" : " x_steps=");
+    put(a ? UV_P(" y=") : UV_P(" x="));
+    put(pass_[a] ? UV_P("pass") : UV_P("fail"));
+    put(a ? UV_P(" y_steps=") : UV_P(" x_steps="));
     p += uv::putUnsigned(counted_[a], p);
   }
   *p = 0;

@@ -6,13 +6,14 @@
 #include "crc16.h"
 #include "dialect_command.h"
 #include "error_codes.h"
+#include "progmem.h"
 #include "text_scan.h"
 
 namespace uv {
 
 size_t LineReceiver::formatOk(char* out, int32_t line) const {
   size_t n = 0;
-  memcpy(out, "ok ", 3);
+  uvMemcpyP(out, UV_P("ok "), 3);
   n = 3;
   if (line >= 0) {
     out[n++] = 'N';
@@ -39,7 +40,7 @@ void LineReceiver::ok(ReplySink& sink, int32_t n) const {
 }
 
 static size_t errorLine(uint8_t code, char* out) {
-  memcpy(out, "Error:E", 7);
+  uvMemcpyP(out, UV_P("Error:E"), 7);
   size_t n = 7 + putUnsigned(code, out + 7);
   out[n++] = ' ';
   errorMessage(code, out + n, 48);
@@ -50,12 +51,12 @@ void LineReceiver::askResend(uint8_t code, ReplySink& sink) {
   resyncing_ = true;
   char buf[96];
   size_t n = errorLine(code, buf);
-  memcpy(buf + n, ", Last Line: ", 13);
+  uvMemcpyP(buf + n, UV_P(", Last Line: "), 13);
   n += 13;
   n += putSigned(last_, buf + n);
   buf[n] = '\0';
   sink.line(buf);
-  memcpy(buf, "Resend: ", 8);
+  uvMemcpyP(buf, UV_P("Resend: "), 8);
   buf[8 + putSigned(last_ + 1, buf + 8)] = '\0';
   sink.line(buf);
   ok(sink);  // a resend request accepts no line

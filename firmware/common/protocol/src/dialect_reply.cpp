@@ -6,22 +6,31 @@
 #include "dialect_command.h"
 #include "crc16.h"
 #include "dialect_frame.h"
+#include "progmem.h"
 #include "text_scan.h"
 
 namespace uv {
 
-const char* const kMachineType = "UV-LED exposure printer";
+const char kMachineType[] UV_FLASH = "UV-LED exposure printer";
 
 namespace {
 
-const char* const kJobStates[] = {"idle", "uploading", "ready", "running", "paused", "done", "aborted", "failed", "interrupted"};
-const char* const kProbeStates[] = {"triggered", "open", "alarm", "deployed", "stowed"};
+// The names live in flash on the Mega; every read goes through uvFlashPtr and the uvP functions.
+const char kIdle[] UV_FLASH = "idle", kUploading[] UV_FLASH = "uploading", kReady[] UV_FLASH = "ready",
+           kRunning[] UV_FLASH = "running", kPaused[] UV_FLASH = "paused", kDone[] UV_FLASH = "done",
+           kAborted[] UV_FLASH = "aborted", kFailed[] UV_FLASH = "failed", kInterrupted[] UV_FLASH = "interrupted";
+const char* const kJobStates[] UV_FLASH = {kIdle, kUploading, kReady, kRunning, kPaused, kDone, kAborted, kFailed, kInterrupted};
+const char kTriggered[] UV_FLASH = "triggered", kOpen[] UV_FLASH = "open", kAlarm[] UV_FLASH = "alarm",
+           kDeployed[] UV_FLASH = "deployed", kStowed[] UV_FLASH = "stowed";
+const char* const kProbeStates[] UV_FLASH = {kTriggered, kOpen, kAlarm, kDeployed, kStowed};
 
-// Index of [p, end) in a list of names, or -1.
+// Index of [p, end) in a list of names in flash, or -1.
 int8_t lookup(const char* p, const char* end, const char* const* names, uint8_t count) {
   size_t n = static_cast<size_t>(end - p);
-  for (uint8_t i = 0; i < count; i++)
-    if (strlen(names[i]) == n && memcmp(names[i], p, n) == 0) return static_cast<int8_t>(i);
+  for (uint8_t i = 0; i < count; i++) {
+    const char* name = uvFlashPtr(names[i]);
+    if (uvStrlenP(name) == n && uvMemcmpP(p, name, n) == 0) return static_cast<int8_t>(i);
+  }
   return -1;
 }
 
@@ -134,7 +143,7 @@ bool parseCoded(const char* p, const char* end, Reply& r) {
 
 }  // namespace
 
-const char* jobStateName(JobState s) { return kJobStates[static_cast<uint8_t>(s)]; }
+const char* jobStateName(JobState s) { return uvFlashPtr(kJobStates[static_cast<uint8_t>(s)]); }
 
 bool parseReply(const char* line, uint8_t len, Reply& r) {
   memset(&r, 0, sizeof(r));
@@ -204,7 +213,8 @@ bool parseReply(const char* line, uint8_t len, Reply& r) {
     return i >= 0;
   }
   if (startsWith(p, end, "TEST:")) {
-    static const char* const kModes[] = {"quick", "full"};
+    static const char kQuick[] UV_FLASH = "quick", kFull[] UV_FLASH = "full";
+    static const char* const kModes[] UV_FLASH = {kQuick, kFull};
     r.kind = ReplyKind::Test;
     return parseNamedFields(p + 5, end, kModes, 2, r);
   }
@@ -271,6 +281,16 @@ struct Out {
     n += len;
   }
   void put(const char* s) { put(s, strlen(s)); }
+  // A string in flash (UV_P, or a UV_FLASH array).
+  void putP(const char* s) {
+    size_t len = uvStrlenP(s);
+    if (n + len + 1 > size) {
+      full = true;
+      return;
+    }
+    uvMemcpyP(buf + n, s, len);
+    n += len;
+  }
   void num(int32_t v) {
     char t[12];
     put(t, putSigned(v, t));
@@ -300,15 +320,15 @@ size_t formatReply(const Reply& r, char* buf, size_t size) {
   Out o{buf, size, 0, false};
   switch (r.kind) {
     case ReplyKind::Ok:
-      o.put("ok");
+      o.putP(UV_P("ok"));
       if (r.hasFlow) {
         if (r.hasN) {
-          o.put(" N");
+          o.putP(UV_P(" N"));
           o.num(static_cast<int32_t>(r.n));
         }
-        o.put(" P");
+        o.putP(UV_P(" P"));
         o.num(r.p);
-        o.put(" B");
+        o.putP(UV_P(" B"));
         o.num(r.b);
         char t[6];
         t[0] = '*';
@@ -318,89 +338,89 @@ size_t formatReply(const Reply& r, char* buf, size_t size) {
       break;
     case ReplyKind::Error:
     case ReplyKind::Fault:
-      o.put(r.kind == ReplyKind::Error ? "Error:" : "FAULT:");
+      o.putP(r.kind == ReplyKind::Error ? UV_P("Error:") : UV_P("FAULT:"));
       if (r.code) {
-        o.put("E");
+        o.putP(UV_P("E"));
         o.num(r.code);
-        o.put(" ");
+        o.putP(UV_P(" "));
       }
       o.put(r.text, r.textLen);
       break;
     case ReplyKind::Resend:
-      o.put("Resend: ");
+      o.putP(UV_P("Resend: "));
       o.num(static_cast<int32_t>(r.n));
       break;
     case ReplyKind::Temps: {
       uint8_t hot = 0;
       for (uint8_t i = 1; i < kSensorCount; i++)
         if (r.deciC[i] > r.deciC[hot]) hot = i;
-      o.put("T:");
+      o.putP(UV_P("T:"));
       o.deci(r.deciC[hot]);
-      o.put(" /");
+      o.putP(UV_P(" /"));
       o.deci(r.limitDeciC[hot]);
       for (uint8_t i = 0; i < kSensorCount; i++) {
         char tag[5] = {' ', 'T', static_cast<char>('0' + i), ':', '\0'};
         o.put(tag);
         o.deci(r.deciC[i]);
-        o.put(" /");
+        o.putP(UV_P(" /"));
         o.deci(r.limitDeciC[i]);
       }
       break;
     }
     case ReplyKind::Position:
-      o.put("X:");
+      o.putP(UV_P("X:"));
       o.mm(r.um[0]);
-      o.put(" Y:");
+      o.putP(UV_P(" Y:"));
       o.mm(r.um[1]);
-      o.put(" Z:");
+      o.putP(UV_P(" Z:"));
       o.mm(r.um[2]);
-      o.put(" E:0.000 Count X:");
+      o.putP(UV_P(" E:0.000 Count X:"));
       o.num(r.steps[0]);
-      o.put(" Y:");
+      o.putP(UV_P(" Y:"));
       o.num(r.steps[1]);
-      o.put(" Z:");
+      o.putP(UV_P(" Z:"));
       o.num(r.steps[2]);
       break;
     case ReplyKind::ProbePoint:
-      o.put("Bed X: ");
+      o.putP(UV_P("Bed X: "));
       o.mm(r.um[0]);
-      o.put(" Y: ");
+      o.putP(UV_P(" Y: "));
       o.mm(r.um[1]);
-      o.put(" Z: ");
+      o.putP(UV_P(" Z: "));
       o.mm(r.um[2]);
       break;
     case ReplyKind::Job:
-      o.put("JOB:");
-      o.put(kJobStates[r.state]);
+      o.putP(UV_P("JOB:"));
+      o.putP(uvFlashPtr(kJobStates[r.state]));
       o.put(r.text, r.textLen);
       break;
     case ReplyKind::Probe:
-      o.put("PROBE:");
-      o.put(kProbeStates[r.state]);
+      o.putP(UV_P("PROBE:"));
+      o.putP(uvFlashPtr(kProbeStates[r.state]));
       break;
     case ReplyKind::Test:
-      o.put(r.state ? "TEST:full" : "TEST:quick");
+      o.putP(r.state ? UV_P("TEST:full") : UV_P("TEST:quick"));
       o.put(r.text, r.textLen);
       break;
     case ReplyKind::Echo:
-      o.put("echo:");
+      o.putP(UV_P("echo:"));
       o.put(r.text, r.textLen);
       break;
-    case ReplyKind::Busy: o.put("busy: processing"); break;
-    case ReplyKind::Start: o.put("start"); break;
+    case ReplyKind::Busy: o.putP(UV_P("busy: processing")); break;
+    case ReplyKind::Start: o.putP(UV_P("start")); break;
     case ReplyKind::Firmware:
-      o.put("FIRMWARE_NAME:");
+      o.putP(UV_P("FIRMWARE_NAME:"));
       o.put(r.text, r.textLen);
-      o.put(" PROTOCOL_VERSION:");
+      o.putP(UV_P(" PROTOCOL_VERSION:"));
       o.num(static_cast<int32_t>(r.value));
-      o.put(" MACHINE_TYPE:");
-      o.put(kMachineType);
-      o.put(" LEDS:4 SENSORS:6");
+      o.putP(UV_P(" MACHINE_TYPE:"));
+      o.putP(kMachineType);
+      o.putP(UV_P(" LEDS:4 SENSORS:6"));
       break;
     case ReplyKind::Cap:
-      o.put("Cap:");
+      o.putP(UV_P("Cap:"));
       o.put(r.text, r.textLen);
-      o.put(":");
+      o.putP(UV_P(":"));
       o.num(static_cast<int32_t>(r.value));
       break;
     case ReplyKind::Other: o.put(r.text, r.textLen); break;

@@ -16,7 +16,7 @@ enum class ReplyKind : uint8_t {
 enum class JobState : uint8_t { Idle, Uploading, Ready, Running, Paused, Done, Aborted, Failed, Interrupted };
 enum class ProbeState : uint8_t { Triggered, Open, Alarm, Deployed, Stowed };
 
-extern const char* const kMachineType;
+extern const char kMachineType[];  // in flash on AVR
 
 struct Reply {
   ReplyKind kind;
@@ -41,6 +41,7 @@ bool parseReply(const char* line, uint8_t len, Reply& out);
 // Writes the canonical line for a reply and a NUL; returns its length (0 if it won't fit).
 size_t formatReply(const Reply& r, char* out, size_t size);
 
+// The state's name (a flash pointer on AVR).
 const char* jobStateName(JobState s);
 
 }  // namespace uv

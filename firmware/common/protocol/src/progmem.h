@@ -9,6 +9,11 @@
 #define uvFlashDword(p) static_cast<int32_t>(pgm_read_dword(p))
 #define uvFlashPtr(p) reinterpret_cast<const char*>(pgm_read_ptr(&(p)))
 #define uvFlashStrncpy strncpy_P
+// A string literal kept in flash; read it only through the uvP* functions.
+#define UV_P(s) PSTR(s)
+#define uvStrlenP strlen_P
+#define uvMemcpyP memcpy_P
+#define uvMemcmpP memcmp_P
 #else
 #include <string.h>
 #define UV_FLASH
@@ -16,4 +21,8 @@
 #define uvFlashDword(p) (*(p))
 #define uvFlashPtr(p) (p)
 #define uvFlashStrncpy strncpy
+#define UV_P(s) (s)
+#define uvStrlenP strlen
+#define uvMemcpyP memcpy
+#define uvMemcmpP memcmp
 #endif
