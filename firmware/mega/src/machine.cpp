@@ -30,7 +30,7 @@ bool isQuery(const uv::Command& c) {
 
 Machine::Machine(const MachineParts& p)
     : motion_(p.motion), head_(p.head), config_(p.config), store_(p.store), sd_(p.sd), io_(p.io),
-      homing_(p.motion, p.config), test_(p.motion, p.config), firmwareName_(p.firmwareName), movesFree_(p.movesFree) {
+      homing_(p.motion, p.config), test_(p.motion, p.config), firmwareName_(p.firmwareName), movesFree_(p.movesFree), stats_(p.stats) {
   for (uint8_t i = 0; i < kPorts; i++) ports_[i] = p.ports[i];
 }
 
@@ -175,6 +175,7 @@ Machine::Result Machine::dispatch(HostLink& port, const uv::Command& c) {
       case 402: return servo(port, c, 'U');
       case 280: return servo(port, c, 0);
       case 355: return light(port, c);
+      case 821: return diagnostics(port, c);
       case 850: case 500: case 501: case 502: case 503: return configCommand(port, c);
       case 112: return Result::Done;  // acted on when it arrived
       case 999:
@@ -321,6 +322,27 @@ void Machine::runLong() {
     default:
       return;
   }
+}
+
+Machine::Result Machine::diagnostics(HostLink& port, const uv::Command& c) {
+  char buf[112];
+  char* p = buf;
+  auto field = [&p](const char* flashName, uint32_t v) {
+    size_t n = uvStrlenP(flashName);
+    uvMemcpyP(p, flashName, n);
+    p += n;
+    p += uv::putUnsigned(v, p);
+  };
+  uint16_t dropped = 0;
+  for (HostLink* h : ports_) dropped = static_cast<uint16_t>(dropped + h->dropped());
+  field(UV_P("echo:DIAG loop_max_us="), stats_.loopMaxUs);
+  field(UV_P(" step_isr_max_us="), stats_.stepIsrMaxUs);
+  field(UV_P(" underruns="), motion_.engine().underruns());
+  field(UV_P(" rx_dropped="), dropped);
+  *p = 0;
+  port.line(buf);
+  if (c.has('R')) stats_.loopMaxUs = 0;
+  return Result::Done;
 }
 
 void Machine::printheadEvents() {

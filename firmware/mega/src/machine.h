@@ -19,6 +19,12 @@ namespace mega {
 constexpr uint32_t kKeepaliveUs = 2000000;  // busy: every 2 s during a long command
 constexpr uint8_t kPorts = 2;               // USB, ESP
 
+// What the main loop measures about itself, for M821 (the never-blocks check).
+struct LoopStats {
+  uint32_t loopMaxUs;      // the longest main-loop pass
+  uint16_t stepIsrMaxUs;   // the longest step interrupt
+};
+
 struct MachineParts {
   HostLink* ports[kPorts];
   Motion& motion;
@@ -29,6 +35,7 @@ struct MachineParts {
   MachineIo& io;
   const char* firmwareName;
   uint8_t& movesFree;  // the P of every ok, which the ports read
+  LoopStats& stats;
 };
 
 class Machine {
@@ -72,6 +79,7 @@ class Machine {
   Result temperatures(HostLink& port);
   Result servo(HostLink& port, const uv::Command& c, char op);
   Result light(HostLink& port, const uv::Command& c);
+  Result diagnostics(HostLink& port, const uv::Command& c);
   // commands (machine_config.cpp)
   Result configCommand(HostLink& port, const uv::Command& c);
   // A changed steps/mm makes the step count mean another place: that axis must home again.
@@ -94,6 +102,7 @@ class Machine {
 
   uint32_t now_ = 0;
   uint8_t& movesFree_;
+  LoopStats& stats_;
   uint8_t next_ = 0;  // the port whose line runs next (round robin)
   uint8_t homed_ = 0;
   bool halted_ = false;

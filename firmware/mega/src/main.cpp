@@ -24,23 +24,24 @@ Config config;
 SdStorage sd;
 AvrEeprom eeprom;
 ConfigStore store(config, sd, eeprom);
-StepEngine engine;
-Motion motion(engine, config);
+Motion motion(stepEngine, config);
 SerialStream nanoSerial(NANO_SERIAL);
 PrintheadLink head(nanoSerial);
 HostUart usbUart(0);
 HostUart espUart(2);  // or 3: esp.port, read at start-up
 uint8_t movesFree = StepEngine::kBlocks;
+LoopStats stats = {};
 HostLink usb(usbUart, movesFree);
 HostLink esp(espUart, movesFree);
 Board board;
-Machine machine(MachineParts{{&usb, &esp}, motion, head, config, store, sd, board, kFirmwareName, movesFree});
+Machine machine(MachineParts{{&usb, &esp}, motion, head, config, store, sd, board, kFirmwareName, movesFree, stats});
+uint32_t lastPass = 0;
 
 }  // namespace
 
 void setup() {
   board.begin();
-  stepperBegin(engine);
+  stepperBegin();
   NANO_SERIAL.begin(115200);
   sd.begin(PIN_SD_CS);
   store.load();  // for esp.port and invert.*, before anything talks
@@ -52,6 +53,11 @@ void setup() {
 }
 
 void loop() {
-  machine.poll(micros());
+  uint32_t now = micros();
+  uint32_t pass = now - lastPass;  // the whole pass, the time interrupts took included
+  if (lastPass && pass > stats.loopMaxUs) stats.loopMaxUs = pass;
+  lastPass = now;
+  machine.poll(now);
   stepperKick();
+  stats.stepIsrMaxUs = static_cast<uint16_t>(stepperWorstTicks() / 2);
 }

@@ -88,8 +88,9 @@ class MegaRig {
   FakeIo io{rig};
   HostPipe usb, esp;
   uint8_t movesFree = StepEngine::kBlocks;
+  LoopStats stats = {};
   HostLink usbLink{usb, movesFree}, espLink{esp, movesFree};
-  Machine machine{MachineParts{{&usbLink, &espLink}, rig.motion, head, config, store, sd, io, "UVExposure 0.1.0 (Mega)", movesFree}};
+  Machine machine{MachineParts{{&usbLink, &espLink}, rig.motion, head, config, store, sd, io, "UVExposure 0.1.0 (Mega)", movesFree, stats}};
   uint64_t nowUs = 0;
   std::vector<std::string> usbLines, espLines;  // everything each host has read
 

@@ -87,71 +87,94 @@ void StepEngine::finishBlock() {
   curSlot_ = 0xff;
 }
 
+bool StepEngine::loadSegment(StepTick& t) {
+  if (segHead_ == segTail_) {
+    if (curSlot_ != 0xff) underruns_++;  // the main loop fell behind mid-block: must never happen
+    running_ = false;
+    t.idle = true;
+    return false;
+  }
+  const QueuedSegment& s = segs_[segTail_ % kSegments];
+  if (s.slot != curSlot_) {  // a new block: Bresenham from the middle, new directions
+    curSlot_ = s.slot;
+    const StepBlock& b = blocks_[curSlot_];
+    total_ = b.total;
+    steps0_ = b.steps[0];
+    steps1_ = b.steps[1];
+    steps2_ = b.steps[2];
+    err0_ = err1_ = err2_ = b.total / 2;
+    blockDone_ = 0;
+    debounce_ = 0;
+    t.dirChanged = b.dirNeg != dirNeg_;
+    dirNeg_ = b.dirNeg;
+    t.dirNeg = dirNeg_;
+    seekMask_ = b.seekAxis >= 0 ? static_cast<uint8_t>(1 << b.seekAxis) : 0;
+    if (seekMask_) {
+      seekHit_ = false;
+      seekSteps_ = 0;
+    }
+  }
+  segLeft_ = s.steps;
+  interval_ = s.interval;
+  lastInterval_ = s.interval;
+  lastSegment_ = s.last;
+  running_ = true;
+  return true;
+}
+
+void StepEngine::endSeek() {
+  seekHit_ = true;
+  seekSteps_ = blockDone_;
+  // Drop this block's queued segments; pushSegment refuses any more for it.
+  while (segHead_ != segTail_ && segs_[segTail_ % kSegments].slot == curSlot_) segTail_ = static_cast<uint8_t>(segTail_ + 1);
+  segLeft_ = 0;
+  running_ = false;
+  finishBlock();
+}
+
+void StepEngine::endSegment() {
+  segTail_ = static_cast<uint8_t>(segTail_ + 1);
+  if (lastSegment_) {
+    if (seekMask_) seekSteps_ = blockDone_;
+    finishBlock();
+  }
+}
+
+// The hot path runs every step: no loops, no shifts by a variable, the block's numbers in scalars.
 StepTick StepEngine::tick(uint8_t endstops) {
   StepTick t{0, dirNeg_, false, 0, false};
-  if (!running_ || segLeft_ == 0) {
-    if (segHead_ == segTail_) {
-      if (curSlot_ != 0xff) underruns_++;  // the main loop fell behind mid-block: must never happen
-      running_ = false;
-      t.idle = true;
-      return t;
-    }
-    const QueuedSegment& s = segs_[segTail_ % kSegments];
-    if (s.slot != curSlot_) {  // a new block: Bresenham from the middle, new directions
-      curSlot_ = s.slot;
-      const StepBlock& b = blocks_[curSlot_];
-      for (uint8_t a = 0; a < 3; a++) err_[a] = b.total / 2;
-      blockDone_ = 0;
-      debounce_ = 0;
-      t.dirChanged = b.dirNeg != dirNeg_;
-      dirNeg_ = b.dirNeg;
-      t.dirNeg = dirNeg_;
-      if (b.seekAxis >= 0) {
-        seekHit_ = false;
-        seekSteps_ = 0;
-      }
-    }
-    segLeft_ = s.steps;
-    running_ = true;
-  }
-  const StepBlock& b = blocks_[curSlot_];
-  const QueuedSegment& s = segs_[segTail_ % kSegments];
-  t.interval = s.interval;
-  lastInterval_ = s.interval;
-  if (b.seekAxis >= 0 && (endstops & (1 << b.seekAxis))) {
+  if (segLeft_ == 0 && !loadSegment(t)) return t;
+  t.interval = interval_;
+  if (endstops & seekMask_) {
     // Closed: confirm with a second reading one interval later, without stepping, so the
     // position where the seek ends is exactly where the switch closed.
     if (debounce_ == 0) {
       debounce_ = 1;
       return t;
     }
-    seekHit_ = true;
-    seekSteps_ = blockDone_;
-    // Drop this block's queued segments; pushSegment refuses any more for it.
-    while (segHead_ != segTail_ && segs_[segTail_ % kSegments].slot == curSlot_) segTail_ = static_cast<uint8_t>(segTail_ + 1);
-    segLeft_ = 0;
-    running_ = false;
-    finishBlock();
+    endSeek();
     return t;
   }
   debounce_ = 0;
-  for (uint8_t a = 0; a < 3; a++) {
-    err_[a] += b.steps[a];
-    if (err_[a] >= b.total) {
-      err_[a] -= b.total;
-      t.step |= static_cast<uint8_t>(1 << a);
-      pos_[a] += (dirNeg_ & (1 << a)) ? -1 : 1;
-    }
+  uint8_t step = 0;
+  if ((err0_ += steps0_) >= total_) {
+    err0_ -= total_;
+    step |= 1;
+    pos_[0] += (dirNeg_ & 1) ? -1 : 1;
   }
+  if ((err1_ += steps1_) >= total_) {
+    err1_ -= total_;
+    step |= 2;
+    pos_[1] += (dirNeg_ & 2) ? -1 : 1;
+  }
+  if ((err2_ += steps2_) >= total_) {
+    err2_ -= total_;
+    step |= 4;
+    pos_[2] += (dirNeg_ & 4) ? -1 : 1;
+  }
+  t.step = step;
   blockDone_++;
-  if (--segLeft_ == 0) {
-    bool last = s.last;
-    segTail_ = static_cast<uint8_t>(segTail_ + 1);
-    if (last) {
-      if (b.seekAxis >= 0) seekSteps_ = blockDone_;
-      finishBlock();
-    }
-  }
+  if (--segLeft_ == 0) endSegment();
   return t;
 }
 

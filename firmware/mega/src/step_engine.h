@@ -66,6 +66,10 @@ class StepEngine {
  private:
   uint8_t blockCount() const { return static_cast<uint8_t>(blockHead_ - blockTail_); }
   void finishBlock();
+  // The interrupt's colder paths, once a segment or a block.
+  bool loadSegment(StepTick& t);
+  void endSegment();
+  void endSeek();
 
   struct QueuedSegment {
     uint16_t steps, interval;
@@ -78,11 +82,16 @@ class StepEngine {
   QueuedSegment segs_[kSegments];
   volatile uint8_t blockHead_ = 0, blockTail_ = 0;  // free-running; slot = index % kBlocks
   volatile uint8_t segHead_ = 0, segTail_ = 0;
-  // The running segment and block (interrupt side).
+  // The running segment and block (interrupt side), copied out of the queues so each step reads
+  // plain members.
   bool running_ = false;
+  bool lastSegment_ = false;
   uint16_t segLeft_ = 0;
+  uint16_t interval_ = 0;
   uint8_t curSlot_ = 0xff;
-  uint32_t err_[3] = {};
+  uint8_t seekMask_ = 0;
+  uint32_t total_ = 0, steps0_ = 0, steps1_ = 0, steps2_ = 0;
+  uint32_t err0_ = 0, err1_ = 0, err2_ = 0;
   uint32_t blockDone_ = 0;
   uint8_t dirNeg_ = 0;
   uint8_t debounce_ = 0;

@@ -11,24 +11,16 @@
 
 namespace mega {
 
+StepEngine stepEngine;
+
 namespace {
-StepEngine* engine = nullptr;
 volatile bool running = false;
 volatile uint8_t invertBits = 0;
 volatile uint16_t worst = 0;
 uint8_t pinsDir = 0;  // what the direction pins show now
 }  // namespace
 
-uint8_t readEndstops() {
-  uint8_t bits = 0;
-  if (!(ENDSTOP_X_PIN & ENDSTOP_X_BIT)) bits |= 1;
-  if (!(ENDSTOP_YZ_PIN & ENDSTOP_Y_BIT)) bits |= 2;
-  if (!(ENDSTOP_YZ_PIN & ENDSTOP_Z_BIT)) bits |= 4;
-  return bits;
-}
-
-void stepperBegin(StepEngine& e) {
-  engine = &e;
+void stepperBegin() {
   const uint8_t outputs[] = {PIN_X_STEP, PIN_Y_STEP, PIN_Z_STEP, PIN_X_DIR, PIN_Y_DIR, PIN_Z_DIR};
   for (uint8_t p : outputs) {
     digitalWrite(p, LOW);
@@ -45,7 +37,7 @@ void stepperBegin(StepEngine& e) {
 void stepperInvert(uint8_t invert) { invertBits = invert; }
 
 void stepperKick() {
-  if (running || engine->idle()) return;
+  if (running || stepEngine.idle()) return;
   uint8_t sreg = SREG;
   cli();
   running = true;
@@ -67,7 +59,7 @@ uint16_t stepperWorstTicks() {
 void stepInterrupt() {
   STEP_XY_PORT &= static_cast<uint8_t>(~(STEP_X_BIT | STEP_Y_BIT));
   STEP_Z_PORT &= static_cast<uint8_t>(~STEP_Z_BIT);
-  StepTick t = engine->tick(readEndstops());
+  StepTick t = stepEngine.tick(readEndstops());
   if (t.idle) {
     TIMSK1 &= static_cast<uint8_t>(~(1 << OCIE1A));
     running = false;
@@ -84,8 +76,9 @@ void stepInterrupt() {
   if (t.step & 1) STEP_XY_PORT |= STEP_X_BIT;
   if (t.step & 2) STEP_XY_PORT |= STEP_Y_BIT;
   if (t.step & 4) STEP_Z_PORT |= STEP_Z_BIT;
-  OCR1A = t.interval;
-  uint16_t took = TCNT1;  // ticks since this compare match
+  uint16_t took = TCNT1;  // ticks since this compare match (the timer restarted from 0 then)
+  // Never set a compare the counter has already passed: it would wait a whole 32 ms wrap.
+  OCR1A = t.interval > took + 4 ? t.interval : took + 4;
   if (took > worst) worst = took;
 }
 

@@ -1,0 +1,163 @@
+// Test rig: the real Mega and Nano images in one simavr process, wired as on the machine.
+#include "board_sim.h"
+
+#include <simavr/avr_adc.h>
+#include <simavr/avr_ioport.h>
+#include <simavr/avr_uart.h>
+#include <simavr/sim_avr.h>
+#include <simavr/sim_elf.h>
+#include <simavr/sim_interrupts.h>
+
+#include <stdexcept>
+
+namespace {
+// Receive-complete vectors: the rig counts a byte as taken when its interrupt is raised.
+constexpr int kMegaUsart0Rx = 25, kMegaUsart1Rx = 36, kNanoUsartRx = 18;
+void noSleep(avr_t*, avr_cycle_count_t) {}
+
+avr_t* boot(const std::string& elf, const char* mcu) {
+  elf_firmware_t fw = {};
+  if (elf_read_firmware(elf.c_str(), &fw) != 0) throw std::runtime_error("cannot read " + elf);
+  avr_t* avr = avr_make_mcu_by_name(mcu);
+  if (!avr) throw std::runtime_error(std::string("simavr has no ") + mcu);
+  avr_init(avr);
+  avr->frequency = 16000000;
+  avr->vcc = avr->avcc = avr->aref = 5000;
+  avr_load_firmware(avr, &fw);
+  avr->sleep = noSleep;
+  return avr;
+}
+
+void quiet(avr_t* avr, char uart) {
+  uint32_t flags = 0;  // no console echo, no real-time sleeping while the firmware polls
+  avr_ioctl(avr, AVR_IOCTL_UART_SET_FLAGS(uart), &flags);
+}
+}  // namespace
+
+void BoardSim::Feed::push() {
+  while (!pending.empty() && inFifo < 4) {
+    char c = pending.front();
+    pending.pop_front();
+    inFifo++;
+    avr_raise_irq(in, static_cast<uint8_t>(c));
+  }
+}
+
+BoardSim::BoardSim(const std::string& megaElf, const std::string& nanoElf) {
+  mega_ = boot(megaElf, "atmega2560");
+  nano_ = boot(nanoElf, "atmega328p");
+  for (char u : {'0', '1'}) quiet(mega_, u);
+  quiet(nano_, '0');
+
+  host_ = {mega_, avr_io_getirq(mega_, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_INPUT), {}, 0};
+  toMega_ = {mega_, avr_io_getirq(mega_, AVR_IOCTL_UART_GETIRQ('1'), UART_IRQ_INPUT), {}, 0};
+  toNano_ = {nano_, avr_io_getirq(nano_, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_INPUT), {}, 0};
+  avr_irq_register_notify(avr_io_getirq(mega_, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_OUTPUT), onHostOut, this);
+  avr_irq_register_notify(avr_io_getirq(mega_, AVR_IOCTL_UART_GETIRQ('1'), UART_IRQ_OUTPUT), onMegaToNano, this);
+  avr_irq_register_notify(avr_io_getirq(nano_, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_OUTPUT), onNanoToMega, this);
+  avr_irq_register_notify(avr_get_interrupt_irq(mega_, kMegaUsart0Rx) + AVR_INT_IRQ_PENDING, onRxTaken, &host_);
+  avr_irq_register_notify(avr_get_interrupt_irq(mega_, kMegaUsart1Rx) + AVR_INT_IRQ_PENDING, onRxTaken, &toMega_);
+  avr_irq_register_notify(avr_get_interrupt_irq(nano_, kNanoUsartRx) + AVR_INT_IRQ_PENDING, onRxTaken, &toNano_);
+
+  // CNC shield: X/Y/Z step on PE4, PE5, PG5; direction on PE3, PH3, PH4; endstops on PH6, PB4, PB5.
+  const char stepPort[3] = {'E', 'E', 'G'}, dirPort[3] = {'E', 'H', 'H'}, switchPort[3] = {'H', 'B', 'B'};
+  const int stepBit[3] = {4, 5, 5}, dirBit[3] = {3, 3, 4}, switchBit[3] = {6, 4, 5};
+  for (int a = 0; a < 3; a++) {
+    axisRefs_[a] = {this, a};
+    avr_irq_register_notify(avr_io_getirq(mega_, AVR_IOCTL_IOPORT_GETIRQ(stepPort[a]), stepBit[a]), onStep, &axisRefs_[a]);
+    avr_irq_register_notify(avr_io_getirq(mega_, AVR_IOCTL_IOPORT_GETIRQ(dirPort[a]), dirBit[a]), onDir, &axisRefs_[a]);
+    switchIrq_[a] = avr_io_getirq(mega_, AVR_IOCTL_IOPORT_GETIRQ(switchPort[a]), switchBit[a]);
+    avr_raise_irq(switchIrq_[a], 1);  // open: the pull-up holds it high
+  }
+  for (int ch = 0; ch < 6; ch++) avr_raise_irq(avr_io_getirq(nano_, AVR_IOCTL_ADC_GETIRQ, ADC_IRQ_ADC0 + ch), 750);  // 25.0 °C
+  avr_raise_irq(avr_io_getirq(nano_, AVR_IOCTL_IOPORT_GETIRQ('D'), 7), 0);  // probe open
+}
+
+uint64_t BoardSim::megaCycle() const { return mega_->cycle; }
+
+void BoardSim::setSwitch(int a) {
+  bool closed = pos[a] <= switchAt[a];
+  if (closed == switchClosed_[a]) return;
+  switchClosed_[a] = closed;
+  avr_raise_irq(switchIrq_[a], closed ? 0 : 1);
+}
+
+void BoardSim::onStep(avr_irq_t*, uint32_t value, void* param) {
+  auto* ref = static_cast<AxisRef*>(param);
+  if (!value) return;  // count rising edges
+  BoardSim* s = ref->sim;
+  s->pos[ref->axis] += s->dirHigh[ref->axis] ? -1 : 1;  // direction pin high: towards the switch
+  s->setSwitch(ref->axis);
+}
+
+void BoardSim::onDir(avr_irq_t*, uint32_t value, void* param) {
+  auto* ref = static_cast<AxisRef*>(param);
+  ref->sim->dirHigh[ref->axis] = value != 0;
+}
+
+void BoardSim::onHostOut(avr_irq_t*, uint32_t value, void* param) {
+  auto* s = static_cast<BoardSim*>(param);
+  char c = static_cast<char>(value);
+  if (c == '\n') {
+    s->hostLines_.push_back(s->hostPartial_);
+    s->hostPartial_.clear();
+  } else {
+    s->hostPartial_ += c;
+  }
+}
+
+void BoardSim::onMegaToNano(avr_irq_t*, uint32_t value, void* param) {
+  auto* s = static_cast<BoardSim*>(param);
+  char c = static_cast<char>(value);
+  s->toNano_.pending.push_back(c);
+  if (c == '\n') {
+    s->nanoLines.push_back(s->nanoPartial_);
+    s->nanoPartial_.clear();
+  } else {
+    s->nanoPartial_ += c;
+  }
+}
+
+void BoardSim::onNanoToMega(avr_irq_t*, uint32_t value, void* param) {
+  static_cast<BoardSim*>(param)->toMega_.pending.push_back(static_cast<char>(value));
+}
+
+void BoardSim::onRxTaken(avr_irq_t*, uint32_t value, void* param) {
+  auto* f = static_cast<Feed*>(param);
+  if (value && f->inFifo > 0) f->inFifo--;
+}
+
+void BoardSim::step() {
+  host_.push();
+  toMega_.push();
+  toNano_.push();
+  // Both chips run at 16 MHz: keep them within an instruction of each other.
+  avr_t* next = mega_->cycle <= nano_->cycle ? mega_ : nano_;
+  avr_run(next);
+  if (next == mega_) {
+    bool off = !mega_->sreg[S_I];
+    if (off && !megaOff_) {
+      megaOffSince_ = mega_->cycle;
+      megaOffPc_ = mega_->pc;  // an interrupt's vector, or the code that cleared the flag
+    }
+    if (off && mega_->cycle - megaOffSince_ > megaMaxInterruptsOff) {
+      megaMaxInterruptsOff = mega_->cycle - megaOffSince_;
+      megaMaxOffPc = megaOffPc_;
+    }
+    megaOff_ = off;
+  }
+  if (next->state == cpu_Crashed || next->state == cpu_Done) throw std::runtime_error("a simulated CPU stopped");
+}
+
+void BoardSim::runUs(double us) {
+  uint64_t end = megaCycle() + static_cast<uint64_t>(us * kCyclesPerUs);
+  while (megaCycle() < end) step();
+}
+
+void BoardSim::send(const std::string& bytes) { host_.pending.insert(host_.pending.end(), bytes.begin(), bytes.end()); }
+
+std::vector<std::string> BoardSim::takeLines() {
+  std::vector<std::string> out(hostLines_.begin(), hostLines_.end());
+  hostLines_.clear();
+  return out;
+}

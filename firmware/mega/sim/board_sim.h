@@ -1,0 +1,81 @@
+// Test rig: the real Mega image (build/avr/mega.elf) and the real Nano image (build/avr/nano.elf)
+// in one simavr process, their UARTs cross-connected as on the machine. The rig plays the host on
+// the Mega's USB UART, counts step pulses on the CNC shield's pins, and closes the endstops when an
+// axis reaches its switch.
+#pragma once
+#include <cstdint>
+#include <deque>
+#include <string>
+#include <vector>
+
+struct avr_t;
+struct avr_irq_t;
+
+class BoardSim {
+ public:
+  static constexpr double kCyclesPerUs = 16.0;
+
+  BoardSim(const std::string& megaElf, const std::string& nanoElf);
+
+  void runUs(double us);
+  template <class Pred>
+  bool runUntil(Pred done, double maxUs) {
+    uint64_t end = megaCycle() + static_cast<uint64_t>(maxUs * kCyclesPerUs);
+    while (megaCycle() < end) {
+      if (done()) return true;
+      for (int i = 0; i < 64; i++) step();
+    }
+    return done();
+  }
+  uint64_t megaCycle() const;
+
+  // Host side of the Mega's USB UART.
+  void send(const std::string& bytes);
+  // Lines the Mega sent the host since the last call.
+  std::vector<std::string> takeLines();
+  // Every line the Mega sent the Nano.
+  std::vector<std::string> nanoLines;
+
+  // The Mega's longest stretch with the global interrupt flag clear (ISRs included), in cycles,
+  // and where it began: an interrupt's vector (bytes: 4 × its number), or the code that cleared it.
+  uint64_t megaMaxInterruptsOff = 0;
+  uint32_t megaMaxOffPc = 0;
+
+  int32_t pos[3] = {0, 0, 0};                       // steps counted on the pins
+  int32_t switchAt[3] = {INT32_MIN, INT32_MIN, INT32_MIN};  // a switch closes at or below this
+  bool dirHigh[3] = {false, false, false};
+
+  // A byte-fed UART: keeps simavr's receive FIFO topped up so bytes arrive back to back.
+  struct Feed {
+    avr_t* avr;
+    avr_irq_t* in;
+    std::deque<char> pending;
+    int inFifo = 0;
+    void push();
+  };
+
+ private:
+  void step();
+  void setSwitch(int axis);
+  static void onStep(avr_irq_t* irq, uint32_t value, void* param);
+  static void onDir(avr_irq_t* irq, uint32_t value, void* param);
+  static void onHostOut(avr_irq_t* irq, uint32_t value, void* param);
+  static void onMegaToNano(avr_irq_t* irq, uint32_t value, void* param);
+  static void onNanoToMega(avr_irq_t* irq, uint32_t value, void* param);
+  static void onRxTaken(avr_irq_t* irq, uint32_t value, void* param);
+
+  avr_t* mega_ = nullptr;
+  avr_t* nano_ = nullptr;
+  Feed host_{}, toNano_{}, toMega_{};
+  struct AxisRef {
+    BoardSim* sim;
+    int axis;
+  } axisRefs_[3];
+  std::string hostPartial_, nanoPartial_;
+  std::deque<std::string> hostLines_;
+  avr_irq_t* switchIrq_[3] = {};
+  bool switchClosed_[3] = {false, false, false};
+  bool megaOff_ = false;
+  uint64_t megaOffSince_ = 0;
+  uint32_t megaOffPc_ = 0;
+};
