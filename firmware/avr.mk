@@ -17,11 +17,12 @@ OUT := build/avr
 OBJ := $(OUT)/obj/$(BOARD)
 CORE := $(ARDUINO_DIR)/cores/arduino
 COMMON := firmware/common/protocol/src
+PLANNER := firmware/common/planner/src
 BOARD_SRC := firmware/$(BOARD)/src
 
 # -MMD -MP: each object records its headers, so a changed header rebuilds what includes it.
 CPPFLAGS := -MMD -MP -mmcu=$(MCU) -DF_CPU=16000000L -DARDUINO=10819 -DARDUINO_ARCH_AVR \
-  -I$(CORE) -I$(ARDUINO_DIR)/variants/$(VARIANT) -I$(COMMON) -I$(BOARD_SRC) $(EXTRA_DEFS)
+  -I$(CORE) -I$(ARDUINO_DIR)/variants/$(VARIANT) -I$(COMMON) -I$(PLANNER) -I$(BOARD_SRC) $(EXTRA_DEFS)
 OPT := -Os -ffunction-sections -fdata-sections -flto
 CFLAGS := $(OPT) -std=gnu11
 CXXFLAGS := $(OPT) -std=gnu++11 -fno-exceptions -fno-threadsafe-statics -DDECIMAL_DIG=__DECIMAL_DIG__
@@ -29,7 +30,10 @@ WARN := -Wall -Wextra -Wno-missing-field-initializers
 ASFLAGS := -x assembler-with-cpp
 
 CORE_SRCS := $(wildcard $(CORE)/*.c $(CORE)/*.cpp $(CORE)/*.S)
-APP_SRCS := $(filter-out %_test.cpp,$(wildcard $(COMMON)/*.cpp $(BOARD_SRC)/*.cpp $(BOARD_SRC)/hw/*.cpp))
+APP_SRCS := $(filter-out %_test.cpp %_main.cpp,$(wildcard $(COMMON)/*.cpp $(BOARD_SRC)/*.cpp $(BOARD_SRC)/hw/*.cpp))
+ifeq ($(BOARD),mega)
+APP_SRCS += $(filter-out %_test.cpp %_main.cpp,$(wildcard $(PLANNER)/*.cpp))
+endif
 CORE_OBJS := $(patsubst $(CORE)/%,$(OBJ)/core/%.o,$(CORE_SRCS))
 APP_OBJS := $(patsubst %,$(OBJ)/app/%.o,$(APP_SRCS))
 

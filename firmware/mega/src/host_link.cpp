@@ -25,7 +25,7 @@ bool isEmergencyStop(const char* line, uint8_t len) {
 void HostLink::put(const char* text, uint8_t n, bool flash) {
   for (uint8_t i = 0; i < n && txFree(); i++) {
     txBuf_[txIn_] = flash ? static_cast<char>(uvFlashByte(text + i)) : text[i];
-    txIn_ = static_cast<uint8_t>(txIn_ + 1);
+    txIn_ = txIn_ + 1 == kTxRing ? 0 : static_cast<uint8_t>(txIn_ + 1);
   }
 }
 
@@ -36,11 +36,6 @@ void HostLink::line(const char* text, bool flash) {
   tx_.kick();
 }
 
-uint8_t HostLink::room() const {
-  uint8_t free = txFree();
-  return free > kTxReserve ? static_cast<uint8_t>(free - kTxReserve) : 0;
-}
-
 bool HostLink::report(const char* text, bool flash) {
   if ((flash ? uvStrlenP(text) : strlen(text)) + 1 > room()) return false;
   line(text, flash);
@@ -49,8 +44,8 @@ bool HostLink::report(const char* text, bool flash) {
 
 bool HostLink::poll() {
   bool stop = false;
-  // The receiver may answer at once (errors, resend, duplicates): only with the reserve free.
-  for (LineSlot* s; (s = ring_.arrived()) != nullptr && txFree() >= kTxReserve;) {
+  // The receiver may answer at once (errors, resend, duplicates): only with room for that.
+  for (LineSlot* s; (s = ring_.arrived()) != nullptr && txFree() >= kAcceptRoom;) {
     heard_ = true;
     if (!s->overflow && isEmergencyStop(s->text, s->len)) stop = true;
     uv::Frame frame;

@@ -9,8 +9,9 @@
 
 namespace mega {
 
-constexpr uint16_t kTxRing = 256;     // 255 usable: free-running 8-bit indices
-constexpr uint8_t kTxReserve = 96;    // kept free for the receiver's own replies (errors, resend)
+// One reply block (the longest payload line, 112 bytes, and its ok) fits whole; 159 usable.
+constexpr uint8_t kTxRing = 160;
+constexpr uint8_t kAcceptRoom = 96;   // free bytes the receiver needs to answer a line at once (errors, resend)
 
 // Starts the transmit interrupt when bytes are waiting (hw/host_uart on the board).
 class TxPort {
@@ -29,7 +30,7 @@ class HostLink : public uv::ReplySink, private uv::FlowCounters {
   int16_t nextTx() {
     if (txIn_ == txOut_) return -1;
     char c = txBuf_[txOut_];
-    txOut_ = static_cast<uint8_t>(txOut_ + 1);
+    txOut_ = txOut_ + 1 == kTxRing ? 0 : static_cast<uint8_t>(txOut_ + 1);
     return static_cast<uint8_t>(c);
   }
 
@@ -50,13 +51,13 @@ class HostLink : public uv::ReplySink, private uv::FlowCounters {
   void errorLine(uint8_t code, const char* detail = nullptr) { errorLine(code, detail, false); }
   void errorLineP(uint8_t code, const char* detail) { errorLine(code, detail, true); }
 
-  // Queues one line and '\n' if it fits above the reserve; false (nothing queued) if not.
+  // Queues one line and '\n' if it fits; false (nothing queued) if not.
   bool report(const char* text) { return report(text, false); }
   // The same for a line in flash (UV_P).
   bool reportP(const char* text) { return report(text, true); }
   void lineP(const char* text) { line(text, true); }
-  // Free transmit bytes above the reserve.
-  uint8_t room() const;
+  // Free transmit bytes.
+  uint8_t room() const { return txFree(); }
   bool takeHeard() {
     bool h = heard_;
     heard_ = false;
@@ -64,12 +65,15 @@ class HostLink : public uv::ReplySink, private uv::FlowCounters {
   }
   uint16_t dropped() const { return ring_.dropped(); }
 
-  void line(const char* text) override { line(text, false); }  // replies: may use the reserve
+  void line(const char* text) override { line(text, false); }  // replies: queued whole or cut at the ring's end
 
  private:
   uint8_t movesFree() const override { return moves_; }
   uint8_t windowFree() const override { return ring_.free(); }
-  uint8_t txFree() const { return static_cast<uint8_t>(255 - static_cast<uint8_t>(txIn_ - txOut_)); }
+  uint8_t txFree() const {
+    uint8_t in = txIn_, out = txOut_;
+    return static_cast<uint8_t>(kTxRing - 1 - (in >= out ? in - out : kTxRing - out + in));
+  }
   void put(const char* text, uint8_t n, bool flash = false);
   void line(const char* text, bool flash);
   bool report(const char* text, bool flash);

@@ -19,6 +19,8 @@ struct LineSlot {
 };
 
 class LineRing {
+  static_assert((kWindow & (kWindow - 1)) == 0, "free-running 8-bit indices: the window must divide 256");
+
  public:
   // --- receive interrupt ---
   void received(char c);

@@ -6,15 +6,23 @@
 
 #include "dialect_reply.h"
 #include "error_codes.h"
+#include "job_files.h"
 #include "text_scan.h"
 
 namespace mega {
 
 namespace {
+bool isEndOrStop(const LineSlot& l) {
+  return l.len >= 3 && (l.text[0] == 'M' || l.text[0] == 'm') &&
+         ((l.text[1] == '2' && l.text[2] == '9' && (l.len == 3 || l.text[3] == ' ')) || isEmergencyStop(l.text, l.len));
+}
+
 void strcpy_flash(char* out, const char* flash) { uvMemcpyP(out, flash, uvStrlenP(flash) + 1); }
 
 // Room a command needs in its port's transmit ring before it runs: one payload line and the ok.
-constexpr uint16_t kReplyRoom = 112;
+constexpr uint16_t kReplyRoom = 144;  // the longest payload line (112) and its ok
+constexpr uint16_t kPlanStopsPerPass = 8;    // a few ms of card reads a main-loop pass
+constexpr uint8_t kPrepareLinesPerPass = 4;
 
 // Queries that may run while another port's long command is under way.
 bool isQuery(const uv::Command& c) {
@@ -56,6 +64,9 @@ void Machine::emergency() {
   head_.allOff();
   motion_.halt();
   homing_.cancel();
+  if (arena_ == Arena::Run) run()->abort();
+  if (arena_ == Arena::Spool) spool()->abandon();
+  if (arena_ != Arena::Run) clearArena();
   io_.motorsEnabled(false);
   homed_ = 0;  // steps may have been lost: home again after M999
   halted_ = true;
@@ -72,6 +83,7 @@ void Machine::poll(uint32_t nowUs) {
   movesFree_ = motion_.movesFree();
   store_.poll();
   if (long_.op != Op::None) runLong();
+  runJob();
   // Lines run in turn from each port. While a long command runs, the other port's queries still run.
   for (uint8_t i = 0; i < kPorts; i++) {
     uint8_t k = static_cast<uint8_t>((next_ + i) % kPorts);
@@ -89,9 +101,13 @@ void Machine::poll(uint32_t nowUs) {
     break;
   }
   reports();
+  jobReports();
 }
 
 Machine::Result Machine::execute(HostLink& port, const LineSlot& line) {
+  // During an upload every line but M29 and M112 is a job record (job records never start with a
+  // G or M and a digit, so M29 is told apart by its word).
+  if (arena_ == Arena::Spool && !preparing_ && !isEndOrStop(line)) return uploadRecord(port, line);
   uv::Command c;
   uint8_t err = uv::parseCommand(line.text, line.len, c);
   if (err) {
@@ -177,6 +193,8 @@ Machine::Result Machine::dispatch(HostLink& port, const uv::Command& c) {
       case 355: return light(port, c);
       case 821: return diagnostics(port, c);
       case 850: case 500: case 501: case 502: case 503: return configCommand(port, c);
+      case 20: case 23: case 24: case 25: case 27: case 28: case 29: case 30: case 524: case 1000:
+        return jobCommand(port, c);
       case 112: return Result::Done;  // acted on when it arrived
       case 999:
         halted_ = false;
@@ -208,11 +226,12 @@ bool Machine::emitNext() {
       static const char kWin[] UV_FLASH = "RX_WINDOW", kTemp[] UV_FLASH = "AUTOREPORT_TEMP", kPos[] UV_FLASH = "AUTOREPORT_POS",
                         kSd[] UV_FLASH = "SDCARD", kResume[] UV_FLASH = "RESUME";
       static const char* const kCaps[] UV_FLASH = {kWin, kTemp, kPos, kSd, kResume};
-      char cap[16];
+      char cap[32];
       if (long_.index == 0) {
         r.kind = uv::ReplyKind::Firmware;
-        r.text = firmwareName_;
-        r.textLen = static_cast<uint8_t>(strlen(firmwareName_));
+        strcpy_flash(cap, firmwareName_);  // the name is in flash
+        r.text = cap;
+        r.textLen = static_cast<uint8_t>(strlen(cap));
         r.value = 1;
       } else if (long_.index <= 5) {
         uint8_t i = static_cast<uint8_t>(long_.index - 1);
@@ -235,6 +254,31 @@ bool Machine::emitNext() {
       bool closed = long_.index < 3 ? (io_.endstops() & (1 << long_.index)) : head_.probeTriggered();
       strcpy_flash(buf, uvFlashPtr(kNames[long_.index]));
       strcpy_flash(buf + strlen(buf), closed ? UV_P("TRIGGERED") : UV_P("open"));
+      break;
+    }
+    case Gen::Files: {
+      if (long_.index == 0) {
+        strcpy_flash(buf, UV_P("Begin file list"));
+      } else if (long_.index == 1) {
+        uint32_t size;
+        char name[kFileNameMax + 1];
+        do {
+          if (!sd_.entry(long_.fileIndex++, name, size)) {
+            long_.index = 2;
+            return true;
+          }
+        } while (isWorkFile(name));
+        size_t n = strlen(name);
+        memcpy(buf, name, n);
+        buf[n] = ' ';
+        buf[n + 1 + uv::putUnsigned(size, buf + n + 1)] = 0;
+        if (!port.report(buf)) long_.fileIndex--;  // the same file next pass
+        return true;
+      } else if (long_.index == 2) {
+        strcpy_flash(buf, UV_P("End file list"));
+      } else {
+        return false;
+      }
       break;
     }
     case Gen::Config: {
@@ -269,6 +313,39 @@ void Machine::runLong() {
     case Op::MoveRoom:
       if (motion_.moveTo(long_.target, long_.feed)) finishLong();
       return;
+    case Op::Plan:
+      if (!plan()->step(kPlanStopsPerPass)) return;
+      if (plan()->error()) {
+        uint8_t err = plan()->error();
+        clearArena();
+        jobState_ = uv::JobState::Failed;
+        return finishLong(err);
+      }
+      clearArena();
+      jobState_ = uv::JobState::Ready;
+      if (!preparedSelect_) long_.port->lineP(UV_P("echo:Done saving file."));
+      preparedSelect_ = false;
+      return finishLong();
+    case Op::Prepare: {
+      if (!spool()->prepareStep(kPrepareLinesPerPass)) return;
+      uint8_t err = spool()->finish();
+      if (err) {
+        char detail[16];
+        uvMemcpyP(detail, UV_P("line "), 5);
+        detail[5 + uv::putUnsigned(spool()->errorLine(), detail + 5)] = 0;
+        clearArena();
+        selected_[0] = 0;
+        return finishLong(err, err == uv::kJobMalformed ? detail : nullptr);
+      }
+      uv::JobHeader header = spool()->header();
+      preparedSelect_ = true;
+      if (!startPlanning(header)) {
+        clearArena();
+        return finishLong(uv::kFileError);
+      }
+      long_.op = Op::Plan;
+      return;
+    }
     case Op::Release:
       if (!motion_.idle()) return;
       io_.motorsEnabled(false);

@@ -7,8 +7,12 @@
 #include "config.h"
 #include "config_store.h"
 #include "dialect_command.h"
+#include "dialect_reply.h"
 #include "host_link.h"
 #include "homing.h"
+#include "job_plan.h"
+#include "job_runner.h"
+#include "job_spool.h"
 #include "machine_io.h"
 #include "motion.h"
 #include "printhead_link.h"
@@ -33,7 +37,7 @@ struct MachineParts {
   ConfigStore& store;
   Storage& sd;
   MachineIo& io;
-  const char* firmwareName;
+  const char* firmwareName;  // in flash (UV_FLASH)
   uint8_t& movesFree;  // the P of every ok, which the ports read
   LoopStats& stats;
 };
@@ -54,8 +58,10 @@ class Machine {
 
  private:
   enum class Result : uint8_t { Done, Long, Wait };
-  enum class Op : uint8_t { None, Emit, Dwell, Home, SelfTest, Servo, ProbeRead, MoveRoom, Release };
-  enum class Gen : uint8_t { Firmware, Endstops, Config };
+  enum class Op : uint8_t { None, Emit, Dwell, Home, SelfTest, Servo, ProbeRead, MoveRoom, Release, Plan, Prepare };
+  enum class Gen : uint8_t { Firmware, Endstops, Config, Files };
+  // What the job arena holds: an upload, a planning, a preparation from a job copied onto the card, a run.
+  enum class Arena : uint8_t { Empty, Spool, Plan, Run };
 
   Result execute(HostLink& port, const LineSlot& line);
   Result dispatch(HostLink& port, const uv::Command& c);
@@ -80,12 +86,31 @@ class Machine {
   Result servo(HostLink& port, const uv::Command& c, char op);
   Result light(HostLink& port, const uv::Command& c);
   Result diagnostics(HostLink& port, const uv::Command& c);
+  // commands (machine_job.cpp)
+  Result jobCommand(HostLink& port, const uv::Command& c);
+  Result uploadRecord(HostLink& port, const LineSlot& line);
+  Result endUpload(HostLink& port);
+  Result select(HostLink& port, const uv::Command& c);
+  Result startOrContinue(HostLink& port);
+  Result resumeInterrupted(HostLink& port, const uv::Command& c);
+  bool startPlanning(const uv::JobHeader& header);
+  void runJob();
+  void clearArena();
+  uint8_t formatJob(char* out) const;
+  void jobReports();
+  uint8_t refuseExposure(HostLink& port);
   // commands (machine_config.cpp)
   Result configCommand(HostLink& port, const uv::Command& c);
   // A changed steps/mm makes the step count mean another place: that axis must home again.
   void stepsChanged(const int32_t before[3]);
 
-  bool jobActive() const { return false; }
+  bool jobActive() const {
+    return (arena_ == Arena::Spool && !preparing_) || (arena_ == Arena::Run && (run()->state() == RunState::Running || run()->state() == RunState::Paused));
+  }
+  JobSpool* spool() { return reinterpret_cast<JobSpool*>(arenaMem_); }
+  JobPlan* plan() { return reinterpret_cast<JobPlan*>(arenaMem_); }
+  JobRunner* run() { return reinterpret_cast<JobRunner*>(arenaMem_); }
+  const JobRunner* run() const { return reinterpret_cast<const JobRunner*>(arenaMem_); }
   uint8_t formatTemps(char* out) const;
   uint8_t formatPosition(char* out) const;
 
@@ -115,10 +140,25 @@ class Machine {
     uint32_t since, until, keepalive;
     Gen gen;
     uint8_t index;
+    uint16_t fileIndex;
     char servoOp;
     int32_t target[3];
     uint32_t feed;
   } long_ = {};
+
+  // The job: one arena for whichever stage is live, so the planner's memory is there only while
+  // it plans (job_plan.h).
+  static constexpr uint16_t kArenaBytes = sizeof(JobSpool) > sizeof(JobPlan)
+                                              ? (sizeof(JobSpool) > sizeof(JobRunner) ? sizeof(JobSpool) : sizeof(JobRunner))
+                                              : (sizeof(JobPlan) > sizeof(JobRunner) ? sizeof(JobPlan) : sizeof(JobRunner));
+  alignas(4) uint8_t arenaMem_[kArenaBytes];
+  Arena arena_ = Arena::Empty;
+  uv::JobState jobState_ = uv::JobState::Idle;  // when no run is live
+  char selected_[kFileNameMax + 1] = {};
+  bool preparing_ = false;  // the spool builds a PC-copied job's working files (M23)
+  bool preparedSelect_ = false;  // the planning under way was started by M23, not M29
+  uint32_t jobPeriodUs_ = 0, jobNext_ = 0;
+  uint32_t lastHeardUs_ = 0;
 
   uint32_t tempPeriodUs_ = 0, tempNext_ = 0;
   uint32_t posPeriodUs_ = 0, posNext_ = 0;

@@ -13,12 +13,13 @@
 #include "machine.h"
 #include "pins.h"
 #include "printhead_link.h"
+#include "progmem.h"
 
 namespace {
 
 using namespace mega;
 
-const char kFirmwareName[] = "UVExposure 0.1.0 (Mega)";
+const char kFirmwareName[] UV_FLASH = "UVExposure 0.1.0 (Mega)";
 
 Config config;
 SdStorage sd;

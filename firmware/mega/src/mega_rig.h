@@ -4,6 +4,7 @@
 #pragma once
 #include <stdint.h>
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -93,6 +94,8 @@ class MegaRig {
   Machine machine{MachineParts{{&usbLink, &espLink}, rig.motion, head, config, store, sd, io, "UVExposure 0.1.0 (Mega)", movesFree, stats}};
   uint64_t nowUs = 0;
   std::vector<std::string> usbLines, espLines;  // everything each host has read
+  // Where the head stood (steps) when each exposure began, in the order of nano.exposures.
+  std::vector<std::array<int32_t, 3>> firedAt;
 
   void begin() {
     machine.begin(0);
@@ -104,6 +107,11 @@ class MegaRig {
     for (uint64_t end = nowUs + us; nowUs < end; nowUs += 100) {
       nano.advance(static_cast<uint32_t>(nowUs));
       machine.poll(static_cast<uint32_t>(nowUs));
+      while (firedAt.size() < nano.exposures.size()) {
+        std::array<int32_t, 3> p;
+        rig.motion.positionSteps(p.data());
+        firedAt.push_back(p);
+      }
       rig.isrUntil((nowUs + 100) * 2);
       usb.carry(usbLink, 100);
       esp.carry(espLink, 100);

@@ -77,6 +77,8 @@ class StepEngine {
     bool last;
   };
 
+  // The queues index with free-running 8-bit counters: their sizes must divide 256.
+  static_assert((kBlocks & (kBlocks - 1)) == 0 && (kSegments & (kSegments - 1)) == 0, "ring sizes must be powers of two");
   StepBlock blocks_[kBlocks];
   bool ended_[kBlocks] = {};
   QueuedSegment segs_[kSegments];

@@ -1,6 +1,8 @@
 // The exposure planner (protocol/planner.md): streams a job's stops one at a time from a CellSource.
 #include "planner.h"
 
+#include <string.h>
+
 namespace uv {
 
 namespace {
@@ -46,17 +48,26 @@ uint32_t Durations::longest(const uint8_t value[4]) const {
 
 Planner::Planner(const JobHeader& h, CellSource& cells, const Machine& m)
     : h_(h), cells_(cells), m_(m), dose_(h), curX_(m.startUm[0]), curY_(m.startUm[1]), rng_(h.seed ? h.seed : 0x9E3779B9u) {
-  dyMin_ = h.offsets[0][1];
-  for (uint8_t k = 1; k < 4; k++)
+  memset(&shared_, 0, sizeof shared_);  // no pass has a stop peeked yet
+  dyMin_ = dyMax_ = h.offsets[0][1];
+  for (uint8_t k = 1; k < 4; k++) {
     if (h.offsets[k][1] < dyMin_) dyMin_ = h.offsets[k][1];
+    if (h.offsets[k][1] > dyMax_) dyMax_ = h.offsets[k][1];
+  }
 }
 
 // --- passes ---------------------------------------------------------------------------------
 
+void Planner::uncoverBelow(uint16_t row) {
+  // Rows below the lowest open row are never read again: their ring slots become the rows a
+  // window above it.
+  covered_[(row & (kCoveredWindowRows - 1)) >> 3] &= static_cast<uint8_t>(~(1 << (row & 7)));
+}
+
 bool Planner::openPass(PassInfo& p) {
-  for (; scan_ < h_.rows; scan_++) {
+  for (; scan_ < h_.rows; uncoverBelow(scan_), scan_++) {
     uint16_t r = scan_;
-    if (covered_[r >> 3] & (1 << (r & 7))) continue;
+    if (covered(r)) continue;
     if (!cells_.rowNonEmpty(r)) continue;
     p.hy = static_cast<int32_t>(r) - dyMin_;
     p.first = INT32_MAX;
@@ -66,8 +77,8 @@ bool Planner::openPass(PassInfo& p) {
     for (uint8_t k = 0; k < 4; k++) {
       p.row[k] = -1;
       int32_t rk = p.hy + h_.offsets[k][1];
-      if (rk < 0 || rk >= h_.rows || (covered_[rk >> 3] & (1 << (rk & 7)))) continue;
-      covered_[rk >> 3] |= static_cast<uint8_t>(1 << (rk & 7));
+      if (rk < 0 || rk >= h_.rows || covered(rk)) continue;
+      cover(rk);
       uint16_t lo, hi;
       if (!cells_.rowExtent(static_cast<uint16_t>(rk), lo, hi)) continue;  // an empty row: the LED idles
       p.row[k] = static_cast<int16_t>(rk);
@@ -76,6 +87,7 @@ bool Planner::openPass(PassInfo& p) {
       if (hi - dx > p.last) p.last = hi - dx;
       p.cells = true;
     }
+    uncoverBelow(scan_);
     scan_++;
     return true;
   }
@@ -164,27 +176,27 @@ bool Planner::nextColumn() {
   bool any = false;
   int32_t best = 0;
   for (uint8_t q = 0; q < bandLen_; q++) {
-    if (!peek_[q]) continue;
-    if (!any || (desc_ ? peekStop_[q].hx > best : peekStop_[q].hx < best)) best = peekStop_[q].hx;
+    if (!shared_.col.peek_[q]) continue;
+    if (!any || (desc_ ? shared_.col.peekStop_[q].hx > best : shared_.col.peekStop_[q].hx < best)) best = shared_.col.peekStop_[q].hx;
     any = true;
   }
   if (!any) return false;
   columnLen_ = columnPos_ = 0;
   for (uint8_t q = 0; q < bandLen_; q++) {  // passes are in ascending hy
-    if (!peek_[q] || peekStop_[q].hx != best) continue;
-    column_[columnLen_] = q;
-    columnStop_[columnLen_++] = peekStop_[q];
-    peek_[q] = passNext(q, desc_, peekStop_[q].hx, peekStop_[q].value);
+    if (!shared_.col.peek_[q] || shared_.col.peekStop_[q].hx != best) continue;
+    shared_.col.column_[columnLen_] = q;
+    shared_.col.columnStop_[columnLen_++] = shared_.col.peekStop_[q];
+    shared_.col.peek_[q] = passNext(q, desc_, shared_.col.peekStop_[q].hx, shared_.col.peekStop_[q].value);
   }
-  int32_t yFirst = Y(band_[column_[0]].hy), yLast = Y(band_[column_[columnLen_ - 1]].hy);
+  int32_t yFirst = Y(band_[shared_.col.column_[0]].hy), yLast = Y(band_[shared_.col.column_[columnLen_ - 1]].hy);
   if (absDiff(yFirst, curY_) > absDiff(yLast, curY_)) {
     for (uint8_t i = 0, j = static_cast<uint8_t>(columnLen_ - 1); i < j; i++, j--) {
-      uint8_t tq = column_[i];
-      column_[i] = column_[j];
-      column_[j] = tq;
-      Compact ts = columnStop_[i];
-      columnStop_[i] = columnStop_[j];
-      columnStop_[j] = ts;
+      uint8_t tq = shared_.col.column_[i];
+      shared_.col.column_[i] = shared_.col.column_[j];
+      shared_.col.column_[j] = tq;
+      Compact ts = shared_.col.columnStop_[i];
+      shared_.col.columnStop_[i] = shared_.col.columnStop_[j];
+      shared_.col.columnStop_[j] = ts;
     }
   }
   return true;
@@ -194,10 +206,10 @@ bool Planner::nextColumn() {
 void Planner::openColumns() {
   desc_ = columnsDescending(curX_);
   for (uint8_t q = 0; q < bandLen_; q++) {
-    peek_[q] = false;
+    shared_.col.peek_[q] = false;
     if (!band_[q].lit) continue;
     openCursors(q, desc_);
-    peek_[q] = passNext(q, desc_, peekStop_[q].hx, peekStop_[q].value);
+    shared_.col.peek_[q] = passNext(q, desc_, shared_.col.peekStop_[q].hx, shared_.col.peekStop_[q].value);
   }
   columnLen_ = columnPos_ = 0;
 }
@@ -209,8 +221,8 @@ uint64_t Planner::priceColumns() {
   uint64_t total = 0;
   while (nextColumn()) {
     for (uint8_t i = 0; i < columnLen_; i++) {
-      int32_t x = X(columnStop_[i].hx), y = Y(band_[column_[i]].hy);
-      total += stopCostUs(m_, curX_, curY_, x, y, dose_.longest(columnStop_[i].value));
+      int32_t x = X(shared_.col.columnStop_[i].hx), y = Y(band_[shared_.col.column_[i]].hy);
+      total += stopCostUs(m_, curX_, curY_, x, y, dose_.longest(shared_.col.columnStop_[i].value));
       curX_ = x;
       curY_ = y;
     }
@@ -274,6 +286,7 @@ void Planner::emit(int32_t hx, int32_t hy, const uint8_t value[4], Stop& out) {
 }
 
 bool Planner::next(Stop& out) {
+  if (!supported()) return false;
   for (;;) {
     if (!emitting_ && !startBand()) return false;
     if (order_ == Order::Columns) {
@@ -281,8 +294,8 @@ bool Planner::next(Stop& out) {
         emitting_ = false;
         continue;
       }
-      uint8_t q = column_[columnPos_];
-      const Compact& c = columnStop_[columnPos_++];
+      uint8_t q = shared_.col.column_[columnPos_];
+      const Compact& c = shared_.col.columnStop_[columnPos_++];
       if (!passUsed_[q]) {
         passUsed_[q] = true;
         passes_++;
@@ -296,17 +309,17 @@ bool Planner::next(Stop& out) {
     if (h_.strategy == Strategy::Random) {
       if (blockPos_ == blockLen_) {
         blockLen_ = blockPos_ = 0;
-        while (blockLen_ < kRandomBlock && passNext(q_, false, block_[blockLen_].hx, block_[blockLen_].value)) blockLen_++;
+        while (blockLen_ < kRandomBlock && passNext(q_, false, shared_.block_[blockLen_].hx, shared_.block_[blockLen_].value)) blockLen_++;
         for (uint8_t i = blockLen_ > 0 ? static_cast<uint8_t>(blockLen_ - 1) : 0; i >= 1; i--) {
           uint8_t j = static_cast<uint8_t>(xorshift32(rng_) % (i + 1u));
-          Compact t = block_[i];
-          block_[i] = block_[j];
-          block_[j] = t;
+          Compact t = shared_.block_[i];
+          shared_.block_[i] = shared_.block_[j];
+          shared_.block_[j] = t;
         }
       }
       if (blockPos_ < blockLen_) {
-        hx = block_[blockPos_].hx;
-        for (uint8_t k = 0; k < 4; k++) value[k] = block_[blockPos_].value[k];
+        hx = shared_.block_[blockPos_].hx;
+        for (uint8_t k = 0; k < 4; k++) value[k] = shared_.block_[blockPos_].value[k];
         blockPos_++;
         got = true;
       }

@@ -9,6 +9,10 @@
 namespace uv {
 
 constexpr uint16_t kPlannerMaxRows = kJobMaxSide;
+// Rows already given to a pass are marked in a ring this many rows long. A pass marks rows from the
+// lowest open row up to the LEDs' spread in rows above it, so the C++ planner takes jobs whose LED
+// rows (dy) span less than this; supported() says so (the TypeScript planner has no such limit).
+constexpr uint16_t kCoveredWindowRows = 1024;
 constexpr uint8_t kRandomBlock = 32;
 constexpr uint8_t kShortestBand = 8;                 // passes per band for `shortest`
 constexpr uint8_t kPlannerCursors = 4 * kShortestBand;  // CellSource cursors the planner may use
@@ -34,6 +38,8 @@ class Planner {
 
   // The next stop in execution order; false when the job is done.
   bool next(Stop& out);
+  // The LEDs' rows span less than kCoveredWindowRows; otherwise next() plans nothing.
+  bool supported() const { return dyMax_ - dyMin_ < static_cast<int16_t>(kCoveredWindowRows); }
   uint16_t passes() const { return passes_; }
 
  private:
@@ -70,9 +76,13 @@ class Planner {
   CellSource& cells_;
   const Machine& m_;
   Durations dose_;
-  uint8_t covered_[kPlannerMaxRows / 8] = {};
+  bool covered(int32_t row) const { return covered_[(row & (kCoveredWindowRows - 1)) >> 3] & (1 << (row & 7)); }
+  void cover(int32_t row) { covered_[(row & (kCoveredWindowRows - 1)) >> 3] |= static_cast<uint8_t>(1 << (row & 7)); }
+  void uncoverBelow(uint16_t row);
+
+  uint8_t covered_[kCoveredWindowRows / 8] = {};
   uint16_t scan_ = 0;  // next row that may open a pass
-  int16_t dyMin_ = 0;
+  int16_t dyMin_ = 0, dyMax_ = 0;
   int32_t curX_, curY_;  // bed position of the last stop, µm
   uint16_t passes_ = 0;  // passes that emitted a stop
   uint32_t rng_;
@@ -85,19 +95,23 @@ class Planner {
   uint8_t q_ = 0;
   bool desc_ = false;
   bool passCounted_ = false;
-  // Columns order: each pass's next stop, and the current column.
-  bool peek_[kShortestBand] = {};
-  Compact peekStop_[kShortestBand];
-  uint8_t column_[kShortestBand];
   uint8_t columnLen_ = 0, columnPos_ = 0;
-  Compact columnStop_[kShortestBand];
   bool passUsed_[kShortestBand] = {};
 
   bool live_[kPlannerCursors] = {};
   uint16_t col_[kPlannerCursors] = {};
   uint8_t val_[kPlannerCursors] = {};
-  Compact block_[kRandomBlock];
   uint8_t blockLen_ = 0, blockPos_ = 0;
+  // Only `shortest` reads columns and only `random` shuffles blocks: they share memory.
+  union {
+    struct {
+      bool peek_[kShortestBand];  // each pass's next stop, and the current column
+      Compact peekStop_[kShortestBand];
+      uint8_t column_[kShortestBand];
+      Compact columnStop_[kShortestBand];
+    } col;
+    Compact block_[kRandomBlock];
+  } shared_;
 };
 
 }  // namespace uv

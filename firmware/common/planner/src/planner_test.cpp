@@ -129,6 +129,65 @@ TEST(PlannerMemory, StreamsWithinItsBoundAndNeverAllocates) {
   std::printf("[planner memory] sizeof(Planner) = %zu bytes (bound %u), no heap\n", sizeof(Planner), kPlannerMaxBytes);
 }
 
+TEST(PlannerProperty, EveryLitCellOnceWithLedsSpreadOverManyRows) {
+  // Rows marked as taken live in a ring of kCoveredWindowRows: jobs taller than it, with the LEDs'
+  // rows spread up to its limit, still expose each lit cell exactly once and nothing else.
+  uint32_t seed = 12345;
+  auto rnd = [&seed](uint32_t n) {
+    seed ^= seed << 13;
+    seed ^= seed >> 17;
+    seed ^= seed << 5;
+    return seed % n;
+  };
+  for (int trial = 0; trial < 24; trial++) {
+    uint16_t rows = static_cast<uint16_t>(1500 + rnd(2000)), cols = static_cast<uint16_t>(3 + rnd(9));
+    std::vector<std::vector<uint8_t>> grid(rows, std::vector<uint8_t>(cols, 0));
+    for (auto& row : grid)
+      for (auto& v : row)
+        if (rnd(3) == 0) v = static_cast<uint8_t>(1 + rnd(255));
+    JobHeader h{};
+    h.cols = cols;
+    h.rows = rows;
+    h.pitchUm[0] = h.pitchUm[1] = 50;
+    h.map = DoseMap::Threshold;
+    h.level = 1;
+    h.fullUs = 1000;
+    h.strategy = static_cast<Strategy>(trial % 4);
+    h.seed = static_cast<uint32_t>(trial);
+    uint16_t spread = trial % 3 == 0 ? static_cast<uint16_t>(kCoveredWindowRows - 1) : static_cast<uint16_t>(rnd(kCoveredWindowRows));
+    for (int k = 0; k < 4; k++) {
+      h.gainPermille[k] = 1000;
+      h.offsets[k][0] = static_cast<int16_t>(rnd(3));
+      h.offsets[k][1] = static_cast<int16_t>(k == 3 ? spread : rnd(spread + 1u));
+    }
+    GridCells cells(grid);
+    const Machine m{{100000, 100000}, {2000000, 2000000}, 2000, 1500, {0, 0}};
+    Planner planner(h, cells, m);
+    ASSERT_TRUE(planner.supported());
+    std::vector<std::vector<int>> exposed(rows, std::vector<int>(cols, 0));
+    Stop s;
+    while (planner.next(s)) {
+      for (int k = 0; k < 4; k++) {
+        if (!s.us[k]) continue;
+        int r = s.hy + h.offsets[k][1], c = s.hx + h.offsets[k][0];
+        ASSERT_TRUE(r >= 0 && r < rows && c >= 0 && c < cols) << "trial " << trial;
+        exposed[r][c]++;
+      }
+    }
+    for (int r = 0; r < rows; r++)
+      for (int c = 0; c < cols; c++) ASSERT_EQ(exposed[r][c], grid[r][c] ? 1 : 0) << "trial " << trial << " cell " << r << "," << c;
+  }
+  JobHeader wide{};
+  wide.offsets[3][1] = static_cast<int16_t>(kCoveredWindowRows);
+  std::vector<std::vector<uint8_t>> one(1, std::vector<uint8_t>(1, 1));
+  GridCells cells(one);
+  const Machine m{{100000, 100000}, {2000000, 2000000}, 2000, 1500, {0, 0}};
+  Planner planner(wide, cells, m);
+  EXPECT_FALSE(planner.supported());
+  Stop s;
+  EXPECT_FALSE(planner.next(s));
+}
+
 TEST(TimeModel, TrapezoidAndTriangle) {
   EXPECT_EQ(moveTimeUs(0, 150000, 3000000), 0u);
   EXPECT_EQ(moveTimeUs(100, 150000, 3000000), 2u * 5773u);

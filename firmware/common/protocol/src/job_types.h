@@ -29,6 +29,7 @@ struct JobHeader {
   uint32_t seed;
 };
 
+// The strategy's name (a flash pointer on AVR).
 const char* strategyName(Strategy s);
 
 }  // namespace uv

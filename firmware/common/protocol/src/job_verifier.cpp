@@ -5,13 +5,16 @@
 
 #include "crc32.h"
 #include "error_codes.h"
+#include "progmem.h"
 #include "text_scan.h"
 
 namespace uv {
 
 namespace {
 
-const char* const kStrategies[] = {"raster", "serpentine", "shortest", "random"};
+const char kRaster[] UV_FLASH = "raster", kSerpentine[] UV_FLASH = "serpentine", kShortest[] UV_FLASH = "shortest",
+           kRandom[] UV_FLASH = "random";
+const char* const kStrategies[] UV_FLASH = {kRaster, kSerpentine, kShortest, kRandom};
 
 // Cursor over single-space separated words.
 struct Words {
@@ -34,9 +37,10 @@ struct Words {
     return !bad;
   }
   bool done() const { return p >= end && !bad; }
+  // The next word is `literal`, a string in flash (UV_P).
   bool is(const char* literal) {
     const char *w, *e;
-    return next(w, e) && static_cast<size_t>(e - w) == strlen(literal) && memcmp(w, literal, e - w) == 0;
+    return next(w, e) && static_cast<size_t>(e - w) == uvStrlenP(literal) && uvMemcmpP(w, literal, e - w) == 0;
   }
   // `0|-?[1-9][0-9]*` within [lo, hi].
   bool integer(int32_t lo, int32_t hi, int32_t& out) {
@@ -72,15 +76,15 @@ uint8_t hexCell(const char* hex, uint8_t index) {
   return static_cast<uint8_t>(hexDigit(hex[index * 2]) << 4 | hexDigit(hex[index * 2 + 1]));
 }
 
-const char* strategyName(Strategy s) { return kStrategies[static_cast<uint8_t>(s)]; }
+const char* strategyName(Strategy s) { return uvFlashPtr(kStrategies[static_cast<uint8_t>(s)]); }
 
 uint8_t JobVerifier::push(const char* record, uint8_t len) {
   if (error_) return error_;
   lineNo_++;
   if (ended_) return fail(kJobIncomplete);
   const char* end = record + len;
-  if (len >= 4 && memcmp(record, "end ", 4) == 0) return endRecord(record + 4, end);
-  if (len == 3 && memcmp(record, "end", 3) == 0) return fail(kJobMalformed);
+  if (len >= 4 && uvMemcmpP(record, UV_P("end "), 4) == 0) return endRecord(record + 4, end);
+  if (len == 3 && uvMemcmpP(record, UV_P("end"), 3) == 0) return fail(kJobMalformed);
   bool ok = index_ < 10 ? headerRecord(record, end) : segment(record, end);
   if (!ok) return fail(kJobMalformed);
   crc_ = crc32Update(crc_, record, len);
@@ -109,28 +113,28 @@ bool JobVerifier::headerRecord(const char* p, const char* end) {
   int32_t a = 0, b = 0;
   switch (index_) {
     case 0:
-      if (!w.is("uvj") || !w.is("1")) return false;
+      if (!w.is(UV_P("uvj")) || !w.is(UV_P("1"))) return false;
       break;
     case 1:
-      if (!w.is("grid") || !w.integer(1, kJobMaxSide, a) || !w.integer(1, kJobMaxSide, b)) return false;
+      if (!w.is(UV_P("grid")) || !w.integer(1, kJobMaxSide, a) || !w.integer(1, kJobMaxSide, b)) return false;
       h_.cols = static_cast<uint16_t>(a);
       h_.rows = static_cast<uint16_t>(b);
       break;
     case 2:
-      if (!w.is("pitch") || !w.u32(1, 100000, h_.pitchUm[0]) || !w.u32(1, 100000, h_.pitchUm[1])) return false;
+      if (!w.is(UV_P("pitch")) || !w.u32(1, 100000, h_.pitchUm[0]) || !w.u32(1, 100000, h_.pitchUm[1])) return false;
       break;
     case 3:
-      if (!w.is("origin") || !w.u32(0, 10000000, h_.originUm[0]) || !w.u32(0, 10000000, h_.originUm[1])) return false;
+      if (!w.is(UV_P("origin")) || !w.u32(0, 10000000, h_.originUm[0]) || !w.u32(0, 10000000, h_.originUm[1])) return false;
       break;
     case 4: {
-      if (!w.is("map")) return false;
+      if (!w.is(UV_P("map"))) return false;
       Words probe = w;
-      if (probe.is("linear") && probe.done()) {
+      if (probe.is(UV_P("linear")) && probe.done()) {
         h_.map = DoseMap::Linear;
         h_.level = 0;
         w = probe;
       } else {
-        if (!w.is("threshold") || !w.integer(1, 255, a)) return false;
+        if (!w.is(UV_P("threshold")) || !w.integer(1, 255, a)) return false;
         h_.map = DoseMap::Threshold;
         h_.level = static_cast<uint8_t>(a);
       }
@@ -138,12 +142,12 @@ bool JobVerifier::headerRecord(const char* p, const char* end) {
     }
     case 5: {
       Words probe = w;
-      if (probe.is("full")) {
+      if (probe.is(UV_P("full"))) {
         w = probe;
         h_.byTarget = false;
         if (!w.u32(1, 10000000, h_.fullUs)) return false;
       } else {
-        if (!w.is("target") || !w.u32(1, 100000000, h_.targetUJcm2)) return false;
+        if (!w.is(UV_P("target")) || !w.u32(1, 100000000, h_.targetUJcm2)) return false;
         h_.byTarget = true;
         for (uint8_t i = 0; i < 4; i++)
           if (!w.u32(1, 10000000, h_.irradianceUWcm2[i])) return false;
@@ -151,31 +155,33 @@ bool JobVerifier::headerRecord(const char* p, const char* end) {
       break;
     }
     case 6:
-      if (!w.is("gain")) return false;
+      if (!w.is(UV_P("gain"))) return false;
       for (uint8_t i = 0; i < 4; i++) {
         if (!w.integer(1, 10000, a)) return false;
         h_.gainPermille[i] = static_cast<uint16_t>(a);
       }
       break;
     case 7:
-      if (!w.is("thermal") || !w.integer(-1000, 1000, a) || !w.integer(-400, 1250, b)) return false;
+      if (!w.is(UV_P("thermal")) || !w.integer(-1000, 1000, a) || !w.integer(-400, 1250, b)) return false;
       h_.thermalCoeff = static_cast<int16_t>(a);
       h_.thermalRefDeciC = static_cast<int16_t>(b);
       break;
     case 8:
-      if (!w.is("leds")) return false;
+      if (!w.is(UV_P("leds"))) return false;
       for (uint8_t i = 0; i < 8; i++) {
         if (!w.integer(-4096, 4096, a)) return false;
         h_.offsets[i / 2][i % 2] = static_cast<int16_t>(a);
       }
       break;
     case 9: {
-      if (!w.is("strategy")) return false;
+      if (!w.is(UV_P("strategy"))) return false;
       const char *n, *ne;
       if (!w.next(n, ne)) return false;
       int8_t s = -1;
-      for (uint8_t i = 0; i < 4; i++)
-        if (static_cast<size_t>(ne - n) == strlen(kStrategies[i]) && memcmp(n, kStrategies[i], ne - n) == 0) s = static_cast<int8_t>(i);
+      for (uint8_t i = 0; i < 4; i++) {
+        const char* name = uvFlashPtr(kStrategies[i]);
+        if (static_cast<size_t>(ne - n) == uvStrlenP(name) && uvMemcmpP(n, name, ne - n) == 0) s = static_cast<int8_t>(i);
+      }
       if (s < 0 || !w.u32(0, 0xFFFFFFFFu, h_.seed)) return false;
       h_.strategy = static_cast<Strategy>(s);
       if (h_.strategy != Strategy::Random && h_.seed != 0) return false;
@@ -191,7 +197,7 @@ bool JobVerifier::segment(const char* p, const char* end) {
   Words w{p, end};
   int32_t row = 0, col = 0;
   const char *hex, *hexEnd;
-  if (!w.is("r") || !w.integer(0, h_.rows - 1, row) || !w.integer(0, h_.cols - 1, col) || !w.next(hex, hexEnd) || !w.done()) {
+  if (!w.is(UV_P("r")) || !w.integer(0, h_.rows - 1, row) || !w.integer(0, h_.cols - 1, col) || !w.next(hex, hexEnd) || !w.done()) {
     return false;
   }
   size_t digits = static_cast<size_t>(hexEnd - hex);

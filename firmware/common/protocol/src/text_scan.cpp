@@ -1,6 +1,8 @@
 // Small bounded scanners for decimal numbers in protocol text, shared by the codecs.
 #include "text_scan.h"
 
+#include "progmem.h"
+
 namespace uv {
 
 // No division anywhere here: on an AVR one 32-bit division costs about 700 cycles, and these run
@@ -33,11 +35,24 @@ const char* scanDeci(const char* p, const char* end, uint8_t maxInt, int16_t& ou
 
 namespace {
 
+// The Mega keeps these tables in flash, where its RAM is short. The Nano keeps them in RAM: its
+// reply and LED timings were measured that way (nano_sim_test), and it has RAM to spare.
+#if defined(__AVR_ATmega2560__)
+#define UV_TABLE UV_FLASH
+inline uint16_t tablePower(const uint16_t* p) { return pgm_read_word(p); }
+inline uint32_t tablePower(const uint32_t* p) { return pgm_read_dword(p); }
+#else
+#define UV_TABLE
+inline uint16_t tablePower(const uint16_t* p) { return *p; }
+inline uint32_t tablePower(const uint32_t* p) { return *p; }
+#endif
+
 // Digits by repeated subtraction of powers of ten, from the largest that can matter.
 template <class T, size_t N>
 size_t putDigits(T v, const T (&powers)[N], char* out) {
   size_t n = 0;
-  for (T power : powers) {
+  for (size_t i = 0; i < N; i++) {
+    T power = tablePower(&powers[i]);
     char digit = '0';
     while (v >= power) {
       v = static_cast<T>(v - power);
@@ -54,8 +69,8 @@ size_t putDigits(T v, const T (&powers)[N], char* out) {
 size_t putUnsigned(uint32_t v, char* out) {
   // Most numbers on the links (masks, temperatures, line numbers) fit 16 bits, where an AVR
   // compares and subtracts in a quarter of the time.
-  static const uint16_t kSmall[] = {10000u, 1000u, 100u, 10u};
-  static const uint32_t kLarge[] = {1000000000u, 100000000u, 10000000u, 1000000u, 100000u, 10000u, 1000u, 100u, 10u};
+  static const uint16_t kSmall[] UV_TABLE = {10000u, 1000u, 100u, 10u};
+  static const uint32_t kLarge[] UV_TABLE = {1000000000u, 100000000u, 10000000u, 1000000u, 100000u, 10000u, 1000u, 100u, 10u};
   if (v <= 0xFFFFu) return putDigits(static_cast<uint16_t>(v), kSmall, out);
   return putDigits(v, kLarge, out);
 }
@@ -67,9 +82,9 @@ size_t putSigned(int32_t v, char* out) {
 }
 
 void putHex(uint32_t v, uint8_t digits, char* out) {
-  static const char kHex[] = "0123456789abcdef";
   for (uint8_t i = digits; i > 0; i--) {
-    out[i - 1] = kHex[v & 0xF];
+    uint8_t d = v & 0xF;
+    out[i - 1] = static_cast<char>(d < 10 ? '0' + d : 'a' + d - 10);
     v >>= 4;
   }
 }

@@ -1,0 +1,93 @@
+// A running job's progress on the SD card: two slots written in turn, each with a CRC-32.
+#include "checkpoint.h"
+
+#include <string.h>
+
+#include "crc32.h"
+#include "job_files.h"
+
+namespace mega {
+
+namespace {
+constexpr uint8_t kSlot = 64;
+const char kMagic[4] = {'U', 'V', 'K', '1'};
+
+void put32(uint32_t v, char* out) {
+  for (uint8_t i = 0; i < 4; i++) out[i] = static_cast<char>(v >> (8 * i));
+}
+uint32_t get32(const char* in) {
+  uint32_t v = 0;
+  for (uint8_t i = 0; i < 4; i++) v |= static_cast<uint32_t>(static_cast<uint8_t>(in[i])) << (8 * i);
+  return v;
+}
+
+// magic 4, seq 4, done 4, count 4, file 32, crc 4 (over the 48 bytes before it), padding.
+void encode(const Progress& p, uint32_t seq, char* b) {
+  memset(b, 0, kSlot);
+  memcpy(b, kMagic, 4);
+  put32(seq, b + 4);
+  put32(p.done, b + 8);
+  put32(p.count, b + 12);
+  strncpy(b + 16, p.file, kFileNameMax);
+  put32(uv::crc32Update(0, b, 48), b + 48);
+}
+
+bool decode(const char* b, Progress& p, uint32_t& seq) {
+  if (memcmp(b, kMagic, 4) != 0 || get32(b + 48) != uv::crc32Update(0, b, 48)) return false;
+  seq = get32(b + 4);
+  p.done = get32(b + 8);
+  p.count = get32(b + 12);
+  memcpy(p.file, b + 16, kFileNameMax);
+  p.file[kFileNameMax] = 0;
+  return p.done <= p.count && p.file[0];
+}
+}  // namespace
+
+bool Checkpoint::begin(const Progress& p) {
+  close();
+  if (sd_.exists(kCheckpointFile)) sd_.remove(kCheckpointFile);
+  f_ = sd_.open(kCheckpointFile, Storage::Mode::Create);
+  if (f_ < 0) return false;
+  char zero[kSlot * 2] = {};
+  seq_ = 0;
+  return sd_.write(f_, zero, sizeof zero) && write(p);
+}
+
+bool Checkpoint::write(const Progress& p) {
+  if (f_ < 0) return false;
+  seq_++;
+  char b[kSlot];
+  encode(p, seq_, b);
+  return sd_.seek(f_, (seq_ & 1) * kSlot) && sd_.write(f_, b, kSlot) && sd_.sync(f_);
+}
+
+void Checkpoint::close() {
+  if (f_ >= 0) sd_.close(f_);
+  f_ = -1;
+}
+
+void Checkpoint::clear() {
+  close();
+  if (sd_.exists(kCheckpointFile)) sd_.remove(kCheckpointFile);
+}
+
+bool Checkpoint::read(Storage& sd, Progress& out) {
+  FileHandle f = sd.open(kCheckpointFile, Storage::Mode::Read);
+  if (f < 0) return false;
+  bool found = false;
+  uint32_t best = 0;
+  for (uint8_t slot = 0; slot < 2; slot++) {
+    char b[kSlot];
+    Progress p;
+    uint32_t seq;
+    if (sd.read(f, b, kSlot) == kSlot && decode(b, p, seq) && (!found || seq > best)) {
+      out = p;
+      best = seq;
+      found = true;
+    }
+  }
+  sd.close(f);
+  return found;
+}
+
+}  // namespace mega

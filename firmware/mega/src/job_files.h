@@ -1,0 +1,49 @@
+// The files a job keeps on the SD card. The job's text is stored under its own name, byte for byte
+// as uploaded (its CRC-32 stays checkable); the Mega's working files carry a '~' suffix, which no
+// upload name may contain, and are left out of M20's list.
+#pragma once
+#include <stdint.h>
+#include <string.h>
+
+#include "storage.h"
+
+namespace mega {
+
+enum class JobFile : char {
+  Cells = 'c',   // each non-empty row's cells, from its first to its last non-zero column
+  Index = 'i',   // 8 bytes a row: offset into the cells file (LE), first and last column
+  Stops = 's',   // the planned stops, in execution order (stop_file.h)
+};
+
+constexpr const char* kCheckpointFile = "JOB~CKP";
+constexpr uint8_t kWorkNameMax = kFileNameMax + 2;
+
+// `name~c` and so on, NUL-terminated, into out (kWorkNameMax + 1 bytes).
+inline void workFileName(const char* job, JobFile kind, char* out) {
+  size_t n = strlen(job);
+  memcpy(out, job, n);
+  out[n] = '~';
+  out[n + 1] = static_cast<char>(kind);
+  out[n + 2] = 0;
+}
+
+inline bool isWorkFile(const char* name) { return strchr(name, '~') != nullptr; }
+
+constexpr JobFile kWorkFiles[] = {JobFile::Cells, JobFile::Index, JobFile::Stops};
+
+// Removes what the Mega built from a job.
+inline void removeWorkFiles(Storage& sd, const char* job) {
+  char work[kWorkNameMax + 1];
+  for (JobFile k : kWorkFiles) {
+    workFileName(job, k, work);
+    if (sd.exists(work)) sd.remove(work);
+  }
+}
+
+// Removes a job and its working files.
+inline void removeJob(Storage& sd, const char* job) {
+  removeWorkFiles(sd, job);
+  if (sd.exists(job)) sd.remove(job);
+}
+
+}  // namespace mega

@@ -1,0 +1,43 @@
+// Plans a spooled job into its stop file (name~s), a few stops each main-loop pass, so the host
+// links and the rest of the Mega keep running while it works.
+#pragma once
+#include <stdint.h>
+
+#include "planner.h"
+#include "sd_cells.h"
+#include "stop_file.h"
+#include "storage.h"
+
+namespace mega {
+
+class JobPlan {
+ public:
+  JobPlan(Storage& sd, const uv::JobHeader& header, const uv::Machine& machine);
+  ~JobPlan();
+
+  // Opens the files; 0 or 22 (file_error). `name` is the job's.
+  uint8_t begin(const char* name);
+  // Plans up to `stops` more. Returns true once finished (check error()).
+  bool step(uint16_t stops);
+  uint8_t error() const { return error_; }
+  uint32_t planned() const { return count_; }
+
+ private:
+  void close();
+
+  Storage& sd_;
+  uv::JobHeader header_;
+  uv::Machine machine_;
+  FileHandle cells_ = -1, index_ = -1, stops_ = -1;
+  SdCells* source_ = nullptr;
+  uv::Planner* planner_ = nullptr;
+  uv::PlanClock clock_;
+  uint32_t count_ = 0;
+  uint8_t error_ = 0;
+  bool done_ = false;
+  // The planner and its cursors live here, only while planning.
+  alignas(4) uint8_t sourceMem_[sizeof(SdCells)];
+  alignas(4) uint8_t plannerMem_[sizeof(uv::Planner)];
+};
+
+}  // namespace mega

@@ -1,0 +1,172 @@
+// Runs a planned job from its stop file, stop by stop, with a checkpoint after each confirmed one.
+#include "job_runner.h"
+
+#include <string.h>
+
+#include "error_codes.h"
+#include "job_files.h"
+
+namespace mega {
+
+namespace {
+constexpr uint32_t kNanoCapUs = 10000000;  // protocol/nano.md: a longer duration is refused, never clamped there
+bool due(uint32_t now, uint32_t at) { return static_cast<int32_t>(now - at) >= 0; }
+}  // namespace
+
+JobRunner::~JobRunner() {
+  if (stops_ >= 0) sd_.close(stops_);
+  checkpoint_.close();
+}
+
+uint8_t JobRunner::start(const char* name, uint32_t from, uint32_t nowUs) {
+  char work[kWorkNameMax + 1];
+  workFileName(name, JobFile::Stops, work);
+  stops_ = sd_.open(work, Storage::Mode::Read);
+  if (stops_ < 0) return uv::kFileNotFound;
+  if (!readStopHeader(sd_, stops_, header_) || from > header_.count) return uv::kFileError;
+  strncpy(progress_.file, name, kFileNameMax);
+  progress_.file[kFileNameMax] = 0;
+  progress_.count = header_.count;
+  progress_.done = done_ = from;
+  if (!checkpoint_.begin(progress_)) return uv::kFileError;
+  state_ = RunState::Running;
+  phase_ = Phase::Load;
+  since_ = nowUs;
+  changed_ = true;
+  return 0;
+}
+
+uint32_t JobRunner::remainingS() const {
+  if (!header_.count || done_ >= header_.count) return 0;
+  return static_cast<uint32_t>(static_cast<uint64_t>(header_.estimateS) * (header_.count - done_) / header_.count);
+}
+
+void JobRunner::halt(RunState s, uint8_t reason) {
+  state_ = s;
+  reason_ = reason;
+  changed_ = true;
+}
+
+void JobRunner::fail(uint8_t code) {
+  head_.allOff(code);
+  motion_.stop();
+  elapsedUs_ += now_ - since_;
+  halt(RunState::Paused, code);  // the checkpoint stays: continue, or resume after a reset
+}
+
+void JobRunner::pause(uint8_t reason) {
+  if (state_ != RunState::Running) return;
+  pauseWanted_ = true;
+  pauseReason_ = reason;
+}
+
+void JobRunner::resume(uint32_t nowUs) {
+  if (state_ != RunState::Paused) return;
+  pauseWanted_ = false;
+  reason_ = 0;
+  phase_ = Phase::Load;  // a stop that failed is exposed again from its start: it was not confirmed
+  since_ = nowUs;
+  state_ = RunState::Running;
+  changed_ = true;
+}
+
+void JobRunner::abort() {
+  head_.allOff();
+  motion_.stop();
+  checkpoint_.clear();
+  if (stops_ >= 0) sd_.close(stops_);
+  stops_ = -1;
+  halt(RunState::Aborted, 0);
+}
+
+uint8_t JobRunner::tooHot() const {
+  const int16_t* t = head_.deciC();
+  for (uint8_t i = 0; i < uv::kSensorCount; i++)
+    if (t[i] * 100 >= config_.milli(Key::ThermalLimit0 + i)) return static_cast<uint8_t>(i + 1);
+  return 0;
+}
+
+uint32_t JobRunner::compensate(uint8_t led, uint32_t us) const {
+  // job.md: t' = round(t × (100000 + c × (T − ref)) / 100000), T from the sensor beside LED i.
+  int32_t c = header_.thermalCoeff;
+  if (!c || !us) return us;
+  int64_t factor = 100000 + static_cast<int64_t>(c) * (head_.deciC()[led] - header_.thermalRefDeciC);
+  if (factor <= 0) return 0;
+  uint64_t t = (static_cast<uint64_t>(us) * static_cast<uint64_t>(factor) + 50000) / 100000;
+  return t > kNanoCapUs ? kNanoCapUs : static_cast<uint32_t>(t);
+}
+
+void JobRunner::poll(uint32_t nowUs) {
+  now_ = nowUs;
+  if (state_ != RunState::Running) return;
+  switch (phase_) {
+    case Phase::Load: {
+      if (pauseWanted_) {
+        pauseWanted_ = false;
+        elapsedUs_ += nowUs - since_;
+        return halt(RunState::Paused, pauseReason_);
+      }
+      if (done_ >= header_.count) {
+        elapsedUs_ += nowUs - since_;
+        checkpoint_.clear();
+        sd_.close(stops_);
+        stops_ = -1;
+        return halt(RunState::Done, 0);
+      }
+      if (!readStop(sd_, stops_, done_, stop_)) return fail(uv::kFileError);
+      int32_t here[3], to[3];
+      motion_.targetUm(here);
+      to[0] = static_cast<int32_t>(header_.originUm[0]) + stop_.hx * static_cast<int32_t>(header_.pitchUm[0]);
+      to[1] = static_cast<int32_t>(header_.originUm[1]) + stop_.hy * static_cast<int32_t>(header_.pitchUm[1]);
+      to[2] = here[2];
+      bool moves = to[0] != here[0] || to[1] != here[1];
+      if (moves && !motion_.moveTo(to, 0)) return;  // the queue is full: next pass
+      settleUntil_ = moves ? static_cast<uint32_t>(config_.whole(Key::SettleMs)) * 1000 : 0;
+      phase_ = Phase::Move;
+      return;
+    }
+    case Phase::Move:
+      if (!motion_.idle()) return;
+      settleUntil_ += nowUs;
+      phase_ = Phase::Settle;
+      return;
+    case Phase::Settle: {
+      if (!due(nowUs, settleUntil_)) return;
+      uint8_t hot = tooHot();
+      if (hot || head_.activeFaults()) return fail(uv::kOverTemperature);
+      if (!head_.online()) return fail(uv::kNanoTimeout);
+      uint32_t us[4];
+      uint8_t mask = 0;
+      for (uint8_t i = 0; i < 4; i++) {
+        us[i] = compensate(i, stop_.us[i]);
+        if (us[i]) mask = static_cast<uint8_t>(mask | (1 << i));
+      }
+      if (!mask) {
+        phase_ = Phase::Wait;  // nothing to light: confirmed as it is
+        return;
+      }
+      if (!head_.fire(mask, us, nowUs)) return;  // the link is busy: next pass
+      phase_ = Phase::Fire;
+      return;
+    }
+    case Phase::Fire:
+      if (head_.fireState() == FireState::Firing) return;
+      if (head_.fireState() == FireState::Failed) {
+        uint8_t code = head_.fireError() ? head_.fireError() : static_cast<uint8_t>(uv::kExposureRefused);
+        head_.clearFire();
+        return fail(code);  // the stop is not counted: it is exposed again on continue
+      }
+      head_.clearFire();
+      phase_ = Phase::Wait;
+      return;
+    case Phase::Wait:
+      done_++;
+      progress_.done = done_;
+      if (!checkpoint_.write(progress_)) return fail(uv::kFileError);
+      changed_ = true;
+      phase_ = Phase::Load;
+      return;
+  }
+}
+
+}  // namespace mega

@@ -1,0 +1,75 @@
+// Runs a planned job from its stop file: for each stop, move, settle, expose through the printhead
+// link, confirm, and record the progress on the card, so an interrupted job resumes after the last
+// confirmed stop. Pause takes effect between stops; no path leaves an LED on.
+#pragma once
+#include <stdint.h>
+
+#include "checkpoint.h"
+#include "config.h"
+#include "motion.h"
+#include "printhead_link.h"
+#include "stop_file.h"
+#include "storage.h"
+
+namespace mega {
+
+enum class RunState : uint8_t { Running, Paused, Done, Aborted, Failed };
+
+class JobRunner {
+ public:
+  JobRunner(Storage& sd, Motion& motion, PrintheadLink& head, const Config& config)
+      : sd_(sd), motion_(motion), head_(head), config_(config), checkpoint_(sd) {}
+  ~JobRunner();
+
+  // Opens the job's stops and starts at stop `from`. Returns 0, or 21 (not planned) / 22.
+  uint8_t start(const char* name, uint32_t from, uint32_t nowUs);
+  void poll(uint32_t nowUs);
+  // Pauses once the stop under way is confirmed. `reason`: 0 by request, else an error code.
+  void pause(uint8_t reason = 0);
+  void resume(uint32_t nowUs);
+  // Stops everything at once: LEDs off, motion stopped, the checkpoint cleared.
+  void abort();
+
+  RunState state() const { return state_; }
+  uint8_t reason() const { return reason_; }
+  uint32_t done() const { return done_; }
+  uint32_t count() const { return header_.count; }
+  uint32_t elapsedS(uint32_t nowUs) const { return (elapsedUs_ + (state_ == RunState::Running ? nowUs - since_ : 0)) / 1000000; }
+  uint32_t remainingS() const;
+  const char* file() const { return progress_.file; }
+  // The state or the stop count changed since the last call (for JOB: reports).
+  bool takeChanged() {
+    bool c = changed_;
+    changed_ = false;
+    return c;
+  }
+  // What the last failure was about, for its FAULT line: the stop index.
+  uint32_t faultStop() const { return done_; }
+
+ private:
+  enum class Phase : uint8_t { Load, Move, Settle, Fire, Wait };
+  void fail(uint8_t code);
+  void halt(RunState s, uint8_t reason);
+  uint32_t compensate(uint8_t led, uint32_t us) const;
+  uint8_t tooHot() const;
+
+  Storage& sd_;
+  Motion& motion_;
+  PrintheadLink& head_;
+  const Config& config_;
+  Checkpoint checkpoint_;
+  FileHandle stops_ = -1;
+  StopFileHeader header_ = {};
+  Progress progress_ = {};
+  uv::Stop stop_ = {};
+  RunState state_ = RunState::Aborted;
+  Phase phase_ = Phase::Load;
+  uint8_t reason_ = 0;
+  bool pauseWanted_ = false;
+  uint8_t pauseReason_ = 0;
+  bool changed_ = false;
+  uint32_t done_ = 0;
+  uint32_t since_ = 0, elapsedUs_ = 0, settleUntil_ = 0, now_ = 0;
+};
+
+}  // namespace mega

@@ -1,0 +1,283 @@
+// Jobs end to end on a whole simulated Mega: upload with every record checked, planning onto the
+// card, running through the printhead (the real Nano logic), pause, continue, abort, and the
+// checks that keep a bad upload from ever running.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+
+#include "grid_cells.h"
+#include "job_encoder.h"
+#include "mega_rig.h"
+#include "planner.h"
+
+using namespace mega;
+
+namespace {
+
+using Lines = std::vector<std::string>;
+using Grid = std::vector<std::vector<uint8_t>>;
+
+struct Records : uv::RecordSink {
+  Lines lines;
+  void record(const char* text, uint8_t len) override { lines.emplace_back(text, len); }
+};
+
+uv::JobHeader header(uint16_t cols, uint16_t rows, uv::Strategy strategy) {
+  uv::JobHeader h{};
+  h.cols = cols;
+  h.rows = rows;
+  h.pitchUm[0] = h.pitchUm[1] = 100;
+  h.originUm[0] = 5000;
+  h.originUm[1] = 4000;
+  h.map = uv::DoseMap::Linear;
+  h.fullUs = 2000;
+  h.thermalRefDeciC = 250;
+  for (int k = 0; k < 4; k++) {
+    h.gainPermille[k] = static_cast<uint16_t>(1000 + 50 * k);
+    h.offsets[k][1] = static_cast<int16_t>(k);
+  }
+  h.strategy = strategy;
+  return h;
+}
+
+Grid pattern(uint16_t cols, uint16_t rows, uint32_t seed) {
+  Grid g(rows, std::vector<uint8_t>(cols, 0));
+  for (uint16_t r = 0; r < rows; r++)
+    for (uint16_t c = 0; c < cols; c++) {
+      seed = seed * 1103515245u + 12345u;
+      if ((seed >> 16) % 3 == 0) g[r][c] = static_cast<uint8_t>(1 + (seed >> 8) % 255);
+    }
+  return g;
+}
+
+Lines encode(const uv::JobHeader& h, const Grid& g) {
+  Records out;
+  uv::JobEncoder enc(out);
+  enc.header(h);
+  for (uint16_t r = 0; r < h.rows; r++) enc.row(r, g[r].data(), h.cols);
+  enc.finish();
+  return out.lines;
+}
+
+// What the firmware must expose: the shared planner over the same cells, from the origin.
+std::vector<uv::Stop> plan(const uv::JobHeader& h, const Grid& g) {
+  uvtest::GridCells cells(g);
+  const uv::Machine m{{100000, 100000}, {2000000, 1500000}, 2000, 1500, {0, 0}};
+  uv::Planner p(h, cells, m);
+  std::vector<uv::Stop> out;
+  uv::Stop s;
+  while (p.next(s)) out.push_back(s);
+  return out;
+}
+
+bool has(const Lines& lines, const std::string& prefix) {
+  return std::any_of(lines.begin(), lines.end(), [&](const std::string& l) { return l.rfind(prefix, 0) == 0; });
+}
+
+class JobTest : public ::testing::Test {
+ protected:
+  MegaRig m;
+  void SetUp() override {
+    m.begin();
+    m.run(600000);  // temperatures known
+  }
+  Lines payload(const std::string& body) { return MegaRig::payload(m.cmd(body)); }
+  Lines upload(const std::string& name, const Lines& records) {
+    Lines all = m.cmd("M28 " + name);
+    for (const std::string& r : records) {
+      Lines b = m.cmd(r);
+      all.insert(all.end(), b.begin(), b.end());
+    }
+    Lines end = m.cmd("M29");
+    all.insert(all.end(), end.begin(), end.end());
+    return all;
+  }
+  // Runs until a JOB: line in `states` arrives; returns it.
+  std::string runUntilJob(std::initializer_list<const char*> states, uint64_t maxUs = 300000000) {
+    size_t from = m.usbLines.size();
+    for (uint64_t t = 0; t < maxUs; t += 1000) {
+      m.run(1000);
+      for (size_t i = from; i < m.usbLines.size(); i++)
+        for (const char* s : states)
+          if (m.usbLines[i].rfind(std::string("JOB:") + s, 0) == 0) return m.usbLines[i];
+      from = m.usbLines.size();
+    }
+    return "(none)";
+  }
+  void expectExposed(const uv::JobHeader& h, const std::vector<uv::Stop>& stops, size_t from = 0) {
+    ASSERT_GT(stops.size(), 0u);
+    ASSERT_EQ(m.nano.exposures.size() - from, stops.size());
+    for (size_t i = 0; i < stops.size(); i++) {
+      const Exposure& e = m.nano.exposures[from + i];
+      uint8_t mask = 0;
+      for (int k = 0; k < 4; k++) {
+        if (stops[i].us[k]) mask = static_cast<uint8_t>(mask | (1 << k));
+        EXPECT_EQ(e.litUs[k], stops[i].us[k]) << "stop " << i << " LED " << k;
+      }
+      EXPECT_EQ(e.mask, mask) << "stop " << i;
+      // 80 steps/mm: the head's bed position in µm × 0.08
+      EXPECT_EQ(m.firedAt[from + i][0], (static_cast<int32_t>(h.originUm[0]) + stops[i].hx * 100) * 80 / 1000) << "stop " << i;
+      EXPECT_EQ(m.firedAt[from + i][1], (static_cast<int32_t>(h.originUm[1]) + stops[i].hy * 100) * 80 / 1000) << "stop " << i;
+    }
+  }
+};
+
+}  // namespace
+
+TEST_F(JobTest, UploadedPlannedAndRunStopByStopExactlyAsThePlannerSays) {
+  uv::JobHeader h = header(14, 9, uv::Strategy::Shortest);
+  Grid g = pattern(14, 9, 7);
+  Lines got = upload("PCB.UVJ", encode(h, g));
+  EXPECT_TRUE(has(got, "echo:Writing to file: PCB.UVJ"));
+  EXPECT_TRUE(has(got, "echo:Done saving file."));
+  EXPECT_FALSE(has(got, "Error:"));
+  Lines list = payload("M20");
+  ASSERT_EQ(list.size(), 3u);  // the working files are not listed
+  EXPECT_EQ(list[1].rfind("PCB.UVJ ", 0), 0u);
+  EXPECT_EQ(payload("M23 PCB.UVJ")[1], "File selected");
+  EXPECT_EQ(payload("M24"), (Lines{"Error:E14 axis not homed: home first (G28)"}));
+  m.cmd("G28");
+  EXPECT_EQ(payload("M24"), Lines{});
+  std::string done = runUntilJob({"done"});
+  std::vector<uv::Stop> stops = plan(h, g);
+  EXPECT_EQ(done.rfind("JOB:done file=PCB.UVJ stop=" + std::to_string(stops.size()) + "/" + std::to_string(stops.size()), 0), 0u) << done;
+  std::printf("[mega job] %zu stops of a 14x9 job exposed as planned in %.2f simulated s\n", stops.size(), m.nowUs / 1e6);
+  expectExposed(h, stops);
+  EXPECT_FALSE(m.sd.exists(kCheckpointFile));  // nothing to resume
+  EXPECT_EQ(payload("M1000 S"), (Lines{"JOB:idle"}));
+  EXPECT_EQ(m.sd.contents("PCB.UVJ").size(), [&] {
+    size_t n = 0;
+    for (const std::string& r : encode(h, g)) n += r.size() + 1;
+    return n;
+  }());
+}
+
+TEST_F(JobTest, EveryStrategyRunsAsPlanned) {
+  for (uv::Strategy s : {uv::Strategy::Raster, uv::Strategy::Serpentine, uv::Strategy::Random}) {
+    uv::JobHeader h = header(11, 7, s);
+    h.seed = 99;
+    Grid g = pattern(11, 7, static_cast<uint32_t>(s) + 3);
+    size_t from = m.nano.exposures.size();
+    ASSERT_TRUE(has(upload("J.UVJ", encode(h, g)), "echo:Done saving file."));
+    m.cmd("M23 J.UVJ");
+    m.cmd("G28");
+    m.cmd("M24");
+    ASSERT_NE(runUntilJob({"done"}), "(none)");
+    expectExposed(h, plan(h, g), from);
+  }
+}
+
+TEST_F(JobTest, AMalformedRecordFailsTheUploadAndNothingIsKept) {
+  uv::JobHeader h = header(8, 4, uv::Strategy::Raster);
+  Lines records = encode(h, pattern(8, 4, 1));
+  records[11][records[11].size() - 1] = 'G';  // a hex digit that is not one
+  Lines got = upload("BAD.UVJ", records);
+  EXPECT_TRUE(has(got, "Error:E23 job record malformed: line 12"));
+  EXPECT_FALSE(has(got, "echo:Done saving file."));
+  EXPECT_FALSE(m.sd.exists("BAD.UVJ"));
+  EXPECT_FALSE(m.sd.exists("BAD.UVJ~c"));
+  EXPECT_FALSE(m.sd.exists("BAD.UVJ~i"));
+  EXPECT_EQ(payload("M23 BAD.UVJ"), (Lines{"Error:E21 file not found: BAD.UVJ"}));
+}
+
+TEST_F(JobTest, AWrongHashOrAMissingEndFailsAtM29) {
+  uv::JobHeader h = header(8, 4, uv::Strategy::Raster);
+  Lines records = encode(h, pattern(8, 4, 2));
+  Lines wrongHash = records;
+  wrongHash.back()[wrongHash.back().size() - 1] = wrongHash.back().back() == '0' ? '1' : '0';
+  EXPECT_TRUE(has(upload("H.UVJ", wrongHash), "Error:E24"));
+  EXPECT_FALSE(m.sd.exists("H.UVJ"));
+  Lines cut(records.begin(), records.end() - 3);
+  EXPECT_TRUE(has(upload("C.UVJ", cut), "Error:E25"));
+  EXPECT_FALSE(m.sd.exists("C.UVJ"));
+  EXPECT_EQ(payload("M29"), (Lines{"Error:E11 bad or missing parameter: not uploading"}));
+}
+
+TEST_F(JobTest, AJobCopiedOntoTheCardByAPcIsVerifiedAndPlannedWhenSelected) {
+  uv::JobHeader h = header(10, 6, uv::Strategy::Serpentine);
+  Grid g = pattern(10, 6, 5);
+  std::string text;
+  for (const std::string& r : encode(h, g)) text += r + "\n";
+  m.sd.put("COPIED.UVJ", text);
+  Lines sel = payload("M23 COPIED.UVJ");
+  EXPECT_EQ(sel[1], "File selected");
+  m.cmd("G28");
+  m.cmd("M24");
+  ASSERT_NE(runUntilJob({"done"}), "(none)");
+  expectExposed(h, plan(h, g));
+  // A damaged copy is refused and stays on the card, untouched.
+  text[text.size() - 3] = text[text.size() - 3] == 'a' ? 'b' : 'a';
+  m.sd.put("DAMAGED.UVJ", text);
+  EXPECT_TRUE(has(payload("M23 DAMAGED.UVJ"), "Error:E24"));
+  EXPECT_TRUE(m.sd.exists("DAMAGED.UVJ"));
+  EXPECT_FALSE(m.sd.exists("DAMAGED.UVJ~c"));
+}
+
+TEST_F(JobTest, PauseWaitsForTheStopContinueGoesOnAbortEndsItDark) {
+  uv::JobHeader h = header(16, 12, uv::Strategy::Raster);
+  Grid g = pattern(16, 12, 9);
+  upload("P.UVJ", encode(h, g));
+  m.cmd("M23 P.UVJ");
+  m.cmd("G28");
+  m.cmd("M24");
+  m.run(300000);
+  m.cmd("M25");
+  std::string paused = runUntilJob({"paused"});
+  EXPECT_NE(paused.find("reason=user"), std::string::npos) << paused;
+  size_t fired = m.nano.exposures.size();
+  m.run(2000000);
+  EXPECT_EQ(m.nano.exposures.size(), fired);  // nothing while paused
+  EXPECT_EQ(m.nano.lit(), 0);
+  m.cmd("M24");
+  m.run(300000);
+  EXPECT_GT(m.nano.exposures.size(), fired);
+  size_t before = m.nano.lines.size();
+  m.cmd("M524");
+  EXPECT_TRUE(std::count(m.nano.lines.begin() + static_cast<long>(before), m.nano.lines.end(), "R") >= 1);
+  EXPECT_EQ(m.nano.lit(), 0);
+  size_t at = m.nano.exposures.size();
+  m.run(1000000);
+  EXPECT_EQ(m.nano.exposures.size(), at);
+  EXPECT_EQ(payload("M27")[0].rfind("JOB:aborted", 0), 0u);
+  EXPECT_FALSE(m.sd.exists(kCheckpointFile));
+  // Every stop exposed so far was one of the plan's, each once, in order.
+  std::vector<uv::Stop> stops = plan(h, g);
+  stops.resize(at);
+  expectExposed(h, stops);
+}
+
+TEST_F(JobTest, AnOverTemperatureMidJobPausesItAndItContinuesOnceCool) {
+  uv::JobHeader h = header(16, 12, uv::Strategy::Raster);
+  Grid g = pattern(16, 12, 4);
+  upload("T.UVJ", encode(h, g));
+  m.cmd("M23 T.UVJ");
+  m.cmd("G28");
+  m.cmd("M24");
+  m.run(200000);
+  m.nano.setTemps(560);  // over the Mega's 55 °C soft limit, under the Nano's 60
+  std::string paused = runUntilJob({"paused"});
+  EXPECT_NE(paused.find("reason=overtemp"), std::string::npos) << paused;
+  EXPECT_TRUE(has(m.usbLines, "FAULT:E31"));
+  EXPECT_TRUE(has(payload("M24"), "Error:E31"));
+  m.nano.setTemps(300);
+  m.run(1200000);
+  EXPECT_EQ(payload("M24"), Lines{});
+  ASSERT_NE(runUntilJob({"done"}), "(none)");
+  expectExposed(h, plan(h, g));
+}
+
+TEST_F(JobTest, M30DeletesAJobAndItsWorkingFiles) {
+  upload("D.UVJ", encode(header(4, 4, uv::Strategy::Raster), pattern(4, 4, 3)));
+  EXPECT_TRUE(m.sd.exists("D.UVJ~s"));
+  EXPECT_EQ(payload("M30 D.UVJ"), Lines{});
+  EXPECT_FALSE(m.sd.exists("D.UVJ"));
+  EXPECT_FALSE(m.sd.exists("D.UVJ~s"));
+  EXPECT_EQ(payload("M30 D.UVJ"), (Lines{"Error:E21 file not found: D.UVJ"}));
+}
+
+TEST_F(JobTest, WithoutACardJobCommandsSayE20) {
+  m.sd.inserted = false;
+  EXPECT_EQ(payload("M28 X.UVJ"), (Lines{"Error:E20 no SD card"}));
+  EXPECT_EQ(payload("M20"), (Lines{"Error:E20 no SD card"}));
+}

@@ -1,0 +1,52 @@
+// The planner's CellSource over a spooled job on the SD card (the ~c cells and ~i index files).
+// Each cursor keeps a few cells of its row in RAM, so walking a row costs one card read per
+// kChunk cells, however many cursors the strategy walks side by side.
+#pragma once
+#include <stdint.h>
+
+#include "cell_source.h"
+#include "planner.h"
+#include "storage.h"
+
+namespace mega {
+
+class SdCells : public uv::CellSource {
+ public:
+  static constexpr uint8_t kChunk = 4;
+
+  SdCells(Storage& sd, FileHandle cells, FileHandle index) : sd_(sd), cells_(cells), index_(index) {}
+
+  bool rowNonEmpty(uint16_t row) override;
+  bool rowExtent(uint16_t row, uint16_t& first, uint16_t& last) override;
+  void open(uint8_t cursor, uint16_t row, bool descending) override;
+  bool next(uint8_t cursor, uint16_t& col, uint8_t& value) override;
+  // A read from the card failed at some point: the plan is not to be trusted.
+  bool failed() const { return failed_; }
+
+ private:
+  struct Row {
+    uint32_t offset;
+    uint16_t first, last;
+  };
+  bool readRow(uint16_t row, Row& out);
+  bool fill(uint8_t cursor);
+
+  struct Cursor {
+    uint32_t offset;    // of the row's first cell in the cells file
+    uint16_t first, last;
+    int16_t pos;        // the next column to look at (-1: before column 0)
+    uint16_t chunkCol;  // column of chunk[0]
+    uint8_t chunkLen : 7;
+    bool descending : 1;
+    uint8_t chunk[kChunk];
+  };
+
+  Storage& sd_;
+  FileHandle cells_, index_;
+  Cursor cursors_[uv::kPlannerCursors];
+  uint16_t cachedRow_ = 0xffff;
+  Row cached_ = {};
+  bool failed_ = false;
+};
+
+}  // namespace mega

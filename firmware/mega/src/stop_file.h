@@ -1,0 +1,32 @@
+// The planned stops of a job on the SD card (name~s): a header, then 20 bytes a stop, in the order
+// they are exposed. Planning writes it once after the upload verified; running reads it front to
+// back, so a running job needs a few bytes of RAM however large it is.
+#pragma once
+#include <stdint.h>
+
+#include "job_types.h"
+#include "storage.h"
+#include "time_model.h"
+
+namespace mega {
+
+struct StopFileHeader {
+  uint32_t count;        // stops
+  uint32_t estimateS;    // the planner's time model, whole seconds
+  uint32_t originUm[2];
+  uint32_t pitchUm[2];
+  int16_t thermalCoeff;  // the job's thermal compensation (job.md), applied at exposure time
+  int16_t thermalRefDeciC;
+};
+
+constexpr uint8_t kStopHeaderBytes = 32;
+constexpr uint8_t kStopBytes = 20;
+
+// Writes the header at the file's start (placeholder first, the real one at the end of planning).
+bool writeStopHeader(Storage& sd, FileHandle f, const StopFileHeader& h);
+bool readStopHeader(Storage& sd, FileHandle f, StopFileHeader& h);
+bool writeStop(Storage& sd, FileHandle f, const uv::Stop& s);
+// Reads stop i (seeks there first).
+bool readStop(Storage& sd, FileHandle f, uint32_t i, uv::Stop& s);
+
+}  // namespace mega
