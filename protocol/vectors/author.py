@@ -61,6 +61,7 @@ nano_commands = [
     {"line": "R\n", "command": {"op": "R"}, "flash": "orange"},
     {"line": "E\n", "command": {"op": "E"}, "flash": "dim_white"},
     {"line": "V\n", "command": {"op": "V"}, "flash": "dim_white"},
+    {"line": "C\n", "command": {"op": "C"}, "flash": "dim_white"},
 ]
 nano_parse_only = [
     {"line": "S\r\n", "command": {"op": "S"}},
@@ -98,6 +99,9 @@ nano_replies = [
     {"line": "E:0\n", "reply": {"op": "E", "flags": 0}},
     {"line": "E:161\n", "reply": {"op": "E", "flags": 161}},
     {"line": "V:1,0.1.0\n", "reply": {"op": "V", "protocol": 1, "firmware": "0.1.0"}},
+    {"line": "C:0,0,1\n", "reply": {"op": "C", "boot": 0, "fires": 0, "whole": True}},
+    {"line": "C:65535,4294967295,0\n", "reply": {"op": "C", "boot": 65535, "fires": 4294967295, "whole": False}},
+    {"line": "C:17,3,1\n", "reply": {"op": "C", "boot": 17, "fires": 3, "whole": True}},
 ]
 nano_bad_replies = [
     {"line": "S:16\n"}, {"line": "S:\n"}, {"line": "S15\n"}, {"line": "P:2\n"},
@@ -105,6 +109,7 @@ nano_bad_replies = [
     {"line": "T:23.55,24.0,-5.2,100.0,22.1,0.0\n"}, {"line": "T:1000.0,24.0,-5.2,100.0,22.1,0.0\n"},
     {"line": "T:-0.0x,24.0,-5.2,100.0,22.1,0.0\n"}, {"line": "E:256\n"}, {"line": "V:1\n"},
     {"line": "Q:1\n"}, {"line": "S:1"},
+    {"line": "C:65536,0,1\n"}, {"line": "C:1,4294967296,1\n"}, {"line": "C:1,2,3\n"}, {"line": "C:1,2\n"}, {"line": "C:1,2,1,0\n"},
 ]
 nano_streams = [
     {"name": "lines split anywhere", "bytes": "S\nT\r\n\nP\n", "lines": ["S", "T", "P"], "dropped": 0},

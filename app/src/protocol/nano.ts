@@ -8,7 +8,7 @@ export const LED_COUNT = 4;
 export const SENSOR_COUNT = 6;
 
 export type NanoCommand =
-  | { op: 'S' | 'D' | 'U' | 'X' | 'P' | 'T' | 'R' | 'E' | 'V' }
+  | { op: 'S' | 'D' | 'U' | 'X' | 'P' | 'T' | 'R' | 'E' | 'V' | 'C' }
   | { op: 'F'; mask: number; durations: [number, number, number, number] };
 
 export type NanoReply =
@@ -16,7 +16,9 @@ export type NanoReply =
   | { op: 'P'; triggered: boolean }
   | { op: 'T'; deciC: number[] }
   | { op: 'E'; flags: number }
-  | { op: 'V'; protocol: number; firmware: string };
+  | { op: 'V'; protocol: number; firmware: string }
+  /** The Nano's start count, exposures lit since then, and whether the last one ran its full time. */
+  | { op: 'C'; boot: number; fires: number; whole: boolean };
 
 export type Colour = 'green' | 'dim_white' | 'purple' | 'cyan' | 'orange' | 'red';
 
@@ -41,7 +43,7 @@ export const FAULT = {
 } as const;
 
 const FLASH: Record<NanoCommand['op'], Colour> = {
-  S: 'dim_white', T: 'dim_white', E: 'dim_white', V: 'dim_white',
+  S: 'dim_white', T: 'dim_white', E: 'dim_white', V: 'dim_white', C: 'dim_white',
   F: 'purple', D: 'cyan', U: 'cyan', X: 'cyan', P: 'cyan', R: 'orange',
 };
 
@@ -65,7 +67,7 @@ export function nanoLineUsable(line: SplitLine): boolean {
 
 /** Parses one line (without terminator). null = malformed: the Nano drops it. */
 export function parseNanoCommand(line: string): NanoCommand | null {
-  if (line.length === 1 && 'SDUXPTREV'.includes(line)) {
+  if (line.length === 1 && 'SDUXPTREVC'.includes(line)) {
     return { op: line as 'S' };
   }
   if (!line.startsWith('F:')) return null;
@@ -104,6 +106,7 @@ export function formatNanoReply(r: NanoReply): string {
     case 'T': return `T:${r.deciC.map(formatDeciC).join(',')}\n`;
     case 'E': return `E:${r.flags}\n`;
     case 'V': return `V:${r.protocol},${r.firmware}\n`;
+    case 'C': return `C:${r.boot},${r.fires},${r.whole ? 1 : 0}\n`;
   }
 }
 
@@ -111,7 +114,7 @@ export function formatNanoReply(r: NanoReply): string {
 export function parseNanoReply(raw: string): NanoReply | null {
   if (!raw.endsWith('\n')) return null;
   const line = raw.slice(0, -1);
-  const m = /^([SPTEV]):(.*)$/.exec(line);
+  const m = /^([SPTEVC]):(.*)$/.exec(line);
   if (!m) return null;
   const body = m[2];
   switch (m[1]) {
@@ -134,6 +137,11 @@ export function parseNanoReply(raw: string): NanoReply | null {
     case 'V': {
       const v = /^([0-9]{1,5}),([0-9A-Za-z.+-]{1,20})$/.exec(body);
       return v ? { op: 'V', protocol: Number(v[1]), firmware: v[2] } : null;
+    }
+    case 'C': {
+      const v = /^([0-9]{1,5}),([0-9]{1,10}),([01])$/.exec(body);
+      if (!v || Number(v[1]) > 65535 || Number(v[2]) > U32_MAX) return null;
+      return { op: 'C', boot: Number(v[1]), fires: Number(v[2]), whole: v[3] === '1' };
     }
   }
   return null;

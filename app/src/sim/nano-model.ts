@@ -41,6 +41,10 @@ export class NanoModel {
   alarmOnDeploy = false;
   /** A missing Nano answers nothing. */
   present = true;
+  /** This start's number (the firmware keeps a counter in EEPROM); the printer sets it at power-up. */
+  boot = 1;
+  #fires = 0;
+  #whole = true;
   #latched = 0;
   #latchedTrigger = false;
   #off: (ReturnType<VirtualClock['at']> | null)[] = [null, null, null, null];
@@ -75,7 +79,11 @@ export class NanoModel {
         return reply({ op: 'E', flags });
       }
       case 'V': return reply({ op: 'V', protocol: 1, firmware: '0.2.0-sim' });
-      case 'R': this.allOff(); return null;
+      case 'C': return reply({ op: 'C', boot: this.boot, fires: this.#fires, whole: this.#whole });
+      case 'R':
+        if (this.lit) this.#whole = false; // an exposure cut short
+        this.allOff();
+        return null;
       case 'D': this.probe = this.alarmOnDeploy ? 'alarm' : 'deployed'; return null;
       case 'U': if (this.probe !== 'alarm') this.probe = 'stowed'; return null;
       case 'X': this.probe = 'stowed'; this.alarmOnDeploy = false; return null;
@@ -113,7 +121,10 @@ export class NanoModel {
       on |= 1 << k;
     }
     this.#integrate();
+    if (!on) return;
     this.lit = on;
+    this.#fires++;
+    this.#whole = true;
     for (let k = 0; k < 4; k++) {
       if (!((on >> k) & 1)) continue;
       this.#off[k] = this.clock.after(durations[k], () => {
@@ -144,6 +155,7 @@ export class NanoModel {
     }
     if (this.#hot && this.lit) {
       this.allOff();
+      this.#whole = false;
       this.#latched |= FAULT.CUTOFF;
     }
   }

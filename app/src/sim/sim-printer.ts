@@ -37,6 +37,7 @@ export class SimPrinter {
   #disconnected = false;
   onDisconnect: () => void = () => {};
 
+  #boots = 0;
   /** `emit` receives every byte the Mega would send. */
   constructor(private readonly emit: (bytes: string) => void, private readonly o: SimOptions = {}) {
     this.#link = new FaultyLink(o.link ?? {});
@@ -48,6 +49,7 @@ export class SimPrinter {
     const nanoOptions: NanoOptions = { ...DEFAULT_NANO, ...this.o.nano };
     if (this.o.ambientDeciC) nanoOptions.ambientDeciC = this.o.ambientDeciC;
     this.nano = new NanoModel(this.clock, nanoOptions);
+    this.nano.boot = ++this.#boots; // each power-up is a new start, as the firmware's EEPROM counter says
     this.nano.present = !this.o.missingNano;
     this.nano.alarmOnDeploy = !!this.o.probeAlarm;
     this.mega = new MegaModel(this.clock, this.nano, this.sd, (b) => this.#out(b), {

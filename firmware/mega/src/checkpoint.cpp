@@ -21,7 +21,8 @@ uint32_t get32(const char* in) {
   return v;
 }
 
-// magic 4, seq 4, done 4, count 4, file 32, crc 4 (over the 48 bytes before it), padding.
+// magic 4, seq 4, done 4, count 4, file 32, crc 4 (over the 48 bytes before it), boot 2, fires 4
+// (covered by a second CRC), padding.
 void encode(const Progress& p, uint32_t seq, char* b) {
   memset(b, 0, kSlot);
   memcpy(b, kMagic, 4);
@@ -30,11 +31,17 @@ void encode(const Progress& p, uint32_t seq, char* b) {
   put32(p.count, b + 12);
   strncpy(b + 16, p.file, kFileNameMax);
   put32(uv::crc32Update(0, b, 48), b + 48);
+  put32(p.boot, b + 52);
+  put32(p.fires, b + 56);
+  put32(uv::crc32Update(0, b, 60), b + 60);
 }
 
 bool decode(const char* b, Progress& p, uint32_t& seq) {
   if (memcmp(b, kMagic, 4) != 0 || get32(b + 48) != uv::crc32Update(0, b, 48)) return false;
+  if (get32(b + 60) != uv::crc32Update(0, b, 60)) return false;
   seq = get32(b + 4);
+  p.boot = static_cast<uint16_t>(get32(b + 52));
+  p.fires = get32(b + 56);
   p.done = get32(b + 8);
   p.count = get32(b + 12);
   memcpy(p.file, b + 16, kFileNameMax);

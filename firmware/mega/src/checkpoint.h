@@ -12,6 +12,8 @@ struct Progress {
   char file[kFileNameMax + 1];
   uint32_t done;   // stops exposed and confirmed: the next to run
   uint32_t count;  // stops in the job
+  uint16_t boot;   // the Nano's start number (its C reply) ...
+  uint32_t fires;  // ... and its exposure count before stop `done` is sent
 };
 
 class Checkpoint {

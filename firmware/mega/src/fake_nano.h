@@ -5,6 +5,7 @@
 #include <stdint.h>
 
 #include <deque>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -23,7 +24,10 @@ struct Exposure {
 
 class FakeNano : public ByteStream, private nano::PrintheadIo {
  public:
-  FakeNano() : head_(*this, config_), splitter_(line_, uv::kNanoMaxLine) { setTemps(250); }
+  FakeNano() : head_(*this, config_), splitter_(line_, uv::kNanoMaxLine) {
+    head_.setBoot(boot_);
+    setTemps(250);
+  }
 
   // --- the Mega's side ---
   int16_t read() override {
@@ -52,12 +56,22 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
     }
   }
   void setTemps(int16_t deciC) {
+    temps_ = deciC;
     uint16_t mv[6];
     for (uint16_t& m : mv) m = static_cast<uint16_t>(500 + deciC);  // TMP36: 10 mV/°C, 500 mV at 0
     head_.readings(mv);  // over a limit, the real logic switches every LED off (CUTOFF)
   }
   uint8_t litMask() const override { return lit_; }
   uint8_t lit() const { return lit_; }
+  // Power fails and returns: LEDs dark at once, the Nano's RAM gone, its start count one more.
+  void powerCycle() {
+    allOff();
+    head_.~Printhead();
+    new (&head_) nano::Printhead(*this, config_);
+    head_.setBoot(++boot_);
+    setTemps(temps_);
+    toMega_.clear();
+  }
 
   bool silent = false;   // hears nothing, answers nothing
   bool stuck = false;    // LEDs ignore their off time (a failed timer), only R turns them off
@@ -104,6 +118,8 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
   uint8_t lit_ = 0;
   uint32_t offAt_[4] = {};
   uint32_t startAt_ = 0;
+  uint16_t boot_ = 7;
+  int16_t temps_ = 250;
 };
 
 }  // namespace mega

@@ -28,11 +28,20 @@ uint8_t JobRunner::start(const char* name, uint32_t from, uint32_t nowUs) {
   progress_.file[kFileNameMax] = 0;
   progress_.count = header_.count;
   progress_.done = done_ = from;
-  if (!checkpoint_.begin(progress_)) return uv::kFileError;
   state_ = RunState::Running;
-  phase_ = Phase::Load;
+  phase_ = Phase::Sync;  // the Nano's counters first: each checkpoint carries them
+  head_.requestCounters();
   since_ = nowUs;
   changed_ = true;
+  return 0;
+}
+
+uint8_t JobRunner::resume(const Progress& checkpoint, uint32_t nowUs) {
+  uint8_t err = start(checkpoint.file, checkpoint.done, nowUs);
+  if (err) return err;
+  if (checkpoint.count != header_.count) return uv::kFileError;  // replanned since: not the same stops
+  resuming_ = true;
+  checkpointed_ = checkpoint;
   return 0;
 }
 
@@ -64,7 +73,10 @@ void JobRunner::resume(uint32_t nowUs) {
   if (state_ != RunState::Paused) return;
   pauseWanted_ = false;
   reason_ = 0;
-  phase_ = Phase::Load;  // a stop that failed is exposed again from its start: it was not confirmed
+  // A stop that failed is exposed again from its start: it was not confirmed. The Nano's count is
+  // read again first, since a failed exposure may or may not have been counted.
+  phase_ = Phase::Sync;
+  head_.requestCounters();
   since_ = nowUs;
   state_ = RunState::Running;
   changed_ = true;
@@ -100,6 +112,28 @@ void JobRunner::poll(uint32_t nowUs) {
   now_ = nowUs;
   if (state_ != RunState::Running) return;
   switch (phase_) {
+    case Phase::Sync: {
+      if (!head_.online()) return fail(uv::kNanoTimeout);
+      if (!head_.countersAnswered()) return;
+      progress_.boot = head_.boot();
+      progress_.fires = head_.fires();
+      if (resuming_) {
+        resuming_ = false;
+        // The checkpoint holds the count before stop `done` was sent. One more, in the same start
+        // of the Nano, means it was sent and carried out; `whole` says if it ran its full time.
+        const Progress& cp = checkpointed_;
+        if (progress_.boot != cp.boot) resumed_ = Resumed::PrintheadRestarted;
+        else if (progress_.fires == cp.fires) resumed_ = Resumed::NotSent;
+        else if (progress_.fires == cp.fires + 1 && head_.lastWhole()) resumed_ = Resumed::Exposed;
+        else resumed_ = Resumed::CutShort;
+        if (resumed_ == Resumed::Exposed) done_++;
+      }
+      progress_.done = done_;
+      if (!checkpoint_.begin(progress_)) return fail(uv::kFileError);
+      changed_ = true;
+      phase_ = Phase::Load;
+      return;
+    }
     case Phase::Load: {
       if (pauseWanted_) {
         pauseWanted_ = false;
@@ -141,6 +175,7 @@ void JobRunner::poll(uint32_t nowUs) {
         us[i] = compensate(i, stop_.us[i]);
         if (us[i]) mask = static_cast<uint8_t>(mask | (1 << i));
       }
+      lit_ = mask != 0;
       if (!mask) {
         phase_ = Phase::Wait;  // nothing to light: confirmed as it is
         return;
@@ -162,6 +197,7 @@ void JobRunner::poll(uint32_t nowUs) {
     case Phase::Wait:
       done_++;
       progress_.done = done_;
+      if (lit_) progress_.fires++;  // the Nano counted it
       if (!checkpoint_.write(progress_)) return fail(uv::kFileError);
       changed_ = true;
       phase_ = Phase::Load;

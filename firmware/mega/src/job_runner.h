@@ -23,6 +23,19 @@ class JobRunner {
 
   // Opens the job's stops and starts at stop `from`. Returns 0, or 21 (not planned) / 22.
   uint8_t start(const char* name, uint32_t from, uint32_t nowUs);
+  // Resumes an interrupted job from its checkpoint. Before anything moves, the Nano's C reply
+  // tells whether the stop that was next had been exposed: if so, whole, it counts as done.
+  uint8_t resume(const Progress& checkpoint, uint32_t nowUs);
+  // How the resume judged the stop that was next when the job was interrupted.
+  enum class Resumed : uint8_t { NotYet, NotSent, Exposed, CutShort, PrintheadRestarted };
+  // The verdict once it is known, then NotYet.
+  Resumed takeResumed() {
+    Resumed r = resumed_;
+    resumed_ = Resumed::NotYet;
+    return r;
+  }
+  // The stop the verdict is about.
+  uint32_t resumedStop() const { return checkpointed_.done; }
   void poll(uint32_t nowUs);
   // Pauses once the stop under way is confirmed. `reason`: 0 by request, else an error code.
   void pause(uint8_t reason = 0);
@@ -47,7 +60,7 @@ class JobRunner {
   uint32_t faultStop() const { return done_; }
 
  private:
-  enum class Phase : uint8_t { Load, Move, Settle, Fire, Wait };
+  enum class Phase : uint8_t { Sync, Load, Move, Settle, Fire, Wait };
   void fail(uint8_t code);
   void halt(RunState s, uint8_t reason);
   uint32_t compensate(uint8_t led, uint32_t us) const;
@@ -66,8 +79,12 @@ class JobRunner {
   Phase phase_ = Phase::Load;
   uint8_t reason_ = 0;
   bool pauseWanted_ = false;
+  bool lit_ = false;  // the stop under way lights an LED
   uint8_t pauseReason_ = 0;
   bool changed_ = false;
+  bool resuming_ = false;
+  Resumed resumed_ = Resumed::NotYet;
+  Progress checkpointed_ = {};
   uint32_t done_ = 0;
   uint32_t since_ = 0, elapsedUs_ = 0, settleUntil_ = 0, now_ = 0;
 };

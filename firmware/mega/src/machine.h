@@ -95,6 +95,7 @@ class Machine {
   Result resumeInterrupted(HostLink& port, const uv::Command& c);
   bool startPlanning(const uv::JobHeader& header);
   void runJob();
+  void resumeVerdict(JobRunner& j);
   void clearArena();
   uint8_t formatJob(char* out) const;
   void jobReports();

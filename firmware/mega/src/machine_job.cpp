@@ -273,7 +273,7 @@ Machine::Result Machine::resumeInterrupted(HostLink& port, const uv::Command& c)
   strcpy(selected_, p.file);
   JobRunner* r = new (arenaMem_) JobRunner(sd_, motion_, head_, config_);
   arena_ = Arena::Run;
-  uint8_t err = r->start(p.file, p.done, now_);
+  uint8_t err = r->resume(p, now_);
   if (err) {
     clearArena();
     port.errorLine(err, p.file);
@@ -377,11 +377,34 @@ Machine::Result Machine::jobCommand(HostLink& port, const uv::Command& c) {
   }
 }
 
+void Machine::resumeVerdict(JobRunner& j) {
+  JobRunner::Resumed v = j.takeResumed();
+  if (v == JobRunner::Resumed::NotYet) return;
+  char buf[112];
+  char* p = buf;
+  auto put = [&p](const char* flash) {
+    size_t n = uvStrlenP(flash);
+    uvMemcpyP(p, flash, n);
+    p += n;
+  };
+  put(UV_P("echo:resume: stop "));
+  p += uv::putUnsigned(j.resumedStop(), p);
+  switch (v) {
+    case JobRunner::Resumed::NotSent: put(UV_P(" had not been sent")); break;
+    case JobRunner::Resumed::Exposed: put(UV_P(" had been exposed whole, and counts as done")); break;
+    case JobRunner::Resumed::CutShort: put(UV_P(" was cut short, and is exposed again")); break;
+    default: put(UV_P(" may have been cut short by the printhead's restart, and is exposed again")); break;
+  }
+  *p = 0;
+  broadcast(buf);
+}
+
 void Machine::runJob() {
   if (arena_ != Arena::Run) return;
   JobRunner& j = *run();
   RunState before = j.state();
   j.poll(now_);
+  resumeVerdict(j);
   if (j.state() == RunState::Running) {
     bool heard = false;
     for (HostLink* p : ports_) heard |= p->takeHeard();

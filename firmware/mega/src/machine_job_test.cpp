@@ -281,3 +281,115 @@ TEST_F(JobTest, WithoutACardJobCommandsSayE20) {
   EXPECT_EQ(payload("M28 X.UVJ"), (Lines{"Error:E20 no SD card"}));
   EXPECT_EQ(payload("M20"), (Lines{"Error:E20 no SD card"}));
 }
+
+namespace {
+
+}  // namespace
+
+TEST_F(JobTest, ResetsAtRandomPointsResumeAndExposeEveryStopExactlyOnce) {
+  uv::JobHeader h = header(24, 16, uv::Strategy::Shortest);
+  Grid g = pattern(24, 16, 21);
+  std::vector<uv::Stop> stops = plan(h, g);
+  ASSERT_TRUE(has(upload("R.UVJ", encode(h, g)), "echo:Done saving file."));
+  m.cmd("M23 R.UVJ");
+  m.cmd("G28");
+  m.cmd("M24");
+  uint32_t seed = 5;
+  auto rnd = [&seed](uint32_t n) {
+    seed = seed * 1664525u + 1013904223u;
+    return (seed >> 8) % n;
+  };
+  int resets = 0;
+  for (int i = 0; i < 40; i++) {
+    m.run(2000 + rnd(60000));
+    if (i % 3 == 2) {  // and every third time right in an exposure, the LEDs on
+      for (int t = 0; t < 200000 && !m.nano.lit() && !has(m.usbLines, "JOB:done"); t++) m.run(100);
+    }
+    if (has(m.usbLines, "JOB:done")) break;
+    // Somewhere in a move, a settle, an exposure, a checkpoint write: the Mega restarts, and is
+    // back 0.1-1.5 s later with the Nano still powered.
+    m.reset(100000 + rnd(1400000));
+    resets++;
+    ASSERT_EQ(m.usbLines.back(), "start");
+    Lines status = payload("M1000 S");
+    ASSERT_EQ(status.size(), 1u);
+    ASSERT_EQ(status[0].rfind("JOB:interrupted file=R.UVJ stop=", 0), 0u) << status[0];
+    m.cmd("G28");
+    EXPECT_EQ(payload("M1000"), Lines{});
+  }
+  if (!has(m.usbLines, "JOB:done")) {
+    ASSERT_NE(runUntilJob({"done"}), "(none)");
+  }
+  EXPECT_GE(resets, 3);
+  long notSent = std::count_if(m.usbLines.begin(), m.usbLines.end(), [](const std::string& l) { return l.find("had not been sent") != std::string::npos; });
+  long whole = std::count_if(m.usbLines.begin(), m.usbLines.end(), [](const std::string& l) { return l.find("had been exposed whole") != std::string::npos; });
+  std::printf("[mega resume] %d restarts at random points (%ld before a stop was sent, %ld after it was exposed), %zu stops each exposed once\n",
+              resets, notSent, whole, stops.size());
+  EXPECT_EQ(notSent + whole, resets);
+  EXPECT_FALSE(has(m.usbLines, "echo:resume: stop") && has(m.usbLines, "exposed again"));
+  expectExposed(h, stops);  // each stop once, in order, where the planner put it
+}
+
+TEST_F(JobTest, AResetThatCutsAnExposureShortSaysSoAndExposesItAgain) {
+  uv::JobHeader h = header(6, 4, uv::Strategy::Raster);
+  h.fullUs = 400000;  // long exposures: the restart lands inside one
+  Grid g = pattern(6, 4, 3);
+  upload("L.UVJ", encode(h, g));
+  m.cmd("M23 L.UVJ");
+  m.cmd("G28");
+  m.cmd("M24");
+  ASSERT_TRUE([&] {
+    for (int t = 0; t < 100000 && !(m.nano.lit() && m.nano.exposures.size() >= 2); t++) m.run(100);
+    return m.nano.lit() != 0;
+  }());
+  size_t cut = m.nano.exposures.size() - 1;
+  m.reset(0);  // back at once: its R at start-up cuts the exposure
+  EXPECT_EQ(m.nano.lit(), 0);
+  EXPECT_LT(m.nano.exposures[cut].litUs[0] + m.nano.exposures[cut].litUs[1] + m.nano.exposures[cut].litUs[2] +
+                m.nano.exposures[cut].litUs[3],
+            4 * 400000u);
+  m.cmd("G28");
+  m.cmd("M1000");
+  m.run(50000);
+  EXPECT_TRUE(has(m.usbLines, "echo:resume: stop " + std::to_string(cut) + " was cut short, and is exposed again"));
+  ASSERT_NE(runUntilJob({"done"}), "(none)");
+  // The cut exposure, then the whole plan from that stop on.
+  std::vector<uv::Stop> stops = plan(h, g);
+  ASSERT_EQ(m.nano.exposures.size(), stops.size() + 1);
+  m.nano.exposures.erase(m.nano.exposures.begin() + static_cast<long>(cut));
+  m.firedAt.erase(m.firedAt.begin() + static_cast<long>(cut));
+  expectExposed(h, stops);
+}
+
+TEST_F(JobTest, APowerCutResumesAndNamesTheStopThatMayHaveBeenCut) {
+  uv::JobHeader h = header(16, 8, uv::Strategy::Serpentine);
+  Grid g = pattern(16, 8, 13);
+  std::vector<uv::Stop> stops = plan(h, g);
+  upload("W.UVJ", encode(h, g));
+  m.cmd("M23 W.UVJ");
+  m.cmd("G28");
+  m.cmd("M24");
+  m.run(500000);
+  size_t before = m.nano.exposures.size();
+  bool litAtCut = m.nano.lit() != 0;
+  m.reset(300000, true);  // the Nano loses power too
+  Lines status = payload("M1000 S");
+  ASSERT_EQ(status[0].rfind("JOB:interrupted file=W.UVJ stop=", 0), 0u);
+  uint32_t next = static_cast<uint32_t>(std::stoul(status[0].substr(status[0].find("stop=") + 5)));
+  m.cmd("G28");
+  m.cmd("M1000");
+  m.run(50000);
+  EXPECT_TRUE(has(m.usbLines, "echo:resume: stop " + std::to_string(next) + " may have been cut short by the printhead's restart"));
+  ASSERT_NE(runUntilJob({"done"}), "(none)");
+  // Stops before the checkpoint once; from it on, the plan again. The one stop in between, if it
+  // was under way when the power went, got its partial light and then its whole.
+  ASSERT_GE(next, before - 1);
+  size_t extra = m.nano.exposures.size() - stops.size();
+  EXPECT_LE(extra, 1u);
+  if (extra) {
+    EXPECT_TRUE(litAtCut || next + 1 == before);
+    m.nano.exposures.erase(m.nano.exposures.begin() + static_cast<long>(next));
+    m.firedAt.erase(m.firedAt.begin() + static_cast<long>(next));
+  }
+  expectExposed(h, stops);
+}

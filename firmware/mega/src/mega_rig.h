@@ -5,6 +5,7 @@
 #include <stdint.h>
 
 #include <array>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -98,8 +99,46 @@ class MegaRig {
   std::vector<std::array<int32_t, 3>> firedAt;
 
   void begin() {
-    machine.begin(0);
+    machine.begin(static_cast<uint32_t>(nowUs));
     run(1000);
+  }
+
+  // The Mega restarts (its watchdog, a brown-out, a host opening the USB port): everything on the
+  // chip is lost, what was not synced to the card too. The Nano keeps running through the
+  // `bootUs` the Mega takes to start again, unless `powerLost` takes it down as well. The head
+  // stays where it physically is, so the switches move relative to the new count.
+  void reset(uint64_t bootUs, bool powerLost = false) {
+    sd.powerCut();
+    if (powerLost) nano.powerCycle();
+    int32_t at[3];
+    rig.motion.positionSteps(at);
+    int32_t switches[3];
+    for (int a = 0; a < 3; a++) switches[a] = rig.switchAt[a] == INT32_MIN ? INT32_MIN : rig.switchAt[a] - at[a];
+    machine.~Machine();
+    usbLink.~HostLink();
+    espLink.~HostLink();
+    io.~FakeIo();
+    rig.~MotionRig();
+    head.~PrintheadLink();
+    store.~ConfigStore();
+    config.~Config();
+    for (uint64_t end = nowUs + bootUs; nowUs < end; nowUs += 100) nano.advance(static_cast<uint32_t>(nowUs));
+    new (&config) Config();
+    new (&store) ConfigStore(config, sd, eeprom);
+    new (&head) PrintheadLink(nano);
+    new (&rig) MotionRig(config);
+    for (int a = 0; a < 3; a++) rig.switchAt[a] = switches[a];
+    new (&io) FakeIo(rig);
+    movesFree = StepEngine::kBlocks;
+    stats = {};
+    new (&usbLink) HostLink(usb, movesFree);
+    new (&espLink) HostLink(esp, movesFree);
+    new (&machine) Machine(MachineParts{{&usbLink, &espLink}, rig.motion, head, config, store, sd, io, "UVExposure 0.1.0 (Mega)", movesFree, stats});
+    usb = HostPipe();
+    esp = HostPipe();
+    usbN_ = espN_ = 0;  // the host starts numbering again, as after `start`
+    firedAt.resize(nano.exposures.size());
+    begin();
   }
 
   // Advances simulated time in 100 µs main-loop passes, the step interrupt in between.

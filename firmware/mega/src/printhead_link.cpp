@@ -137,6 +137,12 @@ void PrintheadLink::handle(const uv::NanoReply& r, uint32_t nowUs) {
       probeTriggered_ = r.triggered;
       probeAnswered_ = true;
       break;
+    case 'C':
+      boot_ = r.boot;
+      fires_ = r.fires;
+      whole_ = r.whole;
+      countersAnswered_ = true;
+      break;
     case 'V':
       memcpy(firmware_, r.firmware, sizeof firmware_);
       firmware_[sizeof firmware_ - 1] = 0;
@@ -162,6 +168,7 @@ void PrintheadLink::poll(uint32_t nowUs) {
   }
   if (inFlight_ && due(nowUs, askedAt_ + kNanoReplyTimeoutUs)) {
     if (inFlight_ == 'V') identityWanted_ = false;  // asked once; its absence is not a fault
+    if (inFlight_ == 'C') countersWanted_ = true;   // asked again until answered
     inFlight_ = 0;
     missed(nowUs);
   }
@@ -178,6 +185,10 @@ void PrintheadLink::poll(uint32_t nowUs) {
   }
   if (probeWanted_) {
     if (ask('P', nowUs)) probeWanted_ = false;
+    return;
+  }
+  if (countersWanted_ && fire_ != FireState::Firing) {
+    if (ask('C', nowUs)) countersWanted_ = false;
     return;
   }
   if (identityWanted_ && due(nowUs, nextThermal_)) {

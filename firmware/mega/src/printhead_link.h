@@ -56,6 +56,15 @@ class PrintheadLink {
   }
   bool probeAnswered() const { return probeAnswered_; }
   bool probeTriggered() const { return probeTriggered_; }
+  // Asks C: the Nano's start number, its exposure count and whether the last one ran whole.
+  void requestCounters() {
+    countersWanted_ = true;
+    countersAnswered_ = false;
+  }
+  bool countersAnswered() const { return countersAnswered_; }
+  uint16_t boot() const { return boot_; }
+  uint32_t fires() const { return fires_; }
+  bool lastWhole() const { return whole_; }
 
   bool online() const { return online_; }
   bool tempsKnown() const { return tempsKnown_; }
@@ -91,6 +100,9 @@ class PrintheadLink {
   uint32_t nextThermal_ = 0, nextFault_ = 0;
   bool identityWanted_ = true;
   bool probeWanted_ = false, probeAnswered_ = false, probeTriggered_ = false;
+  bool countersWanted_ = false, countersAnswered_ = false, whole_ = true;
+  uint16_t boot_ = 0;
+  uint32_t fires_ = 0;
   bool tempsKnown_ = false;
   int16_t deciC_[uv::kSensorCount] = {};
   uint8_t flags_ = 0;

@@ -1,5 +1,6 @@
 // Printhead Nano entry point: wires the UART, the command brain and the board drivers together.
 #include <Arduino.h>
+#include <avr/eeprom.h>
 #include <avr/wdt.h>
 
 #include "adc_sampler.h"
@@ -76,6 +77,12 @@ void setup() {
   nano::probe_input::begin();
   nano::adc_sampler::begin();
   if (resetCause & _BV(WDRF)) head.watchdogReset();
+  // Every start gets the next number (EEPROM word 0, wrapping): the Mega's C poll tells by it that
+  // the printhead restarted, so an exposure cut by a power loss is never taken for a whole one.
+  uint16_t* bootCount = reinterpret_cast<uint16_t*>(0);
+  uint16_t boot = static_cast<uint16_t>(eeprom_read_word(bootCount) + 1);
+  eeprom_update_word(bootCount, boot);  // about 7 ms, before the watchdog and the UART start
+  head.setBoot(boot);
   Serial.begin(115200);
   wdt_enable(WDTO_250MS);
 }

@@ -28,6 +28,7 @@ void Printhead::handle(const uv::NanoCommand& c, uint32_t) {
     case 'F':
       return fire(c);
     case 'R':
+      if (io_.litMask()) whole_ = false;  // an exposure cut short
       return io_.allOff();
     case 'D':
       return io_.servoPulse(kServoDeployUs);
@@ -44,6 +45,11 @@ void Printhead::handle(const uv::NanoCommand& c, uint32_t) {
     case 'E':
       r.flags = faults();
       latched_ = 0;  // latched bits clear once reported; active ones are recomputed from the guard
+      return send(r);
+    case 'C':
+      r.boot = boot_;
+      r.fires = fires_;
+      r.whole = whole_;
       return send(r);
     case 'V':
       r.protocol = 1;
@@ -65,7 +71,11 @@ void Printhead::fire(const uv::NanoCommand& c) {
   switch (planFire(c, cfg_.capUs, plan)) {
     case FireVerdict::Capped: latched_ |= uv::fault::kCapped; return;
     case FireVerdict::Nothing: return;
-    case FireVerdict::Fire: io_.fire(plan); return;
+    case FireVerdict::Fire:
+      io_.fire(plan);
+      fires_++;
+      whole_ = true;
+      return;
   }
 }
 
@@ -74,6 +84,7 @@ void Printhead::readings(const uint16_t mv[uv::kSensorCount]) {
   measured_ = true;
   if (guard_.update(mv) && io_.litMask()) {
     io_.allOff();
+    whole_ = false;
     latched_ |= uv::fault::kCutoff;
   }
 }

@@ -40,6 +40,8 @@ class Printhead {
   // A fresh set of oversampled readings, in mV. Cuts the LEDs on a fault.
   void readings(const uint16_t mv[uv::kSensorCount]);
   void watchdogReset() { latched_ |= uv::fault::kWatchdog; }
+  // This start's number (from the EEPROM), for the C reply: a Mega tells a restart by it.
+  void setBoot(uint16_t boot) { boot_ = boot; }
 
   // What the pixel should show now: a command's flash, then green, or red while a fault is active.
   uv::Colour colour(uint32_t nowMs);
@@ -60,6 +62,9 @@ class Printhead {
   uint32_t flashUntilMs_ = 0;
   bool flashing_ = false;
   bool measured_ = false;  // no F before the first full set of readings
+  uint16_t boot_ = 0;
+  uint32_t fires_ = 0;     // F commands that lit since start
+  bool whole_ = true;      // the last one was not cut short by R or a fault
 };
 
 }  // namespace nano

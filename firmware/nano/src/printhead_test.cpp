@@ -102,6 +102,31 @@ TEST(Printhead, RefusesFireWhileBusyCappedOrFaultedAndLatchesWhy) {
   EXPECT_EQ(h.take(), "E:1\n");  // still hot
 }
 
+TEST(Printhead, CountsItsExposuresAndSaysWhetherTheLastRanWhole) {
+  Head h;
+  h.ph.setBoot(17);
+  h.send("C");
+  EXPECT_EQ(h.take(), "C:17,0,1\n");
+  h.send("F:1,100,0,0,0");
+  h.io.lit = 0;  // its timer switched it off
+  h.send("F:2,0,100,0,0");
+  h.io.lit = 0;
+  h.send("F:0,0,0,0,0");          // lights nothing: not counted
+  h.send("F:1,10000001,0,0,0");   // refused: not counted
+  h.send("C");
+  EXPECT_EQ(h.take(), "C:17,2,1\n");
+  h.send("F:4,0,0,5000,0");
+  h.send("R");  // cut short
+  h.send("C");
+  EXPECT_EQ(h.take(), "C:17,3,0\n");
+  h.send("R");  // nothing lit: the last exposure's verdict stays
+  h.send("F:8,0,0,0,5000");
+  h.mv[0] = 500 + 700;  // over-temperature cuts it
+  h.ph.readings(h.mv);
+  h.send("C");
+  EXPECT_EQ(h.take(), "C:17,4,0\n");
+}
+
 TEST(Printhead, NoFireBeforeTheFirstReadings) {
   FakeIo io;
   Printhead ph(io, kConfig);

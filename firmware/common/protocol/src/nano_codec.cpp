@@ -25,7 +25,7 @@ Colour flashColour(char op) {
     case 'F': return Colour::Purple;
     case 'D': case 'U': case 'X': case 'P': return Colour::Cyan;
     case 'R': return Colour::Orange;
-    default: return Colour::DimWhite;  // S T E V
+    default: return Colour::DimWhite;  // S T E V C
   }
 }
 
@@ -34,7 +34,7 @@ bool nanoLineUsable(const char* text, uint8_t len, bool overflow) {
 }
 
 bool parseNanoCommand(const char* line, uint8_t len, NanoCommand& out) {
-  if (len == 1 && strchr("SDUXPTREV", line[0]) && line[0] != '\0') {
+  if (len == 1 && strchr("SDUXPTREVC", line[0]) && line[0] != '\0') {
     out.op = line[0];
     return true;
   }
@@ -110,6 +110,13 @@ size_t formatNanoReply(const NanoReply& r, char* out, size_t size) {
     case 'S': n += putUnsigned(r.mask, out + n); break;
     case 'P': out[n++] = r.triggered ? '1' : '0'; break;
     case 'E': n += putUnsigned(r.flags, out + n); break;
+    case 'C':
+      n += putUnsigned(r.boot, out + n);
+      out[n++] = ',';
+      n += putUnsigned(r.fires, out + n);
+      out[n++] = ',';
+      out[n++] = r.whole ? '1' : '0';
+      break;
     case 'T':
       for (uint8_t i = 0; i < kSensorCount; i++) {
         if (i) out[n++] = ',';
@@ -164,6 +171,14 @@ bool parseNanoReply(const char* line, size_t len, NanoReply& r) {
         if (!p) return false;
       }
       return p == end;
+    case 'C':
+      p = scanUnsigned(p, end, 5, 65535, v);
+      if (!p || p >= end || *p != ',') return false;
+      r.boot = static_cast<uint16_t>(v);
+      p = scanUnsigned(p + 1, end, 10, 0xFFFFFFFFu, r.fires);
+      if (!p || end - p != 2 || p[0] != ',' || (p[1] != '0' && p[1] != '1')) return false;
+      r.whole = p[1] == '1';
+      return true;
     case 'V': {
       p = scanUnsigned(p, end, 5, 65535, v);
       if (!p || p >= end || *p != ',') return false;

@@ -10,19 +10,22 @@ constexpr uint8_t kLedCount = 4;
 constexpr uint8_t kSensorCount = 6;
 
 struct NanoCommand {
-  char op;  // one of S F D U X P T R E V
+  char op;  // one of S F D U X P T R E V C
   uint8_t mask;
   uint32_t durations[kLedCount];
 };
 
 struct NanoReply {
-  char op;  // one of S P T E V
+  char op;  // one of S P T E V C
   uint8_t mask;
   bool triggered;
   int16_t deciC[kSensorCount];
   uint8_t flags;
   uint16_t protocol;
   char firmware[21];
+  uint16_t boot;   // C: the Nano's start count
+  uint32_t fires;  // C: exposures that lit since it started
+  bool whole;      // C: the last exposure ran its full time (not cut by R or a fault)
 };
 
 enum class Colour : uint8_t { Green, DimWhite, Purple, Cyan, Orange, Red };

@@ -70,6 +70,7 @@ json replyJson(const NanoReply& r) {
     case 'E': j["flags"] = r.flags; break;
     case 'T': j["deciC"] = std::vector<int>(r.deciC, r.deciC + kSensorCount); break;
     case 'V': j["protocol"] = r.protocol; j["firmware"] = r.firmware; break;
+    case 'C': j["boot"] = r.boot; j["fires"] = r.fires; j["whole"] = r.whole; break;
   }
   return j;
 }
@@ -83,6 +84,9 @@ NanoReply replyFrom(const json& j) {
   if (j.contains("deciC"))
     for (int i = 0; i < kSensorCount; i++) r.deciC[i] = j["deciC"][i];
   if (j.contains("protocol")) r.protocol = j["protocol"];
+  if (j.contains("boot")) r.boot = j["boot"];
+  if (j.contains("fires")) r.fires = j["fires"];
+  if (j.contains("whole")) r.whole = j["whole"];
   if (j.contains("firmware")) snprintf(r.firmware, sizeof r.firmware, "%s", j["firmware"].get<std::string>().c_str());
   return r;
 }
