@@ -28,6 +28,9 @@ uint8_t JobRunner::start(const char* name, uint32_t from, uint32_t nowUs) {
   progress_.file[kFileNameMax] = 0;
   progress_.count = header_.count;
   progress_.done = done_ = from;
+  int32_t here[3];
+  motion_.targetUm(here);
+  zBase_ = here[2];
   state_ = RunState::Running;
   phase_ = Phase::Sync;  // the Nano's counters first: each checkpoint carries them
   head_.requestCounters();
@@ -152,8 +155,8 @@ void JobRunner::poll(uint32_t nowUs) {
       motion_.targetUm(here);
       to[0] = static_cast<int32_t>(header_.originUm[0]) + stop_.hx * static_cast<int32_t>(header_.pitchUm[0]);
       to[1] = static_cast<int32_t>(header_.originUm[1]) + stop_.hy * static_cast<int32_t>(header_.pitchUm[1]);
-      to[2] = here[2];
-      bool moves = to[0] != here[0] || to[1] != here[1];
+      to[2] = zBase_ + (mesh_ ? mesh_->offsetAt(to[0], to[1]) : 0);  // the bed's height under the stop
+      bool moves = to[0] != here[0] || to[1] != here[1] || to[2] != here[2];
       if (moves && !motion_.moveTo(to, 0)) return;  // the queue is full: next pass
       settleUntil_ = moves ? static_cast<uint32_t>(config_.whole(Key::SettleMs)) * 1000 : 0;
       phase_ = Phase::Move;

@@ -6,6 +6,7 @@
 
 #include "checkpoint.h"
 #include "config.h"
+#include "mesh_store.h"
 #include "motion.h"
 #include "printhead_link.h"
 #include "stop_file.h"
@@ -17,8 +18,9 @@ enum class RunState : uint8_t { Running, Paused, Done, Aborted, Failed };
 
 class JobRunner {
  public:
-  JobRunner(Storage& sd, Motion& motion, PrintheadLink& head, const Config& config)
-      : sd_(sd), motion_(motion), head_(head), config_(config), checkpoint_(sd) {}
+  // `mesh`: the bed mesh to follow in Z, or nullptr.
+  JobRunner(Storage& sd, Motion& motion, PrintheadLink& head, const Config& config, MeshStore* mesh)
+      : sd_(sd), motion_(motion), head_(head), config_(config), mesh_(mesh), checkpoint_(sd) {}
   ~JobRunner();
 
   // Opens the job's stops and starts at stop `from`. Returns 0, or 21 (not planned) / 22.
@@ -70,6 +72,8 @@ class JobRunner {
   Motion& motion_;
   PrintheadLink& head_;
   const Config& config_;
+  MeshStore* mesh_;
+  int32_t zBase_ = 0;  // the head's Z when the job started; the mesh offset adds to it
   Checkpoint checkpoint_;
   FileHandle stops_ = -1;
   StopFileHeader header_ = {};

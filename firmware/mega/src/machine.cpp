@@ -38,13 +38,14 @@ bool isQuery(const uv::Command& c) {
 
 Machine::Machine(const MachineParts& p)
     : motion_(p.motion), head_(p.head), config_(p.config), store_(p.store), sd_(p.sd), io_(p.io),
-      homing_(p.motion, p.config), test_(p.motion, p.config), firmwareName_(p.firmwareName), movesFree_(p.movesFree), stats_(p.stats) {
+      homing_(p.motion, p.config), test_(p.motion, p.config), probe_(p.motion, p.head), mesh_(p.eeprom), firmwareName_(p.firmwareName), movesFree_(p.movesFree), stats_(p.stats) {
   for (uint8_t i = 0; i < kPorts; i++) ports_[i] = p.ports[i];
 }
 
 void Machine::begin(uint32_t nowUs) {
   now_ = nowUs;
   store_.load();
+  mesh_.load();  // kept, but not applied until M420 S1 or G29
   head_.begin(nowUs);
   uint32_t posMs = static_cast<uint32_t>(config_.whole(Key::ReportPositionMs));
   posPeriodUs_ = posMs * 1000;
@@ -64,6 +65,7 @@ void Machine::emergency() {
   head_.allOff();
   motion_.halt();
   homing_.cancel();
+  probe_.cancel();
   if (arena_ == Arena::Run) run()->abort();
   if (arena_ == Arena::Spool) spool()->abandon();
   if (arena_ != Arena::Run) clearArena();
@@ -82,6 +84,7 @@ void Machine::poll(uint32_t nowUs) {
   motion_.poll();
   movesFree_ = motion_.movesFree();
   store_.poll();
+  mesh_.poll();
   if (long_.op != Op::None) runLong();
   runJob();
   // Lines run in turn from each port. While a long command runs, the other port's queries still run.
@@ -142,6 +145,8 @@ Machine::Result Machine::dispatch(HostLink& port, const uv::Command& c) {
       case 0: case 1: return move(port, c);
       case 4: return dwell(c);
       case 28: return home(c);
+      case 29: return level(port, c);
+      case 30: return probeOnce(port);
       case 90: absolute_ = true; return Result::Done;
       case 91: absolute_ = false; return Result::Done;
       default: break;
@@ -191,6 +196,7 @@ Machine::Result Machine::dispatch(HostLink& port, const uv::Command& c) {
       case 402: return servo(port, c, 'U');
       case 280: return servo(port, c, 0);
       case 355: return light(port, c);
+      case 420: return meshCommand(port, c);
       case 821: return diagnostics(port, c);
       case 850: case 500: case 501: case 502: case 503: return configCommand(port, c);
       case 20: case 23: case 24: case 25: case 27: case 28: case 29: case 30: case 524: case 1000:
@@ -281,6 +287,9 @@ bool Machine::emitNext() {
       }
       break;
     }
+    case Gen::Mesh:
+      if (!emitMesh(buf)) return false;
+      break;
     case Gen::Config: {
       if (long_.index >= kKeyCount) return false;
       uvMemcpyP(buf, UV_P("M850 "), 5);
@@ -313,6 +322,8 @@ void Machine::runLong() {
     case Op::MoveRoom:
       if (motion_.moveTo(long_.target, long_.feed)) finishLong();
       return;
+    case Op::Probe: return runProbe();
+    case Op::Level: return runLevel();
     case Op::Plan:
       if (!plan()->step(kPlanStopsPerPass)) return;
       if (plan()->error()) {
@@ -379,9 +390,11 @@ void Machine::runLong() {
       if (!head_.online()) return finishLong(uv::kNanoTimeout);
       if (!head_.probeAnswered()) return;
       if (head_.probeTriggered() && long_.index == 'D') {
+        deployed_ = false;
         long_.port->lineP(UV_P("PROBE:alarm"));
         return finishLong(uv::kProbeAlarm);
       }
+      deployed_ = long_.index == 'D';
       long_.port->lineP(long_.index == 'D' ? UV_P("PROBE:deployed") : UV_P("PROBE:stowed"));
       return finishLong();
     case Op::ProbeRead:

@@ -14,6 +14,8 @@
 #include "job_runner.h"
 #include "job_spool.h"
 #include "machine_io.h"
+#include "mesh_store.h"
+#include "probe.h"
 #include "motion.h"
 #include "printhead_link.h"
 #include "selftest.h"
@@ -37,6 +39,7 @@ struct MachineParts {
   ConfigStore& store;
   Storage& sd;
   MachineIo& io;
+  Eeprom& eeprom;
   const char* firmwareName;  // in flash (UV_FLASH)
   uint8_t& movesFree;  // the P of every ok, which the ports read
   LoopStats& stats;
@@ -54,12 +57,14 @@ class Machine {
   void emergency();
 
   bool halted() const { return halted_; }
+  bool leveling() const { return leveling_; }
+  int16_t meshPoint(uint8_t i, uint8_t j) { return mesh_.z(i, j); }
   uint8_t homed() const { return homed_; }
 
  private:
   enum class Result : uint8_t { Done, Long, Wait };
-  enum class Op : uint8_t { None, Emit, Dwell, Home, SelfTest, Servo, ProbeRead, MoveRoom, Release, Plan, Prepare };
-  enum class Gen : uint8_t { Firmware, Endstops, Config, Files };
+  enum class Op : uint8_t { None, Emit, Dwell, Home, SelfTest, Servo, ProbeRead, MoveRoom, Release, Plan, Prepare, Probe, Level };
+  enum class Gen : uint8_t { Firmware, Endstops, Config, Files, Mesh };
   // What the job arena holds: an upload, a planning, a preparation from a job copied onto the card, a run.
   enum class Arena : uint8_t { Empty, Spool, Plan, Run };
 
@@ -100,6 +105,15 @@ class Machine {
   uint8_t formatJob(char* out) const;
   void jobReports();
   uint8_t refuseExposure(HostLink& port);
+  // commands (machine_probe.cpp)
+  Result probeOnce(HostLink& port);
+  Result level(HostLink& port, const uv::Command& c);
+  Result meshCommand(HostLink& port, const uv::Command& c);
+  void runProbe();
+  void runLevel();
+  bool emitMesh(char* buf);
+  void writeMeshFile();
+  uint8_t formatPoint(char* out, int32_t x, int32_t y, int32_t z) const;
   // commands (machine_config.cpp)
   Result configCommand(HostLink& port, const uv::Command& c);
   // A changed steps/mm makes the step count mean another place: that axis must home again.
@@ -124,6 +138,8 @@ class Machine {
   MachineIo& io_;
   Homing homing_;
   SelfTest test_;
+  Probe probe_;
+  MeshStore mesh_;
   const char* firmwareName_;
 
   uint32_t now_ = 0;
@@ -134,6 +150,8 @@ class Machine {
   bool halted_ = false;
   bool absolute_ = true;
   bool lightOn_ = false;
+  bool deployed_ = false;  // the CR Touch's pin is out (M401 answered PROBE:deployed)
+  bool leveling_ = false;  // exposures follow the mesh (M420 S1, or after G29)
 
   struct Long {
     Op op;
@@ -142,6 +160,8 @@ class Machine {
     Gen gen;
     uint8_t index;
     uint16_t fileIndex;
+    uint8_t meshK;  // G29: the point being probed, in serpentine order
+    bool moving;    // G29: on the way to that point
     char servoOp;
     int32_t target[3];
     uint32_t feed;

@@ -223,7 +223,7 @@ Machine::Result Machine::startOrContinue(HostLink& port) {
   }
   if (refuseExposure(port)) return Result::Done;
   clearArena();
-  JobRunner* r = new (arenaMem_) JobRunner(sd_, motion_, head_, config_);
+  JobRunner* r = new (arenaMem_) JobRunner(sd_, motion_, head_, config_, leveling_ ? &mesh_ : nullptr);
   arena_ = Arena::Run;
   uint8_t err = r->start(selected_, 0, now_);
   if (err) {
@@ -271,7 +271,7 @@ Machine::Result Machine::resumeInterrupted(HostLink& port, const uv::Command& c)
   if (refuseExposure(port)) return Result::Done;
   clearArena();
   strcpy(selected_, p.file);
-  JobRunner* r = new (arenaMem_) JobRunner(sd_, motion_, head_, config_);
+  JobRunner* r = new (arenaMem_) JobRunner(sd_, motion_, head_, config_, leveling_ ? &mesh_ : nullptr);
   arena_ = Arena::Run;
   uint8_t err = r->resume(p, now_);
   if (err) {

@@ -5,9 +5,6 @@
 
 namespace mega {
 
-namespace {
-constexpr uint32_t kServoSettleUs = 300000;  // the CR Touch's pin needs this long to move
-}
 
 Machine::Result Machine::temperatures(HostLink& port) {
   if (!head_.online() || !head_.tempsKnown()) {

@@ -35,7 +35,7 @@ LoopStats stats = {};
 HostLink usb(usbUart, movesFree);
 HostLink esp(espUart, movesFree);
 Board board;
-Machine machine(MachineParts{{&usb, &esp}, motion, head, config, store, sd, board, kFirmwareName, movesFree, stats});
+Machine machine(MachineParts{{&usb, &esp}, motion, head, config, store, sd, board, eeprom, kFirmwareName, movesFree, stats});
 uint32_t lastPass = 0;
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <stdint.h>
 
 #include <array>
+#include <functional>
 #include <new>
 #include <string>
 #include <vector>
@@ -92,11 +93,13 @@ class MegaRig {
   uint8_t movesFree = StepEngine::kBlocks;
   LoopStats stats = {};
   HostLink usbLink{usb, movesFree}, espLink{esp, movesFree};
-  Machine machine{MachineParts{{&usbLink, &espLink}, rig.motion, head, config, store, sd, io, "UVExposure 0.1.0 (Mega)", movesFree, stats}};
+  Machine machine{MachineParts{{&usbLink, &espLink}, rig.motion, head, config, store, sd, io, eeprom, "UVExposure 0.1.0 (Mega)", movesFree, stats}};
   uint64_t nowUs = 0;
   std::vector<std::string> usbLines, espLines;  // everything each host has read
   // Where the head stood (steps) when each exposure began, in the order of nano.exposures.
   std::vector<std::array<int32_t, 3>> firedAt;
+  // The bed's surface under the probe, in µm of the head's Z (no bed: the probe never touches).
+  std::function<int32_t(int32_t xUm, int32_t yUm)> bed;
 
   void begin() {
     machine.begin(static_cast<uint32_t>(nowUs));
@@ -133,7 +136,7 @@ class MegaRig {
     stats = {};
     new (&usbLink) HostLink(usb, movesFree);
     new (&espLink) HostLink(esp, movesFree);
-    new (&machine) Machine(MachineParts{{&usbLink, &espLink}, rig.motion, head, config, store, sd, io, "UVExposure 0.1.0 (Mega)", movesFree, stats});
+    new (&machine) Machine(MachineParts{{&usbLink, &espLink}, rig.motion, head, config, store, sd, io, eeprom, "UVExposure 0.1.0 (Mega)", movesFree, stats});
     usb = HostPipe();
     esp = HostPipe();
     usbN_ = espN_ = 0;  // the host starts numbering again, as after `start`
@@ -152,6 +155,11 @@ class MegaRig {
         firedAt.push_back(p);
       }
       rig.isrUntil((nowUs + 100) * 2);
+      if (bed) {  // the CR Touch's pin, when out, closes on the bed
+        int32_t um[3];
+        rig.motion.positionUm(um);
+        nano.probe = nano.servoUs == 647 && um[2] <= bed(um[0], um[1]);
+      }
       usb.carry(usbLink, 100);
       esp.carry(espLink, 100);
       for (std::string& l : usb.take()) usbLines.push_back(l);
