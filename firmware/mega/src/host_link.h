@@ -9,8 +9,8 @@
 
 namespace mega {
 
-// One reply block (the longest payload line, 112 bytes, and its ok) fits whole; 159 usable.
-constexpr uint8_t kTxRing = 160;
+// One reply block (the longest payload line, 112 bytes, and its ok) fits whole; 143 usable.
+constexpr uint8_t kTxRing = 144;
 constexpr uint8_t kAcceptRoom = 96;   // free bytes the receiver needs to answer a line at once (errors, resend)
 
 // Starts the transmit interrupt when bytes are waiting (hw/host_uart on the board).

@@ -20,7 +20,7 @@ bool isEndOrStop(const LineSlot& l) {
 void strcpy_flash(char* out, const char* flash) { uvMemcpyP(out, flash, uvStrlenP(flash) + 1); }
 
 // Room a command needs in its port's transmit ring before it runs: one payload line and the ok.
-constexpr uint16_t kReplyRoom = 144;  // the longest payload line (112) and its ok
+constexpr uint16_t kReplyRoom = 140;  // the longest payload line (112) and its ok
 constexpr uint16_t kPlanStopsPerPass = 8;    // a few ms of card reads a main-loop pass
 constexpr uint8_t kPrepareLinesPerPass = 4;
 

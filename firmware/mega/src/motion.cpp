@@ -51,13 +51,14 @@ void Motion::setPositionSteps(const int32_t steps[3]) {
 bool Motion::push(const int32_t delta[3], const AxisLimits lim[3], int8_t seekAxis) {
   if (!accepting()) return false;
   StepBlock b{};
+  uint32_t total = 0;
   for (uint8_t a = 0; a < 3; a++) {
     b.steps[a] = absU(delta[a]);
     if (delta[a] < 0) b.dirNeg |= static_cast<uint8_t>(1 << a);
-    if (b.steps[a] > b.total) b.total = b.steps[a];
+    if (b.steps[a] > total) total = b.steps[a];
   }
   b.seekAxis = seekAxis;
-  if (b.total == 0) return true;  // already there
+  if (total == 0) return true;  // already there
   uint8_t slot = e_.pushBlock(b);
   profiles_[slot] = profileFor(b.steps, lim);
   for (uint8_t a = 0; a < 3; a++) target_[a] += delta[a];

@@ -144,7 +144,7 @@ void PrintheadLink::handle(const uv::NanoReply& r, uint32_t nowUs) {
       countersAnswered_ = true;
       break;
     case 'V':
-      memcpy(firmware_, r.firmware, sizeof firmware_);
+      memcpy(firmware_, r.firmware, sizeof firmware_ - 1);
       firmware_[sizeof firmware_ - 1] = 0;
       identityWanted_ = false;
       break;
@@ -159,7 +159,7 @@ void PrintheadLink::poll(uint32_t nowUs) {
     int16_t b = io_.read();
     if (b < 0) break;
     if (!splitter_.push(static_cast<char>(b)) || splitter_.overflow()) continue;
-    char reply[uv::kNanoMaxLine + 2];
+    char reply[kReplyMax + 2];
     uint8_t n = splitter_.length();
     memcpy(reply, splitter_.text(), n);
     reply[n++] = '\n';

@@ -29,7 +29,7 @@ class PrintheadLink {
     kNanoReset = 8,    // the Nano's watchdog reset it (WATCHDOG latched)
   };
 
-  explicit PrintheadLink(ByteStream& io) : io_(io), splitter_(line_, uv::kNanoMaxLine) {}
+  explicit PrintheadLink(ByteStream& io) : io_(io), splitter_(line_, kReplyMax) {}
 
   // After the Mega starts: LEDs off (R), then identify the Nano (V).
   void begin(uint32_t nowUs);
@@ -89,7 +89,9 @@ class PrintheadLink {
   void flagsSeen(uint8_t flags);
 
   ByteStream& io_;
-  char line_[uv::kNanoMaxLine + 2];
+  // The longest reply, T:, is 41 bytes at the sensors' widest (-40.0 to 125.0); a longer line is noise.
+  static constexpr uint8_t kReplyMax = 47;
+  char line_[kReplyMax + 2];
   uv::LineSplitter splitter_;
   char inFlight_ = 0;        // the op whose reply we wait for, or 0
   uint32_t askedAt_ = 0;
@@ -106,7 +108,7 @@ class PrintheadLink {
   bool tempsKnown_ = false;
   int16_t deciC_[uv::kSensorCount] = {};
   uint8_t flags_ = 0;
-  char firmware_[21] = {};
+  char firmware_[12] = {};  // e.g. 0.1.0: a longer one is cut
   FireState fire_ = FireState::Idle;
   uint8_t fireError_ = 0, fireFlags_ = 0;
   uint32_t fireEndsAt_ = 0, nextStatus_ = 0;

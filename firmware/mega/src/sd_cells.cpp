@@ -39,7 +39,7 @@ void SdCells::open(uint8_t cursor, uint16_t row, bool descending) {
   Cursor& c = cursors_[cursor];
   Row r;
   c.descending = descending;
-  c.chunkLen = 0;
+  c.chunkAt = -1;
   if (!readRow(row, r) || r.first > r.last) {
     c.first = 1;
     c.last = 0;
@@ -56,18 +56,18 @@ bool SdCells::fill(uint8_t cursor) {
   Cursor& c = cursors_[cursor];
   // The chunk that holds pos, reaching forwards or backwards as the cursor walks.
   int32_t first = c.first, last = c.last;
-  int32_t start = c.descending ? c.pos - (kChunk - 1) : c.pos;
-  if (start < first) start = first;
-  int32_t end = start + kChunk - 1;
+  // The aligned chunk that holds pos, cut to the row's cells.
+  int32_t at = c.pos & ~static_cast<int32_t>(kChunk - 1);
+  int32_t start = at < first ? first : at;
+  int32_t end = at + kChunk - 1;
   if (end > last) end = last;
   uint8_t n = static_cast<uint8_t>(end - start + 1);
   if (!sd_.seek(cells_, c.offset + static_cast<uint32_t>(start - first)) ||
-      sd_.read(cells_, reinterpret_cast<char*>(c.chunk), n) != n) {
+      sd_.read(cells_, reinterpret_cast<char*>(c.chunk) + (start - at), n) != n) {
     failed_ = true;
     return false;
   }
-  c.chunkCol = static_cast<uint16_t>(start);
-  c.chunkLen = n;
+  c.chunkAt = static_cast<int16_t>(at);
   return true;
 }
 
@@ -75,12 +75,12 @@ bool SdCells::next(uint8_t cursor, uint16_t& col, uint8_t& value) {
   Cursor& c = cursors_[cursor];
   int32_t first = c.first, last = c.last;
   while (c.pos >= first && c.pos <= last) {
-    int32_t p = c.pos, chunkCol = c.chunkCol;
-    if (!c.chunkLen || p < chunkCol || p >= chunkCol + c.chunkLen) {
+    int32_t p = c.pos;
+    if (c.chunkAt < 0 || p < c.chunkAt || p >= c.chunkAt + kChunk) {
       if (!fill(cursor)) return false;
     }
     c.pos = static_cast<int16_t>(c.pos + (c.descending ? -1 : 1));
-    uint8_t v = c.chunk[p - c.chunkCol];
+    uint8_t v = c.chunk[p - c.chunkAt];
     if (v) {
       col = static_cast<uint16_t>(p);
       value = v;

@@ -35,9 +35,8 @@ class SdCells : public uv::CellSource {
     uint32_t offset;    // of the row's first cell in the cells file
     uint16_t first, last;
     int16_t pos;        // the next column to look at (-1: before column 0)
-    uint16_t chunkCol;  // column of chunk[0]
-    uint8_t chunkLen : 7;
-    bool descending : 1;
+    int16_t chunkAt;    // the chunk's first column (chunks start on multiples of kChunk), or -1
+    bool descending;
     uint8_t chunk[kChunk];
   };
 

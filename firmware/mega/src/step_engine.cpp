@@ -98,11 +98,12 @@ bool StepEngine::loadSegment(StepTick& t) {
   if (s.slot != curSlot_) {  // a new block: Bresenham from the middle, new directions
     curSlot_ = s.slot;
     const StepBlock& b = blocks_[curSlot_];
-    total_ = b.total;
     steps0_ = b.steps[0];
     steps1_ = b.steps[1];
     steps2_ = b.steps[2];
-    err0_ = err1_ = err2_ = b.total / 2;
+    total_ = steps0_ > steps1_ ? steps0_ : steps1_;
+    if (steps2_ > total_) total_ = steps2_;
+    err0_ = err1_ = err2_ = total_ / 2;
     blockDone_ = 0;
     debounce_ = 0;
     t.dirChanged = b.dirNeg != dirNeg_;

@@ -7,8 +7,7 @@
 namespace mega {
 
 struct StepBlock {
-  uint32_t steps[3];  // per axis, absolute
-  uint32_t total;     // the dominant axis's steps: the most of the three
+  uint32_t steps[3];  // per axis, absolute; the most of the three is the dominant axis's
   uint8_t dirNeg;     // bit a: axis a moves towards −
   int8_t seekAxis;    // −1, or the axis whose endstop ends this block early
 };
