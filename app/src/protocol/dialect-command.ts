@@ -8,7 +8,7 @@ export type CommandResult = { ok: true; command: Command } | { ok: false; error:
 
 /** Commands whose argument is the rest of the line. */
 const FILE_COMMANDS = new Set(['M23', 'M28', 'M30']);
-const TEXT_COMMANDS = new Set(['M850']);
+const TEXT_COMMANDS = new Set(['M850', 'M117']);
 const FILE_NAME = /^[A-Za-z0-9_.-]{1,31}$/;
 const MAX_MILLI = 2_000_000_000;
 

@@ -38,7 +38,7 @@ bool isQuery(const uv::Command& c) {
 
 Machine::Machine(const MachineParts& p)
     : motion_(p.motion), head_(p.head), config_(p.config), store_(p.store), sd_(p.sd), io_(p.io),
-      homing_(p.motion, p.config), test_(p.motion, p.config), probe_(p.motion, p.head), mesh_(p.eeprom), firmwareName_(p.firmwareName), movesFree_(p.movesFree), stats_(p.stats) {
+      homing_(p.motion, p.config), test_(p.motion, p.config), probe_(p.motion, p.head), mesh_(p.eeprom), screen_(p.display), firmwareName_(p.firmwareName), movesFree_(p.movesFree), stats_(p.stats) {
   for (uint8_t i = 0; i < kPorts; i++) ports_[i] = p.ports[i];
 }
 
@@ -105,6 +105,7 @@ void Machine::poll(uint32_t nowUs) {
   }
   reports();
   jobReports();
+  panel();
 }
 
 Machine::Result Machine::execute(HostLink& port, const LineSlot& line) {
@@ -196,6 +197,7 @@ Machine::Result Machine::dispatch(HostLink& port, const uv::Command& c) {
       case 402: return servo(port, c, 'U');
       case 280: return servo(port, c, 0);
       case 355: return light(port, c);
+      case 117: return message(c);
       case 420: return meshCommand(port, c);
       case 821: return diagnostics(port, c);
       case 850: case 500: case 501: case 502: case 503: return configCommand(port, c);
@@ -204,6 +206,7 @@ Machine::Result Machine::dispatch(HostLink& port, const uv::Command& c) {
       case 112: return Result::Done;  // acted on when it arrived
       case 999:
         halted_ = false;
+        lastFault_ = 0;
         return Result::Done;
       default: break;
     }
@@ -218,7 +221,13 @@ Machine::Result Machine::dispatch(HostLink& port, const uv::Command& c) {
 void Machine::finishLong(uint8_t error, const char* detail) {
   HostLink* port = long_.port;
   long_.op = Op::None;
-  if (!port) return;
+  if (!port) {  // started from the panel: an error is everyone's news, and there is no ok
+    if (error) {
+      for (HostLink* p : ports_) p->errorLine(error, detail);
+      lastFault_ = error;
+    }
+    return;
+  }
   if (error) port->errorLine(error, detail);
   port->ok();
 }
@@ -307,7 +316,7 @@ bool Machine::emitNext() {
 void Machine::runLong() {
   if (long_.op != Op::Emit && static_cast<int32_t>(now_ - long_.keepalive) >= 0) {
     long_.keepalive = now_ + kKeepaliveUs;
-    long_.port->reportP(UV_P("busy: processing"));
+    if (long_.port) long_.port->reportP(UV_P("busy: processing"));
     for (HostLink* p : ports_)  // a host waiting behind this command must not take the wait for a lost line
       if (p != long_.port && p->queued()) p->reportP(UV_P("busy: processing"));
   }
@@ -439,11 +448,15 @@ void Machine::printheadEvents() {
   uint8_t e = head_.takeEvents();
   if (!e) return;
   char buf[80];
-  if (e & PrintheadLink::kWentOffline) broadcastP(UV_P("FAULT:E30 printhead not responding"));
+  if (e & PrintheadLink::kWentOffline) {
+    broadcastP(UV_P("FAULT:E30 printhead not responding"));
+    lastFault_ = uv::kNanoTimeout;
+  }
   if (e & PrintheadLink::kCameBack) broadcastP(UV_P("echo:printhead answering again"));
   if (e & PrintheadLink::kNanoReset) broadcastP(UV_P("echo:printhead restarted by its watchdog"));
   if (e & PrintheadLink::kFault) {
     head_.allOff();
+    lastFault_ = (head_.activeFaults() & uv::fault::kSensor) ? uv::kSensorFault : uv::kOverTemperature;
     uint8_t active = head_.activeFaults();
     const int16_t* t = head_.deciC();
     uint8_t hot = 0;

@@ -13,9 +13,11 @@
 #include "job_plan.h"
 #include "job_runner.h"
 #include "job_spool.h"
+#include "buttons.h"
 #include "machine_io.h"
 #include "mesh_store.h"
 #include "probe.h"
+#include "screen.h"
 #include "motion.h"
 #include "printhead_link.h"
 #include "selftest.h"
@@ -40,6 +42,7 @@ struct MachineParts {
   Storage& sd;
   MachineIo& io;
   Eeprom& eeprom;
+  TextDisplay& display;
   const char* firmwareName;  // in flash (UV_FLASH)
   uint8_t& movesFree;  // the P of every ok, which the ports read
   LoopStats& stats;
@@ -105,6 +108,11 @@ class Machine {
   uint8_t formatJob(char* out) const;
   void jobReports();
   uint8_t refuseExposure(HostLink& port);
+  // the panel (machine_panel.cpp)
+  void panel();
+  void button(uint8_t pressed);
+  ScreenState screenState() const;
+  Result message(const uv::Command& c);
   // commands (machine_probe.cpp)
   Result probeOnce(HostLink& port);
   Result level(HostLink& port, const uv::Command& c);
@@ -140,6 +148,10 @@ class Machine {
   SelfTest test_;
   Probe probe_;
   MeshStore mesh_;
+  Screen screen_;
+  Buttons buttons_;
+  char message_[kScreenCols + 1] = {};
+  uint8_t lastFault_ = 0;
   const char* firmwareName_;
 
   uint32_t now_ = 0;

@@ -11,6 +11,8 @@ class MachineIo {
   virtual void motorsEnabled(bool on) = 0;
   // The work light (M355) on the configured pin; false if the pin cannot be used.
   virtual bool light(uint8_t pin, bool on) = 0;
+  // The panel's buttons as they read now (buttons.h bits: stop, pause/continue, home).
+  virtual uint8_t buttons() = 0;
 };
 
 }  // namespace mega

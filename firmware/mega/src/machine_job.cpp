@@ -414,6 +414,7 @@ void Machine::runJob() {
     lastHeardUs_ = now_;
   }
   if (j.state() == RunState::Paused && before == RunState::Running && j.reason() && j.reason() != kReasonLostHost) {
+    lastFault_ = j.reason();
     char buf[80];
     char* p = buf;
     uvMemcpyP(p, UV_P("FAULT:E"), 7);

@@ -247,6 +247,31 @@ TEST_F(JobTest, PauseWaitsForTheStopContinueGoesOnAbortEndsItDark) {
   expectExposed(h, stops);
 }
 
+TEST_F(JobTest, ThePanelsPauseButtonPausesBetweenStopsAndContinues) {
+  uv::JobHeader h = header(16, 12, uv::Strategy::Raster);
+  Grid g = pattern(16, 12, 6);
+  upload("B.UVJ", encode(h, g));
+  m.cmd("M23 B.UVJ");
+  m.cmd("G28");
+  m.cmd("M24");
+  m.run(300000);
+  size_t from = m.usbLines.size();
+  m.io.pressed = kButtonPause;
+  m.run(40000);
+  m.io.pressed = 0;
+  m.run(200000);  // the stop under way ends first
+  Lines after(m.usbLines.begin() + static_cast<long>(from), m.usbLines.end());
+  EXPECT_TRUE(has(after, "JOB:paused")) << "no pause";
+  size_t fired = m.nano.exposures.size();
+  m.run(1000000);
+  EXPECT_EQ(m.nano.exposures.size(), fired);
+  m.io.pressed = kButtonPause;
+  m.run(40000);
+  m.io.pressed = 0;
+  ASSERT_NE(runUntilJob({"done"}), "(none)");
+  expectExposed(h, plan(h, g));
+}
+
 TEST_F(JobTest, AnOverTemperatureMidJobPausesItAndItContinuesOnceCool) {
   uv::JobHeader h = header(16, 12, uv::Strategy::Raster);
   Grid g = pattern(16, 12, 4);

@@ -7,6 +7,7 @@
 #include "hw/avr_eeprom.h"
 #include "hw/board.h"
 #include "hw/host_uart.h"
+#include "hw/oled.h"
 #include "hw/sd_storage.h"
 #include "hw/serial_stream.h"
 #include "hw/stepper_timer.h"
@@ -35,7 +36,8 @@ LoopStats stats = {};
 HostLink usb(usbUart, movesFree);
 HostLink esp(espUart, movesFree);
 Board board;
-Machine machine(MachineParts{{&usb, &esp}, motion, head, config, store, sd, board, eeprom, kFirmwareName, movesFree, stats});
+Oled oled;
+Machine machine(MachineParts{{&usb, &esp}, motion, head, config, store, sd, board, eeprom, oled, kFirmwareName, movesFree, stats});
 uint32_t lastPass = 0;
 
 }  // namespace
@@ -50,6 +52,7 @@ void setup() {
   espUart = HostUart(config.whole(Key::EspPort) == 3 ? 3 : 2);
   espUart.begin(esp, 115200);
   stepperInvert(static_cast<uint8_t>(config.whole(Key::InvertX) | config.whole(Key::InvertY) << 1 | config.whole(Key::InvertZ) << 2));
+  oled.begin();
   machine.begin(micros());
 }
 

@@ -65,11 +65,23 @@ class FakeIo : public MachineIo {
     lightOn = on;
     return true;
   }
+  uint8_t buttons() override { return pressed; }
   bool enabled = false, lightOn = false;
   uint8_t lightPin = 0;
+  uint8_t pressed = 0;  // the panel's buttons held down
 
  private:
   MotionRig& rig_;
+};
+
+class FakeDisplay : public TextDisplay {
+ public:
+  void row(uint8_t r, const char* text) override {
+    rows[r] = text;
+    draws++;
+  }
+  std::string rows[kScreenRows];
+  int draws = 0;
 };
 
 class MegaRig {
@@ -89,11 +101,12 @@ class MegaRig {
   PrintheadLink head{nano};
   MotionRig rig{config};
   FakeIo io{rig};
+  FakeDisplay display;
   HostPipe usb, esp;
   uint8_t movesFree = StepEngine::kBlocks;
   LoopStats stats = {};
   HostLink usbLink{usb, movesFree}, espLink{esp, movesFree};
-  Machine machine{MachineParts{{&usbLink, &espLink}, rig.motion, head, config, store, sd, io, eeprom, "UVExposure 0.1.0 (Mega)", movesFree, stats}};
+  Machine machine{MachineParts{{&usbLink, &espLink}, rig.motion, head, config, store, sd, io, eeprom, display, "UVExposure 0.1.0 (Mega)", movesFree, stats}};
   uint64_t nowUs = 0;
   std::vector<std::string> usbLines, espLines;  // everything each host has read
   // Where the head stood (steps) when each exposure began, in the order of nano.exposures.
@@ -136,7 +149,7 @@ class MegaRig {
     stats = {};
     new (&usbLink) HostLink(usb, movesFree);
     new (&espLink) HostLink(esp, movesFree);
-    new (&machine) Machine(MachineParts{{&usbLink, &espLink}, rig.motion, head, config, store, sd, io, eeprom, "UVExposure 0.1.0 (Mega)", movesFree, stats});
+    new (&machine) Machine(MachineParts{{&usbLink, &espLink}, rig.motion, head, config, store, sd, io, eeprom, display, "UVExposure 0.1.0 (Mega)", movesFree, stats});
     usb = HostPipe();
     esp = HostPipe();
     usbN_ = espN_ = 0;  // the host starts numbering again, as after `start`

@@ -21,7 +21,7 @@ enum class ArgKind : uint8_t { Params, FileName, Text };
 ArgKind argKind(char letter, uint16_t code) {
   if (letter != 'M') return ArgKind::Params;
   if (code == 23 || code == 28 || code == 30) return ArgKind::FileName;
-  if (code == 850) return ArgKind::Text;
+  if (code == 850 || code == 117) return ArgKind::Text;
   return ArgKind::Params;
 }
 

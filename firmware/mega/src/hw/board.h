@@ -11,7 +11,7 @@ class Board : public MachineIo {
   void motorsEnabled(bool on) override;
   bool light(uint8_t pin, bool on) override;
   // The buttons, debounced by the caller: bit 0 stop, 1 pause/continue, 2 home (pressed = set).
-  uint8_t buttons();
+  uint8_t buttons() override;
 };
 
 }  // namespace mega

@@ -1,0 +1,79 @@
+// The Mega's panel: the SSD1306 status screen, the three buttons, and M117's message line.
+#include <string.h>
+
+#include "error_codes.h"
+#include "machine.h"
+#include "progmem.h"
+
+namespace mega {
+
+ScreenState Machine::screenState() const {
+  ScreenState s{};
+  using Mode = ScreenState::Mode;
+  s.mode = halted_ ? Mode::Halted : Mode::Idle;
+  if (!halted_ && long_.op == Op::Home) s.mode = Mode::Homing;
+  else if (!halted_ && long_.op != Op::None) s.mode = Mode::Busy;
+  if (!halted_ && arena_ == Arena::Run) {
+    const JobRunner& j = *run();
+    static const Mode kRun[] = {Mode::Running, Mode::Paused, Mode::Done, Mode::Aborted, Mode::Aborted};
+    s.mode = kRun[static_cast<uint8_t>(j.state())];
+    s.stop = j.done();
+    s.stops = j.count();
+    s.remainingS = j.remainingS();
+  }
+  s.homed = axisHomed(0) && axisHomed(1);
+  motion_.positionUm(s.um);
+  s.nanoOnline = head_.online() && head_.tempsKnown();
+  const int16_t* t = head_.deciC();
+  for (uint8_t i = 1; i < uv::kSensorCount; i++)
+    if (t[i] > t[s.hottest]) s.hottest = i;
+  s.hottestDeciC = t[s.hottest];
+  s.hottestLimitDeciC = static_cast<int16_t>(config_.milli(Key::ThermalLimit0 + s.hottest) / 100);
+  s.fault = lastFault_;
+  s.message = message_[0] ? message_ : nullptr;
+  return s;
+}
+
+void Machine::panel() {
+  uint8_t pressed = buttons_.sample(io_.buttons(), now_ / 1000);
+  if (pressed) button(pressed);
+  screen_.poll(screenState(), now_ / 1000);
+}
+
+void Machine::button(uint8_t pressed) {
+  if (pressed & kButtonStop) {  // the e-stop: at once, whatever runs
+    emergency();
+    broadcastP(UV_P("echo:stop button: halted, send M999"));
+    return;
+  }
+  if (halted_) return;
+  if (pressed & kButtonPause) {
+    if (arena_ == Arena::Run && run()->state() == RunState::Running) {
+      run()->pause(0);
+    } else if (arena_ == Arena::Run && run()->state() == RunState::Paused) {
+      const int16_t* t = head_.deciC();
+      bool hot = head_.activeFaults() != 0 || !head_.online();
+      for (uint8_t i = 0; i < uv::kSensorCount; i++) hot |= t[i] * 100 >= config_.milli(Key::ThermalLimit0 + i);
+      if (!hot) run()->resume(now_);
+    }
+  }
+  if ((pressed & kButtonHome) && long_.op == Op::None && !jobActive()) {
+    homed_ = 0;
+    io_.motorsEnabled(true);
+    homing_.start(7);
+    long_ = {};
+    long_.op = Op::Home;
+    long_.port = nullptr;  // no host line to answer
+    long_.keepalive = now_ + kKeepaliveUs;
+  }
+}
+
+Machine::Result Machine::message(const uv::Command& c) {
+  uint8_t n = c.text ? c.textLen : 0;
+  if (n > kScreenCols) n = kScreenCols;
+  memcpy(message_, c.text, n);
+  message_[n] = 0;
+  return Result::Done;
+}
+
+}  // namespace mega

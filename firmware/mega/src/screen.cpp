@@ -1,0 +1,149 @@
+// What the SSD1306 shows, composed from a snapshot and redrawn a changed row at a time.
+#include "screen.h"
+
+#include <string.h>
+
+#include "nano_codec.h"
+#include "progmem.h"
+#include "text_scan.h"
+
+namespace mega {
+
+namespace {
+constexpr uint32_t kRowEveryMs = 25;  // at most 40 rows a second: a full screen in 0.2 s
+
+struct Line {
+  char* out;
+  uint8_t n;
+  void put(const char* flash) {
+    for (uint8_t i = 0; n < kScreenCols && uvFlashByte(flash + i); i++) out[n++] = static_cast<char>(uvFlashByte(flash + i));
+  }
+  void ram(const char* s) {
+    for (; n < kScreenCols && *s; s++) out[n++] = *s;
+  }
+  void num(uint32_t v) {
+    char t[11];
+    t[uv::putUnsigned(v, t)] = 0;
+    ram(t);
+  }
+  // A bed position in mm with `decimals` digits (1 or 2), right-aligned in `width`.
+  void mm(int32_t um, uint8_t decimals, uint8_t width) {
+    char t[12];
+    uint8_t k = 0;
+    uint32_t a = static_cast<uint32_t>(um < 0 ? -um : um);
+    if (um < 0) t[k++] = '-';
+    k = static_cast<uint8_t>(k + uv::putUnsigned(a / 1000, t + k));
+    t[k++] = '.';
+    uint32_t f = a % 1000;
+    t[k++] = static_cast<char>('0' + f / 100);
+    if (decimals > 1) t[k++] = static_cast<char>('0' + f / 10 % 10);
+    if (decimals > 2) t[k++] = static_cast<char>('0' + f % 10);
+    t[k] = 0;
+    while (k < width && n < kScreenCols) {
+      out[n++] = ' ';
+      width--;
+    }
+    ram(t);
+  }
+  void deci(int16_t v) {
+    char t[8];
+    t[uv::formatDeciC(v, t)] = 0;
+    ram(t);
+  }
+};
+
+uint8_t checksum(const char* s) {
+  uint8_t c = 0x5a;
+  for (uint8_t i = 0; i < kScreenCols; i++) c = static_cast<uint8_t>((c << 1 | c >> 7) ^ static_cast<uint8_t>(s[i]));
+  return c ? c : 1;  // 0 means "never drawn"
+}
+}  // namespace
+
+void composeRow(const ScreenState& s, uint8_t r, char out[kScreenCols + 1]) {
+  Line l{out, 0};
+  switch (r) {
+    case 0: {
+      l.put(UV_P("UV "));
+      static const char kIdle[] UV_FLASH = "ready", kHoming[] UV_FLASH = "homing", kBusy[] UV_FLASH = "busy",
+                        kRunning[] UV_FLASH = "EXPOSING", kPaused[] UV_FLASH = "paused", kDone[] UV_FLASH = "job done",
+                        kAborted[] UV_FLASH = "aborted", kHalted[] UV_FLASH = "HALTED M999";
+      static const char* const kModes[] UV_FLASH = {kIdle, kHoming, kBusy, kRunning, kPaused, kDone, kAborted, kHalted};
+      l.put(uvFlashPtr(kModes[static_cast<uint8_t>(s.mode)]));
+      break;
+    }
+    case 1:
+      if (!s.homed) {
+        l.put(UV_P("not homed: G28"));
+        break;
+      }
+      l.put(UV_P("X"));
+      l.mm(s.um[0], 2, 7);
+      l.put(UV_P("Y"));
+      l.mm(s.um[1], 2, 7);
+      break;
+    case 2:
+      l.put(UV_P("Z"));
+      l.mm(s.um[2], 3, 7);
+      break;
+    case 3:
+      if (!s.stops) break;
+      l.put(UV_P("stop "));
+      l.num(s.stop);
+      l.put(UV_P("/"));
+      l.num(s.stops);
+      break;
+    case 4:
+      if (!s.stops || s.mode != ScreenState::Mode::Running) break;
+      l.put(UV_P("left "));
+      l.num(s.remainingS / 60);
+      l.put(UV_P("m"));
+      l.num(s.remainingS % 60);
+      l.put(UV_P("s"));
+      break;
+    case 5:
+      if (!s.nanoOnline) {
+        l.put(UV_P("printhead silent"));
+        break;
+      }
+      l.put(UV_P("T"));
+      l.num(s.hottest);
+      l.put(UV_P(" "));
+      l.deci(s.hottestDeciC);
+      l.put(UV_P("/"));
+      l.deci(s.hottestLimitDeciC);
+      l.put(UV_P("C"));
+      break;
+    case 6:
+      if (!s.fault) break;
+      l.put(UV_P("fault E"));
+      l.num(s.fault);
+      break;
+    case 7:
+      if (s.message) l.ram(s.message);
+      break;
+  }
+  while (l.n < kScreenCols) out[l.n++] = ' ';
+  out[kScreenCols] = 0;
+}
+
+void Screen::invalidate() { memset(shown_, 0, sizeof shown_); }
+
+bool Screen::poll(const ScreenState& s, uint32_t nowMs) {
+  if (any_ && nowMs - lastMs_ < kRowEveryMs) return false;
+  for (uint8_t k = 0; k < kScreenRows; k++) {
+    uint8_t r = static_cast<uint8_t>((next_ + k) % kScreenRows);
+    char text[kScreenCols + 1];
+    composeRow(s, r, text);
+    uint8_t c = checksum(text);
+    if (c == shown_[r]) continue;
+    display_.row(r, text);
+    shown_[r] = c;
+    next_ = static_cast<uint8_t>((r + 1) % kScreenRows);
+    lastMs_ = nowMs;
+    any_ = true;
+    return true;
+  }
+  return false;
+}
+
+}  // namespace mega
