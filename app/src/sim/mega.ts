@@ -43,6 +43,8 @@ export class MegaModel {
   mesh: Mesh | null = null;
   leveling = false;
   light = false;
+  /** The panel's message line (M117). */
+  message = '';
   halted = false;
   absolute = true;
   #splitter = new LineSplitter(DIALECT_MAX_LINE);
@@ -185,6 +187,10 @@ export class MegaModel {
       M27: (c, done) => {
         if ('S' in p(c)) return this.#autoReport('job', p(c).S, done);
         this.line(this.#jobLine());
+        done();
+      },
+      M117: (c, done) => {
+        this.message = ('text' in c ? c.text : '').slice(0, 16); // the panel's last row
         done();
       },
       M821: (_c, done) => {

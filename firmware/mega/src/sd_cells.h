@@ -12,7 +12,7 @@ namespace mega {
 
 class SdCells : public uv::CellSource {
  public:
-  static constexpr uint8_t kChunk = 4;
+  static constexpr uint8_t kChunk = 2;  // a power of two; RAM is the limit (32 cursors)
 
   SdCells(Storage& sd, FileHandle cells, FileHandle index) : sd_(sd), cells_(cells), index_(index) {}
 
