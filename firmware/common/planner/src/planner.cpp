@@ -47,7 +47,7 @@ uint32_t Durations::longest(const uint8_t value[4]) const {
 }
 
 Planner::Planner(const JobHeader& h, CellSource& cells, const Machine& m)
-    : h_(h), cells_(cells), m_(m), dose_(h), curX_(m.startUm[0]), curY_(m.startUm[1]), rng_(h.seed ? h.seed : 0x9E3779B9u) {
+    : h_(h), cells_(cells), m_(m), dose_(h), known_(h.rows), curX_(m.startUm[0]), curY_(m.startUm[1]), rng_(h.seed ? h.seed : 0x9E3779B9u) {
   memset(&shared_, 0, sizeof shared_);  // no pass has a stop peeked yet
   dyMin_ = dyMax_ = h.offsets[0][1];
   for (uint8_t k = 1; k < 4; k++) {
@@ -64,11 +64,16 @@ void Planner::uncoverBelow(uint16_t row) {
   covered_[(row & (kCoveredWindowRows - 1)) >> 3] &= static_cast<uint8_t>(~(1 << (row & 7)));
 }
 
-bool Planner::openPass(PassInfo& p) {
+Planner::Open Planner::openPass(PassInfo& p) {
   for (; scan_ < h_.rows; uncoverBelow(scan_), scan_++) {
     uint16_t r = scan_;
+    if (r >= known_) return Open::NeedRows;
     if (covered(r)) continue;
     if (!cells_.rowNonEmpty(r)) continue;
+    // A pass is settled once the last row any of its LEDs reads has arrived.
+    int32_t top = static_cast<int32_t>(r) - dyMin_ + dyMax_;
+    if (top > h_.rows - 1) top = h_.rows - 1;
+    if (known_ < h_.rows && top >= known_) return Open::NeedRows;
     p.hy = static_cast<int32_t>(r) - dyMin_;
     p.first = INT32_MAX;
     p.last = INT32_MIN;
@@ -89,9 +94,20 @@ bool Planner::openPass(PassInfo& p) {
     }
     uncoverBelow(scan_);
     scan_++;
-    return true;
+    return Open::Opened;
   }
-  return false;
+  return Open::NoMore;
+}
+
+int32_t Planner::lowestRowNeeded() const {
+  // The band being emitted (or filled) reads from its first pass's lowest LED row; passes still to
+  // open read from the lowest open row up.
+  int32_t low = scan_;
+  for (uint8_t q = 0; q < bandLen_; q++) {
+    int32_t r = band_[q].hy + dyMin_;
+    if (r < low) low = r;
+  }
+  return low < 0 ? 0 : low;
 }
 
 void Planner::openCursors(uint8_t q, bool descending) {
@@ -236,9 +252,16 @@ uint64_t Planner::priceColumns() {
 
 bool Planner::startBand() {
   for (;;) {
-    bandLen_ = 0;
+    if (!filling_) bandLen_ = 0;
+    filling_ = true;
     uint8_t want = h_.strategy == Strategy::Shortest ? kShortestBand : 1;
-    while (bandLen_ < want && openPass(band_[bandLen_])) bandLen_++;
+    Open o = Open::Opened;
+    while (bandLen_ < want && (o = openPass(band_[bandLen_])) == Open::Opened) bandLen_++;
+    if (o == Open::NeedRows) {  // a row yet to come may still open a pass in this band
+      starved_ = true;
+      return false;
+    }
+    filling_ = false;
     if (bandLen_ == 0) return false;
     for (uint8_t q = 0; q < bandLen_; q++) passUsed_[q] = false;
     order_ = Order::Rows;
@@ -286,6 +309,7 @@ void Planner::emit(int32_t hx, int32_t hy, const uint8_t value[4], Stop& out) {
 }
 
 bool Planner::next(Stop& out) {
+  starved_ = false;
   if (!supported()) return false;
   for (;;) {
     if (!emitting_ && !startBand()) return false;

@@ -36,8 +36,15 @@ class Planner {
  public:
   Planner(const JobHeader& h, CellSource& cells, const Machine& m);
 
-  // The next stop in execution order; false when the job is done.
+  // The next stop in execution order; false when the job is done, or when starved().
   bool next(Stop& out);
+  // Stream mode (planner.md "Planning while rows arrive"): rows below `known` have arrived. The
+  // planner plans only stops no later row can change; next() then says false with starved() true
+  // until more rows are known. Without a call, every row is known.
+  void setKnownRows(uint16_t known) { known_ = known; }
+  bool starved() const { return starved_; }
+  // The lowest row a stop still to come can read (rows below it may be forgotten).
+  int32_t lowestRowNeeded() const;
   // The LEDs' rows span less than kCoveredWindowRows; otherwise next() plans nothing.
   bool supported() const { return dyMax_ - dyMin_ < static_cast<int16_t>(kCoveredWindowRows); }
   uint16_t passes() const { return passes_; }
@@ -56,7 +63,8 @@ class Planner {
   };
   enum class Order : uint8_t { Rows, Columns };
 
-  bool openPass(PassInfo& p);
+  enum class Open : uint8_t { Opened, NoMore, NeedRows };
+  Open openPass(PassInfo& p);
   bool startBand();
   void openCursors(uint8_t q, bool descending);
   bool passNext(uint8_t q, bool descending, int32_t& hx, uint8_t value[4]);
@@ -83,6 +91,9 @@ class Planner {
   uint8_t covered_[kCoveredWindowRows / 8] = {};
   uint16_t scan_ = 0;  // next row that may open a pass
   int16_t dyMin_ = 0, dyMax_ = 0;
+  uint16_t known_;            // rows that have arrived (all, unless streaming)
+  bool filling_ = false;      // a band is part opened, waiting for rows
+  bool starved_ = false;
   int32_t curX_, curY_;  // bed position of the last stop, µm
   uint16_t passes_ = 0;  // passes that emitted a stop
   uint32_t rng_;

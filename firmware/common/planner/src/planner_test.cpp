@@ -188,6 +188,69 @@ TEST(PlannerProperty, EveryLitCellOnceWithLedsSpreadOverManyRows) {
   EXPECT_FALSE(planner.next(s));
 }
 
+TEST(PlannerStreaming, RowsArrivingOneByOneGiveTheWholePlanInOrderAndNothingEarly) {
+  // planner.md "Planning while rows arrive": fed one more row at a time, the planner emits only
+  // stops no later row can change, and in the end exactly the plan of the whole job.
+  uint32_t seed = 777;
+  auto rnd = [&seed](uint32_t n) {
+    seed ^= seed << 13;
+    seed ^= seed >> 17;
+    seed ^= seed << 5;
+    return seed % n;
+  };
+  for (int trial = 0; trial < 60; trial++) {
+    uint16_t rows = static_cast<uint16_t>(1 + rnd(60)), cols = static_cast<uint16_t>(1 + rnd(12));
+    std::vector<std::vector<uint8_t>> grid(rows, std::vector<uint8_t>(cols, 0));
+    for (auto& row : grid)
+      for (auto& v : row)
+        if (rnd(4) == 0) v = static_cast<uint8_t>(1 + rnd(255));
+    JobHeader h{};
+    h.cols = cols;
+    h.rows = rows;
+    h.pitchUm[0] = h.pitchUm[1] = 50;
+    h.map = DoseMap::Linear;
+    h.fullUs = 1000;
+    h.strategy = static_cast<Strategy>(trial % 4);
+    h.seed = static_cast<uint32_t>(trial + 1);
+    for (int k = 0; k < 4; k++) {
+      h.gainPermille[k] = 1000;
+      h.offsets[k][0] = static_cast<int16_t>(rnd(3)) - 1;
+      h.offsets[k][1] = static_cast<int16_t>(trial % 5 == 0 ? rnd(9) : k);
+    }
+    const Machine m{{100000, 100000}, {2000000, 2000000}, 2000, 1500, {0, 0}};
+    GridCells all(grid);
+    Planner whole(h, all, m);
+    std::vector<Stop> expected;
+    Stop s;
+    while (whole.next(s)) expected.push_back(s);
+
+    // The rows not yet arrived read as empty, as a stream's buffer shows them.
+    std::vector<std::vector<uint8_t>> arrived(rows, std::vector<uint8_t>(cols, 0));
+    GridCells partial(arrived);
+    Planner streaming(h, partial, m);
+    std::vector<Stop> got;
+    for (uint16_t known = 0; known <= rows; known++) {
+      if (known) arrived[known - 1] = grid[known - 1];
+      streaming.setKnownRows(known);
+      while (streaming.next(s)) {
+        for (int k = 0; k < 4; k++) {
+          if (s.us[k]) {
+            ASSERT_LT(s.hy + h.offsets[k][1], known) << "trial " << trial << ": a stop before its row arrived";
+          }
+        }
+        got.push_back(s);
+      }
+      ASSERT_EQ(streaming.starved(), known < rows) << "trial " << trial << " known " << known;
+    }
+    ASSERT_EQ(got.size(), expected.size()) << "trial " << trial;
+    for (size_t i = 0; i < got.size(); i++) {
+      ASSERT_EQ(got[i].hx, expected[i].hx) << "trial " << trial << " stop " << i;
+      ASSERT_EQ(got[i].hy, expected[i].hy) << "trial " << trial << " stop " << i;
+      for (int k = 0; k < 4; k++) ASSERT_EQ(got[i].us[k], expected[i].us[k]) << "trial " << trial << " stop " << i;
+    }
+  }
+}
+
 TEST(TimeModel, TrapezoidAndTriangle) {
   EXPECT_EQ(moveTimeUs(0, 150000, 3000000), 0u);
   EXPECT_EQ(moveTimeUs(100, 150000, 3000000), 2u * 5773u);
