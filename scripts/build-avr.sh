@@ -42,11 +42,13 @@ report mega 253952 8192 60
 # SPI settings; each of the three open File32 is 36 bytes; U8x8 bit-banging I2C keeps one u8x8_t,
 # about 40 bytes, and no Wire buffers. The budget holds with them; platformio.ini also sets
 # board_upload.maximum_ram_size to the same 60 %, so `pio run` fails if the real build is over.
-sdfat=$((512 + 60 + 3 * 36)); u8x8=40
+# Without SdFat, SdStorage keeps its own 512-byte buffer for stream mode; with SdFat, stream mode
+# borrows the sector cache instead, so that buffer is not in the full build.
+sdfat=$((512 + 60 + 3 * 36)); u8x8=40; standin=512
 mega_static=$(( $(section build/avr/mega.elf .data) + $(section build/avr/mega.elf .bss) ))
-with=$((mega_static + sdfat + u8x8))
-printf 'mega  with SdFat (%d B) and U8x8 (%d B) as PlatformIO builds it: static RAM about %5d / %5d B (%2d %%, budget 60 %%)\n' \
-  "$sdfat" "$u8x8" "$with" 8192 $((with * 100 / 8192))
+with=$((mega_static - standin + sdfat + u8x8))
+printf 'mega  as PlatformIO builds it (SdFat %d B, U8x8 %d B, less the %d B stand-in cache): static RAM about %5d / %5d B (%2d %%, budget 60 %%)\n' \
+  "$sdfat" "$u8x8" "$standin" "$with" 8192 $((with * 100 / 8192))
 if (( with * 100 > 8192 * 60 )); then
   echo "FAIL: mega with its libraries would be over its 60 % static-RAM budget" >&2
   exit 1

@@ -39,6 +39,20 @@ uint8_t JobRunner::start(const char* name, uint32_t from, uint32_t nowUs) {
   return 0;
 }
 
+void JobRunner::startStream(StopSource& source, const uv::JobHeader& header, uint32_t nowUs) {
+  source_ = &source;
+  streamHeader_ = &header;
+  strcpy(progress_.file, "stream");
+  progress_.done = done_ = 0;
+  int32_t here[3];
+  motion_.targetUm(here);
+  zBase_ = here[2];
+  state_ = RunState::Running;
+  phase_ = Phase::Load;
+  since_ = nowUs;
+  changed_ = true;
+}
+
 uint8_t JobRunner::resume(const Progress& checkpoint, uint32_t nowUs) {
   uint8_t err = start(checkpoint.file, checkpoint.done, nowUs);
   if (err) return err;
@@ -49,7 +63,7 @@ uint8_t JobRunner::resume(const Progress& checkpoint, uint32_t nowUs) {
 }
 
 uint32_t JobRunner::remainingS() const {
-  if (!header_.count || done_ >= header_.count) return 0;
+  if (source_ || !header_.count || done_ >= header_.count) return 0;
   return static_cast<uint32_t>(static_cast<uint64_t>(header_.estimateS) * (header_.count - done_) / header_.count);
 }
 
@@ -78,8 +92,8 @@ void JobRunner::resume(uint32_t nowUs) {
   reason_ = 0;
   // A stop that failed is exposed again from its start: it was not confirmed. The Nano's count is
   // read again first, since a failed exposure may or may not have been counted.
-  phase_ = Phase::Sync;
-  head_.requestCounters();
+  phase_ = source_ ? Phase::Load : Phase::Sync;  // a stream keeps the stop in hand: moved to, exposed again
+  if (!source_) head_.requestCounters();
   since_ = nowUs;
   state_ = RunState::Running;
   changed_ = true;
@@ -88,7 +102,7 @@ void JobRunner::resume(uint32_t nowUs) {
 void JobRunner::abort() {
   head_.allOff();
   motion_.stop();
-  checkpoint_.clear();
+  if (!source_) checkpoint_.clear();
   if (stops_ >= 0) sd_.close(stops_);
   stops_ = -1;
   halt(RunState::Aborted, 0);
@@ -133,7 +147,6 @@ void JobRunner::poll(uint32_t nowUs) {
       }
       progress_.done = done_;
       if (!checkpoint_.begin(progress_)) return fail(uv::kFileError);
-      changed_ = true;
       phase_ = Phase::Load;
       return;
     }
@@ -143,14 +156,39 @@ void JobRunner::poll(uint32_t nowUs) {
         elapsedUs_ += nowUs - since_;
         return halt(RunState::Paused, pauseReason_);
       }
-      if (done_ >= header_.count) {
-        elapsedUs_ += nowUs - since_;
-        checkpoint_.clear();
-        sd_.close(stops_);
-        stops_ = -1;
-        return halt(RunState::Done, 0);
+      if (stopInHand_) {
+        // The stop a fault interrupted, or the one a pause came before: go to it again.
+      } else if (source_) {
+        NextStop n = source_->next(done_, stop_);
+        waiting_ = n == NextStop::Wait;
+        if (waiting_) return;  // the rows its next stops read are still on their way
+        if (n == NextStop::Error) {
+          elapsedUs_ += nowUs - since_;
+          head_.allOff();
+          return halt(RunState::Aborted, 0);
+        }
+        if (n == NextStop::End) {
+          elapsedUs_ += nowUs - since_;
+          return halt(RunState::Done, 0);
+        }
+        // The job's geometry is known by its first stop: the header came before any row.
+        header_.originUm[0] = streamHeader_->originUm[0];
+        header_.originUm[1] = streamHeader_->originUm[1];
+        header_.pitchUm[0] = streamHeader_->pitchUm[0];
+        header_.pitchUm[1] = streamHeader_->pitchUm[1];
+        header_.thermalCoeff = streamHeader_->thermalCoeff;
+        header_.thermalRefDeciC = streamHeader_->thermalRefDeciC;
+      } else {
+        if (done_ >= header_.count) {
+          elapsedUs_ += nowUs - since_;
+          checkpoint_.clear();
+          sd_.close(stops_);
+          stops_ = -1;
+          return halt(RunState::Done, 0);
+        }
+        if (!readStop(sd_, stops_, done_, stop_)) return fail(uv::kFileError);
       }
-      if (!readStop(sd_, stops_, done_, stop_)) return fail(uv::kFileError);
+      stopInHand_ = true;
       int32_t here[3], to[3];
       motion_.targetUm(here);
       to[0] = static_cast<int32_t>(header_.originUm[0]) + stop_.hx * static_cast<int32_t>(header_.pitchUm[0]);
@@ -198,11 +236,11 @@ void JobRunner::poll(uint32_t nowUs) {
       phase_ = Phase::Wait;
       return;
     case Phase::Wait:
+      stopInHand_ = false;
       done_++;
       progress_.done = done_;
       if (lit_) progress_.fires++;  // the Nano counted it
-      if (!checkpoint_.write(progress_)) return fail(uv::kFileError);
-      changed_ = true;
+      if (!source_ && !checkpoint_.write(progress_)) return fail(uv::kFileError);
       phase_ = Phase::Load;
       return;
   }

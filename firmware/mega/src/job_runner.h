@@ -10,6 +10,7 @@
 #include "motion.h"
 #include "printhead_link.h"
 #include "stop_file.h"
+#include "stop_source.h"
 #include "storage.h"
 
 namespace mega {
@@ -25,17 +26,22 @@ class JobRunner {
 
   // Opens the job's stops and starts at stop `from`. Returns 0, or 21 (not planned) / 22.
   uint8_t start(const char* name, uint32_t from, uint32_t nowUs);
+  // Runs a stream (M828): stops come from `source` as they are planned; `header` fills as the job's
+  // first records arrive. No checkpoint: a stream cannot resume.
+  void startStream(StopSource& source, const uv::JobHeader& header, uint32_t nowUs);
+  bool streaming() const { return source_ != nullptr; }
+  // Every stop is known (a stream's last row has arrived).
+  bool planComplete() const { return !source_ || source_->complete(); }
+  // A stream's runner has run out of planned stops and waits for rows.
+  bool starved() const { return waiting_; }
   // Resumes an interrupted job from its checkpoint. Before anything moves, the Nano's C reply
   // tells whether the stop that was next had been exposed: if so, whole, it counts as done.
   uint8_t resume(const Progress& checkpoint, uint32_t nowUs);
   // How the resume judged the stop that was next when the job was interrupted.
   enum class Resumed : uint8_t { NotYet, NotSent, Exposed, CutShort, PrintheadRestarted };
-  // The verdict once it is known, then NotYet.
-  Resumed takeResumed() {
-    Resumed r = resumed_;
-    resumed_ = Resumed::NotYet;
-    return r;
-  }
+  // The verdict once it is known (until cleared).
+  Resumed resumedVerdict() const { return resumed_; }
+  void clearResumed() { resumed_ = Resumed::NotYet; }
   // The stop the verdict is about.
   uint32_t resumedStop() const { return checkpointed_.done; }
   void poll(uint32_t nowUs);
@@ -48,16 +54,13 @@ class JobRunner {
   RunState state() const { return state_; }
   uint8_t reason() const { return reason_; }
   uint32_t done() const { return done_; }
-  uint32_t count() const { return header_.count; }
+  uint32_t count() const { return source_ ? source_->count() : header_.count; }
   uint32_t elapsedS(uint32_t nowUs) const { return (elapsedUs_ + (state_ == RunState::Running ? nowUs - since_ : 0)) / 1000000; }
   uint32_t remainingS() const;
   const char* file() const { return progress_.file; }
-  // The state or the stop count changed since the last call (for JOB: reports).
-  bool takeChanged() {
-    bool c = changed_;
-    changed_ = false;
-    return c;
-  }
+  // The state changed since the last call (for JOB: reports).
+  bool changed() const { return changed_; }
+  void clearChanged() { changed_ = false; }
   // What the last failure was about, for its FAULT line: the stop index.
   uint32_t faultStop() const { return done_; }
 
@@ -76,6 +79,10 @@ class JobRunner {
   int32_t zBase_ = 0;  // the head's Z when the job started; the mesh offset adds to it
   Checkpoint checkpoint_;
   FileHandle stops_ = -1;
+  StopSource* source_ = nullptr;
+  const uv::JobHeader* streamHeader_ = nullptr;
+  bool waiting_ = false;
+  bool stopInHand_ = false;  // stop_ is the next to expose (read, not yet confirmed)
   StopFileHeader header_ = {};
   Progress progress_ = {};
   uv::Stop stop_ = {};

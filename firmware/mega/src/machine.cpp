@@ -17,6 +17,18 @@ bool isEndOrStop(const LineSlot& l) {
          ((l.text[1] == '2' && l.text[2] == '9' && (l.len == 3 || l.text[3] == ' ')) || isEmergencyStop(l.text, l.len));
 }
 
+// Obeyed between a stream's records, so a running stream can be watched, paused and aborted.
+bool isStreamCommand(const LineSlot& l) {
+  uv::Command c;
+  if (uv::parseCommand(l.text, l.len, c) || c.letter != 'M') return false;
+  switch (c.code) {
+    case 24: case 25: case 524: case 27: case 105: case 114: case 115: case 154: case 155:
+      return true;
+    default:
+      return false;
+  }
+}
+
 void strcpy_flash(char* out, const char* flash) { uvMemcpyP(out, flash, uvStrlenP(flash) + 1); }
 
 // Room a command needs in its port's transmit ring before it runs: one payload line and the ok.
@@ -66,8 +78,9 @@ void Machine::emergency() {
   motion_.halt();
   homing_.cancel();
   probe_.cancel();
-  if (arena_ == Arena::Run) run()->abort();
+  if (running()) run()->abort();
   if (arena_ == Arena::Spool) spool()->abandon();
+  streaming_ = false;  // M112 ends a stream at once
   if (arena_ != Arena::Run) clearArena();
   io_.motorsEnabled(false);
   homed_ = 0;  // steps may have been lost: home again after M999
@@ -112,6 +125,14 @@ Machine::Result Machine::execute(HostLink& port, const LineSlot& line) {
   // During an upload every line but M29 and M112 is a job record (job records never start with a
   // G or M and a digit, so M29 is told apart by its word).
   if (arena_ == Arena::Spool && !preparing_ && !isEndOrStop(line)) return uploadRecord(port, line);
+  if (arena_ == Arena::Stream && streaming_ && !isEndOrStop(line) && !isStreamCommand(line)) {
+    // Once the stream's job has ended, a line that starts with G or M and a digit (no record does)
+    // shows its host has moved on: the stream is over and the line is obeyed.
+    bool command = line.len >= 2 && (line.text[0] == 'G' || line.text[0] == 'M' || line.text[0] == 'g' || line.text[0] == 'm') &&
+                   line.text[1] >= '0' && line.text[1] <= '9';
+    if (command && !runLive()) streaming_ = false;
+    else return streamLine(port, line);
+  }
   uv::Command c;
   uint8_t err = uv::parseCommand(line.text, line.len, c);
   if (err) {
@@ -201,7 +222,7 @@ Machine::Result Machine::dispatch(HostLink& port, const uv::Command& c) {
       case 420: return meshCommand(port, c);
       case 821: return diagnostics(port, c);
       case 850: case 500: case 501: case 502: case 503: return configCommand(port, c);
-      case 20: case 23: case 24: case 25: case 27: case 28: case 29: case 30: case 524: case 1000:
+      case 20: case 23: case 24: case 25: case 27: case 28: case 29: case 30: case 524: case 828: case 1000:
         return jobCommand(port, c);
       case 112: return Result::Done;  // acted on when it arrived
       case 999:

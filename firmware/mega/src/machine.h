@@ -13,6 +13,7 @@
 #include "job_plan.h"
 #include "job_runner.h"
 #include "job_spool.h"
+#include "stream_job.h"
 #include "buttons.h"
 #include "machine_io.h"
 #include "mesh_store.h"
@@ -32,6 +33,8 @@ struct LoopStats {
   uint32_t loopMaxUs;      // the longest main-loop pass
   uint16_t stepIsrMaxUs;   // the longest step interrupt
 };
+
+constexpr uint16_t larger(uint16_t a, uint16_t b) { return a > b ? a : b; }
 
 struct MachineParts {
   HostLink* ports[kPorts];
@@ -69,7 +72,12 @@ class Machine {
   enum class Op : uint8_t { None, Emit, Dwell, Home, SelfTest, Servo, ProbeRead, MoveRoom, Release, Plan, Prepare, Probe, Level };
   enum class Gen : uint8_t { Firmware, Endstops, Config, Files, Mesh };
   // What the job arena holds: an upload, a planning, a preparation from a job copied onto the card, a run.
-  enum class Arena : uint8_t { Empty, Spool, Plan, Run };
+  enum class Arena : uint8_t { Empty, Spool, Plan, Run, Stream };
+  // A stream's planner and its runner, together in the arena.
+  struct StreamArena {
+    StreamJob job;
+    JobRunner runner;
+  };
 
   Result execute(HostLink& port, const LineSlot& line);
   Result dispatch(HostLink& port, const uv::Command& c);
@@ -104,10 +112,14 @@ class Machine {
   bool startPlanning(const uv::JobHeader& header);
   void runJob();
   void resumeVerdict(JobRunner& j);
+  // Prints a line on both hosts if both have room for it now; false (nothing printed) if not.
+  bool broadcastWhole(const char* text);
   void clearArena();
   uint8_t formatJob(char* out) const;
   void jobReports();
   uint8_t refuseExposure(HostLink& port);
+  Result startStream(HostLink& port);
+  Result streamLine(HostLink& port, const LineSlot& line);
   // the panel (machine_panel.cpp)
   void panel();
   void button(uint8_t pressed);
@@ -128,12 +140,18 @@ class Machine {
   void stepsChanged(const int32_t before[3]);
 
   bool jobActive() const {
-    return (arena_ == Arena::Spool && !preparing_) || (arena_ == Arena::Run && (run()->state() == RunState::Running || run()->state() == RunState::Paused));
+    if (arena_ == Arena::Spool && !preparing_) return true;
+    if (arena_ == Arena::Stream) return streaming_ || runLive();
+    return arena_ == Arena::Run && runLive();
   }
+  bool runLive() const { return run()->state() == RunState::Running || run()->state() == RunState::Paused; }
   JobSpool* spool() { return reinterpret_cast<JobSpool*>(arenaMem_); }
   JobPlan* plan() { return reinterpret_cast<JobPlan*>(arenaMem_); }
-  JobRunner* run() { return reinterpret_cast<JobRunner*>(arenaMem_); }
-  const JobRunner* run() const { return reinterpret_cast<const JobRunner*>(arenaMem_); }
+  // The runner, of a job on the card or of a stream.
+  JobRunner* run() { return arena_ == Arena::Stream ? &stream()->runner : reinterpret_cast<JobRunner*>(arenaMem_); }
+  const JobRunner* run() const { return const_cast<Machine*>(this)->run(); }
+  StreamArena* stream() { return reinterpret_cast<StreamArena*>(arenaMem_); }
+  bool running() const { return (arena_ == Arena::Run || arena_ == Arena::Stream); }
   uint8_t formatTemps(char* out) const;
   uint8_t formatPosition(char* out) const;
 
@@ -181,15 +199,17 @@ class Machine {
 
   // The job: one arena for whichever stage is live, so the planner's memory is there only while
   // it plans (job_plan.h).
-  static constexpr uint16_t kArenaBytes = sizeof(JobSpool) > sizeof(JobPlan)
-                                              ? (sizeof(JobSpool) > sizeof(JobRunner) ? sizeof(JobSpool) : sizeof(JobRunner))
-                                              : (sizeof(JobPlan) > sizeof(JobRunner) ? sizeof(JobPlan) : sizeof(JobRunner));
+  static constexpr uint16_t kArenaBytes = larger(larger(sizeof(JobSpool), sizeof(JobPlan)), larger(sizeof(JobRunner), sizeof(StreamArena)));
   alignas(4) uint8_t arenaMem_[kArenaBytes];
   Arena arena_ = Arena::Empty;
   uv::JobState jobState_ = uv::JobState::Idle;  // when no run is live
   char selected_[kFileNameMax + 1] = {};
   bool preparing_ = false;  // the spool builds a PC-copied job's working files (M23)
   bool preparedSelect_ = false;  // the planning under way was started by M23, not M29
+  bool streaming_ = false;       // M828's records are still coming (until M29)
+  uint32_t streamBusyAt_ = 0;    // a record waits for room: when the next busy: goes out
+  bool streamWaiting_ = false;
+  bool faultToShow_ = false;  // a job's FAULT line waits for room on the hosts
   uint32_t jobPeriodUs_ = 0, jobNext_ = 0;
   uint32_t lastHeardUs_ = 0;
 

@@ -35,10 +35,12 @@ void Machine::clearArena() {
     case Arena::Spool: spool()->~JobSpool(); break;
     case Arena::Plan: plan()->~JobPlan(); break;
     case Arena::Run: run()->~JobRunner(); break;
+    case Arena::Stream: stream()->~StreamArena(); break;
     default: break;
   }
   arena_ = Arena::Empty;
   preparing_ = false;
+  streaming_ = false;
 }
 
 uint8_t Machine::formatJob(char* out) const {
@@ -51,7 +53,7 @@ uint8_t Machine::formatJob(char* out) const {
     uvMemcpyP(p, flash, n);
     p += n;
   };
-  if (arena_ == Arena::Run) {
+  if (running()) {
     const JobRunner& j = *run();
     static const uv::JobState kStates[] = {uv::JobState::Running, uv::JobState::Paused, uv::JobState::Done, uv::JobState::Aborted, uv::JobState::Failed};
     r.state = static_cast<uint8_t>(kStates[static_cast<uint8_t>(j.state())]);
@@ -65,14 +67,17 @@ uint8_t Machine::formatJob(char* out) const {
     p += uv::putUnsigned(j.count(), p);
     put(UV_P(" elapsed="));
     p += uv::putUnsigned(j.elapsedS(now_), p);
-    put(UV_P(" remaining="));
-    p += uv::putUnsigned(j.remainingS(), p);
+    if (j.planComplete()) {  // a stream's end, and so its time left, is not known until its last row
+      put(UV_P(" remaining="));
+      p += uv::putUnsigned(j.remainingS(), p);
+    }
     put(UV_P(" leds="));
     p += uv::putUnsigned(head_.fireState() == FireState::Firing ? 1 : 0, p);
     if (j.state() == RunState::Paused) {
       put(UV_P(" reason="));
       put(reasonName(j.reason()));
     }
+    if (j.streaming()) put(UV_P(" mode=stream"));
   } else {
     r.state = static_cast<uint8_t>(arena_ == Arena::Spool ? uv::JobState::Uploading : jobState_);
   }
@@ -208,12 +213,12 @@ Machine::Result Machine::select(HostLink& port, const uv::Command& c) {
 }
 
 Machine::Result Machine::startOrContinue(HostLink& port) {
-  if (arena_ == Arena::Run && run()->state() == RunState::Paused) {
+  if (running() && run()->state() == RunState::Paused) {
     if (refuseExposure(port)) return Result::Done;
     run()->resume(now_);
     return Result::Done;
   }
-  if (arena_ == Arena::Run && run()->state() == RunState::Running) {
+  if (running() && run()->state() == RunState::Running) {
     port.errorLine(uv::kBusy);
     return Result::Done;
   }
@@ -238,7 +243,7 @@ Machine::Result Machine::resumeInterrupted(HostLink& port, const uv::Command& c)
   bool have = sd_.present() && Checkpoint::read(sd_, p);
   if (c.has('S')) {
     char buf[96];
-    if (!have || (arena_ == Arena::Run && run()->state() == RunState::Running)) {
+    if (!have || (running() && run()->state() == RunState::Running)) {
       port.lineP(UV_P("JOB:idle"));
       return Result::Done;
     }
@@ -281,10 +286,69 @@ Machine::Result Machine::resumeInterrupted(HostLink& port, const uv::Command& c)
   return Result::Done;
 }
 
+Machine::Result Machine::startStream(HostLink& port) {
+  if (jobActive()) {
+    port.errorLine(uv::kBusy);
+    return Result::Done;
+  }
+  if (refuseExposure(port)) return Result::Done;
+  clearArena();
+  uv::Machine m{};
+  m.vmaxUmS[0] = m.vmaxUmS[1] = static_cast<uint32_t>(config_.milli(Key::SpeedTravel));
+  m.accelUmS2[0] = static_cast<uint32_t>(config_.milli(Key::AccelX));
+  m.accelUmS2[1] = static_cast<uint32_t>(config_.milli(Key::AccelY));
+  m.settleUs = static_cast<uint32_t>(config_.whole(Key::SettleMs)) * 1000;
+  m.overheadUs = static_cast<uint32_t>(config_.whole(Key::StopOverheadUs));
+  int32_t here[3];
+  motion_.targetUm(here);
+  m.startUm[0] = here[0];
+  m.startUm[1] = here[1];
+  // The buffer is the card's sector cache (or its stand-in): no card command runs until the stream ends.
+  StreamArena* a = reinterpret_cast<StreamArena*>(arenaMem_);
+  new (&a->job) StreamJob(sd_.scratch(), kScratchBytes, m);
+  new (&a->runner) JobRunner(sd_, motion_, head_, config_, leveling_ ? &mesh_ : nullptr);
+  arena_ = Arena::Stream;
+  streaming_ = true;
+  streamWaiting_ = false;
+  port.lineP(UV_P("echo:Streaming: exposed as it arrives, no resume"));
+  a->runner.startStream(a->job, a->job.header(), now_);
+  return Result::Done;
+}
+
+Machine::Result Machine::streamLine(HostLink& port, const LineSlot& line) {
+  StreamArena& a = *stream();
+  uint8_t before = a.job.error();
+  if (before || !runLive()) return Result::Done;  // after a failure or an abort the rest is only read
+  uint8_t r = a.job.record(line.text, line.len);
+  if (r == kRecordWaits) {
+    // No room until exposure frees some: the line waits, the host's window fills and it holds
+    // back. A busy: at once tells it this is no lost line, then one every 2 s.
+    if (!streamWaiting_ || static_cast<int32_t>(now_ - streamBusyAt_) >= 0) {
+      port.reportP(UV_P("busy: processing"));
+      streamBusyAt_ = now_ + kKeepaliveUs;
+    }
+    streamWaiting_ = true;
+    return Result::Wait;
+  }
+  streamWaiting_ = false;
+  if (r) {
+    char detail[16];
+    uvMemcpyP(detail, UV_P("line "), 5);
+    detail[5 + uv::putUnsigned(a.job.errorLine(), detail + 5)] = 0;
+    port.errorLine(r, r == uv::kStreamOverflow ? nullptr : detail);
+    a.runner.abort();  // the LEDs off; what was exposed stays exposed
+  }
+  return Result::Done;
+}
+
 Machine::Result Machine::jobCommand(HostLink& port, const uv::Command& c) {
   char name[kFileNameMax + 1];
   switch (c.code) {
     case 20:
+      if (arena_ == Arena::Stream && jobActive()) {
+        port.errorLine(uv::kBusy);
+        return Result::Done;
+      }
       if (!sd_.present()) {
         port.errorLine(uv::kNoSd);
         return Result::Done;
@@ -320,7 +384,19 @@ Machine::Result Machine::jobCommand(HostLink& port, const uv::Command& c) {
       port.line(buf);
       return Result::Done;
     }
+    case 828: return startStream(port);
     case 29:
+      if (arena_ == Arena::Stream && streaming_) {
+        streaming_ = false;
+        uint8_t err = stream()->job.finish();
+        if (err) {
+          stream()->runner.abort();
+          port.errorLine(err);
+        } else {
+          port.lineP(UV_P("echo:Stream complete."));
+        }
+        return Result::Done;
+      }
       if (arena_ != Arena::Spool || preparing_) {
         port.errorLineP(uv::kBadParameter, UV_P("not uploading"));
         return Result::Done;
@@ -329,10 +405,10 @@ Machine::Result Machine::jobCommand(HostLink& port, const uv::Command& c) {
     case 23: return select(port, c);
     case 24: return startOrContinue(port);
     case 25:
-      if (arena_ == Arena::Run) run()->pause(0);
+      if (running()) run()->pause(0);
       return Result::Done;
     case 524:
-      if (arena_ == Arena::Run) run()->abort();
+      if (running()) run()->abort();
       else if (arena_ == Arena::Spool) {
         spool()->abandon();
         clearArena();
@@ -364,7 +440,7 @@ Machine::Result Machine::jobCommand(HostLink& port, const uv::Command& c) {
         port.errorLine(uv::kFileNotFound, name);
         return Result::Done;
       }
-      if (jobActive() && strcmp(name, selected_) == 0) {
+      if (jobActive() && (strcmp(name, selected_) == 0 || arena_ == Arena::Stream)) {
         port.errorLine(uv::kBusy);
         return Result::Done;
       }
@@ -378,7 +454,7 @@ Machine::Result Machine::jobCommand(HostLink& port, const uv::Command& c) {
 }
 
 void Machine::resumeVerdict(JobRunner& j) {
-  JobRunner::Resumed v = j.takeResumed();
+  JobRunner::Resumed v = j.resumedVerdict();
   if (v == JobRunner::Resumed::NotYet) return;
   char buf[112];
   char* p = buf;
@@ -396,11 +472,19 @@ void Machine::resumeVerdict(JobRunner& j) {
     default: put(UV_P(" may have been cut short by the printhead's restart, and is exposed again")); break;
   }
   *p = 0;
-  broadcast(buf);
+  if (broadcastWhole(buf)) j.clearResumed();  // else again next pass: this one must not be lost
+}
+
+bool Machine::broadcastWhole(const char* text) {
+  size_t n = strlen(text) + 1;
+  for (HostLink* p : ports_)
+    if (p->room() < n) return false;
+  for (HostLink* p : ports_) p->line(text);
+  return true;
 }
 
 void Machine::runJob() {
-  if (arena_ != Arena::Run) return;
+  if (!running()) return;
   JobRunner& j = *run();
   RunState before = j.state();
   j.poll(now_);
@@ -415,6 +499,9 @@ void Machine::runJob() {
   }
   if (j.state() == RunState::Paused && before == RunState::Running && j.reason() && j.reason() != kReasonLostHost) {
     lastFault_ = j.reason();
+    faultToShow_ = true;
+  }
+  if (faultToShow_) {  // the FAULT line first, whole, however long the hosts' rings take to empty
     char buf[80];
     char* p = buf;
     uvMemcpyP(p, UV_P("FAULT:E"), 7);
@@ -426,12 +513,13 @@ void Machine::runJob() {
     uvMemcpyP(p, UV_P(" at stop "), 9);
     p += 9;
     p[uv::putUnsigned(j.faultStop(), p)] = 0;
-    broadcast(buf);
+    if (!broadcastWhole(buf)) return;
+    faultToShow_ = false;
   }
-  if (j.takeChanged() && j.state() != RunState::Running) {
+  if (j.changed()) {  // every change of state goes to both hosts, whole
     char buf[112];
     formatJob(buf);
-    broadcast(buf);
+    if (broadcastWhole(buf)) j.clearChanged();
   }
 }
 

@@ -340,7 +340,12 @@ TEST_F(JobTest, ResetsAtRandomPointsResumeAndExposeEveryStopExactlyOnce) {
     ASSERT_EQ(status.size(), 1u);
     ASSERT_EQ(status[0].rfind("JOB:interrupted file=R.UVJ stop=", 0), 0u) << status[0];
     m.cmd("G28");
+    size_t verdicts = static_cast<size_t>(std::count_if(m.usbLines.begin(), m.usbLines.end(), [](const std::string& l) { return l.rfind("echo:resume:", 0) == 0; }));
     EXPECT_EQ(payload("M1000"), Lines{});
+    for (int t = 0; t < 1000; t++) {  // the judgement comes once the Nano has answered C
+      if (static_cast<size_t>(std::count_if(m.usbLines.begin(), m.usbLines.end(), [](const std::string& l) { return l.rfind("echo:resume:", 0) == 0; })) > verdicts) break;
+      m.run(1000);
+    }
   }
   if (!has(m.usbLines, "JOB:done")) {
     ASSERT_NE(runUntilJob({"done"}), "(none)");

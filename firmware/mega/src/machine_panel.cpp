@@ -13,7 +13,7 @@ ScreenState Machine::screenState() const {
   s.mode = halted_ ? Mode::Halted : Mode::Idle;
   if (!halted_ && long_.op == Op::Home) s.mode = Mode::Homing;
   else if (!halted_ && long_.op != Op::None) s.mode = Mode::Busy;
-  if (!halted_ && arena_ == Arena::Run) {
+  if (!halted_ && running()) {
     const JobRunner& j = *run();
     static const Mode kRun[] = {Mode::Running, Mode::Paused, Mode::Done, Mode::Aborted, Mode::Aborted};
     s.mode = kRun[static_cast<uint8_t>(j.state())];
@@ -48,9 +48,9 @@ void Machine::button(uint8_t pressed) {
   }
   if (halted_) return;
   if (pressed & kButtonPause) {
-    if (arena_ == Arena::Run && run()->state() == RunState::Running) {
+    if (running() && run()->state() == RunState::Running) {
       run()->pause(0);
-    } else if (arena_ == Arena::Run && run()->state() == RunState::Paused) {
+    } else if (running() && run()->state() == RunState::Paused) {
       const int16_t* t = head_.deciC();
       bool hot = head_.activeFaults() != 0 || !head_.online();
       for (uint8_t i = 0; i < uv::kSensorCount; i++) hot |= t[i] * 100 >= config_.milli(Key::ThermalLimit0 + i);

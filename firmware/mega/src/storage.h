@@ -27,7 +27,12 @@ class Storage {
   virtual bool rename(const char* from, const char* to) = 0;
   // The index-th file of the root directory, in directory order; false past the last one.
   virtual bool entry(uint16_t index, char* name, uint32_t& size) = 0;
+  // 512 bytes the Mega may use while nothing touches the card: stream mode's buffer. With SdFat
+  // it is the card's sector cache; the caller keeps every card command away meanwhile.
+  virtual uint8_t* scratch() = 0;
 };
+
+constexpr uint16_t kScratchBytes = 512;
 
 // Reads a file line by line through a small buffer, without a heap.
 class LineReader {

@@ -115,6 +115,8 @@ class FakeStorage : public Storage {
     return true;
   }
 
+  uint8_t* scratch() override { return scratch_; }
+
   // Power fails: every open file loses what was written since its last sync.
   void powerCut() {
     for (File& f : files_) f.open = false;
@@ -151,6 +153,7 @@ class FakeStorage : public Storage {
 
   std::string dir_;
   File files_[kHandles];
+  uint8_t scratch_[kScratchBytes];
 };
 
 }  // namespace mega

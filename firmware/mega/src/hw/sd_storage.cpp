@@ -77,6 +77,13 @@ bool SdStorage::entry(uint16_t index, char* name, uint32_t& size) {
   return found;
 }
 
+uint8_t* SdStorage::scratch() {
+  // The volume's sector cache, flushed and handed over: nothing may touch the card until the
+  // stream ends (the Mega refuses card commands while one runs).
+  // With no card mounted the cache is just as much there, and unused.
+  return sd_.vol()->cacheClear();
+}
+
 #else  // no SdFat in this build: no card
 
 bool SdStorage::begin(uint8_t) { return false; }
@@ -92,6 +99,7 @@ bool SdStorage::exists(const char*) { return false; }
 bool SdStorage::remove(const char*) { return false; }
 bool SdStorage::rename(const char*, const char*) { return false; }
 bool SdStorage::entry(uint16_t, char*, uint32_t&) { return false; }
+uint8_t* SdStorage::scratch() { return scratch_; }
 
 #endif
 

@@ -28,12 +28,15 @@ class SdStorage : public Storage {
   bool remove(const char* name) override;
   bool rename(const char* from, const char* to) override;
   bool entry(uint16_t index, char* name, uint32_t& size) override;
+  uint8_t* scratch() override;
 
  private:
 #ifdef UV_WITH_SDFAT
   File32* file(FileHandle f) { return f >= 0 && f < kFiles && files_[f].isOpen() ? &files_[f] : nullptr; }
   SdFat32 sd_;
   File32 files_[kFiles];
+#else
+  uint8_t scratch_[kScratchBytes];  // without SdFat there is no sector cache to lend
 #endif
   bool mounted_ = false;
 };

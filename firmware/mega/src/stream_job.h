@@ -1,0 +1,53 @@
+// Stream mode (M828, protocol/mega.md): each record is checked as it arrives, its cells go into a
+// bounded buffer, and the planner plans the stops no later row can change; the runner exposes them
+// as they come. Rows are freed as soon as nothing still to come can read them.
+#pragma once
+#include <stdint.h>
+
+#include "job_verifier.h"
+#include "planner.h"
+#include "stop_source.h"
+#include "stream_cells.h"
+
+namespace mega {
+
+constexpr uint8_t kRecordWaits = 0xff;  // record(): no room yet, offer it again later
+
+class StreamJob : public StopSource, private uv::SegmentSink {
+ public:
+  StreamJob(uint8_t* buffer, uint16_t size, const uv::Machine& machine)
+      : verifier_(this), cells_(buffer, size), machine_(machine) {}
+  ~StreamJob();
+
+  // One record (without '\n'): 0 taken; 23 (malformed) and the like; kRecordWaits if its cells do
+  // not fit the buffer yet; 28 if they never can (the next stops need more rows than it holds).
+  uint8_t record(const char* text, uint8_t len);
+  // M29: 0, or why the stream failed (the first record error, 24, 25).
+  uint8_t finish();
+  uint8_t error() const { return error_; }
+  uint32_t errorLine() const { return verifier_.errorLine(); }
+  bool headerReady() const { return planner_ != nullptr; }
+  const uv::JobHeader& header() const { return verifier_.header(); }
+  uint16_t heldCells() const { return cells_.cells(); }
+
+  NextStop next(uint32_t index, uv::Stop& out) override;
+  uint32_t count() const override { return planned_; }
+  bool complete() const override { return done_; }
+
+ private:
+  void segment(uint16_t row, uint16_t col, const char* hex, uint8_t cells) override;
+  uint8_t fail(uint8_t code) { return error_ ? error_ : (error_ = code); }
+
+  uv::JobVerifier verifier_;
+  StreamCells cells_;
+  uv::Machine machine_;
+  uv::Planner* planner_ = nullptr;
+  alignas(4) uint8_t plannerMem_[sizeof(uv::Planner)];
+  uint32_t planned_ = 0;
+  uint16_t known_ = 0;
+  bool done_ = false;
+  bool starved_ = false;  // the runner asked for a stop the planner could not give yet
+  uint8_t error_ = 0;
+};
+
+}  // namespace mega
