@@ -292,6 +292,28 @@ TEST_F(JobTest, AnOverTemperatureMidJobPausesItAndItContinuesOnceCool) {
   expectExposed(h, plan(h, g));
 }
 
+TEST_F(JobTest, AJobUploadedThroughTheEspPortRunsAndAHostThatGoesSilentPausesIt) {
+  uv::JobHeader h = header(12, 12, uv::Strategy::Raster);
+  h.map = uv::DoseMap::Threshold;  // every lit cell its full 1.5 s: 30 s pass mid-job
+  h.level = 1;
+  h.fullUs = 1500000;
+  Grid g = pattern(12, 12, 17);
+  ASSERT_TRUE(has(m.cmd("M28 E.UVJ", true), "echo:Writing to file: E.UVJ"));
+  for (const std::string& r : encode(h, g)) m.cmd(r, true);
+  ASSERT_TRUE(has(m.cmd("M29", true), "echo:Done saving file."));
+  m.cmd("M23 E.UVJ", true);
+  m.cmd("G28", true);
+  m.cmd("M24", true);
+  // No line from either host for 30 s while it runs: the host is gone, so the job pauses.
+  std::string paused = runUntilJob({"paused"}, 40000000);
+  EXPECT_NE(paused.find("reason=host"), std::string::npos) << paused;
+  EXPECT_GE(m.nowUs, 30000000u);
+  EXPECT_EQ(m.nano.lit(), 0);
+  m.cmd("M24", true);  // a host is back and continues it
+  ASSERT_NE(runUntilJob({"done"}, 600000000), "(none)");
+  expectExposed(h, plan(h, g));
+}
+
 TEST_F(JobTest, M30DeletesAJobAndItsWorkingFiles) {
   upload("D.UVJ", encode(header(4, 4, uv::Strategy::Raster), pattern(4, 4, 3)));
   EXPECT_TRUE(m.sd.exists("D.UVJ~s"));
