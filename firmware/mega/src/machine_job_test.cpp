@@ -314,6 +314,20 @@ TEST_F(JobTest, AJobUploadedThroughTheEspPortRunsAndAHostThatGoesSilentPausesIt)
   expectExposed(h, plan(h, g));
 }
 
+TEST_F(JobTest, M1000CDiscardsAnInterruptedJob) {
+  upload("K.UVJ", encode(header(8, 8, uv::Strategy::Raster), pattern(8, 8, 1)));
+  m.cmd("M23 K.UVJ");
+  m.cmd("G28");
+  m.cmd("M24");
+  m.run(300000);
+  m.reset(200000);
+  EXPECT_EQ(payload("M1000 S")[0].rfind("JOB:interrupted file=K.UVJ", 0), 0u);
+  EXPECT_EQ(payload("M1000 C"), Lines{});
+  EXPECT_EQ(payload("M1000 S"), (Lines{"JOB:idle"}));
+  m.cmd("G28");
+  EXPECT_EQ(payload("M1000"), (Lines{"Error:E27 no interrupted job to resume"}));
+}
+
 TEST_F(JobTest, M30DeletesAJobAndItsWorkingFiles) {
   upload("D.UVJ", encode(header(4, 4, uv::Strategy::Raster), pattern(4, 4, 3)));
   EXPECT_TRUE(m.sd.exists("D.UVJ~s"));

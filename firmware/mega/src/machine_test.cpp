@@ -206,3 +206,29 @@ TEST_F(MachineTest, DwellLightAndRelease) {
   EXPECT_FALSE(m.io.enabled);
   EXPECT_EQ(payload("G1 X1"), (Lines{"Error:E14 axis not homed: X"}));
 }
+
+TEST_F(MachineTest, PositionAutoReportsMotorsOnAndOffAndJobStatusReports) {
+  m.cmd("G28");
+  m.cmd("M154 P100");  // every 100 ms
+  size_t from = m.usbLines.size();
+  m.run(1050000);
+  long positions = std::count_if(m.usbLines.begin() + static_cast<long>(from), m.usbLines.end(), [](const std::string& l) { return l.rfind("X:", 0) == 0; });
+  EXPECT_GE(positions, 9);
+  EXPECT_LE(positions, 11);
+  EXPECT_EQ(payload("M154 P20"), (Lines{"Error:E11 bad or missing parameter"}));  // 50 ms at the least
+  m.cmd("M154 S0");
+  from = m.usbLines.size();
+  m.run(500000);
+  EXPECT_EQ(std::count_if(m.usbLines.begin() + static_cast<long>(from), m.usbLines.end(), [](const std::string& l) { return l.rfind("X:", 0) == 0; }), 0);
+  m.cmd("M84");
+  EXPECT_FALSE(m.io.enabled);
+  EXPECT_EQ(payload("G1 X1"), (Lines{"Error:E14 axis not homed: X"}));
+  m.cmd("M17");
+  EXPECT_TRUE(m.io.enabled);
+  m.cmd("M27 S1");
+  from = m.usbLines.size();
+  m.run(2100000);
+  EXPECT_EQ(std::count_if(m.usbLines.begin() + static_cast<long>(from), m.usbLines.end(), [](const std::string& l) { return l == "JOB:idle"; }), 2);
+  EXPECT_EQ(payload("M1000 C"), Lines{});  // nothing to discard is no error
+  EXPECT_EQ(payload("M1000"), (Lines{"Error:E27 no interrupted job to resume"}));
+}
