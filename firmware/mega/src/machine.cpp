@@ -59,8 +59,7 @@ void Machine::begin(uint32_t nowUs) {
   store_.load();
   mesh_.load();  // kept, but not applied until M420 S1 or G29
   head_.begin(nowUs);
-  uint32_t posMs = static_cast<uint32_t>(config_.whole(Key::ReportPositionMs));
-  posPeriodUs_ = posMs * 1000;
+  applyConfig();
   posNext_ = nowUs + posPeriodUs_;
   for (HostLink* p : ports_) p->lineP(UV_P("start"));
 }

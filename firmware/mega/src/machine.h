@@ -136,6 +136,8 @@ class Machine {
   uint8_t formatPoint(char* out, int32_t x, int32_t y, int32_t z) const;
   // commands (machine_config.cpp)
   Result configCommand(HostLink& port, const uv::Command& c);
+  // Settings that act at once: the position report period, the direction pins.
+  void applyConfig();
   // A changed steps/mm makes the step count mean another place: that axis must home again.
   void stepsChanged(const int32_t before[3]);
 

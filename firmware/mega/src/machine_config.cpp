@@ -12,6 +12,11 @@ void Machine::stepsChanged(const int32_t before[3]) {
     if (config_.milli(Key::StepsX + a) != before[a]) homed_ = static_cast<uint8_t>(homed_ & ~(1 << a));
 }
 
+void Machine::applyConfig() {
+  posPeriodUs_ = static_cast<uint32_t>(config_.whole(Key::ReportPositionMs)) * 1000;
+  io_.invertDirections(static_cast<uint8_t>(config_.whole(Key::InvertX) | config_.whole(Key::InvertY) << 1 | config_.whole(Key::InvertZ) << 2));
+}
+
 Machine::Result Machine::configCommand(HostLink& port, const uv::Command& c) {
   int32_t steps[3] = {config_.milli(Key::StepsX), config_.milli(Key::StepsY), config_.milli(Key::StepsZ)};
   switch (c.code) {
@@ -66,7 +71,7 @@ Machine::Result Machine::configCommand(HostLink& port, const uv::Command& c) {
       return Result::Long;
   }
   stepsChanged(steps);
-  posPeriodUs_ = static_cast<uint32_t>(config_.whole(Key::ReportPositionMs)) * 1000;
+  applyConfig();
   return Result::Done;
 }
 

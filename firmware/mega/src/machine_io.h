@@ -13,6 +13,8 @@ class MachineIo {
   virtual bool light(uint8_t pin, bool on) = 0;
   // The panel's buttons as they read now (buttons.h bits: stop, pause/continue, home).
   virtual uint8_t buttons() = 0;
+  // Bit a reverses axis a's direction pin (invert.x/y/z).
+  virtual void invertDirections(uint8_t bits) = 0;
 };
 
 }  // namespace mega

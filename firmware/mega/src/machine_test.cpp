@@ -164,6 +164,16 @@ TEST_F(MachineTest, ConfigIsSetQueriedSavedLoadedAndReported) {
   EXPECT_EQ(report[11], "M850 accel.x 2500");
 }
 
+TEST_F(MachineTest, DirectionInversionActsAtOnce) {
+  EXPECT_EQ(m.io.inverted, 0);
+  m.cmd("M850 invert.y 1");
+  EXPECT_EQ(m.io.inverted, 2);
+  m.cmd("M850 invert.z 1");
+  EXPECT_EQ(m.io.inverted, 6);
+  m.cmd("M502");
+  EXPECT_EQ(m.io.inverted, 0);
+}
+
 TEST_F(MachineTest, ChangingStepsPerMmMeansHomingAgain) {
   m.cmd("G28");
   m.cmd("M850 steps_per_mm.x 100");

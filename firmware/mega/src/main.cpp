@@ -51,7 +51,6 @@ void setup() {
   usbUart.begin(usb, 115200);
   espUart = HostUart(config.whole(Key::EspPort) == 3 ? 3 : 2);
   espUart.begin(esp, 115200);
-  stepperInvert(static_cast<uint8_t>(config.whole(Key::InvertX) | config.whole(Key::InvertY) << 1 | config.whole(Key::InvertZ) << 2));
   oled.begin();
   machine.begin(micros());
 }

@@ -66,6 +66,8 @@ class FakeIo : public MachineIo {
     return true;
   }
   uint8_t buttons() override { return pressed; }
+  void invertDirections(uint8_t bits) override { inverted = bits; }
+  uint8_t inverted = 0;
   bool enabled = false, lightOn = false;
   uint8_t lightPin = 0;
   uint8_t pressed = 0;  // the panel's buttons held down

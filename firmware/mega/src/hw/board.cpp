@@ -18,6 +18,8 @@ void Board::begin() {
 
 uint8_t Board::endstops() { return readEndstops(); }
 
+void Board::invertDirections(uint8_t bits) { stepperInvert(bits); }
+
 void Board::motorsEnabled(bool on) { digitalWrite(PIN_ENABLE, on ? LOW : HIGH); }
 
 bool Board::light(uint8_t pin, bool on) {

@@ -12,6 +12,7 @@ class Board : public MachineIo {
   bool light(uint8_t pin, bool on) override;
   // The buttons, debounced by the caller: bit 0 stop, 1 pause/continue, 2 home (pressed = set).
   uint8_t buttons() override;
+  void invertDirections(uint8_t bits) override;
 };
 
 }  // namespace mega
