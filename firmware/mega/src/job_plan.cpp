@@ -41,6 +41,11 @@ uint8_t JobPlan::begin(const char* name) {
   }
   source_ = new (sourceMem_) SdCells(sd_, cells_, index_);
   planner_ = new (plannerMem_) uv::Planner(header_, *source_, machine_);
+  if (!planner_->supported()) {  // the LEDs' rows span 1024 rows or more: planner.md "Memory on the Mega"
+    error_ = uv::kJobMalformed;
+    close();
+    return error_;
+  }
   return 0;
 }
 

@@ -379,9 +379,12 @@ void Machine::runLong() {
       }
       uv::JobHeader header = spool()->header();
       preparedSelect_ = true;
-      if (!startPlanning(header)) {
-        clearArena();
-        return finishLong(uv::kFileError);
+      err = startPlanning(header);
+      if (err) {
+        planRefused(*long_.port, err);
+        long_.port->ok();
+        long_.op = Op::None;
+        return;
       }
       long_.op = Op::Plan;
       return;

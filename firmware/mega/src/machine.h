@@ -109,7 +109,8 @@ class Machine {
   Result select(HostLink& port, const uv::Command& c);
   Result startOrContinue(HostLink& port);
   Result resumeInterrupted(HostLink& port, const uv::Command& c);
-  bool startPlanning(const uv::JobHeader& header);
+  uint8_t startPlanning(const uv::JobHeader& header);
+  void planRefused(HostLink& port, uint8_t err);
   void runJob();
   void resumeVerdict(JobRunner& j);
   // Prints a line on both hosts if both have room for it now; false (nothing printed) if not.

@@ -117,7 +117,7 @@ Machine::Result Machine::uploadRecord(HostLink& port, const LineSlot& line) {
   return Result::Done;
 }
 
-bool Machine::startPlanning(const uv::JobHeader& header) {
+uint8_t Machine::startPlanning(const uv::JobHeader& header) {
   uv::Machine m{};
   m.vmaxUmS[0] = m.vmaxUmS[1] = static_cast<uint32_t>(config_.milli(Key::SpeedTravel));
   m.accelUmS2[0] = static_cast<uint32_t>(config_.milli(Key::AccelX));
@@ -130,7 +130,19 @@ bool Machine::startPlanning(const uv::JobHeader& header) {
   clearArena();
   JobPlan* p = new (arenaMem_) JobPlan(sd_, header, m);
   arena_ = Arena::Plan;
-  return p->begin(name) == 0;
+  uint8_t err = p->begin(name);
+  if (err) {
+    clearArena();
+    removeWorkFiles(sd_, name);  // nothing half-built stays; the job's text does
+  }
+  return err;
+}
+
+void Machine::planRefused(HostLink& port, uint8_t err) {
+  selected_[0] = 0;
+  jobState_ = uv::JobState::Failed;
+  if (err == uv::kJobMalformed) port.errorLineP(err, UV_P("the LEDs' rows span 1024 rows or more"));
+  else port.errorLine(err);
 }
 
 Machine::Result Machine::endUpload(HostLink& port) {
@@ -143,10 +155,9 @@ Machine::Result Machine::endUpload(HostLink& port) {
   }
   uv::JobHeader header = spool()->header();
   strcpy(selected_, spool()->name());
-  if (!startPlanning(header)) {
-    clearArena();
-    selected_[0] = 0;
-    port.errorLine(uv::kFileError);
+  err = startPlanning(header);
+  if (err) {
+    planRefused(port, err);
     return Result::Done;
   }
   long_.op = Op::Plan;

@@ -328,6 +328,15 @@ TEST_F(JobTest, M1000CDiscardsAnInterruptedJob) {
   EXPECT_EQ(payload("M1000"), (Lines{"Error:E27 no interrupted job to resume"}));
 }
 
+TEST_F(JobTest, AJobWhoseLedRowsSpreadTooFarForTheMegasPlannerIsRefusedNotRunEmpty) {
+  uv::JobHeader h = header(4, 4, uv::Strategy::Raster);
+  h.offsets[3][1] = 1024;  // valid for job.md, beyond the C++ planner's 1024-row window
+  Lines got = upload("W.UVJ", encode(h, pattern(4, 4, 1)));
+  EXPECT_TRUE(has(got, "Error:E23 job record malformed: the LEDs' rows span 1024 rows or more"));
+  EXPECT_FALSE(has(got, "echo:Done saving file."));
+  EXPECT_FALSE(m.sd.exists("W.UVJ~s"));
+}
+
 TEST_F(JobTest, M30DeletesAJobAndItsWorkingFiles) {
   upload("D.UVJ", encode(header(4, 4, uv::Strategy::Raster), pattern(4, 4, 3)));
   EXPECT_TRUE(m.sd.exists("D.UVJ~s"));
