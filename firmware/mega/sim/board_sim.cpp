@@ -46,7 +46,7 @@ void BoardSim::Feed::push() {
 BoardSim::BoardSim(const std::string& megaElf, const std::string& nanoElf) {
   mega_ = boot(megaElf, "atmega2560");
   nano_ = boot(nanoElf, "atmega328p");
-  for (char u : {'0', '1'}) quiet(mega_, u);
+  for (char u : {'0', '1', '2', '3'}) quiet(mega_, u);
   quiet(nano_, '0');
 
   host_ = {mega_, avr_io_getirq(mega_, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_INPUT), {}, 0};
