@@ -5,6 +5,7 @@
 
 #include "crc32.h"
 #include "job_files.h"
+#include "le_bytes.h"
 
 namespace mega {
 
@@ -12,38 +13,29 @@ namespace {
 constexpr uint8_t kSlot = 64;
 const char kMagic[4] = {'U', 'V', 'K', '1'};
 
-void put32(uint32_t v, char* out) {
-  for (uint8_t i = 0; i < 4; i++) out[i] = static_cast<char>(v >> (8 * i));
-}
-uint32_t get32(const char* in) {
-  uint32_t v = 0;
-  for (uint8_t i = 0; i < 4; i++) v |= static_cast<uint32_t>(static_cast<uint8_t>(in[i])) << (8 * i);
-  return v;
-}
-
 // magic 4, seq 4, done 4, count 4, file 32, crc 4 (over the 48 bytes before it), boot 2, fires 4
 // (covered by a second CRC), padding.
 void encode(const Progress& p, uint32_t seq, char* b) {
   memset(b, 0, kSlot);
   memcpy(b, kMagic, 4);
-  put32(seq, b + 4);
-  put32(p.done, b + 8);
-  put32(p.count, b + 12);
+  putLe32(seq, b + 4);
+  putLe32(p.done, b + 8);
+  putLe32(p.count, b + 12);
   strncpy(b + 16, p.file, kFileNameMax);
-  put32(uv::crc32Update(0, b, 48), b + 48);
-  put32(p.boot, b + 52);
-  put32(p.fires, b + 56);
-  put32(uv::crc32Update(0, b, 60), b + 60);
+  putLe32(uv::crc32Update(0, b, 48), b + 48);
+  putLe32(p.boot, b + 52);
+  putLe32(p.fires, b + 56);
+  putLe32(uv::crc32Update(0, b, 60), b + 60);
 }
 
 bool decode(const char* b, Progress& p, uint32_t& seq) {
-  if (memcmp(b, kMagic, 4) != 0 || get32(b + 48) != uv::crc32Update(0, b, 48)) return false;
-  if (get32(b + 60) != uv::crc32Update(0, b, 60)) return false;
-  seq = get32(b + 4);
-  p.boot = static_cast<uint16_t>(get32(b + 52));
-  p.fires = get32(b + 56);
-  p.done = get32(b + 8);
-  p.count = get32(b + 12);
+  if (memcmp(b, kMagic, 4) != 0 || getLe32(b + 48) != uv::crc32Update(0, b, 48)) return false;
+  if (getLe32(b + 60) != uv::crc32Update(0, b, 60)) return false;
+  seq = getLe32(b + 4);
+  p.boot = static_cast<uint16_t>(getLe32(b + 52));
+  p.fires = getLe32(b + 56);
+  p.done = getLe32(b + 8);
+  p.count = getLe32(b + 12);
   memcpy(p.file, b + 16, kFileNameMax);
   p.file[kFileNameMax] = 0;
   return p.done <= p.count && p.file[0];

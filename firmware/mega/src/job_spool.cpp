@@ -4,19 +4,9 @@
 #include <new>
 
 #include "error_codes.h"
+#include "le_bytes.h"
 
 namespace mega {
-
-namespace {
-void le16(uint16_t v, char* out) {
-  out[0] = static_cast<char>(v);
-  out[1] = static_cast<char>(v >> 8);
-}
-void le32(uint32_t v, char* out) {
-  le16(static_cast<uint16_t>(v), out);
-  le16(static_cast<uint16_t>(v >> 16), out + 2);
-}
-}  // namespace
 
 uint8_t JobSpool::begin(const char* name) {
   strncpy(name_, name, kFileNameMax);
@@ -99,13 +89,13 @@ bool JobSpool::writeIndex(uint16_t upTo) {
   char entry[8];
   while (indexed_ < upTo) {
     if (static_cast<int32_t>(indexed_) == row_ && started_) {
-      le32(rowOffset_, entry);
-      le16(first_, entry + 4);  // the first and last non-zero columns
-      le16(last_, entry + 6);
+      putLe32(rowOffset_, entry);
+      putLe16(first_, entry + 4);  // the first and last non-zero columns
+      putLe16(last_, entry + 6);
     } else {
-      le32(cellBytes_, entry);
-      le16(0xffff, entry + 4);  // empty: first after last
-      le16(0, entry + 6);
+      putLe32(cellBytes_, entry);
+      putLe16(0xffff, entry + 4);  // empty: first after last
+      putLe16(0, entry + 6);
     }
     if (!sd_.write(index_, entry, sizeof entry)) return false;
     indexed_++;

@@ -106,9 +106,13 @@ class Machine {
   Result jobCommand(HostLink& port, const uv::Command& c);
   Result uploadRecord(HostLink& port, const LineSlot& line);
   Result endUpload(HostLink& port);
+  // M28 and M23 need a card and no job under way; false, or the refusal said.
+  bool refuseCardJob(HostLink& port);
   Result select(HostLink& port, const uv::Command& c);
   Result startOrContinue(HostLink& port);
   Result resumeInterrupted(HostLink& port, const uv::Command& c);
+  // The planner's machine (planner.md "Time model") from the settings, starting at (x, y).
+  uv::Machine plannerMachine(int32_t x, int32_t y) const;
   uint8_t startPlanning(const uv::JobHeader& header);
   void planRefused(HostLink& port, uint8_t err);
   void runJob();
@@ -127,6 +131,8 @@ class Machine {
   ScreenState screenState() const;
   Result message(const uv::Command& c);
   // commands (machine_probe.cpp)
+  // G30 and G29 need every axis homed and the probe out; false, or the refusal said.
+  bool refuseProbing(HostLink& port);
   Result probeOnce(HostLink& port);
   Result level(HostLink& port, const uv::Command& c);
   Result meshCommand(HostLink& port, const uv::Command& c);

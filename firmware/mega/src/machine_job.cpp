@@ -117,14 +117,20 @@ Machine::Result Machine::uploadRecord(HostLink& port, const LineSlot& line) {
   return Result::Done;
 }
 
-uint8_t Machine::startPlanning(const uv::JobHeader& header) {
+uv::Machine Machine::plannerMachine(int32_t x, int32_t y) const {
   uv::Machine m{};
   m.vmaxUmS[0] = m.vmaxUmS[1] = static_cast<uint32_t>(config_.milli(Key::SpeedTravel));
   m.accelUmS2[0] = static_cast<uint32_t>(config_.milli(Key::AccelX));
   m.accelUmS2[1] = static_cast<uint32_t>(config_.milli(Key::AccelY));
   m.settleUs = static_cast<uint32_t>(config_.whole(Key::SettleMs)) * 1000;
   m.overheadUs = static_cast<uint32_t>(config_.whole(Key::StopOverheadUs));
-  m.startUm[0] = m.startUm[1] = 0;  // plans start from the origin: the same plan whenever it runs
+  m.startUm[0] = x;
+  m.startUm[1] = y;
+  return m;
+}
+
+uint8_t Machine::startPlanning(const uv::JobHeader& header) {
+  uv::Machine m = plannerMachine(0, 0);  // plans start from the origin: the same plan whenever it runs
   char name[kFileNameMax + 1];
   strcpy(name, selected_);
   clearArena();
@@ -164,15 +170,20 @@ Machine::Result Machine::endUpload(HostLink& port) {
   return Result::Long;
 }
 
-Machine::Result Machine::select(HostLink& port, const uv::Command& c) {
+bool Machine::refuseCardJob(HostLink& port) {
   if (!sd_.present()) {
     port.errorLine(uv::kNoSd);
-    return Result::Done;
+    return true;
   }
   if (jobActive()) {
     port.errorLine(uv::kBusy);
-    return Result::Done;
+    return true;
   }
+  return false;
+}
+
+Machine::Result Machine::select(HostLink& port, const uv::Command& c) {
+  if (refuseCardJob(port)) return Result::Done;
   char name[kFileNameMax + 1];
   memcpy(name, c.text, c.textLen);
   name[c.textLen] = 0;
@@ -304,16 +315,9 @@ Machine::Result Machine::startStream(HostLink& port) {
   }
   if (refuseExposure(port)) return Result::Done;
   clearArena();
-  uv::Machine m{};
-  m.vmaxUmS[0] = m.vmaxUmS[1] = static_cast<uint32_t>(config_.milli(Key::SpeedTravel));
-  m.accelUmS2[0] = static_cast<uint32_t>(config_.milli(Key::AccelX));
-  m.accelUmS2[1] = static_cast<uint32_t>(config_.milli(Key::AccelY));
-  m.settleUs = static_cast<uint32_t>(config_.whole(Key::SettleMs)) * 1000;
-  m.overheadUs = static_cast<uint32_t>(config_.whole(Key::StopOverheadUs));
   int32_t here[3];
   motion_.targetUm(here);
-  m.startUm[0] = here[0];
-  m.startUm[1] = here[1];
+  uv::Machine m = plannerMachine(here[0], here[1]);
   // The buffer is the card's sector cache (or its stand-in): no card command runs until the stream ends.
   StreamArena* a = reinterpret_cast<StreamArena*>(arenaMem_);
   new (&a->job) StreamJob(sd_.scratch(), kScratchBytes, m);
@@ -370,14 +374,7 @@ Machine::Result Machine::jobCommand(HostLink& port, const uv::Command& c) {
       long_.fileIndex = 0;
       return Result::Long;
     case 28: {
-      if (!sd_.present()) {
-        port.errorLine(uv::kNoSd);
-        return Result::Done;
-      }
-      if (jobActive()) {
-        port.errorLine(uv::kBusy);
-        return Result::Done;
-      }
+      if (refuseCardJob(port)) return Result::Done;
       memcpy(name, c.text, c.textLen);
       name[c.textLen] = 0;
       clearArena();

@@ -34,15 +34,20 @@ uint8_t Machine::formatPoint(char* out, int32_t x, int32_t y, int32_t z) const {
   return static_cast<uint8_t>(uv::formatReply(r, out, 112));
 }
 
-Machine::Result Machine::probeOnce(HostLink& port) {
+bool Machine::refuseProbing(HostLink& port) {
   if (!axisHomed(0) || !axisHomed(1) || !axisHomed(2)) {
     port.errorLineP(uv::kNotHomed, UV_P("home first (G28)"));
-    return Result::Done;
+    return true;
   }
   if (!deployed_) {
     port.errorLineP(uv::kProbeNoTrigger, UV_P("deploy the probe (M401)"));
-    return Result::Done;
+    return true;
   }
+  return false;
+}
+
+Machine::Result Machine::probeOnce(HostLink& port) {
+  if (refuseProbing(port)) return Result::Done;
   if (!motion_.idle()) return Result::Wait;
   probe_.start(now_);
   long_.op = Op::Probe;
@@ -71,14 +76,7 @@ Machine::Result Machine::level(HostLink& port, const uv::Command& c) {
     port.errorLine(uv::kBadParameter);
     return Result::Done;
   }
-  if (!axisHomed(0) || !axisHomed(1) || !axisHomed(2)) {
-    port.errorLineP(uv::kNotHomed, UV_P("home first (G28)"));
-    return Result::Done;
-  }
-  if (!deployed_) {
-    port.errorLineP(uv::kProbeNoTrigger, UV_P("deploy the probe (M401)"));
-    return Result::Done;
-  }
+  if (refuseProbing(port)) return Result::Done;
   if (jobActive()) {
     port.errorLine(uv::kBusy);
     return Result::Done;

@@ -5,73 +5,14 @@
 
 #include <algorithm>
 
-#include "grid_cells.h"
-#include "job_encoder.h"
+#include "job_fixture.h"
 #include "mega_rig.h"
-#include "planner.h"
 
 using namespace mega;
 
 namespace {
 
-using Lines = std::vector<std::string>;
-using Grid = std::vector<std::vector<uint8_t>>;
-
-struct Records : uv::RecordSink {
-  Lines lines;
-  void record(const char* text, uint8_t len) override { lines.emplace_back(text, len); }
-};
-
-uv::JobHeader header(uint16_t cols, uint16_t rows, uv::Strategy s) {
-  uv::JobHeader h{};
-  h.cols = cols;
-  h.rows = rows;
-  h.pitchUm[0] = h.pitchUm[1] = 100;
-  h.originUm[0] = 3000;
-  h.originUm[1] = 2000;
-  h.map = uv::DoseMap::Linear;
-  h.fullUs = 1500;
-  h.thermalRefDeciC = 250;
-  for (int k = 0; k < 4; k++) {
-    h.gainPermille[k] = 1000;
-    h.offsets[k][1] = static_cast<int16_t>(k);
-  }
-  h.strategy = s;
-  return h;
-}
-
-Grid pattern(uint16_t cols, uint16_t rows, uint32_t seed) {
-  Grid g(rows, std::vector<uint8_t>(cols, 0));
-  for (auto& r : g)
-    for (auto& v : r) {
-      seed = seed * 1103515245u + 12345u;
-      if ((seed >> 16) % 3 == 0) v = static_cast<uint8_t>(1 + (seed >> 8) % 255);
-    }
-  return g;
-}
-
-Lines encode(const uv::JobHeader& h, const Grid& g) {
-  Records out;
-  uv::JobEncoder enc(out);
-  enc.header(h);
-  for (uint16_t r = 0; r < h.rows; r++) enc.row(r, g[r].data(), h.cols);
-  enc.finish();
-  return out.lines;
-}
-
-std::vector<uv::Stop> plan(const uv::JobHeader& h, const Grid& g) {
-  uvtest::GridCells cells(g);
-  const uv::Machine m{{100000, 100000}, {2000000, 1500000}, 2000, 1500, {0, 0}};
-  uv::Planner p(h, cells, m);
-  std::vector<uv::Stop> out;
-  uv::Stop s;
-  while (p.next(s)) out.push_back(s);
-  return out;
-}
-
-bool has(const Lines& lines, const std::string& prefix) {
-  return std::any_of(lines.begin(), lines.end(), [&](const std::string& l) { return l.rfind(prefix, 0) == 0; });
-}
+using namespace jobs;
 
 class StreamTest : public ::testing::Test {
  protected:
@@ -170,6 +111,23 @@ TEST_F(StreamTest, AHostThatLeavesWithoutM29LeavesNothingBehind) {
   m.run(2000000);
   EXPECT_TRUE(has(payload("M114"), "X:5.000"));
   EXPECT_EQ(payload("M828"), Lines{"echo:Streaming: exposed as it arrives, no resume"});  // free for a new one
+}
+
+TEST_F(StreamTest, M112EndsAStreamAtOnce) {
+  uv::JobHeader h = header(30, 30, uv::Strategy::Raster);
+  Lines records = encode(h, pattern(30, 30, 12));
+  m.cmd("M828");
+  for (size_t i = 0; i < 40; i++) m.cmd(records[i]);
+  m.cmd("M112");
+  m.run(100000);
+  EXPECT_EQ(m.nano.lit(), 0);
+  size_t fired = m.nano.exposures.size();
+  EXPECT_EQ(payload(records[40]), (Lines{"Error:E10 unknown command: r"}));  // read as a command now, not a record
+  m.cmd("M999");
+  m.run(500000);
+  EXPECT_EQ(m.nano.exposures.size(), fired);
+  m.cmd("G28");
+  EXPECT_EQ(payload("M828"), Lines{"echo:Streaming: exposed as it arrives, no resume"});
 }
 
 TEST_F(StreamTest, NeedsHomingAndKeepsTheCardIdleWhileItsJobRuns) {

@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "crc32.h"
+#include "le_bytes.h"
 
 namespace mega {
 
@@ -11,9 +12,7 @@ namespace {
 // magic 2, nx, ny, x0 4, y0 4, dx 4, dy 4 = 20 bytes, then the points (int16 LE), then the CRC-32.
 constexpr uint8_t kMagic0 = 'M', kMagic1 = '1';
 
-void put32(int32_t v, uint8_t* out) {
-  for (uint8_t i = 0; i < 4; i++) out[i] = static_cast<uint8_t>(static_cast<uint32_t>(v) >> (8 * i));
-}
+void put32(int32_t v, uint8_t* out) { putLe32(static_cast<uint32_t>(v), reinterpret_cast<char*>(out)); }
 }  // namespace
 
 uint32_t MeshStore::crcOfStored(uint16_t bytes) {

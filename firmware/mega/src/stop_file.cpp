@@ -1,31 +1,24 @@
 // The planned stops of a job on the SD card: header and 20-byte stops, little-endian.
 #include "stop_file.h"
 
+#include "le_bytes.h"
+
 namespace mega {
 
 namespace {
 const char kMagic[4] = {'U', 'V', 'S', '1'};
-
-void put32(uint32_t v, char* out) {
-  for (uint8_t i = 0; i < 4; i++) out[i] = static_cast<char>(v >> (8 * i));
-}
-uint32_t get32(const char* in) {
-  uint32_t v = 0;
-  for (uint8_t i = 0; i < 4; i++) v |= static_cast<uint32_t>(static_cast<uint8_t>(in[i])) << (8 * i);
-  return v;
-}
 }  // namespace
 
 bool writeStopHeader(Storage& sd, FileHandle f, const StopFileHeader& h) {
   char b[kStopHeaderBytes] = {};
   for (uint8_t i = 0; i < 4; i++) b[i] = kMagic[i];
-  put32(h.count, b + 4);
-  put32(h.estimateS, b + 8);
-  put32(h.originUm[0], b + 12);
-  put32(h.originUm[1], b + 16);
-  put32(h.pitchUm[0], b + 20);
-  put32(h.pitchUm[1], b + 24);
-  put32(static_cast<uint32_t>(static_cast<uint16_t>(h.thermalCoeff)) | static_cast<uint32_t>(static_cast<uint16_t>(h.thermalRefDeciC)) << 16, b + 28);
+  putLe32(h.count, b + 4);
+  putLe32(h.estimateS, b + 8);
+  putLe32(h.originUm[0], b + 12);
+  putLe32(h.originUm[1], b + 16);
+  putLe32(h.pitchUm[0], b + 20);
+  putLe32(h.pitchUm[1], b + 24);
+  putLe32(static_cast<uint32_t>(static_cast<uint16_t>(h.thermalCoeff)) | static_cast<uint32_t>(static_cast<uint16_t>(h.thermalRefDeciC)) << 16, b + 28);
   return sd.seek(f, 0) && sd.write(f, b, sizeof b);
 }
 
@@ -34,13 +27,13 @@ bool readStopHeader(Storage& sd, FileHandle f, StopFileHeader& h) {
   if (!sd.seek(f, 0) || sd.read(f, b, sizeof b) != sizeof b) return false;
   for (uint8_t i = 0; i < 4; i++)
     if (b[i] != kMagic[i]) return false;
-  h.count = get32(b + 4);
-  h.estimateS = get32(b + 8);
-  h.originUm[0] = get32(b + 12);
-  h.originUm[1] = get32(b + 16);
-  h.pitchUm[0] = get32(b + 20);
-  h.pitchUm[1] = get32(b + 24);
-  uint32_t t = get32(b + 28);
+  h.count = getLe32(b + 4);
+  h.estimateS = getLe32(b + 8);
+  h.originUm[0] = getLe32(b + 12);
+  h.originUm[1] = getLe32(b + 16);
+  h.pitchUm[0] = getLe32(b + 20);
+  h.pitchUm[1] = getLe32(b + 24);
+  uint32_t t = getLe32(b + 28);
   h.thermalCoeff = static_cast<int16_t>(t & 0xffff);
   h.thermalRefDeciC = static_cast<int16_t>(t >> 16);
   return sd.size(f) == kStopHeaderBytes + static_cast<uint32_t>(kStopBytes) * h.count;
@@ -49,18 +42,18 @@ bool readStopHeader(Storage& sd, FileHandle f, StopFileHeader& h) {
 bool writeStop(Storage& sd, FileHandle f, const uv::Stop& s) {
   char b[kStopBytes];
   // The head position in cells, hx and hy as the two 16-bit halves of one word.
-  put32((static_cast<uint32_t>(static_cast<uint16_t>(s.hx))) | (static_cast<uint32_t>(static_cast<uint16_t>(s.hy)) << 16), b);
-  for (uint8_t i = 0; i < 4; i++) put32(s.us[i], b + 4 + 4 * i);
+  putLe32((static_cast<uint32_t>(static_cast<uint16_t>(s.hx))) | (static_cast<uint32_t>(static_cast<uint16_t>(s.hy)) << 16), b);
+  for (uint8_t i = 0; i < 4; i++) putLe32(s.us[i], b + 4 + 4 * i);
   return sd.write(f, b, sizeof b);
 }
 
 bool readStop(Storage& sd, FileHandle f, uint32_t i, uv::Stop& s) {
   char b[kStopBytes];
   if (!sd.seek(f, kStopHeaderBytes + static_cast<uint32_t>(kStopBytes) * i) || sd.read(f, b, sizeof b) != sizeof b) return false;
-  uint32_t xy = get32(b);
+  uint32_t xy = getLe32(b);
   s.hx = static_cast<int16_t>(xy & 0xffff);
   s.hy = static_cast<int16_t>(xy >> 16);
-  for (uint8_t k = 0; k < 4; k++) s.us[k] = get32(b + 4 + 4 * k);
+  for (uint8_t k = 0; k < 4; k++) s.us[k] = getLe32(b + 4 + 4 * k);
   return true;
 }
 
