@@ -1,0 +1,93 @@
+// The ESP's side of protocol/mega.md: numbered lines with both checks, sent through the Mega's
+// receive window, each answered line matched by its `ok N`, with resend and time-out recovery.
+// Console lines from the WebSocket and an upload's records share it; each carries a tag, so its
+// answer goes back to whoever sent it. Plain C++: the UART sits behind MegaWire.
+#pragma once
+#include <stdint.h>
+
+#include "dialect_frame.h"
+#include "dialect_reply.h"
+#include "line_splitter.h"
+
+namespace uv {
+namespace esp {
+
+// The UART to the Mega. write() takes all n bytes or none: the bridge never waits for the wire.
+class MegaWire {
+ public:
+  virtual bool write(const char* data, uint16_t n) = 0;
+};
+
+constexpr uint16_t kRestartDropped = 0xffff;  // answered(): the line was dropped by a restart
+
+class MegaListener {
+ public:
+  // Every line the Mega sends, as it arrives (the console's view).
+  virtual void line(const char* text, uint8_t len) = 0;
+  // The line queued with `tag` has been answered. `error` is the code of an Error: line in its
+  // reply block (0 for none); line-level errors (1-6) never count, they belong to the link.
+  virtual void answered(uint16_t tag, uint16_t error) = 0;
+};
+
+struct SenderHealth {
+  uint32_t linesSent, resends, timeouts;
+  uint32_t rttMs;  // smoothed first-send-to-acceptance time
+};
+
+class MegaSender {
+ public:
+  static constexpr uint8_t kQueue = 12;       // lines numbered and waiting or out
+  static constexpr uint32_t kReplyTimeoutMs = 3000;  // over the Mega's 2 s busy: keep-alive
+
+  MegaSender(MegaWire& wire, MegaListener& listener) : wire_(wire), listener_(listener), splitter_(rx_, sizeof rx_ - 1) {}
+
+  // Queues one dialect line body (no N, no checksum). False when the queue is full or the line
+  // would be too long: try again after an answer.
+  bool send(const char* body, uint16_t tag);
+  uint8_t free() const { return static_cast<uint8_t>(kQueue - count_); }
+  bool idle() const { return count_ == 0; }
+  // Bytes from the Mega.
+  void received(char c, uint32_t nowMs);
+  // Sends what the window allows and recovers from silence; call every loop pass.
+  void poll(uint32_t nowMs);
+  // After the Mega (re)started: its line counter is 0 again, so `M110 N0` goes first and the
+  // queued lines are numbered anew. The newest queued line is dropped if the queue is full.
+  void restart();
+
+  uint8_t window() const { return window_; }
+  const SenderHealth& health() const { return health_; }
+
+ private:
+  struct Item {
+    uint32_t n;
+    uint16_t tag;
+    bool numbered;
+    bool sent;
+    uint32_t firstMs;
+    uint8_t len;
+    char body[kDialectMaxLine];
+  };
+  Item& at(uint8_t i) { return items_[(head_ + i) % kQueue]; }
+  void endBlock(const Reply& ok, uint32_t nowMs);
+  void rewindTo(uint32_t n);
+  uint32_t timeoutMs() const;
+
+  MegaWire& wire_;
+  MegaListener& listener_;
+  char rx_[kDialectMaxLine + 40];
+  LineSplitter splitter_;
+  Item items_[kQueue];
+  uint8_t head_ = 0, count_ = 0;
+  uint8_t inflight_ = 0;
+  uint8_t window_ = 1;          // until M115 says Cap:RX_WINDOW
+  uint32_t next_ = 1;
+  int64_t lastAccepted_ = 0;
+  uint16_t blockError_ = 0;
+  bool busySinceOk_ = false;
+  uint32_t lastReplyMs_ = 0;
+  uint32_t nowMs_ = 0;
+  SenderHealth health_ = {};
+};
+
+}  // namespace esp
+}  // namespace uv

@@ -1,0 +1,145 @@
+// The ESP's sender against the Mega's own command core (the whole simulated Mega of the Mega's
+// host tests) on its ESP port: uploads arrive bit-exact through a noisy wire, answers go back to
+// whoever asked, and a restarted Mega is picked up again.
+#include "mega_sender.h"
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <random>
+#include <string>
+
+#include "job_fixture.h"
+#include "mega_rig.h"
+
+using namespace uv::esp;
+
+namespace {
+
+struct Bench : MegaWire, MegaListener {
+  mega::MegaRig mega;
+  MegaSender sender{*this, *this};
+  std::mt19937 rng{1};
+  double corrupt = 0, drop = 0;  // per byte, each way
+  std::map<uint16_t, uint16_t> answers;  // tag -> error
+  std::vector<std::string> lines;
+  size_t fed = 0;
+
+  bool write(const char* data, uint16_t n) override {
+    for (uint16_t i = 0; i < n; i++) mega.esp.toMega += noisy(data[i]);
+    return true;
+  }
+  void line(const char* text, uint8_t len) override { lines.emplace_back(text, len); }
+  void answered(uint16_t tag, uint16_t error) override { answers[tag] = error; }
+
+  std::string noisy(char c) {
+    std::uniform_real_distribution<double> u(0, 1);
+    if (u(rng) < drop) return "";
+    if (u(rng) < corrupt) return std::string(1, static_cast<char>(c ^ (1 << (rng() % 8))));
+    return std::string(1, c);
+  }
+  // Runs both sides for `us`; the ESP's loop every millisecond.
+  void run(uint64_t us) {
+    for (uint64_t t = 0; t < us; t += 1000) {
+      mega.run(1000);
+      for (; fed < mega.espLines.size(); fed++)
+        for (char c : mega.espLines[fed] + "\n")
+          for (char d : noisy(c)) sender.received(d, static_cast<uint32_t>(mega.nowUs / 1000));
+      sender.poll(static_cast<uint32_t>(mega.nowUs / 1000));
+    }
+  }
+  bool runUntil(const std::function<bool()>& done, uint64_t maxUs = 300000000) {
+    for (uint64_t t = 0; t < maxUs; t += 10000) {
+      if (done()) return true;
+      run(10000);
+    }
+    return done();
+  }
+  // Queues lines as the queue frees, tagging each; returns when all are answered.
+  bool sendAll(const std::vector<std::string>& bodies, uint16_t firstTag) {
+    size_t next = 0;
+    uint16_t tag = firstTag;
+    return runUntil([&] {
+      while (next < bodies.size() && sender.send(bodies[next].c_str(), tag)) {
+        next++;
+        tag++;
+      }
+      return next == bodies.size() && answers.count(static_cast<uint16_t>(tag - 1));
+    });
+  }
+};
+
+}  // namespace
+
+TEST(MegaSender, UploadsAJobThroughTheWindowIntoTheMegasCardBitExact) {
+  Bench b;
+  b.mega.begin();
+  ASSERT_TRUE(b.sendAll({"M115"}, 1));
+  EXPECT_EQ(b.sender.window(), 4);  // learned from Cap:RX_WINDOW
+  mega::jobs::Lines records = mega::jobs::encode(mega::jobs::header(20, 10, uv::Strategy::Raster), mega::jobs::pattern(20, 10, 3));
+  std::vector<std::string> upload = {"M28 ESP.UVJ"};
+  upload.insert(upload.end(), records.begin(), records.end());
+  upload.push_back("M29");
+  ASSERT_TRUE(b.sendAll(upload, 100));
+  std::string text;
+  for (const std::string& r : records) text += r + "\n";
+  EXPECT_EQ(b.mega.sd.contents("ESP.UVJ"), text);
+  EXPECT_EQ(b.answers[static_cast<uint16_t>(100 + upload.size() - 1)], 0);  // M29 verified
+  EXPECT_TRUE(std::find(b.lines.begin(), b.lines.end(), "echo:Done saving file.") != b.lines.end());
+}
+
+TEST(MegaSender, ANoisyWireStillDeliversEveryLineOnceAndInOrder) {
+  uint32_t resends = 0, timeouts = 0;
+  for (uint32_t seed = 1; seed <= 8; seed++) {
+    Bench b;
+    b.rng.seed(seed);
+    b.mega.begin();
+    b.corrupt = 0.01;
+    b.drop = 0.003;
+    ASSERT_TRUE(b.sendAll({"M115"}, 1)) << "seed " << seed;
+    mega::jobs::Lines records = mega::jobs::encode(mega::jobs::header(24, 16, uv::Strategy::Shortest), mega::jobs::pattern(24, 16, seed));
+    std::vector<std::string> upload = {"M28 NOISY.UVJ"};
+    upload.insert(upload.end(), records.begin(), records.end());
+    upload.push_back("M29");
+    ASSERT_TRUE(b.sendAll(upload, 100)) << "seed " << seed;
+    std::string text;
+    for (const std::string& r : records) text += r + "\n";
+    EXPECT_EQ(b.mega.sd.contents("NOISY.UVJ"), text) << "seed " << seed;
+    resends += b.sender.health().resends;
+    timeouts += b.sender.health().timeouts;
+  }
+  std::printf("[esp sender] 8 uploads through 1 %% corruption and 0.3 %% drops each way, all bit-exact: %u resends, %u time-outs\n",
+              resends, timeouts);
+  EXPECT_GT(resends, 0u);
+}
+
+TEST(MegaSender, EachAnswerGoesToItsSenderWithItsError) {
+  Bench b;
+  b.mega.begin();
+  ASSERT_TRUE(b.sendAll({"M115", "G1 X10", "M114", "M9999"}, 1));
+  EXPECT_EQ(b.answers[1], 0);
+  EXPECT_EQ(b.answers[2], 14);  // not homed
+  EXPECT_EQ(b.answers[3], 0);
+  EXPECT_EQ(b.answers[4], 10);  // unknown command
+}
+
+TEST(MegaSender, ALongCommandIsWaitedForNotResent) {
+  Bench b;
+  b.mega.rig.switchAt[0] = -80 * 150;  // homing X takes a few seconds
+  b.mega.begin();
+  ASSERT_TRUE(b.sendAll({"M115", "G28 X"}, 1));
+  EXPECT_EQ(b.answers[2], 0);
+  EXPECT_EQ(b.sender.health().timeouts, 0u);
+}
+
+TEST(MegaSender, AMegaThatRestartsIsNumberedFromZeroAgain) {
+  Bench b;
+  b.mega.begin();
+  ASSERT_TRUE(b.sendAll({"M115", "M114", "M114"}, 1));
+  b.mega.reset(200000);
+  b.fed = b.mega.espLines.size() - 1;  // its "start"
+  b.run(10000);
+  b.sender.restart();
+  ASSERT_TRUE(b.sendAll({"M115", "M105"}, 10));
+  EXPECT_EQ(b.answers[10], 0);
+}
