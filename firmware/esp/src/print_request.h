@@ -17,6 +17,12 @@ namespace esp {
 constexpr uint32_t kMaxBody = 1200000;
 constexpr uint32_t kMaxCells = 262144;
 
+// Where the rows walker (grid_rows.h) found gridData: the header parse leaves it out.
+struct GridDataShape {
+  bool present = false;
+  bool isArray = false;
+};
+
 struct RequestError {
   uint16_t status;   // 0 = fine
   const char* code;  // "bad_json", "bad_job", "too_large"
@@ -116,15 +122,18 @@ bool xy(const J& parent, const char* key, int64_t lo, int64_t hi, uint32_t* out,
 
 }  // namespace detail
 
-// Everything but gridData, in the order protocol/esp.md's validator uses (the vectors depend on it).
+// Everything but gridData's rows, in the order protocol/esp.md's validator uses (the vectors depend
+// on it). `root` may lack gridData (the ESP filters it out of the parse); `grid` says how the rows
+// walker found it. Its row count and rows are checked by grid_rows.h as they stream.
 template <class J>
-bool validateHeader(const J& root, JobHeader& h, RequestError& e) {
+bool validateHeader(const J& root, GridDataShape grid, JobHeader& h, RequestError& e) {
   using namespace detail;
   static const char* const rootKeys[] = {"name", "grid", "pitchUm", "originUm", "dose", "leds", "thermal", "strategy", "gridData"};
-  static const char* const rootRequired[] = {"grid", "pitchUm", "originUm", "dose", "leds", "strategy", "gridData"};
+  static const char* const rootRequired[] = {"grid", "pitchUm", "originUm", "dose", "leds", "strategy"};
   e = {0, "", "", ""};
   h = JobHeader{};
-  if (!object(root, "", rootKeys, 9, rootRequired, 7, e)) return false;
+  if (!object(root, "", rootKeys, 9, rootRequired, 6, e)) return false;
+  if (!grid.present) return fail(e, "/gridData", "missing");
   if (root.has("name")) {
     const J n = root.member("name");
     bool ok = n.isString() && strlen(n.string()) >= 1 && strlen(n.string()) <= 31;
@@ -212,23 +221,7 @@ bool validateHeader(const J& root, JobHeader& h, RequestError& e) {
   h.seed = 0;
   if (s.has("seed") && !field(s, "/strategy", "seed", 0, 4294967295LL, h.seed, e)) return false;
 
-  const J data = root.member("gridData");
-  return array(data, "/gridData", h.rows, h.rows, e);
-}
-
-// One row of gridData into cells[cols]; call for rows 0..rows-1 in order.
-template <class J>
-bool validateRow(const J& row, uint16_t index, const JobHeader& h, uint8_t* cells, RequestError& e) {
-  char p[48];
-  detail::join(p, sizeof p, "/gridData", static_cast<unsigned long>(index));
-  if (!detail::array(row, p, h.cols, h.cols, e)) return false;
-  for (uint16_t c = 0; c < h.cols; c++) {
-    char q[48];
-    int64_t v = 0;
-    detail::join(q, sizeof q, p, static_cast<unsigned long>(c));
-    if (!detail::integer(row.element(c), q, 0, 255, v, e)) return false;
-    cells[c] = static_cast<uint8_t>(v);
-  }
+  if (!grid.isArray) return fail(e, "/gridData", "array of the wrong size");
   return true;
 }
 
