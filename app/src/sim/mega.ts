@@ -108,7 +108,7 @@ export class MegaModel {
     while (!this.#busy && this.#queue.length) {
       const { body, n } = this.#queue[0];
       this.#busy = true;
-      this.#run(body, () => {
+      this.#run(body, n, () => {
         this.#queue.shift();
         this.#receiver.markAnswered(n);
         this.line(this.#receiver.ok(n)); // names the line it answers, never a merely queued one
@@ -117,8 +117,15 @@ export class MegaModel {
     }
   }
 
-  #run(body: string, done: () => void): void {
-    if (this.#upload && !/^M29\b/i.test(body)) return this.#uploadRecord(body, done);
+  #run(body: string, n: number | undefined, done: () => void): void {
+    // Records never start with G or M and a digit, so commands still run between an upload's
+    // records. A plain line there is not a record: on a noisy wire it is most likely the tail of a
+    // numbered line that a damaged byte split (mega.md §5 M28).
+    const command = /^[GM]\d/i.test(body);
+    if ((this.#upload || this.#stream) && n === undefined && !command) {
+      return this.#error(4, done, 'a job record needs a line number');
+    }
+    if (this.#upload && !command) return this.#uploadRecord(body, done);
     // A stream that has ended (aborted, failed) reads the rest of its records and drops them; a command
     // (records never start with G or M and a digit) shows its host has moved on, so the stream is over.
     if (this.#stream && !this.#stream.live && /^[GM]\d/i.test(body) && !/^M29\b/i.test(body)) this.#stream = null;

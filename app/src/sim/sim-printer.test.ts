@@ -125,6 +125,25 @@ describe('simulated printer: jobs', () => {
     expect(h.cmd('M20')).toEqual(['Begin file list', `A.UVJ ${text.length}`, 'End file list', expect.stringMatching(/^ok/)]);
   });
 
+  it('runs commands between an upload\'s records and refuses a plain line as a record', () => {
+    const h = new SimHost();
+    const text = encodeJob(smallJob(5));
+    const records = text.trimEnd().split('\n');
+    h.cmd('M28 C.UVJ');
+    records.forEach((r, i) => {
+      if (i === 3) {
+        expect(h.cmd('M105')[0]).toMatch(/^T:/); // a console line between records runs
+        const from = h.lines.length;
+        h.sim.receive('2#3932\n'); // the tail of a line split by a damaged byte
+        h.sim.advance(5);
+        expect(h.lines.slice(from).find((l) => l.startsWith('Error:E4'))).toContain('a job record needs a line number');
+      }
+      h.cmd(r);
+    });
+    expect(h.cmd('M29')).toContain('echo:Done saving file.');
+    expect(h.sim.sd.files.get('C.UVJ')).toBe(text);
+  });
+
   it('runs a job in exactly the planner\'s estimated time, each stop once', () => {
     const h = new SimHost();
     h.cmd('G28');

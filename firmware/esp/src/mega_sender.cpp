@@ -57,6 +57,21 @@ void MegaSender::restart() {
   memcpy(m.body, "M110 N0", 8);
 }
 
+uint8_t MegaSender::withdraw(uint16_t lo, uint16_t hi) {
+  uint8_t kept = 0, taken = 0;
+  for (uint8_t i = 0; i < count_; i++) {
+    Item& it = at(i);
+    if (!it.numbered && it.tag >= lo && it.tag <= hi) {
+      taken++;
+      continue;
+    }
+    if (kept != i) at(kept) = it;
+    kept++;
+  }
+  count_ = kept;
+  return taken;
+}
+
 void MegaSender::rewindTo(uint32_t n) {
   for (uint8_t i = 0; i < count_; i++)
     if (at(i).sent && at(i).n >= n) at(i).sent = false;

@@ -53,6 +53,9 @@ class MegaSender {
   // After the Mega (re)started: its line counter is 0 again, so `M110 N0` goes first and the
   // queued lines are numbered anew. The newest queued line is dropped if the queue is full.
   void restart();
+  // Takes back the lines with tags in [lo, hi] that were never sent (numbered lines must go, or the
+  // Mega would wait for a missing number). Returns how many were taken back.
+  uint8_t withdraw(uint16_t lo, uint16_t hi);
 
   uint8_t window() const { return window_; }
   const SenderHealth& health() const { return health_; }

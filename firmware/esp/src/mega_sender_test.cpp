@@ -10,43 +10,23 @@
 #include <string>
 
 #include "job_fixture.h"
-#include "mega_rig.h"
+#include "noisy_mega.h"
 
 using namespace uv::esp;
 
 namespace {
 
-struct Bench : MegaWire, MegaListener {
-  mega::MegaRig mega;
+struct Bench : esptest::NoisyMega, MegaListener {
   MegaSender sender{*this, *this};
-  std::mt19937 rng{1};
-  double corrupt = 0, drop = 0;  // per byte, each way
   std::map<uint16_t, uint16_t> answers;  // tag -> error
   std::vector<std::string> lines;
-  size_t fed = 0;
 
-  bool write(const char* data, uint16_t n) override {
-    for (uint16_t i = 0; i < n; i++) mega.esp.toMega += noisy(data[i]);
-    return true;
-  }
   void line(const char* text, uint8_t len) override { lines.emplace_back(text, len); }
   void answered(uint16_t tag, uint16_t error) override { answers[tag] = error; }
 
-  std::string noisy(char c) {
-    std::uniform_real_distribution<double> u(0, 1);
-    if (u(rng) < drop) return "";
-    if (u(rng) < corrupt) return std::string(1, static_cast<char>(c ^ (1 << (rng() % 8))));
-    return std::string(1, c);
-  }
-  // Runs both sides for `us`; the ESP's loop every millisecond.
   void run(uint64_t us) {
-    for (uint64_t t = 0; t < us; t += 1000) {
-      mega.run(1000);
-      for (; fed < mega.espLines.size(); fed++)
-        for (char c : mega.espLines[fed] + "\n")
-          for (char d : noisy(c)) sender.received(d, static_cast<uint32_t>(mega.nowUs / 1000));
-      sender.poll(static_cast<uint32_t>(mega.nowUs / 1000));
-    }
+    NoisyMega::run(
+        us, [&](char c, uint32_t ms) { sender.received(c, ms); }, [&](uint32_t ms) { sender.poll(ms); });
   }
   bool runUntil(const std::function<bool()>& done, uint64_t maxUs = 300000000) {
     for (uint64_t t = 0; t < maxUs; t += 10000) {
@@ -136,8 +116,7 @@ TEST(MegaSender, AMegaThatRestartsIsNumberedFromZeroAgain) {
   Bench b;
   b.mega.begin();
   ASSERT_TRUE(b.sendAll({"M115", "M114", "M114"}, 1));
-  b.mega.reset(200000);
-  b.fed = b.mega.espLines.size() - 1;  // its "start"
+  b.restart();
   b.run(10000);
   b.sender.restart();
   ASSERT_TRUE(b.sendAll({"M115", "M105"}, 10));

@@ -17,6 +17,11 @@ bool isEndOrStop(const LineSlot& l) {
          ((l.text[1] == '2' && l.text[2] == '9' && (l.len == 3 || l.text[3] == ' ')) || isEmergencyStop(l.text, l.len));
 }
 
+// A G or M and a digit: a command word, which no job record starts with.
+bool isCommandLine(const LineSlot& l) {
+  return l.len >= 2 && (l.text[0] == 'G' || l.text[0] == 'M' || l.text[0] == 'g' || l.text[0] == 'm') && l.text[1] >= '0' && l.text[1] <= '9';
+}
+
 // Obeyed between a stream's records, so a running stream can be watched, paused and aborted.
 bool isStreamCommand(const LineSlot& l) {
   uv::Command c;
@@ -121,15 +126,21 @@ void Machine::poll(uint32_t nowUs) {
 }
 
 Machine::Result Machine::execute(HostLink& port, const LineSlot& line) {
-  // During an upload every line but M29 and M112 is a job record (job records never start with a
-  // G or M and a digit, so M29 is told apart by its word).
-  if (arena_ == Arena::Spool && !preparing_ && !isEndOrStop(line)) return uploadRecord(port, line);
-  if (arena_ == Arena::Stream && streaming_ && !isEndOrStop(line) && !isStreamCommand(line)) {
-    // Once the stream's job has ended, a line that starts with G or M and a digit (no record does)
-    // shows its host has moved on: the stream is over and the line is obeyed.
-    bool command = line.len >= 2 && (line.text[0] == 'G' || line.text[0] == 'M' || line.text[0] == 'g' || line.text[0] == 'm') &&
-                   line.text[1] >= '0' && line.text[1] <= '9';
-    if (command && !runLive()) streaming_ = false;
+  // An upload's or a stream's records come from the port that began it; the other port's lines run
+  // as usual. A plain line there is not a record: on a noisy wire it is most likely the tail of a
+  // numbered line that a damaged byte split, and every host numbers its records (mega.md §5).
+  bool jobPort = &port == jobPort_;
+  if (jobPort && line.n < 0 && !isCommandLine(line) &&
+      ((arena_ == Arena::Spool && !preparing_) || (arena_ == Arena::Stream && streaming_))) {
+    port.errorLineP(uv::kNoLineNumber, UV_P("a job record needs a line number"));
+    return Result::Done;
+  }
+  // During an upload, its port's commands run too: records never start with a G or M and a digit.
+  if (arena_ == Arena::Spool && !preparing_ && jobPort && !isCommandLine(line)) return uploadRecord(port, line);
+  if (arena_ == Arena::Stream && streaming_ && jobPort && !isEndOrStop(line) && !isStreamCommand(line)) {
+    // Once the stream's job has ended, a command shows its host has moved on: the stream is over
+    // and the line is obeyed.
+    if (isCommandLine(line) && !runLive()) streaming_ = false;
     else return streamLine(port, line);
   }
   uv::Command c;

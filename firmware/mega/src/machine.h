@@ -211,6 +211,7 @@ class Machine {
   static constexpr uint16_t kArenaBytes = larger(larger(sizeof(JobSpool), sizeof(JobPlan)), larger(sizeof(JobRunner), sizeof(StreamArena)));
   alignas(4) uint8_t arenaMem_[kArenaBytes];
   Arena arena_ = Arena::Empty;
+  const HostLink* jobPort_ = nullptr;  // the port whose records an upload or a stream takes
   uv::JobState jobState_ = uv::JobState::Idle;  // when no run is live
   char selected_[kFileNameMax + 1] = {};
   bool preparing_ = false;  // the spool builds a PC-copied job's working files (M23)

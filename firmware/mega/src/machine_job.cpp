@@ -323,6 +323,7 @@ Machine::Result Machine::startStream(HostLink& port) {
   new (&a->job) StreamJob(sd_.scratch(), kScratchBytes, m);
   new (&a->runner) JobRunner(sd_, motion_, head_, config_, leveling_ ? &mesh_ : nullptr);
   arena_ = Arena::Stream;
+  jobPort_ = &port;
   streaming_ = true;
   streamWaiting_ = false;
   port.lineP(UV_P("echo:Streaming: exposed as it arrives, no resume"));
@@ -381,6 +382,7 @@ Machine::Result Machine::jobCommand(HostLink& port, const uv::Command& c) {
       selected_[0] = 0;
       JobSpool* s = new (arenaMem_) JobSpool(sd_);
       arena_ = Arena::Spool;
+      jobPort_ = &port;
       if (s->begin(name)) {
         clearArena();
         port.errorLine(uv::kFileError, name);

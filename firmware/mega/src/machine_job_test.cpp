@@ -408,3 +408,49 @@ TEST_F(JobTest, APowerCutResumesAndNamesTheStopThatMayHaveBeenCut) {
   }
   expectExposed(h, stops);
 }
+
+TEST_F(JobTest, AnUploadTakesRecordsOnlyFromItsPortAndCommandsStillRunBetweenThem) {
+  // The ESP uploads while the USB host polls, and the ESP's own console asks between records.
+  uv::JobHeader h = header(12, 8, uv::Strategy::Raster);
+  Grid g = pattern(12, 8, 4);
+  Lines records = encode(h, g);
+  Lines got = m.cmd("M28 SHARED.UVJ", true);
+  EXPECT_TRUE(has(got, "echo:Writing to file: SHARED.UVJ"));
+  for (size_t i = 0; i < records.size(); i++) {
+    Lines b = m.cmd(records[i], true);
+    got.insert(got.end(), b.begin(), b.end());
+    if (i % 5 == 0) {
+      EXPECT_TRUE(has(m.cmd("M105"), "T:"));                      // the other port
+      EXPECT_TRUE(has(m.cmd("M114", true), "X:"));                // a command on the upload's own port
+      EXPECT_TRUE(has(m.cmd("M28 OTHER.UVJ"), "Error:E12"));      // one upload at a time
+    }
+  }
+  Lines end = m.cmd("M29", true);
+  EXPECT_TRUE(has(end, "echo:Done saving file.")) << end.back();
+  EXPECT_FALSE(has(got, "Error:"));
+  std::string text;
+  for (const std::string& r : records) text += r + "\n";
+  EXPECT_EQ(m.sd.contents("SHARED.UVJ"), text);
+  EXPECT_FALSE(m.sd.exists("OTHER.UVJ"));
+}
+
+TEST_F(JobTest, APlainLineDuringAnUploadIsRefusedNotRecorded) {
+  // A damaged byte that becomes '\n' splits a numbered record; its tail arrives as a plain line.
+  uv::JobHeader h = header(8, 4, uv::Strategy::Raster);
+  Lines records = encode(h, pattern(8, 4, 3));
+  m.cmd("M28 SPLIT.UVJ");
+  for (size_t i = 0; i < records.size(); i++) {
+    if (i == 4) {
+      m.usb.toMega += "2#3932\n";
+      m.run(20000);
+      EXPECT_TRUE(std::find(m.usbLines.begin(), m.usbLines.end(), "Error:E4 checksum without line number: a job record needs a line number") !=
+                  m.usbLines.end())
+          << m.usbLines[m.usbLines.size() - 2];
+    }
+    m.cmd(records[i]);
+  }
+  EXPECT_TRUE(has(m.cmd("M29"), "echo:Done saving file."));
+  std::string text;
+  for (const std::string& r : records) text += r + "\n";
+  EXPECT_EQ(m.sd.contents("SPLIT.UVJ"), text);
+}
