@@ -64,7 +64,7 @@ void JobUpload::poll() {
   }
   if (phase_ != Phase::Records) return;
   bool stopping = cancelled_ || recordError_;
-  while (!stopping && !textDone_ && sender_.free() > 0) {
+  while (!stopping && !textDone_ && sender_.free() > reserve_) {
     if (lineLen_ < 0) {
       lineLen_ = text_->next(line_, sizeof line_);
       if (lineLen_ < 0) {
@@ -73,7 +73,10 @@ void JobUpload::poll() {
         break;
       }
     }
-    if (!queue(line_, kRecord)) break;
+    if (!queue(line_, kRecord)) {
+      if (sender_.free() > 0) recordError_ = kTooLong;  // room, yet refused: the record can't be framed
+      break;
+    }
     lens_[(lensHead_ + lensCount_) % MegaSender::kQueue] = static_cast<uint8_t>(lineLen_);
     lensCount_++;
     progress_.bytesSent += static_cast<uint32_t>(lineLen_) + 1;
@@ -128,6 +131,7 @@ void JobUpload::answered(uint16_t tag, uint16_t error) {
         return;
       }
       if (recordError_ == kReadError) return fail(0, "the spooled job could not be read");
+      if (recordError_ == kTooLong) return fail(0, "a job record is too long for the link");
       if (recordError_ || error) return retryOrFail(recordError_ ? recordError_ : error, "the Mega's check of the job failed");
       progress_.bytesVerified = progress_.bytesTotal;
       phase_ = Phase::Select;

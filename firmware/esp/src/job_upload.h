@@ -35,9 +35,11 @@ class JobUpload {
  public:
   static constexpr uint16_t kTagFirst = 0xff00;  // the sender's tags this upload uses
   static constexpr uint16_t kTagLast = 0xff0f;
+  static constexpr uint16_t kRecordTag = kTagFirst + 1;  // every job record; the rest are commands
   static constexpr uint8_t kAttempts = 3;
 
-  explicit JobUpload(MegaSender& sender) : sender_(sender) {}
+  // The upload leaves `reserve` of the sender's slots to others (the console).
+  explicit JobUpload(MegaSender& sender, uint8_t reserve = 0) : sender_(sender), reserve_(reserve) {}
 
   // Begins uploading `text` (bytesTotal bytes, '\n' included) as JOB<id>.UVJ.
   void start(uint32_t id, JobText& text, uint32_t bytesTotal);
@@ -58,9 +60,10 @@ class JobUpload {
 
  private:
   enum class Phase : uint8_t { Idle, Open, Records, Close, Select, Start, Cleanup, Done };
-  enum Tag : uint16_t { kOpen = kTagFirst, kRecord, kClose, kSelect, kStart, kCleanup };
+  enum Tag : uint16_t { kOpen = kTagFirst, kRecord = kRecordTag, kClose, kSelect, kStart, kCleanup };
 
   static constexpr uint16_t kReadError = 0xfffe;  // recordError_: the spool, not the Mega
+  static constexpr uint16_t kTooLong = 0xfffd;    // recordError_: a record the link can't frame
 
   void begin();
   bool queue(const char* body, uint16_t tag);
@@ -72,6 +75,7 @@ class JobUpload {
   void fileCommand(const char* verb, char* out);
 
   MegaSender& sender_;
+  uint8_t reserve_;
   JobText* text_ = nullptr;
   UploadProgress progress_{};
   Phase phase_ = Phase::Idle;

@@ -59,7 +59,7 @@ struct Bench : esptest::NoisyMega, MegaListener {
   uint32_t lastChange = 0;
 
   void line(const char*, uint8_t) override {}
-  void answered(uint16_t tag, uint16_t error) override {
+  void answered(uint16_t tag, uint16_t error, bool) override {
     if (JobUpload::owns(tag)) upload.answered(tag, error);
     else answers[tag] = error;
   }

@@ -28,6 +28,7 @@ bool MegaSender::send(const char* body, uint16_t tag) {
   it.tag = tag;
   it.sent = false;
   it.firstMs = 0;
+  it.announced = false;
   it.len = static_cast<uint8_t>(len);
   memcpy(it.body, body, len);
   it.body[len] = 0;
@@ -44,10 +45,11 @@ void MegaSender::restart() {
   for (uint8_t i = 0; i < count_; i++) {
     at(i).sent = false;
     at(i).numbered = false;
+    at(i).announced = false;
   }
   if (count_ == kQueue) {  // no room: the newest line is answered as failed
     count_--;
-    listener_.answered(items_[(head_ + count_) % kQueue].tag, kRestartDropped);
+    listener_.answered(items_[(head_ + count_) % kQueue].tag, kRestartDropped, false);
   }
   head_ = static_cast<uint8_t>((head_ + kQueue - 1) % kQueue);
   count_++;
@@ -98,7 +100,7 @@ void MegaSender::endBlock(const Reply& ok, uint32_t nowMs) {
     uint16_t tag = it.tag;
     head_ = static_cast<uint8_t>((head_ + 1) % kQueue);
     count_--;
-    listener_.answered(tag, ran ? error : 0);
+    listener_.answered(tag, ran ? error : 0, ran);
   }
   lastAccepted_ = ok.n;
 }
@@ -166,6 +168,10 @@ void MegaSender::poll(uint32_t nowMs) {
     frame[n++] = '\n';
     if (!wire_.write(frame, static_cast<uint16_t>(n))) break;  // the UART is full: next pass
     if (!it->firstMs) it->firstMs = nowMs;
+    if (!it->announced) {
+      it->announced = true;
+      listener_.sent(it->body, it->len, it->tag);
+    }
     if (!waiting) lastReplyMs_ = nowMs;
     waiting = true;
     it->sent = true;

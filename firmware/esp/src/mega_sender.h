@@ -26,7 +26,13 @@ class MegaListener {
   virtual void line(const char* text, uint8_t len) = 0;
   // The line queued with `tag` has been answered. `error` is the code of an Error: line in its
   // reply block (0 for none); line-level errors (1-6) never count, they belong to the link.
-  virtual void answered(uint16_t tag, uint16_t error) = 0;
+  // `ownBlock`: the lines since the previous ok were this line's reply block. It is false for a
+  // line whose own ok was damaged on the wire, confirmed by a later ok.
+  virtual void answered(uint16_t tag, uint16_t error, bool ownBlock) = 0;
+  // A queued line goes on the wire for the first time.
+  virtual void sent(const char* body, uint8_t len, uint16_t tag) {
+    (void)body, (void)len, (void)tag;
+  }
 };
 
 struct SenderHealth {
@@ -66,6 +72,7 @@ class MegaSender {
     uint16_t tag;
     bool numbered;
     bool sent;
+    bool announced;  // listener told it went out (again after a restart)
     uint32_t firstMs;
     uint8_t len;
     char body[kDialectMaxLine];

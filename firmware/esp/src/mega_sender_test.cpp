@@ -22,7 +22,7 @@ struct Bench : esptest::NoisyMega, MegaListener {
   std::vector<std::string> lines;
 
   void line(const char* text, uint8_t len) override { lines.emplace_back(text, len); }
-  void answered(uint16_t tag, uint16_t error) override { answers[tag] = error; }
+  void answered(uint16_t tag, uint16_t error, bool) override { answers[tag] = error; }
 
   void run(uint64_t us) {
     NoisyMega::run(
