@@ -1,0 +1,83 @@
+// The ESP's HTTP decisions (protocol/esp.md), kept apart from the web server.
+#include "http_rules.h"
+
+#include <stdio.h>
+#include <string.h>
+#include <strings.h>
+
+namespace uv {
+namespace esp {
+
+HttpError admitPrintRequest(const char* contentType, bool hasLength, uint32_t contentLength, Bridge& bridge, uint32_t nowMs) {
+  size_t n = strlen("application/json");
+  if (!contentType || strncasecmp(contentType, "application/json", n) != 0 || (contentType[n] && contentType[n] != ';' && contentType[n] != ' ')) {
+    return {415, "unsupported_media_type", "send the job as application/json"};
+  }
+  if (!hasLength) return {411, "length_required", "send a Content-Length"};
+  RequestError e{};
+  if (bodyTooLarge(contentLength, e)) return {413, "too_large", "the body is over 1200000 bytes; send larger jobs over USB"};
+  switch (bridge.admitPrint(nowMs)) {
+    case Admission::Busy: return {409, "busy", "a job is uploading or running"};
+    case Admission::MegaOffline: return {503, "mega_offline", "the Mega does not answer"};
+    default: return {0, "", ""};
+  }
+}
+
+HttpError methodNotAllowed(const char* path, Method m) {
+  bool ok = true;
+  if (strcmp(path, "/print") == 0) ok = m == Method::Post || m == Method::Delete;
+  else if (strcmp(path, "/status") == 0) ok = m == Method::Get;
+  else if (strcmp(path, "/wifi") == 0) ok = m == Method::Get || m == Method::Post;
+  else ok = m == Method::Get;
+  if (ok) return {0, "", ""};
+  return {405, "method_not_allowed", "wrong method for this path"};
+}
+
+void writeError(JsonWriter& w, const char* code, const char* message, const char* path) {
+  w.beginObject().key("error").beginObject().key("code").string(code).key("message").string(message);
+  if (path && path[0]) w.key("path").string(path);
+  w.endObject().endObject();
+}
+
+const char* contentType(const char* path) {
+  static const struct {
+    const char* ext;
+    const char* type;
+  } kTypes[] = {
+      {".html", "text/html; charset=utf-8"}, {".js", "text/javascript"},       {".css", "text/css"},
+      {".svg", "image/svg+xml"},             {".png", "image/png"},            {".ico", "image/x-icon"},
+      {".json", "application/json"},         {".webmanifest", "application/manifest+json"},
+      {".woff2", "font/woff2"},              {".txt", "text/plain; charset=utf-8"},
+  };
+  size_t n = strlen(path);
+  for (const auto& t : kTypes) {
+    size_t k = strlen(t.ext);
+    if (n >= k && strcasecmp(path + n - k, t.ext) == 0) return t.type;
+  }
+  return "application/octet-stream";
+}
+
+void gzipEtag(const uint8_t t[8], char out[24]) {
+  uint32_t crc = t[0] | t[1] << 8 | t[2] << 16 | static_cast<uint32_t>(t[3]) << 24;
+  uint32_t size = t[4] | t[5] << 8 | t[6] << 16 | static_cast<uint32_t>(t[7]) << 24;
+  snprintf(out, 24, "\"%08lx-%lx\"", static_cast<unsigned long>(crc), static_cast<unsigned long>(size));
+}
+
+bool isForeignHost(const char* host, const char* apIp, const char* mdnsName) {
+  if (!host || !host[0]) return false;
+  char name[64];
+  snprintf(name, sizeof name, "%s", host);
+  char* colon = strchr(name, ':');  // drop a port
+  if (colon) *colon = 0;
+  if (strcmp(name, apIp) == 0) return false;
+  char local[48];
+  snprintf(local, sizeof local, "%s.local", mdnsName);
+  if (strcasecmp(name, local) == 0 || strcasecmp(name, mdnsName) == 0) return false;
+  // An address on a network the ESP joined is the user's own choice: any dotted IPv4 is ours.
+  bool dotted = true;
+  for (const char* c = name; *c; c++) dotted = dotted && ((*c >= '0' && *c <= '9') || *c == '.');
+  return !dotted;
+}
+
+}  // namespace esp
+}  // namespace uv

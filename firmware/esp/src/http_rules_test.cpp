@@ -1,0 +1,78 @@
+// Host tests of the ESP's HTTP decisions: status codes before the body, error bodies, app files.
+#include "http_rules.h"
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "noisy_mega.h"
+
+using namespace uv::esp;
+using nlohmann::json;
+
+namespace {
+struct NoClients : LiveClients {
+  bool trySend(uint8_t, const char*, uint16_t) override { return true; }
+  void close(uint8_t, uint16_t, const char*) override {}
+};
+}  // namespace
+
+TEST(HttpRules, APrintRequestIsJudgedByItsHeadersBeforeItsBody) {
+  esptest::NoisyMega m;
+  NoClients c;
+  LiveChannel live(c);
+  Bridge bridge(m, live);
+  m.mega.begin();
+  bridge.begin(m.nowMs());
+  auto run = [&](uint64_t us) {
+    m.run(
+        us, [&](char ch, uint32_t ms) { bridge.received(ch, ms); }, [&](uint32_t ms) { bridge.poll(ms); });
+  };
+  EXPECT_EQ(admitPrintRequest("application/json", true, 100, bridge, m.nowMs()).status, 503);  // not heard yet
+  run(1500000);
+  EXPECT_EQ(admitPrintRequest("text/plain", true, 100, bridge, m.nowMs()).status, 415);
+  EXPECT_EQ(admitPrintRequest(nullptr, true, 100, bridge, m.nowMs()).status, 415);
+  EXPECT_EQ(admitPrintRequest("application/jsonx", true, 100, bridge, m.nowMs()).status, 415);
+  EXPECT_EQ(admitPrintRequest("application/json", false, 0, bridge, m.nowMs()).status, 411);
+  EXPECT_EQ(admitPrintRequest("application/json", true, 1200001, bridge, m.nowMs()).status, 413);
+  HttpError ok = admitPrintRequest("application/json; charset=utf-8", true, 1200000, bridge, m.nowMs());
+  EXPECT_EQ(ok.status, 0);
+  EXPECT_EQ(admitPrintRequest("application/json", true, 100, bridge, m.nowMs()).status, 409);  // held for the first
+  bridge.release();
+  EXPECT_EQ(admitPrintRequest("application/json", true, 100, bridge, m.nowMs()).status, 0);
+}
+
+TEST(HttpRules, MethodsAndErrorBodies) {
+  EXPECT_EQ(methodNotAllowed("/print", Method::Get).status, 405);
+  EXPECT_EQ(methodNotAllowed("/print", Method::Delete).status, 0);
+  EXPECT_EQ(methodNotAllowed("/status", Method::Post).status, 405);
+  EXPECT_EQ(methodNotAllowed("/wifi", Method::Post).status, 0);
+  EXPECT_EQ(methodNotAllowed("/index.html", Method::Delete).status, 405);
+  char buf[256];
+  JsonWriter w(buf, sizeof buf);
+  writeError(w, "bad_job", "must be an \"integer\"", "/gridData/3/7");
+  EXPECT_EQ(json::parse(w.text()), json({{"error", {{"code", "bad_job"}, {"message", "must be an \"integer\""}, {"path", "/gridData/3/7"}}}}));
+  JsonWriter v(buf, sizeof buf);
+  writeError(v, "busy", "a job is uploading or running");
+  EXPECT_FALSE(json::parse(v.text())["error"].contains("path"));
+}
+
+TEST(HttpRules, AppFilesGetTheirTypeAndAnEtagFromTheGzipTrailer) {
+  EXPECT_STREQ(contentType("/index.html"), "text/html; charset=utf-8");
+  EXPECT_STREQ(contentType("/assets/index-3f2a.js"), "text/javascript");
+  EXPECT_STREQ(contentType("/manifest.webmanifest"), "application/manifest+json");
+  EXPECT_STREQ(contentType("/x.bin"), "application/octet-stream");
+  const uint8_t trailer[8] = {0x78, 0x56, 0x34, 0x12, 0x00, 0x10, 0x00, 0x00};
+  char etag[24];
+  gzipEtag(trailer, etag);
+  EXPECT_STREQ(etag, "\"12345678-1000\"");
+}
+
+TEST(HttpRules, CaptivePortalProbesAreSentToTheApp) {
+  EXPECT_TRUE(isForeignHost("connectivitycheck.gstatic.com", "192.168.4.1", "uvprinter"));
+  EXPECT_TRUE(isForeignHost("captive.apple.com", "192.168.4.1", "uvprinter"));
+  EXPECT_FALSE(isForeignHost("192.168.4.1", "192.168.4.1", "uvprinter"));
+  EXPECT_FALSE(isForeignHost("uvprinter.local", "192.168.4.1", "uvprinter"));
+  EXPECT_FALSE(isForeignHost("UVPRINTER.local:80", "192.168.4.1", "uvprinter"));
+  EXPECT_FALSE(isForeignHost("10.0.0.23", "192.168.4.1", "uvprinter"));  // its address on a joined network
+}
