@@ -49,6 +49,11 @@ struct StreamReader {
     int c = in.get();
     return c == std::char_traits<char>::eof() ? -1 : c;
   }
+  bool rewind() {
+    in.clear();
+    in.seekg(0);
+    return static_cast<bool>(in);
+  }
 };
 
 }  // namespace uvtest

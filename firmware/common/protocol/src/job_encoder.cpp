@@ -95,32 +95,38 @@ void JobEncoder::header(const JobHeader& h) {
 }
 
 void JobEncoder::row(uint16_t rowIndex, const uint8_t* cells, uint16_t cols) {
-  uint16_t c = 0;
-  while (c < cols) {
-    if (cells[c] == 0) {
-      c++;
-      continue;
-    }
-    uint16_t start = c, last = c;
-    for (;;) {
-      uint16_t next = static_cast<uint16_t>(last + 1);
-      while (next < cols && cells[next] == 0) next++;
-      if (next < cols && next - last - 1 <= kJobMaxGap && next - start + 1 <= kJobMaxCellsPerRecord) {
-        last = next;
-      } else {
-        break;
-      }
-    }
-    Record r;
-    r.word("r");
-    r.num(rowIndex);
-    r.num(start);
-    r.buf[r.n++] = ' ';
-    for (uint16_t i = start; i <= last; i++, r.n += 2) putHex(cells[i], 2, r.buf + r.n);
-    r.buf[r.n] = '\0';
-    emit(r.buf, r.n);
-    c = static_cast<uint16_t>(last + 1);
+  uint16_t column = 0;
+  while (nextRecord(rowIndex, cells, cols, column)) {
   }
+}
+
+bool JobEncoder::nextRecord(uint16_t rowIndex, const uint8_t* cells, uint16_t cols, uint16_t& column) {
+  uint16_t c = column;
+  while (c < cols && cells[c] == 0) c++;
+  if (c >= cols) {
+    column = cols;
+    return false;
+  }
+  uint16_t start = c, last = c;
+  for (;;) {
+    uint16_t next = static_cast<uint16_t>(last + 1);
+    while (next < cols && cells[next] == 0) next++;
+    if (next < cols && next - last - 1 <= kJobMaxGap && next - start + 1 <= kJobMaxCellsPerRecord) {
+      last = next;
+    } else {
+      break;
+    }
+  }
+  Record r;
+  r.word("r");
+  r.num(rowIndex);
+  r.num(start);
+  r.buf[r.n++] = ' ';
+  for (uint16_t i = start; i <= last; i++, r.n += 2) putHex(cells[i], 2, r.buf + r.n);
+  r.buf[r.n] = '\0';
+  emit(r.buf, r.n);
+  column = static_cast<uint16_t>(last + 1);
+  return true;
 }
 
 void JobEncoder::finish() {

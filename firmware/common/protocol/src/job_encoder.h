@@ -19,6 +19,9 @@ class JobEncoder {
 
   void header(const JobHeader& h);
   void row(uint16_t rowIndex, const uint8_t* cells, uint16_t cols);
+  // One record of a row at a time, for a reader that pulls records: emits the record that
+  // starts at or after `column` and moves `column` past it; false when the row has no more.
+  bool nextRecord(uint16_t rowIndex, const uint8_t* cells, uint16_t cols, uint16_t& column);
   void finish();
 
  private:
