@@ -1,6 +1,6 @@
 // Test-only: the ESP of protocol/esp.md as the page sees it, through page.route and page.routeWebSocket.
 // Behind it runs the simulated printer, driven by the same windowed dialect client the app uses.
-import type { Page, WebSocketRoute } from '@playwright/test';
+import type { Page, Route, WebSocketRoute } from '@playwright/test';
 import { DialectClient } from '../app/src/device/dialect-client';
 import { formatReply } from '../app/src/protocol/dialect-reply';
 import { encodeJob } from '../app/src/protocol/job-encode';
@@ -15,6 +15,9 @@ export class MockEsp {
   #job: { id: number; state: string; bytesSent: number; bytesVerified: number; bytesTotal: number } | null = null;
   #jobs = 0;
   #ready: Promise<void>;
+  #wifi = { apSsid: 'UVPrinter-5EED01', apPassword: 'abcdefghjkmn', staSsid: '', staPassword: '' };
+  #statusTimer: ReturnType<typeof setInterval> | null = null;
+  #cancelled = false;
 
   constructor(options: SimOptions = {}, speed = 1) {
     this.sim = new NodeSim(options, speed);
@@ -32,12 +35,15 @@ export class MockEsp {
     await page.route('**/status', (route) =>
       route.fulfill({ status: 200, contentType: 'application/json', body: JSON.stringify(this.#status()) }),
     );
+    await page.route('**/wifi', (route) => this.#wifiRoute(route));
     await page.route('**/print', async (route) => {
       const req = route.request();
       if (req.method() === 'DELETE') {
-        if (!this.#job) return route.fulfill({ status: 409, contentType: 'application/json', body: JSON.stringify({ error: { code: 'busy', message: 'nothing to cancel' } }) });
-        await this.client.command('M524');
-        this.#job.state = 'aborted';
+        const running = this.sim.printer.mega.job.state === 'running' || this.sim.printer.mega.job.state === 'paused';
+        const uploading = this.#job?.state === 'uploading';
+        if (!uploading && !running) return route.fulfill({ status: 409, contentType: 'application/json', body: JSON.stringify({ error: { code: 'busy', message: 'nothing to cancel' } }) });
+        this.#cancelled = uploading;
+        await this.client.command('M524').catch(() => {}); // ends an upload (nothing kept) or the running job
         return route.fulfill({ status: 200, contentType: 'application/json', body: JSON.stringify({ job: { state: 'aborted' } }) });
       }
       if (req.method() !== 'POST') return route.fulfill({ status: 405, contentType: 'application/json', body: JSON.stringify({ error: { code: 'method_not_allowed', message: req.method() } }) });
@@ -58,34 +64,71 @@ export class MockEsp {
       const id = ++this.#jobs;
       const text = encodeJob(v.job);
       this.#job = { id, state: 'uploading', bytesSent: 0, bytesVerified: 0, bytesTotal: text.length };
+      this.#cancelled = false;
       void this.#upload(id, text);
       return route.fulfill({ status: 202, contentType: 'application/json', body: JSON.stringify({ job: { id, state: 'uploading', cells: v.job.grid.cols * v.job.grid.rows } }) });
     });
     await page.routeWebSocket('**/ws', (ws) => {
+      if (this.#sockets.size >= 4) return ws.close({ code: 1013, reason: 'too many clients' });
       this.#sockets.add(ws);
       ws.onClose(() => this.#sockets.delete(ws));
       ws.send(JSON.stringify({ type: 'hello', protocol: 1, firmware: 'UVExposure ESP 0.1.0 (mock)' }));
+      ws.send(JSON.stringify({ type: 'status', status: this.#status() }));
+      this.#statusTimer ??= setInterval(() => this.#broadcast({ type: 'status', status: this.#status() }), 1000);
       ws.onMessage(async (raw) => {
-        let m: { type?: string; line?: string; id?: number };
+        const error = (code: string, message: string, id?: number) =>
+          ws.send(JSON.stringify({ type: 'error', code, message, ...(id !== undefined ? { id } : {}) }));
+        const text = String(raw);
+        if (text.length > 256) return error('too_large', 'a message is at most 256 bytes, in one frame');
+        let m: { type?: unknown; line?: unknown; id?: unknown };
         try {
-          m = JSON.parse(String(raw));
+          m = JSON.parse(text);
         } catch {
-          return ws.send(JSON.stringify({ type: 'error', code: 'bad_json', message: 'not JSON' }));
+          return error('bad_json', 'not JSON');
         }
+        if (typeof m !== 'object' || m === null || Array.isArray(m) || typeof m.type !== 'string') return error('bad_message', 'expected an object with a type');
+        if (m.id !== undefined && !Number.isInteger(m.id)) return error('bad_message', 'id must be an integer');
+        const id = m.id as number | undefined;
         if (m.type === 'ping') return ws.send(JSON.stringify({ type: 'pong' }));
-        if (m.type !== 'send' || typeof m.line !== 'string' || m.line.length > 80) {
-          return ws.send(JSON.stringify({ type: 'error', code: 'bad_message', message: 'expected {type:"send", line}', id: m.id }));
-        }
+        if (m.type !== 'send') return error('unknown_type', 'type must be send or ping', id);
+        if (typeof m.line !== 'string') return error('bad_message', 'send needs a line', id);
+        if (m.line.length < 1 || m.line.length > 72) return error('line_too_long', 'a line is 1-72 bytes', id);
+        if (!/^[\x20-\x7e]+$/.test(m.line)) return error('bad_line', 'a line is printable ASCII, one line', id);
         await this.#ready;
         this.#broadcast({ type: 'sent', line: m.line, from: 'ws' });
         try {
           const replies = await this.client.command(m.line);
-          if (m.id !== undefined) ws.send(JSON.stringify({ type: 'reply', id: m.id, lines: [...replies.map((r) => formatReply(r)), 'ok'] }));
+          if (id !== undefined) ws.send(JSON.stringify({ type: 'reply', id, lines: [...replies.map((r) => formatReply(r)), 'ok'] }));
         } catch (e) {
-          if (m.id !== undefined) ws.send(JSON.stringify({ type: 'reply', id: m.id, lines: [`Error:${(e as Error).message}`, 'ok'] }));
+          if (id !== undefined) ws.send(JSON.stringify({ type: 'reply', id, lines: [`Error:${(e as Error).message}`, 'ok'] }));
         }
       });
     });
+  }
+
+  /** GET and POST /wifi: the settings, never their passwords. */
+  #wifiRoute(route: Route): Promise<void> {
+    const req = route.request();
+    const json = (status: number, body: object) => route.fulfill({ status, contentType: 'application/json', body: JSON.stringify(body) });
+    const bad = (message: string, path: string) => json(400, { error: { code: 'bad_job', message, path } });
+    if (req.method() === 'GET') return json(200, { apSsid: this.#wifi.apSsid, staSsid: this.#wifi.staSsid });
+    if (req.method() !== 'POST') return json(405, { error: { code: 'method_not_allowed', message: 'wrong method for this path' } });
+    let body: Record<string, unknown>;
+    try {
+      body = JSON.parse(req.postData() ?? '');
+    } catch {
+      return json(400, { error: { code: 'bad_json', message: 'send {apPassword?, staSsid?, staPassword?} as JSON, under 1 KB' } });
+    }
+    const passphrase = (v: unknown) => typeof v === 'string' && /^[\x20-\x7e]{8,63}$/.test(v);
+    const unknown = Object.keys(body).find((k) => !['apPassword', 'staSsid', 'staPassword'].includes(k));
+    if (unknown) return bad('unknown field', `/${unknown}`);
+    if ('apPassword' in body && !passphrase(body.apPassword)) return bad('8-63 printable ASCII characters (WPA2)', '/apPassword');
+    if ('staSsid' in body && (typeof body.staSsid !== 'string' || body.staSsid.length > 32)) return bad('a network name of 0-32 bytes', '/staSsid');
+    if ('staPassword' in body && !(body.staPassword === '' || passphrase(body.staPassword))) {
+      return bad('empty (an open network) or 8-63 printable ASCII', '/staPassword');
+    }
+    Object.assign(this.#wifi, body);
+    return json(200, { apSsid: this.#wifi.apSsid, staSsid: this.#wifi.staSsid });
   }
 
   async #upload(id: number, text: string): Promise<void> {
@@ -94,32 +137,51 @@ export class MockEsp {
     try {
       await this.#ready;
       const file = `JOB${id}.UVJ`;
-      await this.client.command(`M28 ${file}`);
+      const esp = (line: string) => {
+        this.#broadcast({ type: 'sent', line, from: 'esp' });
+        return this.client.command(line);
+      };
+      await esp(`M28 ${file}`);
       await this.client.stream(text.trimEnd().split('\n'), (sent, verified) => {
         job.bytesSent = sent;
         job.bytesVerified = verified;
         tell();
       });
-      await this.client.command('M29');
-      await this.client.command(`M23 ${file}`);
-      await this.client.command('M24');
+      await esp('M29');
+      await esp(`M23 ${file}`);
+      await esp('M24');
       job.state = 'started';
       tell();
     } catch (e) {
       job.state = 'failed';
-      this.#broadcast({ type: 'upload', id, bytesSent: job.bytesSent, bytesVerified: job.bytesVerified, bytesTotal: job.bytesTotal, state: 'failed', error: (e as Error).message });
+      const error = this.#cancelled ? 'cancelled' : (e as Error).message;
+      this.#broadcast({ type: 'upload', id, bytesSent: job.bytesSent, bytesVerified: job.bytesVerified, bytesTotal: job.bytesTotal, state: 'failed', error });
     }
   }
 
   #status() {
     const p = this.sim.printer;
+    const mega = p.mega;
+    const job = mega.job;
+    const upload = this.#job;
+    const pos = mega.motion.now();
     return {
       mega: 'online',
       firmware: 'UVExposure 0.1.0 (Simulated Mega)',
-      position: { x: p.mega.motion.now()[0] / 1000, y: p.mega.motion.now()[1] / 1000, z: p.mega.motion.now()[2] / 1000 },
+      position: { x: pos[0] / 1000, y: pos[1] / 1000, z: pos[2] / 1000 },
       temps: p.nano.deciC().map((d) => d / 10),
-      limits: [0, 1, 2, 3, 4, 5].map((i) => Number(p.mega.config[`thermal.limit.${i}`])),
-      job: this.#job ? { ...this.#job, stop: p.mega.job.done, stops: p.mega.job.plan?.count ?? 0 } : null,
+      limits: [0, 1, 2, 3, 4, 5].map((i) => Number(mega.config[`thermal.limit.${i}`])),
+      job:
+        job.state === 'idle' && !upload
+          ? null
+          : {
+              state: job.state,
+              file: job.file || null,
+              stop: job.done,
+              stops: job.plan?.count ?? 0,
+              id: upload?.id ?? null,
+              ...(upload ? { upload: upload.state, bytesSent: upload.bytesSent, bytesVerified: upload.bytesVerified, bytesTotal: upload.bytesTotal } : {}),
+            },
       probe: p.nano.probe,
       faults: [],
       clients: this.#sockets.size,
@@ -132,6 +194,7 @@ export class MockEsp {
   }
 
   stop(): void {
+    if (this.#statusTimer) clearInterval(this.#statusTimer);
     this.sim.stop();
   }
 }

@@ -35,13 +35,14 @@ host_tests() {
     build/host/nano_sim_tests --gtest_brief=1 | grep '^\[nano budget\]' &&
     build/host/mega_sim_tests --gtest_brief=1 | grep -E '^\[mega budget\]|FAILED|Failure' &&
     build/host/mega_tests --gtest_brief=1 | grep -E '^\[mega |FAILED|Failure' &&
-    { build/host/protocol_tests --gtest_brief=1 && build/host/esp_tests --gtest_brief=1; } | grep '^\[vectors\]'
+    { build/host/protocol_tests --gtest_brief=1 && build/host/esp_tests --gtest_brief=1; } | grep -E '^\[(vectors|esp )\]|^\[esp |FAILED|Failure'
 }
 
 stage "TypeScript unit tests (Vitest)" npm run --silent test:unit
 stage "Type check (svelte-check)" npm run --silent check
 stage "AVR firmware images and budgets" bash scripts/build-avr.sh
 stage "C++ host and simavr tests (CMake, GoogleTest)" host_tests
+stage "The app for the ESP's flash (gzipped, within its budget)" npm run --silent build:esp
 stage "Vectors bind both implementations" python3 scripts/check-vectors-bind.py build/host
 printcore_test() {
   [[ -x build/venv/bin/python ]] || python3 -m venv build/venv || return 1

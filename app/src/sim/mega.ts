@@ -304,7 +304,15 @@ export class MegaModel {
         done();
       },
       M25: (_c, done) => (this.job.pause(), done()),
-      M524: (_c, done) => (this.job.abort(), this.motion.stop(), done()),
+      M524: (_c, done) => {
+        if (this.#upload) {
+          this.#upload = null; // an upload in progress is given up: nothing is kept (mega.md M524)
+          this.job.state = 'aborted';
+        }
+        this.job.abort();
+        this.motion.stop();
+        done();
+      },
       M30: (c, done) => {
         if (!this.sd.files.delete(text(c))) return this.#error(21, done, text(c));
         if (this.#selected === text(c)) this.#selected = '';

@@ -1,62 +1,89 @@
-// Network hub entry point: a WPA2 access point that serves the app from LittleFS (protocol/esp.md).
+// The network hub (protocol/esp.md): a WPA2 access point, the app from LittleFS, POST /print,
+// GET /status and the /ws live channel, all in front of the Mega on a UART. The logic is the
+// plain C++ in this folder (host-tested); arduino/ holds the glue to the ESP's libraries.
 #include <Arduino.h>
+#include <ESPAsyncWebServer.h>
 #include <LittleFS.h>
 
-#if defined(ESP8266)
-#include <ESP8266WebServer.h>
-#include <ESP8266WiFi.h>
-using WebServerType = ESP8266WebServer;
-static uint32_t chipId() { return ESP.getChipId(); }
-#else
-#include <WebServer.h>
-#include <WiFi.h>
-using WebServerType = WebServer;
-static uint32_t chipId() { return static_cast<uint32_t>(ESP.getEfuseMac() >> 24); }
-#endif
-
-#include "access_point.h"
+#include "arduino/app_files.h"
+#include "arduino/live_socket.h"
+#include "arduino/network.h"
+#include "arduino/print_endpoint.h"
+#include "bridge.h"
 
 namespace {
 
-WebServerType server(80);
-char ssid[24];
-char password[16];
-
-const char* contentType(const String& path) {
-  if (path.endsWith(".html")) return "text/html";
-  if (path.endsWith(".js")) return "application/javascript";
-  if (path.endsWith(".css")) return "text/css";
-  if (path.endsWith(".svg")) return "image/svg+xml";
-  if (path.endsWith(".webmanifest")) return "application/manifest+json";
-  if (path.endsWith(".png")) return "image/png";
-  return "application/octet-stream";
+#if defined(ESP8266)
+// Mega+WiFi boards wire the ESP8266's only full UART to the Mega; the log goes out on UART1's
+// TX-only pin (GPIO2).
+HardwareSerial& mega = Serial;
+HardwareSerial& logPort = Serial1;
+void beginMegaUart() {
+  mega.setRxBufferSize(2048);
+  mega.begin(115200);
 }
+#else
+HardwareSerial& mega = Serial2;  // GPIO16 RX, GPIO17 TX
+HardwareSerial& logPort = Serial;
+void beginMegaUart() {
+  mega.setRxBufferSize(2048);
+  mega.setTxBufferSize(512);
+  mega.begin(115200, SERIAL_8N1, 16, 17);
+}
+#endif
 
-// Serves `<path>.gz` from LittleFS; the app build writes only gzipped files (see README).
-void serveApp() {
-  String path = server.uri();
-  if (path.endsWith("/")) path += "index.html";
-  File f = LittleFS.open(path + ".gz", "r");
-  if (!f) {
-    server.send(404, "application/json", "{\"error\":{\"code\":\"not_found\",\"message\":\"no such path\"}}");
-    return;
+// The UART to the Mega: a line goes whole or waits for the next pass, never blocking.
+struct MegaUart : uv::esp::MegaWire {
+  bool write(const char* data, uint16_t n) override {
+    if (mega.availableForWrite() < n) return false;
+    mega.write(reinterpret_cast<const uint8_t*>(data), n);
+    return true;
   }
-  server.sendHeader("Cache-Control", path.endsWith(".html") ? "no-cache" : "max-age=31536000, immutable");
-  server.streamFile(f, contentType(path));  // the core adds Content-Encoding: gzip for a .gz file
-  f.close();
+} wire;
+
+AsyncWebServer server(80);
+AsyncWebSocket ws("/ws");
+uv::esp::LiveSocket socketClients(ws);
+uv::esp::LiveChannel live(socketClients);
+uv::esp::Bridge bridge(wire, live);
+uv::esp::WifiSettings wifi;
+uint32_t cleanupMs = 0;
+
+// Everything that must not wait: the Mega's bytes, the clients' messages, the live channel.
+void service() {
+  while (mega.available()) bridge.received(static_cast<char>(mega.read()), millis());
+  socketClients.drain();
+  bridge.poll(millis());
+  yield();
 }
 
 }  // namespace
 
 void setup() {
-  Serial.begin(115200);
-  uv::esp::accessPointCredentials(chipId(), ssid, sizeof ssid, password, sizeof password);
-  WiFi.mode(WIFI_AP);
-  WiFi.softAP(ssid, password);  // WPA2-PSK: the password is 12 characters, never empty
-  Serial.printf("echo:Wi-Fi %s password %s at %s\n", ssid, password, WiFi.softAPIP().toString().c_str());
-  LittleFS.begin();
-  server.onNotFound(serveApp);
+  logPort.begin(115200);
+  beginMegaUart();
+  if (!LittleFS.begin()) {
+    logPort.println("echo:LittleFS would not mount; formatting it");
+    LittleFS.format();
+    LittleFS.begin();
+  }
+  uv::esp::beginNetwork(server, logPort, wifi);
+  socketClients.begin(bridge, live);
+  server.addHandler(&ws);
+  uv::esp::beginPrintEndpoint(server, bridge, service);
+  uv::esp::beginAppFiles(server);
   server.begin();
+  char panel[17];
+  uv::esp::panelLine(wifi, panel);
+  bridge.begin(millis(), panel);
 }
 
-void loop() { server.handleClient(); }
+void loop() {
+  service();
+  uv::esp::pollPrintEndpoint();
+  uv::esp::pollNetwork();
+  if (millis() - cleanupMs > 1000) {
+    cleanupMs = millis();
+    ws.cleanupClients(uv::esp::LiveChannel::kMaxClients);
+  }
+}

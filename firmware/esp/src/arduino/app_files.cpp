@@ -1,0 +1,76 @@
+// Serves the gzipped app from LittleFS with ETags, and sends captive-portal probes to it.
+#include "app_files.h"
+
+#include <LittleFS.h>
+
+#include "http_rules.h"
+#include "network.h"
+
+namespace uv {
+namespace esp {
+
+namespace {
+
+void sendError(AsyncWebServerRequest* r, uint16_t status, const char* code, const char* message) {
+  char buf[160];
+  JsonWriter w(buf, sizeof buf);
+  writeError(w, code, message);
+  r->send(status, "application/json", w.text());
+}
+
+Method methodOf(AsyncWebServerRequest* r) {
+  switch (r->method()) {
+    case HTTP_GET: return Method::Get;
+    case HTTP_HEAD: return Method::Get;
+    case HTTP_POST: return Method::Post;
+    case HTTP_DELETE: return Method::Delete;
+    default: return Method::Other;
+  }
+}
+
+void onOther(AsyncWebServerRequest* r) {
+  if (isForeignHost(r->host().c_str(), apAddress(), kMdnsName)) {
+    char to[40];
+    snprintf(to, sizeof to, "http://%s/", apAddress());
+    return r->redirect(to);
+  }
+  String path = r->url();
+  HttpError m = methodNotAllowed(path.c_str(), methodOf(r));
+  if (m.status) return sendError(r, m.status, m.code, m.message);
+  if (path.endsWith("/")) path += "index.html";
+  String file = "/www" + path;
+  if (!LittleFS.exists(file + ".gz")) {
+    // A path of the app itself (no extension) opens the app; a missing file is a 404.
+    if (path.lastIndexOf('.') > path.lastIndexOf('/')) return sendError(r, 404, "not_found", "no such path");
+    path = "/index.html";
+    file = "/www/index.html";
+    if (!LittleFS.exists(file + ".gz")) return sendError(r, 404, "not_found", "the app is not on this ESP: npm run build:esp, then uploadfs");
+  }
+  char etag[24] = "";
+  fs::File f = LittleFS.open(file + ".gz", "r");
+  if (f && f.size() >= 8 && f.seek(f.size() - 8)) {
+    uint8_t trailer[8];
+    if (f.read(trailer, 8) == 8) gzipEtag(trailer, etag);
+  }
+  if (f) f.close();
+  if (etag[0] && r->hasHeader("If-None-Match") && r->getHeader("If-None-Match")->value() == etag) {
+    AsyncWebServerResponse* notModified = r->beginResponse(304);
+    notModified->addHeader("ETag", etag);
+    return r->send(notModified);
+  }
+  // The library serves <file>.gz with Content-Encoding: gzip when <file> itself is absent.
+  AsyncWebServerResponse* res = r->beginResponse(LittleFS, file, contentType(path.c_str()));
+  if (etag[0]) res->addHeader("ETag", etag);
+  // index.html is checked every time; the hashed assets it names never change.
+  res->addHeader("Cache-Control", path == "/index.html" || path.endsWith(".webmanifest") || path.endsWith("sw.js")
+                                      ? "no-cache"
+                                      : "public, max-age=31536000, immutable");
+  r->send(res);
+}
+
+}  // namespace
+
+void beginAppFiles(AsyncWebServer& server) { server.onNotFound(onOther); }
+
+}  // namespace esp
+}  // namespace uv

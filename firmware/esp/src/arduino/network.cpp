@@ -1,0 +1,157 @@
+// Wi-Fi access point, optional station, captive-portal DNS, mDNS and /wifi.
+#include "network.h"
+
+#include <ArduinoJson.h>
+#include <DNSServer.h>
+#include <LittleFS.h>
+
+#if defined(ESP8266)
+#include <ESP8266WiFi.h>
+#include <ESP8266mDNS.h>
+static uint32_t chipId() { return ESP.getChipId(); }
+static uint32_t hardwareRandom() { return RANDOM_REG32; }  // the ESP8266's hardware RNG
+#else
+#include <ESPmDNS.h>
+#include <WiFi.h>
+#include <esp_random.h>
+static uint32_t chipId() { return static_cast<uint32_t>(ESP.getEfuseMac() >> 24); }
+static uint32_t hardwareRandom() { return esp_random(); }
+#endif
+
+#include "http_rules.h"
+#include "json_view.h"
+
+namespace uv {
+namespace esp {
+
+namespace {
+
+const char kSettingsFile[] = "/wifi.json";
+constexpr uint32_t kJoinMs = 20000;
+
+DNSServer dns;
+WifiSettings* settings = nullptr;
+char apIp[16] = "192.168.4.1";
+bool joining = false;
+uint32_t joinStartMs = 0;
+
+bool save(const WifiSettings& s) {
+  char buf[256];
+  JsonWriter w(buf, sizeof buf);
+  writeWifi(w, s, true);
+  fs::File f = LittleFS.open(kSettingsFile, "w");
+  if (!f) return false;
+  bool ok = f.write(reinterpret_cast<const uint8_t*>(w.text()), w.length()) == w.length();
+  f.close();
+  return ok;
+}
+
+void load(WifiSettings& s) {
+  defaultWifi(chipId(), hardwareRandom, s);
+  fs::File f = LittleFS.open(kSettingsFile, "r");
+  if (f) {
+    JsonDocument doc;
+    RequestError e{};
+    bool ok = !deserializeJson(doc, f) && applyWifi(JsonView{doc.as<JsonVariantConst>()}, s, e);
+    f.close();
+    if (ok) return;
+  }
+  save(s);  // first start (or an unreadable file): the fresh random password is kept from now on
+}
+
+void startRadio(const WifiSettings& s) {
+  WiFi.persistent(false);  // the settings live in /wifi.json, not in the SDK's flash area
+  WiFi.mode(s.staSsid[0] ? WIFI_AP_STA : WIFI_AP);
+  WiFi.softAP(s.apSsid, s.apPassword);  // WPA2-PSK: the password is never empty (applyWifi)
+  snprintf(apIp, sizeof apIp, "%s", WiFi.softAPIP().toString().c_str());
+  dns.setErrorReplyCode(DNSReplyCode::NoError);
+  dns.start(53, "*", WiFi.softAPIP());  // every name leads to the app: the captive portal
+  if (s.staSsid[0]) {
+    WiFi.begin(s.staSsid, s.staPassword[0] ? s.staPassword : nullptr);
+    joining = true;
+    joinStartMs = millis();
+  }
+}
+
+void onGetWifi(AsyncWebServerRequest* r) {
+  char buf[192];
+  JsonWriter w(buf, sizeof buf);
+  writeWifi(w, *settings, false);
+  r->send(200, "application/json", w.text());
+}
+
+// The body is gathered (it is under 1 KB) and judged once whole, in onPostWifi.
+struct Gathered {
+  size_t len;
+  bool tooLarge;
+  char data[1024];
+};
+
+void onWifiBody(AsyncWebServerRequest* r, uint8_t* data, size_t len, size_t index, size_t total) {
+  if (index == 0) {
+    r->_tempObject = calloc(1, sizeof(Gathered));  // freed with the request by the library
+    if (r->_tempObject) static_cast<Gathered*>(r->_tempObject)->tooLarge = total > sizeof(Gathered::data);
+  }
+  Gathered* g = static_cast<Gathered*>(r->_tempObject);
+  if (!g || g->tooLarge || g->len + len > sizeof g->data) {
+    if (g) g->tooLarge = true;
+    return;
+  }
+  memcpy(g->data + g->len, data, len);
+  g->len += len;
+}
+
+void onPostWifi(AsyncWebServerRequest* r) {
+  char buf[192];
+  JsonWriter w(buf, sizeof buf);
+  const Gathered* g = static_cast<const Gathered*>(r->_tempObject);
+  JsonDocument doc;
+  if (!g || g->tooLarge || deserializeJson(doc, g->data, g->len)) {
+    writeError(w, "bad_json", "send {apPassword?, staSsid?, staPassword?} as JSON, under 1 KB");
+    return r->send(400, "application/json", w.text());
+  }
+  RequestError e{};
+  WifiSettings next = *settings;
+  if (!applyWifi(JsonView{doc.as<JsonVariantConst>()}, next, e)) {
+    writeError(w, e.code, e.message, e.path);
+    return r->send(400, "application/json", w.text());
+  }
+  if (!save(next)) {
+    writeError(w, "spool_failed", "the ESP could not store the settings");
+    return r->send(503, "application/json", w.text());
+  }
+  *settings = next;
+  writeWifi(w, next, false);
+  r->send(200, "application/json", w.text());  // they take effect at the next start
+}
+
+}  // namespace
+
+const char* apAddress() { return apIp; }
+
+void beginNetwork(AsyncWebServer& server, Print& log, WifiSettings& s) {
+  settings = &s;
+  load(s);
+  startRadio(s);
+  log.printf("echo:Wi-Fi %s password %s at http://%s/ (http://%s.local/)\n", s.apSsid, s.apPassword, apIp, kMdnsName);
+  if (MDNS.begin(kMdnsName)) MDNS.addService("http", "tcp", 80);
+  server.on("/wifi", HTTP_GET, onGetWifi);
+  server.on("/wifi", HTTP_POST, onPostWifi, nullptr, onWifiBody);
+}
+
+void pollNetwork() {
+  dns.processNextRequest();
+#if defined(ESP8266)
+  MDNS.update();
+#endif
+  // Joining a network is optional: if it fails, the printer stays on its own access point.
+  if (joining && WiFi.status() == WL_CONNECTED) joining = false;
+  if (joining && millis() - joinStartMs > kJoinMs) {
+    joining = false;
+    WiFi.disconnect();
+    WiFi.mode(WIFI_AP);
+  }
+}
+
+}  // namespace esp
+}  // namespace uv

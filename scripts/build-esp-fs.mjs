@@ -1,0 +1,39 @@
+// Builds the app for the ESP's flash: vite's output gzipped into firmware/esp/data/www, the
+// folder PlatformIO's `uploadfs` turns into the LittleFS image. Each file is kept only as
+// <name>.gz; the ESP serves it with Content-Encoding: gzip and an ETag from its gzip trailer.
+// Prints each file and the total against the flash the ESP keeps for the app (protocol/esp.md).
+import { execFileSync } from 'node:child_process';
+import { mkdirSync, readdirSync, readFileSync, rmSync, statSync, writeFileSync } from 'node:fs';
+import { join, relative } from 'node:path';
+import { gzipSync } from 'node:zlib';
+
+const root = new URL('..', import.meta.url).pathname;
+const dist = join(root, 'dist', 'esp-app');
+const www = join(root, 'firmware', 'esp', 'data', 'www');
+const APP_BUDGET = 100 * 1024; // the LittleFS space left beside one 1.2 MB job body on the smaller (ESP32) layout
+
+execFileSync('npx', ['vite', 'build', '--config', 'app/vite.config.ts', '--outDir', dist, '--emptyOutDir'], { cwd: root, stdio: 'inherit' });
+
+rmSync(www, { recursive: true, force: true });
+let total = 0;
+function walk(dir) {
+  for (const name of readdirSync(dir)) {
+    const path = join(dir, name);
+    if (statSync(path).isDirectory()) {
+      walk(path);
+      continue;
+    }
+    const rel = relative(dist, path);
+    const gz = gzipSync(readFileSync(path), { level: 9 });
+    mkdirSync(join(www, rel, '..'), { recursive: true });
+    writeFileSync(join(www, `${rel}.gz`), gz);
+    total += gz.length;
+    console.log(`  /www/${rel}.gz  ${gz.length} B`);
+  }
+}
+walk(dist);
+console.log(`[esp fs] app for LittleFS: ${total} B gzipped (budget ${APP_BUDGET} B) in firmware/esp/data/www`);
+if (total > APP_BUDGET) {
+  console.error('[esp fs] the app is over the flash budget');
+  process.exit(1);
+}
