@@ -1,4 +1,5 @@
-// POST /print's body: spooled, checked in steps, answered, then uploaded; DELETE and GET /status.
+// POST /print's body spooled to LittleFS, checked in loop() steps by PrintIntake, answered, then
+// uploaded; DELETE /print and GET /status.
 #include "print_endpoint.h"
 
 #include <ArduinoJson.h>
@@ -6,60 +7,54 @@
 
 #include "file_body.h"
 #include "http_rules.h"
-#include "job_conversion.h"
 #include "json_view.h"
-#include "streamed_job_text.h"
+#include "print_intake.h"
 
 namespace uv {
 namespace esp {
 
 namespace {
 
-const char kSpool[] = "/job.json";  // the body: what the upload is made from again on a retry
+const char kSpool[] = "/job.json";  // the body: the upload is made from it again on a retry
 const char kJobIdFile[] = "/jobid";
-
-enum class Stage : uint8_t { Idle, Receiving, Checking, Converting };
-
-struct NullSink : RecordSink {
-  void record(const char*, uint8_t) override {}
-};
 
 Bridge* bridge = nullptr;
 void (*service)() = nullptr;
-Stage stage = Stage::Idle;
-AsyncWebServerRequest* waiting = nullptr;  // the POST whose answer is being worked out
-fs::File spool;
-bool spoolFailed = false;
-uint8_t cells[kJobMaxSide];  // one row: the check's, then the upload's
 void serviceHook() {
   if (service) service();
 }
 FileBody body(LittleFS, kSpool, serviceHook);
-NullSink nothing;
-JobConversion<FileBody>* conversion = nullptr;
-alignas(JobConversion<FileBody>) uint8_t conversionMem[sizeof(JobConversion<FileBody>)];
-alignas(StreamedJobText<FileBody>) uint8_t textMem[sizeof(StreamedJobText<FileBody>)];
-StreamedJobText<FileBody>* text = nullptr;
+
+// The header: the whole body through ArduinoJson with gridData's contents filtered out, which
+// also checks the body's syntax, in at most 8 KB of heap.
+struct HeaderParse {
+  template <class F>
+  int operator()(FileBody& b, F use) const {
+    if (!b.rewind()) return 400;
+    CappedAllocator cap(8192);
+    JsonDocument doc(&cap);
+    JsonDocument filter;
+    filter["*"] = true;
+    filter["gridData"] = false;
+    DeserializationError err = deserializeJson(doc, b, DeserializationOption::Filter(filter));
+    if (err == DeserializationError::NoMemory) return 413;
+    if (err) return 400;
+    use(JsonView{doc.as<JsonVariantConst>()});
+    return 0;
+  }
+};
+
+PrintIntake<FileBody, HeaderParse>* intake = nullptr;
+AsyncWebServerRequest* waiting = nullptr;  // the POST whose answer is being worked out
+bool receiving = false;
+fs::File spool;
+bool spoolFailed = false;
 char reply[LiveChannel::kMaxMessage];
 
-void sendJson(AsyncWebServerRequest* r, uint16_t status, const JsonWriter& w) { r->send(status, "application/json", w.text()); }
-
-void sendError(AsyncWebServerRequest* r, uint16_t status, const char* code, const char* message, const char* path = "") {
+void sendError(AsyncWebServerRequest* r, uint16_t status, const char* code, const char* message) {
   JsonWriter w(reply, sizeof reply);
-  writeError(w, code, message, path);
-  sendJson(r, status, w);
-}
-
-// Ends the POST being checked: its answer, and the spool goes unless the job was taken.
-void finish(uint16_t status, const char* code, const char* message, const char* path) {
-  if (waiting) sendError(waiting, status, code, message, path);
-  waiting = nullptr;
-  if (conversion) conversion->~JobConversion();
-  conversion = nullptr;
-  body.close();
-  LittleFS.remove(kSpool);
-  bridge->release();
-  stage = Stage::Idle;
+  writeError(w, code, message);
+  r->send(status, "application/json", w.text());
 }
 
 uint32_t nextJobId() {
@@ -90,13 +85,11 @@ void onBody(AsyncWebServerRequest* r, uint8_t* data, size_t len, size_t index, s
     }
     spool = LittleFS.open(kSpool, "w");
     spoolFailed = !spool;
-    stage = Stage::Receiving;
+    receiving = true;
     waiting = r;
-    r->onDisconnect([] {
-      waiting = nullptr;  // nobody to answer; a body cut short is dropped below
-    });
+    r->onDisconnect([] { waiting = nullptr; });  // nobody to answer; the check still runs its course
   }
-  if (r != waiting || stage != Stage::Receiving) return;
+  if (r != waiting || !receiving) return;
   if (!spoolFailed && spool.write(data, len) != len) spoolFailed = true;
 }
 
@@ -105,83 +98,39 @@ void onPost(AsyncWebServerRequest* r) {
     const HttpError* e = static_cast<const HttpError*>(r->_tempObject);
     return sendError(r, e->status, e->code, e->message);
   }
-  if (r != waiting || stage != Stage::Receiving) {  // no body at all
+  if (r != waiting || !receiving) {  // no body at all
     HttpError e = admitPrintRequest(r->contentType().c_str(), true, 0, *bridge, millis());
     if (e.status) return sendError(r, e.status, e.code, e.message);
     bridge->release();
     return sendError(r, 400, "bad_json", "the body is empty");
   }
+  receiving = false;
   spool.close();
-  if (spoolFailed) return finish(503, "spool_failed", "the ESP could not store the job; its flash may be full", "");
-  stage = Stage::Checking;  // loop() takes it from here
+  if (spoolFailed) {
+    bridge->release();
+    waiting = nullptr;
+    return sendError(r, 503, "spool_failed", "the ESP could not store the job; its flash may be full");
+  }
+  intake->begin();  // loop() takes it from here
 }
 
 void onDelete(AsyncWebServerRequest* r) {
   JsonWriter w(reply, sizeof reply);
   w.beginObject().key("job").beginObject().key("state").string("aborted").endObject().endObject();
-  if (stage != Stage::Idle) {
-    finish(409, "cancelled", "cancelled by DELETE /print", "");
-    return sendJson(r, 200, w);
+  if (intake->busy()) {
+    intake->cancel();
+    if (waiting) waiting->send(intake->status(), "application/json", intake->response());
+    waiting = nullptr;
+    return r->send(200, "application/json", w.text());
   }
   if (!bridge->cancel()) return sendError(r, 409, "busy", "nothing to cancel");
-  sendJson(r, 200, w);
+  r->send(200, "application/json", w.text());
 }
 
 void onStatus(AsyncWebServerRequest* r) {
   JsonWriter w(reply, sizeof reply);
   bridge->writeStatus(w, millis());
-  sendJson(r, 200, w);
-}
-
-// The header: the whole body through ArduinoJson with gridData's contents skipped, which also
-// checks its syntax. Then the rows, a few per loop pass.
-void check() {
-  if (!body.open()) return finish(503, "spool_failed", "the ESP could not read the job back", "");
-  CappedAllocator cap(8192);
-  JsonDocument doc(&cap);
-  JsonDocument filter;
-  filter["*"] = true;
-  filter["gridData"] = false;
-  DeserializationError err = deserializeJson(doc, body, DeserializationOption::Filter(filter));
-  if (err == DeserializationError::NoMemory) return finish(400, "bad_job", "too many or too large fields", "");
-  if (err) return finish(400, "bad_json", err.c_str(), "");
-  if (!body.rewind()) return finish(503, "spool_failed", "the ESP could not read the job back", "");
-  conversion = new (conversionMem) JobConversion<FileBody>(body, nothing, cells);
-  if (!conversion->begin(JsonView{doc.as<JsonVariantConst>()})) {
-    const RequestError& e = conversion->error();
-    return finish(e.status, e.code, e.message, e.path);
-  }
-  stage = Stage::Converting;
-}
-
-void convert() {
-  uint32_t start = millis();
-  while (millis() - start < 20) {  // a share of each loop pass
-    ConversionStep s = conversion->step();
-    if (s == ConversionStep::More) continue;
-    if (s == ConversionStep::Failed) {
-      const RequestError& e = conversion->error();
-      return finish(e.status, e.code, e.message, e.path);
-    }
-    // Accepted: answer, then upload the job text made again from the body as it is sent.
-    JobHeader h = conversion->header();
-    uint32_t bytes = conversion->textBytes();
-    conversion->~JobConversion();
-    conversion = nullptr;
-    uint32_t id = nextJobId();
-    if (text) text->~StreamedJobText();
-    text = new (textMem) StreamedJobText<FileBody>(body, h, cells);
-    if (waiting) {
-      JsonWriter w(reply, sizeof reply);
-      w.beginObject().key("job").beginObject().key("id").number(id).key("state").string("uploading");
-      w.key("cells").number(static_cast<int64_t>(h.cols) * h.rows).endObject().endObject();
-      sendJson(waiting, 202, w);
-    }
-    waiting = nullptr;
-    stage = Stage::Idle;
-    bridge->startUpload(id, *text, bytes);
-    return;
-  }
+  r->send(200, "application/json", w.text());
 }
 
 }  // namespace
@@ -189,14 +138,19 @@ void convert() {
 void beginPrintEndpoint(AsyncWebServer& server, Bridge& b, void (*serviceFn)()) {
   bridge = &b;
   service = serviceFn;
+  static PrintIntake<FileBody, HeaderParse> theIntake(body, b, HeaderParse{});
+  intake = &theIntake;
   server.on("/print", HTTP_POST, onPost, nullptr, onBody);
   server.on("/print", HTTP_DELETE, onDelete);
   server.on("/status", HTTP_GET, onStatus);
 }
 
 void pollPrintEndpoint() {
-  if (stage == Stage::Checking) check();
-  else if (stage == Stage::Converting) convert();
+  if (!intake->busy()) return;
+  Intake outcome = intake->step(nextJobId);
+  if (outcome == Intake::Working) return;
+  if (waiting) waiting->send(intake->status(), "application/json", intake->response());
+  waiting = nullptr;
 }
 
 }  // namespace esp

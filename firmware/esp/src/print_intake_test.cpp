@@ -1,0 +1,129 @@
+// POST /print from spool to answer, as the ESP and the host hub run it: every esp.json vector
+// gets its status and field, and an accepted body starts its upload to the Mega.
+#include "print_intake.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "host_body.h"
+#include "noisy_mega.h"
+#include "vectors_fixture.h"
+
+using namespace uv::esp;
+using nlohmann::json;
+
+namespace {
+
+struct NoClients : LiveClients {
+  bool trySend(uint8_t, const char*, uint16_t) override { return true; }
+  void close(uint8_t, uint16_t, const char*) override {}
+};
+
+struct Hub : esptest::NoisyMega {
+  NoClients clients;
+  LiveChannel live{clients};
+  Bridge bridge{*this, live};
+  std::string spool = std::string(testing::TempDir()) + "intake-body.json";
+  uvtest::HostBody body{spool};
+  PrintIntake<uvtest::HostBody, uvtest::HostHeaderParse> intake{body, bridge, uvtest::HostHeaderParse{}};
+  uint32_t ids = 0;
+
+  void start() {
+    mega.begin();
+    bridge.begin(nowMs());
+    run(1500000);
+  }
+  void run(uint64_t us) {
+    NoisyMega::run(
+        us, [&](char c, uint32_t ms) { bridge.received(c, ms); }, [&](uint32_t ms) { bridge.poll(ms); });
+  }
+  // The body arrives whole; the hub's loop steps the check.
+  Intake post(const std::string& text) {
+    EXPECT_EQ(bridge.admitPrint(nowMs()), Admission::Accepted);
+    std::ofstream(spool, std::ios::binary) << text;
+    intake.begin();
+    Intake r;
+    int steps = 0;
+    while ((r = intake.step([&] { return ++ids; })) == Intake::Working) {
+      run(1000);  // the loop goes on between steps
+      steps++;
+    }
+    lastSteps = steps;
+    return r;
+  }
+  int lastSteps = 0;
+};
+
+}  // namespace
+
+TEST(PrintIntake, EveryVectorGetsItsStatusAndField) {
+  const json v = uvtest::loadVectors("esp.json");
+  Hub h;
+  h.start();
+  for (const json& c : v["requests"]) {
+    const std::string name = c["name"];
+    Intake r = h.post(c["body"].get<std::string>());
+    json answer = json::parse(h.intake.response());
+    ASSERT_EQ(h.intake.status(), c["status"].get<int>()) << name << ": " << answer;
+    if (r == Intake::Accepted) {
+      EXPECT_EQ(answer["job"]["state"], "uploading");
+      h.bridge.cancel();  // not this test's business: give the Mega back
+      for (int i = 0; i < 500 && h.bridge.uploading(); i++) h.run(10000);
+      continue;
+    }
+    EXPECT_EQ(answer["error"]["code"], c["error"]) << name;
+    if (c.contains("path")) {
+      EXPECT_EQ(answer["error"].value("path", ""), c["path"]) << name;
+    }
+  }
+}
+
+TEST(PrintIntake, ALargeBodyIsCheckedInManyStepsAndUploaded) {
+  Hub h;
+  h.start();
+  h.mega.cmd("G28");
+  json j = {{"grid", {{"cols", 256}, {"rows", 128}}},
+            {"pitchUm", {{"x", 50}, {"y", 50}}},
+            {"originUm", {{"x", 5000}, {"y", 5000}}},
+            {"dose", {{"map", "threshold"}, {"level", 100}, {"fullUs", 2000}}},
+            {"leds", {{"offsets", {{0, 0}, {0, 1}, {0, 2}, {0, 3}}}}},
+            {"strategy", {{"name", "raster"}}}};
+  json g = json::array();
+  for (int r = 0; r < 128; r++) {
+    json row = json::array();
+    for (int c = 0; c < 256; c++) row.push_back(((r / 8 + c / 8) % 2) * 255);
+    g.push_back(row);
+  }
+  j["gridData"] = g;
+  ASSERT_EQ(h.post(j.dump()), Intake::Accepted);
+  EXPECT_GE(h.lastSteps, 3);  // 32768 cells: a share at a time
+  EXPECT_EQ(json::parse(h.intake.response())["job"]["cells"], 32768);
+  for (int i = 0; i < 30000 && h.bridge.uploading(); i++) h.run(10000);
+  ASSERT_EQ(h.bridge.lastUpload()->state, UploadState::Started) << h.bridge.lastUpload()->message;
+  EXPECT_EQ(h.bridge.lastUpload()->id, 1u);
+  EXPECT_NE(h.mega.sd.contents("JOB1.UVJ").find("\nend "), std::string::npos);
+}
+
+TEST(PrintIntake, ABodyStuffedWithFieldsOrCancelledIsRefusedAndTheMegaFreed) {
+  Hub h;
+  h.start();
+  std::string stuffed = R"({"junk":")" + std::string(9000, 'x') + R"("})";
+  ASSERT_EQ(h.post(stuffed), Intake::Refused);
+  EXPECT_EQ(h.intake.status(), 400);
+  EXPECT_EQ(json::parse(h.intake.response())["error"]["code"], "bad_job");
+  ASSERT_EQ(h.post("{\"grid\":"), Intake::Refused);
+  EXPECT_EQ(json::parse(h.intake.response())["error"]["code"], "bad_json");
+  EXPECT_EQ(h.bridge.admitPrint(h.nowMs()), Admission::Accepted);  // each refusal gave the Mega back
+  h.bridge.release();
+  // DELETE while a body is being checked.
+  EXPECT_EQ(h.bridge.admitPrint(h.nowMs()), Admission::Accepted);
+  std::ofstream(h.spool, std::ios::binary) << R"({"grid":{"cols":2,"rows":1}})";
+  h.intake.begin();
+  EXPECT_TRUE(h.intake.busy());
+  h.intake.cancel();
+  EXPECT_FALSE(h.intake.busy());
+  EXPECT_EQ(h.intake.status(), 409);
+  EXPECT_EQ(json::parse(h.intake.response())["error"]["code"], "cancelled");
+  EXPECT_EQ(h.bridge.admitPrint(h.nowMs()), Admission::Accepted);
+}
