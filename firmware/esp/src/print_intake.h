@@ -9,6 +9,8 @@
 #pragma once
 #include <stdint.h>
 
+#include <string.h>
+
 #include <new>
 
 #include "bridge.h"
@@ -100,7 +102,7 @@ class PrintIntake {
   Intake refuse(const RequestError& e) {
     JsonWriter w(response_, sizeof response_);
     w.beginObject().key("error").beginObject().key("code").string(e.code).key("message").string(e.message);
-    if (e.path[0]) w.key("path").string(e.path);
+    if (e.path[0] || strcmp(e.code, "bad_job") == 0) w.key("path").string(e.path);  // "" is the whole body
     w.endObject().endObject();
     status_ = e.status;
     stage_ = Stage::Idle;

@@ -1,0 +1,123 @@
+// protocol/esp.md from a page, against the mock the app's tests use and against the ESP's own
+// core on the host (real HTTP and WebSocket): the two must answer alike, so the mock stays true.
+import { expect, test, type Page } from '@playwright/test';
+import { readFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { startEspHost } from './esp-host';
+import { MockEsp } from './mock-esp';
+
+const vectors = JSON.parse(readFileSync(join(import.meta.dirname, '..', 'protocol', 'vectors', 'esp.json'), 'utf8'));
+
+async function open(page: Page, which: 'mock' | 'firmware'): Promise<() => void> {
+  if (which === 'mock') {
+    const esp = new MockEsp({}, 20);
+    await esp.install(page);
+    await page.goto('/');
+    return () => esp.stop();
+  }
+  const host = await startEspHost(20);
+  await page.goto(host.url);
+  return () => host.stop();
+}
+
+function call(page: Page, method: string, path: string, body?: string, contentType = 'application/json') {
+  return page.evaluate(
+    async ([method, path, body, contentType]) => {
+      const r = await fetch(path, { method, headers: body === undefined ? {} : { 'content-type': contentType }, body });
+      return { status: r.status, json: await r.json() };
+    },
+    [method, path, body, contentType] as const,
+  );
+}
+
+// Opens /ws in the page, sends `frames` one at a time, and collects what comes back.
+function socket(page: Page, frames: string[], until: string) {
+  return page.evaluate(
+    async ([frames, until]) => {
+      const ws = new WebSocket(location.origin.replace(/^http/, 'ws') + '/ws');
+      const got: Record<string, unknown>[] = [];
+      await new Promise<void>((resolve, reject) => {
+        ws.onerror = () => reject(new Error('no socket'));
+        ws.onopen = () => frames.forEach((f) => ws.send(f));
+        ws.onmessage = (e) => {
+          const m = JSON.parse(String(e.data));
+          got.push(m);
+          if (JSON.stringify(m).includes(until)) resolve();
+        };
+        setTimeout(resolve, 8000);
+      });
+      ws.close();
+      return got;
+    },
+    [frames, until] as const,
+  );
+}
+
+for (const which of ['mock', 'firmware'] as const) {
+  test.describe(`esp API (${which})`, () => {
+    test('POST /print answers every vector with its status and field, and DELETE with nothing to cancel is 409', async ({ page }) => {
+      const close = await open(page, which);
+      // GET /status first: the hub must have heard the Mega.
+      await expect.poll(async () => (await call(page, 'GET', '/status')).json.mega).toBe('online');
+      for (const c of vectors.requests) {
+        if (c.status === 202) continue; // accepted jobs start uploads: the flows cover them
+        const r = await call(page, 'POST', '/print', c.body);
+        expect(r.status, c.name).toBe(c.status);
+        expect(r.json.error.code, c.name).toBe(c.error);
+        if (c.path !== undefined) expect(r.json.error.path, c.name).toBe(c.path);
+      }
+      expect((await call(page, 'POST', '/print', '{}', 'text/plain')).status).toBe(415);
+      expect((await call(page, 'DELETE', '/print')).status).toBe(409);
+      const s = (await call(page, 'GET', '/status')).json;
+      for (const key of ['mega', 'firmware', 'position', 'temps', 'limits', 'job', 'probe', 'faults', 'clients']) expect(s, key).toHaveProperty(key);
+      expect(s.temps).toHaveLength(6);
+      close();
+    });
+
+    test('GET and POST /wifi keep the password to themselves and refuse a weak one', async ({ page }) => {
+      const close = await open(page, which);
+      const got = await call(page, 'GET', '/wifi');
+      expect(got.status).toBe(200);
+      expect(got.json.apSsid).toMatch(/^UVPrinter-[0-9A-F]{6}$/);
+      expect(got.json).not.toHaveProperty('apPassword');
+      const weak = await call(page, 'POST', '/wifi', JSON.stringify({ apPassword: 'short' }));
+      expect(weak.status).toBe(400);
+      expect(weak.json.error.path).toBe('/apPassword');
+      const unknown = await call(page, 'POST', '/wifi', JSON.stringify({ colour: 'red' }));
+      expect(unknown.json.error.path).toBe('/colour');
+      const ok = await call(page, 'POST', '/wifi', JSON.stringify({ apPassword: 'a good long one', staSsid: 'workshop', staPassword: 'hunter22' }));
+      expect(ok.status).toBe(200);
+      expect(ok.json).toEqual({ apSsid: got.json.apSsid, staSsid: 'workshop' });
+      close();
+    });
+
+    test('the WebSocket greets, answers by id, refuses bad frames and stays open', async ({ page }) => {
+      const close = await open(page, which);
+      await expect.poll(async () => (await call(page, 'GET', '/status')).json.mega).toBe('online');
+      const got = await socket(
+        page,
+        [
+          '{"type":"ping"}',
+          'not json',
+          '{"type":"shout","id":1}',
+          JSON.stringify({ type: 'send', line: 'M'.repeat(73), id: 2 }),
+          JSON.stringify({ type: 'send', line: 'M105\nM112', id: 3 }),
+          JSON.stringify({ type: 'send', line: 'M115', id: 4 }),
+        ],
+        '"id":4',
+      );
+      expect(got[0]).toMatchObject({ type: 'hello', protocol: 1 });
+      expect(got[1]).toMatchObject({ type: 'status' });
+      const errors = got.filter((m) => m.type === 'error');
+      expect(errors.map((e) => e.code)).toEqual(['bad_json', 'unknown_type', 'line_too_long', 'bad_line']);
+      expect(errors.map((e) => e.id)).toEqual([undefined, 1, 2, 3]);
+      expect(got.some((m) => m.type === 'pong')).toBe(true);
+      const reply = got.find((m) => m.type === 'reply' && m.id === 4) as { lines: string[] } | undefined;
+      expect(reply).toBeDefined();
+      expect(reply!.lines.some((l) => l.startsWith('FIRMWARE_NAME:UVExposure'))).toBe(true);
+      expect(reply!.lines.at(-1)).toMatch(/^ok/);
+      expect(got.some((m) => m.type === 'sent' && m.line === 'M115' && m.from === 'ws')).toBe(true);
+      close();
+    });
+  });
+}

@@ -1,0 +1,33 @@
+// Test-only: starts the ESP's hub built for the host (firmware/esp/host) on a free port, with the
+// app's flash image (firmware/esp/data/www) and the simulated Mega running `speed` times real time.
+import { execFileSync, spawn } from 'node:child_process';
+import { existsSync } from 'node:fs';
+import { join } from 'node:path';
+
+const ROOT = join(import.meta.dirname, '..');
+const BINARY = join(ROOT, 'build', 'host', 'esp_host');
+const WWW = join(ROOT, 'firmware', 'esp', 'data', 'www');
+
+export interface EspHost {
+  url: string;
+  stop(): void;
+}
+
+export async function startEspHost(speed: number): Promise<EspHost> {
+  if (!existsSync(BINARY)) {
+    execFileSync('cmake', ['-S', 'firmware', '-B', 'build/host'], { cwd: ROOT, stdio: 'ignore' });
+    execFileSync('cmake', ['--build', 'build/host', '--target', 'esp_host', '-j4'], { cwd: ROOT, stdio: 'ignore' });
+  }
+  if (!existsSync(join(WWW, 'index.html.gz'))) execFileSync('node', ['scripts/build-esp-fs.mjs'], { cwd: ROOT, stdio: 'ignore' });
+  const child = spawn(BINARY, ['--port', '0', '--www', WWW, '--speed', String(speed)], { cwd: ROOT, stdio: ['ignore', 'pipe', 'inherit'] });
+  const url = await new Promise<string>((resolve, reject) => {
+    let out = '';
+    child.stdout.on('data', (d: Buffer) => {
+      out += d.toString();
+      const m = /listening on (http:\/\/\S+)/.exec(out);
+      if (m) resolve(m[1]);
+    });
+    child.on('exit', (code) => reject(new Error(`esp_host exited with ${code}`)));
+  });
+  return { url, stop: () => child.kill() };
+}

@@ -1,0 +1,260 @@
+// The ESP's hub run on the host: the same core (bridge, print intake, live channel, HTTP rules,
+// Wi-Fi settings) behind a real HTTP and WebSocket server (Boost.Beast), in front of the whole
+// simulated Mega of the Mega's host tests (its command core with the real Nano logic). The
+// end-to-end tests drive the app against it in Chromium, with the app served the way the ESP
+// serves it: gzipped files from the flash image (`npm run build:esp`), with ETags.
+//
+//   esp_host [--port N] [--www DIR] [--speed X]    prints "listening on http://127.0.0.1:PORT"
+#include <boost/asio.hpp>
+#include <boost/beast/core.hpp>
+#include <boost/beast/http.hpp>
+#include <boost/beast/websocket.hpp>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+
+#include "host_body.h"
+#include "http_rules.h"
+#include "http_sessions.h"
+#include "live_sessions.h"
+#include "mega_rig.h"
+#include "print_intake.h"
+#include "wifi_settings.h"
+
+namespace net = boost::asio;
+using tcp = net::ip::tcp;
+using namespace uv::esp;
+using hub::Answer;
+
+namespace {
+
+mega::MegaRig* rigPtr = nullptr;
+uint32_t virtualMs() { return static_cast<uint32_t>(rigPtr->nowUs / 1000); }
+
+// The Mega's UART: bytes go straight into the simulated Mega's receive side.
+struct RigWire : MegaWire {
+  mega::MegaRig& rig;
+  explicit RigWire(mega::MegaRig& r) : rig(r) {}
+  bool write(const char* data, uint16_t n) override {
+    rig.esp.toMega.append(data, n);
+    return true;
+  }
+};
+
+std::string readFile(const std::filesystem::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  std::ostringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+Answer error(unsigned status, const char* code, const char* message, const char* path = "") {
+  char buf[512];
+  JsonWriter w(buf, sizeof buf);
+  writeError(w, code, message, path);
+  return {status, "application/json", w.text(), {}};
+}
+
+Method methodOf(hub::http::verb v) {
+  switch (v) {
+    case hub::http::verb::get:
+    case hub::http::verb::head: return Method::Get;
+    case hub::http::verb::post: return Method::Post;
+    case hub::http::verb::delete_: return Method::Delete;
+    default: return Method::Other;
+  }
+}
+
+class Hub : public hub::Routes {
+ public:
+  Hub(net::io_context& io, std::filesystem::path www, std::filesystem::path state)
+      : io_(io), www_(std::move(www)), state_(std::move(state)), body_((state_ / "job.json").string()) {
+    rigPtr = &rig_;
+    sessions_.attach(bridge_, live_, virtualMs);
+    defaultWifi(0x5EED01, [] { return static_cast<uint32_t>(std::random_device{}()); }, wifi_);
+  }
+
+  void begin() {
+    rig_.begin();
+    char panel[17];
+    panelLine(wifi_, panel);
+    bridge_.begin(virtualMs(), panel);
+  }
+
+  // One real millisecond: `speed` of the Mega's, the hub's loop after each.
+  void tick(double speed) {
+    budget_ += speed;
+    for (; budget_ >= 1; budget_ -= 1) {
+      rig_.run(1000);
+      for (; fed_ < rig_.espLines.size(); fed_++)
+        for (char c : rig_.espLines[fed_] + "\n") bridge_.received(c, virtualMs());
+      bridge_.poll(virtualMs());
+      if (intake_.busy()) {
+        Intake r = intake_.step([this] { return ++jobs_; });
+        if (r != Intake::Working && waiting_) {
+          waiting_(Answer{intake_.status(), "application/json", intake_.response(), {}});
+          waiting_ = nullptr;
+        }
+      }
+    }
+  }
+
+  bool beforeBody(const hub::http::request_parser<hub::http::string_body>& parser, Answer& now) override {
+    const auto& req = parser.get();
+    std::string path(req.target());
+    if (path != "/print" || req.method() != hub::http::verb::post) return false;
+    auto ct = req.find(hub::http::field::content_type);
+    std::string contentType = ct == req.end() ? "" : std::string(ct->value());
+    bool hasLength = parser.content_length().has_value();
+    uint32_t length = hasLength ? static_cast<uint32_t>(std::min<uint64_t>(*parser.content_length(), 0xffffffffu)) : 0;
+    HttpError e = admitPrintRequest(contentType.empty() ? nullptr : contentType.c_str(), hasLength, length, bridge_, virtualMs());
+    if (!e.status) return false;  // admitted: the Mega is held for this body
+    now = error(e.status, e.code, e.message);
+    return true;
+  }
+
+  bool handle(const hub::http::request<hub::http::string_body>& req, Answer& now, std::function<void(Answer)> later) override {
+    std::string path(req.target());
+    std::string host(req[hub::http::field::host]);
+    if (isForeignHost(host.c_str(), "192.168.4.1", "uvprinter") && host.rfind("127.0.0.1", 0) != 0 && host.rfind("localhost", 0) != 0) {
+      now = {302, "", "", {{"Location", "http://192.168.4.1/"}}};
+      return true;
+    }
+    HttpError m = methodNotAllowed(path.c_str(), methodOf(req.method()));
+    if (m.status) return now = error(m.status, m.code, m.message), true;
+    if (path == "/status") {
+      char buf[2048];
+      JsonWriter w(buf, sizeof buf);
+      bridge_.writeStatus(w, virtualMs());
+      now = {200, "application/json", w.text(), {}};
+      return true;
+    }
+    if (path == "/print" && req.method() == hub::http::verb::post) {
+      std::ofstream(body_.path(), std::ios::binary) << req.body();
+      intake_.begin();
+      waiting_ = std::move(later);
+      return false;
+    }
+    if (path == "/print") {  // DELETE
+      char buf[128];
+      JsonWriter w(buf, sizeof buf);
+      w.beginObject().key("job").beginObject().key("state").string("aborted").endObject().endObject();
+      if (intake_.busy()) {
+        intake_.cancel();
+        if (waiting_) waiting_(Answer{intake_.status(), "application/json", intake_.response(), {}});
+        waiting_ = nullptr;
+      } else if (!bridge_.cancel()) {
+        return now = error(409, "busy", "nothing to cancel"), true;
+      }
+      now = {200, "application/json", w.text(), {}};
+      return true;
+    }
+    if (path == "/wifi") return now = wifi(req), true;
+    now = appFile(req, path);
+    return true;
+  }
+
+  void upgrade(boost::beast::tcp_stream&& stream, hub::http::request<hub::http::string_body> req) override {
+    if (req.target() != "/ws") return;
+    std::make_shared<hub::WsSession>(std::move(stream), sessions_)->start(std::move(req));
+  }
+
+ private:
+  Answer wifi(const hub::http::request<hub::http::string_body>& req) {
+    char buf[256];
+    JsonWriter w(buf, sizeof buf);
+    if (req.method() == hub::http::verb::post) {
+      nlohmann::json body = nlohmann::json::parse(req.body(), nullptr, false);
+      if (body.is_discarded() || req.body().size() > 1024) return error(400, "bad_json", "send {apPassword?, staSsid?, staPassword?} as JSON, under 1 KB");
+      RequestError e{};
+      if (!applyWifi(uvtest::View{&body}, wifi_, e)) return error(400, e.code, e.message, e.path);
+    }
+    writeWifi(w, wifi_, false);
+    return {200, "application/json", w.text(), {}};
+  }
+
+  // As app_files.cpp on the ESP: <path>.gz with its type, an ETag from the gzip trailer, 304.
+  Answer appFile(const hub::http::request<hub::http::string_body>& req, std::string path) {
+    if (path.find("..") != std::string::npos) return error(404, "not_found", "no such path");
+    auto q = path.find('?');
+    if (q != std::string::npos) path.resize(q);
+    if (path.back() == '/') path += "index.html";
+    std::filesystem::path file = www_ / (path.substr(1) + ".gz");
+    if (!std::filesystem::exists(file)) {
+      if (path.find_last_of('.') != std::string::npos && path.find_last_of('.') > path.find_last_of('/')) return error(404, "not_found", "no such path");
+      path = "/index.html";
+      file = www_ / "index.html.gz";
+      if (!std::filesystem::exists(file)) return error(404, "not_found", "the app is not on this hub: npm run build:esp");
+    }
+    std::string gz = readFile(file);
+    char etag[24] = "";
+    if (gz.size() >= 8) gzipEtag(reinterpret_cast<const uint8_t*>(gz.data() + gz.size() - 8), etag);
+    auto inm = req.find(hub::http::field::if_none_match);
+    if (etag[0] && inm != req.end() && inm->value() == etag) return {304, "", "", {{"ETag", etag}}};
+    bool revalidate = path == "/index.html" || (path.size() > 12 && path.compare(path.size() - 12, 12, ".webmanifest") == 0);
+    return {200, contentType(path.c_str()), std::move(gz),
+            {{"Content-Encoding", "gzip"}, {"ETag", etag}, {"Cache-Control", revalidate ? "no-cache" : "public, max-age=31536000, immutable"}}};
+  }
+
+  net::io_context& io_;
+  std::filesystem::path www_, state_;
+  mega::MegaRig rig_;
+  RigWire wire_{rig_};
+  hub::LiveSessions sessions_;
+  LiveChannel live_{sessions_};
+  Bridge bridge_{wire_, live_};
+  uvtest::HostBody body_;
+  PrintIntake<uvtest::HostBody, uvtest::HostHeaderParse> intake_{body_, bridge_, uvtest::HostHeaderParse{}};
+  std::function<void(Answer)> waiting_;
+  WifiSettings wifi_{};
+  uint32_t jobs_ = 0;
+  size_t fed_ = 0;
+  double budget_ = 0;
+};
+
+void accept(tcp::acceptor& acceptor, Hub& hub) {
+  acceptor.async_accept([&acceptor, &hub](boost::beast::error_code ec, tcp::socket socket) {
+    if (!ec) std::make_shared<hub::HttpSession>(std::move(socket), hub)->start();
+    accept(acceptor, hub);
+  });
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  unsigned short port = 0;
+  std::filesystem::path www = "firmware/esp/data/www";
+  double speed = 1;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    std::string a = argv[i];
+    if (a == "--port") port = static_cast<unsigned short>(std::stoi(argv[i + 1]));
+    else if (a == "--www") www = argv[i + 1];
+    else if (a == "--speed") speed = std::stod(argv[i + 1]);
+  }
+  std::filesystem::path state = std::filesystem::temp_directory_path() / ("uv-esp-host-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(state);
+  net::io_context io;
+  Hub hub(io, www, state);
+  tcp::acceptor acceptor(io, {net::ip::make_address("127.0.0.1"), port});
+  accept(acceptor, hub);
+  hub.begin();
+  std::printf("listening on http://127.0.0.1:%u\n", acceptor.local_endpoint().port());
+  std::fflush(stdout);
+  auto last = std::chrono::steady_clock::now();
+  for (;;) {
+    io.poll();
+    auto now = std::chrono::steady_clock::now();
+    double ms = std::chrono::duration<double, std::milli>(now - last).count();
+    if (ms >= 1) {
+      last = now;
+      hub.tick(std::min(ms, 50.0) * speed);  // a stalled host slows the Mega's time; it never jumps
+    } else {
+      std::this_thread::sleep_for(std::chrono::microseconds(200));
+    }
+  }
+}
