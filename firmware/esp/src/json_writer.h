@@ -35,8 +35,13 @@ class JsonWriter {
   }
   JsonWriter& number(int64_t v) {
     char t[24];
-    snprintf(t, sizeof t, "%lld", static_cast<long long>(v));
-    return raw(t);
+    char* p = t + sizeof t;
+    *--p = 0;
+    uint64_t u = v < 0 ? 0 - static_cast<uint64_t>(v) : static_cast<uint64_t>(v);  // no %lld: not every libc's printf has it
+    do *--p = static_cast<char>('0' + u % 10);
+    while (u /= 10);
+    if (v < 0) *--p = '-';
+    return raw(p);
   }
   // value / 10^decimals, written with exactly `decimals` places (3 for mm, 1 for °C).
   JsonWriter& fixed(int32_t value, uint8_t decimals) {
@@ -47,11 +52,22 @@ class JsonWriter {
     bool negative = v < 0;
     if (negative) v = -v;
     char t[32];
-    int n = snprintf(t, sizeof t, "%s%lld.", negative ? "-" : "", static_cast<long long>(v / scale));
+    int n = 0;
+    if (negative) t[n++] = '-';
+    char whole[24];
+    char* p = whole + sizeof whole;
+    *--p = 0;
+    int64_t w = v / scale;
+    do *--p = static_cast<char>('0' + w % 10);
+    while (w /= 10);
+    while (*p) t[n++] = *p++;
+    t[n++] = '.';
     int64_t frac = v % scale;
-    for (int64_t d = scale / 10; d >= 1 && n < static_cast<int>(sizeof t) - 1; d /= 10) t[n++] = static_cast<char>('0' + frac / d % 10);
+    for (int64_t d = scale / 10; d >= 1; d /= 10) t[n++] = static_cast<char>('0' + frac / d % 10);
     t[n] = 0;
-    return raw(t);
+    comma();
+    for (char* c = t; *c; c++) put(*c);
+    return *this;
   }
   JsonWriter& boolean(bool b) { return raw(b ? "true" : "false"); }
   JsonWriter& null() { return raw("null"); }

@@ -19,13 +19,10 @@ void sendError(AsyncWebServerRequest* r, uint16_t status, const char* code, cons
 }
 
 Method methodOf(AsyncWebServerRequest* r) {
-  switch (r->method()) {
-    case HTTP_GET: return Method::Get;
-    case HTTP_HEAD: return Method::Get;
-    case HTTP_POST: return Method::Post;
-    case HTTP_DELETE: return Method::Delete;
-    default: return Method::Other;
-  }
+  if (r->method() == HTTP_GET || r->method() == HTTP_HEAD) return Method::Get;
+  if (r->method() == HTTP_POST) return Method::Post;
+  if (r->method() == HTTP_DELETE) return Method::Delete;
+  return Method::Other;
 }
 
 void onOther(AsyncWebServerRequest* r) {

@@ -13,7 +13,6 @@ static uint32_t hardwareRandom() { return RANDOM_REG32; }  // the ESP8266's hard
 #else
 #include <ESPmDNS.h>
 #include <WiFi.h>
-#include <esp_random.h>
 static uint32_t chipId() { return static_cast<uint32_t>(ESP.getEfuseMac() >> 24); }
 static uint32_t hardwareRandom() { return esp_random(); }
 #endif
