@@ -2,6 +2,7 @@
 // core on the host (real HTTP and WebSocket): the two must answer alike, so the mock stays true.
 import { expect, test, type Page } from '@playwright/test';
 import { readFileSync } from 'node:fs';
+import { connect } from 'node:net';
 import { join } from 'node:path';
 import { startEspHost } from './esp-host';
 import { MockEsp } from './mock-esp';
@@ -121,3 +122,21 @@ for (const which of ['mock', 'firmware'] as const) {
     });
   });
 }
+
+test('esp API (firmware): a POST /print cut off mid-body frees the Mega for the next job', async ({ page }) => {
+  const host = await startEspHost(20);
+  await page.goto(host.url);
+  await expect.poll(async () => (await call(page, 'GET', '/status')).json.mega).toBe('online');
+  const { port } = new URL(host.url);
+  await new Promise<void>((resolve) => {
+    const s = connect(Number(port), '127.0.0.1', () => {
+      s.write('POST /print HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\nContent-Length: 5000\r\n\r\n{"grid":');
+      setTimeout(() => {
+        s.destroy(); // the browser tab closed, the Wi-Fi dropped
+        resolve();
+      }, 300);
+    });
+  });
+  await expect.poll(async () => (await call(page, 'POST', '/print', '{"grid":')).status, { timeout: 5000 }).toBe(400); // not 409: nothing holds the Mega
+  host.stop();
+});

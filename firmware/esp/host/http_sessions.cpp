@@ -23,7 +23,7 @@ void HttpSession::readHeader() {
 void HttpSession::readBody() {
   auto self = shared_from_this();
   http::async_read(stream_, buffer_, *parser_, [self](beast::error_code ec, size_t) {
-    if (ec) return;
+    if (ec) return self->routes_.lost(*self->parser_);
     self->dispatch();
   });
 }

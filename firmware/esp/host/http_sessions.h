@@ -30,6 +30,8 @@ class Routes {
   // The whole request; false when the answer comes later through `later`.
   virtual bool handle(const http::request<http::string_body>& req, Answer& now, std::function<void(Answer)> later) = 0;
   virtual void upgrade(beast::tcp_stream&& stream, http::request<http::string_body> req) = 0;
+  // The connection went before its body was whole, or before its later answer.
+  virtual void lost(const http::request_parser<http::string_body>& parser) = 0;
 };
 
 class HttpSession : public std::enable_shared_from_this<HttpSession> {

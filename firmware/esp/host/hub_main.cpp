@@ -159,6 +159,11 @@ class Hub : public hub::Routes {
     return true;
   }
 
+  // As the ESP's onDisconnect: a POST /print body cut short frees the Mega it held.
+  void lost(const hub::http::request_parser<hub::http::string_body>& parser) override {
+    if (parser.get().target() == "/print" && parser.get().method() == hub::http::verb::post) bridge_.release();
+  }
+
   void upgrade(boost::beast::tcp_stream&& stream, hub::http::request<hub::http::string_body> req) override {
     if (req.target() != "/ws") return;
     std::make_shared<hub::WsSession>(std::move(stream), sessions_)->start(std::move(req));

@@ -87,7 +87,18 @@ void onBody(AsyncWebServerRequest* r, uint8_t* data, size_t len, size_t index, s
     spoolFailed = !spool;
     receiving = true;
     waiting = r;
-    r->onDisconnect([] { waiting = nullptr; });  // nobody to answer; the check still runs its course
+    r->onDisconnect([] {
+      // A client gone before its answer: a body cut short is dropped, and a job nobody was told
+      // about does not start. Either way the Mega is free again.
+      waiting = nullptr;
+      if (receiving) {
+        receiving = false;
+        spool.close();
+        bridge->release();
+      } else if (intake->busy()) {
+        intake->cancel();
+      }
+    });
   }
   if (r != waiting || !receiving) return;
   if (!spoolFailed && spool.write(data, len) != len) spoolFailed = true;
