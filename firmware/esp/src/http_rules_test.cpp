@@ -10,16 +10,9 @@
 using namespace uv::esp;
 using nlohmann::json;
 
-namespace {
-struct NoClients : LiveClients {
-  bool trySend(uint8_t, const char*, uint16_t) override { return true; }
-  void close(uint8_t, uint16_t, const char*) override {}
-};
-}  // namespace
-
 TEST(HttpRules, APrintRequestIsJudgedByItsHeadersBeforeItsBody) {
   esptest::NoisyMega m;
-  NoClients c;
+  esptest::NoClients c;
   LiveChannel live(c);
   Bridge bridge(m, live);
   m.mega.begin();

@@ -6,6 +6,7 @@
 #include <random>
 #include <string>
 
+#include "live_channel.h"
 #include "mega_rig.h"
 #include "mega_sender.h"
 
@@ -45,6 +46,12 @@ struct NoisyMega : uv::esp::MegaWire {
     mega.reset(bootUs);
     fed = mega.espLines.size() - 1;
   }
+};
+
+// Web clients that take every message at once, for tests about the Mega's side.
+struct NoClients : uv::esp::LiveClients {
+  bool trySend(uint8_t, const char*, uint16_t) override { return true; }
+  void close(uint8_t, uint16_t, const char*) override {}
 };
 
 }  // namespace esptest

@@ -15,13 +15,8 @@ using nlohmann::json;
 
 namespace {
 
-struct NoClients : LiveClients {
-  bool trySend(uint8_t, const char*, uint16_t) override { return true; }
-  void close(uint8_t, uint16_t, const char*) override {}
-};
-
 struct Hub : esptest::NoisyMega {
-  NoClients clients;
+  esptest::NoClients clients;
   LiveChannel live{clients};
   Bridge bridge{*this, live};
   std::string spool = std::string(testing::TempDir()) + "intake-body.json";

@@ -60,6 +60,15 @@ std::string accept(const std::string& b, JobHeader& h) {
   return out.text;
 }
 
+// The upload's view of a spooled body: its reader and the text made from it.
+struct Spooled {
+  std::istringstream in;
+  StreamReader reader{in};
+  std::vector<uint8_t> cells = std::vector<uint8_t>(kJobMaxSide);
+  StreamedJobText<StreamReader> text;
+  Spooled(const std::string& body, const JobHeader& h) : in(body), text(reader, h, cells.data()) {}
+};
+
 std::string pull(JobText& t) {
   std::string s;
   char buf[100];
@@ -78,12 +87,9 @@ TEST(StreamedJobText, PullsTheSameTextAsTheConversionEveryTimeItIsRewound) {
     std::string b = body(rng, cols, rows, i % 4 == 0 ? 0.0 : (rng() % 100) / 100.0);
     JobHeader h;
     std::string want = accept(b, h);
-    std::istringstream in(b);
-    StreamReader reader{in};
-    std::vector<uint8_t> cells(kJobMaxSide);
-    StreamedJobText<StreamReader> text(reader, h, cells.data());
-    ASSERT_EQ(pull(text), want) << cols << "x" << rows;
-    ASSERT_EQ(pull(text), want) << "after a rewind";
+    Spooled s(b, h);
+    ASSERT_EQ(pull(s.text), want) << cols << "x" << rows;
+    ASSERT_EQ(pull(s.text), want) << "after a rewind";
   }
 }
 
@@ -93,22 +99,16 @@ TEST(StreamedJobText, ABodyThatReadsDifferentlyNowEndsTheText) {
   JobHeader h;
   accept(b, h);
   std::string damaged = b.substr(0, b.find("gridData") + 60);  // flash lost the rest of the rows
-  std::istringstream in(damaged);
-  StreamReader reader{in};
-  std::vector<uint8_t> cells(kJobMaxSide);
-  StreamedJobText<StreamReader> text(reader, h, cells.data());
-  ASSERT_TRUE(text.rewind());
+  Spooled s(damaged, h);
+  ASSERT_TRUE(s.text.rewind());
   char buf[100];
-  while (text.next(buf, sizeof buf) >= 0) {
+  while (s.text.next(buf, sizeof buf) >= 0) {
   }
-  EXPECT_FALSE(text.ok());
+  EXPECT_FALSE(s.text.ok());
 }
 
 TEST(StreamedJobText, APostedBodyLandsOnTheMegaThroughTheBridge) {
-  struct NoClients : LiveClients {
-    bool trySend(uint8_t, const char*, uint16_t) override { return true; }
-    void close(uint8_t, uint16_t, const char*) override {}
-  } clients;
+  esptest::NoClients clients;
   esptest::NoisyMega m;
   LiveChannel live(clients);
   Bridge bridge(m, live);
@@ -124,12 +124,9 @@ TEST(StreamedJobText, APostedBodyLandsOnTheMegaThroughTheBridge) {
   std::string b = body(rng, 120, 60, 0.3);
   JobHeader h;
   std::string want = accept(b, h);
-  std::istringstream in(b);
-  StreamReader reader{in};
-  std::vector<uint8_t> cells(kJobMaxSide);
-  StreamedJobText<StreamReader> text(reader, h, cells.data());
+  Spooled s(b, h);
   ASSERT_EQ(bridge.admitPrint(m.nowMs()), Admission::Accepted);
-  bridge.startUpload(21, text, static_cast<uint32_t>(want.size()));
+  bridge.startUpload(21, s.text, static_cast<uint32_t>(want.size()));
   for (int i = 0; i < 60000 && bridge.uploading(); i++) run(10000);
   ASSERT_EQ(bridge.lastUpload()->state, UploadState::Started) << bridge.lastUpload()->message;
   EXPECT_EQ(m.mega.sd.contents("JOB21.UVJ"), want);
