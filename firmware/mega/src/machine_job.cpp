@@ -396,6 +396,10 @@ Machine::Result Machine::jobCommand(HostLink& port, const uv::Command& c) {
     }
     case 828: return startStream(port);
     case 29:
+      if (((arena_ == Arena::Spool && !preparing_) || (arena_ == Arena::Stream && streaming_)) && &port != jobPort_) {
+        port.errorLine(uv::kBusy);  // the other port's upload or stream is not this one's to end
+        return Result::Done;
+      }
       if (arena_ == Arena::Stream && streaming_) {
         streaming_ = false;
         uint8_t err = stream()->job.finish();

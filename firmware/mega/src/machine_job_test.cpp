@@ -423,6 +423,7 @@ TEST_F(JobTest, AnUploadTakesRecordsOnlyFromItsPortAndCommandsStillRunBetweenThe
       EXPECT_TRUE(has(m.cmd("M105"), "T:"));                      // the other port
       EXPECT_TRUE(has(m.cmd("M114", true), "X:"));                // a command on the upload's own port
       EXPECT_TRUE(has(m.cmd("M28 OTHER.UVJ"), "Error:E12"));      // one upload at a time
+      EXPECT_TRUE(has(m.cmd("M29"), "Error:E12"));                // nor is it the other port's to end
     }
   }
   Lines end = m.cmd("M29", true);
