@@ -1,0 +1,96 @@
+import { describe, expect, it } from 'vitest';
+import { DoseGrid } from './grid';
+import { History } from './history';
+import { floodFill, line, rectangle, stamp } from './tools';
+
+function picture(g: DoseGrid): string[] {
+  return Array.from({ length: g.rows }, (_, y) => Array.from(g.cells.subarray(y * g.cols, (y + 1) * g.cols), (v) => (v ? '#' : '.')).join(''));
+}
+
+describe('dose grid', () => {
+  it('is machine-sized: the bed over the pitch, at most 4096 a side', () => {
+    const g = DoseGrid.forBed({ x: 200, y: 150 }, { x: 50, y: 50 });
+    expect([g.cols, g.rows]).toEqual([4000, 3000]);
+    expect(DoseGrid.forBed({ x: 300, y: 300 }, { x: 50, y: 50 }).cols).toBe(4096);
+    expect(() => new DoseGrid(0, 5)).toThrow(RangeError);
+  });
+
+  it('finds the box of what will be exposed', () => {
+    const g = new DoseGrid(10, 8);
+    expect(g.bounds()).toBeNull();
+    const h = new History(g);
+    const e = h.begin('dot');
+    e.set(3, 2, 255);
+    e.set(7, 5, 10);
+    expect(g.bounds()).toEqual({ x0: 3, y0: 2, x1: 7, y1: 5 });
+  });
+});
+
+describe('raster tools', () => {
+  it('draws round brushes, lines without gaps, and rectangles outlined or filled', () => {
+    const g = new DoseGrid(12, 9);
+    const h = new History(g);
+    const e = h.begin('draw');
+    stamp(g, e, 2, 2, 5, 255); // cells whose centres lie within the brush's diameter
+    expect(picture(g).slice(0, 5)).toEqual(['.###........', '#####.......', '#####.......', '#####.......', '.###........']);
+    line(g, e, 0, 8, 11, 5, 1, 200);
+    for (let x = 0; x < 12; x++) expect(g.cells.subarray(5 * 12, 9 * 12).filter((_, i) => i % 12 === x).some((v) => v === 200)).toBe(true);
+    const r = new DoseGrid(6, 5);
+    const er = new History(r).begin('rect');
+    rectangle(r, er, 0, 0, 5, 4, false, 1, 255);
+    expect(picture(r)).toEqual(['######', '#....#', '#....#', '#....#', '######']);
+    rectangle(r, er, 4, 3, 1, 1, true, 1, 255);
+    expect(picture(r)).toEqual(['######', '######', '######', '######', '######']);
+  });
+
+  it('flood-fills exactly the connected area, even a whole 4096² grid', () => {
+    const g = new DoseGrid(8, 6);
+    const h = new History(g);
+    const e = h.begin('fill');
+    rectangle(g, e, 1, 1, 6, 4, false, 1, 255);
+    expect(floodFill(g, e, 3, 2, 255)).toBe(8);
+    expect(picture(g)).toEqual(['........', '.######.', '.######.', '.######.', '.######.', '........']);
+    expect(floodFill(g, e, 0, 0, 255)).toBe(48 - 24);
+    const big = new DoseGrid(4096, 4096);
+    const hb = new History(big);
+    const eb = hb.begin('fill');
+    expect(floodFill(big, eb, 100, 100, 7)).toBe(4096 * 4096);
+  });
+
+  it('undoes and redoes whole edits, and an empty edit is not a step', () => {
+    const g = new DoseGrid(300, 200);
+    const h = new History(g);
+    const before = g.cells.slice();
+    const e = h.begin('stroke');
+    line(g, e, 0, 0, 299, 199, 5, 255);
+    h.commit(e);
+    const after = g.cells.slice();
+    h.commit(h.begin('nothing'));
+    expect(h.undoLabel).toBe('stroke');
+    expect(h.undo()).toBe(true);
+    expect(g.cells).toEqual(before);
+    expect(h.redo()).toBe(true);
+    expect(g.cells).toEqual(after);
+    expect(h.redo()).toBe(false);
+    // A new edit after an undo drops the redo.
+    h.undo();
+    const e2 = h.begin('dot');
+    e2.set(1, 1, 9);
+    h.commit(e2);
+    expect(h.canRedo).toBe(false);
+  });
+
+  it('keeps its memory bounded by dropping the oldest steps', () => {
+    const g = new DoseGrid(256, 256);
+    const h = new History(g, 256 * 256 * 3);
+    for (let i = 0; i < 10; i++) {
+      const e = h.begin(`fill ${i}`);
+      floodFill(g, e, 0, 0, i + 1);
+      h.commit(e);
+    }
+    let steps = 0;
+    while (h.undo()) steps++;
+    expect(steps).toBe(3);
+    expect(g.cells[0]).toBe(7); // back to before the oldest step kept
+  });
+});

@@ -1,0 +1,118 @@
+// Undo and redo for a dose grid. An edit saves each 64 × 64 tile the first time it touches it, so
+// a stroke across a 4096² grid costs only the tiles it crosses, and a flood fill no more than the
+// area it fills.
+
+import type { DoseGrid } from './grid';
+
+const TILE = 64;
+
+interface Patch {
+  /** Tile index → its cells before the edit (and, once undone, after it). */
+  tiles: Map<number, Uint8Array>;
+  label: string;
+}
+
+export class Edit {
+  readonly #grid: DoseGrid;
+  readonly tiles = new Map<number, Uint8Array>();
+  readonly #tilesX: number;
+
+  constructor(grid: DoseGrid, readonly label: string) {
+    this.#grid = grid;
+    this.#tilesX = Math.ceil(grid.cols / TILE);
+  }
+
+  /** Call before writing any cell of the box [x0, x1] × [y0, y1] (clipped to the grid). */
+  touch(x0: number, y0: number, x1: number, y1: number): void {
+    const g = this.#grid;
+    const tx0 = Math.max(0, Math.floor(Math.min(x0, x1) / TILE)), tx1 = Math.min(this.#tilesX - 1, Math.floor(Math.max(x0, x1) / TILE));
+    const ty0 = Math.max(0, Math.floor(Math.min(y0, y1) / TILE)), ty1 = Math.min(Math.ceil(g.rows / TILE) - 1, Math.floor(Math.max(y0, y1) / TILE));
+    for (let ty = ty0; ty <= ty1; ty++)
+      for (let tx = tx0; tx <= tx1; tx++) {
+        const key = ty * this.#tilesX + tx;
+        if (!this.tiles.has(key)) this.tiles.set(key, copyTile(g, tx, ty));
+      }
+  }
+
+  /** Writes a cell, saving its tile first. */
+  set(x: number, y: number, dose: number): void {
+    if (!this.#grid.inside(x, y)) return;
+    this.touch(x, y, x, y);
+    this.#grid.cells[y * this.#grid.cols + x] = dose;
+  }
+}
+
+function copyTile(g: DoseGrid, tx: number, ty: number): Uint8Array {
+  const w = Math.min(TILE, g.cols - tx * TILE), h = Math.min(TILE, g.rows - ty * TILE);
+  const out = new Uint8Array(w * h);
+  for (let y = 0; y < h; y++) out.set(g.cells.subarray((ty * TILE + y) * g.cols + tx * TILE, (ty * TILE + y) * g.cols + tx * TILE + w), y * w);
+  return out;
+}
+
+/** Swaps the saved tiles with the grid's, so the same patch undoes and then redoes. */
+function swap(g: DoseGrid, tiles: Map<number, Uint8Array>): void {
+  const tilesX = Math.ceil(g.cols / TILE);
+  for (const [key, saved] of tiles) {
+    const tx = key % tilesX, ty = Math.floor(key / tilesX);
+    const now = copyTile(g, tx, ty);
+    const w = Math.min(TILE, g.cols - tx * TILE), h = saved.length / w;
+    for (let y = 0; y < h; y++) g.cells.set(saved.subarray(y * w, (y + 1) * w), (ty * TILE + y) * g.cols + tx * TILE);
+    tiles.set(key, now);
+  }
+}
+
+export class History {
+  #undo: Patch[] = [];
+  #redo: Patch[] = [];
+  #bytes = 0;
+
+  /** Keeps at most `maxBytes` of saved tiles (64 MB: sixteen whole 4096² grids). */
+  constructor(readonly grid: DoseGrid, readonly maxBytes = 64 * 1024 * 1024) {}
+
+  begin(label: string): Edit {
+    return new Edit(this.grid, label);
+  }
+
+  /** Records a finished edit; an edit that touched nothing is not a step. */
+  commit(edit: Edit): void {
+    if (edit.tiles.size === 0) return;
+    this.#undo.push({ tiles: edit.tiles, label: edit.label });
+    this.#bytes += size(edit.tiles);
+    for (const p of this.#redo) this.#bytes -= size(p.tiles);
+    this.#redo = [];
+    while (this.#bytes > this.maxBytes && this.#undo.length > 1) this.#bytes -= size(this.#undo.shift()!.tiles);
+  }
+
+  get canUndo(): boolean {
+    return this.#undo.length > 0;
+  }
+  get canRedo(): boolean {
+    return this.#redo.length > 0;
+  }
+  /** What undo would take back, for the menu. */
+  get undoLabel(): string | null {
+    return this.#undo.at(-1)?.label ?? null;
+  }
+
+  undo(): boolean {
+    const p = this.#undo.pop();
+    if (!p) return false;
+    swap(this.grid, p.tiles);
+    this.#redo.push(p);
+    return true;
+  }
+
+  redo(): boolean {
+    const p = this.#redo.pop();
+    if (!p) return false;
+    swap(this.grid, p.tiles);
+    this.#undo.push(p);
+    return true;
+  }
+}
+
+function size(tiles: Map<number, Uint8Array>): number {
+  let n = 0;
+  for (const t of tiles.values()) n += t.length;
+  return n;
+}
