@@ -1,0 +1,61 @@
+import { describe, expect, it } from 'vitest';
+import { DoseGrid } from '../grid/grid';
+import { History } from '../grid/history';
+import { line } from '../grid/tools';
+import { TILE, TileCache } from './tile-cache';
+import { fit, panBy, rulerStep, toCell, toScreen, zoomAt } from './viewport';
+
+describe('viewport', () => {
+  it('zooms about the pointer and pans by screen pixels', () => {
+    const v = { scale: 2, x: 10, y: 20 };
+    const z = zoomAt(v, 4, 100, 50);
+    expect(toCell(z, 100, 50)).toEqual(toCell(v, 100, 50));
+    expect(z.scale).toBe(8);
+    const p = panBy(z, 80, -40);
+    expect(toScreen(p, 40, 30).x - toScreen(z, 40, 30).x).toBeCloseTo(80);
+    expect(zoomAt(v, 1e9, 0, 0).scale).toBe(64);
+  });
+
+  it('fits the bed and picks readable ruler steps', () => {
+    const f = fit(4096, 2048, 1040, 560);
+    expect(f.scale).toBeCloseTo(0.25);
+    expect(toScreen(f, 2048, 1024)).toEqual({ x: 520, y: 280 });
+    expect(rulerStep(20)).toBe(5);
+    expect(rulerStep(3)).toBe(20);
+    expect(rulerStep(0.05)).toBe(2000);
+  });
+});
+
+describe('tile cache', () => {
+  it('keeps a one-cell trace visible at every level and remakes only the tiles an edit touched', () => {
+    const g = new DoseGrid(4096, 4096);
+    let painted = 0;
+    const cache = new TileCache(g, (w, h) => ({ w, h, pixels: new Uint32Array(0) }), (t, pixels) => {
+      t.pixels = pixels;
+      painted++;
+    });
+    expect(cache.levels.map((l) => l.cols)).toEqual([4096, 2048, 1024, 512, 256]);
+    const h = new History(g);
+    const e = h.begin('trace');
+    line(g, e, 0, 1000, 4095, 1000, 1, 255);
+    cache.refresh(0, 1000, 4095, 1000);
+    for (let k = 0; k < cache.levels.length; k++) {
+      const level = cache.levels[k];
+      const y = 1000 >> k;
+      expect(level.cells.subarray(y * level.cols, (y + 1) * level.cols).every((v) => v === 255)).toBe(true);
+    }
+    expect(cache.levelFor(4)).toBe(0);
+    expect(cache.levelFor(0.25)).toBe(2);
+    expect(cache.levelFor(1 / 64)).toBe(4);
+    const t = cache.tile(4, 0, 0);
+    expect(t.w).toBe(TILE);
+    const before = painted;
+    cache.tile(4, 0, 0);
+    expect(painted).toBe(before); // clean: not painted again
+    const e2 = h.begin('dot');
+    e2.set(10, 10, 255);
+    cache.refresh(10, 10, 10, 10);
+    cache.tile(4, 0, 0);
+    expect(painted).toBe(before + 1);
+  });
+});

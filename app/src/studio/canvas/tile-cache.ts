@@ -1,0 +1,118 @@
+// The grid as the screen draws it: 256 × 256-cell tiles at levels of detail, each level half the
+// cells of the one below. A coarser cell holds the darkest of the four below it, so a one-cell
+// trace stays visible when the whole 4096² bed is on screen. Tiles are remade only when an edit
+// marks them dirty, so panning redraws nothing but the screen.
+
+import type { DoseGrid } from '../grid/grid';
+
+export const TILE = 256;
+
+/** Dose → colour on screen (ABGR for a little-endian Uint32Array over RGBA): bed white to UV violet. */
+export function doseColours(): Uint32Array {
+  const lut = new Uint32Array(256);
+  for (let d = 0; d < 256; d++) {
+    const t = d / 255;
+    const r = Math.round(250 - t * (250 - 74)), g = Math.round(250 - t * (250 - 20)), b = Math.round(250 - t * (250 - 140));
+    lut[d] = (255 << 24) | (b << 16) | (g << 8) | r;
+  }
+  return lut;
+}
+
+export class LevelGrid {
+  readonly cols: number;
+  readonly rows: number;
+  readonly cells: Uint8Array;
+  constructor(cols: number, rows: number) {
+    this.cols = cols;
+    this.rows = rows;
+    this.cells = new Uint8Array(cols * rows);
+  }
+}
+
+export class TileCache<T> {
+  /** Level 0 is the grid itself; level k has ceil(cols / 2^k) cells across. */
+  readonly levels: (DoseGrid | LevelGrid)[];
+  #tiles = new Map<string, { tile: T; dirty: boolean }>();
+  readonly #lut = doseColours();
+
+  constructor(
+    readonly grid: DoseGrid,
+    private readonly makeTile: (w: number, h: number) => T,
+    private readonly paint: (tile: T, pixels: Uint32Array, w: number, h: number) => void,
+  ) {
+    this.levels = [grid];
+    let cols = grid.cols, rows = grid.rows;
+    while (cols > TILE || rows > TILE) {
+      cols = Math.ceil(cols / 2);
+      rows = Math.ceil(rows / 2);
+      this.levels.push(new LevelGrid(cols, rows));
+    }
+    this.refresh(0, 0, grid.cols - 1, grid.rows - 1);
+  }
+
+  /** After an edit of the cells in [x0, x1] × [y0, y1]: the coarser levels and the tiles over it. */
+  refresh(x0: number, y0: number, x1: number, y1: number): void {
+    x0 = Math.max(0, x0), y0 = Math.max(0, y0);
+    x1 = Math.min(this.grid.cols - 1, x1), y1 = Math.min(this.grid.rows - 1, y1);
+    for (let k = 0; k < this.levels.length; k++) {
+      if (k > 0) {
+        this.#downsample(k, x0, y0, x1, y1); // from level k-1's box
+        x0 >>= 1, y0 >>= 1, x1 >>= 1, y1 >>= 1;
+      }
+      for (let ty = Math.floor(y0 / TILE); ty <= Math.floor(y1 / TILE); ty++)
+        for (let tx = Math.floor(x0 / TILE); tx <= Math.floor(x1 / TILE); tx++) {
+          const t = this.#tiles.get(`${k}/${tx}/${ty}`);
+          if (t) t.dirty = true;
+        }
+    }
+  }
+
+  #downsample(k: number, x0: number, y0: number, x1: number, y1: number): void {
+    const src = this.levels[k - 1], dst = this.levels[k];
+    for (let y = y0 >> 1; y <= y1 >> 1 && y < dst.rows; y++)
+      for (let x = x0 >> 1; x <= x1 >> 1 && x < dst.cols; x++) {
+        const sx = 2 * x, sy = 2 * y;
+        let m = src.cells[sy * src.cols + sx];
+        if (sx + 1 < src.cols) m = Math.max(m, src.cells[sy * src.cols + sx + 1]);
+        if (sy + 1 < src.rows) {
+          m = Math.max(m, src.cells[(sy + 1) * src.cols + sx]);
+          if (sx + 1 < src.cols) m = Math.max(m, src.cells[(sy + 1) * src.cols + sx + 1]);
+        }
+        dst.cells[y * dst.cols + x] = m;
+      }
+  }
+
+  /** The level to draw at `scale` screen pixels per cell: the coarsest whose cells are still ≥ 1 pixel. */
+  levelFor(scale: number): number {
+    let k = 0;
+    while (k + 1 < this.levels.length && scale * Math.pow(2, k + 1) <= 1) k++;
+    return k;
+  }
+
+  /** Tile (tx, ty) of level k, made or remade if needed. */
+  tile(k: number, tx: number, ty: number): T {
+    const key = `${k}/${tx}/${ty}`;
+    const level = this.levels[k];
+    const w = Math.min(TILE, level.cols - tx * TILE), h = Math.min(TILE, level.rows - ty * TILE);
+    let t = this.#tiles.get(key);
+    if (!t) {
+      t = { tile: this.makeTile(w, h), dirty: true };
+      this.#tiles.set(key, t);
+    }
+    if (t.dirty) {
+      const pixels = new Uint32Array(w * h);
+      for (let y = 0; y < h; y++) {
+        const row = (ty * TILE + y) * level.cols + tx * TILE;
+        for (let x = 0; x < w; x++) pixels[y * w + x] = this.#lut[level.cells[row + x]];
+      }
+      this.paint(t.tile, pixels, w, h);
+      t.dirty = false;
+    }
+    return t.tile;
+  }
+
+  /** How many tiles are held (for the memory figure). */
+  get size(): number {
+    return this.#tiles.size;
+  }
+}
