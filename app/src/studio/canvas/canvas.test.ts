@@ -30,7 +30,7 @@ describe('tile cache', () => {
   it('keeps a one-cell trace visible at every level and remakes only the tiles an edit touched', () => {
     const g = new DoseGrid(4096, 4096);
     let painted = 0;
-    const cache = new TileCache(g, (w, h) => ({ w, h, pixels: new Uint32Array(0) }), (t, pixels) => {
+    const cache = new TileCache(g, (w, h) => ({ w, h, pixels: new Uint32Array(0) as Uint32Array<ArrayBufferLike> }), (t, pixels) => {
       t.pixels = pixels;
       painted++;
     });
