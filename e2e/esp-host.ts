@@ -19,7 +19,10 @@ export async function startEspHost(speed: number): Promise<EspHost> {
     execFileSync('cmake', ['--build', 'build/host', '--target', 'esp_host', '-j4'], { cwd: ROOT, stdio: 'ignore' });
   }
   if (!existsSync(join(WWW, 'index.html.gz'))) execFileSync('node', ['scripts/build-esp-fs.mjs'], { cwd: ROOT, stdio: 'ignore' });
-  const child = spawn(BINARY, ['--port', '0', '--www', WWW, '--speed', String(speed)], { cwd: ROOT, stdio: ['ignore', 'pipe', 'inherit'] });
+  // stdin is a pipe the hub watches: when this process goes, however it goes, so does the hub.
+  const child = spawn(BINARY, ['--port', '0', '--www', WWW, '--speed', String(speed)], { cwd: ROOT, stdio: ['pipe', 'pipe', 'inherit'] });
+  const kill = () => child.kill();
+  process.once('exit', kill);
   const url = await new Promise<string>((resolve, reject) => {
     let out = '';
     child.stdout.on('data', (d: Buffer) => {
@@ -29,5 +32,11 @@ export async function startEspHost(speed: number): Promise<EspHost> {
     });
     child.on('exit', (code) => reject(new Error(`esp_host exited with ${code}`)));
   });
-  return { url, stop: () => child.kill() };
+  return {
+    url,
+    stop: () => {
+      process.off('exit', kill);
+      child.kill();
+    },
+  };
 }

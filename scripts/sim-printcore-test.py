@@ -5,6 +5,7 @@ an exposure job as a print (numbered, checksummed lines), then exposes it. Print
 import json
 import os
 import re
+import signal
 import subprocess
 import sys
 import time
@@ -30,8 +31,9 @@ def wait(pred, seconds):
     return pred()
 
 
+# Its own process group: npx starts node, and both must go when the test ends.
 sim = subprocess.Popen(["npx", "tsx", "scripts/sim.ts", "--pty", "--speed", "20"], cwd=ROOT,
-                       stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+                       stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, start_new_session=True)
 pty = None
 for line in sim.stdout:
     m = re.match(r"pty (\S+)", line)
@@ -87,7 +89,7 @@ try:
     check("exposes it (M23, M24)", ok, received[-5:])
 finally:
     p.disconnect()
-    sim.terminate()
+    os.killpg(sim.pid, signal.SIGTERM)
     sim.wait(5)
 
 passed = sum(results)

@@ -18,6 +18,8 @@
 #include <string>
 #include <thread>
 
+#include <unistd.h>
+
 #include "host_body.h"
 #include "http_rules.h"
 #include "http_sessions.h"
@@ -250,6 +252,14 @@ int main(int argc, char** argv) {
   hub.begin();
   std::printf("listening on http://127.0.0.1:%u\n", acceptor.local_endpoint().port());
   std::fflush(stdout);
+  // The hub lives as long as whoever started it: when its stdin closes (the test runner ended,
+  // however it ended), it exits. Run by hand, it reads the terminal and ends at Ctrl-D.
+  std::thread([] {
+    char c;
+    while (::read(0, &c, 1) > 0) {
+    }
+    std::_Exit(0);
+  }).detach();
   auto last = std::chrono::steady_clock::now();
   for (;;) {
     io.poll();

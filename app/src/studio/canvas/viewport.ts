@@ -10,6 +10,8 @@ export interface View {
 }
 
 export const MIN_SCALE = 1 / 64;
+/** The rulers' width along the top and left of the canvas, in CSS pixels. */
+export const RULER = 22;
 export const MAX_SCALE = 64;
 
 export function toCell(v: View, sx: number, sy: number): { x: number; y: number } {
@@ -31,10 +33,11 @@ export function panBy(v: View, dxScreen: number, dyScreen: number): View {
   return { ...v, x: v.x - dxScreen / v.scale, y: v.y - dyScreen / v.scale };
 }
 
-/** The whole grid in a canvas of w × h pixels, centred, with a margin. */
-export function fit(cols: number, rows: number, w: number, h: number, margin = 16): View {
-  const scale = Math.min(MAX_SCALE, Math.max(MIN_SCALE, Math.min((w - 2 * margin) / cols, (h - 2 * margin) / rows)));
-  return { scale, x: cols / 2 - w / 2 / scale, y: rows / 2 - h / 2 / scale };
+/** The whole grid in a canvas of w × h pixels, centred in the part the rulers leave, with a margin. */
+export function fit(cols: number, rows: number, w: number, h: number, margin = 16, ruler = 0): View {
+  const aw = w - ruler, ah = h - ruler;
+  const scale = Math.min(MAX_SCALE, Math.max(MIN_SCALE, Math.min((aw - 2 * margin) / cols, (ah - 2 * margin) / rows)));
+  return { scale, x: cols / 2 - (ruler + aw / 2) / scale, y: rows / 2 - (ruler + ah / 2) / scale };
 }
 
 /** Ruler ticks in mm for the visible span: a step of 1, 2 or 5 × 10^k that leaves ≥ `minPx` between labels. */

@@ -1,0 +1,147 @@
+// The grid editor's state: the machine's grid, its history, the tool in hand and the view.
+// The canvas component turns pointer, wheel and key events into calls here.
+
+import { DoseGrid } from './grid/grid';
+import { History, type Edit } from './grid/history';
+import { floodFill, line, rectangle, stamp } from './grid/tools';
+import { fit, panBy, RULER, toCell, zoomAt, type View } from './canvas/viewport';
+
+export type Tool = 'brush' | 'eraser' | 'line' | 'rect' | 'rect-filled' | 'fill' | 'pan';
+
+export interface Machine {
+  bedMm: { x: number; y: number };
+  pitchUm: { x: number; y: number };
+}
+
+export const DEFAULT_MACHINE: Machine = { bedMm: { x: 200, y: 150 }, pitchUm: { x: 50, y: 50 } };
+
+export class GridEditor {
+  grid: DoseGrid;
+  history: History;
+  tool = $state<Tool>('brush');
+  size = $state(5);
+  dose = $state(255);
+  view = $state<View>({ scale: 1, x: 0, y: 0 });
+  /** Bumped on every change of the cells, so views of them can follow. */
+  revision = $state(0);
+  canUndo = $state(false);
+  canRedo = $state(false);
+  /** A line or rectangle being dragged: its corners, drawn as a preview until release. */
+  preview = $state<{ x0: number; y0: number; x1: number; y1: number } | null>(null);
+  /** Called with the box of cells an edit changed (the renderer's cache listens). */
+  onCells: (x0: number, y0: number, x1: number, y1: number) => void = () => {};
+
+  #edit: Edit | null = null;
+  #last: { x: number; y: number } | null = null;
+  #start: { x: number; y: number } | null = null;
+
+  constructor(readonly machine: Machine = DEFAULT_MACHINE) {
+    this.grid = DoseGrid.forBed(machine.bedMm, machine.pitchUm);
+    this.history = new History(this.grid);
+  }
+
+  fitTo(width: number, height: number): void {
+    this.view = fit(this.grid.cols, this.grid.rows, width, height, 16, RULER);
+  }
+
+  zoom(factor: number, sx: number, sy: number): void {
+    this.view = zoomAt(this.view, factor, sx, sy);
+  }
+
+  pan(dx: number, dy: number): void {
+    this.view = panBy(this.view, dx, dy);
+  }
+
+  /** A pointer went down at screen (sx, sy): a stroke or a shape begins. */
+  down(sx: number, sy: number): void {
+    if (this.tool === 'pan') return;
+    const c = this.#cell(sx, sy);
+    this.#edit = this.history.begin(this.tool);
+    this.#start = c;
+    this.#last = c;
+    if (this.tool === 'brush' || this.tool === 'eraser') this.#stroke(c, c);
+    else if (this.tool === 'fill') {
+      const changed = floodFill(this.grid, this.#edit, c.x, c.y, this.dose);
+      if (changed) this.#changed(0, 0, this.grid.cols - 1, this.grid.rows - 1);
+    } else this.preview = { x0: c.x, y0: c.y, x1: c.x, y1: c.y };
+  }
+
+  move(sx: number, sy: number): void {
+    if (!this.#edit || !this.#last || !this.#start) return;
+    const c = this.#cell(sx, sy);
+    if (this.tool === 'brush' || this.tool === 'eraser') this.#stroke(this.#last, c);
+    else if (this.preview) this.preview = { x0: this.#start.x, y0: this.#start.y, x1: c.x, y1: c.y };
+    this.#last = c;
+  }
+
+  up(): void {
+    const e = this.#edit;
+    if (!e) return;
+    const p = this.preview;
+    if (p && this.tool === 'line') {
+      line(this.grid, e, p.x0, p.y0, p.x1, p.y1, this.size, this.dose);
+      this.#changed(Math.min(p.x0, p.x1) - this.size, Math.min(p.y0, p.y1) - this.size, Math.max(p.x0, p.x1) + this.size, Math.max(p.y0, p.y1) + this.size);
+    } else if (p && (this.tool === 'rect' || this.tool === 'rect-filled')) {
+      rectangle(this.grid, e, p.x0, p.y0, p.x1, p.y1, this.tool === 'rect-filled', this.size, this.dose);
+      this.#changed(Math.min(p.x0, p.x1), Math.min(p.y0, p.y1), Math.max(p.x0, p.x1), Math.max(p.y0, p.y1));
+    }
+    this.history.commit(e);
+    this.#edit = this.#last = this.#start = null;
+    this.preview = null;
+    this.#syncHistory();
+  }
+
+  undo(): void {
+    if (this.history.undo()) this.#afterHistory();
+  }
+
+  redo(): void {
+    if (this.history.redo()) this.#afterHistory();
+  }
+
+  /** Puts doses into the grid as one undoable step (an import, a generated test strip). */
+  place(doses: Uint8Array, width: number, height: number, atX: number, atY: number, label: string): void {
+    const e = this.history.begin(label);
+    const x0 = Math.max(0, atX), y0 = Math.max(0, atY);
+    const x1 = Math.min(this.grid.cols - 1, atX + width - 1), y1 = Math.min(this.grid.rows - 1, atY + height - 1);
+    if (x0 > x1 || y0 > y1) return;
+    e.touch(x0, y0, x1, y1);
+    for (let y = y0; y <= y1; y++)
+      this.grid.cells.set(doses.subarray((y - atY) * width + (x0 - atX), (y - atY) * width + (x1 - atX) + 1), y * this.grid.cols + x0);
+    this.history.commit(e);
+    this.#changed(x0, y0, x1, y1);
+    this.#syncHistory();
+  }
+
+  clear(): void {
+    this.place(new Uint8Array(this.grid.cols * this.grid.rows), this.grid.cols, this.grid.rows, 0, 0, 'clear');
+  }
+
+  #cell(sx: number, sy: number): { x: number; y: number } {
+    const c = toCell(this.view, sx, sy);
+    return { x: Math.floor(c.x), y: Math.floor(c.y) };
+  }
+
+  #stroke(a: { x: number; y: number }, b: { x: number; y: number }): void {
+    const dose = this.tool === 'eraser' ? 0 : this.dose;
+    if (a.x === b.x && a.y === b.y) stamp(this.grid, this.#edit!, a.x, a.y, this.size, dose);
+    else line(this.grid, this.#edit!, a.x, a.y, b.x, b.y, this.size, dose);
+    const r = Math.ceil(this.size / 2);
+    this.#changed(Math.min(a.x, b.x) - r, Math.min(a.y, b.y) - r, Math.max(a.x, b.x) + r, Math.max(a.y, b.y) + r);
+  }
+
+  #changed(x0: number, y0: number, x1: number, y1: number): void {
+    this.onCells(x0, y0, x1, y1);
+    this.revision++;
+  }
+
+  #afterHistory(): void {
+    this.#changed(0, 0, this.grid.cols - 1, this.grid.rows - 1);
+    this.#syncHistory();
+  }
+
+  #syncHistory(): void {
+    this.canUndo = this.history.canUndo;
+    this.canRedo = this.history.canRedo;
+  }
+}
