@@ -81,3 +81,49 @@ test('brush, eraser and fill paint at the dose picked', async ({ page }) => {
   await expect.poll(() => pixel(page, box.width * 0.5, 60).then(isDose)).toBe(true);
   await expect.poll(() => pixel(page, 5, box.height - 5).then(isDose)).toBe(false); // the fill stays on the bed
 });
+
+/** A BMP of w × h pixels, black on its left half and white on its right (24-bit, bottom-up rows). */
+function halfBlackBmp(w: number, h: number): Buffer {
+  const row = Math.ceil((w * 3) / 4) * 4;
+  const b = Buffer.alloc(54 + row * h);
+  b.write('BM', 0);
+  b.writeUInt32LE(b.length, 2);
+  b.writeUInt32LE(54, 10);
+  b.writeUInt32LE(40, 14);
+  b.writeInt32LE(w, 18);
+  b.writeInt32LE(h, 22);
+  b.writeUInt16LE(1, 26);
+  b.writeUInt16LE(24, 28);
+  b.writeUInt32LE(row * h, 34);
+  for (let y = 0; y < h; y++) for (let x = 0; x < w; x++) b.fill(x < w / 2 ? 0 : 255, 54 + y * row + x * 3, 54 + y * row + x * 3 + 3);
+  return b;
+}
+
+test('imports a picture at a physical size, dithered, and places it where the view is', async ({ page }, info) => {
+  await page.goto('/?simSpeed=40');
+  await page.getByTestId('import-file').setInputFiles({ name: 'half.bmp', mimeType: 'image/bmp', buffer: halfBlackBmp(40, 20) });
+  await page.getByTestId('import-width').fill('10');
+  await expect(page.getByTestId('import-size')).toHaveText(/^200 × 100 cells, 5\.0 mm high$/);
+  await page.getByTestId('import-halftone').selectOption('threshold');
+  await expect(page.getByTestId('import-preview')).toBeVisible();
+  await page.getByTestId('import-place').click();
+  const box = (await page.getByTestId('editor-canvas').boundingBox())!;
+  // The picture sits in the middle of the view: its black half left of centre, its white half right.
+  const centreX = 22 + (box.width - 22) / 2, centreY = 22 + (box.height - 22) / 2;
+  await expect.poll(() => pixel(page, centreX - 8, centreY).then(isDose)).toBe(true);
+  expect(isDose(await pixel(page, centreX + 8, centreY))).toBe(false);
+  await page.screenshot({ path: info.outputPath('imported.png'), fullPage: true });
+  await page.getByTestId('undo').click();
+  await expect.poll(() => pixel(page, centreX - 8, centreY).then(isDose)).toBe(false);
+  // Inverted, the white half is the one exposed.
+  await page.getByTestId('import-invert').check();
+  await page.getByTestId('import-place').click();
+  await expect.poll(() => pixel(page, centreX + 8, centreY).then(isDose)).toBe(true);
+  expect(isDose(await pixel(page, centreX - 8, centreY))).toBe(false);
+});
+
+test('a file that is not a picture says so', async ({ page }) => {
+  await page.goto('/?simSpeed=40');
+  await page.getByTestId('import-file').setInputFiles({ name: 'notes.png', mimeType: 'image/png', buffer: Buffer.from('not a png at all') });
+  await expect(page.getByTestId('import-error')).toContainText('not a picture');
+});

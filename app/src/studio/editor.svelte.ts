@@ -40,8 +40,18 @@ export class GridEditor {
     this.history = new History(this.grid);
   }
 
+  /** The canvas's size in CSS pixels, as its component last measured it. */
+  screen = { width: 0, height: 0 };
+
   fitTo(width: number, height: number): void {
+    this.screen = { width, height };
     this.view = fit(this.grid.cols, this.grid.rows, width, height, 16, RULER);
+  }
+
+  /** The cell in the middle of what the canvas shows (beside the rulers). */
+  centreCell(): { x: number; y: number } {
+    const c = toCell(this.view, RULER + (this.screen.width - RULER) / 2, RULER + (this.screen.height - RULER) / 2);
+    return { x: Math.round(c.x), y: Math.round(c.y) };
   }
 
   zoom(factor: number, sx: number, sy: number): void {
