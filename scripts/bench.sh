@@ -2,6 +2,7 @@
 # npm run bench: speed and size figures, each printed against a baseline run beside it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+npm run --silent build >/dev/null  # the editor benchmark runs the built app
 npx tsx bench/run.ts
 echo
 bash scripts/build-avr.sh
