@@ -26,6 +26,8 @@ export class GridEditor {
   revision = $state(0);
   canUndo = $state(false);
   canRedo = $state(false);
+  /** Whether any cell has a dose: known after each finished edit, not during a stroke. */
+  hasInk = $state(false);
   /** A line or rectangle being dragged: its corners, drawn as a preview until release. */
   preview = $state<{ x0: number; y0: number; x1: number; y1: number } | null>(null);
   /** Called with the box of cells an edit changed (the renderer's cache listens). */
@@ -153,5 +155,14 @@ export class GridEditor {
   #syncHistory(): void {
     this.canUndo = this.history.canUndo;
     this.canRedo = this.history.canRedo;
+    this.hasInk = anyDose(this.grid.cells);
   }
+}
+
+/** A word at a time: an empty 4096² grid is read in a few milliseconds. */
+function anyDose(cells: Uint8Array): boolean {
+  const words = new Uint32Array(cells.buffer, cells.byteOffset, cells.length >> 2);
+  for (let i = 0; i < words.length; i++) if (words[i]) return true;
+  for (let i = words.length << 2; i < cells.length; i++) if (cells[i]) return true;
+  return false;
 }
