@@ -103,6 +103,16 @@ export class GridEditor {
     this.#syncHistory();
   }
 
+  /** Drops the stroke or shape in progress, leaving the grid as it was before it. */
+  cancel(): void {
+    const e = this.#edit;
+    if (!e) return;
+    this.history.revert(e);
+    this.#edit = this.#last = this.#start = null;
+    this.preview = null;
+    this.#changed(0, 0, this.grid.cols - 1, this.grid.rows - 1);
+  }
+
   undo(): void {
     if (this.history.undo()) this.#afterHistory();
   }

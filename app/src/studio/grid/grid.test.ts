@@ -80,6 +80,17 @@ describe('raster tools', () => {
     expect(h.canRedo).toBe(false);
   });
 
+  it('reverts an edit that is not to be a step', () => {
+    const g = new DoseGrid(50, 50);
+    const h = new History(g);
+    const e = h.begin('stroke');
+    line(g, e, 0, 0, 49, 49, 3, 255);
+    h.revert(e);
+    expect(g.cells.every((v) => v === 0)).toBe(true);
+    h.commit(e);
+    expect(h.canUndo).toBe(false);
+  });
+
   it('keeps its memory bounded by dropping the oldest steps', () => {
     const g = new DoseGrid(256, 256);
     const h = new History(g, 256 * 256 * 3);

@@ -83,6 +83,12 @@ export class History {
     while (this.#bytes > this.maxBytes && this.#undo.length > 1) this.#bytes -= size(this.#undo.shift()!.tiles);
   }
 
+  /** Takes back an edit that is not to be a step (a stroke that turned into a pinch). */
+  revert(edit: Edit): void {
+    swap(this.grid, edit.tiles);
+    edit.tiles.clear();
+  }
+
   get canUndo(): boolean {
     return this.#undo.length > 0;
   }
