@@ -27,7 +27,10 @@ export class MockEsp {
       send: async (bytes: string) => this.sim.receive(bytes),
       close: async () => {},
     };
-    this.client = new DialectClient(transport, (_r, line) => this.#broadcast({ type: 'line', line }));
+    // As the ESP: the oks that answer an upload's records are not relayed (esp.md `line`).
+    this.client = new DialectClient(transport, (r, line) => {
+      if (!(r.kind === 'ok' && this.#job?.state === 'uploading')) this.#broadcast({ type: 'line', line });
+    });
     this.#ready = this.client.open(() => {}).then(() => this.client.command('M115').then(() => {}));
   }
 

@@ -96,6 +96,7 @@ class Hub : public hub::Routes {
       for (; fed_ < rig_.espLines.size(); fed_++)
         for (char c : rig_.espLines[fed_] + "\n") bridge_.received(c, virtualMs());
       bridge_.poll(virtualMs());
+      io_.poll();  // the network gets its turn every millisecond of the hub's time, as in the ESP's loop
       if (intake_.busy()) {
         Intake r = intake_.step([this] { return ++jobs_; });
         if (r != Intake::Working && waiting_) {

@@ -101,8 +101,11 @@ void Bridge::line(const char* text, uint8_t len) {
   } else {
     blockTruncated_ = true;
   }
-  if (len >= 2 && text[0] == 'o' && text[1] == 'k' && (len == 2 || text[2] == ' ')) blockEnded_ = true;
-  {
+  bool ok = len >= 2 && text[0] == 'o' && text[1] == 'k' && (len == 2 || text[2] == ' ');
+  if (ok) blockEnded_ = true;
+  // The oks of the job's records are the sender's business; the `upload` message counts them.
+  // Relayed, they would double the live traffic of an upload for nothing a client uses.
+  if (!ok || sender_.oldestSentTag() != JobUpload::kRecordTag) {
     JsonWriter w(message, sizeof message);
     w.beginObject().key("type").string("line").key("line").string(text, len).endObject();
     emit(LiveChannel::kEveryone, w);

@@ -217,6 +217,12 @@ TEST(Bridge, ConsoleLinesAndAnUploadShareTheUart) {
     ASSERT_EQ(h.replies(1, i).size(), 1u) << i;
     EXPECT_TRUE(contains(h.replies(1, i)[0]["lines"], "ok")) << i;
   }
+  // The records' oks stay between the ESP and the Mega: the clients see the console's.
+  size_t oks = 0;
+  for (const json& f : h.clients.of(1, "line")) oks += f["line"].get<std::string>().rfind("ok", 0) == 0;
+  // At most one per console line, start-up line (twice: the Mega's "start"), G28 and upload command.
+  EXPECT_LE(oks, static_cast<size_t>(id - 100) + 16);
+  EXPECT_LT(oks, static_cast<size_t>(id - 100) + text.records.size());
   // The upload's progress: at least every 500 ms, and its end.
   std::vector<json> ups = h.clients.of(1, "upload");
   ASSERT_GE(ups.size(), 3u);
@@ -243,6 +249,8 @@ TEST(Bridge, ASlowClientIsClosedAndNeverHoldsUpTheOthers) {
   h.bridge.startUpload(12, text, text.bytes());
   ASSERT_TRUE(h.runUntil([&] { return !h.bridge.uploading(); }));
   EXPECT_EQ(h.bridge.lastUpload()->state, UploadState::Started);
+  // Reports, status and progress keep coming while the job runs: the stalled client falls a ring behind.
+  ASSERT_TRUE(h.runUntil([&] { return h.clients.closed.count(2) > 0; }, 60000000));
   EXPECT_EQ(h.clients.closed[2], 1008);
   EXPECT_EQ(h.clients.closed.count(1), 0u);
   EXPECT_EQ(h.live.closedSlow(), 1u);

@@ -59,6 +59,14 @@ void MegaSender::restart() {
   memcpy(m.body, "M110 N0", 8);
 }
 
+uint16_t MegaSender::oldestSentTag() const {
+  for (uint8_t i = 0; i < count_; i++) {
+    const Item& it = items_[(head_ + i) % kQueue];
+    if (it.numbered) return it.tag;  // on the wire at least once: a rewind to resend it keeps its number
+  }
+  return 0xffff;
+}
+
 uint8_t MegaSender::withdraw(uint16_t lo, uint16_t hi) {
   uint8_t kept = 0, taken = 0;
   for (uint8_t i = 0; i < count_; i++) {

@@ -64,6 +64,8 @@ class MegaSender {
   uint8_t withdraw(uint16_t lo, uint16_t hi);
 
   uint8_t window() const { return window_; }
+  // The tag of the oldest line that has been on the wire, which the next ok answers (0xffff: none).
+  uint16_t oldestSentTag() const;
   const SenderHealth& health() const { return health_; }
 
  private:
