@@ -47,6 +47,10 @@ test('draws a filled rectangle, undoes and redoes it, zooms, and exposes it', as
   await page.keyboard.press('0'); // fit again
 
   await page.getByTestId('expose-drawing').click();
+  // The dry run came first: on the bed, within the printhead's cap and the thermal budget.
+  const checks = page.getByTestId('dry-run').locator('li');
+  await expect(checks).toHaveCount(3);
+  for (const level of await checks.evaluateAll((li) => li.map((l) => l.getAttribute('data-level')))) expect(level).toBe('ok');
   await expect(page.getByTestId('job-state')).toHaveAttribute('data-state', /running|done/, { timeout: 30_000 });
   await expect(page.getByTestId('job-state')).toHaveAttribute('data-state', 'done', { timeout: 60_000 });
   await page.screenshot({ path: info.outputPath('exposed.png'), fullPage: true });
@@ -69,6 +73,8 @@ test('brush, eraser and fill paint at the dose picked', async ({ page }) => {
   const full = [74, 20, 140];
   expect(stroke[0]).toBeGreaterThan(full[0] + 40); // half the dose: a lighter violet than full
   await page.getByTestId('tool-eraser').click();
+  // Wide enough to show at this zoom: a coarse view keeps a cell's darkest neighbour, so thin gaps close.
+  await page.getByTestId('tool-size').fill('120');
   await page.mouse.move(box.x + box.width / 2, y - 40);
   await page.mouse.down();
   await page.mouse.move(box.x + box.width / 2, y + 40, { steps: 5 });

@@ -5,6 +5,7 @@ import { DoseGrid } from './grid/grid';
 import { History, type Edit } from './grid/history';
 import { floodFill, line, rectangle, stamp } from './grid/tools';
 import { fit, panBy, RULER, toCell, zoomAt, type View } from './canvas/viewport';
+import { bedOf, DEFAULT_CONFIG } from './machine-config';
 
 export type Tool = 'brush' | 'eraser' | 'line' | 'rect' | 'rect-filled' | 'fill' | 'pan';
 
@@ -13,7 +14,8 @@ export interface Machine {
   pitchUm: { x: number; y: number };
 }
 
-export const DEFAULT_MACHINE: Machine = { bedMm: { x: 200, y: 150 }, pitchUm: { x: 50, y: 50 } };
+/** The Mega's defaults (CONFIG.md) until its own settings are read. */
+export const DEFAULT_MACHINE: Machine = bedOf(DEFAULT_CONFIG);
 
 export class GridEditor {
   grid: DoseGrid;

@@ -1,0 +1,47 @@
+import { describe, expect, it } from 'vitest';
+import type { PrintJob } from '../protocol/job-types';
+import { dryRun } from './dry-run';
+import { DEFAULT_CONFIG } from './machine-config';
+
+function job(over: Partial<PrintJob> = {}, cols = 20, rows = 8, value = 255): PrintJob {
+  return {
+    grid: { cols, rows },
+    pitchUm: { x: 50, y: 50 },
+    originUm: { x: 10000, y: 10000 },
+    dose: { map: 'linear', fullUs: 4000 },
+    leds: { offsets: [[0, 0], [0, 1], [0, 2], [0, 3]] },
+    strategy: { name: 'serpentine' },
+    gridData: Array.from({ length: rows }, () => new Array(cols).fill(value)),
+    ...over,
+  };
+}
+const levels = (r: ReturnType<typeof dryRun>) => Object.fromEntries(r.findings.map((f) => [f.check, f.level]));
+
+describe('dry run', () => {
+  it('passes a small job on the bed', () => {
+    const r = dryRun(job(), DEFAULT_CONFIG);
+    expect(levels(r)).toEqual({ envelope: 'ok', dose: 'ok', thermal: 'ok' });
+    expect(r.plan.count).toBeGreaterThan(0);
+  });
+
+  it('stops a job that runs off the bed', () => {
+    const r = dryRun(job({ originUm: { x: 199_500, y: 10_000 } }), DEFAULT_CONFIG);
+    expect(levels(r).envelope).toBe('error');
+    expect(r.findings[0].message).toMatch(/off the 200 × 200 mm bed/);
+  });
+
+  it('stops an exposure longer than the printhead takes', () => {
+    const r = dryRun(job({ dose: { map: 'linear', fullUs: 12_000_000 } }), DEFAULT_CONFIG);
+    expect(levels(r).dose).toBe('error');
+  });
+
+  it('warns when the LEDs would run hot, and about a job off the mesh', () => {
+    const hot = dryRun(job({ dose: { map: 'linear', fullUs: 2_000_000 } }, 4, 4), DEFAULT_CONFIG);
+    expect(levels(hot).thermal).toBe('warning');
+    expect(Math.max(...hot.duty)).toBeGreaterThan(0.9);
+    const mesh = { nx: 3, ny: 3, x0: 50_000, y0: 50_000, dx: 50_000, dy: 50_000, z: [[0, 0, 0], [0, 0, 0], [0, 0, 0]] };
+    expect(levels(dryRun(job(), DEFAULT_CONFIG, { leveling: true, mesh })).mesh).toBe('warning');
+    expect(levels(dryRun(job({ originUm: { x: 60_000, y: 60_000 } }), DEFAULT_CONFIG, { leveling: true, mesh })).mesh).toBe('ok');
+    expect(levels(dryRun(job(), DEFAULT_CONFIG, { leveling: true, mesh: null })).mesh).toBe('warning');
+  });
+});

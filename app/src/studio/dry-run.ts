@@ -1,0 +1,95 @@
+// The check before any LED fires (issue 8 "Job control"): the job is planned as the Mega will
+// plan it, and the plan is held against the bed, the mesh, the printhead's exposure cap and
+// the LEDs' thermal budget. Errors stop the job; warnings ask the user.
+
+import { headerOf } from '../planner/job-header';
+import type { Mesh } from '../planner/mesh';
+import { planJob, type Plan } from '../planner/planner';
+import type { PrintJob } from '../protocol/job-types';
+import { bedOf, limitsOf, motionOf, type MachineConfig } from './machine-config';
+
+export interface Finding {
+  check: 'envelope' | 'mesh' | 'dose' | 'thermal';
+  level: 'error' | 'warning' | 'ok';
+  message: string;
+}
+
+/**
+ * How fast an LED's sensor warms with the LED lit and cools towards the room (°C/s, and the share
+ * of the gap lost per second), and how much of that reaches the driver's sensor per LED. The
+ * defaults are the simulated printer's; a real head should be measured (the thermal dashboard).
+ */
+export interface ThermalModel {
+  heatingCPerS: number;
+  coolingPerS: number;
+  driverShare: number;
+  ambientC: number;
+}
+
+export const DEFAULT_THERMAL: ThermalModel = { heatingCPerS: 2.5, coolingPerS: 0.08, driverShare: 0.3, ambientC: 23 };
+
+/** nano.md: the printhead refuses any single duration over this (NANO_MAX_EXPOSURE_US). */
+export const NANO_MAX_EXPOSURE_US = 10_000_000;
+
+export interface DryRun {
+  plan: Plan;
+  findings: Finding[];
+  /** Each LED's share of the job's time lit, 0-1. */
+  duty: number[];
+}
+
+export function dryRun(job: PrintJob, config: MachineConfig, opts: { mesh?: Mesh | null; leveling?: boolean; thermal?: ThermalModel } = {}): DryRun {
+  const header = headerOf(job);
+  const plan = planJob({ header, cells: job.gridData }, motionOf(config));
+  const findings: Finding[] = [];
+  const { bedMm } = bedOf(config);
+
+  // Envelope: every head position the plan stops at, on the bed.
+  let minX = Infinity, minY = Infinity, maxX = -Infinity, maxY = -Infinity;
+  for (let i = 0; i < plan.count; i++) {
+    const x = job.originUm.x + plan.hx[i] * job.pitchUm.x, y = job.originUm.y + plan.hy[i] * job.pitchUm.y;
+    minX = Math.min(minX, x), maxX = Math.max(maxX, x), minY = Math.min(minY, y), maxY = Math.max(maxY, y);
+  }
+  const mm = (um: number) => (um / 1000).toFixed(1);
+  if (plan.count && (minX < 0 || minY < 0 || maxX > bedMm.x * 1000 || maxY > bedMm.y * 1000)) {
+    findings.push({ check: 'envelope', level: 'error', message: `the head would go to X ${mm(minX)}–${mm(maxX)}, Y ${mm(minY)}–${mm(maxY)} mm, off the ${bedMm.x} × ${bedMm.y} mm bed` });
+  } else {
+    findings.push({ check: 'envelope', level: 'ok', message: plan.count ? `the head stays within X ${mm(minX)}–${mm(maxX)}, Y ${mm(minY)}–${mm(maxY)} mm` : 'nothing to expose' });
+  }
+
+  // Mesh: with leveling on, the job should lie within the probed points (beyond them Z is held at the edge).
+  if (opts.leveling) {
+    const m = opts.mesh;
+    if (!m) findings.push({ check: 'mesh', level: 'warning', message: 'leveling is on but there is no mesh: probe the bed (G29) first' });
+    else {
+      const inside = minX >= m.x0 && minY >= m.y0 && maxX <= m.x0 + (m.nx - 1) * m.dx && maxY <= m.y0 + (m.ny - 1) * m.dy;
+      findings.push(inside
+        ? { check: 'mesh', level: 'ok', message: `the job lies within the ${m.nx} × ${m.ny} mesh` }
+        : { check: 'mesh', level: 'warning', message: 'part of the job lies outside the probed mesh, where Z is held at the mesh edge' });
+    }
+  }
+
+  // Dose: no single exposure over the printhead's cap.
+  let longest = 0;
+  const lit = [0, 0, 0, 0];
+  for (let i = 0; i < plan.durations.length; i++) {
+    longest = Math.max(longest, plan.durations[i]);
+    lit[i & 3] += plan.durations[i];
+  }
+  findings.push(longest > NANO_MAX_EXPOSURE_US
+    ? { check: 'dose', level: 'error', message: `a stop would light an LED for ${(longest / 1e6).toFixed(1)} s; the printhead refuses more than ${NANO_MAX_EXPOSURE_US / 1e6} s` }
+    : { check: 'dose', level: 'ok', message: `the longest exposure is ${(longest / 1000).toFixed(1)} ms` });
+
+  // Thermal: where each sensor settles at the job's duty (the model's steady state).
+  const t = opts.thermal ?? DEFAULT_THERMAL;
+  const duty = lit.map((us) => (plan.estimateUs ? us / plan.estimateUs : 0));
+  const limits = limitsOf(config);
+  const settle = duty.map((d) => t.ambientC + (t.heatingCPerS * d) / t.coolingPerS);
+  settle.push(t.ambientC + (t.heatingCPerS * t.driverShare * duty.reduce((a, b) => a + b, 0)) / t.coolingPerS);
+  const over = settle.map((c, i) => ({ c, i })).filter(({ c, i }) => c > limits[i] - 2);
+  findings.push(over.length
+    ? { check: 'thermal', level: 'warning', message: `at ${Math.round(Math.max(...duty) * 100)} % duty, ${over.map(({ c, i }) => `T${i} would reach about ${c.toFixed(0)} °C (limit ${limits[i]})`).join(', ')}: the job will pause to cool` }
+    : { check: 'thermal', level: 'ok', message: `the LEDs are lit at most ${Math.round(Math.max(...duty) * 100)} % of the time, within their thermal budget` });
+
+  return { plan, findings, duty };
+}
