@@ -1,6 +1,7 @@
 // The app's one view of the printer: the connection lifecycle as a discriminated union, the device state
 // folded from every report, link health, and the job and machine actions the UI calls.
 
+import { ConsoleLog } from '../console/console-log';
 import type { Reply } from '../protocol/dialect-reply';
 import type { PrintJob } from '../protocol/job-types';
 import { CommandError, type LinkHealth } from './dialect-client';
@@ -33,8 +34,10 @@ export class Printer {
   device = $state<DeviceState>(emptyState());
   health = $state<LinkHealth | null>(null);
   upload = $state<Upload>({ state: 'idle' });
-  /** Every line from the printer, newest last, for the console. */
-  log = $state<string[]>([]);
+  /** Every line to and from the printer, newest last, for the console (not deep-reactive: it is long). */
+  readonly log = new ConsoleLog();
+  /** Bumped with each line logged, so the console can follow. */
+  logRevision = $state(0);
   #link: PrinterLink | null = null;
 
   constructor(private readonly makeLink: (kind: TransportKind) => PrinterLink = defaultLink) {}
@@ -89,6 +92,8 @@ export class Printer {
   /** A raw dialect line from the console; resolves with its reply lines. */
   async send(line: string): Promise<Reply[]> {
     if (!this.#link) throw new Error('not connected');
+    this.log.add(line, 'sent');
+    this.logRevision++;
     return this.#link.command(line);
   }
 
@@ -109,10 +114,8 @@ export class Printer {
   abort = () => this.send('M524');
 
   #onReply(r: Reply, line: string): void {
-    if (r.kind !== 'ok' && r.kind !== 'busy') {
-      this.log.push(line); // in place: reports arrive several times a second
-      if (this.log.length > 500) this.log.splice(0, this.log.length - 500);
-    }
+    this.log.add(line);
+    this.logRevision++;
     if (applyReport(this.device, r, Date.now())) this.device = { ...this.device };
     if (this.#link) this.health = { ...this.#link.health };
   }

@@ -1,0 +1,26 @@
+import { describe, expect, it } from 'vitest';
+import { ConsoleLog, DEFAULT_LEVELS, filterLog, levelOf } from './console-log';
+
+describe('console log', () => {
+  it('sorts lines by level', () => {
+    expect(levelOf('Error:E14 not homed')).toBe('error');
+    expect(levelOf('FAULT:E31 over-temperature T3 71.2')).toBe('error');
+    expect(levelOf('Resend: 5')).toBe('warning');
+    expect(levelOf('T:31.2 /60.0 T0:24.0 /60.0')).toBe('report');
+    expect(levelOf('JOB:running file=A.UVJ stop=1/9')).toBe('report');
+    expect(levelOf('ok N4 P8 B3*1a2b')).toBe('link');
+    expect(levelOf('FIRMWARE_NAME:UVExposure 0.1.0 (Mega) PROTOCOL_VERSION:1')).toBe('info');
+  });
+
+  it('keeps a bounded log and filters it by level and text, newest last', () => {
+    const log = new ConsoleLog(5);
+    for (let i = 0; i < 8; i++) log.add(`echo:line ${i}`);
+    expect(log.entries.map((e) => e.text)).toEqual(['echo:line 3', 'echo:line 4', 'echo:line 5', 'echo:line 6', 'echo:line 7']);
+    log.add('T:25.0 /55.0');
+    log.add('Error:E10 unknown command: M9999');
+    const shown = filterLog(log.entries, { text: '', levels: new Set(DEFAULT_LEVELS) });
+    expect(shown.map((e) => e.level)).not.toContain('report');
+    expect(shown.at(-1)!.text).toBe('Error:E10 unknown command: M9999');
+    expect(filterLog(log.entries, { text: 'LINE 6', levels: new Set(DEFAULT_LEVELS) }).map((e) => e.text)).toEqual(['echo:line 6']);
+  });
+});

@@ -1,0 +1,49 @@
+// The console's log: each line from or to the printer with its time and a level, kept to a bound,
+// and the filter the console shows it through.
+
+export type Level = 'error' | 'warning' | 'info' | 'report' | 'sent' | 'link';
+
+export interface Entry {
+  atMs: number;
+  level: Level;
+  text: string;
+}
+
+/** A line's level: errors and faults stand out, reports (sent every second) can be hidden. */
+export function levelOf(line: string): Level {
+  if (/^(Error:|FAULT:|!!)/.test(line)) return 'error';
+  if (/^(Resend:|rs |PROBE:alarm|echo:.*(warning|refused|cannot))/i.test(line)) return 'warning';
+  if (/^(T:|X:|JOB:|busy:)/.test(line)) return 'report';
+  if (/^ok\b/.test(line)) return 'link';
+  return 'info';
+}
+
+export class ConsoleLog {
+  readonly entries: Entry[] = [];
+  constructor(readonly max = 2000) {}
+
+  add(text: string, level: Level = levelOf(text), atMs = Date.now()): void {
+    this.entries.push({ atMs, level, text });
+    if (this.entries.length > this.max) this.entries.splice(0, this.entries.length - this.max);
+  }
+}
+
+export interface LogFilter {
+  text: string;
+  /** Levels shown; the link's own lines (ok, resend) only with the debug toggle. */
+  levels: Set<Level>;
+}
+
+export const DEFAULT_LEVELS: Level[] = ['error', 'warning', 'info', 'sent'];
+
+export function filterLog(entries: readonly Entry[], f: LogFilter, last = 300): Entry[] {
+  const needle = f.text.trim().toLowerCase();
+  const out: Entry[] = [];
+  for (let i = entries.length - 1; i >= 0 && out.length < last; i--) {
+    const e = entries[i];
+    if (!f.levels.has(e.level)) continue;
+    if (needle && !e.text.toLowerCase().includes(needle)) continue;
+    out.push(e);
+  }
+  return out.reverse();
+}
