@@ -48,36 +48,31 @@ uint8_t Machine::formatJob(char* out) const {
   r.kind = uv::ReplyKind::Job;
   char fields[80];
   char* p = fields;
-  auto put = [&p](const char* flash) {
-    size_t n = uvStrlenP(flash);
-    uvMemcpyP(p, flash, n);
-    p += n;
-  };
   if (running()) {
     const JobRunner& j = *run();
     static const uv::JobState kStates[] = {uv::JobState::Running, uv::JobState::Paused, uv::JobState::Done, uv::JobState::Aborted, uv::JobState::Failed};
     r.state = static_cast<uint8_t>(kStates[static_cast<uint8_t>(j.state())]);
-    put(UV_P(" file="));
+    p += uv::putFlash(UV_P(" file="), p);
     size_t n = strlen(j.file());
     memcpy(p, j.file(), n);
     p += n;
-    put(UV_P(" stop="));
+    p += uv::putFlash(UV_P(" stop="), p);
     p += uv::putUnsigned(j.done(), p);
     *p++ = '/';
     p += uv::putUnsigned(j.count(), p);
-    put(UV_P(" elapsed="));
+    p += uv::putFlash(UV_P(" elapsed="), p);
     p += uv::putUnsigned(j.elapsedS(now_), p);
     if (j.planComplete()) {  // a stream's end, and so its time left, is not known until its last row
-      put(UV_P(" remaining="));
+      p += uv::putFlash(UV_P(" remaining="), p);
       p += uv::putUnsigned(j.remainingS(), p);
     }
-    put(UV_P(" leds="));
+    p += uv::putFlash(UV_P(" leds="), p);
     p += uv::putUnsigned(head_.fireState() == FireState::Firing ? 1 : 0, p);
     if (j.state() == RunState::Paused) {
-      put(UV_P(" reason="));
-      put(reasonName(j.reason()));
+      p += uv::putFlash(UV_P(" reason="), p);
+      p += uv::putFlash(reasonName(j.reason()), p);
     }
-    if (j.streaming()) put(UV_P(" mode=stream"));
+    if (j.streaming()) p += uv::putFlash(UV_P(" mode=stream"), p);
   } else {
     r.state = static_cast<uint8_t>(arena_ == Arena::Spool ? uv::JobState::Uploading : jobState_);
   }
@@ -472,18 +467,13 @@ void Machine::resumeVerdict(JobRunner& j) {
   if (v == JobRunner::Resumed::NotYet) return;
   char buf[112];
   char* p = buf;
-  auto put = [&p](const char* flash) {
-    size_t n = uvStrlenP(flash);
-    uvMemcpyP(p, flash, n);
-    p += n;
-  };
-  put(UV_P("echo:resume: stop "));
+  p += uv::putFlash(UV_P("echo:resume: stop "), p);
   p += uv::putUnsigned(j.resumedStop(), p);
   switch (v) {
-    case JobRunner::Resumed::NotSent: put(UV_P(" had not been sent")); break;
-    case JobRunner::Resumed::Exposed: put(UV_P(" had been exposed whole, and counts as done")); break;
-    case JobRunner::Resumed::CutShort: put(UV_P(" was cut short, and is exposed again")); break;
-    default: put(UV_P(" may have been cut short by the printhead's restart, and is exposed again")); break;
+    case JobRunner::Resumed::NotSent: p += uv::putFlash(UV_P(" had not been sent"), p); break;
+    case JobRunner::Resumed::Exposed: p += uv::putFlash(UV_P(" had been exposed whole, and counts as done"), p); break;
+    case JobRunner::Resumed::CutShort: p += uv::putFlash(UV_P(" was cut short, and is exposed again"), p); break;
+    default: p += uv::putFlash(UV_P(" may have been cut short by the printhead's restart, and is exposed again"), p); break;
   }
   *p = 0;
   if (broadcastWhole(buf)) j.clearResumed();  // else again next pass: this one must not be lost

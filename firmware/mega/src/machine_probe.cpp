@@ -157,27 +157,22 @@ void Machine::runLevel() {
 bool Machine::emitMesh(char* buf) {
   const uv::MeshGrid& g = mesh_.grid();
   char* p = buf;
-  auto put = [&p](const char* flash) {
-    size_t n = uvStrlenP(flash);
-    uvMemcpyP(p, flash, n);
-    p += n;
-  };
   if (long_.index == 0) {
-    put(UV_P("MESH:grid "));
+    p += uv::putFlash(UV_P("MESH:grid "), p);
     p += uv::putUnsigned(g.nx, p);
     *p++ = ' ';
     p += uv::putUnsigned(g.ny, p);
-    put(UV_P(" x0="));
+    p += uv::putFlash(UV_P(" x0="), p);
     p += putMm(g.x0, p);
-    put(UV_P(" y0="));
+    p += uv::putFlash(UV_P(" y0="), p);
     p += putMm(g.y0, p);
-    put(UV_P(" dx="));
+    p += uv::putFlash(UV_P(" dx="), p);
     p += putMm(g.dx, p);
-    put(UV_P(" dy="));
+    p += uv::putFlash(UV_P(" dy="), p);
     p += putMm(g.dy, p);
   } else if (long_.index <= g.ny) {
     uint8_t j = static_cast<uint8_t>(long_.index - 1);
-    put(UV_P("MESH:row "));
+    p += uv::putFlash(UV_P("MESH:row "), p);
     p += uv::putUnsigned(j, p);
     for (uint8_t i = 0; i < g.nx; i++) {
       *p++ = ' ';

@@ -65,16 +65,11 @@ RoutineStatus SelfTest::poll() {
 
 uint8_t SelfTest::format(char* out) const {
   char* p = out;
-  auto put = [&p](const char* flash) {
-    size_t n = uvStrlenP(flash);
-    uvMemcpyP(p, flash, n);
-    p += n;
-  };
-  put(quick_ ? UV_P("TEST:quick") : UV_P("TEST:full"));
+  p += uv::putFlash(quick_ ? UV_P("TEST:quick") : UV_P("TEST:full"), p);
   for (uint8_t a = 0; a < 2; a++) {
-    put(a ? UV_P(" y=") : UV_P(" x="));
-    put(pass_[a] ? UV_P("pass") : UV_P("fail"));
-    put(a ? UV_P(" y_steps=") : UV_P(" x_steps="));
+    p += uv::putFlash(a ? UV_P(" y=") : UV_P(" x="), p);
+    p += uv::putFlash(pass_[a] ? UV_P("pass") : UV_P("fail"), p);
+    p += uv::putFlash(a ? UV_P(" y_steps=") : UV_P(" x_steps="), p);
     p += uv::putUnsigned(counted_[a], p);
   }
   *p = 0;

@@ -98,4 +98,10 @@ bool startsWith(const char* p, const char* end, const char* literal) {
   return true;
 }
 
+size_t putFlash(const char* flash, char* out) {
+  size_t n = uvStrlenP(flash);
+  uvMemcpyP(out, flash, n);
+  return n;
+}
+
 }  // namespace uv

@@ -15,6 +15,8 @@ const char* scanDeci(const char* p, const char* end, uint8_t maxInt, int16_t& ou
 // Writes an unsigned decimal without leading zeros; returns the length (no NUL).
 size_t putUnsigned(uint32_t v, char* out);
 size_t putSigned(int32_t v, char* out);
+// Copies a string kept in flash (UV_P) without its NUL; returns the length, as putUnsigned does.
+size_t putFlash(const char* flash, char* out);
 
 // Writes the low `digits` hex digits of v, lower case, most significant first (no NUL).
 void putHex(uint32_t v, uint8_t digits, char* out);
