@@ -187,26 +187,18 @@ class Hub : public hub::Routes {
   }
 
   // As app_files.cpp on the ESP: <path>.gz with its type, an ETag from the gzip trailer, 304.
-  Answer appFile(const hub::http::request<hub::http::string_body>& req, std::string path) {
-    if (path.find("..") != std::string::npos) return error(404, "not_found", "no such path");
-    auto q = path.find('?');
-    if (q != std::string::npos) path.resize(q);
-    if (path.back() == '/') path += "index.html";
-    std::filesystem::path file = www_ / (path.substr(1) + ".gz");
-    if (!std::filesystem::exists(file)) {
-      if (path.find_last_of('.') != std::string::npos && path.find_last_of('.') > path.find_last_of('/')) return error(404, "not_found", "no such path");
-      path = "/index.html";
-      file = www_ / "index.html.gz";
-      if (!std::filesystem::exists(file)) return error(404, "not_found", "the app is not on this hub: npm run build:esp");
-    }
+  Answer appFile(const hub::http::request<hub::http::string_body>& req, const std::string& url) {
+    char path[256];
+    AppFile found = uv::esp::appFile(url.c_str(), path, sizeof path, [this](const char* p) { return std::filesystem::exists(www_ / (std::string(p + 1) + ".gz")); });
+    if (found == AppFile::NotFound) return error(404, "not_found", "no such path");
+    if (found == AppFile::NoApp) return error(404, "not_found", "the app is not on this hub: npm run build:esp");
+    std::filesystem::path file = www_ / (std::string(path + 1) + ".gz");
     std::string gz = readFile(file);
     char etag[24] = "";
     if (gz.size() >= 8) gzipEtag(reinterpret_cast<const uint8_t*>(gz.data() + gz.size() - 8), etag);
     auto inm = req.find(hub::http::field::if_none_match);
     if (etag[0] && inm != req.end() && inm->value() == etag) return {304, "", "", {{"ETag", etag}}};
-    bool revalidate = path == "/index.html" || (path.size() > 12 && path.compare(path.size() - 12, 12, ".webmanifest") == 0);
-    return {200, contentType(path.c_str()), std::move(gz),
-            {{"Content-Encoding", "gzip"}, {"ETag", etag}, {"Cache-Control", revalidate ? "no-cache" : "public, max-age=31536000, immutable"}}};
+    return {200, contentType(path), std::move(gz), {{"Content-Encoding", "gzip"}, {"ETag", etag}, {"Cache-Control", cacheControl(path)}}};
   }
 
   net::io_context& io_;

@@ -35,7 +35,8 @@ HttpError methodNotAllowed(const char* path, Method m) {
 
 void writeError(JsonWriter& w, const char* code, const char* message, const char* path) {
   w.beginObject().key("error").beginObject().key("code").string(code).key("message").string(message);
-  if (path && path[0]) w.key("path").string(path);
+  // Every bad_job names its field; "" is the whole body (protocol/esp.md "Errors").
+  if ((path && path[0]) || strcmp(code, "bad_job") == 0) w.key("path").string(path ? path : "");
   w.endObject().endObject();
 }
 
@@ -55,6 +56,12 @@ const char* contentType(const char* path) {
     if (n >= k && strcasecmp(path + n - k, t.ext) == 0) return t.type;
   }
   return "application/octet-stream";
+}
+
+const char* cacheControl(const char* path) {
+  size_t n = strlen(path);
+  auto ends = [&](const char* e) { return n >= strlen(e) && strcmp(path + n - strlen(e), e) == 0; };
+  return strcmp(path, "/index.html") == 0 || ends(".webmanifest") || ends("/sw.js") ? "no-cache" : "public, max-age=31536000, immutable";
 }
 
 void gzipEtag(const uint8_t t[8], char out[24]) {

@@ -3,6 +3,8 @@
 // request is a phone's captive-portal probe. Plain C++, host-tested; main's glue applies them.
 #pragma once
 #include <stdint.h>
+#include <stdio.h>
+#include <string.h>
 
 #include "bridge.h"
 #include "json_writer.h"
@@ -26,11 +28,36 @@ HttpError admitPrintRequest(const char* contentType, bool hasLength, uint32_t co
 // A method the path does not take.
 HttpError methodNotAllowed(const char* path, Method m);
 
-// {"error": {"code", "message", "path"?}}
+// {"error": {"code", "message", "path"?}}: path when given, and always for bad_job.
 void writeError(JsonWriter& w, const char* code, const char* message, const char* path = "");
 
 // The content type of an app file by its name (without .gz).
 const char* contentType(const char* path);
+
+enum class AppFile : uint8_t { Found, NotFound, NoApp };
+
+// Which of the app's gzipped files answers a GET for `url` (its query ignored): out receives the
+// path served, whose `<path>.gz` the caller opens. A folder is its index.html; a path of the app
+// itself (no extension) opens the app's index.html; a missing file, or one outside the app, is
+// NotFound; NoApp when the app is not on the flash at all. `exists(path)` says if <path>.gz is there.
+template <class Exists>
+AppFile appFile(const char* url, char* out, size_t size, Exists exists) {
+  size_t n = strcspn(url, "?");
+  if (n + sizeof "index.html" > size || n == 0 || url[0] != '/') return AppFile::NotFound;
+  memcpy(out, url, n);
+  out[n] = 0;
+  if (strstr(out, "..")) return AppFile::NotFound;
+  if (out[n - 1] == '/') strcat(out, "index.html");
+  if (exists(static_cast<const char*>(out))) return AppFile::Found;
+  const char* dot = strrchr(out, '.');
+  if (dot && dot > strrchr(out, '/')) return AppFile::NotFound;
+  snprintf(out, size, "/index.html");
+  return exists(static_cast<const char*>(out)) ? AppFile::Found : AppFile::NoApp;
+}
+
+// index.html (and the manifest and service worker) are checked every time; the hashed assets they
+// name never change.
+const char* cacheControl(const char* path);
 
 // A strong ETag for a gzip file from its last 8 bytes (CRC-32 and length of the content), so
 // the ESP need not hash the file: `"<crc>-<size>"`.

@@ -5,6 +5,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include <set>
+#include <string>
+
 #include "noisy_mega.h"
 
 using namespace uv::esp;
@@ -59,6 +62,24 @@ TEST(HttpRules, AppFilesGetTheirTypeAndAnEtagFromTheGzipTrailer) {
   char etag[24];
   gzipEtag(trailer, etag);
   EXPECT_STREQ(etag, "\"12345678-1000\"");
+}
+
+TEST(HttpRules, EachAppPathFindsItsGzippedFileOrTheApp) {
+  std::set<std::string> flash = {"/index.html", "/assets/index-3f2a.js", "/manifest.webmanifest"};
+  auto exists = [&](const char* p) { return flash.count(p) > 0; };
+  char out[64];
+  EXPECT_EQ(appFile("/", out, sizeof out, exists), AppFile::Found);
+  EXPECT_STREQ(out, "/index.html");
+  EXPECT_EQ(appFile("/assets/index-3f2a.js?v=2", out, sizeof out, exists), AppFile::Found);
+  EXPECT_STREQ(out, "/assets/index-3f2a.js");
+  EXPECT_EQ(appFile("/studio", out, sizeof out, exists), AppFile::Found);  // a path of the app itself
+  EXPECT_STREQ(out, "/index.html");
+  EXPECT_EQ(appFile("/missing.js", out, sizeof out, exists), AppFile::NotFound);
+  EXPECT_EQ(appFile("/../wifi.json", out, sizeof out, exists), AppFile::NotFound);
+  EXPECT_EQ(appFile("/studio", out, sizeof out, [](const char*) { return false; }), AppFile::NoApp);
+  EXPECT_STREQ(cacheControl("/index.html"), "no-cache");
+  EXPECT_STREQ(cacheControl("/manifest.webmanifest"), "no-cache");
+  EXPECT_STREQ(cacheControl("/assets/index-3f2a.js"), "public, max-age=31536000, immutable");
 }
 
 TEST(HttpRules, CaptivePortalProbesAreSentToTheApp) {

@@ -9,11 +9,10 @@
 #pragma once
 #include <stdint.h>
 
-#include <string.h>
-
 #include <new>
 
 #include "bridge.h"
+#include "http_rules.h"
 #include "job_conversion.h"
 #include "json_writer.h"
 #include "streamed_job_text.h"
@@ -101,9 +100,7 @@ class PrintIntake {
 
   Intake refuse(const RequestError& e) {
     JsonWriter w(response_, sizeof response_);
-    w.beginObject().key("error").beginObject().key("code").string(e.code).key("message").string(e.message);
-    if (e.path[0] || strcmp(e.code, "bad_job") == 0) w.key("path").string(e.path);  // "" is the whole body
-    w.endObject().endObject();
+    writeError(w, e.code, e.message, e.path);
     status_ = e.status;
     stage_ = Stage::Idle;
     body_.close();

@@ -31,18 +31,13 @@ void onOther(AsyncWebServerRequest* r) {
     snprintf(to, sizeof to, "http://%s/", apAddress());
     return r->redirect(to);
   }
-  String path = r->url();
-  HttpError m = methodNotAllowed(path.c_str(), methodOf(r));
+  HttpError m = methodNotAllowed(r->url().c_str(), methodOf(r));
   if (m.status) return sendError(r, m.status, m.code, m.message);
-  if (path.endsWith("/")) path += "index.html";
-  String file = "/www" + path;
-  if (!LittleFS.exists(file + ".gz")) {
-    // A path of the app itself (no extension) opens the app; a missing file is a 404.
-    if (path.lastIndexOf('.') > path.lastIndexOf('/')) return sendError(r, 404, "not_found", "no such path");
-    path = "/index.html";
-    file = "/www/index.html";
-    if (!LittleFS.exists(file + ".gz")) return sendError(r, 404, "not_found", "the app is not on this ESP: npm run build:esp, then uploadfs");
-  }
+  char path[96];
+  AppFile found = appFile(r->url().c_str(), path, sizeof path, [](const char* p) { return LittleFS.exists(String("/www") + p + ".gz"); });
+  if (found == AppFile::NotFound) return sendError(r, 404, "not_found", "no such path");
+  if (found == AppFile::NoApp) return sendError(r, 404, "not_found", "the app is not on this ESP: npm run build:esp, then uploadfs");
+  String file = String("/www") + path;
   char etag[24] = "";
   fs::File f = LittleFS.open(file + ".gz", "r");
   if (f && f.size() >= 8 && f.seek(f.size() - 8)) {
@@ -56,12 +51,9 @@ void onOther(AsyncWebServerRequest* r) {
     return r->send(notModified);
   }
   // The library serves <file>.gz with Content-Encoding: gzip when <file> itself is absent.
-  AsyncWebServerResponse* res = r->beginResponse(LittleFS, file, contentType(path.c_str()));
+  AsyncWebServerResponse* res = r->beginResponse(LittleFS, file, contentType(path));
   if (etag[0]) res->addHeader("ETag", etag);
-  // index.html is checked every time; the hashed assets it names never change.
-  res->addHeader("Cache-Control", path == "/index.html" || path.endsWith(".webmanifest") || path.endsWith("sw.js")
-                                      ? "no-cache"
-                                      : "public, max-age=31536000, immutable");
+  res->addHeader("Cache-Control", cacheControl(path));
   r->send(res);
 }
 
