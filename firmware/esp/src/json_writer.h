@@ -37,37 +37,22 @@ class JsonWriter {
     char t[24];
     char* p = t + sizeof t;
     *--p = 0;
-    uint64_t u = v < 0 ? 0 - static_cast<uint64_t>(v) : static_cast<uint64_t>(v);  // no %lld: not every libc's printf has it
-    do *--p = static_cast<char>('0' + u % 10);
-    while (u /= 10);
+    p = digits(v < 0 ? 0 - static_cast<uint64_t>(v) : static_cast<uint64_t>(v), p);
     if (v < 0) *--p = '-';
     return raw(p);
   }
   // value / 10^decimals, written with exactly `decimals` places (3 for mm, 1 for °C).
   JsonWriter& fixed(int32_t value, uint8_t decimals) {
     if (!decimals || decimals > 6) return number(value);
-    int64_t scale = 1;
-    for (uint8_t i = 0; i < decimals; i++) scale *= 10;
-    int64_t v = value;
-    bool negative = v < 0;
-    if (negative) v = -v;
-    char t[32];
-    int n = 0;
-    if (negative) t[n++] = '-';
-    char whole[24];
-    char* p = whole + sizeof whole;
+    uint32_t u = value < 0 ? 0u - static_cast<uint32_t>(value) : static_cast<uint32_t>(value);
+    char t[24];
+    char* p = t + sizeof t;
     *--p = 0;
-    int64_t w = v / scale;
-    do *--p = static_cast<char>('0' + w % 10);
-    while (w /= 10);
-    while (*p) t[n++] = *p++;
-    t[n++] = '.';
-    int64_t frac = v % scale;
-    for (int64_t d = scale / 10; d >= 1; d /= 10) t[n++] = static_cast<char>('0' + frac / d % 10);
-    t[n] = 0;
-    comma();
-    for (char* c = t; *c; c++) put(*c);
-    return *this;
+    for (uint8_t i = 0; i < decimals; i++, u /= 10) *--p = static_cast<char>('0' + u % 10);
+    *--p = '.';
+    p = digits(u, p);
+    if (value < 0) *--p = '-';
+    return raw(p);
   }
   JsonWriter& boolean(bool b) { return raw(b ? "true" : "false"); }
   JsonWriter& null() { return raw("null"); }
@@ -77,6 +62,13 @@ class JsonWriter {
   uint16_t length() const { return len_; }
 
  private:
+  // u's decimal digits, written to end just before `end` (no %lld: not every libc's printf has it);
+  // returns where they start.
+  static char* digits(uint64_t u, char* end) {
+    do *--end = static_cast<char>('0' + u % 10);
+    while (u /= 10);
+    return end;
+  }
   JsonWriter& raw(const char* t) {
     comma();
     while (*t) put(*t++);
