@@ -2,7 +2,7 @@
 // The canvas component turns pointer, wheel and key events into calls here.
 
 import { DoseGrid } from './grid/grid';
-import { History, type Edit } from './grid/history';
+import { History, type Box, type Edit } from './grid/history';
 import { floodFill, line, rectangle, stamp } from './grid/tools';
 import { fit, panBy, RULER, toCell, zoomAt, type View } from './canvas/viewport';
 import { bedOf, DEFAULT_CONFIG } from './machine-config';
@@ -75,8 +75,7 @@ export class GridEditor {
     this.#last = c;
     if (this.tool === 'brush' || this.tool === 'eraser') this.#stroke(c, c);
     else if (this.tool === 'fill') {
-      const changed = floodFill(this.grid, this.#edit, c.x, c.y, this.dose);
-      if (changed) this.#changed(0, 0, this.grid.cols - 1, this.grid.rows - 1);
+      if (floodFill(this.grid, this.#edit, c.x, c.y, this.dose)) this.#changedBox(this.#edit.box());
     } else this.preview = { x0: c.x, y0: c.y, x1: c.x, y1: c.y };
   }
 
@@ -112,7 +111,7 @@ export class GridEditor {
     this.history.revert(e);
     this.#edit = this.#last = this.#start = null;
     this.preview = null;
-    this.#changed(0, 0, this.grid.cols - 1, this.grid.rows - 1);
+    this.#changedBox(this.history.lastChanged);
   }
 
   undo(): void {
@@ -160,8 +159,13 @@ export class GridEditor {
   }
 
   #afterHistory(): void {
-    this.#changed(0, 0, this.grid.cols - 1, this.grid.rows - 1);
+    this.#changedBox(this.history.lastChanged);
     this.#syncHistory();
+  }
+
+  /** Only the tiles an edit saved are redrawn: undoing a stroke on a 4096² grid must not remake it all. */
+  #changedBox(b: Box | null): void {
+    if (b) this.#changed(b.x0, b.y0, b.x1, b.y1);
   }
 
   #syncHistory(): void {

@@ -69,6 +69,7 @@ describe('raster tools', () => {
     expect(h.undoLabel).toBe('stroke');
     expect(h.undo()).toBe(true);
     expect(g.cells).toEqual(before);
+    expect(h.lastChanged).toEqual({ x0: 0, y0: 0, x1: 299, y1: 199 }); // the tiles the stroke crossed
     expect(h.redo()).toBe(true);
     expect(g.cells).toEqual(after);
     expect(h.redo()).toBe(false);
@@ -78,6 +79,17 @@ describe('raster tools', () => {
     e2.set(1, 1, 9);
     h.commit(e2);
     expect(h.canRedo).toBe(false);
+  });
+
+  it('says which cells an undo rewrote: the tiles its edit saved, not the grid', () => {
+    const g = new DoseGrid(4096, 4096);
+    const h = new History(g);
+    const e = h.begin('dot');
+    e.set(100, 130, 255);
+    expect(e.box()).toEqual({ x0: 64, y0: 128, x1: 127, y1: 191 });
+    h.commit(e);
+    h.undo();
+    expect(h.lastChanged).toEqual({ x0: 64, y0: 128, x1: 127, y1: 191 });
   });
 
   it('reverts an edit that is not to be a step', () => {

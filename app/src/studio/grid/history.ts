@@ -6,6 +6,26 @@ import type { DoseGrid } from './grid';
 
 const TILE = 64;
 
+/** A box of cells, both corners included. */
+export interface Box {
+  x0: number;
+  y0: number;
+  x1: number;
+  y1: number;
+}
+
+/** The cells a set of saved tiles covers, or null for none. */
+function tilesBox(g: DoseGrid, tiles: Map<number, Uint8Array>): Box | null {
+  const tilesX = Math.ceil(g.cols / TILE);
+  let box: Box | null = null;
+  for (const key of tiles.keys()) {
+    const x0 = (key % tilesX) * TILE, y0 = Math.floor(key / tilesX) * TILE;
+    const x1 = Math.min(g.cols, x0 + TILE) - 1, y1 = Math.min(g.rows, y0 + TILE) - 1;
+    box = box ? { x0: Math.min(box.x0, x0), y0: Math.min(box.y0, y0), x1: Math.max(box.x1, x1), y1: Math.max(box.y1, y1) } : { x0, y0, x1, y1 };
+  }
+  return box;
+}
+
 interface Patch {
   /** Tile index → its cells before the edit (and, once undone, after it). */
   tiles: Map<number, Uint8Array>;
@@ -32,6 +52,11 @@ export class Edit {
         const key = ty * this.#tilesX + tx;
         if (!this.tiles.has(key)) this.tiles.set(key, copyTile(g, tx, ty));
       }
+  }
+
+  /** The cells this edit may have changed: the tiles it saved. */
+  box(): Box | null {
+    return tilesBox(this.#grid, this.tiles);
   }
 
   /** Writes a cell, saving its tile first. */
@@ -65,6 +90,8 @@ export class History {
   #undo: Patch[] = [];
   #redo: Patch[] = [];
   #bytes = 0;
+  /** The cells the last undo, redo or revert rewrote. */
+  lastChanged: Box | null = null;
 
   /** Keeps at most `maxBytes` of saved tiles (64 MB: sixteen whole 4096² grids). */
   constructor(readonly grid: DoseGrid, readonly maxBytes = 64 * 1024 * 1024) {}
@@ -85,6 +112,7 @@ export class History {
 
   /** Takes back an edit that is not to be a step (a stroke that turned into a pinch). */
   revert(edit: Edit): void {
+    this.lastChanged = tilesBox(this.grid, edit.tiles);
     swap(this.grid, edit.tiles);
     edit.tiles.clear();
   }
@@ -103,6 +131,7 @@ export class History {
   undo(): boolean {
     const p = this.#undo.pop();
     if (!p) return false;
+    this.lastChanged = tilesBox(this.grid, p.tiles);
     swap(this.grid, p.tiles);
     this.#redo.push(p);
     return true;
@@ -111,6 +140,7 @@ export class History {
   redo(): boolean {
     const p = this.#redo.pop();
     if (!p) return false;
+    this.lastChanged = tilesBox(this.grid, p.tiles);
     swap(this.grid, p.tiles);
     this.#undo.push(p);
     return true;
