@@ -36,8 +36,6 @@ void JobUpload::fileCommand(const char* verb, char* out) {
   snprintf(out, kDialectMaxLine, "%s JOB%lu.UVJ", verb, static_cast<unsigned long>(progress_.id % 100000));
 }
 
-bool JobUpload::queue(const char* body, uint16_t tag) { return sender_.send(body, tag); }
-
 // The command the phase sends, into body; its tag, or 0 for none.
 uint16_t JobUpload::command(char* body) {
   switch (phase_) {
@@ -59,7 +57,7 @@ void JobUpload::poll() {
     char body[kDialectMaxLine];
     uint16_t tag = command(body);
     if (!tag) return;
-    if (queue(body, tag)) pendingSend_ = false;
+    if (sender_.send(body, tag)) pendingSend_ = false;
     return;
   }
   if (phase_ != Phase::Records) return;
@@ -73,7 +71,7 @@ void JobUpload::poll() {
         break;
       }
     }
-    if (!queue(line_, kRecord)) {
+    if (!sender_.send(line_, kRecord)) {
       if (sender_.free() > 0) recordError_ = kTooLong;  // room, yet refused: the record can't be framed
       break;
     }

@@ -66,7 +66,6 @@ class JobUpload {
   static constexpr uint16_t kTooLong = 0xfffd;    // recordError_: a record the link can't frame
 
   void begin();
-  bool queue(const char* body, uint16_t tag);
   uint16_t command(char* body);
   void closeWhenAnswered();
   void takeBackRecords();

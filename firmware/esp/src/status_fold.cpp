@@ -30,12 +30,8 @@ int field(const char* text, uint8_t len, const char* key, const char** value) {
 }  // namespace
 
 void StatusFold::line(const char* text, uint8_t len, uint32_t nowMs) {
-  heard_ = true;
+  heard_ = true;  // going on- or offline is news the bridge sees by asking online()
   lastHeardMs_ = nowMs;
-  if (!wasOnline_) {
-    wasOnline_ = true;
-    changes_++;
-  }
   Reply r{};
   if (!parseReply(text, len, r)) return;
   switch (r.kind) {

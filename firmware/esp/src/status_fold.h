@@ -35,7 +35,6 @@ class StatusFold {
 
   bool heard_ = false;
   uint32_t lastHeardMs_ = 0;
-  bool wasOnline_ = false;
   char firmware_[48] = "";
   bool hasPosition_ = false, hasTemps_ = false, hasProbe_ = false, hasJob_ = false;
   int32_t um_[3] = {};
