@@ -9,6 +9,7 @@ import { DialectLink } from './dialect-link';
 import { applyReport, emptyState, type DeviceState, type JobProgress } from './device-state';
 import { EspLink } from './esp-link';
 import type { PrinterLink, UploadProgress } from './link';
+import { configOf, interruptedOf, type InterruptedJob } from './printer-replies';
 import { PickerDismissed, SerialTransport } from './serial-transport';
 import { SimTransport } from './sim-transport';
 import type { TransportKind } from './transport';
@@ -25,6 +26,7 @@ export type Upload = { state: 'idle' } | ({ state: 'uploading' } & UploadProgres
 
 export const SENSOR_NAMES = ['LED 0', 'LED 1', 'LED 2', 'LED 3', 'Driver', 'Frame'];
 
+
 function describe(e: unknown): string {
   return e instanceof CommandError ? e.message : e instanceof Error ? e.message : String(e);
 }
@@ -34,6 +36,10 @@ export class Printer {
   device = $state<DeviceState>(emptyState());
   health = $state<LinkHealth | null>(null);
   upload = $state<Upload>({ state: 'idle' });
+  /** The machine's settings, as `M503` listed them when the link opened (null until then). */
+  config = $state<Record<string, string> | null>(null);
+  /** Offered for resuming when the link opened; null once resumed, discarded or absent. */
+  interrupted = $state<InterruptedJob | null>(null);
   /** Every line to and from the printer, newest last, for the console (not deep-reactive: it is long). */
   readonly log = new ConsoleLog();
   /** Bumped with each line logged, so the console can follow. */
@@ -61,8 +67,8 @@ export class Printer {
       await link.command('M155 S1');
       await link.command('M154 S1');
       await link.command('M27 S1');
-      const resume = await link.command('M1000 S');
-      void resume;
+      this.config = configOf(await link.command('M503'));
+      this.interrupted = interruptedOf(await link.command('M1000 S'));
       if (this.#link === link) {
         this.connection = { state: 'connected', kind };
         this.health = { ...link.health };
@@ -85,6 +91,8 @@ export class Printer {
     this.device = emptyState();
     this.health = null;
     this.upload = { state: 'idle' };
+    this.config = null;
+    this.interrupted = null;
     if (link) await link.close().catch(() => {});
     this.connection = { state: 'idle' };
   }
@@ -106,6 +114,31 @@ export class Printer {
     } catch (e) {
       this.upload = { state: 'failed', error: describe(e) };
       throw e;
+    }
+  }
+
+  /** Homes and runs the interrupted job on from its checkpoint: every cell exposed exactly once. */
+  resumeInterrupted = async () => {
+    await this.send('G28');
+    await this.send('M1000');
+    this.interrupted = null;
+  };
+
+  discardInterrupted = async () => {
+    await this.send('M1000 C');
+    this.interrupted = null;
+  };
+
+  /** Lines sent one after another; a move the printer refuses for want of homing homes and goes on. */
+  async moves(lines: string[]): Promise<void> {
+    for (const line of lines) {
+      try {
+        await this.send(line);
+      } catch (e) {
+        if (!(e instanceof CommandError && e.code === 14)) throw e;
+        await this.send('G28');
+        await this.send(line);
+      }
     }
   }
 

@@ -1,26 +1,34 @@
-// Transport to the simulated printer running in a Web Worker.
+// Transport to the simulated printer running in a Web Worker. Like a real machine, it keeps running
+// while no link is open, and opening the link restarts it, as opening a Mega's USB port does (DTR):
+// what was in its memory is gone, and its SD card, with a running job's checkpoint, is kept.
 
 import type { Transport } from './transport';
 
+let machine: Worker | null = null;
+let listener: ((bytes: string) => void) | null = null;
+
 export class SimTransport implements Transport {
   readonly kind = 'sim' as const;
-  #worker: Worker | null = null;
 
   async open(onBytes: (bytes: string) => void): Promise<void> {
-    this.#worker = new Worker(new URL('../sim/sim-worker.ts', import.meta.url), { type: 'module' });
-    this.#worker.onmessage = (e: MessageEvent<{ type: 'rx'; bytes: string }>) => {
-      if (e.data.type === 'rx') onBytes(e.data.bytes);
+    listener = onBytes;
+    if (machine) {
+      machine.postMessage({ type: 'reset' });
+      return;
+    }
+    machine = new Worker(new URL('../sim/sim-worker.ts', import.meta.url), { type: 'module' });
+    machine.onmessage = (e: MessageEvent<{ type: 'rx'; bytes: string }>) => {
+      if (e.data.type === 'rx') listener?.(e.data.bytes);
     };
     const speed = Number(new URLSearchParams(location.search).get('simSpeed') ?? '1');
-    if (speed > 1) this.#worker.postMessage({ type: 'init', speed });
+    if (speed > 1) machine.postMessage({ type: 'init', speed });
   }
 
   async send(bytes: string): Promise<void> {
-    this.#worker?.postMessage({ type: 'tx', bytes });
+    machine?.postMessage({ type: 'tx', bytes });
   }
 
   async close(): Promise<void> {
-    this.#worker?.terminate();
-    this.#worker = null;
+    listener = null;
   }
 }

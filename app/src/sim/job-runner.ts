@@ -216,10 +216,16 @@ export class JobRunner {
       if (this.state !== 'running') return;
       this.exposures.push({ stop: i, hx: p.hx[i], hy: p.hy[i], us });
       this.done = i + 1;
-      if (!this.streaming) this.sd.checkpoint = { file: this.file, done: this.done, stops: p.count };
+      if (!this.streaming) this.#checkpoint(p.count);
       this.onProgress?.();
       if (this.state === 'running') this.#next();
     });
+  }
+
+  #checkpoint(stops: number): void {
+    const c = parseNanoReply(this.nano.command('C\n') ?? '');
+    if (c?.op !== 'C') return; // the Mega keeps the checkpoint before: this stop is exposed again on resume
+    this.sd.checkpoint = { file: this.file, done: this.done, stops, boot: c.boot, fires: c.fires };
   }
 
   /** A fault cut the LEDs mid-stop: the stop is not counted, and the job waits for the user. */

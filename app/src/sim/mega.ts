@@ -17,6 +17,7 @@ import { JobRunner } from './job-runner';
 import { JobStream, type StreamError } from './job-stream';
 import { Motion, type Xyz } from './motion';
 import type { NanoModel } from './nano-model';
+import { resumeVerdict } from './resume';
 import type { SdCard } from './sd-card';
 
 const WINDOW = 4;
@@ -332,7 +333,9 @@ export class MegaModel {
         if (!this.motion.homed[0] || !this.motion.homed[1]) return this.#error(14, done, 'home first (G28)');
         if (!this.job.load(cp.file)) return this.#error(21, done, cp.file);
         this.#selected = cp.file;
-        this.job.start(cp.done);
+        const { from, verdict } = resumeVerdict(cp, parseNanoReply(this.nano.command('C\n') ?? ''));
+        this.job.start(from);
+        this.line(`echo:resume: stop ${cp.done} ${verdict}`);
         done();
       },
       M850: (c, done) => {

@@ -5,6 +5,9 @@ export interface Checkpoint {
   /** Stops completed so far. */
   done: number;
   stops: number;
+  /** The Nano's start and exposure count after the last stop done (its `C` reply). */
+  boot: number;
+  fires: number;
 }
 
 export class SdCard {

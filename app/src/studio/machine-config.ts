@@ -27,3 +27,9 @@ export function motionOf(c: MachineConfig, startUm: [number, number] = [0, 0]): 
 export function limitsOf(c: MachineConfig): number[] {
   return [0, 1, 2, 3, 4, 5].map((i) => num(c, `thermal.limit.${i}`));
 }
+
+/** Where each LED sits on the head, in cells (`led.offset.k`), and its gain in ‰ (`led.gain.k`). */
+export function ledsOf(c: MachineConfig): { offsets: [number, number][]; gainPermille: number[] } {
+  const offsets = [0, 1, 2, 3].map((k) => (c[`led.offset.${k}`] ?? DEFAULT_CONFIG[`led.offset.${k}`]).split(',').map(Number) as [number, number]);
+  return { offsets, gainPermille: [0, 1, 2, 3].map((k) => num(c, `led.gain.${k}`)) };
+}

@@ -1,0 +1,79 @@
+// The job the studio's drawing becomes, and what happens before and while it runs: the exposure
+// settings, the dry run that must pass before any LED fires, framing with the LEDs off, and the run.
+
+import type { Printer } from '../device/connection.svelte';
+import type { PrintJob, StrategyName } from '../protocol/job-types';
+import { num } from '../sim/config';
+import { dryRun, type Finding } from '../studio/dry-run';
+import type { GridEditor } from '../studio/editor.svelte';
+import { jobFromGrid } from '../studio/grid-job';
+import { DEFAULT_CONFIG, ledsOf, type MachineConfig } from '../studio/machine-config';
+import { framingMoves } from './framing';
+
+export class JobControl {
+  /** The exposure of a cell at 100 % dose, ms. */
+  fullMs = $state(4);
+  strategy = $state<StrategyName>('serpentine');
+  /** The last dry run's findings, and the job they were found for. */
+  check = $state<{ findings: Finding[]; job: PrintJob } | null>(null);
+  error = $state<string | null>(null);
+  /** Called with the job just before it is sent (the project's autosave). */
+  beforeRun: (job: PrintJob) => Promise<void> = async () => {};
+
+  constructor(private readonly printer: Printer, private readonly editor: () => GridEditor) {}
+
+  /** The connected machine's settings, else the Mega's defaults. */
+  get config(): MachineConfig {
+    return this.printer.config ?? DEFAULT_CONFIG;
+  }
+
+  /** The drawing as a job for this machine, or null when nothing is drawn. */
+  job(): PrintJob | null {
+    const ed = this.editor();
+    return jobFromGrid(ed.grid, ed.machine, {
+      dose: { map: 'linear', fullUs: Math.round(this.fullMs * 1000) },
+      strategy: { name: this.strategy },
+      leds: ledsOf(this.config),
+    });
+  }
+
+  /** Dry run first; errors stop here, warnings wait for `exposeAnyway`. */
+  exposeDrawing = () =>
+    this.#act(async () => {
+      const job = this.job();
+      if (!job) throw new Error('nothing is drawn');
+      const { findings } = dryRun(job, this.config);
+      this.check = { findings, job };
+      if (findings.some((f) => f.level !== 'ok')) return;
+      await this.#run(job);
+    });
+
+  exposeAnyway = () => this.#act(async () => this.check && this.#run(this.check.job));
+
+  /** The head goes round where the drawing will land, LEDs off. */
+  frame = () =>
+    this.#act(async () => {
+      const job = this.job();
+      if (!job) throw new Error('nothing is drawn');
+      await this.printer.moves(framingMoves(job, num(this.config, 'speed.travel')));
+    });
+
+  run = (job: PrintJob) => this.#act(() => this.#run(job));
+
+  act = (f: () => Promise<unknown>) => this.#act(f);
+
+  async #run(job: PrintJob): Promise<void> {
+    await this.beforeRun(job);
+    await this.printer.send('G28');
+    await this.printer.startJob(job);
+  }
+
+  async #act(f: () => Promise<unknown>): Promise<void> {
+    this.error = null;
+    try {
+      await f();
+    } catch (e) {
+      this.error = (e as Error).message;
+    }
+  }
+}
