@@ -1,12 +1,24 @@
 import { svelte } from '@sveltejs/vite-plugin-svelte';
 import { fileURLToPath } from 'node:url';
-import { defineConfig } from 'vite';
+import { defineConfig, type Plugin } from 'vite';
+import { bundleSize, formatBundleSize } from '../scripts/bundle-size';
+
+const outDir = fileURLToPath(new URL('../dist/app', import.meta.url));
+
+/** Prints the app's gzipped size, first load against its budget, after every build. */
+const printSize: Plugin = {
+  name: 'print-gzipped-size',
+  apply: 'build',
+  closeBundle() {
+    console.log(`\nThe app, gzipped:\n${formatBundleSize(bundleSize(outDir))}`);
+  },
+};
 
 export default defineConfig({
   root: fileURLToPath(new URL('.', import.meta.url)),
-  plugins: [svelte()],
+  plugins: [svelte(), printSize],
   build: {
-    outDir: fileURLToPath(new URL('../dist/app', import.meta.url)),
+    outDir,
     emptyOutDir: true,
   },
   worker: { format: 'es' },

@@ -24,11 +24,19 @@ export interface FakeSerial {
 export async function installFakeSerial(page: Page, peer: (fake: FakeSerial) => SerialPeer, pick: 'port' | 'dismiss' = 'port'): Promise<FakeSerial> {
   let written = '';
   let chain = Promise.resolve();
+  // Bytes wait here while a delivery is under way and go together in the next: one page.evaluate
+  // per chunk falls behind a printer that reports many lines a second at a raised simulation speed.
+  let pending = '';
+  const deliver = () => {
+    const codes = Array.from(pending, (c) => c.charCodeAt(0));
+    pending = '';
+    // After the test ends the page is gone; the printer may still be talking.
+    return page.evaluate((b) => (window as unknown as { __serialRx(b: number[]): void }).__serialRx(b), codes).catch(() => {});
+  };
   const fake: FakeSerial = {
     push(bytes) {
-      const codes = Array.from(bytes, (c) => c.charCodeAt(0));
-      // After the test ends the page is gone; the printer may still be talking.
-      chain = chain.then(() => page.evaluate((b) => (window as unknown as { __serialRx(b: number[]): void }).__serialRx(b), codes)).catch(() => {});
+      if (!pending) chain = chain.then(deliver);
+      pending += bytes;
       return chain;
     },
     written: () => written,

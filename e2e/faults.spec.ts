@@ -13,6 +13,7 @@ test('a job arrives bit-exact through 1 % byte corruption with drops', async ({ 
   await expect(page.getByTestId('job-state')).toHaveAttribute('data-state', /running|done/, { timeout: 90_000 });
   const stored = Array.from(app.sim!.printer.sd.files.values());
   expect(stored).toEqual([encodeJob(testPattern())]);
+  await page.getByTestId('tab-link').click();
   await expect(page.getByTestId('link-health')).toContainText(/[1-9]\d* resends|[1-9]\d* time-outs/);
   await page.screenshot({ path: info.outputPath('corrupted-link.png'), fullPage: true });
   app.close();

@@ -10,8 +10,11 @@ import { applyReport, emptyState, type DeviceState, type JobProgress } from './d
 import { EspLink } from './esp-link';
 import type { PrinterLink, UploadProgress } from './link';
 import { configOf, interruptedOf, type InterruptedJob } from './printer-replies';
+import { parseMesh } from './mesh-report';
+import { ThermalHistory } from './thermal-history';
+import type { Mesh } from '../planner/mesh';
 import { PickerDismissed, SerialTransport } from './serial-transport';
-import { SimTransport } from './sim-transport';
+import { SimTransport, switchOffSimulatedPrinter } from './sim-transport';
 import type { TransportKind } from './transport';
 
 export type Connection =
@@ -44,6 +47,12 @@ export class Printer {
   readonly log = new ConsoleLog();
   /** Bumped with each line logged, so the console can follow. */
   logRevision = $state(0);
+  /** The temperatures of the last 20 minutes (not deep-reactive: the chart reads it on each revision). */
+  readonly thermal = new ThermalHistory();
+  thermalRevision = $state(0);
+  /** The mesh the printer last reported, and the one it had before the last probing, for comparison. */
+  mesh = $state<Mesh | null>(null);
+  previousMesh = $state<Mesh | null>(null);
   #link: PrinterLink | null = null;
 
   constructor(private readonly makeLink: (kind: TransportKind) => PrinterLink = defaultLink) {}
@@ -93,6 +102,7 @@ export class Printer {
     this.upload = { state: 'idle' };
     this.config = null;
     this.interrupted = null;
+    this.mesh = this.previousMesh = null;
     if (link) await link.close().catch(() => {});
     this.connection = { state: 'idle' };
   }
@@ -142,6 +152,28 @@ export class Printer {
     }
   }
 
+  /** Deploys the probe, maps the bed on n × n points (`G29`), and stows it. */
+  async probeMesh(n: number): Promise<void> {
+    const before = this.mesh;
+    await this.moves(['M401', `G29 X${n} Y${n}`, 'M402']);
+    if (before && this.mesh !== before) this.previousMesh = before;
+  }
+
+  /** Reads the settings again (`M503`). */
+  readConfig = async () => {
+    this.config = configOf(await this.send('M503'));
+  };
+
+  /** Sets each changed setting (`M850`), then reads them all back; `save` keeps them over a restart (`M500`). */
+  async writeConfig(changes: Record<string, string>, save: boolean): Promise<void> {
+    try {
+      for (const [key, value] of Object.entries(changes)) await this.send(`M850 ${key} ${value}`);
+      if (save) await this.send('M500');
+    } finally {
+      await this.readConfig();
+    }
+  }
+
   pause = () => this.send('M25');
   resume = () => this.send('M24');
   abort = () => this.send('M524');
@@ -149,12 +181,18 @@ export class Printer {
   #onReply(r: Reply, line: string): void {
     this.log.add(line);
     this.logRevision++;
+    if (r.kind === 'temps') {
+      this.thermal.add(Date.now() / 1000, r.deciC.map((d) => d / 10), this.device.job?.state === 'running');
+      this.thermalRevision = this.thermal.revision;
+    }
     if (applyReport(this.device, r, Date.now())) this.device = { ...this.device };
+    if (r.kind === 'other' && r.text.startsWith('MESH:row')) this.mesh = parseMesh(this.device.mesh) ?? this.mesh; // whole with its last row
     if (this.#link) this.health = { ...this.#link.health };
   }
 }
 
 function defaultLink(kind: TransportKind): PrinterLink {
+  if (kind !== 'sim') switchOffSimulatedPrinter();
   if (kind === 'esp') return new EspLink(location.origin);
   return new DialectLink(kind === 'serial' ? new SerialTransport() : new SimTransport());
 }

@@ -1,6 +1,7 @@
 // Transport to the simulated printer running in a Web Worker. Like a real machine, it keeps running
 // while no link is open, and opening the link restarts it, as opening a Mega's USB port does (DTR):
-// what was in its memory is gone, and its SD card, with a running job's checkpoint, is kept.
+// what was in its memory is gone, and its SD card, with a running job's checkpoint, is kept. It is
+// switched off when the app connects to a real printer.
 
 import type { Transport } from './transport';
 
@@ -31,4 +32,11 @@ export class SimTransport implements Transport {
   async close(): Promise<void> {
     listener = null;
   }
+}
+
+/** Connecting to a real printer switches the simulated one off: its card goes with it. */
+export function switchOffSimulatedPrinter(): void {
+  machine?.terminate();
+  machine = null;
+  listener = null;
 }

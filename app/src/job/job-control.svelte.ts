@@ -15,8 +15,10 @@ export class JobControl {
   fullMs = $state(4);
   strategy = $state<StrategyName>('serpentine');
   /** The last dry run's findings, and the job they were found for. */
-  check = $state<{ findings: Finding[]; job: PrintJob } | null>(null);
+  check = $state<{ findings: Finding[]; job: PrintJob; duty: number[] } | null>(null);
   error = $state<string | null>(null);
+  /** Each LED's share of the running job's time lit, from its dry run; null for a job not checked here. */
+  duty = $state<number[] | null>(null);
   /** Called with the job just before it is sent (the project's autosave). */
   beforeRun: (job: PrintJob) => Promise<void> = async () => {};
 
@@ -42,13 +44,13 @@ export class JobControl {
     this.#act(async () => {
       const job = this.job();
       if (!job) throw new Error('nothing is drawn');
-      const { findings } = dryRun(job, this.config);
-      this.check = { findings, job };
+      const { findings, duty } = dryRun(job, this.config);
+      this.check = { findings, job, duty };
       if (findings.some((f) => f.level !== 'ok')) return;
-      await this.#run(job);
+      await this.#run(job, duty);
     });
 
-  exposeAnyway = () => this.#act(async () => this.check && this.#run(this.check.job));
+  exposeAnyway = () => this.#act(async () => this.check && this.#run(this.check.job, this.check.duty));
 
   /** The head goes round where the drawing will land, LEDs off. */
   frame = () =>
@@ -58,12 +60,13 @@ export class JobControl {
       await this.printer.moves(framingMoves(job, num(this.config, 'speed.travel')));
     });
 
-  run = (job: PrintJob) => this.#act(() => this.#run(job));
+  run = (job: PrintJob) => this.#act(() => this.#run(job, null));
 
   act = (f: () => Promise<unknown>) => this.#act(f);
 
-  async #run(job: PrintJob): Promise<void> {
+  async #run(job: PrintJob, duty: number[] | null): Promise<void> {
     await this.beforeRun(job);
+    this.duty = duty;
     await this.printer.send('G28');
     await this.printer.startJob(job);
   }

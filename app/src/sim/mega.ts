@@ -109,12 +109,15 @@ export class MegaModel {
     while (!this.#busy && this.#queue.length) {
       const { body, n } = this.#queue[0];
       this.#busy = true;
+      let pumping = true;
       this.#run(body, n, () => {
         this.#queue.shift();
         this.#receiver.markAnswered(n);
         this.line(this.#receiver.ok(n)); // names the line it answers, never a merely queued one
         this.#busy = false;
+        if (!pumping) this.#pump(); // a long command ended: the lines queued behind it run now
       });
+      pumping = false;
     }
   }
 

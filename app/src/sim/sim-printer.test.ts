@@ -42,6 +42,15 @@ describe('simulated printer: link and identity', () => {
     expect(lines).toContain('Resend: 1');
   });
 
+  it('runs the lines queued behind a long command as soon as it ends, with no resend', () => {
+    const lines: string[] = [];
+    const sim = new SimPrinter((b) => lines.push(...b.split('\n').filter(Boolean)));
+    sim.receive(`${encodeFrame(1, 'G28')}\n${encodeFrame(2, 'G90')}\n${encodeFrame(3, 'M114')}\n`);
+    sim.advance(60_000);
+    expect(lines.filter((l) => l.startsWith('ok N')).map((l) => l.split(' ')[1])).toEqual(['N1', 'N2', 'N3']);
+    expect(lines).toContain('X:0.000 Y:0.000 Z:0.000 E:0.000 Count X:0 Y:0 Z:0');
+  });
+
   it('reports six temperatures on M105 and by auto-report', () => {
     const h = new SimHost();
     expect(parseReply(h.cmd('M105')[0])?.kind).toBe('temps');

@@ -1,0 +1,60 @@
+// The thermal chart: uPlot, loaded with the thermal dashboard rather than with the app, drawing the six
+// sensors' history and each distinct soft limit as a dashed line in the colour of its sensors.
+
+import uPlot from 'uplot';
+import 'uplot/dist/uPlot.min.css';
+import { SENSOR_COLOURS } from './sensor-colours';
+
+export interface ThermalChart {
+  update(data: [number[], ...number[][]], limitsC: number[] | null): void;
+  resize(width: number): void;
+  destroy(): void;
+}
+
+export function thermalChart(el: HTMLElement, names: string[], width: number): ThermalChart {
+  let limits: number[] | null = null;
+  const celsius = (_u: uPlot, v: number | null) => (v == null ? '—' : `${v.toFixed(1)} °C`);
+  const plot = new uPlot(
+    {
+      width,
+      height: 220,
+      scales: { x: { time: true }, y: { range: (_u, lo, hi) => [Math.floor(Math.min(lo, 20)), Math.ceil(Math.max(hi, ...(limits ?? [])) + 2)] } },
+      series: [{}, ...names.map((label, i) => ({ label, stroke: SENSOR_COLOURS[i], width: 1.5, value: celsius }))],
+      axes: [{}, { label: '°C', size: 44 }],
+      legend: { live: true },
+      hooks: {
+        draw: [
+          (u) => {
+            if (!limits) return;
+            const ctx = u.ctx;
+            ctx.save();
+            ctx.setLineDash([6, 4]);
+            ctx.lineWidth = 1.5;
+            const seen = new Set<number>();
+            limits.forEach((c, i) => {
+              if (seen.has(c)) return;
+              seen.add(c);
+              const y = u.valToPos(c, 'y', true);
+              ctx.strokeStyle = SENSOR_COLOURS[i];
+              ctx.beginPath();
+              ctx.moveTo(u.bbox.left, y);
+              ctx.lineTo(u.bbox.left + u.bbox.width, y);
+              ctx.stroke();
+            });
+            ctx.restore();
+          },
+        ],
+      },
+    },
+    [[], ...names.map(() => [])],
+    el,
+  );
+  return {
+    update(data, limitsC) {
+      limits = limitsC;
+      plot.setData(data);
+    },
+    resize: (w) => plot.setSize({ width: w, height: 220 }),
+    destroy: () => plot.destroy(),
+  };
+}

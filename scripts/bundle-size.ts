@@ -1,0 +1,46 @@
+// The app's size, gzipped as the ESP serves it: what the first load fetches (index.html and what it
+// names), what loads on demand (the thermal chart with uPlot, the Web Serial polyfill), and the
+// simulated printer's worker, which only the simulated device loads. Printed by the build and the bench.
+import { readdirSync, readFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { gzipSync } from 'node:zlib';
+
+export const FIRST_LOAD_BUDGET = 60 * 1024;
+
+const gz = (path: string) => gzipSync(readFileSync(path), { level: 9 }).length;
+
+export interface Sized {
+  file: string;
+  gzip: number;
+}
+
+export interface BundleSize {
+  first: Sized[];
+  onDemand: Sized[];
+  simulator: Sized[];
+  firstLoad: number;
+  onDemandTotal: number;
+  simulatorTotal: number;
+  total: number;
+}
+
+export function bundleSize(dist: string): BundleSize {
+  const html = readFileSync(join(dist, 'index.html'), 'utf8');
+  const named = new Set([...html.matchAll(/(?:src|href)="\/(assets\/[^"]+)"/g)].map((m) => m[1]));
+  const files: Sized[] = readdirSync(join(dist, 'assets')).map((f) => ({ file: `assets/${f}`, gzip: gz(join(dist, 'assets', f)) }));
+  const first = [{ file: 'index.html', gzip: gz(join(dist, 'index.html')) }, ...files.filter((f) => named.has(f.file))];
+  const simulator = files.filter((f) => !named.has(f.file) && /sim-worker/.test(f.file));
+  const onDemand = files.filter((f) => !named.has(f.file) && !/sim-worker/.test(f.file));
+  const sum = (l: Sized[]) => l.reduce((n, f) => n + f.gzip, 0);
+  return { first, onDemand, simulator, firstLoad: sum(first), onDemandTotal: sum(onDemand), simulatorTotal: sum(simulator), total: sum(files) + first[0].gzip };
+}
+
+export function formatBundleSize(s: BundleSize): string {
+  const kb = (n: number) => `${(n / 1024).toFixed(1)} KB`;
+  return [
+    `first load   ${kb(s.firstLoad).padStart(8)}  (budget ${kb(FIRST_LOAD_BUDGET)})${s.firstLoad > FIRST_LOAD_BUDGET ? '  OVER BUDGET' : ''}`,
+    `on demand    ${kb(s.onDemandTotal).padStart(8)}  ${s.onDemand.map((f) => `${f.file.replace(/^assets\//, '').replace(/-[\w-]{8}\./, '.')} ${kb(f.gzip)}`).join(', ')}`,
+    `simulator    ${kb(s.simulatorTotal).padStart(8)}  (the built-in simulated printer's worker)`,
+    `whole app    ${kb(s.total).padStart(8)}`,
+  ].join('\n');
+}
