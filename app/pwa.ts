@@ -1,0 +1,22 @@
+// Build step for the installable, offline app: writes sw.js from service-worker.js with the list of
+// every file the build made (the simulated printer's worker and the chart included) and a version
+// hash of them, so the app works with no network and a new build replaces the old cache.
+import { createHash } from 'node:crypto';
+import { readFileSync } from 'node:fs';
+import type { Plugin } from 'vite';
+
+export function serviceWorker(source: string): Plugin {
+  return {
+    name: 'service-worker',
+    apply: 'build',
+    generateBundle(_options, bundle) {
+      const files = ['/index.html', ...Object.keys(bundle).filter((f) => f !== 'index.html').map((f) => `/${f}`), '/manifest.webmanifest', '/icon.svg'].sort();
+      const hash = createHash('sha256');
+      for (const f of Object.values(bundle)) hash.update(f.type === 'chunk' ? f.code : typeof f.source === 'string' ? f.source : Buffer.from(f.source));
+      const code = readFileSync(source, 'utf8')
+        .replace('self.__PRECACHE__', JSON.stringify(files))
+        .replace('self.__VERSION__', JSON.stringify(hash.digest('hex').slice(0, 12)));
+      this.emitFile({ type: 'asset', fileName: 'sw.js', source: code });
+    },
+  };
+}
