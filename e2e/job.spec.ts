@@ -1,6 +1,14 @@
 // Job control on the simulated printer: framing with the LEDs off, and resuming a job that a
 // restart interrupted (reopening the link restarts the machine, as a real Mega's USB port does).
-import { expect, test } from '@playwright/test';
+import { expect, test, type Page } from '@playwright/test';
+import { drawFilledRectangle } from './draw';
+
+/** Unplug and plug in again: the simulated Mega restarts, as a real one does when its USB port opens. */
+async function reconnect(page: Page) {
+  await page.getByRole('button', { name: 'Disconnect' }).click();
+  await page.getByRole('button', { name: 'Connect', exact: true }).click();
+  await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected');
+}
 
 test('a job interrupted by a restart is offered for resume on connect, and runs to its end', async ({ page }, info) => {
   await page.goto('/?simSpeed=4');
@@ -11,10 +19,7 @@ test('a job interrupted by a restart is offered for resume on connect, and runs 
   await expect(page.getByTestId('eta')).toContainText(/left, done at about/);
   await page.screenshot({ path: info.outputPath('running.png'), fullPage: true });
 
-  // Unplug and plug in again: the Mega restarts, and its card holds the checkpoint.
-  await page.getByRole('button', { name: 'Disconnect' }).click();
-  await page.getByRole('button', { name: 'Connect', exact: true }).click();
-  await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected');
+  await reconnect(page); // the card holds the checkpoint
   const offer = page.getByTestId('resume-offer');
   await expect(offer).toContainText(/test-pattern-1\.uvj.*: [1-9]\d* of \d+ stops are done/);
   await page.screenshot({ path: info.outputPath('offer.png'), fullPage: true });
@@ -26,9 +31,7 @@ test('a job interrupted by a restart is offered for resume on connect, and runs 
   await expect(page.getByTestId('job-state')).toContainText(/done: stop (\d+) of \1/);
 
   // Nothing is left to resume.
-  await page.getByRole('button', { name: 'Disconnect' }).click();
-  await page.getByRole('button', { name: 'Connect', exact: true }).click();
-  await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected');
+  await reconnect(page);
   await expect(page.getByTestId('resume-offer')).toHaveCount(0);
 });
 
@@ -37,13 +40,10 @@ test('a discarded interrupted job is not offered again', async ({ page }) => {
   await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected');
   await page.getByTestId('start-test').click();
   await expect(page.getByTestId('job-state')).toContainText(/running: stop [1-9]/, { timeout: 30_000 });
-  await page.getByRole('button', { name: 'Disconnect' }).click();
-  await page.getByRole('button', { name: 'Connect', exact: true }).click();
+  await reconnect(page);
   await page.getByTestId('discard-job').click();
   await expect(page.getByTestId('resume-offer')).toHaveCount(0);
-  await page.getByRole('button', { name: 'Disconnect' }).click();
-  await page.getByRole('button', { name: 'Connect', exact: true }).click();
-  await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected');
+  await reconnect(page);
   await expect(page.getByTestId('resume-offer')).toHaveCount(0);
 });
 
@@ -51,12 +51,7 @@ test('framing takes the head round the drawing with the LEDs off, and ends where
   await page.goto('/?simSpeed=20');
   await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected');
   await expect(page.getByTestId('frame')).toBeDisabled(); // nothing drawn
-  await page.getByTestId('tool-rect-filled').click();
-  const box = (await page.getByTestId('editor-canvas').boundingBox())!;
-  await page.mouse.move(box.x + box.width * 0.4, box.y + box.height * 0.4);
-  await page.mouse.down();
-  await page.mouse.move(box.x + box.width * 0.45, box.y + box.height * 0.45, { steps: 4 });
-  await page.mouse.up();
+  await drawFilledRectangle(page, [0.4, 0.4], [0.45, 0.45]);
   await page.getByTestId('tab-position').click();
   await page.getByTestId('frame').click();
   const log = page.getByTestId('console-log');

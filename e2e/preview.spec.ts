@@ -1,6 +1,7 @@
 // The exposure preview of a drawing: the plan's light, stops and travel, time and LED shares,
 // scrubbed and stepped through.
 import { expect, test, type Page } from '@playwright/test';
+import { drawFilledRectangle } from './draw';
 
 /** How many of the preview canvas's pixels are lit (not the bed's near-white). */
 const litPixels = (page: Page) =>
@@ -15,12 +16,7 @@ test('previews a drawing: time, stops, LEDs, and the light stop by stop', async 
   await page.goto('/?simSpeed=20');
   await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected');
   await expect(page.getByTestId('view-preview')).toBeDisabled(); // nothing drawn
-  await page.getByTestId('tool-rect-filled').click();
-  const box = (await page.getByTestId('editor-canvas').boundingBox())!;
-  await page.mouse.move(box.x + box.width * 0.4, box.y + box.height * 0.4);
-  await page.mouse.down();
-  await page.mouse.move(box.x + box.width * 0.43, box.y + box.height * 0.42, { steps: 4 });
-  await page.mouse.up();
+  await drawFilledRectangle(page, [0.4, 0.4], [0.43, 0.42]);
 
   await page.getByTestId('view-preview').click();
   await expect(page.getByTestId('preview-summary')).toContainText(/^\d+ stops in \d+ passes, about 0:\d\d:\d\d, \d+ mm of travel$/);
