@@ -29,7 +29,6 @@ export type Upload = { state: 'idle' } | ({ state: 'uploading' } & UploadProgres
 
 export const SENSOR_NAMES = ['LED 0', 'LED 1', 'LED 2', 'LED 3', 'Driver', 'Frame'];
 
-
 function describe(e: unknown): string {
   return e instanceof CommandError ? e.message : e instanceof Error ? e.message : String(e);
 }

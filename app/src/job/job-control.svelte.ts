@@ -15,12 +15,10 @@ export class JobControl {
   fullMs = $state(4);
   strategy = $state<StrategyName>('serpentine');
   /** The last dry run's findings, and the job they were found for. */
-  check = $state<{ findings: Finding[]; job: PrintJob; duty: number[] } | null>(null);
+  check = $state.raw<{ findings: Finding[]; job: PrintJob; duty: number[] } | null>(null);
   error = $state<string | null>(null);
   /** Each LED's share of the running job's time lit, from its dry run; null for a job not checked here. */
   duty = $state<number[] | null>(null);
-  /** Called with the job just before it is sent (the project's autosave). */
-  beforeRun: (job: PrintJob) => Promise<void> = async () => {};
 
   constructor(private readonly printer: Printer, private readonly editor: () => GridEditor) {}
 
@@ -60,12 +58,9 @@ export class JobControl {
       await this.printer.moves(framingMoves(job, num(this.config, 'speed.travel')));
     });
 
-  run = (job: PrintJob) => this.#act(() => this.#run(job, null));
-
   act = (f: () => Promise<unknown>) => this.#act(f);
 
   async #run(job: PrintJob, duty: number[] | null): Promise<void> {
-    await this.beforeRun(job);
     this.duty = duty;
     await this.printer.send('G28');
     await this.printer.startJob(job);
