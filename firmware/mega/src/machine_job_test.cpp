@@ -33,6 +33,14 @@ class JobTest : public ::testing::Test {
     all.insert(all.end(), end.begin(), end.end());
     return all;
   }
+  // Uploads the job, selects it, homes and starts it; returns the upload's lines.
+  Lines uploadAndStart(const std::string& name, const Lines& records) {
+    Lines got = upload(name, records);
+    m.cmd("M23 " + name);
+    m.cmd("G28");
+    m.cmd("M24");
+    return got;
+  }
   // Runs until a JOB: line in `states` arrives; returns it.
   std::string runUntilJob(std::initializer_list<const char*> states, uint64_t maxUs = 300000000) {
     size_t from = m.usbLines.size();
@@ -99,10 +107,7 @@ TEST_F(JobTest, EveryStrategyRunsAsPlanned) {
     h.seed = 99;
     Grid g = pattern(11, 7, static_cast<uint32_t>(s) + 3);
     size_t from = m.nano.exposures.size();
-    ASSERT_TRUE(has(upload("J.UVJ", encode(h, g)), "echo:Done saving file."));
-    m.cmd("M23 J.UVJ");
-    m.cmd("G28");
-    m.cmd("M24");
+    ASSERT_TRUE(has(uploadAndStart("J.UVJ", encode(h, g)), "echo:Done saving file."));
     ASSERT_NE(runUntilJob({"done"}), "(none)");
     expectExposed(h, plan(h, g), from);
   }
@@ -157,10 +162,7 @@ TEST_F(JobTest, AJobCopiedOntoTheCardByAPcIsVerifiedAndPlannedWhenSelected) {
 TEST_F(JobTest, PauseWaitsForTheStopContinueGoesOnAbortEndsItDark) {
   uv::JobHeader h = header(16, 12, uv::Strategy::Raster);
   Grid g = pattern(16, 12, 9);
-  upload("P.UVJ", encode(h, g));
-  m.cmd("M23 P.UVJ");
-  m.cmd("G28");
-  m.cmd("M24");
+  uploadAndStart("P.UVJ", encode(h, g));
   m.run(300000);
   m.cmd("M25");
   std::string paused = runUntilJob({"paused"});
@@ -190,10 +192,7 @@ TEST_F(JobTest, PauseWaitsForTheStopContinueGoesOnAbortEndsItDark) {
 TEST_F(JobTest, ThePanelsPauseButtonPausesBetweenStopsAndContinues) {
   uv::JobHeader h = header(16, 12, uv::Strategy::Raster);
   Grid g = pattern(16, 12, 6);
-  upload("B.UVJ", encode(h, g));
-  m.cmd("M23 B.UVJ");
-  m.cmd("G28");
-  m.cmd("M24");
+  uploadAndStart("B.UVJ", encode(h, g));
   m.run(300000);
   size_t from = m.usbLines.size();
   m.io.pressed = kButtonPause;
@@ -215,10 +214,7 @@ TEST_F(JobTest, ThePanelsPauseButtonPausesBetweenStopsAndContinues) {
 TEST_F(JobTest, AnOverTemperatureMidJobPausesItAndItContinuesOnceCool) {
   uv::JobHeader h = header(16, 12, uv::Strategy::Raster);
   Grid g = pattern(16, 12, 4);
-  upload("T.UVJ", encode(h, g));
-  m.cmd("M23 T.UVJ");
-  m.cmd("G28");
-  m.cmd("M24");
+  uploadAndStart("T.UVJ", encode(h, g));
   m.run(200000);
   m.nano.setTemps(560);  // over the Mega's 55 °C soft limit, under the Nano's 60
   std::string paused = runUntilJob({"paused"});
@@ -255,10 +251,7 @@ TEST_F(JobTest, AJobUploadedThroughTheEspPortRunsAndAHostThatGoesSilentPausesIt)
 }
 
 TEST_F(JobTest, M1000CDiscardsAnInterruptedJob) {
-  upload("K.UVJ", encode(header(8, 8, uv::Strategy::Raster), pattern(8, 8, 1)));
-  m.cmd("M23 K.UVJ");
-  m.cmd("G28");
-  m.cmd("M24");
+  uploadAndStart("K.UVJ", encode(header(8, 8, uv::Strategy::Raster), pattern(8, 8, 1)));
   m.run(300000);
   m.reset(200000);
   EXPECT_EQ(payload("M1000 S")[0].rfind("JOB:interrupted file=K.UVJ", 0), 0u);
@@ -300,10 +293,7 @@ TEST_F(JobTest, ResetsAtRandomPointsResumeAndExposeEveryStopExactlyOnce) {
   uv::JobHeader h = header(24, 16, uv::Strategy::Shortest);
   Grid g = pattern(24, 16, 21);
   std::vector<uv::Stop> stops = plan(h, g);
-  ASSERT_TRUE(has(upload("R.UVJ", encode(h, g)), "echo:Done saving file."));
-  m.cmd("M23 R.UVJ");
-  m.cmd("G28");
-  m.cmd("M24");
+  ASSERT_TRUE(has(uploadAndStart("R.UVJ", encode(h, g)), "echo:Done saving file."));
   uint32_t seed = 5;
   auto rnd = [&seed](uint32_t n) {
     seed = seed * 1664525u + 1013904223u;
@@ -349,10 +339,7 @@ TEST_F(JobTest, AResetThatCutsAnExposureShortSaysSoAndExposesItAgain) {
   uv::JobHeader h = header(6, 4, uv::Strategy::Raster);
   h.fullUs = 400000;  // long exposures: the restart lands inside one
   Grid g = pattern(6, 4, 3);
-  upload("L.UVJ", encode(h, g));
-  m.cmd("M23 L.UVJ");
-  m.cmd("G28");
-  m.cmd("M24");
+  uploadAndStart("L.UVJ", encode(h, g));
   ASSERT_TRUE([&] {
     for (int t = 0; t < 100000 && !(m.nano.lit() && m.nano.exposures.size() >= 2); t++) m.run(100);
     return m.nano.lit() != 0;
@@ -380,10 +367,7 @@ TEST_F(JobTest, APowerCutResumesAndNamesTheStopThatMayHaveBeenCut) {
   uv::JobHeader h = header(16, 8, uv::Strategy::Serpentine);
   Grid g = pattern(16, 8, 13);
   std::vector<uv::Stop> stops = plan(h, g);
-  upload("W.UVJ", encode(h, g));
-  m.cmd("M23 W.UVJ");
-  m.cmd("G28");
-  m.cmd("M24");
+  uploadAndStart("W.UVJ", encode(h, g));
   m.run(500000);
   size_t before = m.nano.exposures.size();
   bool litAtCut = m.nano.lit() != 0;

@@ -20,6 +20,17 @@ using namespace uvtest;
 
 namespace {
 std::atomic<long> allocations{0};
+
+// The random jobs' source: xorshift32, a number below n each call.
+struct Xorshift {
+  uint32_t seed;
+  uint32_t operator()(uint32_t n) {
+    seed ^= seed << 13;
+    seed ^= seed >> 17;
+    seed ^= seed << 5;
+    return seed % n;
+  }
+};
 }  // namespace
 
 void* operator new(size_t n) {
@@ -132,13 +143,7 @@ TEST(PlannerMemory, StreamsWithinItsBoundAndNeverAllocates) {
 TEST(PlannerProperty, EveryLitCellOnceWithLedsSpreadOverManyRows) {
   // Rows marked as taken live in a ring of kCoveredWindowRows: jobs taller than it, with the LEDs'
   // rows spread up to its limit, still expose each lit cell exactly once and nothing else.
-  uint32_t seed = 12345;
-  auto rnd = [&seed](uint32_t n) {
-    seed ^= seed << 13;
-    seed ^= seed >> 17;
-    seed ^= seed << 5;
-    return seed % n;
-  };
+  Xorshift rnd{12345};
   for (int trial = 0; trial < 24; trial++) {
     uint16_t rows = static_cast<uint16_t>(1500 + rnd(2000)), cols = static_cast<uint16_t>(3 + rnd(9));
     std::vector<std::vector<uint8_t>> grid(rows, std::vector<uint8_t>(cols, 0));
@@ -191,13 +196,7 @@ TEST(PlannerProperty, EveryLitCellOnceWithLedsSpreadOverManyRows) {
 TEST(PlannerStreaming, RowsArrivingOneByOneGiveTheWholePlanInOrderAndNothingEarly) {
   // planner.md "Planning while rows arrive": fed one more row at a time, the planner emits only
   // stops no later row can change, and in the end exactly the plan of the whole job.
-  uint32_t seed = 777;
-  auto rnd = [&seed](uint32_t n) {
-    seed ^= seed << 13;
-    seed ^= seed >> 17;
-    seed ^= seed << 5;
-    return seed % n;
-  };
+  Xorshift rnd{777};
   for (int trial = 0; trial < 60; trial++) {
     uint16_t rows = static_cast<uint16_t>(1 + rnd(60)), cols = static_cast<uint16_t>(1 + rnd(12));
     std::vector<std::vector<uint8_t>> grid(rows, std::vector<uint8_t>(cols, 0));
