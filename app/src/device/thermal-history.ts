@@ -43,11 +43,7 @@ export class ThermalHistory {
   /** Oldest first: [times, T0 … T5], the samples of the last `spanS` seconds. */
   columns(spanS = HISTORY_S): [number[], ...number[][]] {
     const out: [number[], ...number[][]] = [[], [], [], [], [], [], []];
-    const start = (this.#next - this.#size + this.capacity) % this.capacity;
-    const newest = this.#size ? this.#t[(this.#next + this.capacity - 1) % this.capacity] : 0;
-    for (let k = 0; k < this.#size; k++) {
-      const i = (start + k) % this.capacity;
-      if (this.#t[i] < newest - spanS) continue;
+    for (const i of this.#within(spanS)) {
       out[0].push(this.#t[i]);
       for (let c = 0; c < 6; c++) out[c + 1].push(this.#c[c][i]);
     }
@@ -56,12 +52,17 @@ export class ThermalHistory {
 
   /** The samples of the last `spanS` seconds, for the rate watch. */
   recent(spanS: number): { tS: number; celsius: number[]; exposing: boolean }[] {
-    const out = [];
+    return this.#within(spanS).map((i) => ({ tS: this.#t[i], celsius: this.#c.map((c) => c[i]), exposing: this.#lit[i] === 1 }));
+  }
+
+  /** The ring's slots of the samples no older than `spanS` before the newest, oldest first. */
+  #within(spanS: number): number[] {
     const start = (this.#next - this.#size + this.capacity) % this.capacity;
     const newest = this.#size ? this.#t[(this.#next + this.capacity - 1) % this.capacity] : 0;
+    const out: number[] = [];
     for (let k = 0; k < this.#size; k++) {
       const i = (start + k) % this.capacity;
-      if (this.#t[i] >= newest - spanS) out.push({ tS: this.#t[i], celsius: this.#c.map((c) => c[i]), exposing: this.#lit[i] === 1 });
+      if (this.#t[i] >= newest - spanS) out.push(i);
     }
     return out;
   }

@@ -172,10 +172,8 @@ export function planJob(job: PlannerJob, machine: Machine): Plan {
   const longest = (v: Uint8Array, at: number) =>
     Math.max(tables[0][v[at]], tables[1][v[at + 1]], tables[2][v[at + 2]], tables[3][v[at + 3]]);
   /** The time model's cost of one stop from (x, y); protocol/planner.md "Time model". */
-  const stopCost = (x: number, y: number, fromX: number, fromY: number, v: Uint8Array, at: number) => {
-    const move = Math.max(moves.axis(0, Math.abs(x - fromX)), moves.axis(1, Math.abs(y - fromY)));
-    return move + (move > 0 ? machine.settleUs : 0) + machine.overheadUs + longest(v, at);
-  };
+  const stopCost = (x: number, y: number, fromX: number, fromY: number, v: Uint8Array, at: number) =>
+    moves.stop(x, y, fromX, fromY, longest(v, at));
   const emit = (hx: number, hy: number, v: Uint8Array, at: number) => {
     out.push(hx, hy, tables[0][v[at]], tables[1][v[at + 1]], tables[2][v[at + 2]], tables[3][v[at + 3]]);
     const x = X(hx), y = Y(hy);

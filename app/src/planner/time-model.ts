@@ -39,4 +39,13 @@ export class MoveTimes {
     }
     return t;
   }
+
+  /**
+   * The time model's cost of one stop (protocol/planner.md "Time model"): the move from (fromX, fromY)
+   * to (x, y) in µm, the settle after a move, the per-stop overhead, and its longest exposure.
+   */
+  stop(x: number, y: number, fromX: number, fromY: number, longestUs: number): number {
+    const move = Math.max(this.axis(0, Math.abs(x - fromX)), this.axis(1, Math.abs(y - fromY)));
+    return move + (move > 0 ? this.machine.settleUs : 0) + this.machine.overheadUs + longestUs;
+  }
 }

@@ -51,9 +51,8 @@ export function timeline(job: PrintJob, plan: Plan, machine: Machine): Float64Ar
   let x = machine.startUm[0], y = machine.startUm[1], t = 0;
   for (let i = 0; i < plan.count; i++) {
     const nx = job.originUm.x + plan.hx[i] * job.pitchUm.x, ny = job.originUm.y + plan.hy[i] * job.pitchUm.y;
-    const move = Math.max(moves.axis(0, Math.abs(nx - x)), moves.axis(1, Math.abs(ny - y)));
     const d = plan.durations;
-    t += move + (move > 0 ? machine.settleUs : 0) + machine.overheadUs + Math.max(d[i * 4], d[i * 4 + 1], d[i * 4 + 2], d[i * 4 + 3]);
+    t += moves.stop(nx, ny, x, y, Math.max(d[i * 4], d[i * 4 + 1], d[i * 4 + 2], d[i * 4 + 3]));
     out[i] = t;
     x = nx, y = ny;
   }

@@ -1,5 +1,7 @@
 // The Mega's configuration keys and defaults (M850 / M500-M503, CONFIG.TXT on SD), shared by the simulated printer.
 
+import type { Machine } from '../planner/time-model';
+
 export const CONFIG_DEFAULTS: Record<string, string> = {
   'steps_per_mm.x': '80',
   'steps_per_mm.y': '80',
@@ -102,6 +104,18 @@ export const CONFIG_RANGES: Record<string, [number, number, 'decimal' | 'whole' 
 /** A key's value as a number; the defaults make every key parse. */
 export function num(config: Record<string, string>, key: string): number {
   return Number(config[key] ?? CONFIG_DEFAULTS[key]);
+}
+
+/** The motion the planner's time model prices (protocol/planner.md), from the settings, starting at `startUm`. */
+export function motionOf(config: Record<string, string>, startUm: [number, number] = [0, 0]): Machine {
+  const v = num(config, 'speed.travel') * 1000;
+  return {
+    vmaxUmS: [v, v],
+    accelUmS2: [num(config, 'accel.x') * 1000, num(config, 'accel.y') * 1000],
+    settleUs: num(config, 'settle_ms') * 1000,
+    overheadUs: num(config, 'stop_overhead_us'),
+    startUm,
+  };
 }
 
 /** Validates one M850 assignment: a known key and a well-formed value inside the key's range. */

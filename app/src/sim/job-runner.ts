@@ -8,7 +8,7 @@ import type { JobHeader } from '../protocol/job-types';
 import { verifyJobText } from '../protocol/job-verify';
 import { FAULT, formatNanoCommand, parseNanoReply } from '../protocol/nano';
 import type { VirtualClock } from './clock';
-import { num } from './config';
+import { motionOf, num } from './config';
 import type { Motion, Xyz } from './motion';
 import type { NanoModel } from './nano-model';
 import type { SdCard } from './sd-card';
@@ -51,14 +51,7 @@ export class JobRunner {
   ) {}
 
   machine(start: Xyz): Machine {
-    const v = num(this.config, 'speed.travel') * 1000;
-    return {
-      vmaxUmS: [v, v],
-      accelUmS2: [num(this.config, 'accel.x') * 1000, num(this.config, 'accel.y') * 1000],
-      settleUs: num(this.config, 'settle_ms') * 1000,
-      overheadUs: num(this.config, 'stop_overhead_us'),
-      startUm: [start[0], start[1]],
-    };
+    return motionOf(this.config, [start[0], start[1]]);
   }
 
   /** Loads and plans a job file; false if it is missing or does not verify. */

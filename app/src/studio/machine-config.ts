@@ -1,8 +1,9 @@
 // The machine as the studio sees it, from the Mega's settings (firmware/mega/CONFIG.md keys):
 // the bed, the cell pitch, the motion the planner times, the LEDs and the thermal limits.
 
-import type { Machine as MotionMachine } from '../planner/time-model';
 import { CONFIG_DEFAULTS, num } from '../sim/config';
+
+export { motionOf } from '../sim/config';
 
 export type MachineConfig = Record<string, string>;
 
@@ -10,17 +11,6 @@ export const DEFAULT_CONFIG: MachineConfig = CONFIG_DEFAULTS;
 
 export function bedOf(c: MachineConfig) {
   return { bedMm: { x: num(c, 'bed.x'), y: num(c, 'bed.y') }, pitchUm: { x: num(c, 'pitch.x'), y: num(c, 'pitch.y') } };
-}
-
-export function motionOf(c: MachineConfig, startUm: [number, number] = [0, 0]): MotionMachine {
-  const v = num(c, 'speed.travel') * 1000;
-  return {
-    vmaxUmS: [v, v],
-    accelUmS2: [num(c, 'accel.x') * 1000, num(c, 'accel.y') * 1000],
-    settleUs: num(c, 'settle_ms') * 1000,
-    overheadUs: num(c, 'stop_overhead_us'),
-    startUm,
-  };
 }
 
 /** Each sensor's soft limit, °C: T0-T3 the LEDs, T4 the driver, T5 the frame. */

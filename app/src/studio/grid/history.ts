@@ -129,20 +129,20 @@ export class History {
   }
 
   undo(): boolean {
-    const p = this.#undo.pop();
-    if (!p) return false;
-    this.lastChanged = tilesBox(this.grid, p.tiles);
-    swap(this.grid, p.tiles);
-    this.#redo.push(p);
-    return true;
+    return this.#swapTop(this.#undo, this.#redo);
   }
 
   redo(): boolean {
-    const p = this.#redo.pop();
+    return this.#swapTop(this.#redo, this.#undo);
+  }
+
+  /** Swaps the newest step of `from` with the grid's tiles, and keeps it on `to` to go back. */
+  #swapTop(from: Patch[], to: Patch[]): boolean {
+    const p = from.pop();
     if (!p) return false;
     this.lastChanged = tilesBox(this.grid, p.tiles);
     swap(this.grid, p.tiles);
-    this.#undo.push(p);
+    to.push(p);
     return true;
   }
 }
