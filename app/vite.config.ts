@@ -21,7 +21,7 @@ function printSize(): Plugin {
   };
 }
 
-export default defineConfig({
+export default defineConfig(({ mode }) => ({
   root: fileURLToPath(new URL('.', import.meta.url)),
   plugins: [svelte(), serviceWorker(fileURLToPath(new URL('service-worker.js', import.meta.url))), printSize()],
   build: {
@@ -31,4 +31,6 @@ export default defineConfig({
   worker: { format: 'es' },
   server: { port: 5173 },
   preview: { port: 4173 },
-});
+  // The ESP's flash image (scripts/build-esp-fs.mjs) leaves the simulated printer out.
+  resolve: mode === 'esp' ? { alias: [{ find: /^\.\/sim-transport$/, replacement: fileURLToPath(new URL('src/device/sim-absent.ts', import.meta.url)) }] } : {},
+}));

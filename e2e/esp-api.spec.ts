@@ -140,3 +140,12 @@ test('esp API (firmware): a POST /print cut off mid-body frees the Mega for the 
   await expect.poll(async () => (await call(page, 'POST', '/print', '{"grid":')).status, { timeout: 5000 }).toBe(400); // not 409: nothing holds the Mega
   host.stop();
 });
+
+test('the app from the ESP\'s flash connects over Wi-Fi and has no simulated printer to offer', async ({ page }) => {
+  const host = await startEspHost(20);
+  await page.goto(host.url);
+  await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected');
+  await expect(page.getByTestId('device-kind')).toHaveValue('esp');
+  await expect(page.getByTestId('device-kind').locator('option')).toHaveText(['USB (Web Serial)', 'Wi-Fi (printer hub)']);
+  host.stop();
+});

@@ -12,7 +12,7 @@ const dist = join(root, 'dist', 'esp-app');
 const www = join(root, 'firmware', 'esp', 'data', 'www');
 const APP_BUDGET = 100 * 1024; // the LittleFS space left beside one 1.2 MB job body on the smaller (ESP32) layout
 
-execFileSync('npx', ['vite', 'build', '--config', 'app/vite.config.ts', '--outDir', dist, '--emptyOutDir'], { cwd: root, stdio: 'inherit' });
+execFileSync('npx', ['vite', 'build', '--config', 'app/vite.config.ts', '--mode', 'esp', '--outDir', dist, '--emptyOutDir'], { cwd: root, stdio: 'inherit' });
 
 rmSync(www, { recursive: true, force: true });
 let total = 0;

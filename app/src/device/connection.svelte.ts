@@ -15,6 +15,7 @@ import { ThermalHistory } from './thermal-history';
 import type { Mesh } from '../planner/mesh';
 import { PickerDismissed, SerialTransport } from './serial-transport';
 import { SimTransport, switchOffSimulatedPrinter } from './sim-transport';
+export { SIMULATOR_BUILT_IN } from './sim-transport';
 import type { TransportKind } from './transport';
 
 export type Connection =

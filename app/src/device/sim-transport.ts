@@ -5,6 +5,9 @@
 
 import type { Transport } from './transport';
 
+/** False in the ESP's flash image, which has sim-absent.ts in this module's place. */
+export const SIMULATOR_BUILT_IN = true;
+
 let machine: Worker | null = null;
 let listener: ((bytes: string) => void) | null = null;
 
