@@ -105,27 +105,116 @@ function halfBlackBmp(w: number, h: number): Buffer {
   return b;
 }
 
-test('imports a picture at a physical size, dithered, and places it where the view is', async ({ page }, info) => {
+/** Where a point of the bed, in mm, is on the canvas (CSS pixels from its corner), the bed fitted to the view. */
+async function bedPoint(page: Page, mmX: number, mmY: number): Promise<{ x: number; y: number }> {
+  const [cols, rows, pitchUm] = (/^(\d+) × (\d+) cells of (\d+) µm/.exec((await page.getByTestId('grid-size').textContent())!) ?? []).slice(1).map(Number);
+  const box = (await page.getByTestId('editor-canvas').boundingBox())!;
+  const ruler = 22, margin = 16, aw = box.width - ruler, ah = box.height - ruler;
+  const scale = Math.min((aw - 2 * margin) / cols, (ah - 2 * margin) / rows);
+  const cell = (mm: number) => (mm * 1000) / pitchUm;
+  return { x: ruler + aw / 2 + (cell(mmX) - cols / 2) * scale, y: ruler + ah / 2 + (cell(mmY) - rows / 2) * scale };
+}
+
+test('imports a picture as an object: sized in mm, dithered, inverted, moved, resized and deleted', async ({ page }, info) => {
   await page.goto('/?simSpeed=40');
   await page.getByTestId('import-file').setInputFiles({ name: 'half.bmp', mimeType: 'image/bmp', buffer: halfBlackBmp(40, 20) });
-  await page.getByTestId('import-width').fill('10');
-  await expect(page.getByTestId('import-size')).toHaveText(/^200 × 100 cells, 5\.0 mm high$/);
-  await page.getByTestId('import-halftone').selectOption('threshold');
-  await expect(page.getByTestId('import-preview')).toBeVisible();
-  await page.getByTestId('import-place').click();
-  const box = (await page.getByTestId('editor-canvas').boundingBox())!;
-  // The picture sits in the middle of the view: its black half left of centre, its white half right.
-  const centreX = 22 + (box.width - 22) / 2, centreY = 22 + (box.height - 22) / 2;
-  await expect.poll(() => pixel(page, centreX - 8, centreY).then(isDose)).toBe(true);
-  expect(isDose(await pixel(page, centreX + 8, centreY))).toBe(false);
+  const panel = page.getByTestId('object-panel');
+  await expect(panel).toHaveAttribute('data-kind', 'image');
+  await page.getByTestId('object-w').fill('60');
+  await page.getByTestId('object-w').press('Enter');
+  await expect(page.getByTestId('object-h')).toHaveValue('30'); // 40 × 20 pixels keep their proportions
+  await page.getByTestId('object-halftone').selectOption('threshold');
+  const field = async (name: string) => Number(await page.getByTestId(`object-${name}`).inputValue());
+  const x = await field('x'), y = await field('y');
+  const black = await bedPoint(page, x + 15, y + 15), white = await bedPoint(page, x + 45, y + 15);
+  await expect.poll(() => pixel(page, black.x, black.y).then(isDose)).toBe(true);
+  expect(isDose(await pixel(page, white.x, white.y))).toBe(false);
+  await expect(page.getByTestId('expose-drawing')).toBeEnabled();
   await page.screenshot({ path: info.outputPath('imported.png'), fullPage: true });
+
+  // Inverted, the white half is the one exposed; undo takes the inversion back, not the picture.
+  await page.getByTestId('object-invert').check();
+  await expect.poll(() => pixel(page, white.x, white.y).then(isDose)).toBe(true);
+  expect(isDose(await pixel(page, black.x, black.y))).toBe(false);
   await page.getByTestId('undo').click();
-  await expect.poll(() => pixel(page, centreX - 8, centreY).then(isDose)).toBe(false);
-  // Inverted, the white half is the one exposed.
-  await page.getByTestId('import-invert').check();
-  await page.getByTestId('import-place').click();
-  await expect.poll(() => pixel(page, centreX + 8, centreY).then(isDose)).toBe(true);
-  expect(isDose(await pixel(page, centreX - 8, centreY))).toBe(false);
+  await expect.poll(() => pixel(page, black.x, black.y).then(isDose)).toBe(true);
+
+  // Dragged by its middle with the select tool, it follows the pointer.
+  const box = (await page.getByTestId('editor-canvas').boundingBox())!;
+  await page.mouse.move(box.x + black.x, box.y + black.y);
+  await page.mouse.down();
+  await page.mouse.move(box.x + black.x + 20, box.y + black.y + 60, { steps: 6 });
+  await page.mouse.up();
+  await expect.poll(() => field('y')).toBeGreaterThan(y + 10);
+  await expect.poll(() => pixel(page, black.x, black.y).then(isDose)).toBe(false);
+  // Its south-east corner dragged outwards makes it larger, keeping its proportions.
+  const se = await bedPoint(page, (await field('x')) + 60, (await field('y')) + 30);
+  await page.mouse.move(box.x + se.x, box.y + se.y);
+  await page.mouse.down();
+  await page.mouse.move(box.x + se.x + 40, box.y + se.y + 40, { steps: 5 });
+  await page.mouse.up();
+  await expect.poll(() => field('w')).toBeGreaterThan(61);
+  expect(await field('h')).toBeCloseTo((await field('w')) / 2, 0);
+  await page.screenshot({ path: info.outputPath('moved-resized.png'), fullPage: true });
+
+  await page.getByTestId('editor-canvas').press('Delete');
+  await expect(panel).toBeHidden();
+  await expect(page.getByTestId('expose-drawing')).toBeDisabled();
+  await page.getByTestId('undo').click(); // the picture is back
+  await expect(page.getByTestId('expose-drawing')).toBeEnabled();
+});
+
+test('text in a system font and a frame: placed, edited, planned with the drawing, merged into it', async ({ page }, info) => {
+  await page.goto('/?simSpeed=40');
+  await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected');
+  const box = (await page.getByTestId('editor-canvas').boundingBox())!;
+  await page.getByTestId('tool-text').click();
+  await page.getByTestId('text-draft').fill('PCB 1');
+  await page.getByTestId('text-height').fill('20');
+  await page.getByTestId('text-font').fill('monospace');
+  await page.mouse.click(box.x + box.width / 2, box.y + box.height / 2);
+  await expect(page.getByTestId('object-panel')).toHaveAttribute('data-kind', 'text');
+  await expect(page.getByTestId('object-h')).toHaveValue('20');
+  const wide = Number(await page.getByTestId('object-w').inputValue());
+  expect(wide).toBeGreaterThan(40); // five monospace glyphs at 20 mm
+  await expect(page.getByTestId('expose-drawing')).toBeEnabled();
+  // Longer words make a wider box at the same height.
+  await page.getByTestId('object-text').fill('PCB 12');
+  await page.getByTestId('object-text').blur();
+  await expect.poll(async () => Number(await page.getByTestId('object-w').inputValue())).toBeGreaterThan(wide);
+  // Some cells of the box are lit and some are not: glyphs, not a block.
+  const lit = await page.getByTestId('editor-canvas').evaluate((c: HTMLCanvasElement) => {
+    const d = c.getContext('2d')!.getImageData(0, 0, c.width, c.height).data;
+    let n = 0;
+    for (let i = 0; i < d.length; i += 4) if (d[i + 1] < d[i] - 15) n++;
+    return n / (c.width * c.height);
+  });
+  expect(lit).toBeGreaterThan(0.001);
+  expect(lit).toBeLessThan(0.1);
+  // The job is the painting with the objects over it: the preview plans the text.
+  await page.getByTestId('view-preview').click();
+  await expect(page.getByTestId('preview-summary')).toContainText(/^[1-9]\d* stops in/, { timeout: 20_000 });
+  await page.getByTestId('view-draw').click();
+
+  // A frame drawn around it is a guide: the job does not grow.
+  await page.getByTestId('tool-frame').click();
+  await page.mouse.move(box.x + box.width * 0.2, box.y + box.height * 0.2);
+  await page.mouse.down();
+  await page.mouse.move(box.x + box.width * 0.8, box.y + box.height * 0.8, { steps: 4 });
+  await page.mouse.up();
+  await expect(page.getByTestId('object-panel')).toHaveAttribute('data-kind', 'frame');
+  await page.getByTestId('object-line').fill('3');
+  await page.getByTestId('object-line').press('Enter');
+  await expect(page.getByTestId('object-panel').locator('h2')).toHaveText('Frame (exposed)');
+  await page.screenshot({ path: info.outputPath('text-and-frame.png'), fullPage: true });
+
+  // Merged into the drawing, the text becomes cells the eraser can reach.
+  await page.getByTestId('tool-select').click();
+  await page.mouse.click(box.x + box.width / 2, box.y + box.height / 2);
+  await expect(page.getByTestId('object-panel')).toHaveAttribute('data-kind', 'text');
+  await page.getByTestId('object-merge').click();
+  await expect(page.getByTestId('object-panel')).toBeHidden();
+  await expect(page.getByTestId('expose-drawing')).toBeEnabled();
 });
 
 test('a file that is not a picture says so', async ({ page }) => {

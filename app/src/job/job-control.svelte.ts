@@ -30,7 +30,7 @@ export class JobControl {
   /** The drawing as a job for this machine, or null when nothing is drawn. */
   job(): PrintJob | null {
     const ed = this.editor();
-    return jobFromGrid(ed.grid, ed.machine, {
+    return jobFromGrid(ed.composed(), ed.machine, {
       dose: { map: 'linear', fullUs: Math.round(this.fullMs * 1000) },
       strategy: { name: this.strategy },
       leds: ledsOf(this.config),

@@ -4,10 +4,16 @@
 import { DoseGrid } from './grid/grid';
 import { History, type Box, type Edit } from './grid/history';
 import { floodFill, line, rectangle, stamp } from './grid/tools';
-import { fit, panBy, RULER, toCell, zoomAt, type View } from './canvas/viewport';
+import { fit, panBy, RULER, toCell, toScreen, zoomAt, type View } from './canvas/viewport';
 import { bedOf, DEFAULT_CONFIG } from './machine-config';
+import { ObjectLayer } from './objects/object-layer.svelte';
+import { CORNERS, cornerOf, exposes, type Corner } from './objects/objects';
+import { textWidth } from './objects/text-raster';
 
-export type Tool = 'brush' | 'eraser' | 'line' | 'rect' | 'rect-filled' | 'fill' | 'pan';
+export type Tool = 'brush' | 'eraser' | 'line' | 'rect' | 'rect-filled' | 'fill' | 'select' | 'text' | 'frame' | 'pan';
+
+/** How near a corner handle, in screen pixels, a press takes it. */
+const HANDLE = 8;
 
 export interface Machine {
   bedMm: { x: number; y: number };
@@ -20,6 +26,10 @@ export const DEFAULT_MACHINE: Machine = bedOf(DEFAULT_CONFIG);
 export class GridEditor {
   grid: DoseGrid;
   history: History;
+  /** The pictures, text and frames over the painted cells. */
+  layer: ObjectLayer;
+  /** What the text tool writes, in which font and how high (mm). */
+  text = $state({ text: 'Text', font: 'sans-serif', bold: false, heightMm: 5 });
   tool = $state<Tool>('brush');
   size = $state(5);
   dose = $state(255);
@@ -42,6 +52,17 @@ export class GridEditor {
   constructor(readonly machine: Machine = DEFAULT_MACHINE) {
     this.grid = DoseGrid.forBed(machine.bedMm, machine.pitchUm);
     this.history = new History(this.grid);
+    this.layer = new ObjectLayer(this.history, this.grid.cols, this.grid.rows, () => this.#syncHistory());
+  }
+
+  /** The cells the machine exposes: the painting with the objects laid over it. */
+  composed(): DoseGrid {
+    return this.layer.composed(this.grid);
+  }
+
+  /** Millimetres to cells across (x) or down (y). */
+  cells(mm: number, axis: 'x' | 'y' = 'x'): number {
+    return Math.max(1, Math.round((mm * 1000) / this.machine.pitchUm[axis]));
   }
 
   /** The canvas's size in CSS pixels, as its component last measured it. */
@@ -69,7 +90,15 @@ export class GridEditor {
   /** A pointer went down at screen (sx, sy): a stroke or a shape begins. */
   down(sx: number, sy: number): void {
     if (this.tool === 'pan') return;
+    if (this.tool === 'select') {
+      this.layer.press(toCell(this.view, sx, sy), this.#cornerAt(sx, sy), HANDLE / this.view.scale);
+      return;
+    }
     const c = this.#cell(sx, sy);
+    if (this.tool === 'text') {
+      this.addText(c.x, c.y);
+      return;
+    }
     this.#edit = this.history.begin(this.tool);
     this.#start = c;
     this.#last = c;
@@ -80,6 +109,7 @@ export class GridEditor {
   }
 
   move(sx: number, sy: number): void {
+    if (this.tool === 'select') this.layer.dragTo(toCell(this.view, sx, sy));
     if (!this.#edit || !this.#last || !this.#start) return;
     const c = this.#cell(sx, sy);
     if (this.tool === 'brush' || this.tool === 'eraser') this.#stroke(this.#last, c);
@@ -88,9 +118,20 @@ export class GridEditor {
   }
 
   up(): void {
+    if (this.tool === 'select') this.layer.release();
     const e = this.#edit;
     if (!e) return;
     const p = this.preview;
+    if (p && this.tool === 'frame') {
+      this.#edit = this.#last = this.#start = null;
+      this.preview = null;
+      const { cols, rows } = this.grid;
+      const x = Math.max(0, Math.min(p.x0, p.x1)), y = Math.max(0, Math.min(p.y0, p.y1)); // on the bed
+      const w = Math.min(cols - 1, Math.max(p.x0, p.x1)) - x + 1, h = Math.min(rows - 1, Math.max(p.y0, p.y1)) - y + 1;
+      if (w > 0 && h > 0) this.layer.add({ kind: 'frame', x, y, w, h, line: 0, dose: this.dose });
+      this.tool = 'select';
+      return;
+    }
     if (p && this.tool === 'line') {
       line(this.grid, e, p.x0, p.y0, p.x1, p.y1, this.size, this.dose);
       this.#changed(Math.min(p.x0, p.x1) - this.size, Math.min(p.y0, p.y1) - this.size, Math.max(p.x0, p.x1) + this.size, Math.max(p.y0, p.y1) + this.size);
@@ -106,6 +147,7 @@ export class GridEditor {
 
   /** Drops the stroke or shape in progress, leaving the grid as it was before it. */
   cancel(): void {
+    this.layer.cancelDrag();
     const e = this.#edit;
     if (!e) return;
     this.history.revert(e);
@@ -136,8 +178,46 @@ export class GridEditor {
     this.#syncHistory();
   }
 
+  /** A text object with the text tool's settings, centred on a cell; then it is selected to edit. */
+  addText(cx: number, cy: number): void {
+    const t = this.text;
+    const h = this.cells(t.heightMm, 'y');
+    const w = textWidth(t, h);
+    this.layer.add({ kind: 'text', ...this.layer.boxAt(cx, cy, w, h), text: t.text, font: t.font, bold: t.bold, dose: this.dose });
+    this.tool = 'select';
+  }
+
+  /** Paints the object into the cells (one step) and takes it off the layer. */
+  mergeDown(id: number): void {
+    const o = this.layer.objects.find((x) => x.id === id);
+    const r = o && this.layer.raster(o);
+    if (!o || !r) return;
+    const e = this.history.begin(`merge ${o.kind}`);
+    const x0 = Math.max(0, o.x), y0 = Math.max(0, o.y), x1 = Math.min(this.grid.cols, o.x + o.w) - 1, y1 = Math.min(this.grid.rows, o.y + o.h) - 1;
+    if (x0 <= x1 && y0 <= y1) e.touch(x0, y0, x1, y1);
+    for (let y = y0; y <= y1; y++)
+      for (let x = x0; x <= x1; x++) {
+        const d = r[(y - o.y) * o.w + (x - o.x)];
+        if (d > this.grid.cells[y * this.grid.cols + x]) this.grid.cells[y * this.grid.cols + x] = d;
+      }
+    this.history.commit(e);
+    this.#changed(x0, y0, x1, y1);
+    this.layer.remove(id);
+  }
+
   clear(): void {
     this.place(new Uint8Array(this.grid.cols * this.grid.rows), this.grid.cols, this.grid.rows, 0, 0, 'clear');
+  }
+
+  /** The selected object's corner handle under the screen point, if any. */
+  #cornerAt(sx: number, sy: number): Corner | null {
+    const o = this.layer.selected;
+    if (!o) return null;
+    for (const c of CORNERS) {
+      const p = toScreen(this.view, cornerOf(o, c).x, cornerOf(o, c).y);
+      if (Math.abs(p.x - sx) <= HANDLE && Math.abs(p.y - sy) <= HANDLE) return c;
+    }
+    return null;
   }
 
   #cell(sx: number, sy: number): { x: number; y: number } {
@@ -171,7 +251,7 @@ export class GridEditor {
   #syncHistory(): void {
     this.canUndo = this.history.canUndo;
     this.canRedo = this.history.canRedo;
-    this.hasInk = anyDose(this.grid.cells);
+    this.hasInk = this.layer.objects.some(exposes) || anyDose(this.grid.cells);
   }
 }
 

@@ -1,11 +1,12 @@
 // Draws the editor's view: the bed, the visible tiles at the right level of detail, the cell
-// grid when zoomed in, a shape being dragged, and rulers in mm along the top and left.
+// grid when zoomed in, the project's objects, a shape being dragged, and rulers in mm along the top and left.
 
 import type { GridEditor } from '../editor.svelte';
+import { drawObjects, type Sprites } from './draw-objects';
 import { TILE, type TileCache } from './tile-cache';
 import { RULER, rulerStep, toScreen } from './viewport';
 
-export function render(ctx: CanvasRenderingContext2D, w: number, h: number, ed: GridEditor, cache: TileCache<HTMLCanvasElement>): void {
+export function render(ctx: CanvasRenderingContext2D, w: number, h: number, ed: GridEditor, cache: TileCache<HTMLCanvasElement>, sprites: Sprites): void {
   const v = ed.view;
   const { cols, rows } = ed.grid;
   ctx.fillStyle = '#d9dbe3';
@@ -49,6 +50,8 @@ export function render(ctx: CanvasRenderingContext2D, w: number, h: number, ed: 
   ctx.strokeStyle = '#2b1d4f';
   ctx.lineWidth = 1;
   ctx.strokeRect(Math.round(bed.x) + 0.5, Math.round(bed.y) + 0.5, Math.round(cols * v.scale), Math.round(rows * v.scale));
+
+  drawObjects(ctx, v, ed.layer, sprites);
 
   const p = ed.preview;
   if (p) {

@@ -116,4 +116,27 @@ describe('raster tools', () => {
     expect(steps).toBe(3);
     expect(g.cells[0]).toBe(7); // back to before the oldest step kept
   });
+
+  it('undoes steps outside the cells in the same order as cell edits', () => {
+    const g = new DoseGrid(8, 8);
+    const h = new History(g);
+    let objects = ['a'];
+    const e = h.begin('paint');
+    e.set(1, 1, 9);
+    h.commit(e);
+    let saved = objects;
+    objects = ['a', 'b'];
+    h.record({ label: 'add b', swap: () => ([objects, saved] = [saved, objects]) });
+    expect(h.undoLabel).toBe('add b');
+    h.undo();
+    expect(objects).toEqual(['a']);
+    expect(g.get(1, 1)).toBe(9);
+    expect(h.lastChanged).toBeNull(); // no cells to redraw
+    h.undo();
+    expect(g.get(1, 1)).toBe(0);
+    h.redo();
+    h.redo();
+    expect(objects).toEqual(['a', 'b']);
+    expect(g.get(1, 1)).toBe(9);
+  });
 });

@@ -1,6 +1,6 @@
 // Undo and redo for a dose grid. An edit saves each 64 × 64 tile the first time it touches it, so
 // a stroke across a 4096² grid costs only the tiles it crosses, and a flood fill no more than the
-// area it fills.
+// area it fills. Steps that are not cells (the project's objects) share the same timeline.
 
 import type { DoseGrid } from './grid';
 
@@ -31,6 +31,14 @@ interface Patch {
   tiles: Map<number, Uint8Array>;
   label: string;
 }
+
+/** A step outside the cells: `swap` exchanges what it saved with what is, so it undoes and then redoes. */
+export interface Swap {
+  label: string;
+  swap(): void;
+}
+
+type Step = Patch | Swap;
 
 export class Edit {
   readonly #grid: DoseGrid;
@@ -87,8 +95,8 @@ function swap(g: DoseGrid, tiles: Map<number, Uint8Array>): void {
 }
 
 export class History {
-  #undo: Patch[] = [];
-  #redo: Patch[] = [];
+  #undo: Step[] = [];
+  #redo: Step[] = [];
   #bytes = 0;
   /** The cells the last undo, redo or revert rewrote. */
   lastChanged: Box | null = null;
@@ -103,11 +111,20 @@ export class History {
   /** Records a finished edit; an edit that touched nothing is not a step. */
   commit(edit: Edit): void {
     if (edit.tiles.size === 0) return;
-    this.#undo.push({ tiles: edit.tiles, label: edit.label });
-    this.#bytes += size(edit.tiles);
-    for (const p of this.#redo) this.#bytes -= size(p.tiles);
+    this.#push({ tiles: edit.tiles, label: edit.label });
+  }
+
+  /** Records a step outside the cells, already done. */
+  record(step: Swap): void {
+    this.#push(step);
+  }
+
+  #push(step: Step): void {
+    this.#undo.push(step);
+    this.#bytes += size(step);
+    for (const p of this.#redo) this.#bytes -= size(p);
     this.#redo = [];
-    while (this.#bytes > this.maxBytes && this.#undo.length > 1) this.#bytes -= size(this.#undo.shift()!.tiles);
+    while (this.#bytes > this.maxBytes && this.#undo.length > 1) this.#bytes -= size(this.#undo.shift()!);
   }
 
   /** Takes back an edit that is not to be a step (a stroke that turned into a pinch). */
@@ -137,18 +154,24 @@ export class History {
   }
 
   /** Swaps the newest step of `from` with the grid's tiles, and keeps it on `to` to go back. */
-  #swapTop(from: Patch[], to: Patch[]): boolean {
+  #swapTop(from: Step[], to: Step[]): boolean {
     const p = from.pop();
     if (!p) return false;
-    this.lastChanged = tilesBox(this.grid, p.tiles);
-    swap(this.grid, p.tiles);
+    if ('tiles' in p) {
+      this.lastChanged = tilesBox(this.grid, p.tiles);
+      swap(this.grid, p.tiles);
+    } else {
+      this.lastChanged = null;
+      p.swap();
+    }
     to.push(p);
     return true;
   }
 }
 
-function size(tiles: Map<number, Uint8Array>): number {
+/** The bytes a step keeps: a step outside the cells keeps references, counted as nothing. */
+function size(step: Step): number {
   let n = 0;
-  for (const t of tiles.values()) n += t.length;
+  if ('tiles' in step) for (const t of step.tiles.values()) n += t.length;
   return n;
 }

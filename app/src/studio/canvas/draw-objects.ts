@@ -1,0 +1,66 @@
+// Draws the project's objects over the painted cells: each as the doses it will expose (a sprite
+// made from its raster, remade only when the raster is), a guide frame dashed, every object's
+// box faintly, and the selection with its corner handles.
+
+import type { ObjectLayer } from '../objects/object-layer.svelte';
+import { CORNERS, cornerOf, exposes, type StudioObject } from '../objects/objects';
+import type { Raster } from '../objects/raster';
+import { doseColours } from './tile-cache';
+import { toScreen, type View } from './viewport';
+
+const ACCENT = '#7a3cff';
+
+export class Sprites {
+  #kept = new Map<number, { raster: Raster; canvas: HTMLCanvasElement }>();
+  readonly #lut = doseColours();
+
+  /** The raster as a canvas of its cells, dose 0 see-through. */
+  of(id: number, raster: Raster, w: number, h: number): HTMLCanvasElement {
+    const kept = this.#kept.get(id);
+    if (kept?.raster === raster) return kept.canvas;
+    const canvas = Object.assign(document.createElement('canvas'), { width: w, height: h });
+    const pixels = new Uint32Array(raster.length);
+    for (let i = 0; i < raster.length; i++) if (raster[i]) pixels[i] = this.#lut[raster[i]];
+    canvas.getContext('2d')!.putImageData(new ImageData(new Uint8ClampedArray(pixels.buffer), w, h), 0, 0);
+    this.#kept.set(id, { raster, canvas });
+    return canvas;
+  }
+}
+
+export function drawObjects(ctx: CanvasRenderingContext2D, v: View, layer: ObjectLayer, sprites: Sprites): void {
+  ctx.imageSmoothingEnabled = false;
+  for (const o of layer.objects) {
+    const at = toScreen(v, o.x, o.y), w = o.w * v.scale, h = o.h * v.scale;
+    if (exposes(o)) {
+      const d = layer.drawable(o);
+      if (d) ctx.drawImage(sprites.of(o.id, d.raster, d.w, d.h), at.x, at.y, w, h);
+      else {
+        ctx.fillStyle = '#7a3cff22'; // a picture still decoding
+        ctx.fillRect(at.x, at.y, w, h);
+      }
+    }
+    ctx.save();
+    ctx.lineWidth = 1;
+    if (o.kind === 'frame' && o.line === 0) {
+      ctx.strokeStyle = ACCENT;
+      ctx.setLineDash([6, 4]);
+    } else {
+      ctx.strokeStyle = '#2b1d4f44';
+      ctx.setLineDash([2, 3]);
+    }
+    ctx.strokeRect(Math.round(at.x) + 0.5, Math.round(at.y) + 0.5, Math.round(w), Math.round(h));
+    ctx.restore();
+  }
+  const s = layer.selected;
+  if (!s) return;
+  const at = toScreen(v, s.x, s.y);
+  ctx.strokeStyle = ACCENT;
+  ctx.lineWidth = 2;
+  ctx.strokeRect(Math.round(at.x), Math.round(at.y), Math.round(s.w * v.scale), Math.round(s.h * v.scale));
+  ctx.fillStyle = '#fff';
+  for (const c of CORNERS) {
+    const p = toScreen(v, cornerOf(s, c).x, cornerOf(s, c).y);
+    ctx.fillRect(p.x - 4, p.y - 4, 8, 8);
+    ctx.strokeRect(p.x - 4, p.y - 4, 8, 8);
+  }
+}

@@ -1,0 +1,166 @@
+// The project's objects in the editor: the list, the selection, moving and resizing by pointer,
+// and every change as one undo step in the grid's history. Rasters are cached per object and
+// remade only when what they show changes, not when the object moves.
+
+import type { History } from '../grid/history';
+import type { DoseGrid } from '../grid/grid';
+import type { Gray } from '../image/gray';
+import { centredAt, keepsAspect, moved, objectAt, resized, type Corner, type Rect, type StudioObject } from './objects';
+import { compose, rasterOf, type Raster } from './raster';
+import { textRaster } from './text-raster';
+
+/** An object before it has its id. */
+export type NewObject = StudioObject extends infer O ? (O extends StudioObject ? Omit<O, 'id'> : never) : never;
+
+type Drag = { corner: Corner | null; from: { x: number; y: number }; start: Rect; before: StudioObject[] };
+
+/** Same picture, text or frame at the same size: only the place differs. */
+function sameLook(a: StudioObject, b: StudioObject): boolean {
+  for (const k of Object.keys(a) as (keyof StudioObject)[]) if (k !== 'x' && k !== 'y' && a[k] !== b[k]) return false;
+  return true;
+}
+
+export class ObjectLayer {
+  objects = $state.raw<StudioObject[]>([]);
+  selectedId = $state<number | null>(null);
+  /** Bumped when a picture's pixels arrive, so views redraw it. */
+  revision = $state(0);
+  #nextId = 1;
+  #drag: Drag | null = null;
+  #rasters = new Map<number, { of: StudioObject; raster: Raster }>();
+  #grays = new Map<string, Gray>();
+
+  constructor(private readonly history: History, private readonly cols: number, private readonly rows: number, private readonly onStep: () => void) {}
+
+  get selected(): StudioObject | null {
+    return this.objects.find((o) => o.id === this.selectedId) ?? null;
+  }
+
+  /** A picture's decoded pixels, known by its data: URL. */
+  addGray(src: string, gray: Gray): void {
+    this.#grays.set(src, gray);
+    this.revision++;
+  }
+
+  hasGray(src: string): boolean {
+    return this.#grays.has(src);
+  }
+
+  add(o: NewObject, label = `add ${o.kind}`): StudioObject {
+    const made = { ...o, id: this.#nextId++ } as StudioObject;
+    this.#change(label, [...this.objects, made]);
+    this.selectedId = made.id;
+    return made;
+  }
+
+  /** A new box of w × h cells centred on a cell, kept on the bed. */
+  boxAt(cx: number, cy: number, w: number, h: number): Rect {
+    return centredAt(cx, cy, Math.min(w, this.cols), Math.min(h, this.rows), this.cols, this.rows);
+  }
+
+  update(id: number, patch: Partial<StudioObject>, label = 'change'): void {
+    const list = this.objects.map((o) => (o.id === id ? ({ ...o, ...patch, id } as StudioObject) : o));
+    this.#change(label, list);
+  }
+
+  remove(id: number): void {
+    this.#change('delete', this.objects.filter((o) => o.id !== id));
+    if (this.selectedId === id) this.selectedId = null;
+  }
+
+  /** Puts the object on top of the others or under them. */
+  restack(id: number, toTop: boolean): void {
+    const o = this.objects.find((x) => x.id === id);
+    if (!o) return;
+    const rest = this.objects.filter((x) => x !== o);
+    this.#change(toTop ? 'bring to front' : 'send to back', toTop ? [...rest, o] : [o, ...rest]);
+  }
+
+  /** A project's objects, opened: no undo step (the history starts over with the project). */
+  load(objects: StudioObject[]): void {
+    this.objects = objects;
+    this.#nextId = Math.max(0, ...objects.map((o) => o.id)) + 1;
+    this.selectedId = null;
+    this.#rasters.clear();
+  }
+
+  /**
+   * Selects what lies under the cell, and starts moving it, or resizing it by `corner`. `reach`
+   * is how many cells the pointer's few pixels span at this zoom.
+   */
+  press(cell: { x: number; y: number }, corner: Corner | null, reach = 0): boolean {
+    const hit = corner ? this.selected : objectAt(this.objects, cell.x, cell.y, reach);
+    this.selectedId = hit?.id ?? null;
+    if (!hit) return false;
+    this.#drag = { corner, from: cell, start: { x: hit.x, y: hit.y, w: hit.w, h: hit.h }, before: this.objects };
+    return true;
+  }
+
+  dragTo(cell: { x: number; y: number }): void {
+    const d = this.#drag, o = this.selected;
+    if (!d || !o) return;
+    const box = d.corner
+      ? resized(d.start, d.corner, cell, keepsAspect(o))
+      : moved(d.start, cell.x - d.from.x, cell.y - d.from.y, this.cols, this.rows);
+    this.objects = this.objects.map((x) => (x.id === o.id ? ({ ...x, ...box } as StudioObject) : x));
+  }
+
+  /** Ends a drag: one undo step if anything moved. */
+  release(): void {
+    const d = this.#drag;
+    this.#drag = null;
+    if (!d || d.before === this.objects) return;
+    const after = this.objects;
+    this.objects = d.before;
+    this.#change(d.corner ? 'resize' : 'move', after);
+  }
+
+  cancelDrag(): void {
+    if (this.#drag) this.objects = this.#drag.before;
+    this.#drag = null;
+  }
+
+  /** Moves the selection by whole cells (the arrow keys). */
+  nudge(dx: number, dy: number): void {
+    const o = this.selected;
+    if (o) this.update(o.id, moved(o, dx, dy, this.cols, this.rows), 'move');
+  }
+
+  /** The object's doses at its size, or null while its picture is still decoding. */
+  raster(o: StudioObject): Raster | null {
+    const kept = this.#rasters.get(o.id);
+    if (kept && sameLook(kept.of, o)) return kept.raster;
+    const raster = rasterOf(o, { gray: (src) => this.#grays.get(src), text: textRaster });
+    if (raster) this.#rasters.set(o.id, { of: o, raster });
+    return raster;
+  }
+
+  /**
+   * What to draw for the object: its raster and that raster's size. While a resize is dragged the
+   * raster made before it is drawn stretched, and the object is rasterised again once released.
+   */
+  drawable(o: StudioObject): { raster: Raster; w: number; h: number } | null {
+    const kept = this.#rasters.get(o.id);
+    if (kept && this.#drag) return { raster: kept.raster, w: kept.of.w, h: kept.of.h };
+    const raster = this.raster(o);
+    return raster && { raster, w: o.w, h: o.h };
+  }
+
+  composed(paint: DoseGrid): DoseGrid {
+    return compose(paint, this.objects, (o) => this.raster(o));
+  }
+
+  #change(label: string, next: StudioObject[]): void {
+    let saved = this.objects;
+    this.objects = next;
+    this.history.record({
+      label,
+      swap: () => {
+        [this.objects, saved] = [saved, this.objects];
+        if (!this.selected) this.selectedId = null;
+      },
+    });
+    for (const id of this.#rasters.keys()) if (!this.objects.some((o) => o.id === id) && !saved.some((o) => o.id === id)) this.#rasters.delete(id);
+    this.onStep();
+  }
+}

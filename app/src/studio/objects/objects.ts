@@ -1,0 +1,116 @@
+// What a project places on the bed besides the painted cells (seed 004's project model): pictures,
+// text and frames, each a box in cells that can be selected, moved and resized. Objects are
+// immutable: a change makes a new one, so undo keeps the old list and rasters are cached by content.
+
+import type { Tone } from '../image/adjust';
+import type { Halftone } from '../image/dither';
+
+/** A box of cells: its top-left cell and its size. */
+export interface Rect {
+  x: number;
+  y: number;
+  w: number;
+  h: number;
+}
+
+interface Placed extends Rect {
+  id: number;
+}
+
+export interface ImageObject extends Placed {
+  kind: 'image';
+  name: string;
+  /** The picture's file as imported, as a data: URL: a saved project carries it. */
+  src: string;
+  halftone: Halftone;
+  /** The threshold halftone's level, 1 … 255. */
+  level: number;
+  tone: Tone;
+}
+
+export interface TextObject extends Placed {
+  kind: 'text';
+  /** One or more lines. */
+  text: string;
+  /** A CSS font family: a system font's name or a generic family. */
+  font: string;
+  bold: boolean;
+  dose: number;
+}
+
+/** A rectangle: a guide for placing things when `line` is 0, else an exposed outline `line` cells wide. */
+export interface FrameObject extends Placed {
+  kind: 'frame';
+  line: number;
+  dose: number;
+}
+
+export type StudioObject = ImageObject | TextObject | FrameObject;
+
+export type Corner = 'nw' | 'ne' | 'sw' | 'se';
+export const CORNERS: Corner[] = ['nw', 'ne', 'sw', 'se'];
+
+/** Whether the object puts any light on the bed (a guide frame does not). */
+export function exposes(o: StudioObject): boolean {
+  return o.kind === 'frame' ? o.line > 0 && o.dose > 0 : o.kind === 'text' ? o.dose > 0 && o.text.trim() !== '' : true;
+}
+
+/** Pictures and text keep their proportions when resized; a frame is any rectangle. */
+export function keepsAspect(o: StudioObject): boolean {
+  return o.kind !== 'frame';
+}
+
+/**
+ * The topmost object under the cell point (x, y), or null. A frame is hollow: it is hit only on
+ * its border, within `edge` cells (the pointer's reach) or its line, so what it frames stays reachable.
+ */
+export function objectAt(objects: readonly StudioObject[], x: number, y: number, edge = 0): StudioObject | null {
+  for (let i = objects.length - 1; i >= 0; i--) {
+    const o = objects[i];
+    if (o.kind === 'frame') {
+      const e = Math.max(edge, o.line);
+      const near = x >= o.x - e && y >= o.y - e && x < o.x + o.w + e && y < o.y + o.h + e;
+      const inner = x >= o.x + e && y >= o.y + e && x < o.x + o.w - e && y < o.y + o.h - e;
+      if (near && !inner) return o;
+    } else if (x >= o.x && y >= o.y && x < o.x + o.w && y < o.y + o.h) return o;
+  }
+  return null;
+}
+
+/** The corner's point in cells. */
+export function cornerOf(r: Rect, c: Corner): { x: number; y: number } {
+  return { x: c[1] === 'w' ? r.x : r.x + r.w, y: c[0] === 'n' ? r.y : r.y + r.h };
+}
+
+const OPPOSITE: Record<Corner, Corner> = { nw: 'se', ne: 'sw', sw: 'ne', se: 'nw' };
+
+/**
+ * The box after dragging `corner` of `from` to the cell point p, the opposite corner staying put.
+ * With `aspect`, the size follows whichever side was dragged further, in proportion.
+ */
+export function resized(from: Rect, corner: Corner, p: { x: number; y: number }, aspect: boolean): Rect {
+  const fixed = cornerOf(from, OPPOSITE[corner]);
+  let w = Math.max(1, Math.round(Math.abs(p.x - fixed.x)));
+  let h = Math.max(1, Math.round(Math.abs(p.y - fixed.y)));
+  if (aspect) {
+    const s = Math.max(w / from.w, h / from.h);
+    w = Math.max(1, Math.round(from.w * s));
+    h = Math.max(1, Math.round(from.h * s));
+  }
+  const west = corner[1] === 'w', north = corner[0] === 'n';
+  return { x: west ? fixed.x - w : fixed.x, y: north ? fixed.y - h : fixed.y, w, h };
+}
+
+/** The box moved by (dx, dy) cells, kept so that at least part of it stays on a cols × rows bed. */
+export function moved(r: Rect, dx: number, dy: number, cols: number, rows: number): Rect {
+  const x = Math.min(cols - 1, Math.max(1 - r.w, r.x + Math.round(dx)));
+  const y = Math.min(rows - 1, Math.max(1 - r.h, r.y + Math.round(dy)));
+  return { ...r, x, y };
+}
+
+/** A box of `w` × `h` cells centred on (cx, cy), kept on the bed where it fits. */
+export function centredAt(cx: number, cy: number, w: number, h: number, cols: number, rows: number): Rect {
+  const x = Math.max(0, Math.min(cols - w, Math.round(cx - w / 2)));
+  const y = Math.max(0, Math.min(rows - h, Math.round(cy - h / 2)));
+  return { x, y, w, h };
+}
