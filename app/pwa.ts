@@ -9,6 +9,8 @@ export function serviceWorker(source: string): Plugin {
   return {
     name: 'service-worker',
     apply: 'build',
+    // After Vite's own plugins: the single stylesheet (cssCodeSplit off) is emitted in their generateBundle.
+    enforce: 'post',
     generateBundle(_options, bundle) {
       const files = ['/index.html', ...Object.keys(bundle).filter((f) => f !== 'index.html').map((f) => `/${f}`), '/manifest.webmanifest', '/icon.svg'].sort();
       const hash = createHash('sha256');

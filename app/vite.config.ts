@@ -4,6 +4,9 @@ import { defineConfig, type Plugin } from 'vite';
 import { bundleSize, formatBundleSize } from '../scripts/bundle-size';
 import { serviceWorker } from './pwa';
 
+/** What loads only when a panel is first opened: grouped into one chunk. */
+const ON_DEMAND_PANELS = /\/(PositionDashboard|ProbeDashboard|MeshDashboard|LinkDashboard|mesh-image|Settings|setting-groups|Lamp|PreviewPanel|exposure-preview|preview-colours|MaterialTest|material-test|ObjectPanel|fonts)\.(svelte|ts)/;
+
 const outDir = fileURLToPath(new URL('../dist/app', import.meta.url));
 
 /** Prints the app's gzipped size, first load against its budget, after every build, wherever it went. */
@@ -27,6 +30,10 @@ export default defineConfig(({ mode }) => ({
   build: {
     outDir,
     emptyOutDir: true,
+    // Few files: the ESP's LittleFS gives each file whole 4 KB blocks. One stylesheet, and the
+    // panels that load on demand in one chunk; uPlot's chart and the serial polyfill stay apart.
+    cssCodeSplit: false,
+    rolldownOptions: { output: { codeSplitting: { includeDependenciesRecursively: false, groups: [{ name: 'panels', test: ON_DEMAND_PANELS }] } } },
   },
   worker: { format: 'es' },
   server: { port: 5173 },

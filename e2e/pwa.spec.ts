@@ -13,6 +13,13 @@ test('installs from its manifest and starts offline from its service worker', as
   });
   expect(manifest).toEqual({ name: 'UV Exposure', display: 'standalone', start: './', icon: 'image/svg+xml' });
   expect(await page.evaluate(async () => (await navigator.serviceWorker.ready).active?.state)).toBe('activated');
+  // Everything the page loads is in the worker's list, the stylesheet included.
+  const missing = await page.evaluate(async () => {
+    const sw = await (await fetch('/sw.js')).text();
+    const loaded = performance.getEntriesByType('resource').map((r) => new URL(r.name).pathname).filter((p) => p.startsWith('/assets/'));
+    return loaded.filter((p) => !sw.includes(`"${p}"`));
+  });
+  expect(missing).toEqual([]);
   await page.reload(); // now under the worker's control, which has cached every file of the build
   await expect.poll(() => page.evaluate(() => !!navigator.serviceWorker.controller)).toBe(true);
 

@@ -20,6 +20,9 @@ export class JobControl {
   /** Each LED's share of the running job's time lit, from its dry run; null for a job not checked here. */
   duty = $state<number[] | null>(null);
 
+  /** Called before every job starts (the project is kept then); set by the app. */
+  beforeJob: () => Promise<void> = async () => {};
+
   constructor(private readonly printer: Printer, private readonly editor: () => GridEditor) {}
 
   /** The connected machine's settings, else the Mega's defaults. */
@@ -62,6 +65,7 @@ export class JobControl {
 
   async #run(job: PrintJob, duty: number[] | null): Promise<void> {
     this.duty = duty;
+    await this.beforeJob();
     await this.printer.send('G28');
     await this.printer.startJob(job);
   }

@@ -7,7 +7,7 @@ import { floodFill, line, rectangle, stamp } from './grid/tools';
 import { fit, panBy, RULER, toCell, toScreen, zoomAt, type View } from './canvas/viewport';
 import { bedOf, DEFAULT_CONFIG } from './machine-config';
 import { ObjectLayer } from './objects/object-layer.svelte';
-import { CORNERS, cornerOf, exposes, type Corner } from './objects/objects';
+import { CORNERS, cornerOf, exposes, type Corner, type StudioObject } from './objects/objects';
 import { textWidth } from './objects/text-raster';
 
 export type Tool = 'brush' | 'eraser' | 'line' | 'rect' | 'rect-filled' | 'fill' | 'select' | 'text' | 'frame' | 'pan';
@@ -49,10 +49,16 @@ export class GridEditor {
   #last: { x: number; y: number } | null = null;
   #start: { x: number; y: number } | null = null;
 
-  constructor(readonly machine: Machine = DEFAULT_MACHINE) {
+  /** An empty bed, or a project's cells (as many as the bed has) and objects. */
+  constructor(readonly machine: Machine = DEFAULT_MACHINE, from?: { cells: Uint8Array; objects: StudioObject[] }) {
     this.grid = DoseGrid.forBed(machine.bedMm, machine.pitchUm);
     this.history = new History(this.grid);
     this.layer = new ObjectLayer(this.history, this.grid.cols, this.grid.rows, () => this.#syncHistory());
+    if (from) {
+      this.grid.cells.set(from.cells);
+      this.layer.load(from.objects);
+      this.#syncHistory();
+    }
   }
 
   /** The cells the machine exposes: the painting with the objects laid over it. */

@@ -1,0 +1,88 @@
+// The material test: a row of square patches, each exposed for a different time, labelled with
+// that time, as a project ready to run. A test strip steps the time evenly from the shortest to the
+// longest; a √2 step wedge halves it every two steps down from the longest, as a photographer's
+// stops do, so one exposure spans a wide range. Every patch's time is what the machine will give:
+// the cell's dose over 255 of the job's full time, so the labels show the rounding too.
+
+import { DoseGrid } from '../studio/grid/grid';
+import type { StudioObject, TextObject } from '../studio/objects/objects';
+import type { Project } from './project-file';
+
+export interface MaterialTestSpec {
+  kind: 'strip' | 'wedge';
+  steps: number;
+  longestMs: number;
+  /** A strip's first step; a wedge ignores it. */
+  shortestMs: number;
+  /** A patch's side. */
+  patchMm: number;
+  machine: Project['machine'];
+}
+
+export const DEFAULT_MATERIAL_TEST: Omit<MaterialTestSpec, 'machine'> = { kind: 'wedge', steps: 8, longestMs: 8, shortestMs: 1, patchMm: 8 };
+
+/** Measures text: its width in cells at a height in cells (the browser's fonts, or a stand-in in tests). */
+export type Measure = (t: Pick<TextObject, 'text' | 'font' | 'bold'>, h: number) => number;
+
+const MARGIN_MM = 5;
+const GAP_MM = 1.5;
+const FONT = 'sans-serif';
+
+/** Each patch's dose (1 … 255 of the longest time), shortest first. */
+export function stepDoses(s: Pick<MaterialTestSpec, 'kind' | 'steps' | 'longestMs' | 'shortestMs'>): number[] {
+  const n = Math.max(2, Math.min(16, Math.round(s.steps)));
+  const share = (i: number) => (s.kind === 'wedge' ? Math.SQRT1_2 ** (n - 1 - i) : (s.shortestMs + ((s.longestMs - s.shortestMs) * i) / (n - 1)) / s.longestMs);
+  return Array.from({ length: n }, (_, i) => Math.max(1, Math.min(255, Math.round(255 * share(i)))));
+}
+
+/** A time in ms as a label: three figures. */
+export function msLabel(ms: number): string {
+  return `${ms >= 100 ? ms.toFixed(0) : ms >= 10 ? ms.toFixed(1) : ms.toFixed(2)} ms`;
+}
+
+export function checkSpec(s: MaterialTestSpec): string | null {
+  if (!(s.longestMs > 0) || s.longestMs > 60_000) return 'the longest time must be more than 0 and at most 60 000 ms';
+  if (s.kind === 'strip' && !(s.shortestMs > 0 && s.shortestMs < s.longestMs)) return 'the shortest time must be more than 0 and less than the longest';
+  if (!(s.steps >= 2 && s.steps <= 16)) return 'a test has 2 to 16 steps';
+  if (!(s.patchMm >= 1)) return 'a patch is at least 1 mm';
+  return null;
+}
+
+export function materialTestProject(s: MaterialTestSpec, measure: Measure): Project {
+  const problem = checkSpec(s);
+  if (problem) throw new Error(problem);
+  const { bedMm, pitchUm } = s.machine;
+  const cx = (mm: number) => Math.round((mm * 1000) / pitchUm.x), cy = (mm: number) => Math.round((mm * 1000) / pitchUm.y);
+  const { cols, rows } = DoseGrid.forBed(bedMm, pitchUm);
+  const doses = stepDoses(s);
+  const labelMm = Math.max(1, Math.min(3, s.patchMm / 3));
+  const perRow = Math.max(1, Math.floor((bedMm.x - 2 * MARGIN_MM + GAP_MM) / (s.patchMm + GAP_MM)));
+  const rowMm = s.patchMm + labelMm + 2 * GAP_MM;
+  const titleMm = labelMm;
+  if (MARGIN_MM + titleMm + GAP_MM + Math.ceil(doses.length / perRow) * rowMm > bedMm.y) throw new Error('the test does not fit on the bed: use smaller patches or fewer steps');
+
+  const cells = new Uint8Array(cols * rows);
+  const objects: StudioObject[] = [];
+  let id = 1;
+  const text = (words: string, xMm: number, yMm: number, hMm: number): TextObject => {
+    const t = { text: words, font: FONT, bold: false };
+    const h = Math.max(1, cy(hMm));
+    return { kind: 'text', id: id++, x: cx(xMm), y: cy(yMm), w: measure(t, h), h, ...t, dose: 255 };
+  };
+  const title = s.kind === 'wedge' ? `√2 wedge from ${msLabel(s.longestMs)}` : `Test strip ${msLabel(s.shortestMs)} to ${msLabel(s.longestMs)}`;
+  objects.push(text(title, MARGIN_MM, MARGIN_MM, titleMm));
+  doses.forEach((dose, i) => {
+    const xMm = MARGIN_MM + (i % perRow) * (s.patchMm + GAP_MM);
+    const yMm = MARGIN_MM + titleMm + GAP_MM + Math.floor(i / perRow) * rowMm;
+    const x0 = cx(xMm), y0 = cy(yMm), w = Math.max(1, cx(s.patchMm)), h = Math.max(1, cy(s.patchMm));
+    for (let y = y0; y < Math.min(rows, y0 + h); y++) cells.fill(dose, y * cols + x0, y * cols + Math.min(cols, x0 + w));
+    objects.push(text(msLabel((dose / 255) * s.longestMs), xMm, yMm + s.patchMm + GAP_MM / 2, labelMm));
+  });
+  return {
+    name: `Material test (${s.kind === 'wedge' ? '√2 wedge' : 'strip'}, ${doses.length} steps)`,
+    machine: s.machine,
+    exposure: { fullMs: s.longestMs, strategy: 'serpentine' },
+    paint: { cols, rows, cells },
+    objects,
+  };
+}

@@ -1,0 +1,79 @@
+import { describe, expect, it } from 'vitest';
+import { NEUTRAL_TONE } from '../studio/image/adjust';
+import { decodeProject, encodeProject, ProjectError, type Project } from './project-file';
+
+const PNG = 'data:image/png;base64,iVBORw0KGgo=';
+
+function project(): Project {
+  const cells = new Uint8Array(300 * 200);
+  cells[0] = 255;
+  cells[200 * 300 - 1] = 7;
+  cells.fill(128, 1000, 5000);
+  return {
+    name: 'board',
+    machine: { bedMm: { x: 15, y: 10 }, pitchUm: { x: 50, y: 50 } },
+    exposure: { fullMs: 4.5, strategy: 'shortest' },
+    paint: { cols: 300, rows: 200, cells },
+    objects: [
+      { kind: 'image', id: 1, x: -5, y: 3, w: 40, h: 20, name: 'logo.png', src: PNG, halftone: 'atkinson', level: 100, tone: { ...NEUTRAL_TONE, gamma: 1.4 } },
+      { kind: 'text', id: 2, x: 10, y: 10, w: 80, h: 20, text: 'PCB\nrev 2', font: 'DejaVu Sans', bold: true, dose: 200 },
+      { kind: 'frame', id: 5, x: 0, y: 0, w: 300, h: 200, line: 0, dose: 255 },
+    ],
+  };
+}
+
+async function reject(edit: (f: Record<string, any>) => void): Promise<string> {
+  const f = JSON.parse(await encodeProject(project()));
+  edit(f);
+  const e = await decodeProject(JSON.stringify(f)).catch((x) => x);
+  expect(e).toBeInstanceOf(ProjectError);
+  return (e as Error).message;
+}
+
+describe('project files', () => {
+  it('come back as they were saved: cells, objects, machine and exposure', async () => {
+    const p = project();
+    const back = await decodeProject(await encodeProject(p));
+    expect(back.paint.cells).toEqual(p.paint.cells);
+    expect(back.objects).toEqual(p.objects);
+    expect({ ...back, paint: null, objects: null }).toEqual({ ...p, paint: null, objects: null });
+  });
+
+  it('pack a whole empty-but-for-a-trace 4096² bed into a few KB', async () => {
+    const cells = new Uint8Array(4096 * 4096);
+    cells.fill(255, 4096 * 2048, 4096 * 2048 + 4096);
+    const text = await encodeProject({ ...project(), paint: { cols: 4096, rows: 4096, cells }, objects: [] });
+    expect(text.length).toBeLessThan(40_000);
+    expect(Buffer.compare((await decodeProject(text)).paint.cells, cells)).toBe(0); // toEqual takes seconds over 16 M cells
+  });
+
+  it('keep an empty painting as no cells at all', async () => {
+    const p = { ...project(), paint: { cols: 300, rows: 200, cells: new Uint8Array(60_000) } };
+    const f = JSON.parse(await encodeProject(p));
+    expect(f.paint.cells).toBeNull();
+    expect((await decodeProject(JSON.stringify(f))).paint.cells).toEqual(p.paint.cells);
+  });
+
+  it('refuse what is not a project, or a newer one, saying so', async () => {
+    await expect(decodeProject('{"grid":')).rejects.toThrow(/not a project file/);
+    await expect(decodeProject('{"name":"x"}')).rejects.toThrow(/not a project file/);
+    expect(await reject((f) => (f.version = 2))).toMatch(/version 2; this app opens version 1/);
+  });
+
+  it('name the field that is wrong', async () => {
+    expect(await reject((f) => (f.objects[0].halftone = 'sepia'))).toMatch(/^objects\[0\]\.halftone must be one of/);
+    expect(await reject((f) => (f.objects[0].src = 'https://example.com/a.png'))).toMatch(/^objects\[0\]\.src must be a picture embedded/);
+    expect(await reject((f) => (f.objects[1].dose = 300))).toMatch(/^objects\[1\]\.dose must be a whole number from 0 to 255/);
+    expect(await reject((f) => (f.objects[2].kind = 'circle'))).toMatch(/^objects\[2\]\.kind must be image, text or frame/);
+    expect(await reject((f) => (f.objects[2].id = 1))).toMatch(/two objects with the same id/);
+    expect(await reject((f) => (f.paint.cols = 5000))).toMatch(/^paint\.cols must be a whole number from 1 to 4096/);
+    expect(await reject((f) => (f.exposure.strategy = 'spiral'))).toMatch(/^exposure\.strategy must be one of/);
+    expect(await reject((f) => (f.machine.pitchUm = 'fine'))).toMatch(/^machine\.pitchUm must be an object/);
+  });
+
+  it('find damaged or mis-sized cells', async () => {
+    expect(await reject((f) => (f.paint.cells = f.paint.cells.slice(0, -8) + 'AAAAAAAA'))).toMatch(/^paint\.cells (is not deflated data|holds \d+ cells)/);
+    expect(await reject((f) => (f.paint.cells = '***'))).toMatch(/^paint\.cells is not base64/);
+    expect(await reject((f) => (f.paint.rows = 100))).toMatch(/^paint\.cells holds 60000 cells, not the 30000 its size says/);
+  });
+});

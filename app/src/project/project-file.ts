@@ -1,0 +1,135 @@
+// A project as a file: JSON with the painted cells packed and every picture embedded as the file
+// it was imported from, so it opens anywhere with nothing beside it. Opening checks every field
+// and says which one is wrong; nothing of the project open in the editor is lost by a bad file.
+
+import { MAX_SIDE } from '../studio/grid/grid';
+import { HALFTONES, type Halftone } from '../studio/image/dither';
+import type { StudioObject } from '../studio/objects/objects';
+import type { StrategyName } from '../protocol/job-types';
+import { packCells, unpackCells } from './cells-codec';
+
+export const PROJECT_FORMAT = 'uv-exposure-project';
+export const PROJECT_VERSION = 1;
+/** Larger files are refused before they are read. */
+export const MAX_PROJECT_BYTES = 200 * 1024 * 1024;
+const STRATEGIES: StrategyName[] = ['raster', 'serpentine', 'shortest', 'random'];
+
+export interface Project {
+  name: string;
+  machine: { bedMm: { x: number; y: number }; pitchUm: { x: number; y: number } };
+  exposure: { fullMs: number; strategy: StrategyName };
+  /** The painted cells, cols × rows, row 0 first. */
+  paint: { cols: number; rows: number; cells: Uint8Array };
+  objects: StudioObject[];
+}
+
+export class ProjectError extends Error {}
+
+export async function encodeProject(p: Project, savedAt = new Date()): Promise<string> {
+  let empty = true;
+  for (let i = 0; i < p.paint.cells.length && empty; i++) empty = p.paint.cells[i] === 0;
+  return JSON.stringify({
+    format: PROJECT_FORMAT,
+    version: PROJECT_VERSION,
+    name: p.name,
+    savedAt: savedAt.toISOString(),
+    machine: p.machine,
+    exposure: p.exposure,
+    paint: { cols: p.paint.cols, rows: p.paint.rows, cells: empty ? null : await packCells(p.paint.cells) },
+    objects: p.objects,
+  });
+}
+
+type Json = Record<string, unknown>;
+
+function fail(path: string, what: string): never {
+  throw new ProjectError(`${path} ${what}`);
+}
+
+function obj(v: unknown, path: string): Json {
+  if (typeof v !== 'object' || v === null || Array.isArray(v)) fail(path, 'must be an object');
+  return v as Json;
+}
+
+function numIn(v: unknown, path: string, min: number, max: number, integer = false): number {
+  if (typeof v !== 'number' || !Number.isFinite(v) || v < min || v > max || (integer && !Number.isInteger(v)))
+    fail(path, `must be ${integer ? 'a whole number' : 'a number'} from ${min} to ${max}`);
+  return v;
+}
+
+function str(v: unknown, path: string, max: number): string {
+  if (typeof v !== 'string' || v.length > max) fail(path, `must be text of at most ${max} characters`);
+  return v;
+}
+
+function bool(v: unknown, path: string): boolean {
+  if (typeof v !== 'boolean') fail(path, 'must be true or false');
+  return v;
+}
+
+function xy(v: unknown, path: string, min: number, max: number): { x: number; y: number } {
+  const o = obj(v, path);
+  return { x: numIn(o.x, `${path}.x`, min, max), y: numIn(o.y, `${path}.y`, min, max) };
+}
+
+function object(v: unknown, path: string, cols: number, rows: number): StudioObject {
+  const o = obj(v, path);
+  const box = {
+    id: numIn(o.id, `${path}.id`, 1, 1e9, true),
+    x: numIn(o.x, `${path}.x`, -MAX_SIDE, cols, true),
+    y: numIn(o.y, `${path}.y`, -MAX_SIDE, rows, true),
+    w: numIn(o.w, `${path}.w`, 1, 2 * MAX_SIDE, true),
+    h: numIn(o.h, `${path}.h`, 1, 2 * MAX_SIDE, true),
+  };
+  const dose = () => numIn(o.dose, `${path}.dose`, 0, 255, true);
+  switch (o.kind) {
+    case 'image': {
+      const src = str(o.src, `${path}.src`, MAX_PROJECT_BYTES);
+      if (!/^data:image\/[\w.+-]+;base64,/.test(src)) fail(`${path}.src`, 'must be a picture embedded as a data: URL');
+      const halftone = o.halftone as Halftone;
+      if (!HALFTONES.includes(halftone)) fail(`${path}.halftone`, `must be one of ${HALFTONES.join(', ')}`);
+      const t = obj(o.tone, `${path}.tone`);
+      const tone = { invert: bool(t.invert, `${path}.tone.invert`), contrast: numIn(t.contrast, `${path}.tone.contrast`, -100, 100), gamma: numIn(t.gamma, `${path}.tone.gamma`, 0.05, 20) };
+      return { kind: 'image', ...box, name: str(o.name, `${path}.name`, 255), src, halftone, level: numIn(o.level, `${path}.level`, 1, 255, true), tone };
+    }
+    case 'text':
+      return { kind: 'text', ...box, text: str(o.text, `${path}.text`, 10_000), font: str(o.font, `${path}.font`, 200), bold: bool(o.bold, `${path}.bold`), dose: dose() };
+    case 'frame':
+      return { kind: 'frame', ...box, line: numIn(o.line, `${path}.line`, 0, MAX_SIDE, true), dose: dose() };
+    default:
+      fail(`${path}.kind`, 'must be image, text or frame');
+  }
+}
+
+export async function decodeProject(text: string): Promise<Project> {
+  let raw: unknown;
+  try {
+    raw = JSON.parse(text);
+  } catch (e) {
+    throw new ProjectError(`this is not a project file: ${(e as Error).message}`);
+  }
+  const f = obj(raw, 'the file');
+  if (f.format !== PROJECT_FORMAT) throw new ProjectError('this is not a project file (no "format": "uv-exposure-project")');
+  if (f.version !== PROJECT_VERSION) throw new ProjectError(`this project is version ${String(f.version)}; this app opens version ${PROJECT_VERSION}`);
+  const m = obj(f.machine, 'machine');
+  const machine = { bedMm: xy(m.bedMm, 'machine.bedMm', 1, 10_000), pitchUm: xy(m.pitchUm, 'machine.pitchUm', 1, 10_000) };
+  const e = obj(f.exposure, 'exposure');
+  const strategy = e.strategy as StrategyName;
+  if (!STRATEGIES.includes(strategy)) fail('exposure.strategy', `must be one of ${STRATEGIES.join(', ')}`);
+  const exposure = { fullMs: numIn(e.fullMs, 'exposure.fullMs', 0.001, 60_000), strategy };
+  const p = obj(f.paint, 'paint');
+  const cols = numIn(p.cols, 'paint.cols', 1, MAX_SIDE, true), rows = numIn(p.rows, 'paint.rows', 1, MAX_SIDE, true);
+  let cells: Uint8Array = new Uint8Array(cols * rows);
+  if (p.cells !== null) {
+    try {
+      cells = await unpackCells(str(p.cells, 'paint.cells', MAX_PROJECT_BYTES), cols * rows);
+    } catch (err) {
+      throw err instanceof ProjectError ? err : new ProjectError(`paint.cells ${(err as Error).message}`);
+    }
+  }
+  if (!Array.isArray(f.objects)) fail('objects', 'must be a list');
+  const objects = f.objects.map((o, i) => object(o, `objects[${i}]`, cols, rows));
+  const ids = new Set(objects.map((o) => o.id));
+  if (ids.size !== objects.length) fail('objects', 'has two objects with the same id');
+  return { name: str(f.name, 'name', 255), machine, exposure, paint: { cols, rows, cells }, objects };
+}
