@@ -1,6 +1,7 @@
 // The machine's dashboards on the simulated printer: thermal history, position and jog, the probe and
 // the mesh, LEDs and link, and the settings read from and saved to the printer.
 import { expect, test, type Page } from '@playwright/test';
+import { drawFilledRectangle } from './draw';
 
 async function open(page: Page) {
   await page.goto('/?simSpeed=20');
@@ -98,6 +99,15 @@ test('deploys, stows and tests the probe, maps the bed twice and compares', asyn
   await page.getByTestId('mesh-compare').check();
   await expect(page.getByTestId('mesh-stats')).toContainText('Change since the previous mesh');
   await page.screenshot({ path: info.outputPath('mesh.png'), fullPage: true });
+
+  // Probing turned leveling on: the dry run holds a drawing in the bed's corner, outside the
+  // probed points (10 mm in from the edges), against the mesh, and asks before exposing it.
+  await drawFilledRectangle(page, [0.28, 0.105], [0.295, 0.12]); // about 3–9 mm from the bed's corner
+  await page.getByTestId('expose-drawing').click();
+  const mesh = page.getByTestId('dry-run').locator('li', { hasText: /^mesh:/ });
+  await expect(mesh).toHaveAttribute('data-level', 'warning');
+  await expect(mesh).toContainText('outside the probed mesh');
+  await expect(page.getByTestId('expose-anyway')).toBeVisible();
 });
 
 test('shows the LEDs and the link, and settings read, checked, applied and saved', async ({ page }, info) => {

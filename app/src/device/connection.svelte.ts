@@ -9,7 +9,7 @@ import { DialectLink } from './dialect-link';
 import { applyReport, emptyState, type DeviceState, type JobProgress } from './device-state';
 import { EspLink } from './esp-link';
 import type { PrinterLink, UploadProgress } from './link';
-import { configOf, interruptedOf, type InterruptedJob } from './printer-replies';
+import { configOf, interruptedOf, levelingOf, type InterruptedJob } from './printer-replies';
 import { parseMesh } from './mesh-report';
 import { ThermalHistory } from './thermal-history';
 import type { Mesh } from '../planner/mesh';
@@ -157,6 +157,16 @@ export class Printer {
     const before = this.mesh;
     await this.moves(['M401', `G29 X${n} Y${n}`, 'M402']);
     if (before && this.mesh !== before) this.previousMesh = before;
+  }
+
+  /**
+   * Whether exposures follow the mesh (bare `M420`), and the mesh they follow, read from the
+   * printer if leveling is on and the app has none yet. Leveling is null if the printer does not say.
+   */
+  async leveling(): Promise<{ on: boolean | null; mesh: Mesh | null }> {
+    const on = levelingOf(await this.send('M420'));
+    if (on && !this.mesh) await this.send('M420 V');
+    return { on, mesh: this.mesh };
   }
 
   /** Reads the settings again (`M503`). */

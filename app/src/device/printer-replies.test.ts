@@ -1,6 +1,6 @@
 import { describe, expect, it } from 'vitest';
 import { parseReply, type Reply } from '../protocol/dialect-reply';
-import { configOf, interruptedOf } from './printer-replies';
+import { configOf, interruptedOf, levelingOf } from './printer-replies';
 
 const replies = (...lines: string[]) => lines.map((l) => parseReply(l)).filter((r): r is Reply => r !== null);
 
@@ -21,5 +21,13 @@ describe('interruptedOf', () => {
   it('is null without one, or for a line it cannot read', () => {
     expect(interruptedOf(replies('JOB:idle', 'ok'))).toBeNull();
     expect(interruptedOf(replies('JOB:interrupted file=x stop=garbage'))).toBeNull();
+  });
+});
+
+describe('levelingOf', () => {
+  it('reads bare M420\'s answer, and is null when there is none', () => {
+    expect(levelingOf(replies('echo:leveling on', 'ok'))).toBe(true);
+    expect(levelingOf(replies('echo:leveling off', 'ok'))).toBe(false);
+    expect(levelingOf(replies('ok'))).toBeNull();
   });
 });

@@ -1,5 +1,5 @@
-// What the app reads from two of the printer's answers when a link opens: its settings (`M503`) and
-// an interrupted job waiting to be resumed (`M1000 S`).
+// What the app reads from the printer's answers: its settings (`M503`), an interrupted job waiting
+// to be resumed (`M1000 S`), and whether exposures follow the mesh (bare `M420`).
 
 import type { Reply } from '../protocol/dialect-reply';
 
@@ -27,5 +27,11 @@ export function interruptedOf(replies: Reply[]): InterruptedJob | null {
     const [done, stops] = (r.fields.stop ?? '').split('/').map(Number);
     if (r.fields.file && Number.isInteger(done) && Number.isInteger(stops)) return { file: r.fields.file, done, stops };
   }
+  return null;
+}
+
+/** Bare `M420`'s `echo:leveling on|off`; null from a printer that does not say. */
+export function levelingOf(replies: Reply[]): boolean | null {
+  for (const r of replies) if (r.kind === 'echo' && /^leveling (on|off)$/.test(r.text)) return r.text === 'leveling on';
   return null;
 }

@@ -45,7 +45,8 @@ export class JobControl {
     this.#act(async () => {
       const job = this.job();
       if (!job) throw new Error('nothing is drawn');
-      const { findings, duty } = dryRun(job, this.config);
+      const leveling = await this.printer.leveling();
+      const { findings, duty } = dryRun(job, this.config, { leveling: leveling.on, mesh: leveling.mesh });
       this.check = { findings, job, duty };
       if (findings.some((f) => f.level !== 'ok')) return;
       await this.#run(job, duty);

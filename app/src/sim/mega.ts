@@ -255,7 +255,7 @@ export class MegaModel {
         if (typeof p(c).S === 'number') {
           if (p(c).S && !this.mesh) return this.#error(11, done, 'no mesh');
           this.leveling = p(c).S !== 0;
-        }
+        } else if (!('V' in p(c))) this.line(`echo:leveling ${this.leveling ? 'on' : 'off'}`);
         done();
       },
       M355: (c, done) => ((this.light = (p(c).S ?? 0) !== 0), done()),

@@ -43,5 +43,7 @@ describe('dry run', () => {
     expect(levels(dryRun(job(), DEFAULT_CONFIG, { leveling: true, mesh })).mesh).toBe('warning');
     expect(levels(dryRun(job({ originUm: { x: 60_000, y: 60_000 } }), DEFAULT_CONFIG, { leveling: true, mesh })).mesh).toBe('ok');
     expect(levels(dryRun(job(), DEFAULT_CONFIG, { leveling: true, mesh: null })).mesh).toBe('warning');
+    expect(levels(dryRun(job(), DEFAULT_CONFIG, { leveling: false, mesh })).mesh).toBe('ok'); // one height: nothing to cover
+    expect(levels(dryRun(job(), DEFAULT_CONFIG, { leveling: null, mesh })).mesh).toBeUndefined(); // the printer did not say
   });
 });

@@ -38,7 +38,8 @@ export interface DryRun {
   duty: number[];
 }
 
-export function dryRun(job: PrintJob, config: MachineConfig, opts: { mesh?: Mesh | null; leveling?: boolean; thermal?: ThermalModel } = {}): DryRun {
+/** `leveling` is whether the printer said exposures follow the mesh; null or absent if it did not say. */
+export function dryRun(job: PrintJob, config: MachineConfig, opts: { mesh?: Mesh | null; leveling?: boolean | null; thermal?: ThermalModel } = {}): DryRun {
   const header = headerOf(job);
   const plan = planJob({ header, cells: job.gridData }, motionOf(config));
   const findings: Finding[] = [];
@@ -58,7 +59,8 @@ export function dryRun(job: PrintJob, config: MachineConfig, opts: { mesh?: Mesh
   }
 
   // Mesh: with leveling on, the job should lie within the probed points (beyond them Z is held at the edge).
-  if (opts.leveling) {
+  if (opts.leveling === false) findings.push({ check: 'mesh', level: 'ok', message: 'leveling is off: the whole job is exposed at one height' });
+  else if (opts.leveling) {
     const m = opts.mesh;
     if (!m) findings.push({ check: 'mesh', level: 'warning', message: 'leveling is on but there is no mesh: probe the bed (G29) first' });
     else {

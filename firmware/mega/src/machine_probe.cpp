@@ -218,6 +218,9 @@ Machine::Result Machine::meshCommand(HostLink& port, const uv::Command& c) {
       return Result::Done;
     }
     leveling_ = c.value('S') != 0;
+  } else {
+    // Bare M420: whether exposures follow the mesh, for a host's check before a job.
+    port.lineP(leveling_ ? UV_P("echo:leveling on") : UV_P("echo:leveling off"));
   }
   return Result::Done;
 }

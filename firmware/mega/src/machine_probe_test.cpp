@@ -156,8 +156,10 @@ TEST_F(ProbeTest, TheMeshOutlivesARestartButIsAppliedOnlyWhenAsked) {
   Lines shown = payload("M420 V");
   EXPECT_TRUE(has(shown, "MESH:grid 3 3"));
   EXPECT_FALSE(m.machine.leveling());
+  EXPECT_EQ(payload("M420"), Lines{"echo:leveling off"});
   EXPECT_EQ(payload("M420 S1"), Lines{});
   EXPECT_TRUE(m.machine.leveling());
+  EXPECT_EQ(payload("M420"), Lines{"echo:leveling on"});
 }
 
 TEST_F(ProbeTest, WithoutAMeshM420Refuses) {
