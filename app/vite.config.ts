@@ -5,7 +5,7 @@ import { bundleSize, formatBundleSize } from '../scripts/bundle-size';
 import { serviceWorker } from './pwa';
 
 /** What loads only when a panel is first opened: grouped into one chunk. */
-const ON_DEMAND_PANELS = /\/(PositionDashboard|ProbeDashboard|MeshDashboard|LinkDashboard|mesh-image|Settings|setting-groups|Lamp|PreviewPanel|exposure-preview|preview-colours|MaterialTest|material-test|ObjectPanel|fonts)\.(svelte|ts)/;
+const ON_DEMAND_PANELS = /\/(PositionDashboard|ProbeDashboard|MeshDashboard|LinkDashboard|mesh-image|Settings|setting-groups|Lamp|PreviewPanel|exposure-preview|preview-colours|MaterialTest|material-test|ObjectPanel|fonts|Panel)\.(svelte|ts)/;
 
 const outDir = fileURLToPath(new URL('../dist/app', import.meta.url));
 
