@@ -53,7 +53,7 @@ export function materialTestProject(s: MaterialTestSpec, measure: Measure): Proj
   if (problem) throw new Error(problem);
   const { bedMm, pitchUm } = s.machine;
   const cx = (mm: number) => Math.round((mm * 1000) / pitchUm.x), cy = (mm: number) => Math.round((mm * 1000) / pitchUm.y);
-  const { cols, rows } = DoseGrid.forBed(bedMm, pitchUm);
+  const { cols, rows } = DoseGrid.sizeForBed(bedMm, pitchUm);
   const doses = stepDoses(s);
   const labelMm = Math.max(1, Math.min(3, s.patchMm / 3));
   const perRow = Math.max(1, Math.floor((bedMm.x - 2 * MARGIN_MM + GAP_MM) / (s.patchMm + GAP_MM)));

@@ -4,6 +4,7 @@
 
 import type { JobControl } from '../job/job-control.svelte';
 import { GridEditor } from '../studio/editor.svelte';
+import { DoseGrid } from '../studio/grid/grid';
 import { grayOf } from '../studio/objects/picture';
 import { decodeProject, encodeProject, MAX_PROJECT_BYTES, ProjectError, type Project } from './project-file';
 import { loadAutosave, recentProjects, recentText, remember, saveAutosave } from './project-store';
@@ -132,13 +133,15 @@ export class ProjectSession {
     await this.#load(p);
     await this.#remember(text, 'opened');
     this.status = status;
-    await this.autosave();
+    await saveAutosave(p.name, text); // the file as it came: no need to encode it again
+    this.autosavedAt = new Date();
   }
 
   async #load(p: Project): Promise<void> {
+    const bed = DoseGrid.sizeForBed(p.machine.bedMm, p.machine.pitchUm);
+    if (bed.cols !== p.paint.cols || bed.rows !== p.paint.rows)
+      throw new ProjectError(`paint is ${p.paint.cols} × ${p.paint.rows} cells, but its machine's bed makes ${bed.cols} × ${bed.rows}`);
     const ed = new GridEditor(p.machine, { cells: p.paint.cells, objects: p.objects });
-    if (ed.grid.cols !== p.paint.cols || ed.grid.rows !== p.paint.rows)
-      throw new ProjectError(`paint is ${p.paint.cols} × ${p.paint.rows} cells, but its machine's bed makes ${ed.grid.cols} × ${ed.grid.rows}`);
     this.replace(ed);
     this.name = p.name;
     this.control.fullMs = p.exposure.fullMs;

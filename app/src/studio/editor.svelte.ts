@@ -9,6 +9,7 @@ import { bedOf, DEFAULT_CONFIG } from './machine-config';
 import { ObjectLayer } from './objects/object-layer.svelte';
 import { CORNERS, cornerOf, exposes, type Corner, type StudioObject } from './objects/objects';
 import { textWidth } from './objects/text-raster';
+import { layOver } from './objects/raster';
 
 export type Tool = 'brush' | 'eraser' | 'line' | 'rect' | 'rect-filled' | 'fill' | 'select' | 'text' | 'frame' | 'pan';
 
@@ -199,15 +200,10 @@ export class GridEditor {
     const r = o && this.layer.raster(o);
     if (!o || !r) return;
     const e = this.history.begin(`merge ${o.kind}`);
-    const x0 = Math.max(0, o.x), y0 = Math.max(0, o.y), x1 = Math.min(this.grid.cols, o.x + o.w) - 1, y1 = Math.min(this.grid.rows, o.y + o.h) - 1;
-    if (x0 <= x1 && y0 <= y1) e.touch(x0, y0, x1, y1);
-    for (let y = y0; y <= y1; y++)
-      for (let x = x0; x <= x1; x++) {
-        const d = r[(y - o.y) * o.w + (x - o.x)];
-        if (d > this.grid.cells[y * this.grid.cols + x]) this.grid.cells[y * this.grid.cols + x] = d;
-      }
+    e.touch(o.x, o.y, o.x + o.w - 1, o.y + o.h - 1); // clipped to the grid
+    const covered = layOver(this.grid, o, r);
     this.history.commit(e);
-    this.#changed(x0, y0, x1, y1);
+    if (covered) this.#changed(covered.x0, covered.y0, covered.x1, covered.y1);
     this.layer.remove(id);
   }
 

@@ -25,6 +25,12 @@ export class Sprites {
     this.#kept.set(id, { raster, canvas });
     return canvas;
   }
+
+  /** Lets go of the sprites of objects no longer on the layer (a deleted picture's can be large). */
+  keepOnly(objects: readonly StudioObject[]): void {
+    const ids = new Set(objects.map((o) => o.id));
+    for (const id of this.#kept.keys()) if (!ids.has(id)) this.#kept.delete(id);
+  }
 }
 
 export function drawObjects(ctx: CanvasRenderingContext2D, v: View, layer: ObjectLayer, sprites: Sprites): void {
@@ -51,6 +57,7 @@ export function drawObjects(ctx: CanvasRenderingContext2D, v: View, layer: Objec
     ctx.strokeRect(Math.round(at.x) + 0.5, Math.round(at.y) + 0.5, Math.round(w), Math.round(h));
     ctx.restore();
   }
+  sprites.keepOnly(layer.objects);
   const s = layer.selected;
   if (!s) return;
   const at = toScreen(v, s.x, s.y);

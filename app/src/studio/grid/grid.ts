@@ -19,9 +19,16 @@ export class DoseGrid {
 
   /** The grid a machine exposes: its bed over its cell pitch, capped at 4096 a side. */
   static forBed(bedMm: { x: number; y: number }, pitchUm: { x: number; y: number }): DoseGrid {
-    const cols = Math.min(MAX_SIDE, Math.max(1, Math.floor((bedMm.x * 1000) / pitchUm.x)));
-    const rows = Math.min(MAX_SIDE, Math.max(1, Math.floor((bedMm.y * 1000) / pitchUm.y)));
+    const { cols, rows } = DoseGrid.sizeForBed(bedMm, pitchUm);
     return new DoseGrid(cols, rows);
+  }
+
+  /** The size of that grid, without making it. */
+  static sizeForBed(bedMm: { x: number; y: number }, pitchUm: { x: number; y: number }): { cols: number; rows: number } {
+    return {
+      cols: Math.min(MAX_SIDE, Math.max(1, Math.floor((bedMm.x * 1000) / pitchUm.x))),
+      rows: Math.min(MAX_SIDE, Math.max(1, Math.floor((bedMm.y * 1000) / pitchUm.y))),
+    };
   }
 
   inside(x: number, y: number): boolean {

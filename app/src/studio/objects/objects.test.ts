@@ -2,7 +2,7 @@ import { describe, expect, it } from 'vitest';
 import { DoseGrid } from '../grid/grid';
 import { NEUTRAL_TONE } from '../image/adjust';
 import { centredAt, exposes, moved, objectAt, resized, type FrameObject, type ImageObject, type StudioObject, type TextObject } from './objects';
-import { compose, frameRaster, imageRaster } from './raster';
+import { compose, frameRaster, imageRaster, layOver } from './raster';
 import { cssFont, linesOf } from './text-raster';
 
 const frame = (over: Partial<FrameObject> = {}): FrameObject => ({ kind: 'frame', id: 1, x: 2, y: 3, w: 5, h: 4, line: 1, dose: 200, ...over });
@@ -88,6 +88,14 @@ describe('rasters', () => {
     expect(out.cells[6]).toBe(200);
     expect(out.cells[7]).toBe(250);
     expect(out.cells[2]).toBe(0);
+  });
+
+  it('lays a raster over the cells it covers on the grid, and says which', () => {
+    const g = new DoseGrid(4, 4);
+    g.cells[5] = 200;
+    expect(layOver(g, { x: 1, y: 1, w: 5, h: 1 }, new Uint8Array(5).fill(100))).toEqual({ x0: 1, y0: 1, x1: 3, y1: 1 });
+    expect(Array.from(g.cells.subarray(4, 8))).toEqual([0, 200, 100, 100]);
+    expect(layOver(g, { x: 4, y: 0, w: 2, h: 2 }, new Uint8Array(4).fill(9))).toBeNull(); // beside the grid
   });
 
   it('gives back the painting itself when no object exposes anything', () => {

@@ -6,7 +6,7 @@ import { adjust } from '../image/adjust';
 import { toDoses } from '../image/dither';
 import { resample, type Gray } from '../image/gray';
 import { DoseGrid } from '../grid/grid';
-import { exposes, type FrameObject, type ImageObject, type StudioObject, type TextObject } from './objects';
+import { exposes, type FrameObject, type ImageObject, type Rect, type StudioObject, type TextObject } from './objects';
 
 /** The cells' doses of an object, w × h, row 0 first. */
 export type Raster = Uint8Array;
@@ -46,15 +46,25 @@ export function compose(paint: DoseGrid, objects: readonly StudioObject[], raste
   const out = new DoseGrid(paint.cols, paint.rows, paint.cells.slice());
   for (const o of lit) {
     const r = raster(o);
-    if (!r) continue;
-    const x0 = Math.max(0, o.x), x1 = Math.min(paint.cols, o.x + o.w);
-    for (let y = Math.max(0, o.y); y < Math.min(paint.rows, o.y + o.h); y++) {
-      const row = (y - o.y) * o.w - o.x;
-      for (let x = x0; x < x1; x++) {
-        const d = r[row + x];
-        if (d > out.cells[y * paint.cols + x]) out.cells[y * paint.cols + x] = d;
-      }
-    }
+    if (r) layOver(out, o, r);
   }
   return out;
+}
+
+/**
+ * Lays an object's raster over the grid where its box lies, the greater dose winning in each cell,
+ * clipped to the grid; returns the cells it covered, or null if none are on the grid.
+ */
+export function layOver(grid: DoseGrid, o: Rect, r: Raster): { x0: number; y0: number; x1: number; y1: number } | null {
+  const x0 = Math.max(0, o.x), x1 = Math.min(grid.cols, o.x + o.w) - 1;
+  const y0 = Math.max(0, o.y), y1 = Math.min(grid.rows, o.y + o.h) - 1;
+  if (x0 > x1 || y0 > y1) return null;
+  for (let y = y0; y <= y1; y++) {
+    const row = (y - o.y) * o.w - o.x;
+    for (let x = x0; x <= x1; x++) {
+      const d = r[row + x];
+      if (d > grid.cells[y * grid.cols + x]) grid.cells[y * grid.cols + x] = d;
+    }
+  }
+  return { x0, y0, x1, y1 };
 }
