@@ -156,8 +156,7 @@ export class ProjectSession {
    * under a name of its own if the incoming project has the same name, so one does not replace the other.
    */
   async #setAside(incoming?: string): Promise<void> {
-    const ed = this.editor();
-    if (!ed.hasInk && ed.layer.objects.length === 0) return;
+    if (this.editor().isEmpty) return;
     const name = incoming === this.name ? `${this.name} (set aside ${new Date().toLocaleTimeString()})` : this.name;
     await this.#remember(await encodeProject(this.snapshot()), 'set aside', name);
   }

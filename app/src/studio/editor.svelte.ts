@@ -62,6 +62,11 @@ export class GridEditor {
     }
   }
 
+  /** Nothing painted and no object placed, not even a guide frame. */
+  get isEmpty(): boolean {
+    return !this.hasInk && this.layer.objects.length === 0;
+  }
+
   /** The cells the machine exposes: the painting with the objects laid over it. */
   composed(): DoseGrid {
     return this.layer.composed(this.grid);
