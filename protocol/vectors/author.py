@@ -173,6 +173,11 @@ commands = [
     {"body": "G0 X1.23456 Y-0.0005 Z0.5", "command": {"word": "G0", "params": {"X": 1235, "Y": -1, "Z": 500}}},
     {"body": "G0 X2000000 Y-2000000.000", "command": {"word": "G0", "params": {"X": 2000000000, "Y": -2000000000}}},
     {"body": "G0 X2000000.001", "error": 11},
+    # Whole parts past the range are refused, however many digits: 4294968 * 1000 would wrap 32 bits.
+    {"body": "G1 X4294968 Y4294969.5", "error": 11},
+    {"body": "G1 X2000001", "error": 11},
+    {"body": "G1 X0002000000", "command": {"word": "G1", "params": {"X": 2000000000}}},
+    {"body": "M850 bed.x 4295167", "command": {"word": "M850", "text": "bed.x 4295167"}},
     {"body": "M155 S2", "command": {"word": "M155", "params": {"S": 2000}}},
     {"body": "M820 X-1 S1", "command": {"word": "M820", "params": {"X": -1000, "S": 1000}}},
     {"body": "M23 PCB_TOP.UVJ", "command": {"word": "M23", "text": "PCB_TOP.UVJ"}},
@@ -243,6 +248,13 @@ sessions = [
         {"rx": "; a plain comment", "reply": [ok()]},
         {"rx": numbered(2, "M105"), "execute": "M105"},
         {"rx": numbered(3, "M105"), "execute": "M105"},
+    ]},
+    {"name": "line numbers do not wrap: after the last one only M110 starts again", "steps": [
+        {"rx": numbered(2147483647, "M110"), "reply": [ok(2147483647)]},
+        {"rx": numbered(0, "M105"), "reply": [ok(0)]},  # a duplicate, as every number up to the last is
+        {"rx": numbered(2147483647, "M105"), "reply": [ok(2147483647)]},
+        {"rx": "M110 N0", "reply": [ok(0)]},
+        {"rx": numbered(1, "M105"), "execute": "M105"},
     ]},
     {"name": "printrun's reset: N-1 M110 N-1 makes the next line N0", "steps": [
         {"rx": numbered(1, "M105", strong=False), "execute": "M105"},

@@ -206,7 +206,7 @@ export class MegaModel {
       },
       M821: (_c, done) => {
         // The model runs each command in zero virtual time: no loop is ever late, nothing is dropped.
-        this.line('echo:DIAG loop_max_us=0 step_isr_max_us=0 underruns=0 rx_dropped=0');
+        this.line('echo:DIAG loop_max_us=0 step_isr_max_us=0 underruns=0 rx_dropped=0 tx_dropped=0');
         done();
       },
       M114: (_c, done) => {

@@ -109,6 +109,18 @@ TEST(Config, ValuesKeepTheirShortestTextForm) {
   EXPECT_EQ(value(c, Key::AccelX), "2000");
 }
 
+TEST(Config, NumbersPastThe32BitRangeAreRefusedNotWrapped) {
+  // 4295167 * 1000 wraps 32 bits to 199704: it once set a 199.704 mm bed.
+  Config c;
+  c.defaults();
+  int32_t before = c.milli(Key::BedX);
+  for (const char* big : {"4295167", "4294968", "99999999", "2001", "4294967.296"}) {
+    EXPECT_FALSE(set(c, Key::BedX, big)) << big;
+    EXPECT_EQ(c.milli(Key::BedX), before) << big;
+  }
+  EXPECT_FALSE(set(c, Key::LedOffset0, "4294967297,0"));
+}
+
 TEST(Config, M850SetsQueriesAndRefusesWithE50) {
   Config c;
   Key k;

@@ -23,23 +23,27 @@ bool isEmergencyStop(const char* line, uint8_t len) {
 }
 
 void HostLink::put(const char* text, uint8_t n, bool flash) {
-  for (uint8_t i = 0; i < n && txFree(); i++) {
+  for (uint8_t i = 0; i < n; i++) {
     txBuf_[txIn_] = flash ? static_cast<char>(uvFlashByte(text + i)) : text[i];
     txIn_ = txIn_ + 1 == kTxRing ? 0 : static_cast<uint8_t>(txIn_ + 1);
   }
 }
 
-void HostLink::line(const char* text, bool flash) {
+bool HostLink::write(const char* text, bool flash) {
+  // A line goes out whole or not at all: a line cut at the ring's end would run into the next
+  // one, and the host would read neither (protocol/mega.md §1).
   size_t n = flash ? uvStrlenP(text) : strlen(text);
-  put(text, static_cast<uint8_t>(n > 200 ? 200 : n), flash);
+  if (n + 1 > txFree()) return false;
+  put(text, static_cast<uint8_t>(n), flash);
   put("\n", 1);
   tx_.kick();
+  return true;
 }
 
-bool HostLink::report(const char* text, bool flash) {
-  if ((flash ? uvStrlenP(text) : strlen(text)) + 1 > room()) return false;
-  line(text, flash);
-  return true;
+void HostLink::line(const char* text, bool flash) {
+  // Callers of a reply make room first; one that did not is counted (M821's tx_dropped), and its
+  // line is not sent in part.
+  if (!write(text, flash) && txDropped_ < 0xFFFF) txDropped_++;
 }
 
 bool HostLink::poll() {

@@ -51,10 +51,10 @@ class HostLink : public uv::ReplySink, private uv::FlowCounters {
   void errorLine(uint8_t code, const char* detail = nullptr) { errorLine(code, detail, false); }
   void errorLineP(uint8_t code, const char* detail) { errorLine(code, detail, true); }
 
-  // Queues one line and '\n' if it fits; false (nothing queued) if not.
-  bool report(const char* text) { return report(text, false); }
+  // Queues one line and '\n' if it fits whole; false (nothing queued) if not.
+  bool report(const char* text) { return write(text, false); }
   // The same for a line in flash (UV_P).
-  bool reportP(const char* text) { return report(text, true); }
+  bool reportP(const char* text) { return write(text, true); }
   void lineP(const char* text) { line(text, true); }
   // Free transmit bytes.
   uint8_t room() const { return txFree(); }
@@ -64,8 +64,10 @@ class HostLink : public uv::ReplySink, private uv::FlowCounters {
     return h;
   }
   uint16_t dropped() const { return ring_.dropped(); }
+  // Lines that found no room and were not sent: none, when every caller makes room first.
+  uint16_t txDropped() const { return txDropped_; }
 
-  void line(const char* text) override { line(text, false); }  // replies: queued whole or cut at the ring's end
+  void line(const char* text) override { line(text, false); }  // queued whole, or not at all
 
  private:
   uint8_t movesFree() const override { return moves_; }
@@ -75,8 +77,8 @@ class HostLink : public uv::ReplySink, private uv::FlowCounters {
     return static_cast<uint8_t>(kTxRing - 1 - (in >= out ? in - out : kTxRing - out + in));
   }
   void put(const char* text, uint8_t n, bool flash = false);
+  bool write(const char* text, bool flash);
   void line(const char* text, bool flash);
-  bool report(const char* text, bool flash);
   void errorLine(uint8_t code, const char* detail, bool flash);
 
   TxPort& tx_;
@@ -86,6 +88,7 @@ class HostLink : public uv::ReplySink, private uv::FlowCounters {
   char txBuf_[kTxRing];
   volatile uint8_t txIn_ = 0, txOut_ = 0;
   bool heard_ = false;
+  uint16_t txDropped_ = 0;
 };
 
 // True if a line's body is M112, whatever its frame: it is obeyed before it is even checked.

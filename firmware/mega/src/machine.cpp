@@ -175,7 +175,7 @@ Machine::Result Machine::dispatch(HostLink& port, const uv::Command& c) {
   if (c.letter == 'G') {
     switch (c.code) {
       case 0: case 1: return move(port, c);
-      case 4: return dwell(c);
+      case 4: return dwell(port, c);
       case 28: return home(c);
       case 29: return level(port, c);
       case 30: return probeOnce(port);
@@ -251,6 +251,19 @@ Machine::Result Machine::dispatch(HostLink& port, const uv::Command& c) {
 
 void Machine::finishLong(uint8_t error, const char* detail) {
   HostLink* port = long_.port;
+  if (port && port->room() < kReplyRoom) {
+    // Its reply block must go out whole (an M112 from the other port can end a command while this
+    // port's ring is full): it waits, as Answer, with what it will say.
+    if (long_.op == Op::Answer) return;  // already waiting: the first verdict stands
+    long_.op = Op::Answer;
+    long_.error = error;
+    long_.detail[0] = 0;
+    if (detail) {
+      strncpy(long_.detail, detail, sizeof long_.detail - 1);
+      long_.detail[sizeof long_.detail - 1] = 0;
+    }
+    return;
+  }
   long_.op = Op::None;
   if (!port) {  // started from the panel: an error is everyone's news, and there is no ok
     if (error) {
@@ -345,7 +358,7 @@ bool Machine::emitNext() {
 }
 
 void Machine::runLong() {
-  if (long_.op != Op::Emit && static_cast<int32_t>(now_ - long_.keepalive) >= 0) {
+  if (long_.op != Op::Emit && long_.op != Op::Answer && static_cast<int32_t>(now_ - long_.keepalive) >= 0) {
     long_.keepalive = now_ + kKeepaliveUs;
     if (long_.port) long_.port->reportP(UV_P("busy: processing"));
     for (HostLink* p : ports_)  // a host waiting behind this command must not take the wait for a lost line
@@ -356,8 +369,11 @@ void Machine::runLong() {
       while (long_.port->room() >= kReplyRoom)
         if (!emitNext()) return finishLong();
       return;
+    case Op::Answer:
+      if (long_.port->room() >= kReplyRoom) finishLong(long_.error, long_.detail[0] ? long_.detail : nullptr);
+      return;
     case Op::Dwell:
-      if (static_cast<int32_t>(now_ - long_.until) >= 0) finishLong();
+      if (now_ - long_.since >= long_.until) finishLong();
       return;
     case Op::MoveRoom:
       if (motion_.moveTo(long_.target, long_.feed)) finishLong();
@@ -466,12 +482,16 @@ Machine::Result Machine::diagnostics(HostLink& port, const uv::Command& c) {
     p += n;
     p += uv::putUnsigned(v, p);
   };
-  uint16_t dropped = 0;
-  for (HostLink* h : ports_) dropped = static_cast<uint16_t>(dropped + h->dropped());
+  uint16_t dropped = 0, unsent = 0;
+  for (HostLink* h : ports_) {
+    dropped = static_cast<uint16_t>(dropped + h->dropped());
+    unsent = static_cast<uint16_t>(unsent + h->txDropped());
+  }
   field(UV_P("echo:DIAG loop_max_us="), stats_.loopMaxUs);
   field(UV_P(" step_isr_max_us="), stats_.stepIsrMaxUs);
   field(UV_P(" underruns="), motion_.engine().underruns());
   field(UV_P(" rx_dropped="), dropped);
+  field(UV_P(" tx_dropped="), unsent);
   *p = 0;
   port.line(buf);
   if (c.has('R')) stats_.loopMaxUs = 0;
@@ -480,35 +500,48 @@ Machine::Result Machine::diagnostics(HostLink& port, const uv::Command& c) {
 
 void Machine::printheadEvents() {
   uint8_t e = head_.takeEvents();
-  if (!e) return;
-  char buf[80];
   if (e & PrintheadLink::kWentOffline) {
-    broadcastP(UV_P("FAULT:E30 printhead not responding"));
+    headFaults_.owed |= HeadFaults::kOffline * kAllPorts;
     lastFault_ = uv::kNanoTimeout;
   }
   if (e & PrintheadLink::kCameBack) broadcastP(UV_P("echo:printhead answering again"));
   if (e & PrintheadLink::kNanoReset) broadcastP(UV_P("echo:printhead restarted by its watchdog"));
   if (e & PrintheadLink::kFault) {
     head_.allOff();
-    lastFault_ = (head_.activeFaults() & uv::fault::kSensor) ? uv::kSensorFault : uv::kOverTemperature;
     uint8_t active = head_.activeFaults();
+    lastFault_ = (active & uv::fault::kSensor) ? uv::kSensorFault : uv::kOverTemperature;
     const int16_t* t = head_.deciC();
     uint8_t hot = 0;
     for (uint8_t i = 1; i < uv::kSensorCount; i++)
       if (t[i] > t[hot]) hot = i;
-    size_t n;
-    if (active & uv::fault::kSensor) {
-      strcpy_flash(buf, UV_P("FAULT:E32 temperature sensor fault"));
-      n = strlen(buf);
-    } else {
-      strcpy_flash(buf, UV_P("FAULT:E31 over-temperature T"));
-      n = strlen(buf);
-      buf[n++] = static_cast<char>('0' + hot);
-      buf[n++] = ' ';
-      n += uv::formatDeciC(t[hot], buf + n);
+    headFaults_.sensor = (active & uv::fault::kSensor) != 0;
+    headFaults_.hot = hot;
+    headFaults_.deciC = t[hot];  // as it was when the fault came: the line may wait for room
+    headFaults_.owed |= HeadFaults::kThermal * kAllPorts;
+  }
+  sayHeadFaults();
+}
+
+void Machine::sayHeadFaults() {
+  // A FAULT line is never lost: it waits, per port, until that port has room for it whole.
+  for (uint8_t k = 0; headFaults_.owed && k < kPorts; k++) {
+    for (uint8_t kind = HeadFaults::kOffline; kind <= HeadFaults::kThermal; kind = static_cast<uint8_t>(kind << kPorts)) {
+      uint8_t bit = static_cast<uint8_t>(kind << k);
+      if (!(headFaults_.owed & bit)) continue;
+      char buf[48];
+      if (kind == HeadFaults::kOffline) {
+        strcpy_flash(buf, UV_P("FAULT:E30 printhead not responding"));
+      } else if (headFaults_.sensor) {
+        strcpy_flash(buf, UV_P("FAULT:E32 temperature sensor fault"));
+      } else {
+        strcpy_flash(buf, UV_P("FAULT:E31 over-temperature T"));
+        size_t n = strlen(buf);
+        buf[n++] = static_cast<char>('0' + headFaults_.hot);
+        buf[n++] = ' ';
+        buf[n + uv::formatDeciC(headFaults_.deciC, buf + n)] = 0;
+      }
+      if (ports_[k]->report(buf)) headFaults_.owed = static_cast<uint8_t>(headFaults_.owed & ~bit);
     }
-    buf[n] = 0;
-    broadcast(buf);
   }
 }
 

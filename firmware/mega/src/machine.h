@@ -69,7 +69,8 @@ class Machine {
 
  private:
   enum class Result : uint8_t { Done, Long, Wait };
-  enum class Op : uint8_t { None, Emit, Dwell, Home, SelfTest, Servo, ProbeRead, MoveRoom, Release, Plan, Prepare, Probe, Level };
+  // Answer: the command has ended, and its reply waits for room on its port (finishLong).
+  enum class Op : uint8_t { None, Emit, Dwell, Home, SelfTest, Servo, ProbeRead, MoveRoom, Release, Plan, Prepare, Probe, Level, Answer };
   enum class Gen : uint8_t { Firmware, Endstops, Config, Files, Mesh };
   // What the job arena holds: an upload, a planning, a preparation from a job copied onto the card, a run.
   enum class Arena : uint8_t { Empty, Spool, Plan, Run, Stream };
@@ -86,6 +87,7 @@ class Machine {
   bool emitNext();
   void reports();
   void printheadEvents();
+  void sayHeadFaults();
   void broadcast(const char* text);
   void broadcastP(const char* text);  // a line in flash (UV_P)
 
@@ -94,7 +96,7 @@ class Machine {
   Result home(const uv::Command& c);
   Result jog(HostLink& port, const uv::Command& c);
   Result selfTest(HostLink& port, const uv::Command& c);
-  Result dwell(const uv::Command& c);
+  Result dwell(HostLink& port, const uv::Command& c);
   Result release();
   bool axisHomed(uint8_t axis) const { return homed_ & (1 << axis); }
   // commands (machine_printhead.cpp)
@@ -179,6 +181,15 @@ class Machine {
   Buttons buttons_;
   char message_[kScreenCols + 1] = {};
   uint8_t lastFault_ = 0;
+  // The printhead's FAULT lines still owed to each port: bit (kind << port).
+  struct HeadFaults {
+    static constexpr uint8_t kOffline = 1, kThermal = 1 << kPorts;  // kinds, each with a bit per port
+    uint8_t owed;
+    bool sensor;  // the thermal fault is a sensor's, not a temperature over its limit
+    uint8_t hot;
+    int16_t deciC;
+  } headFaults_ = {};
+  static constexpr uint8_t kAllPorts = (1 << kPorts) - 1;
   const char* firmwareName_;
 
   uint32_t now_ = 0;
@@ -202,8 +213,14 @@ class Machine {
     uint8_t meshK;  // G29: the point being probed, in serpentine order
     bool moving;    // G29: on the way to that point
     char servoOp;
-    int32_t target[3];
-    uint32_t feed;
+    union {  // one command's state at a time: the two share their bytes
+      struct {
+        int32_t target[3];
+        uint32_t feed;
+      };                // MoveRoom, jog
+      char detail[16];  // Answer: the error's detail, kept until there is room to say it
+    };
+    uint8_t error;      // Answer: the error to say, 0 for none
   } long_ = {};
 
   // The job: one arena for whichever stage is live, so the planner's memory is there only while

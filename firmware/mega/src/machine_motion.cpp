@@ -51,12 +51,23 @@ Machine::Result Machine::move(HostLink& port, const uv::Command& c) {
   return Result::Long;
 }
 
-Machine::Result Machine::dwell(const uv::Command& c) {
+Machine::Result Machine::dwell(HostLink& port, const uv::Command& c) {
+  // The wait is measured as time since it began, in unsigned µs, so any dwell up to 2^32 - 1 µs
+  // (71 minutes) ends on time; a longer one is refused, never wrapped into a short one.
+  constexpr int32_t kMaxDwellMs = 4294967;
   uint32_t us = 0;
-  if (c.hasValue('P') && c.value('P') > 0) us = static_cast<uint32_t>(c.value('P'));         // ms in thousandths = µs
-  else if (c.hasValue('S') && c.value('S') > 0) us = static_cast<uint32_t>(c.value('S')) * 1000;  // s in thousandths = ms
+  if (c.hasValue('P') && c.value('P') > 0) {
+    us = static_cast<uint32_t>(c.value('P'));  // ms in thousandths = µs
+  } else if (c.hasValue('S') && c.value('S') > 0) {
+    if (c.value('S') > kMaxDwellMs) {  // s in thousandths = ms
+      port.errorLineP(uv::kBadParameter, UV_P("S"));
+      return Result::Done;
+    }
+    us = static_cast<uint32_t>(c.value('S')) * 1000;
+  }
   long_.op = Op::Dwell;
-  long_.until = now_ + us;
+  long_.since = now_;
+  long_.until = us;  // for a dwell: its length
   return Result::Long;
 }
 

@@ -89,7 +89,7 @@ Machine::Result Machine::level(HostLink& port, const uv::Command& c) {
   g.x0 = g.y0 = margin;
   g.dx = (config_.milli(Key::BedX) - 2 * margin) / (g.nx - 1);
   g.dy = (config_.milli(Key::BedY) - 2 * margin) / (g.ny - 1);
-  if (g.dx <= 0 || g.dy <= 0) {
+  if (!uv::meshGridValid(g)) {
     port.errorLineP(uv::kBadParameter, UV_P("mesh.margin leaves no bed"));
     return Result::Done;
   }

@@ -217,6 +217,24 @@ TEST_F(MachineTest, DwellLightAndRelease) {
   EXPECT_EQ(payload("G1 X1"), (Lines{"Error:E14 axis not homed: X"}));
 }
 
+TEST_F(MachineTest, LongDwellsWaitTheirTimeAndTooLongOnesAreRefused) {
+  // 2148 s is 2^31 µs and more: it once ended at once, its end read as already past.
+  uint32_t n = m.send("G4 S2148");
+  m.run(3000000);
+  std::string okPrefix = "ok N" + std::to_string(n) + " ";
+  EXPECT_FALSE(std::any_of(m.usbLines.begin(), m.usbLines.end(), [&](const std::string& l) { return l.rfind(okPrefix, 0) == 0; }));
+  EXPECT_TRUE(has(m.usbLines, "busy: processing"));
+  m.cmd("M112", true);  // ends the dwell, answered halted
+  m.run(10000);
+  EXPECT_TRUE(has(m.usbLines, "Error:E13"));
+  m.cmd("M999");
+  EXPECT_EQ(payload("G4 S4295"), (Lines{"Error:E11 bad or missing parameter: S"}));  // past 2^32 µs
+  uint64_t before = m.nowUs;
+  m.cmd("G4 S1.5");
+  EXPECT_GE(m.nowUs - before, 1500000u);
+  EXPECT_LT(m.nowUs - before, 1510000u);
+}
+
 TEST_F(MachineTest, PositionAutoReportsMotorsOnAndOffAndJobStatusReports) {
   m.cmd("G28");
   m.cmd("M154 P100");  // every 100 ms

@@ -42,7 +42,7 @@ bool MeshStore::load() {
   g.y0 = static_cast<int32_t>(word(8));
   g.dx = static_cast<int32_t>(word(12));
   g.dy = static_cast<int32_t>(word(16));
-  if (g.nx < 2 || g.nx > uv::kMeshMax || g.ny < 2 || g.ny > uv::kMeshMax || g.dx <= 0 || g.dy <= 0) return false;
+  if (!uv::meshGridValid(g)) return false;  // as strict as a probed one: a CRC is no proof of sense
   uint16_t bytes = static_cast<uint16_t>(20 + 2 * g.nx * g.ny);
   if (word(bytes) != crcOfStored(bytes)) return false;
   grid_ = g;

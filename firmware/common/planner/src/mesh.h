@@ -17,6 +17,20 @@ struct Mesh : MeshGrid {
   int16_t z[kMeshMax][kMeshMax];  // [j][i], µm
 };
 
+// The largest bed the machine takes (CONFIG.md: bed.x, bed.y up to 2000 mm), in µm.
+constexpr int32_t kMeshMaxBedUm = 2000000;
+
+// A grid as G29 makes one: 3-9 points per axis, from x0, y0 >= 0 at spacings > 0, the last point
+// on a bed of at most kMeshMaxBedUm. A grid read back from storage must pass the same test before
+// it is used, so that no product in meshZ can overflow.
+inline bool meshGridValid(const MeshGrid& m) {
+  auto axisFits = [](uint8_t n, int32_t origin, int32_t step) {
+    if (n < 3 || n > kMeshMax || origin < 0 || origin > kMeshMaxBedUm || step <= 0) return false;
+    return step <= (kMeshMaxBedUm - origin) / (n - 1);  // origin + (n - 1) * step, never computed past the bed
+  };
+  return axisFits(m.nx, m.x0, m.dx) && axisFits(m.ny, m.y0, m.dy);
+}
+
 // The interpolation over any store of points: `zAt(i, j)` gives point (i, j) in µm. The Mega
 // reads its points from EEPROM this way instead of holding the table in RAM.
 template <class ZAt>

@@ -32,12 +32,12 @@ bool parseMilli(const char* p, uint8_t len, int32_t& out) {
   bool neg = p < end && *p == '-';
   if (neg) p++;
   uint32_t whole = 0;
-  uint8_t digits = 0;
   const char* start = p;
   while (p < end && isDigit(*p)) {
-    if (whole > 0 || *p != '0') digits++;
-    if (digits > 7) return false;
     whole = whole * 10 + static_cast<uint32_t>(*p - '0');
+    // Checked at every digit, so `whole * 1000` below can never wrap: a number out of range is
+    // refused, not read as another number.
+    if (whole > static_cast<uint32_t>(kMaxMilli / 1000)) return false;
     p++;
   }
   if (p == start) return false;

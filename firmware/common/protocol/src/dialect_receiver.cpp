@@ -100,7 +100,8 @@ Acceptance LineReceiver::accept(const char* text, uint8_t len, bool overflow, Re
     ok(sink);
     return Acceptance::Replied;
   }
-  if (f.n == last_ + 1) {
+  // Numbers do not wrap: after the largest there is no next line, only M110 (protocol/mega.md §2).
+  if (last_ < static_cast<int32_t>(kMaxLineNumber) && f.n == last_ + 1) {
     last_ = f.n;
     resyncing_ = false;
     if (f.bodyLen) return Acceptance::Execute;
