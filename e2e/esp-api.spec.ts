@@ -89,6 +89,14 @@ for (const which of ['mock', 'firmware'] as const) {
       const ok = await call(page, 'POST', '/wifi', JSON.stringify({ apPassword: 'a good long one', staSsid: 'workshop', staPassword: 'hunter22' }));
       expect(ok.status).toBe(200);
       expect(ok.json).toEqual({ apSsid: got.json.apSsid, staSsid: 'workshop' });
+      // A name is UTF-8 text, counted in bytes: 16 × "é" is 32 bytes and comes back as it went in.
+      const accented = await call(page, 'POST', '/wifi', JSON.stringify({ staSsid: 'é'.repeat(16) }));
+      expect(accented.json).toEqual({ apSsid: got.json.apSsid, staSsid: 'é'.repeat(16) });
+      for (const staSsid of ['é'.repeat(17), 'tab\there']) {
+        const refused = await call(page, 'POST', '/wifi', JSON.stringify({ staSsid }));
+        expect(refused.status).toBe(400);
+        expect(refused.json.error.path).toBe('/staSsid');
+      }
       close();
     });
 

@@ -90,7 +90,9 @@ export class MockEsp {
           return error('bad_json', 'not JSON');
         }
         if (typeof m !== 'object' || m === null || Array.isArray(m) || typeof m.type !== 'string') return error('bad_message', 'expected an object with a type');
-        if (m.id !== undefined && !Number.isInteger(m.id)) return error('bad_message', 'id must be an integer');
+        // As the ESP: an integer that a signed 64-bit integer holds (-2^63 <= id < 2^63).
+        const int64 = (v: unknown) => Number.isInteger(v) && (v as number) >= -(2 ** 63) && (v as number) < 2 ** 63;
+        if (m.id !== undefined && !int64(m.id)) return error('bad_message', 'id must be an integer');
         const id = m.id as number | undefined;
         if (m.type === 'ping') return ws.send(JSON.stringify({ type: 'pong' }));
         if (m.type !== 'send') return error('unknown_type', 'type must be send or ping', id);
@@ -126,7 +128,12 @@ export class MockEsp {
     const unknown = Object.keys(body).find((k) => !['apPassword', 'staSsid', 'staPassword'].includes(k));
     if (unknown) return bad('unknown field', `/${unknown}`);
     if ('apPassword' in body && !passphrase(body.apPassword)) return bad('8-63 printable ASCII characters (WPA2)', '/apPassword');
-    if ('staSsid' in body && (typeof body.staSsid !== 'string' || body.staSsid.length > 32)) return bad('a network name of 0-32 bytes', '/staSsid');
+    // Counted in UTF-8 bytes as the ESP counts them; a lone surrogate has no UTF-8 form (it comes
+    // back from the round trip as U+FFFD).
+    const utf8 = (v: string) => new TextEncoder().encode(v);
+    const ssid = (v: unknown) =>
+      typeof v === 'string' && new TextDecoder().decode(utf8(v)) === v && utf8(v).length <= 32 && !/[\x00-\x1f\x7f]/.test(v);
+    if ('staSsid' in body && !ssid(body.staSsid)) return bad('a network name of 0-32 bytes of UTF-8 text', '/staSsid');
     if ('staPassword' in body && !(body.staPassword === '' || passphrase(body.staPassword))) {
       return bad('empty (an open network) or 8-63 printable ASCII', '/staPassword');
     }

@@ -56,7 +56,7 @@ std::string readFile(const std::filesystem::path& p) {
 }
 
 Answer error(unsigned status, const char* code, const char* message, const char* path = "") {
-  char buf[512];
+  char buf[kErrorJsonBytes];
   JsonWriter w(buf, sizeof buf);
   writeError(w, code, message, path);
   return {status, "application/json", w.text(), {}};

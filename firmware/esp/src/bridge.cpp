@@ -77,7 +77,7 @@ void Bridge::sendUpload() {
     char why[96];
     if (p.error) snprintf(why, sizeof why, "E%u: %s", p.error, p.message);
     else snprintf(why, sizeof why, "%s", p.message);
-    w.key("error").string(why);
+    w.key("error").ascii(why, static_cast<uint16_t>(strlen(why)));
   }
   w.endObject();
   emit(LiveChannel::kEveryone, w);
@@ -107,7 +107,7 @@ void Bridge::line(const char* text, uint8_t len) {
   // Relayed, they would double the live traffic of an upload for nothing a client uses.
   if (!ok || sender_.oldestSentTag() != JobUpload::kRecordTag) {
     JsonWriter w(message, sizeof message);
-    w.beginObject().key("type").string("line").key("line").string(text, len).endObject();
+    w.beginObject().key("type").string("line").key("line").ascii(text, len).endObject();
     emit(LiveChannel::kEveryone, w);
   }
   if (len == 5 && memcmp(text, "start", 5) == 0) {
@@ -121,7 +121,7 @@ void Bridge::line(const char* text, uint8_t len) {
 void Bridge::sent(const char* body, uint8_t len, uint16_t tag) {
   if (tag == JobUpload::kRecordTag) return;  // records: the upload message counts them
   JsonWriter w(message, sizeof message);
-  w.beginObject().key("type").string("sent").key("line").string(body, len);
+  w.beginObject().key("type").string("sent").key("line").ascii(body, len);
   w.key("from").string(tag < kTagInit ? "ws" : "esp").endObject();
   emit(LiveChannel::kEveryone, w);
 }
@@ -147,7 +147,7 @@ void Bridge::reply(const Pending& p, bool ownBlock) {
     uint16_t from = 0;
     for (uint16_t i = 0; i < blockLen_; i++) {
       if (block_[i] != '\n') continue;
-      w.string(block_ + from, static_cast<uint16_t>(i - from));
+      w.ascii(block_ + from, static_cast<uint16_t>(i - from));
       from = static_cast<uint16_t>(i + 1);
     }
     if (blockTruncated_) w.string("ok");

@@ -353,3 +353,21 @@ TEST(Bridge, AMegaRestartIsPickedUpAndItsReportsAskedForAgain) {
   for (size_t i = before; i < h.clients.of(1, "line").size(); i++) temps |= h.clients.of(1, "line")[i]["line"].get<std::string>().rfind("T:", 0) == 0;
   EXPECT_TRUE(temps);  // M155 S1 was sent again
 }
+
+// Issue 15, defect 8: an id no int64 holds is refused, never wrapped (18446744073709551615 came
+// back as -1) nor cast from a float (1e300, undefined behaviour).
+TEST(Bridge, AnIdBeyondSixtyFourBitsIsRefusedNotWrapped) {
+  Hub h;
+  h.start();
+  h.join(1);
+  h.say(1, {{"type", "send"}, {"line", "M105"}, {"id", 18446744073709551615ull}});
+  h.say(1, {{"type", "send"}, {"line", "M105"}, {"id", 1e300}});
+  h.say(1, {{"type", "send"}, {"line", "M105"}, {"id", -9.3e18}});
+  h.say(1, {{"type", "send"}, {"line", "M105"}, {"id", -9223372036854775807ll - 1}});
+  h.run(200000);
+  std::vector<json> errors = h.clients.of(1, "error");
+  ASSERT_EQ(errors.size(), 3u);
+  for (const json& e : errors) EXPECT_EQ(e["code"], "bad_message") << e;
+  EXPECT_EQ(h.clients.of(1, "reply").size(), 1u);  // the smallest int64 is an id like any other
+  EXPECT_EQ(h.clients.of(1, "reply")[0]["id"], -9223372036854775807ll - 1);
+}

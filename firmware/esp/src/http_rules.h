@@ -31,6 +31,10 @@ HttpError methodNotAllowed(const char* path, Method m);
 // {"error": {"code", "message", "path"?}}: path when given, and always for bad_job.
 void writeError(JsonWriter& w, const char* code, const char* message, const char* path = "");
 
+// Room for writeError() of any RequestError: each byte of its path and message may escape to six
+// (\u00XX), plus a code of up to 32 characters and the punctuation.
+constexpr uint16_t kErrorJsonBytes = 96 + 6 * (sizeof(RequestError::path) - 1) + 6 * (sizeof(RequestError::message) - 1);
+
 // The content type of an app file by its name (without .gz).
 const char* contentType(const char* path);
 

@@ -27,3 +27,41 @@ TEST(JsonWriter, SaysWhenItRanOutOfRoom) {
   EXPECT_FALSE(w.ok());
   EXPECT_LT(w.length(), sizeof buf);
 }
+
+// A name typed by a user (an SSID, a field of a job) is UTF-8: it must read back as it was
+// written, not as Latin-1 (issue 15, defect 6: "café" came back as "cafÃ©").
+TEST(JsonWriter, WritesUtf8TextAsItIsSoItReadsBackTheSame) {
+  char buf[128];
+  JsonWriter w(buf, sizeof buf);
+  const std::string names[] = {"café", "Wi-Fi ☕ 🛰", std::string(16 * 2 / 2, 'x') + "éééééééé"};
+  w.beginArray();
+  for (const std::string& n : names) w.string(n.c_str());
+  w.endArray();
+  ASSERT_TRUE(w.ok());
+  nlohmann::json j = nlohmann::json::parse(buf);
+  for (size_t i = 0; i < 3; i++) EXPECT_EQ(j[i].get<std::string>(), names[i]);
+  EXPECT_EQ(std::string(buf).find("\\u"), std::string::npos) << buf;
+}
+
+// Bytes that are not UTF-8 (a truncated sequence, a stray continuation byte) stay visible and
+// the JSON stays valid.
+TEST(JsonWriter, EscapesBytesThatAreNotUtf8) {
+  char buf[128];
+  JsonWriter w(buf, sizeof buf);
+  const char broken[] = {'a', static_cast<char>(0xE2), static_cast<char>(0x98), 'b', static_cast<char>(0x80), static_cast<char>(0xC0), static_cast<char>(0xAF), 0};
+  w.string(broken);
+  ASSERT_TRUE(w.ok());
+  EXPECT_STREQ(buf, R"("a\u00e2\u0098b\u0080\u00c0\u00af")");
+  EXPECT_NO_THROW(nlohmann::json::parse(buf));
+}
+
+// JSON text is written whole or not at all: a writer that ran out of room leaves no cut-off
+// text behind for a careless caller to send (issue 15, defects 6 and 7).
+TEST(JsonWriter, LeavesNoCutOffTextWhenItRunsOutOfRoom) {
+  char buf[16];
+  JsonWriter w(buf, sizeof buf);
+  w.beginObject().key("message").string("far too long for sixteen bytes").endObject();
+  EXPECT_FALSE(w.ok());
+  EXPECT_STREQ(w.text(), "");
+  EXPECT_EQ(w.length(), 0u);
+}

@@ -6,6 +6,7 @@
 #include <LittleFS.h>
 
 #include "arduino/app_files.h"
+#include "arduino/hub_lock.h"
 #include "arduino/live_socket.h"
 #include "arduino/network.h"
 #include "arduino/print_endpoint.h"
@@ -49,12 +50,19 @@ uv::esp::Bridge bridge(wire, live);
 uv::esp::WifiSettings wifi;
 uint32_t cleanupMs = 0;
 
-// Everything that must not wait: the Mega's bytes, the clients' messages, the live channel.
+// Everything that must not wait: the Mega's bytes, the clients' messages, the live channel. It
+// also runs from inside the intake's and the upload's reads of a long body (FileBody's refill);
+// reached again from inside bridge.poll() (the upload reading its body), it returns at once, so
+// the bridge is never re-entered.
 void service() {
+  static bool running = false;
+  if (running) return;
+  running = true;
   while (mega.available()) bridge.received(static_cast<char>(mega.read()), millis());
   socketClients.drain();
   bridge.poll(millis());
-  yield();
+  running = false;
+  yield();  // the ESP8266 runs its network callbacks here, with the bridge between operations
 }
 
 }  // namespace
@@ -79,8 +87,13 @@ void setup() {
 }
 
 void loop() {
-  service();
-  uv::esp::pollPrintEndpoint();
+  {
+    // The bridge and the intake are loop()'s; the network task waits for the end of this pass to
+    // admit a POST (arduino/hub_lock.h, arduino/print_endpoint.cpp).
+    uv::esp::HubGuard pass;
+    service();
+    uv::esp::pollPrintEndpoint();
+  }
   uv::esp::pollNetwork();
   if (millis() - cleanupMs > 1000) {
     cleanupMs = millis();

@@ -6,6 +6,8 @@
 #include <istream>
 #include <string>
 
+#include "json_numbers.h"
+
 namespace uvtest {
 
 struct View {
@@ -13,10 +15,22 @@ struct View {
   bool isObject() const { return j->is_object(); }
   bool isArray() const { return j->is_array(); }
   bool isString() const { return j->is_string(); }
+  // An integer that int64 holds (json_numbers.h); integer() is only asked of those.
   bool isInteger() const {
-    return j->is_number_integer() || (j->is_number_float() && j->get<double>() == static_cast<double>(static_cast<int64_t>(j->get<double>())));
+    int64_t v;
+    return asInt64(v);
   }
-  int64_t integer() const { return j->is_number_unsigned() ? static_cast<int64_t>(j->get<uint64_t>()) : static_cast<int64_t>(j->get<double>()); }
+  int64_t integer() const {
+    int64_t v = 0;
+    asInt64(v);
+    return v;
+  }
+  bool asInt64(int64_t& out) const {
+    if (j->is_number_unsigned()) return uv::esp::exactInt64(j->get<uint64_t>(), out);
+    if (j->is_number_integer()) return out = j->get<int64_t>(), true;
+    if (j->is_number_float()) return uv::esp::exactInt64(j->get<double>(), out);
+    return false;
+  }
   const char* string() const { return j->get_ref<const std::string&>().c_str(); }
   size_t size() const { return j->size(); }
   View element(size_t i) const { return View{&(*j)[i]}; }

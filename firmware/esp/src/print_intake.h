@@ -119,7 +119,7 @@ class PrintIntake {
   HeaderParse parse_;
   Stage stage_ = Stage::Idle;
   uint16_t status_ = 0;
-  char response_[256];
+  char response_[kErrorJsonBytes];  // a 400 naming any field fits whole (and a 202 easily)
   uint8_t cells_[kJobMaxSide];  // one row: the check's, then the upload's
   NullSink nothing_;
   alignas(JobConversion<Body>) uint8_t conversionMem_[sizeof(JobConversion<Body>)];

@@ -122,3 +122,36 @@ TEST(PrintIntake, ABodyStuffedWithFieldsOrCancelledIsRefusedAndTheMegaFreed) {
   EXPECT_EQ(json::parse(h.intake.response())["error"]["code"], "cancelled");
   EXPECT_EQ(h.bridge.admitPrint(h.nowMs()), Admission::Accepted);
 }
+
+// Issue 15, defect 7: the 400 names the field at fault even when its name escapes to six times
+// its length (control characters), and the answer is always whole JSON.
+TEST(PrintIntake, AnUnknownFieldWithALongEscapedNameIsNamedInWholeJson) {
+  Hub h;
+  h.start();
+  for (const std::string& key : {std::string(47, '\x01'), std::string(23, '\x7f') + std::string(30, '\x1f'), std::string("é") + std::string(46, '\x02'),
+                                 std::string("ééééééééééééééééééééééé") + "\x03"}) {
+    json body = {{"grid", {{"cols", 1}, {"rows", 1}}}, {key, 1}};
+    ASSERT_EQ(h.post(body.dump()), Intake::Refused);
+    EXPECT_EQ(h.intake.status(), 400);
+    json answer = json::parse(h.intake.response(), nullptr, false);
+    ASSERT_FALSE(answer.is_discarded()) << h.intake.response();
+    EXPECT_EQ(answer["error"]["code"], "bad_job");
+    std::string path = "/" + key;
+    EXPECT_EQ(answer["error"]["path"], path.substr(0, 47));
+  }
+}
+
+// Issue 15, defect 8: a number no int64 holds is refused as out of range, never cast.
+TEST(PrintIntake, ANumberBeyondAnyIntegerIsOutOfRange) {
+  Hub h;
+  h.start();
+  for (const char* cols : {"1e300", "-1e300", "18446744073709551615", "9223372036854775808", "1.5e19"}) {
+    std::string body = R"({"grid":{"cols":4,"rows":2},"pitchUm":{"x":100,"y":100},"originUm":{"x":10000,"y":10000},)"
+                       R"("dose":{"map":"linear","fullUs":4000},"leds":{"offsets":[[0,0],[0,1],[0,2],[0,3]]},)"
+                       R"("strategy":{"name":"raster"},"gridData":[[0,1,2,3],[4,5,6,7]]})";
+    body.replace(body.find("4,"), 1, cols);
+    ASSERT_EQ(h.post(body), Intake::Refused) << cols;
+    json answer = json::parse(h.intake.response());
+    EXPECT_EQ(answer["error"]["path"], "/grid/cols") << cols;
+  }
+}

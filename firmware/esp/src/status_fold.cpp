@@ -93,7 +93,7 @@ void StatusFold::write(JsonWriter& w, const UploadProgress* upload, uint8_t clie
   w.beginObject();
   w.key("mega").string(online(nowMs) ? "online" : "offline");
   w.key("firmware");
-  if (firmware_[0]) w.string(firmware_);
+  if (firmware_[0]) w.ascii(firmware_, static_cast<uint16_t>(strlen(firmware_)));
   else w.null();
   w.key("position");
   if (hasPosition_) {
@@ -117,7 +117,7 @@ void StatusFold::write(JsonWriter& w, const UploadProgress* upload, uint8_t clie
     w.beginObject();
     w.key("state").string(jobStateName(job_));
     w.key("file");
-    if (jobFile_[0]) w.string(jobFile_);
+    if (jobFile_[0]) w.ascii(jobFile_, static_cast<uint16_t>(strlen(jobFile_)));
     else w.null();
     w.key("stop").number(stop_).key("stops").number(stops_);
     if (upload) {

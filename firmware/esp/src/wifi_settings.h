@@ -11,6 +11,10 @@
 namespace uv {
 namespace esp {
 
+// The settings file as written in one buffer (network.cpp): two 63-character passwords each of
+// which may be all `"` or `\` (escaped, 126 bytes), a 32-byte SSID (64 escaped), the keys (46).
+constexpr uint16_t kWifiFileBytes = 384;
+
 struct WifiSettings {
   char apSsid[33];
   char apPassword[64];
@@ -37,34 +41,70 @@ inline bool passphrase(const char* p) {
     if (*p < 0x20 || *p > 0x7e) return false;
   return true;
 }
-}  // namespace detail
+// A network name: 0-32 bytes of UTF-8 text without control characters. 802.11 allows any bytes,
+// but the name is kept and shown as JSON text, which could not give other bytes back as they were.
+inline bool ssid(const char* p) {
+  size_t n = strlen(p);
+  if (n > 32) return false;
+  for (size_t i = 0; i < n;) {
+    unsigned char c = static_cast<unsigned char>(p[i]);
+    if (c < 0x80) {
+      if (c < 0x20 || c == 0x7f) return false;
+      i++;
+      continue;
+    }
+    uint8_t k = utf8Sequence(p + i, n - i);
+    if (!k) return false;
+    i += k;
+  }
+  return true;
+}
 
-// POST /wifi's body, or the stored file, over the settings: any of apPassword, staSsid and
-// staPassword. Nothing changes unless all of it is valid. J is a JSON view (print_request.h).
+// One of the settings' fields judged and, if valid, set in `next`.
 template <class J>
-bool applyWifi(const J& body, WifiSettings& s, RequestError& e) {
-  using namespace detail;
-  static const char* const keys[] = {"apPassword", "staSsid", "staPassword"};
-  e = {0, "", "", ""};
-  if (!object(body, "", keys, 3, keys, 0, e)) return false;
-  WifiSettings next = s;
-  if (body.has("apPassword")) {
-    const J v = body.member("apPassword");
+bool wifiField(const J& body, const char* key, WifiSettings& next, RequestError& e) {
+  const J v = body.member(key);
+  if (strcmp(key, "apPassword") == 0) {
     if (!v.isString() || !passphrase(v.string())) return fail(e, "/apPassword", "8-63 printable ASCII characters (WPA2)");
     strcpy(next.apPassword, v.string());
-  }
-  if (body.has("staSsid")) {
-    const J v = body.member("staSsid");
-    if (!v.isString() || strlen(v.string()) > 32) return fail(e, "/staSsid", "a network name of 0-32 bytes");
+  } else if (strcmp(key, "staSsid") == 0) {
+    if (!v.isString() || !ssid(v.string())) return fail(e, "/staSsid", "a network name of 0-32 bytes of UTF-8 text");
     strcpy(next.staSsid, v.string());
-  }
-  if (body.has("staPassword")) {
-    const J v = body.member("staPassword");
+  } else {
     if (!v.isString() || (v.string()[0] && !passphrase(v.string()))) return fail(e, "/staPassword", "empty (an open network) or 8-63 printable ASCII");
     strcpy(next.staPassword, v.string());
   }
+  return true;
+}
+constexpr const char* kWifiKeys[] = {"apPassword", "staSsid", "staPassword"};
+}  // namespace detail
+
+// POST /wifi's body over the settings: any of apPassword, staSsid and staPassword. Nothing changes
+// unless all of it is valid. J is a JSON view (print_request.h).
+template <class J>
+bool applyWifi(const J& body, WifiSettings& s, RequestError& e) {
+  using namespace detail;
+  e = {0, "", "", ""};
+  if (!object(body, "", kWifiKeys, 3, kWifiKeys, 0, e)) return false;
+  WifiSettings next = s;
+  for (const char* key : kWifiKeys)
+    if (body.has(key) && !wifiField(body, key, next, e)) return false;
   s = next;
   return true;
+}
+
+// The stored file over the defaults (`s` holds them), judged as strictly as POST /wifi. True when
+// all of it is valid. Otherwise each field that is valid on its own is still taken and `e` names
+// the first that is not: a damaged file never costs the user an AP password that is still good.
+template <class J>
+bool loadWifi(const J& file, WifiSettings& s, RequestError& e) {
+  using namespace detail;
+  if (applyWifi(file, s, e)) return true;
+  if (!file.isObject()) return false;
+  RequestError ignored{};
+  for (const char* key : kWifiKeys)
+    if (file.has(key)) wifiField(file, key, s, ignored);
+  return false;
 }
 
 }  // namespace esp

@@ -71,3 +71,79 @@ TEST(Wifi, PostWifiChangesOnlyWhatIsValid) {
   ASSERT_TRUE(applyWifi(uvtest::View{&file}, loaded, e));
   EXPECT_STREQ(loaded.apPassword, "good password");
 }
+
+namespace {
+// The settings file as network.cpp writes it and reads it back at the next start.
+bool roundTrip(const WifiSettings& saved, WifiSettings& loaded) {
+  char file[kWifiFileBytes];
+  JsonWriter w(file, sizeof file);
+  writeWifi(w, saved, true);
+  if (!w.ok()) return false;
+  json j = json::parse(w.text());
+  RequestError e{};
+  defaultWifi(9, random32, loaded);
+  return applyWifi(uvtest::View{&j}, loaded, e);
+}
+}  // namespace
+
+// Issue 15, defect 6: settings that POST /wifi accepted must load back equal at the next start,
+// or the ESP forgets the network and draws a new AP password: the user is locked out.
+TEST(Wifi, AcceptedSettingsLoadBackEqual) {
+  const std::string ssids[] = {"café", std::string(16 * 2, 'x'), "éééééééééééééééé" /* 32 bytes */, "日本語のネットワーク" /* 30 bytes */};
+  const std::string passwords[] = {std::string(63, '"'), std::string(63, '\\'), "hunter22", std::string(63, '~')};
+  for (const std::string& ssid : ssids) {
+    for (const std::string& pw : passwords) {
+      WifiSettings s;
+      defaultWifi(3, random32, s);
+      RequestError e{};
+      json body = {{"apPassword", pw}, {"staSsid", ssid}, {"staPassword", pw}};
+      ASSERT_TRUE(applyWifi(uvtest::View{&body}, s, e)) << ssid << " " << e.path << ": " << e.message;
+      WifiSettings loaded;
+      ASSERT_TRUE(roundTrip(s, loaded)) << ssid << " / " << pw;
+      EXPECT_STREQ(loaded.staSsid, ssid.c_str());
+      EXPECT_STREQ(loaded.apPassword, pw.c_str());
+      EXPECT_STREQ(loaded.staPassword, pw.c_str());
+    }
+  }
+}
+
+// An SSID is shown and stored as JSON text: bytes that are not UTF-8, or control characters,
+// could not come back as they went in, so they are refused with the field named.
+TEST(Wifi, AnSsidThatIsNotUtf8TextIsRefused) {
+  WifiSettings s;
+  defaultWifi(4, random32, s);
+  RequestError e{};
+  for (std::string bad : {std::string("caf\xE9"), std::string("\xC3"), std::string("a\x01z"), std::string("\xED\xA0\x80")}) {
+    json body = {{"staSsid", bad}};
+    EXPECT_FALSE(applyWifi(uvtest::View{&body}, s, e)) << bad;
+    EXPECT_STREQ(e.path, "/staSsid");
+  }
+  EXPECT_STREQ(s.staSsid, "");
+}
+
+// A settings file that is not wholly valid (an older firmware's, or damaged) keeps every field
+// that is still good: above all the AP password the user connects with.
+TEST(Wifi, ADamagedFileKeepsTheFieldsThatAreStillGood) {
+  WifiSettings s;
+  defaultWifi(5, random32, s);
+  const std::string fresh = s.apPassword;
+  RequestError e{};
+  // An older firmware wrote "café" as "caf\u00c3\u00a9" ("cafÃ©"): a 31-byte name grew past 32.
+  json file = {{"apPassword", "my own password"}, {"staSsid", std::string(29, 'x') + "\xC3\x83\xC2\xA9"}, {"staPassword", "hunter22"}};
+  EXPECT_FALSE(loadWifi(uvtest::View{&file}, s, e));
+  EXPECT_STREQ(e.path, "/staSsid");
+  EXPECT_STREQ(s.apPassword, "my own password");
+  EXPECT_STREQ(s.staPassword, "hunter22");
+  EXPECT_STREQ(s.staSsid, "");
+  // A file whose AP password is bad keeps the fresh default, and says so.
+  WifiSettings t;
+  defaultWifi(5, random32, t);
+  json bad = {{"apPassword", "short"}, {"colour", 1}};
+  EXPECT_FALSE(loadWifi(uvtest::View{&bad}, t, e));
+  EXPECT_EQ(strlen(t.apPassword), 12u);
+  json notObject = json::array();
+  EXPECT_FALSE(loadWifi(uvtest::View{&notObject}, t, e));
+  json whole = {{"apPassword", "my own password"}, {"staSsid", "café"}, {"staPassword", ""}};
+  EXPECT_TRUE(loadWifi(uvtest::View{&whole}, t, e));
+  EXPECT_STREQ(t.staSsid, "café");
+}

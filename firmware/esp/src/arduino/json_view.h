@@ -4,6 +4,8 @@
 #include <ArduinoJson.h>
 #include <string.h>
 
+#include "json_numbers.h"
+
 namespace uv {
 namespace esp {
 
@@ -12,17 +14,24 @@ struct JsonView {
   bool isObject() const { return v.is<JsonObjectConst>(); }
   bool isArray() const { return v.is<JsonArrayConst>(); }
   bool isString() const { return v.is<const char*>(); }
-  // 128 and 128.0 alike, as in the schema validator.
+  // An integer that int64 holds, 128 and 128.0 alike, as in the schema validator; a number out
+  // of that range is refused, never wrapped or cast (json_numbers.h). integer() is only asked of
+  // those.
   bool isInteger() const {
-    if (v.is<int64_t>() || v.is<uint64_t>()) return true;
-    if (!v.is<double>()) return false;
-    double d = v.as<double>();
-    return d > -9.2e18 && d < 9.2e18 && d == static_cast<double>(static_cast<int64_t>(d));
+    int64_t i;
+    return asInt64(i);
   }
   int64_t integer() const {
-    if (v.is<int64_t>()) return v.as<int64_t>();
-    if (v.is<uint64_t>()) return static_cast<int64_t>(v.as<uint64_t>());
-    return static_cast<int64_t>(v.as<double>());
+    int64_t i = 0;
+    asInt64(i);
+    return i;
+  }
+  bool asInt64(int64_t& out) const {
+    // is<int64_t>() is true only for an integer that fits; is<uint64_t>() for one over INT64_MAX.
+    if (v.is<int64_t>()) return out = v.as<int64_t>(), true;
+    if (v.is<uint64_t>()) return exactInt64(static_cast<uint64_t>(v.as<uint64_t>()), out);
+    if (v.is<double>()) return exactInt64(v.as<double>(), out);
+    return false;
   }
   const char* string() const { return v.as<const char*>(); }
   size_t size() const { return v.size(); }

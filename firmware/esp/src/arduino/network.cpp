@@ -34,10 +34,16 @@ char apIp[16] = "192.168.4.1";
 bool joining = false;
 uint32_t joinStartMs = 0;
 
+const char kDamagedFile[] = "/wifi.bad";
+Print* logOut = nullptr;
+
+// The file is written whole or not at all: a text that did not fit is never stored.
+// Called in setup() and then only from POST /wifi on the network task: never at once.
 bool save(const WifiSettings& s) {
-  char buf[256];
-  JsonWriter w(buf, sizeof buf);
+  static char file[kWifiFileBytes];  // off the small stack of the ESP8266's network callbacks
+  JsonWriter w(file, sizeof file);
   writeWifi(w, s, true);
+  if (!w.ok()) return false;
   fs::File f = LittleFS.open(kSettingsFile, "w");
   if (!f) return false;
   bool ok = f.write(reinterpret_cast<const uint8_t*>(w.text()), w.length()) == w.length();
@@ -45,17 +51,26 @@ bool save(const WifiSettings& s) {
   return ok;
 }
 
+// What the user expects of a file that is not wholly valid: to still get in with the password
+// they set. Every field that is still good is kept (loadWifi); the file itself is kept aside as
+// /wifi.bad, never silently replaced, and the log says which field was dropped. Only an AP
+// password that cannot be read is drawn afresh, and it is shown on the log and the Mega's OLED.
 void load(WifiSettings& s) {
   defaultWifi(chipId(), hardwareRandom, s);
-  fs::File f = LittleFS.open(kSettingsFile, "r");
-  if (f) {
-    JsonDocument doc;
-    RequestError e{};
-    bool ok = !deserializeJson(doc, f) && applyWifi(JsonView{doc.as<JsonVariantConst>()}, s, e);
-    f.close();
-    if (ok) return;
+  if (!LittleFS.exists(kSettingsFile)) {
+    save(s);  // first start: the fresh random password is kept from now on
+    return;
   }
-  save(s);  // first start (or an unreadable file): the fresh random password is kept from now on
+  fs::File f = LittleFS.open(kSettingsFile, "r");
+  JsonDocument doc;
+  RequestError e{0, "bad_json", "", "not JSON, or cut short"};
+  DeserializationError parsed = f ? deserializeJson(doc, f) : DeserializationError::InvalidInput;
+  if (f) f.close();
+  if (!parsed && loadWifi(JsonView{doc.as<JsonVariantConst>()}, s, e)) return;
+  LittleFS.remove(kDamagedFile);
+  LittleFS.rename(kSettingsFile, kDamagedFile);
+  if (logOut) logOut->printf("echo:%s is damaged (%s %s: %s); kept as %s, its good fields loaded\n", kSettingsFile, e.code, e.path, e.message, kDamagedFile);
+  save(s);
 }
 
 void startRadio(const WifiSettings& s) {
@@ -72,9 +87,13 @@ void startRadio(const WifiSettings& s) {
   }
 }
 
+// Answers are written into one buffer owned by the network task (handlers never run at once);
+// kept off its stack, which is small on the ESP8266. It holds the whole settings file, so what
+// GET /wifi shows (a subset) always fits, and any RequestError (kErrorJsonBytes).
+char answer[kErrorJsonBytes > kWifiFileBytes ? kErrorJsonBytes : kWifiFileBytes];
+
 void onGetWifi(AsyncWebServerRequest* r) {
-  char buf[192];
-  JsonWriter w(buf, sizeof buf);
+  JsonWriter w(answer, sizeof answer);
   writeWifi(w, *settings, false);
   r->send(200, "application/json", w.text());
 }
@@ -101,8 +120,7 @@ void onWifiBody(AsyncWebServerRequest* r, uint8_t* data, size_t len, size_t inde
 }
 
 void onPostWifi(AsyncWebServerRequest* r) {
-  char buf[192];
-  JsonWriter w(buf, sizeof buf);
+  JsonWriter w(answer, sizeof answer);
   const Gathered* g = static_cast<const Gathered*>(r->_tempObject);
   JsonDocument doc;
   if (!g || g->tooLarge || deserializeJson(doc, g->data, g->len)) {
@@ -130,6 +148,7 @@ const char* apAddress() { return apIp; }
 
 void beginNetwork(AsyncWebServer& server, Print& log, WifiSettings& s) {
   settings = &s;
+  logOut = &log;
   load(s);
   startRadio(s);
   log.printf("echo:Wi-Fi %s password %s at http://%s/ (http://%s.local/)\n", s.apSsid, s.apPassword, apIp, kMdnsName);
