@@ -24,7 +24,9 @@
 #define PIN_BUTTON_HOME 56   // A2
 // A3 (57), the shield's coolant enable, is light.pin's default.
 #define PIN_SD_CS 53
-// I2C for the SSD1306: D20 SDA, D21 SCL (Wire's pins).
+// The SSD1306 panel on the hardware TWI (hw/oled).
+#define PIN_PANEL_SDA 20  // PD1
+#define PIN_PANEL_SCL 21  // PD0
 
 // Port bits for the step interrupt.
 #define STEP_XY_PORT PORTE
