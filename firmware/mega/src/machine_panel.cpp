@@ -15,8 +15,10 @@ ScreenState Machine::screenState(uint8_t row) const {
   else if (!halted_ && long_.op != Op::None) s.mode = Mode::Busy;
   if (!halted_ && running()) {
     const JobRunner& j = *run();
-    static const Mode kRun[] = {Mode::Running, Mode::Paused, Mode::Done, Mode::Aborted, Mode::Aborted};
-    s.mode = kRun[static_cast<uint8_t>(j.state())];
+    static const uint8_t kRun[] UV_FLASH = {static_cast<uint8_t>(Mode::Running), static_cast<uint8_t>(Mode::Paused),
+                                            static_cast<uint8_t>(Mode::Done), static_cast<uint8_t>(Mode::Aborted),
+                                            static_cast<uint8_t>(Mode::Aborted)};
+    s.mode = static_cast<Mode>(uvFlashByte(&kRun[static_cast<uint8_t>(j.state())]));
     s.stop = j.done();
     s.stops = j.count();
     if (row == 4) s.remainingS = j.remainingS();

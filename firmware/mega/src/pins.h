@@ -3,8 +3,8 @@
 // goes on D20/D21, and the SD card on the Mega's SPI header (D50-D53).
 #pragma once
 
-// Serial ports: Serial0 = USB host, Serial1 = printhead Nano, ESP on Serial2 or Serial3 (esp.port).
-#define NANO_SERIAL Serial1
+// Serial ports: Serial0 = USB host, Serial1 = printhead Nano (hw/nano_uart drives USART1), ESP on
+// Serial2 or Serial3 (esp.port).
 
 // Steppers (step and direction pins on ports, for the step interrupt's direct writes).
 #define PIN_X_STEP 2   // PE4

@@ -24,32 +24,32 @@ FileHandle SdStorage::open(const char* name, Mode mode) {
 }
 
 int16_t SdStorage::read(FileHandle f, char* buf, uint16_t n) {
-  File32* file = this->file(f);
+  FatFile* file = this->file(f);
   return file ? static_cast<int16_t>(file->read(buf, n)) : -1;
 }
 
 bool SdStorage::write(FileHandle f, const char* buf, uint16_t n) {
-  File32* file = this->file(f);
+  FatFile* file = this->file(f);
   return file && file->write(buf, n) == n;
 }
 
 bool SdStorage::seek(FileHandle f, uint32_t pos) {
-  File32* file = this->file(f);
+  FatFile* file = this->file(f);
   return file && file->seekSet(pos);
 }
 
 uint32_t SdStorage::size(FileHandle f) {
-  File32* file = this->file(f);
+  FatFile* file = this->file(f);
   return file ? file->fileSize() : 0;
 }
 
 bool SdStorage::sync(FileHandle f) {
-  File32* file = this->file(f);
+  FatFile* file = this->file(f);
   return file && file->sync();
 }
 
 void SdStorage::close(FileHandle f) {
-  File32* file = this->file(f);
+  FatFile* file = this->file(f);
   if (file) file->close();
 }
 
@@ -59,7 +59,7 @@ bool SdStorage::rename(const char* from, const char* to) { return mounted_ && sd
 
 bool SdStorage::entry(uint16_t index, char* name, uint32_t& size) {
   if (!mounted_) return false;
-  File32 root, file;
+  FatFile root, file;
   if (!root.open("/")) return false;
   uint16_t i = 0;
   bool found = false;
