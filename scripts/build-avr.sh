@@ -31,6 +31,15 @@ report() {
   fi
 }
 
+# The check `pio run` makes of the full build's static RAM (firmware/mega/ram_budget.py), tested here
+# since PlatformIO cannot run on these machines.
+if ! checked=$(python3 firmware/mega/ram_budget_test.py 2>&1); then
+  echo "$checked" >&2
+  echo "FAIL: firmware/mega/ram_budget.py" >&2
+  exit 1
+fi
+echo "pio run's static-RAM check (firmware/mega/ram_budget.py): $(echo "$checked" | grep '^Ran ')"
+
 echo "AVR images (build/avr):"
 # Nano: 32 KB minus the 2 KB old bootloader (the new 512 B Optiboot leaves more); Mega: 256 KB minus 8 KB.
 report nano 30720 2048 50
