@@ -7,11 +7,27 @@
 #include <set>
 
 #include "board_fixture.h"
+#include "dialect_frame.h"
+#include "job_fixture.h"
 
 namespace {
 
 class PanelTest : public BoardTest {
  protected:
+  uint32_t lineNo = 0;
+  // Sends a numbered line (a job's records must be) and runs until the ok that names it.
+  std::vector<std::string> numbered(const std::string& body) {
+    char frame[128];
+    uv::encodeFrame(++lineNo, body.c_str(), frame, sizeof frame);
+    std::string ok = "ok N" + std::to_string(lineNo) + " ";
+    sim.send(std::string(frame) + "\n");
+    std::vector<std::string> got;
+    sim.runUntil([&] {
+      for (std::string& l : sim.takeLines()) got.push_back(l);
+      return !got.empty() && got.back().rfind(ok, 0) == 0;
+    }, 5e6);
+    return got;
+  }
   std::string row(int r) { return sim.panel.row(static_cast<uint8_t>(r)); }
   // Runs until row r reads `text` (the screen sweeps its rows every 24 ms); false after maxUs.
   bool shows(int r, const std::string& text, double maxUs = 300000) {
@@ -22,6 +38,13 @@ class PanelTest : public BoardTest {
 }  // namespace
 
 TEST_F(PanelTest, ShowsStatePositionTemperaturesAndTheM117Message) {
+  // A query sent as `start` arrives, while the panel is set up and its first screen drawn.
+  uint64_t sent = sim.megaCycle();
+  std::vector<std::string> info = cmd("M115");
+  double m115Ms = (sim.megaCycle() - sent) / BoardSim::kCyclesPerUs / 1000;
+  EXPECT_TRUE(said(info, "FIRMWARE_NAME:"));
+  std::printf("[mega budget] panel: M115 sent at start, during the first screen fill: its ok after %.1f ms\n", m115Ms);
+  EXPECT_LT(m115Ms, 50);
   EXPECT_TRUE(shows(0, "UV ready        ")) << row(0);
   EXPECT_TRUE(sim.panel.on());
   EXPECT_TRUE(sim.panel.chargePump());
@@ -92,4 +115,28 @@ TEST_F(PanelTest, RedrawsThePositionWhileMovingWithoutHoldingTheLoop) {
   EXPECT_EQ(m[2], "0");  // no step underruns
   EXPECT_GT(frames, 9u * 4);  // the position row went out whole several times
   EXPECT_LT(replyMaxUs, 20000);
+}
+
+TEST_F(PanelTest, ShowsAStreamedJobsProgressAndItsEnd) {
+  using namespace mega::jobs;
+  ASSERT_TRUE(said(cmd("G28", 8e6), "ok"));
+  uv::JobHeader h = header(10, 4, uv::Strategy::Raster);
+  Grid g = pattern(10, 4, 7);
+  size_t stops = plan(h, g).size();
+  ASSERT_GT(stops, 3u);
+  ASSERT_TRUE(said(numbered("M828"), "ok"));
+  for (const std::string& r : encode(h, g)) ASSERT_TRUE(said(numbered(r), "ok")) << r;
+  ASSERT_TRUE(said(numbered("M29"), "ok"));
+  std::regex progress(R"(stop (\d+)/(\d+) *)");
+  std::smatch m;
+  std::string during;
+  EXPECT_TRUE(sim.runUntil([&] {
+    std::string r3 = row(3);
+    if (row(0) == "UV EXPOSING     " && std::regex_match(r3, m, progress) && m[1] != "0") during = r3;
+    return !during.empty();
+  }, 10e6)) << row(0) << "|" << row(3);
+  std::string end = "stop " + std::to_string(stops) + "/" + std::to_string(stops);
+  end.resize(16, ' ');
+  EXPECT_TRUE(shows(3, end, 20e6)) << row(3);
+  EXPECT_TRUE(shows(0, "UV job done     ")) << row(0);
 }
