@@ -49,11 +49,11 @@ report mega 253952 8192 60
 # PlatformIO's build (firmware/mega/platformio.ini) adds it. What it costs, measured on 2026-11-23 by
 # building these sources against SdFat 2.3.1 by hand (avr-size, avr-nm), not guessed from its sources:
 # with SdFat, SdStorage is 716 B (SdFat32 612, three FatFile of 32, its own 8; File32 would be 44
-# each); SdFat adds 7 B beside it (FatVolume::m_cwv, SPIClass::initialized, .data and padding).
+# each); SdFat adds 8 B beside it (FatVolume::m_cwv, SPIClass::initialized, .data and padding).
 # Without SdFat, SdStorage is a 512-byte buffer that stream mode uses instead of SdFat's sector cache:
 # its size is read from this image, so a change to it cannot make the estimate drift. `pio run` checks
 # the real figure too (firmware/mega/ram_budget.py).
-sdstorage_full=716; sdfat_statics=7
+sdstorage_full=716; sdfat_statics=8
 sd_hex=$(avr-nm -S build/avr/mega.elf | awk '$4 ~ /_GLOBAL__N_12sdE/ { print $2; exit }')
 if [[ -z $sd_hex ]]; then
   echo "FAIL: no SdStorage object (main.cpp's sd) in build/avr/mega.elf to estimate the full build from" >&2
