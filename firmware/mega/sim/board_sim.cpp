@@ -2,7 +2,12 @@
 #include "board_sim.h"
 
 #include <simavr/avr_adc.h>
+#include <gelf.h>
+#include <libelf.h>
+#include <fcntl.h>
 #include <simavr/avr_ioport.h>
+#include <simavr/avr_twi.h>
+#include <unistd.h>
 #include <simavr/avr_uart.h>
 #include <simavr/sim_avr.h>
 #include <simavr/sim_elf.h>
@@ -13,7 +18,41 @@
 namespace {
 // Receive-complete vectors: the rig counts a byte as taken when its interrupt is raised.
 constexpr int kMegaUsart0Rx = 25, kMegaUsart1Rx = 36, kNanoUsartRx = 18;
+constexpr int kMegaTwiVector = 39;
 void noSleep(avr_t*, avr_cycle_count_t) {}
+
+// The address of the first function whose symbol starts with `prefix` (LTO may add a suffix), or 0.
+uint32_t functionAddress(const std::string& elfPath, const std::string& prefix) {
+  uint32_t found = 0;
+  elf_version(EV_CURRENT);
+  int fd = open(elfPath.c_str(), O_RDONLY);
+  if (fd < 0) return 0;
+  Elf* e = elf_begin(fd, ELF_C_READ, nullptr);
+  for (Elf_Scn* scn = nullptr; e && !found && (scn = elf_nextscn(e, scn));) {
+    GElf_Shdr sh;
+    if (!gelf_getshdr(scn, &sh) || sh.sh_type != SHT_SYMTAB) continue;
+    Elf_Data* data = elf_getdata(scn, nullptr);
+    for (size_t i = 0; data && i < sh.sh_size / sh.sh_entsize; i++) {
+      GElf_Sym sym;
+      gelf_getsym(data, static_cast<int>(i), &sym);
+      const char* name = elf_strptr(e, sh.sh_link, sym.st_name);
+      if (name && GELF_ST_TYPE(sym.st_info) == STT_FUNC && std::string(name).rfind(prefix, 0) == 0) {
+        found = static_cast<uint32_t>(sym.st_value);
+        break;
+      }
+    }
+  }
+  if (e) elf_end(e);
+  close(fd);
+  return found;
+}
+
+uint16_t stackPointer(const avr_t* avr) { return static_cast<uint16_t>(avr->data[R_SPL] | avr->data[R_SPH] << 8); }
+
+int runningVector(const avr_t* avr) {
+  const auto& in = avr->interrupts;
+  return in.running_ptr ? in.running[in.running_ptr - 1]->vector : 0;
+}
 
 avr_t* boot(const std::string& elf, const char* mcu) {
   elf_firmware_t fw = {};
@@ -69,8 +108,57 @@ BoardSim::BoardSim(const std::string& megaElf, const std::string& nanoElf) {
     switchIrq_[a] = avr_io_getirq(mega_, AVR_IOCTL_IOPORT_GETIRQ(switchPort[a]), switchBit[a]);
     avr_raise_irq(switchIrq_[a], 1);  // open: the pull-up holds it high
   }
-  for (int ch = 0; ch < 6; ch++) avr_raise_irq(avr_io_getirq(nano_, AVR_IOCTL_ADC_GETIRQ, ADC_IRQ_ADC0 + ch), 750);  // 25.0 °C
+  for (int ch = 0; ch < 6; ch++) setNanoMv(ch, 750);  // 25.0 °C
   avr_raise_irq(avr_io_getirq(nano_, AVR_IOCTL_IOPORT_GETIRQ('D'), 7), 0);  // probe open
+
+  // The SSD1306 on D20/D21: the model answers each byte with its acknowledge at once.
+  twiIn_ = avr_io_getirq(mega_, AVR_IOCTL_TWI_GETIRQ(0), TWI_IRQ_INPUT);
+  avr_irq_register_notify(avr_io_getirq(mega_, AVR_IOCTL_TWI_GETIRQ(0), TWI_IRQ_OUTPUT), onTwi, this);
+  panelEntry_ = functionAddress(megaElf, "_ZN4mega7Machine5panelEv");
+}
+
+void BoardSim::setNanoMv(int ch, uint32_t mv) {
+  avr_raise_irq(avr_io_getirq(nano_, AVR_IOCTL_ADC_GETIRQ, ADC_IRQ_ADC0 + ch), mv);
+}
+
+void BoardSim::onTwi(avr_irq_t*, uint32_t value, void* param) {
+  auto* s = static_cast<BoardSim*>(param);
+  avr_twi_msg_irq_t m;
+  m.u.v = value;
+  bool ack = false;
+  if (m.u.twi.msg & TWI_COND_STOP) s->panel.stop();
+  if (m.u.twi.msg & TWI_COND_START) ack = s->panel.start(m.u.twi.addr >> 1, m.u.twi.addr & 1);
+  else if (m.u.twi.msg & TWI_COND_WRITE) ack = s->panel.write(m.u.twi.data);
+  if (ack) avr_raise_irq(s->twiIn_, avr_twi_irq_msg(TWI_COND_ACK, m.u.twi.addr, 1));
+}
+
+void BoardSim::profilePanel(uint64_t cycles, bool wasInPanel, int wasVector) {
+  if (wasVector == kMegaTwiVector) {
+    passCycles_ += cycles;
+    twiIsrCycles += cycles;
+    isrRun_ += cycles;
+  } else if (wasInPanel && wasVector == 0) {
+    passCycles_ += cycles;
+    callCycles_ += cycles;
+  }
+  int vector = runningVector(mega_);
+  if (lastVector_ == kMegaTwiVector && vector != kMegaTwiVector) {
+    if (isrRun_ > twiIsrMax) twiIsrMax = isrRun_;
+    isrRun_ = 0;
+  }
+  lastVector_ = vector;
+  if (inPanel_ && vector == 0 && stackPointer(mega_) > panelSp_) {  // returned
+    inPanel_ = false;
+    if (callCycles_ > panelCallMax) panelCallMax = callCycles_;
+    callCycles_ = 0;
+  }
+  if (!inPanel_ && panelEntry_ && mega_->pc == panelEntry_) {  // a new pass's panel
+    if (panelPasses && passCycles_ > panelPassMax) panelPassMax = passCycles_;
+    panelPasses++;
+    passCycles_ = 0;
+    inPanel_ = true;
+    panelSp_ = stackPointer(mega_);
+  }
 }
 
 uint64_t BoardSim::megaCycle() const { return mega_->cycle; }
@@ -133,8 +221,12 @@ void BoardSim::step() {
   toNano_.push();
   // Both chips run at 16 MHz: keep them within an instruction of each other.
   avr_t* next = mega_->cycle <= nano_->cycle ? mega_ : nano_;
+  uint64_t before = next->cycle;
+  bool wasInPanel = inPanel_;
+  int wasVector = next == mega_ ? runningVector(mega_) : 0;
   avr_run(next);
   if (next == mega_) {
+    profilePanel(next->cycle - before, wasInPanel, wasVector);
     bool off = !mega_->sreg[S_I];
     if (off && !megaOff_) {
       megaOffSince_ = mega_->cycle;

@@ -1,12 +1,15 @@
 // Test rig: the real Mega image (build/avr/mega.elf) and the real Nano image (build/avr/nano.elf)
 // in one simavr process, their UARTs cross-connected as on the machine. The rig plays the host on
 // the Mega's USB UART, counts step pulses on the CNC shield's pins, and closes the endstops when an
-// axis reaches its switch.
+// axis reaches its switch. An SSD1306 model answers on the Mega's TWI, and the rig measures the
+// panel's CPU time per main-loop pass.
 #pragma once
 #include <cstdint>
 #include <deque>
 #include <string>
 #include <vector>
+
+#include "ssd1306_model.h"
 
 struct avr_t;
 struct avr_irq_t;
@@ -41,6 +44,19 @@ class BoardSim {
   uint64_t megaMaxInterruptsOff = 0;
   uint32_t megaMaxOffPc = 0;
 
+  // The panel on the Mega's TWI.
+  Ssd1306Model panel;
+  // The panel's CPU per main-loop pass, in cycles: Machine::panel() (the screen and the frame it
+  // starts, other interrupts taken meanwhile left out) plus the TWI interrupts since the pass before.
+  uint64_t panelPassMax = 0;
+  uint64_t panelPasses = 0;
+  uint64_t panelCallMax = 0;     // the longest Machine::panel() alone
+  uint64_t twiIsrCycles = 0;     // all of the TWI interrupt's time
+  uint64_t twiIsrMax = 0;        // its longest single run
+  void resetPanelFigures() { panelPassMax = panelPasses = panelCallMax = twiIsrCycles = twiIsrMax = 0; }
+  // Sets the Nano's sensor input `ch` (TMP36: 500 mV + 10 mV/°C).
+  void setNanoMv(int ch, uint32_t mv);
+
   int32_t pos[3] = {0, 0, 0};                       // steps counted on the pins
   int32_t switchAt[3] = {INT32_MIN, INT32_MIN, INT32_MIN};  // a switch closes at or below this
   bool dirHigh[3] = {false, false, false};
@@ -63,6 +79,8 @@ class BoardSim {
   static void onMegaToNano(avr_irq_t* irq, uint32_t value, void* param);
   static void onNanoToMega(avr_irq_t* irq, uint32_t value, void* param);
   static void onRxTaken(avr_irq_t* irq, uint32_t value, void* param);
+  static void onTwi(avr_irq_t* irq, uint32_t value, void* param);
+  void profilePanel(uint64_t cycles, bool wasInPanel, int wasVector);
 
   avr_t* mega_ = nullptr;
   avr_t* nano_ = nullptr;
@@ -78,4 +96,10 @@ class BoardSim {
   bool megaOff_ = false;
   uint64_t megaOffSince_ = 0;
   uint32_t megaOffPc_ = 0;
+  avr_irq_t* twiIn_ = nullptr;
+  uint32_t panelEntry_ = 0;  // Machine::panel()'s address (noinline), 0 if the image has none
+  bool inPanel_ = false;
+  uint16_t panelSp_ = 0;
+  uint64_t passCycles_ = 0, isrRun_ = 0, callCycles_ = 0;
+  int lastVector_ = 0;
 };

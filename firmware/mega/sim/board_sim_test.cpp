@@ -1,55 +1,15 @@
 // The real Mega image driving the real Nano image in simavr: the AVR glue (host UART interrupts,
 // the step timer, the endstop pins, the Nano's UART) doing what the host tests prove of the logic,
 // and the never-blocks figures measured on the compiled firmware.
-#include "board_sim.h"
-
 #include <gtest/gtest.h>
 
 #include <cstdio>
 #include <cstring>
 #include <regex>
 
-namespace {
+#include "board_fixture.h"
 
-class Board : public ::testing::Test {
- protected:
-  BoardSim sim{MEGA_ELF, NANO_ELF};
-  std::vector<std::string> seen;
-
-  // Sends a plain line and runs until its ok; returns what the Mega said meanwhile.
-  std::vector<std::string> cmd(const std::string& line, double maxUs = 5e6) {
-    sim.send(line + "\n");
-    std::vector<std::string> got;
-    bool done = sim.runUntil([&] {
-      for (std::string& l : sim.takeLines()) {
-        got.push_back(l);
-        seen.push_back(l);
-      }
-      return !got.empty() && got.back().rfind("ok", 0) == 0;
-    }, maxUs);
-    if (!done) got.push_back("(no ok)");
-    return got;
-  }
-  bool said(const std::vector<std::string>& lines, const std::string& prefix) {
-    for (const std::string& l : lines)
-      if (l.rfind(prefix, 0) == 0) return true;
-    return false;
-  }
-  void SetUp() override {
-    sim.switchAt[0] = -160;  // 2 mm from where the head starts
-    sim.switchAt[1] = -80;
-    sim.switchAt[2] = -200;  // 0.5 mm
-    ASSERT_TRUE(sim.runUntil([&] {
-      for (std::string& l : sim.takeLines()) seen.push_back(l);
-      return !seen.empty();
-    }, 2e6));
-    EXPECT_EQ(seen.front(), "start");
-  }
-};
-
-}  // namespace
-
-TEST_F(Board, IdentifiesItselfAndReadsTheRealNanosTemperatures) {
+TEST_F(BoardTest, IdentifiesItselfAndReadsTheRealNanosTemperatures) {
   std::vector<std::string> info = cmd("M115");
   EXPECT_TRUE(said(info, "FIRMWARE_NAME:UVExposure 0.1.0 (Mega) PROTOCOL_VERSION:1"));
   EXPECT_TRUE(said(info, "Cap:RX_WINDOW:4"));
@@ -64,7 +24,7 @@ TEST_F(Board, IdentifiesItselfAndReadsTheRealNanosTemperatures) {
   EXPECT_EQ(sim.nanoLines[1], "V");
 }
 
-TEST_F(Board, HomesOnTheSwitchesAndStepsExactlyWhereItIsSent) {
+TEST_F(BoardTest, HomesOnTheSwitchesAndStepsExactlyWhereItIsSent) {
   std::vector<std::string> home = cmd("G28", 8e6);
   ASSERT_TRUE(said(home, "ok")) << home.back();
   EXPECT_EQ(sim.pos[0], -160);
@@ -79,7 +39,7 @@ TEST_F(Board, HomesOnTheSwitchesAndStepsExactlyWhereItIsSent) {
   EXPECT_TRUE(said(cmd("M114"), "X:2.000 Y:1.000 Z:0.500 E:0.000 Count X:160 Y:80 Z:200"));
 }
 
-TEST_F(Board, NeverBlocksTheLoopOrStarvesTheStepsWhileMovingAndTalking) {
+TEST_F(BoardTest, NeverBlocksTheLoopOrStarvesTheStepsWhileMovingAndTalking) {
   ASSERT_TRUE(said(cmd("G28", 8e6), "ok"));
   cmd("M155 S1");
   cmd("M821 R");
@@ -107,7 +67,7 @@ TEST_F(Board, NeverBlocksTheLoopOrStarvesTheStepsWhileMovingAndTalking) {
   EXPECT_EQ(sim.pos[1], -80 + 2400);
 }
 
-TEST_F(Board, M112TellsTheNanoROnTheSpotAndHalts) {
+TEST_F(BoardTest, M112TellsTheNanoROnTheSpotAndHalts) {
   size_t before = sim.nanoLines.size();
   std::vector<std::string> r = cmd("M112");
   bool sentR = false;

@@ -1,5 +1,5 @@
 // A serial port as the Mega's logic sees it: bytes in, whole writes out or none (never waits).
-// hw/serial_stream adapts Arduino's HardwareSerial; host tests use in-memory fakes.
+// hw/nano_uart is the Nano's UART; host tests use in-memory fakes.
 #pragma once
 #include <stdint.h>
 

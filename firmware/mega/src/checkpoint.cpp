@@ -6,18 +6,19 @@
 #include "crc32.h"
 #include "job_files.h"
 #include "le_bytes.h"
+#include "progmem.h"
 
 namespace mega {
 
 namespace {
 constexpr uint8_t kSlot = 64;
-const char kMagic[4] = {'U', 'V', 'K', '1'};
+const char kMagic[4] UV_FLASH = {'U', 'V', 'K', '1'};
 
 // magic 4, seq 4, done 4, count 4, file 32, crc 4 (over the 48 bytes before it), boot 2, fires 4
 // (covered by a second CRC), padding.
 void encode(const Progress& p, uint32_t seq, char* b) {
   memset(b, 0, kSlot);
-  memcpy(b, kMagic, 4);
+  uvMemcpyP(b, kMagic, 4);
   putLe32(seq, b + 4);
   putLe32(p.done, b + 8);
   putLe32(p.count, b + 12);
@@ -29,7 +30,7 @@ void encode(const Progress& p, uint32_t seq, char* b) {
 }
 
 bool decode(const char* b, Progress& p, uint32_t& seq) {
-  if (memcmp(b, kMagic, 4) != 0 || getLe32(b + 48) != uv::crc32Update(0, b, 48)) return false;
+  if (uvMemcmpP(b, kMagic, 4) != 0 || getLe32(b + 48) != uv::crc32Update(0, b, 48)) return false;
   if (getLe32(b + 60) != uv::crc32Update(0, b, 60)) return false;
   seq = getLe32(b + 4);
   p.boot = static_cast<uint16_t>(getLe32(b + 52));

@@ -190,8 +190,9 @@ bool applyConfigLine(Config& c, const char* line, uint8_t len) {
 
 uint8_t formatConfigLine(const Config& c, Key key, char* out) {
   uint8_t n = keyName(key, out);
-  memcpy(out + n, " = ", 3);
-  n += 3;
+  out[n++] = ' ';  // not a " = " literal: on the AVR that would take RAM
+  out[n++] = '=';
+  out[n++] = ' ';
   return static_cast<uint8_t>(n + c.format(key, out + n));
 }
 

@@ -5,6 +5,7 @@
 
 #include "error_codes.h"
 #include "job_files.h"
+#include "progmem.h"
 
 namespace mega {
 
@@ -42,7 +43,7 @@ uint8_t JobRunner::start(const char* name, uint32_t from, uint32_t nowUs) {
 void JobRunner::startStream(StopSource& source, const uv::JobHeader& header, uint32_t nowUs) {
   source_ = &source;
   streamHeader_ = &header;
-  strcpy(progress_.file, "stream");
+  uvMemcpyP(progress_.file, UV_P("stream"), 7);  // from flash: a literal here would sit in RAM
   progress_.done = done_ = 0;
   int32_t here[3];
   motion_.targetUm(here);

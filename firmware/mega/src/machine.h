@@ -130,7 +130,9 @@ class Machine {
   // the panel (machine_panel.cpp)
   void panel();
   void button(uint8_t pressed);
-  ScreenState screenState() const;
+  // The snapshot row `row` shows; the costly fields (positions, time left: 64-bit divisions, about
+  // 125 us each on the AVR) only for the rows that show them.
+  ScreenState screenState(uint8_t row) const;
   Result message(const uv::Command& c);
   // commands (machine_probe.cpp)
   // G30 and G29 need every axis homed and the probe out; false, or the refusal said.

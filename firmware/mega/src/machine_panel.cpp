@@ -7,7 +7,7 @@
 
 namespace mega {
 
-ScreenState Machine::screenState() const {
+ScreenState Machine::screenState(uint8_t row) const {
   ScreenState s{};
   using Mode = ScreenState::Mode;
   s.mode = halted_ ? Mode::Halted : Mode::Idle;
@@ -15,14 +15,20 @@ ScreenState Machine::screenState() const {
   else if (!halted_ && long_.op != Op::None) s.mode = Mode::Busy;
   if (!halted_ && running()) {
     const JobRunner& j = *run();
-    static const Mode kRun[] = {Mode::Running, Mode::Paused, Mode::Done, Mode::Aborted, Mode::Aborted};
-    s.mode = kRun[static_cast<uint8_t>(j.state())];
+    static const uint8_t kRun[] UV_FLASH = {static_cast<uint8_t>(Mode::Running), static_cast<uint8_t>(Mode::Paused),
+                                            static_cast<uint8_t>(Mode::Done), static_cast<uint8_t>(Mode::Aborted),
+                                            static_cast<uint8_t>(Mode::Aborted)};
+    s.mode = static_cast<Mode>(uvFlashByte(&kRun[static_cast<uint8_t>(j.state())]));
     s.stop = j.done();
     s.stops = j.count();
-    s.remainingS = j.remainingS();
+    if (row == 4) s.remainingS = j.remainingS();
   }
   s.homed = axisHomed(0) && axisHomed(1);
-  motion_.positionUm(s.um);
+  if (row == 1 || row == 2) {
+    int32_t steps[3];
+    motion_.positionSteps(steps);
+    for (uint8_t a = row == 1 ? 0 : 2; a < (row == 1 ? 2 : 3); a++) s.um[a] = motion_.toUm(a, steps[a]);
+  }
   s.nanoOnline = head_.online() && head_.tempsKnown();
   const int16_t* t = head_.deciC();
   for (uint8_t i = 1; i < uv::kSensorCount; i++)
@@ -34,10 +40,12 @@ ScreenState Machine::screenState() const {
   return s;
 }
 
-void Machine::panel() {
-  uint8_t pressed = buttons_.sample(io_.buttons(), now_ / 1000);
+// Never inlined: the simavr rig measures the panel's CPU per pass from this function's entry.
+__attribute__((noinline)) void Machine::panel() {
+  uint32_t ms = now_ / 1000;  // once: a 32-bit division is 36 us here
+  uint8_t pressed = buttons_.sample(io_.buttons(), ms);
   if (pressed) button(pressed);
-  screen_.poll(screenState(), now_ / 1000);
+  if (screen_.due(ms)) screen_.draw(screenState(screen_.nextRow()), ms);  // a snapshot only when a row is due
 }
 
 void Machine::button(uint8_t pressed) {

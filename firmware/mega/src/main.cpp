@@ -7,9 +7,9 @@
 #include "hw/avr_eeprom.h"
 #include "hw/board.h"
 #include "hw/host_uart.h"
+#include "hw/nano_uart.h"
 #include "hw/oled.h"
 #include "hw/sd_storage.h"
-#include "hw/serial_stream.h"
 #include "hw/stepper_timer.h"
 #include "machine.h"
 #include "pins.h"
@@ -27,7 +27,7 @@ SdStorage sd;
 AvrEeprom eeprom;
 ConfigStore store(config, sd, eeprom);
 Motion motion(stepEngine, config);
-SerialStream nanoSerial(NANO_SERIAL);
+NanoUart nanoSerial;
 PrintheadLink head(nanoSerial);
 HostUart usbUart(0);
 HostUart espUart(2);  // or 3: esp.port, read at start-up
@@ -45,7 +45,7 @@ uint32_t lastPass = 0;
 void setup() {
   board.begin();
   stepperBegin();
-  NANO_SERIAL.begin(115200);
+  nanoSerial.begin(115200);
   sd.begin(PIN_SD_CS);
   store.load();  // for esp.port and invert.*, before anything talks
   usbUart.begin(usb, 115200);

@@ -76,8 +76,12 @@ class FakeIo : public MachineIo {
   MotionRig& rig_;
 };
 
+// A display that takes each row at once (the TWI timing is the simavr rig's and ssd1306_test's).
 class FakeDisplay : public TextDisplay {
  public:
+  void poll(uint32_t) override {}
+  bool ready() override { return true; }
+  bool takeLost() override { return false; }
   void row(uint8_t r, const char* text) override {
     rows[r] = text;
     draws++;

@@ -35,9 +35,25 @@ ScreenState running() {
   return s;
 }
 
+// A display that is busy for `busyPolls` polls after each row, as the TWI one is while it sends.
 struct Recorder : TextDisplay {
-  void row(uint8_t r, const char* text) override { drawn.push_back({r, text}); }
+  void poll(uint32_t) override {
+    if (busyFor) busyFor--;
+  }
+  bool ready() override { return busyFor == 0; }
+  bool takeLost() override {
+    bool l = lost;
+    lost = false;
+    return l;
+  }
+  void row(uint8_t r, const char* text) override {
+    EXPECT_TRUE(ready());
+    drawn.push_back({r, text});
+    busyFor = busyPolls;
+  }
   std::vector<std::pair<uint8_t, std::string>> drawn;
+  int busyPolls = 0, busyFor = 0;
+  bool lost = false;
 };
 
 }  // namespace
@@ -62,22 +78,48 @@ TEST(Screen, RowsSayStatePositionProgressAndHeatInSixteenCharacters) {
   EXPECT_EQ(row(s, 1), "not homed: G28  ");
   EXPECT_EQ(row(s, 5), "printhead silent");
   for (uint8_t r = 0; r < kScreenRows; r++) EXPECT_EQ(row(s, r).size(), kScreenCols);
+  // Numbers either side of the 16-bit formatting's edges.
+  s.stop = 65536;
+  s.stops = 81920;
+  EXPECT_EQ(row(s, 3), "stop 65536/81920");
+  s.stop = 9;
+  s.stops = 10;
+  EXPECT_EQ(row(s, 3), "stop 9/10       ");
+  s.stop = 0;
+  s.stops = 4294967295u;
+  EXPECT_EQ(row(s, 3), "stop 0/429496729");
 }
 
-TEST(Screen, RedrawsOnlyWhatChangedOneRowAPass) {
+TEST(Screen, ComposesOneRowAPassAndRedrawsOnlyWhatChanged) {
   Recorder d;
   Screen screen(d);
   ScreenState s = running();
   uint32_t ms = 0;
-  for (int i = 0; i < 20; i++) screen.poll(s, ms += 30);
-  EXPECT_EQ(d.drawn.size(), kScreenRows);  // first the whole screen, a row each pass
+  for (int i = 0; i < 8; i++) EXPECT_TRUE(screen.poll(s, ms += 3));  // first the whole screen, a row each pass
+  EXPECT_EQ(d.drawn.size(), kScreenRows);
   d.drawn.clear();
-  EXPECT_FALSE(screen.poll(s, ms += 30));
+  for (int i = 0; i < 8; i++) EXPECT_FALSE(screen.poll(s, ms += 3));
   s.stop = 121;
-  EXPECT_TRUE(screen.poll(s, ms += 30));
-  ASSERT_EQ(d.drawn.size(), 1u);
+  int passes = 0;
+  while (d.drawn.empty() && passes < 8) screen.poll(s, ms += 3), passes++;
+  ASSERT_EQ(d.drawn.size(), 1u);  // found within one sweep of the rows
   EXPECT_EQ(d.drawn[0].first, 3);
-  EXPECT_FALSE(screen.poll(s, ms += 1));  // no faster than every 25 ms
+  s.stop = 122;
+  for (int i = 0; i < 8; i++) EXPECT_FALSE(screen.poll(s, ms += 1));  // composing no faster than every 3 ms
+}
+
+TEST(Screen, WaitsWhileTheDisplaySendsAndRedrawsAllWhenItWasLost) {
+  Recorder d;
+  d.busyPolls = 5;
+  Screen screen(d);
+  ScreenState s = running();
+  uint32_t ms = 0;
+  for (int i = 0; i < 8 * 6; i++) screen.poll(s, ms += 3);
+  EXPECT_EQ(d.drawn.size(), kScreenRows);  // a row every sixth pass: never handed one while busy
+  d.drawn.clear();
+  d.lost = true;
+  for (int i = 0; i < 8 * 6; i++) screen.poll(s, ms += 3);
+  EXPECT_EQ(d.drawn.size(), kScreenRows);
 }
 
 TEST(Buttons, APressCountsOnceAfterFourSteadySamplesAndBounceNever) {

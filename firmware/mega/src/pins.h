@@ -3,8 +3,8 @@
 // goes on D20/D21, and the SD card on the Mega's SPI header (D50-D53).
 #pragma once
 
-// Serial ports: Serial0 = USB host, Serial1 = printhead Nano, ESP on Serial2 or Serial3 (esp.port).
-#define NANO_SERIAL Serial1
+// Serial ports: Serial0 = USB host, Serial1 = printhead Nano (hw/nano_uart drives USART1), ESP on
+// Serial2 or Serial3 (esp.port).
 
 // Steppers (step and direction pins on ports, for the step interrupt's direct writes).
 #define PIN_X_STEP 2   // PE4
@@ -24,7 +24,9 @@
 #define PIN_BUTTON_HOME 56   // A2
 // A3 (57), the shield's coolant enable, is light.pin's default.
 #define PIN_SD_CS 53
-// I2C for the SSD1306: D20 SDA, D21 SCL (Wire's pins).
+// The SSD1306 panel on the hardware TWI (hw/oled).
+#define PIN_PANEL_SDA 20  // PD1
+#define PIN_PANEL_SCL 21  // PD0
 
 // Port bits for the step interrupt.
 #define STEP_XY_PORT PORTE

@@ -5,12 +5,33 @@
 
 #include "nano_codec.h"
 #include "progmem.h"
-#include "text_scan.h"
 
 namespace mega {
 
 namespace {
-constexpr uint32_t kRowEveryMs = 25;  // at most 40 rows a second: a full screen in 0.2 s
+// One row composed every 3 ms at most: composing costs up to a few hundred µs (32-bit divisions),
+// so most passes pay nothing, and a change still shows within a 24 ms sweep of the eight rows.
+constexpr uint32_t kComposeEveryMs = 3;
+
+// Decimal digits of v; no NUL. Below 65536 it divides by 10 with a multiply: the AVR has no divide
+// instruction, and its 16-bit division routine (12 us) would cost over 100 us a row.
+uint8_t decimal(uint32_t v, char* out) {
+  char t[10];
+  uint8_t n = 0;
+  while (v > 0xffff) {
+    uint32_t q = v / 10;
+    t[n++] = static_cast<char>('0' + (v - q * 10));
+    v = q;
+  }
+  uint16_t w = static_cast<uint16_t>(v);
+  do {
+    uint16_t q = static_cast<uint16_t>(static_cast<uint32_t>(w) * 52429u >> 19);  // w / 10, exact below 81920
+    t[n++] = static_cast<char>('0' + (w - q * 10));
+    w = q;
+  } while (w);
+  for (uint8_t i = 0; i < n; i++) out[i] = t[n - 1 - i];
+  return n;
+}
 
 struct Line {
   char* out;
@@ -23,7 +44,7 @@ struct Line {
   }
   void num(uint32_t v) {
     char t[11];
-    t[uv::putUnsigned(v, t)] = 0;
+    t[decimal(v, t)] = 0;
     ram(t);
   }
   // A bed position in mm with `decimals` digits (1 or 2), right-aligned in `width`.
@@ -32,9 +53,10 @@ struct Line {
     uint8_t k = 0;
     uint32_t a = static_cast<uint32_t>(um < 0 ? -um : um);
     if (um < 0) t[k++] = '-';
-    k = static_cast<uint8_t>(k + uv::putUnsigned(a / 1000, t + k));
+    uint32_t whole = a / 1000;
+    uint16_t f = static_cast<uint16_t>(a - whole * 1000);
+    k = static_cast<uint8_t>(k + decimal(whole, t + k));
     t[k++] = '.';
-    uint32_t f = a % 1000;
     t[k++] = static_cast<char>('0' + f / 100);
     if (decimals > 1) t[k++] = static_cast<char>('0' + f / 10 % 10);
     if (decimals > 2) t[k++] = static_cast<char>('0' + f % 10);
@@ -128,22 +150,24 @@ void composeRow(const ScreenState& s, uint8_t r, char out[kScreenCols + 1]) {
 
 void Screen::invalidate() { memset(shown_, 0, sizeof shown_); }
 
-bool Screen::poll(const ScreenState& s, uint32_t nowMs) {
-  if (any_ && nowMs - lastMs_ < kRowEveryMs) return false;
-  for (uint8_t k = 0; k < kScreenRows; k++) {
-    uint8_t r = static_cast<uint8_t>((next_ + k) % kScreenRows);
-    char text[kScreenCols + 1];
-    composeRow(s, r, text);
-    uint8_t c = checksum(text);
-    if (c == shown_[r]) continue;
-    display_.row(r, text);
-    shown_[r] = c;
-    next_ = static_cast<uint8_t>((r + 1) % kScreenRows);
-    lastMs_ = nowMs;
-    any_ = true;
-    return true;
-  }
-  return false;
+bool Screen::due(uint32_t nowMs) {
+  display_.poll(nowMs);
+  if (display_.takeLost()) invalidate();
+  return display_.ready() && (!any_ || nowMs - lastMs_ >= kComposeEveryMs);
+}
+
+bool Screen::draw(const ScreenState& s, uint32_t nowMs) {
+  any_ = true;
+  lastMs_ = nowMs;
+  uint8_t r = next_;
+  next_ = static_cast<uint8_t>((r + 1) % kScreenRows);
+  char text[kScreenCols + 1];
+  composeRow(s, r, text);
+  uint8_t c = checksum(text);
+  if (c == shown_[r]) return false;
+  display_.row(r, text);
+  shown_[r] = c;
+  return true;
 }
 
 }  // namespace mega

@@ -38,49 +38,51 @@ bool SdCells::rowExtent(uint16_t row, uint16_t& first, uint16_t& last) {
 void SdCells::open(uint8_t cursor, uint16_t row, bool descending) {
   Cursor& c = cursors_[cursor];
   Row r;
-  c.descending = descending;
-  c.chunkAt = -1;
+  c.flags = descending ? kDescending : 0;
   if (!readRow(row, r) || r.first > r.last) {
-    c.first = 1;
-    c.last = 0;
-    c.pos = -1;
+    c.flags = 0;  // walking up from 1 to 0: nothing
+    c.pos = 1;
+    c.bound = 0;
     return;
   }
-  c.offset = r.offset;
-  c.first = r.first;
-  c.last = r.last;
+  c.base = r.offset - r.first;
+  c.bound = descending ? r.first : r.last;
   c.pos = static_cast<int16_t>(descending ? r.last : r.first);
 }
 
 bool SdCells::fill(uint8_t cursor) {
   Cursor& c = cursors_[cursor];
-  // The chunk that holds pos, reaching forwards or backwards as the cursor walks.
-  int32_t first = c.first, last = c.last;
-  // The aligned chunk that holds pos, cut to the row's cells.
+  // The aligned chunk that holds pos, cut to the cells still ahead of the walk (so never outside
+  // the row: pos is inside it, and bound is its far end).
   int32_t at = c.pos & ~static_cast<int32_t>(kChunk - 1);
-  int32_t start = at < first ? first : at;
-  int32_t end = at + kChunk - 1;
-  if (end > last) end = last;
+  int32_t start = at, end = at + kChunk - 1;
+  if (c.flags & kDescending) {
+    if (start < c.bound) start = c.bound;
+    if (end > c.pos) end = c.pos;
+  } else {
+    if (start < c.pos) start = c.pos;
+    if (end > c.bound) end = c.bound;
+  }
   uint8_t n = static_cast<uint8_t>(end - start + 1);
-  if (!sd_.seek(cells_, c.offset + static_cast<uint32_t>(start - first)) ||
+  if (!sd_.seek(cells_, c.base + static_cast<uint32_t>(start)) ||
       sd_.read(cells_, reinterpret_cast<char*>(c.chunk) + (start - at), n) != n) {
     failed_ = true;
     return false;
   }
-  c.chunkAt = static_cast<int16_t>(at);
+  c.flags |= kChunkHeld;
   return true;
 }
 
 bool SdCells::next(uint8_t cursor, uint16_t& col, uint8_t& value) {
   Cursor& c = cursors_[cursor];
-  int32_t first = c.first, last = c.last;
-  while (c.pos >= first && c.pos <= last) {
-    int32_t p = c.pos;
-    if (c.chunkAt < 0 || p < c.chunkAt || p >= c.chunkAt + kChunk) {
-      if (!fill(cursor)) return false;
-    }
-    c.pos = static_cast<int16_t>(c.pos + (c.descending ? -1 : 1));
-    uint8_t v = c.chunk[p - c.chunkAt];
+  const bool down = c.flags & kDescending;
+  const int32_t bound = c.bound;  // int is 16 bits on the AVR: compare as int32, not unsigned
+  while (down ? c.pos >= bound : c.pos <= bound) {
+    int16_t p = c.pos;
+    if (!(c.flags & kChunkHeld) && !fill(cursor)) return false;
+    c.pos = static_cast<int16_t>(p + (down ? -1 : 1));
+    if ((c.pos & ~(kChunk - 1)) != (p & ~(kChunk - 1))) c.flags &= static_cast<uint8_t>(~kChunkHeld);  // left the chunk
+    uint8_t v = c.chunk[p & (kChunk - 1)];
     if (v) {
       col = static_cast<uint16_t>(p);
       value = v;

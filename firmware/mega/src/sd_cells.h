@@ -31,14 +31,17 @@ class SdCells : public uv::CellSource {
   bool readRow(uint16_t row, Row& out);
   bool fill(uint8_t cursor);
 
+  // 11 bytes, 32 of them: the largest part of the planning arena, which is the Mega's largest RAM.
+  // So a cursor keeps only what its walk still needs: the bound it walks towards, not the one it
+  // left, and whether its chunk still holds the column it is at, not where that chunk began.
   struct Cursor {
-    uint32_t offset;    // of the row's first cell in the cells file
-    uint16_t first, last;
-    int16_t pos;        // the next column to look at (-1: before column 0)
-    int16_t chunkAt;    // the chunk's first column (chunks start on multiples of kChunk), or -1
-    bool descending;
+    uint32_t base;      // the cells file's offset of column 0 (mod 2^32: the row's first cell, less its column)
+    uint16_t bound;     // the row's last column walking up, its first walking down
+    int16_t pos;        // the next column to look at
+    uint8_t flags;      // kDescending, kChunkHeld
     uint8_t chunk[kChunk];
   };
+  static constexpr uint8_t kDescending = 1, kChunkHeld = 2;  // chunk holds the aligned chunk around pos
 
   Storage& sd_;
   FileHandle cells_, index_;

@@ -2,16 +2,17 @@
 #include "stop_file.h"
 
 #include "le_bytes.h"
+#include "progmem.h"
 
 namespace mega {
 
 namespace {
-const char kMagic[4] = {'U', 'V', 'S', '1'};
+const char kMagic[4] UV_FLASH = {'U', 'V', 'S', '1'};
 }  // namespace
 
 bool writeStopHeader(Storage& sd, FileHandle f, const StopFileHeader& h) {
   char b[kStopHeaderBytes] = {};
-  for (uint8_t i = 0; i < 4; i++) b[i] = kMagic[i];
+  uvMemcpyP(b, kMagic, 4);
   putLe32(h.count, b + 4);
   putLe32(h.estimateS, b + 8);
   putLe32(h.originUm[0], b + 12);
@@ -26,7 +27,7 @@ bool readStopHeader(Storage& sd, FileHandle f, StopFileHeader& h) {
   char b[kStopHeaderBytes];
   if (!sd.seek(f, 0) || sd.read(f, b, sizeof b) != sizeof b) return false;
   for (uint8_t i = 0; i < 4; i++)
-    if (b[i] != kMagic[i]) return false;
+    if (b[i] != static_cast<char>(uvFlashByte(&kMagic[i]))) return false;
   h.count = getLe32(b + 4);
   h.estimateS = getLe32(b + 8);
   h.originUm[0] = getLe32(b + 12);

@@ -10,17 +10,17 @@ namespace {
 
 HostLink* links[4] = {nullptr, nullptr, nullptr, nullptr};
 
+// Each USART's registers sit at the same offsets from its UCSRnA (A, B, C, -, UBRRnL/H, UDRn). The
+// base is computed, not looked up: a switch over the three ports became a 20-byte table in RAM.
 struct Regs {
   volatile uint8_t *ucsra, *ucsrb, *ucsrc, *udr;
   volatile uint16_t* ubrr;
 };
+static_assert(&UCSR2A - &UCSR0A == 0x10 && &UDR0 - &UCSR0A == 6 && &UDR3 - &UCSR3A == 6, "the USARTs' register layout");
 
 Regs regs(uint8_t usart) {
-  switch (usart) {
-    case 2: return {&UCSR2A, &UCSR2B, &UCSR2C, &UDR2, &UBRR2};
-    case 3: return {&UCSR3A, &UCSR3B, &UCSR3C, &UDR3, &UBRR3};
-    default: return {&UCSR0A, &UCSR0B, &UCSR0C, &UDR0, &UBRR0};
-  }
+  volatile uint8_t* a = usart == 3 ? &UCSR3A : usart == 2 ? &UCSR2A : &UCSR0A;
+  return {a, a + 1, a + 2, a + 6, reinterpret_cast<volatile uint16_t*>(a + 4)};
 }
 
 inline void rx(uint8_t usart, volatile uint8_t& udr, volatile uint8_t& ucsra) {

@@ -2,12 +2,55 @@
 // exFAT code and its RAM out of the image).
 #include "hw/sd_storage.h"
 
+#ifdef UV_WITH_SDFAT
+#include <Arduino.h>
+#include <SPI.h>
+#endif
+
 namespace mega {
 
 #ifdef UV_WITH_SDFAT
 
+namespace {
+
+// SdFat gives a card SD_INIT_TIMEOUT (2 s, a constant a build cannot change) to answer CMD0 and
+// leave idle, so with the slot empty the Mega said `start` after 2 s (3.8 s with U8x8's set-up
+// too), and a host that waits 2 s gave up. A card answers CMD0 at once: it needs 1 ms and 74 clocks
+// after its supply is up, and the bootloader has run by then. So the Mega asks first, for at most
+// kProbeMs; only a card that answered goes through SdFat's begin, which keeps its full 2 s for
+// ACMD41 (cards take up to about 1 s to leave idle).
+constexpr uint32_t kProbeMs = 100;
+
+bool cardAnswers(uint8_t csPin) {
+  pinMode(csPin, OUTPUT);
+  digitalWrite(csPin, HIGH);
+  SPI.begin();
+  SPI.beginTransaction(SPISettings(250000, MSBFIRST, SPI_MODE0));  // the init rate: at most 400 kHz
+  for (uint8_t i = 0; i < 10; i++) SPI.transfer(0xff);              // 80 clocks with CS high
+  digitalWrite(csPin, LOW);
+  bool answered = false;
+  uint32_t since = millis();
+  do {
+    SPI.transfer(0x40);  // CMD0, GO_IDLE_STATE: argument 0, then its CRC
+    for (uint8_t i = 0; i < 4; i++) SPI.transfer(0);
+    SPI.transfer(0x95);
+    // R1 comes within 8 bytes. An empty slot reads 0xff (MISO pulled up); 0x00 is no R1 to CMD0
+    // either (MISO held low), so neither counts: anything else is a card.
+    for (uint8_t i = 0; i < 9 && !answered; i++) {
+      uint8_t r1 = SPI.transfer(0xff);
+      answered = !(r1 & 0x80) && r1 != 0;
+    }
+  } while (!answered && millis() - since < kProbeMs);
+  digitalWrite(csPin, HIGH);
+  SPI.transfer(0xff);  // let the card release MISO
+  SPI.endTransaction();
+  return answered;
+}
+
+}  // namespace
+
 bool SdStorage::begin(uint8_t csPin) {
-  mounted_ = sd_.begin(SdSpiConfig(csPin, DEDICATED_SPI, SD_SCK_MHZ(16)));
+  mounted_ = cardAnswers(csPin) && sd_.begin(SdSpiConfig(csPin, DEDICATED_SPI, SD_SCK_MHZ(16)));
   return mounted_;
 }
 
@@ -24,32 +67,32 @@ FileHandle SdStorage::open(const char* name, Mode mode) {
 }
 
 int16_t SdStorage::read(FileHandle f, char* buf, uint16_t n) {
-  File32* file = this->file(f);
+  FatFile* file = this->file(f);
   return file ? static_cast<int16_t>(file->read(buf, n)) : -1;
 }
 
 bool SdStorage::write(FileHandle f, const char* buf, uint16_t n) {
-  File32* file = this->file(f);
+  FatFile* file = this->file(f);
   return file && file->write(buf, n) == n;
 }
 
 bool SdStorage::seek(FileHandle f, uint32_t pos) {
-  File32* file = this->file(f);
+  FatFile* file = this->file(f);
   return file && file->seekSet(pos);
 }
 
 uint32_t SdStorage::size(FileHandle f) {
-  File32* file = this->file(f);
+  FatFile* file = this->file(f);
   return file ? file->fileSize() : 0;
 }
 
 bool SdStorage::sync(FileHandle f) {
-  File32* file = this->file(f);
+  FatFile* file = this->file(f);
   return file && file->sync();
 }
 
 void SdStorage::close(FileHandle f) {
-  File32* file = this->file(f);
+  FatFile* file = this->file(f);
   if (file) file->close();
 }
 
@@ -59,7 +102,7 @@ bool SdStorage::rename(const char* from, const char* to) { return mounted_ && sd
 
 bool SdStorage::entry(uint16_t index, char* name, uint32_t& size) {
   if (!mounted_) return false;
-  File32 root, file;
+  FatFile root, file;
   if (!root.open("/")) return false;
   uint16_t i = 0;
   bool found = false;

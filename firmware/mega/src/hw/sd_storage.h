@@ -32,9 +32,11 @@ class SdStorage : public Storage {
 
  private:
 #ifdef UV_WITH_SDFAT
-  File32* file(FileHandle f) { return f >= 0 && f < kFiles && files_[f].isOpen() ? &files_[f] : nullptr; }
+  FatFile* file(FileHandle f) { return f >= 0 && f < kFiles && files_[f].isOpen() ? &files_[f] : nullptr; }
   SdFat32 sd_;
-  File32 files_[kFiles];
+  // FatFile, not File32: File32 adds Arduino's Stream (a vtable in RAM, a timeout, an error flag),
+  // 12 bytes a file that nothing here uses.
+  FatFile files_[kFiles];
 #else
   uint8_t scratch_[kScratchBytes];  // without SdFat there is no sector cache to lend
 #endif

@@ -1,0 +1,46 @@
+// The simavr rig's test fixture: both real images booted to `start`, and a host that sends a line
+// and runs until its ok.
+#pragma once
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "board_sim.h"
+
+class BoardTest : public ::testing::Test {
+ protected:
+  BoardSim sim{MEGA_ELF, NANO_ELF};
+  std::vector<std::string> seen;
+
+  // Sends a plain line and runs until its ok; returns what the Mega said meanwhile.
+  std::vector<std::string> cmd(const std::string& line, double maxUs = 5e6) {
+    sim.send(line + "\n");
+    std::vector<std::string> got;
+    bool done = sim.runUntil([&] {
+      for (std::string& l : sim.takeLines()) {
+        got.push_back(l);
+        seen.push_back(l);
+      }
+      return !got.empty() && got.back().rfind("ok", 0) == 0;
+    }, maxUs);
+    if (!done) got.push_back("(no ok)");
+    return got;
+  }
+  bool said(const std::vector<std::string>& lines, const std::string& prefix) {
+    for (const std::string& l : lines)
+      if (l.rfind(prefix, 0) == 0) return true;
+    return false;
+  }
+  void SetUp() override {
+    sim.switchAt[0] = -160;  // 2 mm from where the head starts
+    sim.switchAt[1] = -80;
+    sim.switchAt[2] = -200;  // 0.5 mm
+    ASSERT_TRUE(sim.runUntil([&] {
+      for (std::string& l : sim.takeLines()) seen.push_back(l);
+      return !seen.empty();
+    }, 2e6));
+    EXPECT_EQ(seen.front(), "start");
+  }
+};
+
