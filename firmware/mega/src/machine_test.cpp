@@ -48,7 +48,7 @@ TEST_F(MachineTest, M105ReportsEverySensorWithItsSoftLimitAndM155RepeatsIt) {
   Lines p = payload("M105");
   ASSERT_EQ(p.size(), 0u);  // T: lines are filtered as reports: look at the raw block
   Lines block = m.cmd("M105");
-  EXPECT_EQ(block[0], "T:25.0 /55.0 T0:25.0 /55.0 T1:25.0 /55.0 T2:25.0 /55.0 T3:25.0 /55.0 T4:25.0 /50.0 T5:25.0 /50.0");
+  EXPECT_EQ(block[0], "T:25.0 /0.0 S0:25.0 /55.0 S1:25.0 /55.0 S2:25.0 /55.0 S3:25.0 /55.0 S4:25.0 /50.0 S5:25.0 /50.0");
   m.cmd("M155 S1");
   size_t before = m.espLines.size();
   m.run(3100000);  // the third report needs its 8 ms on the wire
