@@ -11,7 +11,7 @@ const FILE_COMMANDS = new Set(['M23', 'M28', 'M30', 'M32']);
 const TEXT_COMMANDS = new Set(['M850', 'M117']);
 // An optional leading `/` names the card's root, its only folder (OctoPrint writes it); `~` is in DOS short names.
 const FILE_NAME = /^\/?([A-Za-z0-9_.~-]{1,31})$/;
-const MAX_MILLI = 2_000_000_000;
+export const MAX_MILLI = 2_000_000_000;
 
 /** `-?digits[.digits]` to thousandths, rounded half away from zero; null if malformed or too big. */
 export function parseMilli(s: string): number | null {

@@ -63,3 +63,12 @@ describe('nano link vectors', () => {
     count();
   });
 });
+
+describe('formatting an F', () => {
+  it('refuses LEDs past the four and durations past 32 bits, as the C++ codec does', () => {
+    expect(() => formatNanoCommand({ op: 'F', mask: 0xa7, durations: [1, 1, 1, 1] })).toThrow(RangeError);
+    expect(() => formatNanoCommand({ op: 'F', mask: 1, durations: [2 ** 32, 0, 0, 0] })).toThrow(RangeError);
+    expect(() => formatNanoCommand({ op: 'F', mask: 1, durations: [1.5, 0, 0, 0] })).toThrow(RangeError);
+    expect(formatNanoCommand({ op: 'F', mask: 15, durations: [0xffffffff, 0, 0, 0] })).toBe('F:15,4294967295,0,0,0\n');
+  });
+});

@@ -81,7 +81,12 @@ export function parseNanoCommand(line: string): NanoCommand | null {
 }
 
 export function formatNanoCommand(cmd: NanoCommand): string {
-  if (cmd.op === 'F') return `F:${cmd.mask},${cmd.durations.join(',')}\n`;
+  if (cmd.op === 'F') {
+    // Out of range is refused, never sent for the Nano to reject (as the C++ codec does).
+    const uint32 = (v: number) => Number.isInteger(v) && v >= 0 && v <= 0xffffffff;
+    if (!uint32(cmd.mask) || cmd.mask > 15 || !cmd.durations.every(uint32)) throw new RangeError(`F out of range: mask ${cmd.mask}, durations ${cmd.durations.join(',')}`);
+    return `F:${cmd.mask},${cmd.durations.join(',')}\n`;
+  }
   return `${cmd.op}\n`;
 }
 

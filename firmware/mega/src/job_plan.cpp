@@ -15,7 +15,7 @@ JobPlan::~JobPlan() { close(); }
 
 void JobPlan::close() {
   if (planner_) planner_->~Planner();
-  if (source_) source_->~SdCells();
+  if (source_) source_->SdCells::~SdCells();  // placed in the arena as exactly an SdCells
   planner_ = nullptr;
   source_ = nullptr;
   FileHandle* files[] = {&cells_, &index_, &stops_};

@@ -31,11 +31,11 @@ constexpr uint8_t kReasonLostHost = 99;
 }  // namespace
 
 void Machine::clearArena() {
-  switch (arena_) {
-    case Arena::Spool: spool()->~JobSpool(); break;
-    case Arena::Plan: plan()->~JobPlan(); break;
-    case Arena::Run: run()->~JobRunner(); break;
-    case Arena::Stream: stream()->~StreamArena(); break;
+  switch (arena_) {  // each stage was placed in the arena as exactly its type
+    case Arena::Spool: spool()->JobSpool::~JobSpool(); break;
+    case Arena::Plan: plan()->JobPlan::~JobPlan(); break;
+    case Arena::Run: run()->JobRunner::~JobRunner(); break;
+    case Arena::Stream: stream()->StreamArena::~StreamArena(); break;
     default: break;
   }
   arena_ = Arena::Empty;

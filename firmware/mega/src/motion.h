@@ -51,7 +51,6 @@ class Motion {
   StepEngine& e_;
   const Config& c_;
   Profile profiles_[StepEngine::kBlocks];
-  bool sentLast_[StepEngine::kBlocks] = {};
   int32_t target_[3] = {};  // steps, where the queued moves end
   int8_t planSlot_ = -1;    // the block being cut into segments
   uint8_t nextPlan_ = 0;    // sequence number of the next block to cut

@@ -53,7 +53,7 @@ class FakeStorage : public Storage {
     if (!f) return -1;
     size_t left = f->pos < f->data.size() ? f->data.size() - f->pos : 0;
     size_t k = n < left ? n : left;
-    memcpy(buf, f->data.data() + f->pos, k);
+    if (k) memcpy(buf, f->data.data() + f->pos, k);
     f->pos += k;
     return static_cast<int16_t>(k);
   }
@@ -65,6 +65,7 @@ class FakeStorage : public Storage {
       if (failWritesAfter < n) return false;
       failWritesAfter -= n;
     }
+    if (n == 0) return true;
     if (f->data.size() < f->pos + n) f->data.resize(f->pos + n);
     memcpy(f->data.data() + f->pos, buf, n);
     f->pos += n;

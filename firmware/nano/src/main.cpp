@@ -29,8 +29,10 @@ void earliest() {
   wdt_disable();
 }
 
-// Switch-offs and servo edges are kept clear of the pixel's interrupts-off write by this much.
-constexpr uint16_t kPixelQuietTicks = 1000;  // 62.5 µs
+// Switch-offs and servo edges are kept clear of the pixel's interrupts-off write by this much: the
+// write (61 µs with interrupts off, measured in simavr) and the compare interrupt's 16 µs early
+// wake, with room to spare.
+constexpr uint16_t kPixelQuietTicks = 1500;  // 93.75 µs
 
 class Board : public nano::PrintheadIo {
  public:
@@ -61,6 +63,9 @@ bool pixelWritten = false;
 void updatePixel(uint32_t nowMs) {
   uv::Colour want = head.colour(nowMs);
   if (pixelWritten && want == shown) return;
+  // Not while a line is arriving: the write holds interrupts off for tens of µs, and a poll's reply
+  // must not wait behind it. Between lines it ends before the next line's last byte can arrive.
+  if (splitter.pending() || Serial.available()) return;
   if (!nano::led_timer::quietFor(kPixelQuietTicks) || !nano::servo_pulse::quietFor(kPixelQuietTicks)) return;
   uv::Rgb c = uv::colourRgb(want);
   nano::neopixel::show(c.r, c.g, c.b);

@@ -12,9 +12,15 @@ void Printhead::line(const char* text, uint8_t len, bool overflow, uint32_t nowM
     latched_ |= uv::fault::kMalformed;
     return;
   }
-  flash_ = uv::flashColour(c.op);
-  flashUntilMs_ = nowMs + kFlashMs;
-  flashing_ = true;
+  uv::Colour flash = uv::flashColour(c.op);
+  // A status poll (S, T, E, V, C: dim white) comes right after every F in a job: it must not hide
+  // the exposure's purple, which would then never be seen (the pixel is written between edges).
+  bool exposing = colour(nowMs) == uv::Colour::Purple;
+  if (!(exposing && flash == uv::Colour::DimWhite)) {
+    flash_ = flash;
+    flashUntilMs_ = nowMs + kFlashMs;
+    flashing_ = true;
+  }
   handle(c, nowMs);
 }
 
@@ -90,6 +96,7 @@ void Printhead::readings(const uint16_t mv[uv::kSensorCount]) {
 }
 
 uv::Colour Printhead::colour(uint32_t nowMs) {
+  if (io_.litMask()) return uv::Colour::Purple;  // while any LED is lit, whatever came since
   if (flashing_ && static_cast<int32_t>(nowMs - flashUntilMs_) < 0) return flash_;
   flashing_ = false;  // so a flash cannot come back when the millisecond clock wraps
   return guard_.active() ? uv::Colour::Red : uv::Colour::Green;

@@ -175,6 +175,7 @@ TEST(Printhead, PixelFlashesTheCommandColourThenIdles) {
   h.send("F:1,10,0,0,0", 1000);
   EXPECT_EQ(h.ph.colour(1000), uv::Colour::Purple);
   EXPECT_EQ(h.ph.colour(1059), uv::Colour::Purple);
+  h.io.lit = 0;  // the exposure ended
   EXPECT_EQ(h.ph.colour(1060), uv::Colour::Green);
   h.send("R", 2000);
   EXPECT_EQ(h.ph.colour(2010), uv::Colour::Orange);
@@ -188,4 +189,23 @@ TEST(Printhead, PixelFlashesTheCommandColourThenIdles) {
   EXPECT_EQ(h.ph.colour(3100), uv::Colour::Red);
   // A flash does not come back when the millisecond clock wraps around.
   EXPECT_EQ(h.ph.colour(3000 + 0x80000000u), uv::Colour::Red);
+}
+
+TEST(Printhead, APollRightAfterFDoesNotHideTheExposure) {
+  // The Mega polls S straight after F: its dim white once replaced the purple before the pixel
+  // was ever written, so no exposure showed.
+  Head h;
+  h.send("F:1,5000,0,0,0", 1000);
+  h.send("S", 1000);
+  EXPECT_EQ(h.ph.colour(1000), uv::Colour::Purple);
+  EXPECT_EQ(h.ph.colour(1004), uv::Colour::Purple);
+  h.io.lit = 0;  // 5 ms later the LED is off; the F's flash still runs its time
+  h.send("S", 1006);
+  EXPECT_EQ(h.ph.colour(1006), uv::Colour::Purple);
+  EXPECT_EQ(h.ph.colour(1060), uv::Colour::Green);
+  h.send("F:1,5000,0,0,0", 2000);
+  h.send("R", 2001);  // R's orange replaces it: the LEDs are dark
+  EXPECT_EQ(h.ph.colour(2001), uv::Colour::Orange);
+  h.send("T", 2100);
+  EXPECT_EQ(h.ph.colour(2100), uv::Colour::DimWhite);  // with nothing lit, a poll flashes as ever
 }

@@ -105,7 +105,6 @@ class Planner {
   // Rows order: the pass being emitted and its direction.
   uint8_t q_ = 0;
   bool desc_ = false;
-  bool passCounted_ = false;
   uint8_t columnLen_ = 0, columnPos_ = 0;
   bool passUsed_[kShortestBand] = {};
 

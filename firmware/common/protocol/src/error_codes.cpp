@@ -73,6 +73,10 @@ bool copyField(uint8_t code, bool wantName, char* out, uint8_t size) {
     out[size - 1] = '\0';
     return true;
   }
+  // Not in the table: a text all the same, so a caller that formats a line never sends what was
+  // in its buffer before (found by fuzzing the host link).
+  uvFlashStrncpy(out, wantName ? UV_P("unknown") : UV_P("unknown error"), size);
+  out[size - 1] = '\0';
   return false;
 }
 

@@ -49,7 +49,8 @@ inline bool isFault(uint8_t code) {
 inline bool isRefusal(uint8_t code) { return !isLineError(code) && !isFault(code); }
 
 // Copies the table's message for a code into out (NUL-terminated, truncated to size);
-// returns false for an unknown code. Messages live in flash on AVR.
+// for an unknown code it writes "unknown error" ("unknown" for the name) and returns false.
+// Messages live in flash on AVR.
 bool errorMessage(uint8_t code, char* out, uint8_t size);
 // The table's name, e.g. "checksum_mismatch"; for tests and host tools.
 bool errorName(uint8_t code, char* out, uint8_t size);

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <string.h>
+
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -39,4 +41,14 @@ TEST(ErrorCodes, MatchErrorsCsv) {
     char got[64];
     EXPECT_EQ(uv::errorMessage(static_cast<uint8_t>(code), got, sizeof got), codes.count(code) == 1) << code;
   }
+}
+
+TEST(ErrorCodes, AnUnknownCodeStillWritesText) {
+  // The host link formats `Error:E<code> <message>`: it once sent what was in its buffer before.
+  char out[32];
+  memset(out, 0x7f, sizeof out);
+  EXPECT_FALSE(uv::errorMessage(59, out, sizeof out));
+  EXPECT_STREQ(out, "unknown error");
+  EXPECT_FALSE(uv::errorName(0, out, sizeof out));
+  EXPECT_STREQ(out, "unknown");
 }

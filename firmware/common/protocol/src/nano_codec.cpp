@@ -58,6 +58,7 @@ bool parseNanoCommand(const char* line, uint8_t len, NanoCommand& out) {
 }
 
 size_t formatNanoCommand(const NanoCommand& cmd, char* out, size_t size) {
+  if (cmd.op == 'F' && cmd.mask > 15) return 0;  // no such LEDs: refused, not sent for the Nano to reject
   char tmp[64];
   size_t n = 0;
   tmp[n++] = cmd.op;

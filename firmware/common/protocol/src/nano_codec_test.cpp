@@ -170,3 +170,13 @@ TEST(NanoVectors, StreamsSplitAnywhere) {
     counted();
   }
 }
+
+TEST(NanoCodec, AMaskPastTheFourLedsIsNotFormatted) {
+  NanoCommand f{};
+  f.op = 'F';
+  f.mask = 0xA7;  // found by fuzzing the Mega's printhead link: sent, and the Nano refused it
+  char out[kNanoMaxLine + 2];
+  EXPECT_EQ(formatNanoCommand(f, out, sizeof out), 0u);
+  f.mask = 15;
+  EXPECT_GT(formatNanoCommand(f, out, sizeof out), 0u);
+}

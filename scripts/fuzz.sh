@@ -1,0 +1,66 @@
+#!/usr/bin/env bash
+# The firmware's hostile-input checks, built with clang's AddressSanitizer and UndefinedBehavior-
+# Sanitizer in build/sanitize (firmware/CMakeLists.txt, UV_SANITIZE):
+#   scripts/fuzz.sh --tests            every host test suite under the sanitizers (ctest)
+#   scripts/fuzz.sh [SECONDS] [NAME…]  each libFuzzer harness in firmware/fuzz/ for SECONDS (20)
+#                                      on its corpus; a broken invariant or a sanitizer report fails
+#   scripts/fuzz.sh --merge SECONDS    a longer run that folds what it found into the kept corpus
+# npm test runs the first two; run the third by hand (e.g. 600 s each) and commit the corpus.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+build=build/sanitize
+configure() {
+  CC=clang CXX=clang++ cmake -S firmware -B "$build" -DUV_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+}
+export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
+export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+
+if [[ ${1:-} == --tests ]]; then
+  configure
+  suites=(protocol_tests nano_tests planner_tests mega_tests esp_tests)
+  cmake --build "$build" -j"$(nproc)" --target "${suites[@]}" >/dev/null
+  (cd "$build" && ctest --output-on-failure -R "^($(IFS='|'; echo "${suites[*]}"))\$")
+  exit
+fi
+
+merge=0
+if [[ ${1:-} == --merge ]]; then
+  merge=1
+  shift
+fi
+seconds=${1:-20}
+shift || true
+configure
+cmake --build "$build" -j"$(nproc)" --target fuzzers >/dev/null
+names=("$@")
+if ((${#names[@]} == 0)); then
+  for f in firmware/fuzz/*_fuzz.cpp; do names+=("$(basename "$f" _fuzz.cpp)"); done
+fi
+
+failed=0
+for name in "${names[@]}"; do
+  kept=firmware/fuzz/corpus/$name
+  work=$build/corpus/$name  # what this run finds; the kept corpus is only read
+  mkdir -p "$kept" "$work"
+  log=$build/fuzz-$name.log
+  if ! "$build/fuzz/${name}_fuzz" -max_total_time="$seconds" -print_final_stats=1 -timeout=10 -rss_limit_mb=2048 \
+      -artifact_prefix="$build/crash-$name-" "$work" "$kept" >"$log" 2>&1; then
+    echo "[fuzz] $name: FAILED; reproduce with $build/fuzz/${name}_fuzz $(ls -t "$build"/crash-"$name"-* 2>/dev/null | head -1)"
+    grep -a -E 'invariant broken|runtime error|ERROR: (AddressSanitizer|libFuzzer)|SUMMARY' "$log" | head -5
+    failed=1
+    continue
+  fi
+  runs=$(awk '/stat::number_of_executed_units:/ {print $2}' "$log")
+  rate=$(awk '/stat::average_exec_per_sec:/ {print $2}' "$log")
+  last=$(grep -a -E '^#[0-9]+' "$log" | tail -1)
+  cov=$(sed -n 's/.* cov: \([0-9]*\).*/\1/p' <<<"$last")
+  ft=$(sed -n 's/.* ft: \([0-9]*\).*/\1/p' <<<"$last")
+  corp=$(sed -n 's/.* corp: \([0-9]*\).*/\1/p' <<<"$last")
+  echo "[fuzz] $name: $runs runs in $seconds s ($rate/s), coverage $cov edges, $ft features, corpus $corp"
+  if ((merge)); then
+    "$build/fuzz/${name}_fuzz" -merge=1 "$kept" "$work" >/dev/null 2>&1
+    echo "[fuzz] $name: kept corpus now $(ls "$kept" | wc -l) files"
+  fi
+done
+exit $failed
