@@ -46,7 +46,7 @@ describe('Marlin hosts: waiting for the motion queue', () => {
     h.cmd('M400');
     const move = h.sim.clock.now - moveStart;
     expect(took).toBeGreaterThanOrEqual(move + 100_000 - 2000); // the move's time and the dwell, to the ms the host steps
-    expect(h.cmd('G4 S4294968')[0]).toBe('echo:E11 bad or missing parameter');
+    expect(h.cmd('G4 S4294.968')[0]).toBe('echo:E11 bad or missing parameter: S');
   });
 
   it('G28 finishes the moves queued before it', () => {

@@ -68,7 +68,7 @@ function home(m: MegaModel, c: Command, done: () => void): void {
 function dwell(m: MegaModel, c: Command, done: () => void): void {
   const p = params(c);
   const us = typeof p.P === 'number' ? p.P : typeof p.S === 'number' ? p.S * 1000 : 0; // P ms, S s, both in thousandths
-  if (us > 4_294_967_000) return m.error(11, done); // mega.md: at most 4294967 ms
+  if (us > 4_294_967_000) return m.error(11, done, 'S'); // mega.md: at most 4294967 ms
   m.long(done, (finish) => m.motion.whenIdle(() => m.clock.after(us, finish)));
 }
 

@@ -47,7 +47,7 @@ class HostLink : public uv::ReplySink, private uv::FlowCounters {
     errorLine(code, detail);
     ok();
   }
-  // Just the `Error:E<code> <message>[: detail]` line; errorLineP takes a detail in flash (UV_P).
+  // Just the `Error:E<code> <message>[: detail]` line (`echo:E…` for a refusal, mega.md §2); errorLineP takes a detail in flash (UV_P).
   void errorLine(uint8_t code, const char* detail = nullptr) { errorLine(code, detail, false); }
   void errorLineP(uint8_t code, const char* detail) { errorLine(code, detail, true); }
 

@@ -25,7 +25,8 @@
 
 namespace mega {
 
-constexpr uint32_t kKeepaliveUs = 2000000;  // busy: every 2 s during a long command
+constexpr uint32_t kKeepaliveUs = 2000000;  // busy: every 2 s during a long command, unless M113 says otherwise
+constexpr uint8_t kKeepaliveMaxS = 60;      // M113's range, as Marlin's
 constexpr uint8_t kPorts = 2;               // USB, ESP
 
 // What the main loop measures about itself, for M821 (the never-blocks check).
@@ -97,6 +98,12 @@ class Machine {
   Result jog(HostLink& port, const uv::Command& c);
   Result selfTest(HostLink& port, const uv::Command& c);
   Result dwell(HostLink& port, const uv::Command& c);
+  // M400: waits for every queued move to end (a dwell of nothing after the queue).
+  Result drain();
+  // M113: the busy: interval of this port.
+  Result busyInterval(HostLink& port, const uv::Command& c);
+  // The busy: interval of a port (M113), µs; 0: none.
+  uint32_t keepaliveUs(const HostLink* port) const;
   Result release();
   bool axisHomed(uint8_t axis) const { return homed_ & (1 << axis); }
   // commands (machine_printhead.cpp)
@@ -196,6 +203,7 @@ class Machine {
   uint8_t& movesFree_;
   LoopStats& stats_;
   uint8_t next_ = 0;  // the port whose line runs next (round robin)
+  uint8_t keepaliveS_[kPorts] = {kKeepaliveUs / 1000000, kKeepaliveUs / 1000000};  // M113, per port
   uint8_t homed_ = 0;
   bool halted_ = false;
   bool absolute_ = true;
@@ -212,6 +220,7 @@ class Machine {
     uint16_t fileIndex;
     uint8_t meshK;  // G29: the point being probed, in serpentine order
     bool moving;    // G29: on the way to that point
+    bool drain;     // G4, M400, G28: the queued moves end before the command's own work starts (Marlin)
     char servoOp;
     union {  // one command's state at a time: the two share their bytes
       struct {
