@@ -13,7 +13,7 @@ const upload = (h: SimHost, name: string, lines: string[]) => {
 describe('G-code files on the card', () => {
   it('tells G-code from jobs by the name', () => {
     expect(['a.gco', 'B.GCODE', 'c.g'].every(isGcodeName)).toBe(true);
-    expect(['PCB.UVJ', 'job-3.uvj', 'gco', 'a.gc'].some(isGcodeName)).toBe(false);
+    expect(['PCB.UVJ', 'job-3.uvj', 'gco', 'a.gc', '.g'].some(isGcodeName)).toBe(false);
   });
 
   it('stores an upload line by line without running it, and shows it only at M29', () => {
@@ -39,6 +39,7 @@ describe('G-code files on the card', () => {
     h.cmd('M112');
     h.cmd('M999');
     expect(h.sim.sd.find('cut.gco')).toBeUndefined();
+    expect(h.cmd('M28 job~c')[0]).toBe("echo:E11 bad or missing parameter: a job's name has no ~");
   });
 
   it('prints a file from the card: M23, M24, progress on M27, Done printing file, then deselected', () => {

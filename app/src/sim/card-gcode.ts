@@ -3,7 +3,7 @@
 
 /** G-code files end in .gco, .gcode or .g; every other name on the card is an exposure job. */
 export function isGcodeName(name: string): boolean {
-  return /\.(gco|gcode|g)$/i.test(name);
+  return /.\.(gco|gcode|g)$/i.test(name);
 }
 
 /** An M28 of a G-code name: the lines of its port, stored, not run, until M29 shows the file. */

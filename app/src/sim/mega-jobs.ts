@@ -64,6 +64,7 @@ function start(m: MegaModel, done: () => void): void {
 }
 
 function beginUpload(m: MegaModel, file: string, done: () => void): void {
+  if (!isGcodeName(file) && file.includes('~')) return m.error(11, done, "a job's name has no ~"); // `~` marks the Mega's own files
   if (!m.sd.present) return m.error(20, done);
   if (m.jobActive()) return m.error(12, done);
   if (isGcodeName(file)) m.gcodeUpload = { file, lines: [] };
@@ -201,7 +202,6 @@ export function jobCommands(m: MegaModel): Record<string, Handler> {
       }
       m.sd.files.delete(file);
       if (m.selected === file) m.selected = '';
-      m.line(`echo:File deleted: ${file}`);
       done();
     },
     M1000: (c, done) => resume(m, c, done),

@@ -99,6 +99,7 @@ void Machine::poll(uint32_t nowUs) {
   if (long_.op != Op::None) runLong();
   runJob();
   // Lines run in turn from each port. While a long command runs, the other port's queries still run.
+  bool ran = false;
   for (uint8_t i = 0; i < kPorts; i++) {
     uint8_t k = static_cast<uint8_t>((next_ + i) % kPorts);
     HostLink& port = *ports_[k];
@@ -112,8 +113,10 @@ void Machine::poll(uint32_t nowUs) {
     if (r == Result::Wait) continue;
     if (r == Result::Done) port.ok();
     next_ = static_cast<uint8_t>((k + 1) % kPorts);
+    ran = true;
     break;
   }
+  if (!ran) runCardLine();  // a G-code file's lines run between the hosts' lines
   reports();
   jobReports();
   panel();
@@ -124,6 +127,8 @@ Machine::Result Machine::execute(HostLink& port, const LineSlot& line) {
   // as usual. A plain line there is not a record: on a noisy wire it is most likely the tail of a
   // numbered line that a damaged byte split, and every host numbers its records (mega.md §5).
   bool jobPort = &port == jobPort_;
+  // A G-code upload stores every line of its port but M29 (and M112, acted on as it arrived).
+  if (arena_ == Arena::Gcode && gcode()->uploading() && jobPort && !isEndOrStop(line)) return storeGcodeLine(port, line);
   if (jobPort && line.n < 0 && !isCommandLine(line) &&
       ((arena_ == Arena::Spool && !preparing_) || (arena_ == Arena::Stream && streaming_))) {
     port.errorLineP(uv::kNoLineNumber, UV_P("a job record needs a line number"));
@@ -158,6 +163,7 @@ Machine::Result Machine::execute(HostLink& port, const LineSlot& line) {
   Result r = dispatch(port, c);
   if (r == Result::Long) {
     long_.port = &port;
+    long_.fromCard = false;
     long_.since = now_;
     long_.keepalive = now_ + kKeepaliveUs;
   }
@@ -238,7 +244,7 @@ Machine::Result Machine::dispatch(HostLink& port, const uv::Command& c) {
       case 420: return meshCommand(port, c);
       case 821: return diagnostics(port, c);
       case 850: case 500: case 501: case 502: case 503: return configCommand(port, c);
-      case 20: case 23: case 24: case 25: case 27: case 28: case 29: case 30: case 524: case 828: case 1000:
+      case 20: case 23: case 24: case 25: case 26: case 27: case 28: case 29: case 30: case 32: case 524: case 828: case 1000:
         return jobCommand(port, c);
       case 112: return Result::Done;  // acted on when it arrived
       case 999:
@@ -279,7 +285,8 @@ void Machine::finishLong(uint8_t error, const char* detail) {
     return;
   }
   if (error) port->errorLine(error, detail);
-  port->ok();
+  if (!long_.fromCard) port->ok();
+  else if (error && uv::isFault(error)) stopCardFile();
 }
 
 }  // namespace mega

@@ -8,6 +8,7 @@
 #include "config_store.h"
 #include "dialect_command.h"
 #include "dialect_reply.h"
+#include "gcode_file.h"
 #include "host_link.h"
 #include "homing.h"
 #include "job_plan.h"
@@ -74,7 +75,7 @@ class Machine {
   enum class Op : uint8_t { None, Emit, Dwell, Home, SelfTest, Servo, ProbeRead, MoveRoom, Release, Plan, Prepare, Probe, Level, Answer };
   enum class Gen : uint8_t { Firmware, Endstops, Config, Files, Mesh };
   // What the job arena holds: an upload, a planning, a preparation from a job copied onto the card, a run.
-  enum class Arena : uint8_t { Empty, Spool, Plan, Run, Stream };
+  enum class Arena : uint8_t { Empty, Spool, Plan, Run, Stream, Gcode };
   // A stream's planner and its runner, together in the arena.
   struct StreamArena {
     StreamJob job;
@@ -134,6 +135,12 @@ class Machine {
   uint8_t refuseExposure(HostLink& port);
   Result startStream(HostLink& port);
   Result streamLine(HostLink& port, const LineSlot& line);
+  // G-code files on the card (machine_card_gcode.cpp): true if the command was one of theirs.
+  bool gcodeCommand(HostLink& port, const uv::Command& c, Result& r);
+  Result storeGcodeLine(HostLink& port, const LineSlot& line);
+  // Runs the selected G-code file's next line when no host line ran this pass.
+  void runCardLine();
+  void stopCardFile();
   // the panel (machine_panel.cpp)
   void panel();
   void button(uint8_t pressed);
@@ -160,6 +167,7 @@ class Machine {
   bool jobActive() const {
     if (arena_ == Arena::Spool && !preparing_) return true;
     if (arena_ == Arena::Stream) return streaming_ || runLive();
+    if (arena_ == Arena::Gcode) return gcode()->uploading() || gcode()->running;
     return arena_ == Arena::Run && runLive();
   }
   bool runLive() const { return run()->state() == RunState::Running || run()->state() == RunState::Paused; }
@@ -169,6 +177,8 @@ class Machine {
   JobRunner* run() { return arena_ == Arena::Stream ? &stream()->runner : reinterpret_cast<JobRunner*>(arenaMem_); }
   const JobRunner* run() const { return const_cast<Machine*>(this)->run(); }
   StreamArena* stream() { return reinterpret_cast<StreamArena*>(arenaMem_); }
+  GcodeFile* gcode() { return reinterpret_cast<GcodeFile*>(arenaMem_); }
+  const GcodeFile* gcode() const { return reinterpret_cast<const GcodeFile*>(arenaMem_); }
   bool running() const { return (arena_ == Arena::Run || arena_ == Arena::Stream); }
   uint8_t formatTemps(char* out) const;
   uint8_t formatPosition(char* out) const;
@@ -221,6 +231,7 @@ class Machine {
     uint8_t meshK;  // G29: the point being probed, in serpentine order
     bool moving;    // G29: on the way to that point
     bool drain;     // G4, M400, G28: the queued moves end before the command's own work starts (Marlin)
+    bool fromCard;  // a line of a G-code file: it has no ok to send
     char servoOp;
     union {  // one command's state at a time: the two share their bytes
       struct {
@@ -234,7 +245,8 @@ class Machine {
 
   // The job: one arena for whichever stage is live, so the planner's memory is there only while
   // it plans (job_plan.h).
-  static constexpr uint16_t kArenaBytes = larger(larger(sizeof(JobSpool), sizeof(JobPlan)), larger(sizeof(JobRunner), sizeof(StreamArena)));
+  static constexpr uint16_t kArenaBytes =
+      larger(larger(larger(sizeof(JobSpool), sizeof(JobPlan)), larger(sizeof(JobRunner), sizeof(StreamArena))), sizeof(GcodeFile));
   alignas(4) uint8_t arenaMem_[kArenaBytes];
   Arena arena_ = Arena::Empty;
   const HostLink* jobPort_ = nullptr;  // the port whose records an upload or a stream takes

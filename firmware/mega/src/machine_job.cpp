@@ -36,6 +36,7 @@ void Machine::clearArena() {
     case Arena::Plan: plan()->JobPlan::~JobPlan(); break;
     case Arena::Run: run()->JobRunner::~JobRunner(); break;
     case Arena::Stream: stream()->StreamArena::~StreamArena(); break;
+    case Arena::Gcode: gcode()->GcodeFile::~GcodeFile(); break;
     default: break;
   }
   arena_ = Arena::Empty;
@@ -354,6 +355,8 @@ Machine::Result Machine::streamLine(HostLink& port, const LineSlot& line) {
 
 Machine::Result Machine::jobCommand(HostLink& port, const uv::Command& c) {
   char name[kFileNameMax + 1];
+  Result handled;
+  if (gcodeCommand(port, c, handled)) return handled;
   switch (c.code) {
     case 20:
       if (arena_ == Arena::Stream && jobActive()) {
