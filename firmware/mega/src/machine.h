@@ -141,6 +141,8 @@ class Machine {
   // Runs the selected G-code file's next line when no host line ran this pass.
   void runCardLine();
   void stopCardFile();
+  // Marlin's `SD printing byte <pos>/<size>` while a G-code file is selected; false if none is.
+  bool formatCardProgress(char* out);
   // the panel (machine_panel.cpp)
   void panel();
   void button(uint8_t pressed);

@@ -116,10 +116,7 @@ bool Machine::gcodeCommand(HostLink& port, const uv::Command& c, Result& r) {
     case 27: {
       if (!card || c.has('S')) return false;
       char buf[48];
-      uvMemcpyP(buf, UV_P("SD printing byte "), 17);
-      size_t n = 17 + uv::putUnsigned(gcode()->pos(), buf + 17);
-      buf[n++] = '/';
-      buf[n + uv::putUnsigned(gcode()->size(), buf + n)] = 0;
+      formatCardProgress(buf);
       port.line(buf);
       return true;
     }
@@ -183,6 +180,15 @@ void Machine::runCardLine() {
     if (uv::isFault(port.lastError)) return stopCardFile();
   }
   if (arena_ == Arena::Gcode) g.pending = false;
+}
+
+bool Machine::formatCardProgress(char* out) {
+  if (arena_ != Arena::Gcode || gcode()->uploading()) return false;
+  uvMemcpyP(out, UV_P("SD printing byte "), 17);
+  size_t n = 17 + uv::putUnsigned(gcode()->pos(), out + 17);
+  out[n++] = '/';
+  out[n + uv::putUnsigned(gcode()->size(), out + n)] = 0;
+  return true;
 }
 
 void Machine::stopCardFile() {

@@ -84,8 +84,12 @@ TEST_F(CardGcodeTest, AFileRunsFromTheCardToDonePrintingFile) {
   upload("run.gco", {"G28", "G1 X20 Y10 F6000", "G4 P10", "G1 X30", "M400"});
   EXPECT_EQ(payload("M23 /run.gco"), (Lines{"File opened: run.gco Size: 40", "File selected"}));
   EXPECT_EQ(payload("M27"), (Lines{"SD printing byte 0/40"}));
+  m.cmd("M27 S1");
+  size_t from = m.usbLines.size();
   m.cmd("M24");
   ASSERT_TRUE(waitFor("Done printing file", 30000000));
+  EXPECT_TRUE(has(Lines(m.usbLines.begin() + static_cast<long>(from), m.usbLines.end()), "SD printing byte "));  // M27 S too
+  m.cmd("M27 S0");
   EXPECT_EQ(payload("M114"), (Lines{"X:30.000 Y:10.000 Z:0.000 E:0.000 Count X:2400 Y:800 Z:0"}));
   EXPECT_TRUE(has(payload("M27"), "JOB:"));  // deselected
 }

@@ -235,7 +235,7 @@ void Machine::jobReports() {
   if (!jobPeriodUs_ || static_cast<int32_t>(now_ - jobNext_) < 0) return;
   jobNext_ = now_ + jobPeriodUs_;
   char buf[112];
-  formatJob(buf);
+  if (!formatCardProgress(buf)) formatJob(buf);  // M27 S reports what M27 answers
   broadcast(buf);
 }
 
