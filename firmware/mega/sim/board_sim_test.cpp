@@ -115,5 +115,5 @@ TEST_F(Board, M112TellsTheNanoROnTheSpotAndHalts) {
   EXPECT_TRUE(sentR);
   EXPECT_TRUE(said(cmd("G28"), "Error:E13"));
   cmd("M999");
-  EXPECT_TRUE(said(cmd("G1 X1"), "Error:E14"));
+  EXPECT_TRUE(said(cmd("G1 X1"), "echo:E14"));
 }
