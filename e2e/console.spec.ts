@@ -12,7 +12,7 @@ test('sends raw lines, shows the answers by level, and filters the log', async (
   await expect(log.locator('li[data-level="info"]', { hasText: 'FIRMWARE_NAME:UVExposure' }).last()).toBeVisible();
   await input.fill('M9999');
   await input.press('Enter');
-  await expect(log.locator('li[data-level="error"]', { hasText: 'Error:E10' })).toBeVisible();
+  await expect(log.locator('li[data-level="error"]', { hasText: 'echo:E10 unknown command' })).toBeVisible();
   await expect(page.getByTestId('console-error')).toContainText('unknown command');
   // Reports (every second) and the link's oks are hidden until asked for.
   await expect(log.locator('li[data-level="report"]')).toHaveCount(0);

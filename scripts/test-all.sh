@@ -54,7 +54,18 @@ printcore_test() {
   return "${PIPESTATUS[0]}"
 }
 
+octoprint_test() {
+  # OctoPrint's own serial layer, from PyPI, in a venv of its own on Python 3.11 (../shared/TOOLCHAIN.md).
+  local python
+  python=$(command -v python3.11 || command -v python3)
+  [[ -x build/octoprint-venv/bin/python ]] || "$python" -m venv build/octoprint-venv || return 1
+  build/octoprint-venv/bin/python -c 'import octoprint' 2>/dev/null ||
+    build/octoprint-venv/bin/pip install -q OctoPrint==1.11.8 || return 1
+  build/octoprint-venv/bin/python scripts/sim-octoprint-test.py
+}
+
 stage "Desktop host: printcore over the simulated printer's pty" printcore_test
+stage "Desktop host: OctoPrint 1.11 (MachineCom, default settings) over the simulated printer's pty" octoprint_test
 stage "End-to-end in Chromium (Playwright)" npx playwright test
 
 echo

@@ -3,10 +3,12 @@ import { ConsoleLog, DEFAULT_LEVELS, filterLog, levelOf } from './console-log';
 
 describe('console log', () => {
   it('sorts lines by level', () => {
-    expect(levelOf('Error:E14 not homed')).toBe('error');
+    expect(levelOf('Error:E31 over-temperature')).toBe('error');
+    expect(levelOf('echo:E14 axis not homed: X')).toBe('error'); // a refusal: the command was not carried out
+    expect(levelOf('echo:Done saving file.')).toBe('info');
     expect(levelOf('FAULT:E31 over-temperature T3 71.2')).toBe('error');
     expect(levelOf('Resend: 5')).toBe('warning');
-    expect(levelOf('T:31.2 /60.0 T0:24.0 /60.0')).toBe('report');
+    expect(levelOf('T:31.2 /0.0 S0:24.0 /60.0')).toBe('report');
     expect(levelOf('JOB:running file=A.UVJ stop=1/9')).toBe('report');
     expect(levelOf('ok N4 P8 B3*1a2b')).toBe('link');
     expect(levelOf('FIRMWARE_NAME:UVExposure 0.1.0 (Mega) PROTOCOL_VERSION:1')).toBe('info');

@@ -11,7 +11,7 @@ export interface Entry {
 
 /** A line's level: errors and faults stand out, reports (sent every second) can be hidden. */
 export function levelOf(line: string): Level {
-  if (/^(Error:|FAULT:|!!)/.test(line)) return 'error';
+  if (/^(Error:|FAULT:|!!|echo:E[0-9])/.test(line)) return 'error'; // echo:E<code>: a refused command (mega.md §2)
   if (/^(Resend:|rs |PROBE:alarm|echo:.*(warning|refused|cannot))/i.test(line)) return 'warning';
   if (/^(T:|X:|JOB:|busy:)/.test(line)) return 'report';
   if (/^ok\b/.test(line)) return 'link';

@@ -7,9 +7,10 @@ export type Command =
 export type CommandResult = { ok: true; command: Command } | { ok: false; error: 10 | 11 };
 
 /** Commands whose argument is the rest of the line. */
-const FILE_COMMANDS = new Set(['M23', 'M28', 'M30']);
+const FILE_COMMANDS = new Set(['M23', 'M28', 'M30', 'M32']);
 const TEXT_COMMANDS = new Set(['M850', 'M117']);
-const FILE_NAME = /^[A-Za-z0-9_.-]{1,31}$/;
+// An optional leading `/` names the card's root, its only folder (OctoPrint writes it); `~` is in DOS short names.
+const FILE_NAME = /^\/?([A-Za-z0-9_.~-]{1,31})$/;
 export const MAX_MILLI = 2_000_000_000;
 
 /** `-?digits[.digits]` to thousandths, rounded half away from zero; null if malformed or too big. */
@@ -37,7 +38,8 @@ export function parseCommand(body: string): CommandResult {
   const word = m[1].toUpperCase() + String(Number(m[2]));
   const rest = m[3] ?? '';
   if (FILE_COMMANDS.has(word)) {
-    return FILE_NAME.test(rest) ? { ok: true, command: { word, text: rest } } : { ok: false, error: 11 };
+    const name = FILE_NAME.exec(rest);
+    return name ? { ok: true, command: { word, text: name[1] } } : { ok: false, error: 11 };
   }
   if (TEXT_COMMANDS.has(word)) {
     return rest.trim() ? { ok: true, command: { word, text: rest.trim() } } : { ok: false, error: 11 };

@@ -2,6 +2,7 @@
 
 import { formatMilli, parseMilli } from './dialect-command';
 import { crc16Hex } from './crc16';
+import { errorClass } from './errors';
 import { formatDeciC, parseDeciC, SENSOR_COUNT } from './nano';
 
 export type JobState = 'idle' | 'uploading' | 'ready' | 'running' | 'paused' | 'done' | 'aborted' | 'failed' | 'interrupted';
@@ -32,7 +33,7 @@ const MM = '(-?[0-9]{1,7}\\.[0-9]{3})';
 const POSITION = new RegExp(`^X:${MM} Y:${MM} Z:${MM} E:${MM} Count X:(-?[0-9]{1,10}) Y:(-?[0-9]{1,10}) Z:(-?[0-9]{1,10})$`);
 const BED = new RegExp(`^Bed X: ${MM} Y: ${MM} Z: ${MM}$`);
 const DECI = '(-?[0-9]{1,3}\\.[0-9])';
-const TEMP_PAIR = new RegExp(`^T([0-5]):${DECI} /${DECI}$`);
+const TEMP_PAIR = new RegExp(`^S([0-5]):${DECI} /${DECI}$`);
 
 /** The end of a reply block: `n` is the line it answers, undefined when it accepts none (mega.md §2). */
 export function formatOk(n: number | undefined, p: number, b: number): string {
@@ -57,8 +58,8 @@ function formatFields(fields: Record<string, string>): string {
 
 function parseTemps(line: string): Reply | null {
   const words = line.split(' ');
-  // `T:<max> /<limit>` then six `T<i>:<v> /<limit>` pairs
-  if (words.length !== 2 + SENSOR_COUNT * 2 || !/^T:-?[0-9]{1,3}\.[0-9]$/.test(words[0])) return null;
+  // `T:<hottest> /0.0` (nothing heats: no target) then six `S<i>:<v> /<limit>` pairs (mega.md §4)
+  if (words.length !== 2 + SENSOR_COUNT * 2 || !/^T:-?[0-9]{1,3}\.[0-9]$/.test(words[0]) || words[1] !== '/0.0') return null;
   const deciC: number[] = [];
   const limitDeciC: number[] = [];
   for (let i = 0; i < SENSOR_COUNT; i++) {
@@ -120,7 +121,11 @@ export function parseReply(line: string): Reply | null {
     const m = /^FAULT:E([0-9]{1,4}) (.*)$/.exec(line);
     return m ? { kind: 'fault', code: Number(m[1]), message: m[2] } : null;
   }
-  if (line.startsWith('echo:')) return { kind: 'echo', text: line.slice(5) };
+  if (line.startsWith('echo:')) {
+    // A refusal, answered as Marlin answers one (mega.md §2): still this command's error to the app.
+    const m = /^echo:E([0-9]{1,4}) (.*)$/.exec(line);
+    return m ? { kind: 'error', code: Number(m[1]), message: m[2] } : { kind: 'echo', text: line.slice(5) };
+  }
   if (line.startsWith('busy:')) return { kind: 'busy' };
   if (line === 'start') return { kind: 'start' };
   if (line.startsWith('FIRMWARE_NAME:')) {
@@ -142,13 +147,13 @@ export interface FirmwareInfo {
 export function formatReply(r: Reply, info: FirmwareInfo = { machine: 'UV-LED exposure printer' }): string {
   switch (r.kind) {
     case 'ok': return r.p === undefined ? 'ok' : formatOk(r.n, r.p, r.b ?? 0);
-    case 'error': return `Error:E${r.code} ${r.message}`;
+    case 'error': return `${errorClass(r.code) === 'refusal' ? 'echo:' : 'Error:'}E${r.code} ${r.message}`;
     case 'resend': return `Resend: ${r.n}`;
     case 'temps': {
-      let hot = 0;
-      r.deciC.forEach((v, i) => { if (v > r.deciC[hot]) hot = i; });
-      const pairs = r.deciC.map((v, i) => ` T${i}:${formatDeciC(v)} /${formatDeciC(r.limitDeciC[i])}`).join('');
-      return `T:${formatDeciC(r.deciC[hot])} /${formatDeciC(r.limitDeciC[hot])}${pairs}`;
+      // Hosts read `T:` as a hotend and `Tn:` as more of them, and the `/` value as a heater's target:
+      // one `T:` with no target, and the sensors as `S0`-`S5`, which OctoPrint keeps as custom sensors.
+      const pairs = r.deciC.map((v, i) => ` S${i}:${formatDeciC(v)} /${formatDeciC(r.limitDeciC[i])}`).join('');
+      return `T:${formatDeciC(Math.max(...r.deciC))} /0.0${pairs}`;
     }
     case 'position': {
       const [x, y, z] = r.um.map(formatMilli);

@@ -41,6 +41,22 @@ export function isLineError(code: number): boolean {
   return code >= 1 && code <= 6;
 }
 
+/** The class of each code (errors.csv): a link error, a refusal that leaves the machine fine, or a fault. */
+export type ErrorClass = 'link' | 'refusal' | 'fault';
+
+const FAULTS = new Set([13, 28, 30, 31, 32, 33, 40, 41, 42, 43, 44]);
+
+/** Faults mean the machine stopped or is in danger; refusals are answered `echo:E<code>` as Marlin answers them (mega.md §2). */
+export function errorClass(code: number): ErrorClass {
+  return isLineError(code) ? 'link' : FAULTS.has(code) ? 'fault' : 'refusal';
+}
+
+/** The line that reports an error: `Error:E<code> …` for link errors and faults, `echo:E<code> …` for refusals. */
+export function formatError(code: number, detail?: string): string {
+  const message = `E${code} ${errorByCode(code)?.message ?? 'error'}${detail ? `: ${detail}` : ''}`;
+  return errorClass(code) === 'refusal' ? `echo:${message}` : `Error:${message}`;
+}
+
 export function errorByCode(code: number): { name: ErrorName; message: string } | undefined {
   for (const [name, e] of Object.entries(ERRORS)) {
     if (e.code === code) return { name: name as ErrorName, message: e.message };

@@ -1,12 +1,20 @@
 // Virtual time for the simulated printer: events run in time order as the host advances the clock (µs).
 
+/** What a model needs of time: the simulated Mega gets a scope of the clock, which its reset closes. */
+export interface Clock {
+  readonly now: number;
+  at(at: number, run: () => void): object;
+  after(us: number, run: () => void): object;
+  cancel(e: object | null | undefined): void;
+}
+
 interface Event {
   at: number;
   seq: number;
   run: () => void;
 }
 
-export class VirtualClock {
+export class VirtualClock implements Clock {
   now = 0;
   #events: Event[] = [];
   #seq = 0;
@@ -30,9 +38,9 @@ export class VirtualClock {
     return this.at(this.now + us, run);
   }
 
-  cancel(e: Event | null | undefined): void {
+  cancel(e: object | null | undefined): void {
     if (!e) return;
-    const i = this.#events.indexOf(e);
+    const i = this.#events.indexOf(e as Event);
     if (i >= 0) this.#events.splice(i, 1);
   }
 
@@ -49,5 +57,31 @@ export class VirtualClock {
   /** The time of the next event, or Infinity. */
   get next(): number {
     return this.#events.length ? this.#events[0].at : Infinity;
+  }
+}
+
+/** A view of a clock whose events stop running once it is closed: a model that resets leaves no timer behind. */
+export class ClockScope implements Clock {
+  #open = true;
+  constructor(private readonly clock: VirtualClock) {}
+
+  get now(): number {
+    return this.clock.now;
+  }
+
+  at(at: number, run: () => void): object {
+    return this.clock.at(at, () => this.#open && run());
+  }
+
+  after(us: number, run: () => void): object {
+    return this.at(this.clock.now + us, run);
+  }
+
+  cancel(e: object | null | undefined): void {
+    this.clock.cancel(e);
+  }
+
+  close(): void {
+    this.#open = false;
   }
 }

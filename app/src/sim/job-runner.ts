@@ -7,7 +7,7 @@ import type { JobState } from '../protocol/dialect-reply';
 import type { JobHeader } from '../protocol/job-types';
 import { verifyJobText } from '../protocol/job-verify';
 import { FAULT, formatNanoCommand, parseNanoReply } from '../protocol/nano';
-import type { VirtualClock } from './clock';
+import type { Clock } from './clock';
 import { motionOf, num } from './config';
 import type { Motion, Xyz } from './motion';
 import type { NanoModel } from './nano-model';
@@ -38,10 +38,10 @@ export class JobRunner {
   /** Called after each exposed stop and whenever a streamed job runs out of planned stops. */
   onProgress: (() => void) | null = null;
   #pauseRequested = false;
-  #step: ReturnType<VirtualClock['at']> | null = null;
+  #step: object | null = null;
 
   constructor(
-    private readonly clock: VirtualClock,
+    private readonly clock: Clock,
     private readonly motion: Motion,
     private readonly nano: NanoModel,
     private readonly sd: SdCard,

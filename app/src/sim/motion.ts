@@ -1,7 +1,7 @@
 // The simulated Mega's axes: queued trapezoidal moves in virtual time, homing, jogging and soft limits.
 
 import { moveTimeUs } from '../planner/time-model';
-import type { VirtualClock } from './clock';
+import type { Clock } from './clock';
 import { num } from './config';
 
 export type Xyz = [number, number, number];
@@ -21,10 +21,10 @@ export class Motion {
   enabled = false;
   #queue: Move[] = [];
   #current: { from: Xyz; to: Xyz; start: number; end: number } | null = null;
-  #timer: ReturnType<VirtualClock['at']> | null = null;
+  #timer: object | null = null;
   #idle: (() => void)[] = [];
 
-  constructor(private readonly clock: VirtualClock, private readonly config: Record<string, string>) {}
+  constructor(private readonly clock: Clock, private readonly config: Record<string, string>) {}
 
   get movesFree(): number {
     return MOVE_QUEUE - this.#queue.length - (this.#current ? 1 : 0);

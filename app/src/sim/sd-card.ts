@@ -15,6 +15,13 @@ export class SdCard {
   checkpoint: Checkpoint | null = null;
   present = true;
 
+  /** The stored name matching `name` without regard to case, as FAT matches names. */
+  find(name: string): string | undefined {
+    const upper = name.toUpperCase();
+    for (const key of this.files.keys()) if (key.toUpperCase() === upper) return key;
+    return undefined;
+  }
+
   list(): [string, number][] {
     return Array.from(this.files.entries()).map(([name, text]) => [name, text.length]);
   }

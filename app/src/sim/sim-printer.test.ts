@@ -37,8 +37,8 @@ describe('simulated printer: link and identity', () => {
     sim.receive('M999x\nG1 X1e3\nN1 M105*0\n');
     sim.advance(10);
     expect(lines.filter((l) => l.startsWith('ok'))).toHaveLength(3);
-    expect(lines[0]).toBe('Error:E10 unknown command: M999x');
-    expect(lines).toContain('Error:E11 bad or missing parameter');
+    expect(lines[0]).toBe('echo:E10 unknown command: M999x');
+    expect(lines).toContain('echo:E11 bad or missing parameter');
     expect(lines).toContain('Resend: 1');
   });
 
@@ -66,12 +66,12 @@ describe('simulated printer: link and identity', () => {
 describe('simulated printer: motion', () => {
   it('refuses moves before homing, then moves in the time the model gives', () => {
     const h = new SimHost();
-    expect(h.cmd('G0 X10')[0]).toBe('Error:E14 axis not homed: X');
+    expect(h.cmd('G0 X10')[0]).toBe('echo:E14 axis not homed: X');
     h.cmd('G28');
     h.cmd('G0 X10 Y20');
     h.sim.advance(1000);
     expect(h.cmd('M114')[0]).toBe('X:10.000 Y:20.000 Z:0.000 E:0.000 Count X:800 Y:1600 Z:0');
-    expect(h.cmd('G0 X999')[0]).toBe('Error:E15 target outside soft limits: X');
+    expect(h.cmd('G0 X999')[0]).toBe('echo:E15 target outside soft limits: X');
   });
 
   it('jogs until M410 and reports endstops', () => {
@@ -129,7 +129,7 @@ describe('simulated printer: jobs', () => {
     expect(h.sim.sd.files.get('A.UVJ')).toBe(text);
     const broken = text.replace(/end [0-9a-f]{8}/, 'end 00000000');
     const out = upload(h, 'B.UVJ', broken);
-    expect(out.some((l) => l.startsWith('Error:E24'))).toBe(true);
+    expect(out.some((l) => l.startsWith('echo:E24'))).toBe(true);
     expect(h.sim.sd.files.has('B.UVJ')).toBe(false);
     expect(h.cmd('M20')).toEqual(['Begin file list', `A.UVJ ${text.length}`, 'End file list', expect.stringMatching(/^ok/)]);
   });
@@ -181,7 +181,7 @@ describe('simulated printer: jobs', () => {
     h.sim.powerCycle();
     h.reconnect();
     expect(h.cmd('M1000 S')[0]).toBe(`JOB:interrupted file=R.UVJ stop=${before.length}/${total}`);
-    expect(h.cmd('M1000')[0]).toMatch(/^Error:E14/); // must home first
+    expect(h.cmd('M1000')[0]).toMatch(/^echo:E14/); // must home first
     h.cmd('G28');
     h.cmd('M1000');
     h.waitFor(/^JOB:done/);

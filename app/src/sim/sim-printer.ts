@@ -2,7 +2,7 @@
 // Runs in a Web Worker (the app's default device) and in Node (tests, `npm run sim` for desktop hosts).
 
 import { DEFAULT_BED, type BedShape } from './bed';
-import { VirtualClock } from './clock';
+import { ClockScope, VirtualClock } from './clock';
 import { FaultyLink, type LinkFaults } from './link-faults';
 import { MegaModel } from './mega';
 import { DEFAULT_NANO, NanoModel, type NanoOptions } from './nano-model';
@@ -52,13 +52,29 @@ export class SimPrinter {
     this.nano.boot = ++this.#boots; // each power-up is a new start, as the firmware's EEPROM counter says
     this.nano.present = !this.o.missingNano;
     this.nano.alarmOnDeploy = !!this.o.probeAlarm;
-    this.mega = new MegaModel(this.clock, this.nano, this.sd, (b) => this.#out(b), {
+    this.#buildMega(eeprom);
+    if (this.o.drift === false) this.nano.temp.forEach((_, i) => (this.nano.temp[i] = nanoOptions.ambientDeciC[i] / 10));
+  }
+
+  #megaClock: ClockScope | null = null;
+  #buildMega(eeprom: Record<string, string> | null): void {
+    this.#megaClock?.close(); // the old Mega's timers (moves, reports, the printhead poll) die with it
+    this.#megaClock = new ClockScope(this.clock);
+    this.mega = new MegaModel(this.#megaClock, this.nano, this.sd, (b) => this.#out(b), {
       firmwareName: this.o.firmwareName ?? 'UVExposure 0.1.0 (Simulated Mega)',
       bed: this.o.bed ?? DEFAULT_BED,
       eeprom,
     });
     if (this.o.limitDeciC) this.o.limitDeciC.forEach((l, i) => (this.mega.config[`thermal.limit.${i}`] = String(l / 10)));
-    if (this.o.drift === false) this.nano.temp.forEach((_, i) => (this.nano.temp[i] = nanoOptions.ambientDeciC[i] / 10));
+  }
+
+  /**
+   * A host opened the USB port: DTR resets the Mega alone (its RAM, a halt after M112, the line count),
+   * while the Nano runs on and the card and the EEPROM keep what they hold. The Mega's reset turns the LEDs off.
+   */
+  resetMega(): void {
+    this.#buildMega(this.mega.eeprom);
+    this.boot();
   }
 
   /** Call once the port is open: a real Mega prints `start` after reset. */

@@ -149,7 +149,7 @@ TEST(Bridge, EachConsoleLineIsAnsweredToItsOwnClientAndEchoedToAll) {
   EXPECT_TRUE(contains(r1, "X:")) << r1;
   EXPECT_TRUE(r1.back().get<std::string>().rfind("ok N", 0) == 0) << r1;
   json r2 = h.replies(2, 7)[0]["lines"];
-  EXPECT_TRUE(contains(r2, "Error:E14")) << r2;  // not homed: the Mega's own error, to its sender
+  EXPECT_TRUE(contains(r2, "echo:E14")) << r2;  // not homed: the Mega's own error, to its sender
   EXPECT_EQ(h.replies(1, 7).size(), 1u);
   h.run(200000);
   for (uint8_t c : {1, 2}) {

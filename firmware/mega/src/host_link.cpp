@@ -77,9 +77,13 @@ void HostLink::ok() {
 }
 
 void HostLink::errorLine(uint8_t code, const char* detail, bool flash) {
+  // A refusal leaves the machine as it was and is answered as Marlin answers one, with echo:, so hosts
+  // such as OctoPrint stay connected; link errors and faults are Error: (protocol/mega.md §2).
+  lastError = code;
   char buf[112];
-  uvMemcpyP(buf, UV_P("Error:E"), 7);
-  size_t n = 7 + uv::putUnsigned(code, buf + 7);
+  size_t n = uv::isRefusal(code) ? 6 : 7;
+  uvMemcpyP(buf, uv::isRefusal(code) ? UV_P("echo:E") : UV_P("Error:E"), n);
+  n += uv::putUnsigned(code, buf + n);
   buf[n++] = ' ';
   uv::errorMessage(code, buf + n, static_cast<uint8_t>(sizeof buf - n));
   n += strlen(buf + n);

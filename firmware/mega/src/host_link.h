@@ -47,9 +47,11 @@ class HostLink : public uv::ReplySink, private uv::FlowCounters {
     errorLine(code, detail);
     ok();
   }
-  // Just the `Error:E<code> <message>[: detail]` line; errorLineP takes a detail in flash (UV_P).
+  // Just the `Error:E<code> <message>[: detail]` line (`echo:E…` for a refusal, mega.md §2); errorLineP takes a detail in flash (UV_P).
   void errorLine(uint8_t code, const char* detail = nullptr) { errorLine(code, detail, false); }
   void errorLineP(uint8_t code, const char* detail) { errorLine(code, detail, true); }
+  // The code of the last error line, for the core to see a G-code file's line fail (0: none since reset).
+  uint8_t lastError = 0;
 
   // Queues one line and '\n' if it fits whole; false (nothing queued) if not.
   bool report(const char* text) { return write(text, false); }

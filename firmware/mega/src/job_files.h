@@ -1,6 +1,7 @@
 // The files a job keeps on the SD card. The job's text is stored under its own name, byte for byte
-// as uploaded (its CRC-32 stays checkable); the Mega's working files carry a '~' suffix, which no
-// upload name may contain, and are left out of M20's list.
+// as uploaded (its CRC-32 stays checkable); the Mega's working files carry a `~` and one letter at the
+// end, which no job name may hold (a G-code file may have a `~` inside: DOS short names), and are left
+// out of M20's list.
 #pragma once
 #include <stdint.h>
 #include <string.h>
@@ -27,7 +28,14 @@ inline void workFileName(const char* job, JobFile kind, char* out) {
   out[n + 2] = 0;
 }
 
-inline bool isWorkFile(const char* name) { return strchr(name, '~') != nullptr; }
+// A job's `~c`, `~i`, `~s`, a G-code upload's `~u`, and the checkpoint.
+inline bool isWorkFile(const char* name) {
+  size_t n = strlen(name);
+  if (strcmp(name, kCheckpointFile) == 0) return true;
+  if (n < 2 || name[n - 2] != '~') return false;
+  char k = name[n - 1];  // compared one by one: a string literal would cost RAM on the AVR
+  return k == 'c' || k == 'i' || k == 's' || k == 'u';
+}
 
 constexpr JobFile kWorkFiles[] = {JobFile::Cells, JobFile::Index, JobFile::Stops};
 

@@ -8,6 +8,7 @@
 #include "config_store.h"
 #include "dialect_command.h"
 #include "dialect_reply.h"
+#include "gcode_file.h"
 #include "host_link.h"
 #include "homing.h"
 #include "job_plan.h"
@@ -25,7 +26,8 @@
 
 namespace mega {
 
-constexpr uint32_t kKeepaliveUs = 2000000;  // busy: every 2 s during a long command
+constexpr uint32_t kKeepaliveUs = 2000000;  // busy: every 2 s during a long command, unless M113 says otherwise
+constexpr uint8_t kKeepaliveMaxS = 60;      // M113's range, as Marlin's
 constexpr uint8_t kPorts = 2;               // USB, ESP
 
 // What the main loop measures about itself, for M821 (the never-blocks check).
@@ -73,7 +75,7 @@ class Machine {
   enum class Op : uint8_t { None, Emit, Dwell, Home, SelfTest, Servo, ProbeRead, MoveRoom, Release, Plan, Prepare, Probe, Level, Answer };
   enum class Gen : uint8_t { Firmware, Endstops, Config, Files, Mesh };
   // What the job arena holds: an upload, a planning, a preparation from a job copied onto the card, a run.
-  enum class Arena : uint8_t { Empty, Spool, Plan, Run, Stream };
+  enum class Arena : uint8_t { Empty, Spool, Plan, Run, Stream, Gcode };
   // A stream's planner and its runner, together in the arena.
   struct StreamArena {
     StreamJob job;
@@ -97,6 +99,12 @@ class Machine {
   Result jog(HostLink& port, const uv::Command& c);
   Result selfTest(HostLink& port, const uv::Command& c);
   Result dwell(HostLink& port, const uv::Command& c);
+  // M400: waits for every queued move to end (a dwell of nothing after the queue).
+  Result drain();
+  // M113: the busy: interval of this port.
+  Result busyInterval(HostLink& port, const uv::Command& c);
+  // The busy: interval of a port (M113), µs; 0: none.
+  uint32_t keepaliveUs(const HostLink* port) const;
   Result release();
   bool axisHomed(uint8_t axis) const { return homed_ & (1 << axis); }
   // commands (machine_printhead.cpp)
@@ -127,6 +135,14 @@ class Machine {
   uint8_t refuseExposure(HostLink& port);
   Result startStream(HostLink& port);
   Result streamLine(HostLink& port, const LineSlot& line);
+  // G-code files on the card (machine_card_gcode.cpp): true if the command was one of theirs.
+  bool gcodeCommand(HostLink& port, const uv::Command& c, Result& r);
+  Result storeGcodeLine(HostLink& port, const LineSlot& line);
+  // Runs the selected G-code file's next line when no host line ran this pass.
+  void runCardLine();
+  void stopCardFile();
+  // Marlin's `SD printing byte <pos>/<size>` while a G-code file is selected; false if none is.
+  bool formatCardProgress(char* out);
   // the panel (machine_panel.cpp)
   void panel();
   void button(uint8_t pressed);
@@ -155,6 +171,7 @@ class Machine {
   bool jobActive() const {
     if (arena_ == Arena::Spool && !preparing_) return true;
     if (arena_ == Arena::Stream) return streaming_ || runLive();
+    if (arena_ == Arena::Gcode) return gcode()->uploading() || gcode()->running;
     return arena_ == Arena::Run && runLive();
   }
   bool runLive() const { return run()->state() == RunState::Running || run()->state() == RunState::Paused; }
@@ -164,6 +181,8 @@ class Machine {
   JobRunner* run() { return arena_ == Arena::Stream ? &stream()->runner : reinterpret_cast<JobRunner*>(arenaMem_); }
   const JobRunner* run() const { return const_cast<Machine*>(this)->run(); }
   StreamArena* stream() { return reinterpret_cast<StreamArena*>(arenaMem_); }
+  GcodeFile* gcode() { return reinterpret_cast<GcodeFile*>(arenaMem_); }
+  const GcodeFile* gcode() const { return reinterpret_cast<const GcodeFile*>(arenaMem_); }
   bool running() const { return (arena_ == Arena::Run || arena_ == Arena::Stream); }
   uint8_t formatTemps(char* out) const;
   uint8_t formatPosition(char* out) const;
@@ -198,6 +217,7 @@ class Machine {
   uint8_t& movesFree_;
   LoopStats& stats_;
   uint8_t next_ = 0;  // the port whose line runs next (round robin)
+  uint8_t keepaliveS_[kPorts] = {kKeepaliveUs / 1000000, kKeepaliveUs / 1000000};  // M113, per port
   uint8_t homed_ = 0;
   bool halted_ = false;
   bool absolute_ = true;
@@ -214,6 +234,8 @@ class Machine {
     uint16_t fileIndex;
     uint8_t meshK;  // G29: the point being probed, in serpentine order
     bool moving;    // G29: on the way to that point
+    bool drain;     // G4, M400, G28: the queued moves end before the command's own work starts (Marlin)
+    bool fromCard;  // a line of a G-code file: it has no ok to send
     char servoOp;
     union {  // one command's state at a time: the two share their bytes
       struct {
@@ -227,7 +249,8 @@ class Machine {
 
   // The job: one arena for whichever stage is live, so the planner's memory is there only while
   // it plans (job_plan.h).
-  static constexpr uint16_t kArenaBytes = larger(larger(sizeof(JobSpool), sizeof(JobPlan)), larger(sizeof(JobRunner), sizeof(StreamArena)));
+  static constexpr uint16_t kArenaBytes =
+      larger(larger(larger(sizeof(JobSpool), sizeof(JobPlan)), larger(sizeof(JobRunner), sizeof(StreamArena))), sizeof(GcodeFile));
   alignas(4) uint8_t arenaMem_[kArenaBytes];
   Arena arena_ = Arena::Empty;
   const HostLink* jobPort_ = nullptr;  // the port whose records an upload or a stream takes

@@ -1,7 +1,8 @@
-// Motion commands of the command core: G0/G1 with soft limits, G4, G28, M18, M820 jog, M822.
+// Motion commands of the command core: G0/G1 with soft limits, G4 and M400, G28, M18, M820 jog, M822, M113.
 #include "error_codes.h"
 #include "machine.h"
 #include "progmem.h"
+#include "text_scan.h"
 
 namespace mega {
 
@@ -67,8 +68,34 @@ Machine::Result Machine::dwell(HostLink& port, const uv::Command& c) {
   }
   long_.op = Op::Dwell;
   long_.since = now_;
-  long_.until = us;  // for a dwell: its length
+  long_.until = us;    // for a dwell: its length
+  long_.drain = true;  // after the moves before it, as Marlin's G4
   return Result::Long;
+}
+
+Machine::Result Machine::drain() {
+  long_.op = Op::Dwell;
+  long_.until = 0;
+  long_.drain = true;
+  return Result::Long;
+}
+
+Machine::Result Machine::busyInterval(HostLink& port, const uv::Command& c) {
+  uint8_t k = &port == ports_[0] ? 0 : 1;
+  if (!c.has('S')) {
+    char buf[16];
+    uvMemcpyP(buf, UV_P("echo:M113 S"), 11);
+    buf[11 + uv::putUnsigned(keepaliveS_[k], buf + 11)] = 0;
+    port.line(buf);
+    return Result::Done;
+  }
+  int32_t s = c.hasValue('S') ? c.value('S') : -1;  // seconds in thousandths
+  if (s < 0 || s > static_cast<int32_t>(kKeepaliveMaxS) * 1000 || s % 1000) {
+    port.errorLineP(uv::kBadParameter, UV_P("S"));
+    return Result::Done;
+  }
+  keepaliveS_[k] = static_cast<uint8_t>(s / 1000);
+  return Result::Done;
 }
 
 Machine::Result Machine::home(const uv::Command& c) {
@@ -76,11 +103,9 @@ Machine::Result Machine::home(const uv::Command& c) {
   for (uint8_t a = 0; a < 3; a++)
     if (c.has(kAxis[a])) axes = static_cast<uint8_t>(axes | (1 << a));
   if (!axes) axes = 7;
-  homed_ = static_cast<uint8_t>(homed_ & ~axes);
-  io_.motorsEnabled(true);
-  motion_.stop();
-  homing_.start(axes);
   long_.op = Op::Home;
+  long_.index = axes;  // homing starts once the queued moves have ended (runLong)
+  long_.drain = true;
   return Result::Long;
 }
 

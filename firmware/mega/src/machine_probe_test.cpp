@@ -46,7 +46,7 @@ class ProbeTest : public ::testing::Test {
 }  // namespace
 
 TEST_F(ProbeTest, G30NeedsHomingAndTheProbeOut) {
-  EXPECT_EQ(payload("G30"), (Lines{"Error:E14 axis not homed: home first (G28)"}));
+  EXPECT_EQ(payload("G30"), (Lines{"echo:E14 axis not homed: home first (G28)"}));
   m.cmd("G28");
   EXPECT_EQ(payload("G30"), (Lines{"Error:E41 probe did not trigger: deploy the probe (M401)"}));
 }
@@ -163,7 +163,7 @@ TEST_F(ProbeTest, TheMeshOutlivesARestartButIsAppliedOnlyWhenAsked) {
 }
 
 TEST_F(ProbeTest, WithoutAMeshM420Refuses) {
-  EXPECT_EQ(payload("M420 V"), (Lines{"Error:E11 bad or missing parameter: no mesh"}));
-  EXPECT_EQ(payload("M420 S1"), (Lines{"Error:E11 bad or missing parameter: no mesh"}));
-  EXPECT_EQ(payload("G29 X2"), (Lines{"Error:E11 bad or missing parameter"}));
+  EXPECT_EQ(payload("M420 V"), (Lines{"echo:E11 bad or missing parameter: no mesh"}));
+  EXPECT_EQ(payload("M420 S1"), (Lines{"echo:E11 bad or missing parameter: no mesh"}));
+  EXPECT_EQ(payload("G29 X2"), (Lines{"echo:E11 bad or missing parameter"}));
 }

@@ -38,9 +38,9 @@ TEST_F(MachineTest, StartsOnBothPortsAndM115ListsTheCapabilities) {
 }
 
 TEST_F(MachineTest, UnknownCommandsAndBadParametersAreRefusedWithTheirCodes) {
-  EXPECT_EQ(payload("M9876"), (Lines{"Error:E10 unknown command: M9876"}));
-  EXPECT_EQ(payload("G1 X"), (Lines{"Error:E11 bad or missing parameter: X"}));
-  EXPECT_EQ(payload("M155 S61"), (Lines{"Error:E11 bad or missing parameter"}));
+  EXPECT_EQ(payload("M9876"), (Lines{"echo:E10 unknown command: M9876"}));
+  EXPECT_EQ(payload("G1 X"), (Lines{"echo:E11 bad or missing parameter: X"}));
+  EXPECT_EQ(payload("M155 S61"), (Lines{"echo:E11 bad or missing parameter"}));
 }
 
 TEST_F(MachineTest, M105ReportsEverySensorWithItsSoftLimitAndM155RepeatsIt) {
@@ -48,7 +48,7 @@ TEST_F(MachineTest, M105ReportsEverySensorWithItsSoftLimitAndM155RepeatsIt) {
   Lines p = payload("M105");
   ASSERT_EQ(p.size(), 0u);  // T: lines are filtered as reports: look at the raw block
   Lines block = m.cmd("M105");
-  EXPECT_EQ(block[0], "T:25.0 /55.0 T0:25.0 /55.0 T1:25.0 /55.0 T2:25.0 /55.0 T3:25.0 /55.0 T4:25.0 /50.0 T5:25.0 /50.0");
+  EXPECT_EQ(block[0], "T:25.0 /0.0 S0:25.0 /55.0 S1:25.0 /55.0 S2:25.0 /55.0 S3:25.0 /55.0 S4:25.0 /50.0 S5:25.0 /50.0");
   m.cmd("M155 S1");
   size_t before = m.espLines.size();
   m.run(3100000);  // the third report needs its 8 ms on the wire
@@ -61,7 +61,7 @@ TEST_F(MachineTest, M105ReportsEverySensorWithItsSoftLimitAndM155RepeatsIt) {
 }
 
 TEST_F(MachineTest, G28HomesEveryAxisToZeroAndMovesThenGoWhereAsked) {
-  EXPECT_EQ(payload("G1 X10"), (Lines{"Error:E14 axis not homed: X"}));
+  EXPECT_EQ(payload("G1 X10"), (Lines{"echo:E14 axis not homed: X"}));
   Lines home = m.cmd("G28");
   EXPECT_EQ(home.back().rfind("ok N2 ", 0), 0u);
   EXPECT_EQ(payload("M114"), (Lines{"X:0.000 Y:0.000 Z:0.000 E:0.000 Count X:0 Y:0 Z:0"}));
@@ -74,14 +74,14 @@ TEST_F(MachineTest, G28HomesEveryAxisToZeroAndMovesThenGoWhereAsked) {
   m.cmd("G90");
   m.run(2000000);
   EXPECT_EQ(payload("M114"), (Lines{"X:7.500 Y:20.500 Z:1.000 E:0.000 Count X:600 Y:1640 Z:400"}));
-  EXPECT_EQ(payload("G1 X200.001"), (Lines{"Error:E15 target outside soft limits: X"}));
-  EXPECT_EQ(payload("G1 Y-1"), (Lines{"Error:E15 target outside soft limits: Y"}));
+  EXPECT_EQ(payload("G1 X200.001"), (Lines{"echo:E15 target outside soft limits: X"}));
+  EXPECT_EQ(payload("G1 Y-1"), (Lines{"echo:E15 target outside soft limits: Y"}));
 }
 
 TEST_F(MachineTest, AHomingThatFindsNoSwitchFailsWithE44) {
   m.rig.switchAt[1] = INT32_MIN;
   EXPECT_EQ(payload("G28 Y"), (Lines{"Error:E44 endstop not found while homing: Y"}));
-  EXPECT_EQ(payload("G1 Y5"), (Lines{"Error:E14 axis not homed: Y"}));
+  EXPECT_EQ(payload("G1 Y5"), (Lines{"echo:E14 axis not homed: Y"}));
 }
 
 TEST_F(MachineTest, ALongCommandSendsBusyAndTheOtherPortsQueriesStillRun) {
@@ -111,7 +111,7 @@ TEST_F(MachineTest, AJogRunsUntilM410AndStopsInsideTheBed) {
   int32_t later[3];
   m.rig.motion.positionSteps(later);
   EXPECT_EQ(later[0], steps[0]);  // stopped
-  EXPECT_EQ(payload("M820 X2"), (Lines{"Error:E11 bad or missing parameter"}));
+  EXPECT_EQ(payload("M820 X2"), (Lines{"echo:E11 bad or missing parameter"}));
   // Unstopped, a jog ends at the soft limit.
   m.cmd("M820 Y1 S1");
   m.run(8000000);
@@ -120,7 +120,7 @@ TEST_F(MachineTest, AJogRunsUntilM410AndStopsInsideTheBed) {
 }
 
 TEST_F(MachineTest, TheSelfTestReportsEachAxis) {
-  EXPECT_EQ(payload("M822 Q"), (Lines{"Error:E14 axis not homed: home first (G28)"}));
+  EXPECT_EQ(payload("M822 Q"), (Lines{"echo:E14 axis not homed: home first (G28)"}));
   m.cmd("G28");
   m.rig.switchAt[0] = m.rig.switchAt[1] = 0;  // homed: the switches close at 0
   EXPECT_EQ(payload("M822 Q"), (Lines{"TEST:quick x=pass x_steps=1600 y=pass y_steps=1600"}));
@@ -135,7 +135,7 @@ TEST_F(MachineTest, TheProbeServoAndItsAlarm) {
   EXPECT_EQ(m.nano.servoUs, 1473);
   EXPECT_EQ(payload("M280 P0 S160"), (Lines{"PROBE:stowed"}));
   EXPECT_EQ(m.nano.servoUs, 2194);
-  EXPECT_EQ(payload("M280 P0 S45"), (Lines{"Error:E11 bad or missing parameter"}));
+  EXPECT_EQ(payload("M280 P0 S45"), (Lines{"echo:E11 bad or missing parameter"}));
   m.nano.probe = true;  // deployed but the signal is high: the CR Touch's alarm
   EXPECT_EQ(payload("M401"), (Lines{"PROBE:alarm", "Error:E40 probe alarm"}));
 }
@@ -150,8 +150,8 @@ TEST_F(MachineTest, ConfigIsSetQueriedSavedLoadedAndReported) {
   EXPECT_EQ(payload("M850 accel.x"), (Lines{"M850 accel.x 2000"}));
   EXPECT_EQ(payload("M850 accel.x 2500"), Lines{});
   EXPECT_EQ(payload("M850 accel.x"), (Lines{"M850 accel.x 2500"}));
-  EXPECT_EQ(payload("M850 accel.x fast"), (Lines{"Error:E50 config value invalid: accel.x fast"}));
-  EXPECT_EQ(payload("M850 nozzle 3"), (Lines{"Error:E50 config value invalid: nozzle 3"}));
+  EXPECT_EQ(payload("M850 accel.x fast"), (Lines{"echo:E50 config value invalid: accel.x fast"}));
+  EXPECT_EQ(payload("M850 nozzle 3"), (Lines{"echo:E50 config value invalid: nozzle 3"}));
   EXPECT_EQ(payload("M500"), (Lines{"echo:Settings stored"}));
   EXPECT_NE(m.sd.contents("CONFIG.TXT").find("accel.x = 2500\n"), std::string::npos);
   EXPECT_EQ(payload("M502"), Lines{});
@@ -177,7 +177,7 @@ TEST_F(MachineTest, DirectionInversionActsAtOnce) {
 TEST_F(MachineTest, ChangingStepsPerMmMeansHomingAgain) {
   m.cmd("G28");
   m.cmd("M850 steps_per_mm.x 100");
-  EXPECT_EQ(payload("G1 X1"), (Lines{"Error:E14 axis not homed: X"}));
+  EXPECT_EQ(payload("G1 X1"), (Lines{"echo:E14 axis not homed: X"}));
   EXPECT_EQ(payload("G1 Y1"), Lines{});
 }
 
@@ -200,7 +200,7 @@ TEST_F(MachineTest, M112HaltsAtOnceAndOnlyM999Releases) {
   m.run(1000);
   EXPECT_EQ(payload("G28"), (Lines{"Error:E13 machine halted: send M999"}));
   EXPECT_EQ(payload("M999"), Lines{});
-  EXPECT_EQ(payload("G1 X1"), (Lines{"Error:E14 axis not homed: X"}));  // steps may have been lost
+  EXPECT_EQ(payload("G1 X1"), (Lines{"echo:E14 axis not homed: X"}));  // steps may have been lost
 }
 
 TEST_F(MachineTest, DwellLightAndRelease) {
@@ -210,11 +210,11 @@ TEST_F(MachineTest, DwellLightAndRelease) {
   EXPECT_TRUE(m.io.lightOn);
   EXPECT_EQ(m.io.lightPin, 57);
   m.cmd("M850 light.pin 8");
-  EXPECT_EQ(payload("M355 S1"), (Lines{"Error:E11 bad or missing parameter: light.pin is not a free pin"}));
+  EXPECT_EQ(payload("M355 S1"), (Lines{"echo:E11 bad or missing parameter: light.pin is not a free pin"}));
   m.cmd("G28");
   m.cmd("M18");
   EXPECT_FALSE(m.io.enabled);
-  EXPECT_EQ(payload("G1 X1"), (Lines{"Error:E14 axis not homed: X"}));
+  EXPECT_EQ(payload("G1 X1"), (Lines{"echo:E14 axis not homed: X"}));
 }
 
 TEST_F(MachineTest, LongDwellsWaitTheirTimeAndTooLongOnesAreRefused) {
@@ -228,7 +228,7 @@ TEST_F(MachineTest, LongDwellsWaitTheirTimeAndTooLongOnesAreRefused) {
   m.run(10000);
   EXPECT_TRUE(has(m.usbLines, "Error:E13"));
   m.cmd("M999");
-  EXPECT_EQ(payload("G4 S4295"), (Lines{"Error:E11 bad or missing parameter: S"}));  // past 2^32 µs
+  EXPECT_EQ(payload("G4 S4295"), (Lines{"echo:E11 bad or missing parameter: S"}));  // past 2^32 µs
   uint64_t before = m.nowUs;
   m.cmd("G4 S1.5");
   EXPECT_GE(m.nowUs - before, 1500000u);
@@ -243,14 +243,14 @@ TEST_F(MachineTest, PositionAutoReportsMotorsOnAndOffAndJobStatusReports) {
   long positions = std::count_if(m.usbLines.begin() + static_cast<long>(from), m.usbLines.end(), [](const std::string& l) { return l.rfind("X:", 0) == 0; });
   EXPECT_GE(positions, 9);
   EXPECT_LE(positions, 11);
-  EXPECT_EQ(payload("M154 P20"), (Lines{"Error:E11 bad or missing parameter"}));  // 50 ms at the least
+  EXPECT_EQ(payload("M154 P20"), (Lines{"echo:E11 bad or missing parameter"}));  // 50 ms at the least
   m.cmd("M154 S0");
   from = m.usbLines.size();
   m.run(500000);
   EXPECT_EQ(std::count_if(m.usbLines.begin() + static_cast<long>(from), m.usbLines.end(), [](const std::string& l) { return l.rfind("X:", 0) == 0; }), 0);
   m.cmd("M84");
   EXPECT_FALSE(m.io.enabled);
-  EXPECT_EQ(payload("G1 X1"), (Lines{"Error:E14 axis not homed: X"}));
+  EXPECT_EQ(payload("G1 X1"), (Lines{"echo:E14 axis not homed: X"}));
   m.cmd("M17");
   EXPECT_TRUE(m.io.enabled);
   m.cmd("M27 S1");
@@ -258,5 +258,5 @@ TEST_F(MachineTest, PositionAutoReportsMotorsOnAndOffAndJobStatusReports) {
   m.run(2100000);
   EXPECT_EQ(std::count_if(m.usbLines.begin() + static_cast<long>(from), m.usbLines.end(), [](const std::string& l) { return l == "JOB:idle"; }), 2);
   EXPECT_EQ(payload("M1000 C"), Lines{});  // nothing to discard is no error
-  EXPECT_EQ(payload("M1000"), (Lines{"Error:E27 no interrupted job to resume"}));
+  EXPECT_EQ(payload("M1000"), (Lines{"echo:E27 no interrupted job to resume"}));
 }

@@ -13,14 +13,15 @@ bool isDigit(char c) { return c >= '0' && c <= '9'; }
 char upper(char c) { return (c >= 'a' && c <= 'z') ? static_cast<char>(c - 32) : c; }
 
 bool fileNameChar(char c) {
-  return isDigit(c) || (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || c == '_' || c == '.' || c == '-';
+  // `~` is in DOS short names, which OctoPrint makes for the card.
+  return isDigit(c) || (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || c == '_' || c == '.' || c == '-' || c == '~';
 }
 
 enum class ArgKind : uint8_t { Params, FileName, Text };
 
 ArgKind argKind(char letter, uint16_t code) {
   if (letter != 'M') return ArgKind::Params;
-  if (code == 23 || code == 28 || code == 30) return ArgKind::FileName;
+  if (code == 23 || code == 28 || code == 30 || code == 32) return ArgKind::FileName;
   if (code == 850 || code == 117) return ArgKind::Text;
   return ArgKind::Params;
 }
@@ -85,7 +86,12 @@ uint8_t parseCommand(const char* body, uint8_t len, Command& out) {
       while (n > 0 && p[n - 1] == ' ') n--;
     if (n == 0) return kBadParameter;
     if (kind == ArgKind::FileName) {
-      if (n > 31) return kBadParameter;
+      // A leading `/` names the card's root, its only folder (OctoPrint writes it).
+      if (n > 0 && *p == '/') {
+        p++;
+        n--;
+      }
+      if (n == 0 || n > 31) return kBadParameter;
       for (uint8_t i = 0; i < n; i++)
         if (!fileNameChar(p[i])) return kBadParameter;
     }

@@ -12,7 +12,7 @@ struct Command {
   uint32_t present;   // bit i: parameter 'A'+i is present
   uint32_t valued;    // bit i: it has a value (else it is a bare flag like `X`)
   int32_t milli[26];  // values in thousandths
-  const char* text;   // rest of line for M23/M28/M30/M850, else nullptr
+  const char* text;   // rest of line for M23/M28/M30/M32/M850, else nullptr
   uint8_t textLen;
 
   bool has(char p) const { return present & (1ul << (p - 'A')); }

@@ -6,6 +6,7 @@
 #include "dialect_command.h"
 #include "crc16.h"
 #include "dialect_frame.h"
+#include "error_codes.h"
 #include "progmem.h"
 #include "text_scan.h"
 
@@ -79,13 +80,13 @@ const char* expect(const char* p, const char* end, const char* literal) {
   return (p && startsWith(p, end, literal)) ? p + strlen(literal) : nullptr;
 }
 
+// `T:<hottest> /0.0` (nothing heats: no target), then `S<i>:<v> /<limit>` for each sensor (mega.md §4).
 bool parseTemps(const char* p, const char* end, Reply& r) {
-  int16_t hot = 0, hotLimit = 0;
+  int16_t hot = 0;
   p = scanDeci(p + 2, end, 3, hot);
-  p = expect(p, end, " /");
-  if (p) p = scanDeci(p, end, 3, hotLimit);
+  p = expect(p, end, " /0.0");
   for (uint8_t i = 0; i < kSensorCount && p; i++) {
-    char tag[5] = {' ', 'T', static_cast<char>('0' + i), ':', '\0'};
+    char tag[5] = {' ', 'S', static_cast<char>('0' + i), ':', '\0'};
     p = expect(p, end, tag);
     if (p) p = scanDeci(p, end, 3, r.deciC[i]);
     p = expect(p, end, " /");
@@ -223,8 +224,12 @@ bool parseReply(const char* line, uint8_t len, Reply& r) {
     return parseCoded(p + 6, end, r);
   }
   if (startsWith(p, end, "echo:")) {
-    r.kind = ReplyKind::Echo;
-    setText(r, p + 5, end);
+    // `echo:E<code> …` is a refusal (mega.md §2): still the command's error to a host that reads codes.
+    r.kind = parseCoded(p + 5, end, r) ? ReplyKind::Error : ReplyKind::Echo;
+    if (r.kind == ReplyKind::Echo) {
+      r.code = 0;
+      setText(r, p + 5, end);
+    }
     return true;
   }
   if (startsWith(p, end, "busy:")) {
@@ -338,7 +343,8 @@ size_t formatReply(const Reply& r, char* buf, size_t size) {
       break;
     case ReplyKind::Error:
     case ReplyKind::Fault:
-      o.putP(r.kind == ReplyKind::Error ? UV_P("Error:") : UV_P("FAULT:"));
+      if (r.kind == ReplyKind::Fault) o.putP(UV_P("FAULT:"));
+      else o.putP(r.code && isRefusal(static_cast<uint8_t>(r.code)) ? UV_P("echo:") : UV_P("Error:"));
       if (r.code) {
         o.putP(UV_P("E"));
         o.num(r.code);
@@ -351,15 +357,16 @@ size_t formatReply(const Reply& r, char* buf, size_t size) {
       o.num(static_cast<int32_t>(r.n));
       break;
     case ReplyKind::Temps: {
+      // Hosts read `T:` as a hotend and `Tn:` as more of them, with the `/` value as a heater's target:
+      // one `T:` with no target, and the sensors as `S0`-`S5` (OctoPrint keeps them as custom sensors).
       uint8_t hot = 0;
       for (uint8_t i = 1; i < kSensorCount; i++)
         if (r.deciC[i] > r.deciC[hot]) hot = i;
       o.putP(UV_P("T:"));
       o.deci(r.deciC[hot]);
-      o.putP(UV_P(" /"));
-      o.deci(r.limitDeciC[hot]);
+      o.putP(UV_P(" /0.0"));
       for (uint8_t i = 0; i < kSensorCount; i++) {
-        char tag[5] = {' ', 'T', static_cast<char>('0' + i), ':', '\0'};
+        char tag[5] = {' ', 'S', static_cast<char>('0' + i), ':', '\0'};
         o.put(tag);
         o.deci(r.deciC[i]);
         o.putP(UV_P(" /"));

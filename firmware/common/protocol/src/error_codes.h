@@ -41,6 +41,13 @@ enum ErrorCode : uint8_t {
 // Codes 1-6 are line-level: a numbered line with one of them is asked for again.
 inline bool isLineError(uint8_t code) { return code >= 1 && code <= 6; }
 
+// The class column of errors.csv. Faults: the machine stopped or is in danger (`Error:`). Refusals leave it
+// fine and are answered `echo:E<code> …`, as Marlin answers them, so hosts like OctoPrint stay connected.
+inline bool isFault(uint8_t code) {
+  return code == 13 || code == 28 || (code >= 30 && code <= 33) || (code >= 40 && code <= 44);
+}
+inline bool isRefusal(uint8_t code) { return !isLineError(code) && !isFault(code); }
+
 // Copies the table's message for a code into out (NUL-terminated, truncated to size);
 // for an unknown code it writes "unknown error" ("unknown" for the name) and returns false.
 // Messages live in flash on AVR.

@@ -18,10 +18,15 @@ TEST(ErrorCodes, MatchErrorsCsv) {
   std::set<int> codes;
   while (std::getline(in, row)) {
     std::stringstream s(row);
-    std::string code, name, message;
+    std::string code, name, message, resend, cls;
     std::getline(s, code, ',');
     std::getline(s, name, ',');
     std::getline(s, message, ',');
+    std::getline(s, resend, ',');
+    std::getline(s, cls, ',');
+    const uint8_t c = static_cast<uint8_t>(std::stoi(code));
+    EXPECT_EQ(cls, uv::isLineError(c) ? "link" : uv::isFault(c) ? "fault" : "refusal") << row;
+    EXPECT_EQ(uv::isRefusal(c), cls == "refusal") << row;
     char got[64];
     ASSERT_TRUE(uv::errorName(static_cast<uint8_t>(std::stoi(code)), got, sizeof got)) << row;
     EXPECT_EQ(name, got);

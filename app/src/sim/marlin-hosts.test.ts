@@ -1,0 +1,114 @@
+// The simulated Mega as Marlin hosts (OctoPrint, Pronterface) see it: refusals, waiting for the queue,
+// the busy interval, temperatures, and a reset when a host opens the port.
+import { describe, expect, it } from 'vitest';
+import { parseReply } from '../protocol/dialect-reply';
+import { SimHost } from './sim-host.fixture';
+
+describe('Marlin hosts: refusals and faults', () => {
+  it('answers refusals with echo: and leaves the machine as it was', () => {
+    const h = new SimHost({ drift: false });
+    expect(h.cmd('G0 X10')[0]).toBe('echo:E14 axis not homed: X');
+    expect(h.cmd('M104 S200')[0]).toBe('echo:E10 unknown command: M104');
+    h.cmd('G28');
+    expect(h.cmd('G0 X9999')[0]).toBe('echo:E15 target outside soft limits: X');
+    expect(h.cmd('M114')[0]).toMatch(/^X:0\.000 Y:0\.000 Z:0\.000/); // the head stayed
+    h.cmd('M84'); // a cancel script's M84 releases the motors and so the homing
+    expect(h.cmd('G0 X10')[0]).toBe('echo:E14 axis not homed: X');
+  });
+
+  it('keeps Error: for faults: a halted machine says so to every line', () => {
+    const h = new SimHost();
+    h.cmd('M112');
+    expect(h.cmd('M105')[0]).toBe('Error:E13 machine halted: send M999');
+  });
+});
+
+describe('Marlin hosts: waiting for the motion queue', () => {
+  it('M400 answers only when the last move has ended, so M114 reports where the head stopped', () => {
+    const h = new SimHost();
+    h.cmd('G28');
+    h.cmd('G0 X100 Y50 F3000');
+    const start = h.sim.clock.now;
+    expect(h.cmd('M400').at(-1)).toMatch(/^ok/);
+    expect(h.sim.clock.now - start).toBeGreaterThan(1_000_000); // 111 mm at 50 mm/s
+    expect(h.cmd('M114')[0]).toMatch(/^X:100\.000 Y:50\.000 /);
+  });
+
+  it('G4 waits for the moves before it, then dwells', () => {
+    const h = new SimHost();
+    h.cmd('G28');
+    h.cmd('G0 X100 F6000'); // 1 s and more with acceleration
+    const start = h.sim.clock.now;
+    h.cmd('G4 P100');
+    const took = h.sim.clock.now - start;
+    h.cmd('G0 X0 F6000');
+    const moveStart = h.sim.clock.now;
+    h.cmd('M400');
+    const move = h.sim.clock.now - moveStart;
+    expect(took).toBeGreaterThanOrEqual(move + 100_000 - 2000); // the move's time and the dwell, to the ms the host steps
+    expect(h.cmd('G4 S4294.968')[0]).toBe('echo:E11 bad or missing parameter: S');
+  });
+
+  it('G28 finishes the moves queued before it', () => {
+    const h = new SimHost();
+    h.cmd('G28');
+    h.cmd('G0 X150 F6000');
+    h.cmd('G28 Y');
+    expect(h.cmd('M114')[0]).toMatch(/^X:150\.000 Y:0\.000 /);
+  });
+});
+
+describe('Marlin hosts: link commands', () => {
+  it('M113 sets the busy: interval, 0 turns it off', () => {
+    const h = new SimHost();
+    expect(h.cmd('M113')[0]).toBe('echo:M113 S2');
+    h.cmd('M113 S5');
+    h.cmd('G28');
+    const busy = (from: number) => h.lines.slice(from).filter((l) => l.startsWith('busy:')).length;
+    let from = h.lines.length;
+    h.cmd('G4 S11');
+    expect(busy(from)).toBe(2); // at 5 s and 10 s
+    h.cmd('M113 S0');
+    from = h.lines.length;
+    h.cmd('G4 S5');
+    expect(busy(from)).toBe(0);
+    expect(h.cmd('M113 S61')[0]).toMatch(/^echo:E11/);
+  });
+
+  it('reports temperatures as one T: without a target and the sensors as S0-S5 with their limits', () => {
+    const h = new SimHost({ drift: false });
+    const line = h.cmd('M105')[0];
+    expect(line).toMatch(/^T:\d+\.\d \/0\.0 S0:\d+\.\d \/\d+\.\d( S[1-5]:\d+\.\d \/\d+\.\d){5}$/);
+    const r = parseReply(line);
+    expect(r?.kind === 'temps' && r.limitDeciC.length).toBe(6);
+  });
+
+  it('M108 is accepted: nothing heats, so there is no wait to break', () => {
+    const h = new SimHost();
+    expect(h.cmd('M108')).toHaveLength(1);
+  });
+});
+
+describe('a host opening the port resets the Mega', () => {
+  it('clears a halt and the Mega RAM, keeps the card, and leaves no old timer running', () => {
+    const h = new SimHost();
+    h.cmd('G28');
+    h.cmd('M155 S1');
+    h.cmd('M28 KEEP.gco');
+    h.cmd('G0 X1');
+    h.cmd('M29');
+    h.cmd('M112');
+    expect(h.cmd('M105')[0]).toMatch(/^Error:E13/);
+    const boot = h.sim.nano.boot;
+    h.sim.resetMega();
+    expect(h.lines.at(-1)).toBe('start');
+    h.reconnect();
+    expect(parseReply(h.cmd('M105')[0])?.kind).toBe('temps');
+    expect(h.cmd('G0 X1')[0]).toMatch(/^echo:E14/); // homing is RAM: gone
+    expect(h.sim.nano.boot).toBe(boot); // the Nano ran on
+    const from = h.lines.length;
+    h.sim.advance(3000);
+    expect(h.lines.slice(from).filter((l) => l.startsWith('T:'))).toHaveLength(0); // the old M155 died with the old Mega
+    expect(h.cmd('M20')).toContain('KEEP.gco 6');
+  });
+});
