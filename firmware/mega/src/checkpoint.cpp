@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "crc32.h"
+#include "dialect_command.h"
 #include "job_files.h"
 #include "le_bytes.h"
 #include "progmem.h"
@@ -39,7 +40,9 @@ bool decode(const char* b, Progress& p, uint32_t& seq) {
   p.count = getLe32(b + 12);
   memcpy(p.file, b + 16, kFileNameMax);
   p.file[kFileNameMax] = 0;
-  return p.done <= p.count && p.file[0];
+  // A CRC proves the bytes are as written, not that they make sense: the name must be one the
+  // dialect takes, or M1000 S would print whatever bytes it holds to the hosts.
+  return p.done <= p.count && uv::validFileName(p.file, static_cast<uint8_t>(strlen(p.file)));
 }
 }  // namespace
 

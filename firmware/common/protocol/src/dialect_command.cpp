@@ -28,6 +28,13 @@ ArgKind argKind(char letter, uint16_t code) {
 
 }  // namespace
 
+bool validFileName(const char* p, uint8_t n) {
+  if (n == 0 || n > 31) return false;
+  for (uint8_t i = 0; i < n; i++)
+    if (!fileNameChar(p[i])) return false;
+  return true;
+}
+
 bool parseMilli(const char* p, uint8_t len, int32_t& out) {
   const char* end = p + len;
   bool neg = p < end && *p == '-';
@@ -91,9 +98,7 @@ uint8_t parseCommand(const char* body, uint8_t len, Command& out) {
         p++;
         n--;
       }
-      if (n == 0 || n > 31) return kBadParameter;
-      for (uint8_t i = 0; i < n; i++)
-        if (!fileNameChar(p[i])) return kBadParameter;
+      if (!validFileName(p, n)) return kBadParameter;
     }
     out.text = p;
     out.textLen = n;

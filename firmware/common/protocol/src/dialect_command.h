@@ -21,6 +21,10 @@ struct Command {
   bool is(char l, uint16_t c) const { return letter == l && code == c; }
 };
 
+// A name on the card as the dialect takes it (after a leading `/`): 1-31 of A-Z a-z 0-9 _ . - ~.
+// A name read back from the card (the checkpoint) is held to the same rule.
+bool validFileName(const char* p, uint8_t n);
+
 // `-?digits[.digits]` in [p, p+len) to thousandths, rounded half away from zero.
 bool parseMilli(const char* p, uint8_t len, int32_t& out);
 
