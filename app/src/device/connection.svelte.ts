@@ -12,6 +12,7 @@ import type { PrinterLink, UploadProgress } from './link';
 import { configOf, interruptedOf, levelingOf, type InterruptedJob } from './printer-replies';
 import { parseMesh } from './mesh-report';
 import { ThermalHistory } from './thermal-history';
+import { DeviceClock } from './device-clock';
 import type { Mesh } from '../planner/mesh';
 import { PickerDismissed, SerialTransport } from './serial-transport';
 import { SimTransport, switchOffSimulatedPrinter } from './sim-transport';
@@ -53,7 +54,13 @@ export class Printer {
   /** The mesh the printer last reported, and the one it had before the last probing, for comparison. */
   mesh = $state<Mesh | null>(null);
   previousMesh = $state<Mesh | null>(null);
+  /** Printer seconds per wall second of the open link (the simulated printer at ?simSpeed=N runs N×). */
+  timeScale = $state(1);
   #link: PrinterLink | null = null;
+  /** The printer's time, which the thermal history is kept in: its rates are per the printer's second. */
+  readonly #clock = new DeviceClock();
+  /** Error codes an app-made query expects as an answer (no mesh yet): not errors the user must read. */
+  readonly #expected = new Map<number, number>();
 
   constructor(private readonly makeLink: (kind: TransportKind) => PrinterLink = defaultLink) {}
 
@@ -66,6 +73,7 @@ export class Printer {
     this.connection = { state: 'connecting', kind };
     const link = this.makeLink(kind);
     this.#link = link;
+    this.timeScale = link.timeScale;
     try {
       await link.open((r, line) => this.#onReply(r, line), (error) => {
         if (this.#link !== link) return;
@@ -113,6 +121,27 @@ export class Printer {
     this.log.add(line, 'sent');
     this.logRevision++;
     return this.#link.command(line);
+  }
+
+  /**
+   * A question the app asks on its own (not the user), where an error with one of `expected` codes
+   * is an answer ("no mesh"): it is logged for the debug view, not as an error, and resolves null.
+   */
+  async ask(line: string, expected: number[]): Promise<Reply[] | null> {
+    if (!this.#link) throw new Error('not connected');
+    for (const c of expected) this.#expected.set(c, (this.#expected.get(c) ?? 0) + 1);
+    try {
+      return await this.#link.command(line);
+    } catch (e) {
+      if (e instanceof CommandError && expected.includes(e.code)) return null;
+      throw e;
+    } finally {
+      for (const c of expected) {
+        const n = (this.#expected.get(c) ?? 1) - 1;
+        if (n > 0) this.#expected.set(c, n);
+        else this.#expected.delete(c);
+      }
+    }
   }
 
   async startJob(job: PrintJob): Promise<void> {
@@ -189,10 +218,10 @@ export class Printer {
   abort = () => this.send('M524');
 
   #onReply(r: Reply, line: string): void {
-    this.log.add(line);
+    this.log.add(line, r.kind === 'error' && this.#expected.has(r.code) ? 'link' : undefined);
     this.logRevision++;
     if (r.kind === 'temps') {
-      this.thermal.add(Date.now() / 1000, r.deciC.map((d) => d / 10), this.device.job?.state === 'running');
+      this.thermal.add(this.#clock.nowS(this.timeScale), r.deciC.map((d) => d / 10), this.device.job?.state === 'running');
       this.thermalRevision = this.thermal.revision;
     }
     if (applyReport(this.device, r, Date.now())) this.device = { ...this.device };
