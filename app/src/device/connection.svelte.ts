@@ -1,7 +1,8 @@
 // The app's one view of the printer: the connection lifecycle as a discriminated union, the device state
 // folded from every report, link health, and the job and machine actions the UI calls.
 
-import { ConsoleLog } from '../console/console-log';
+import { ConsoleLog, type Entry } from '../console/console-log';
+import { formatReply } from '../protocol/dialect-reply';
 import type { Reply } from '../protocol/dialect-reply';
 import type { PrintJob } from '../protocol/job-types';
 import { CommandError, type LinkHealth } from './dialect-client';
@@ -30,6 +31,9 @@ export type Connection =
 export type Upload = { state: 'idle' } | ({ state: 'uploading' } & UploadProgress) | { state: 'failed'; error: string };
 
 export const SENSOR_NAMES = ['LED 0', 'LED 1', 'LED 2', 'LED 3', 'Driver', 'Frame'];
+
+/** The commands whose answer is a line of a kind the printer also sends as an auto-report. */
+const REPORT_ANSWERS: Record<string, Reply['kind']> = { M105: 'temps', M114: 'position', M27: 'job' };
 
 function describe(e: unknown): string {
   return e instanceof CommandError ? e.message : e instanceof Error ? e.message : String(e);
@@ -61,6 +65,8 @@ export class Printer {
   readonly #clock = new DeviceClock();
   /** Error codes an app-made query expects as an answer (no mesh yet): not errors the user must read. */
   readonly #expected = new Map<number, number>();
+  /** Each reply's console line, so the lines answering what the user typed can be shown as replies. */
+  #logged = new WeakMap<Reply, Entry>();
 
   constructor(private readonly makeLink: (kind: TransportKind) => PrinterLink = defaultLink) {}
 
@@ -144,6 +150,22 @@ export class Printer {
     }
   }
 
+  /**
+   * A line the user typed (the console): its reply block is shown in the log as replies, so M105,
+   * M114 or M503 answer there without showing every auto-report.
+   */
+  async sendTyped(line: string): Promise<Reply[]> {
+    const replies = await this.send(line);
+    // A block holds every line since the last ok, auto-reports among them: of the report kinds only
+    // the one the command answers, and its last line, the one just before the ok, is its reply.
+    const answer = REPORT_ANSWERS[line.trim().split(/\s+/)[0].toUpperCase()];
+    const own = replies.filter((r) => r.kind === answer).at(-1);
+    const entries = own ? [this.#logged.get(own) ?? this.log.add(formatReply(own), 'reply')] : []; // over the ESP, a reply block comes apart from the relayed lines
+    this.log.markReplies(entries);
+    this.logRevision++;
+    return replies;
+  }
+
   async startJob(job: PrintJob): Promise<void> {
     const link = this.#link;
     if (!link) throw new Error('not connected');
@@ -218,7 +240,7 @@ export class Printer {
   abort = () => this.send('M524');
 
   #onReply(r: Reply, line: string): void {
-    this.log.add(line, r.kind === 'error' && this.#expected.has(r.code) ? 'link' : undefined);
+    this.#logged.set(r, this.log.add(line, r.kind === 'error' && this.#expected.has(r.code) ? 'link' : undefined));
     this.logRevision++;
     if (r.kind === 'temps') {
       this.thermal.add(this.#clock.nowS(this.timeScale), r.deciC.map((d) => d / 10), this.device.job?.state === 'running');
