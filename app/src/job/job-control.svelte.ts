@@ -9,6 +9,7 @@ import type { GridEditor } from '../studio/editor.svelte';
 import { jobFromGrid } from '../studio/grid-job';
 import { DEFAULT_CONFIG, ledsOf, type MachineConfig } from '../studio/machine-config';
 import { framingMoves } from './framing';
+import { JobNotice } from './job-notice.svelte';
 
 export class JobControl {
   /** The exposure of a cell at 100 % dose, ms. */
@@ -65,6 +66,7 @@ export class JobControl {
   act = (f: () => Promise<unknown>) => this.#act(f);
 
   async #run(job: PrintJob, duty: number[] | null): Promise<void> {
+    JobNotice.askPermission(); // from the click that starts the job: its end can reach the desktop
     this.duty = duty;
     await this.beforeJob();
     await this.printer.send('G28');
