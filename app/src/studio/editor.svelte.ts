@@ -10,6 +10,8 @@ import { ObjectLayer } from './objects/object-layer.svelte';
 import { CORNERS, cornerOf, exposes, type Corner, type StudioObject } from './objects/objects';
 import { textWidth } from './objects/text-raster';
 import { typeKey } from './objects/typing';
+import { freePlace } from './objects/placement';
+import type { Rect } from './objects/objects';
 
 /** The Text tool's words until the user gives others: the first key typed replaces them. */
 const PLACEHOLDER_TEXT = 'Text';
@@ -91,10 +93,14 @@ export class GridEditor {
     this.view = fit(this.grid.cols, this.grid.rows, width, height, 16, RULER);
   }
 
-  /** The cell in the middle of what the canvas shows (beside the rulers). */
-  centreCell(): { x: number; y: number } {
-    const c = toCell(this.view, RULER + (this.screen.width - RULER) / 2, RULER + (this.screen.height - RULER) / 2);
-    return { x: Math.round(c.x), y: Math.round(c.y) };
+  /**
+   * A place for a w × h object the pointer did not place (an import): in view and free of the other
+   * objects, never exactly on the one before (freePlace).
+   */
+  freeBox(w: number, h: number): Rect {
+    const a = toCell(this.view, RULER, RULER), b = toCell(this.view, this.screen.width, this.screen.height);
+    const visible = { x: Math.ceil(a.x), y: Math.ceil(a.y), w: Math.floor(b.x - a.x), h: Math.floor(b.y - a.y) };
+    return freePlace(this.layer.objects, w, h, visible, this.grid.cols, this.grid.rows);
   }
 
   zoom(factor: number, sx: number, sy: number): void {
