@@ -58,6 +58,12 @@ export class Printer {
   /** The mesh the printer last reported, and the one it had before the last probing, for comparison. */
   mesh = $state<Mesh | null>(null);
   previousMesh = $state<Mesh | null>(null);
+  /**
+   * Whether the machine is homed, as far as the app knows: false after the link opened a Mega (it
+   * restarts) or its motors were released, true after a homing or a move it took, null when unknown
+   * (the hub's Mega did not restart). The printer cannot be asked.
+   */
+  homed = $state<boolean | null>(null);
   /** Printer seconds per wall second of the open link (the simulated printer at ?simSpeed=N runs N×). */
   timeScale = $state(1);
   #link: PrinterLink | null = null;
@@ -80,6 +86,7 @@ export class Printer {
     const link = this.makeLink(kind);
     this.#link = link;
     this.timeScale = link.timeScale;
+    this.homed = kind === 'esp' ? null : false;
     try {
       await link.open((r, line) => this.#onReply(r, line), (error) => {
         if (this.#link !== link) return;
@@ -126,7 +133,15 @@ export class Printer {
     if (!this.#link) throw new Error('not connected');
     this.log.add(line, 'sent');
     this.logRevision++;
-    return this.#link.command(line);
+    try {
+      const replies = await this.#link.command(line);
+      if (/^(G28|G0|G1)\b/i.test(line)) this.homed = true; // homed, or a move the printer took homed
+      else if (/^(M18|M84)\b/i.test(line)) this.homed = false; // released motors forget where they are
+      return replies;
+    } catch (e) {
+      if (e instanceof CommandError && e.code === 14) this.homed = false;
+      throw e;
+    }
   }
 
   /**
@@ -190,17 +205,12 @@ export class Printer {
     this.interrupted = null;
   };
 
-  /** Lines sent one after another; a move the printer refuses for want of homing homes and goes on. */
+  /**
+   * Lines sent one after another. A move the printer refuses for want of homing (E14) is an error:
+   * homing moves every axis to its endstop, so the app asks first (JobControl.move), never silently.
+   */
   async moves(lines: string[]): Promise<void> {
-    for (const line of lines) {
-      try {
-        await this.send(line);
-      } catch (e) {
-        if (!(e instanceof CommandError && e.code === 14)) throw e;
-        await this.send('G28');
-        await this.send(line);
-      }
-    }
+    for (const line of lines) await this.send(line);
   }
 
   /** Deploys the probe, maps the bed on n × n points (`G29`), and stows it. */
