@@ -26,7 +26,8 @@ export class JobNotice {
       this.unseen = document.hasFocus() && document.visibilityState === 'visible' ? null : end.title;
       if (typeof Notification !== 'undefined' && Notification.permission === 'granted') new Notification(end.title, { body: end.body, tag: 'uv-job' });
     }
-    document.title = pageTitle(job, this.unseen);
+    const title = pageTitle(job, this.unseen);
+    if (document.title !== title) document.title = title; // reports arrive many times a second
   }
 
   /** The user is back at the page: the end has been seen. */
