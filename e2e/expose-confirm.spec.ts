@@ -5,6 +5,7 @@ import { expect, test } from '@playwright/test';
 import { drawFilledRectangle } from './draw';
 
 test('"Expose test pattern" asks first: its time at the full dose set, where it lands, the dry run', async ({ page }, info) => {
+  test.setTimeout(90_000); // it uploads and starts a job at the end
   await page.setViewportSize({ width: 1440, height: 900 });
   await page.goto('/?simSpeed=40');
   await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected');

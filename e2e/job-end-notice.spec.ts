@@ -3,6 +3,7 @@
 import { expect, test } from '@playwright/test';
 
 test('a finished job says so in a desktop notification and in the title', async ({ page }, info) => {
+  test.setTimeout(120_000); // a whole job, upload to end, as the other job specs allow
   // The desktop as the page sees it: a Notification that records what it was asked to show, and a
   // user who answers "Allow" when asked.
   await page.addInitScript(() => {
