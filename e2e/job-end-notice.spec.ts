@@ -25,9 +25,11 @@ test('a finished job says so in a desktop notification and in the title', async 
     Object.defineProperty(window, '__notifications', { value: shown });
   });
   await page.setViewportSize({ width: 1440, height: 900 });
-  await page.goto('/?simSpeed=40');
+  // Slow enough, and a long enough dose, that the job runs for seconds: the title is seen mid-job.
+  await page.goto('/?simSpeed=10');
   await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected');
   await expect(page).toHaveTitle('UV Exposure');
+  await page.getByLabel('Full dose').fill('20');
   await page.getByRole('button', { name: 'Expose test pattern' }).click();
   const confirm = page.getByRole('button', { name: 'Expose now' });
   if (await confirm.isVisible().catch(() => false)) await confirm.click(); // item 4's confirmation, where present
