@@ -1,7 +1,8 @@
 // End-to-end tests in Debian's headless Chromium against the built app (build && preview).
 import { defineConfig } from '@playwright/test';
 
-const PORT = 4173;
+// E2E_PORT: another checkout on the same machine may already serve its own build on 4173.
+const PORT = Number(process.env.E2E_PORT ?? 4173);
 
 export default defineConfig({
   testDir: 'e2e',
@@ -21,7 +22,8 @@ export default defineConfig({
     },
   },
   webServer: {
-    command: `npm run build && npm run preview -- --port ${PORT} --strictPort`,
+    // The ESP's image too: the mock hub (e2e/mock-esp.ts) serves it, as the real one does.
+    command: `npm run build && npm run build:esp && npm run preview -- --port ${PORT} --strictPort`,
     url: `http://127.0.0.1:${PORT}`,
     reuseExistingServer: !process.env.CI,
     timeout: 120_000,

@@ -1,11 +1,11 @@
 import { svelte } from '@sveltejs/vite-plugin-svelte';
 import { fileURLToPath } from 'node:url';
 import { defineConfig, type Plugin } from 'vite';
-import { bundleSize, formatBundleSize } from '../scripts/bundle-size';
-import { serviceWorker } from './pwa';
+import { bundleSize, formatBundleSize } from '../scripts/bundle-size.ts';
+import { serviceWorker } from './pwa.ts';
 
 /** What loads only when a panel is first opened: grouped into one chunk. */
-const ON_DEMAND_PANELS = /\/(PositionDashboard|ProbeDashboard|MeshDashboard|LinkDashboard|mesh-image|Settings|setting-groups|Lamp|PreviewPanel|exposure-preview|preview-colours|MaterialTest|material-test|ObjectPanel|fonts|Panel)\.(svelte|ts)/;
+const ON_DEMAND_PANELS = /\/(PositionDashboard|ProbeDashboard|MeshDashboard|LinkDashboard|mesh-image|Settings|setting-groups|setting-docs|Lamp|PreviewPanel|exposure-preview|plan-client|preview-colours|MaterialTest|material-test|ObjectPanel|fonts|Panel)\.(svelte|ts)|\/CONFIG\.md\?raw$/; // CONFIG.md: the settings' words (setting-docs.ts)
 
 const outDir = fileURLToPath(new URL('../dist/app', import.meta.url));
 
@@ -26,7 +26,7 @@ function printSize(): Plugin {
 
 export default defineConfig(({ mode }) => ({
   root: fileURLToPath(new URL('.', import.meta.url)),
-  plugins: [svelte(), serviceWorker(fileURLToPath(new URL('service-worker.js', import.meta.url))), printSize()],
+  plugins: [svelte({ configFile: false }), serviceWorker(fileURLToPath(new URL('service-worker.js', import.meta.url))), printSize()],
   build: {
     outDir,
     emptyOutDir: true,

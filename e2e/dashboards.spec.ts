@@ -120,7 +120,7 @@ test('shows the LEDs and the link, and settings read, checked, applied and saved
   const travel = page.getByTestId('setting-speed.travel');
   await expect(travel).toHaveValue('100');
   await travel.fill('9999');
-  await expect(page.getByTestId('settings-invalid')).toContainText('speed.travel');
+  await expect(page.getByTestId('settings-invalid')).toContainText('Travel speed: out of range');
   await expect(page.getByTestId('settings-apply')).toBeDisabled();
   await travel.fill('120');
   await page.getByTestId('settings-apply').click();

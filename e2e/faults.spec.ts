@@ -10,9 +10,10 @@ test('a job arrives bit-exact through 1 % byte corruption with drops', async ({ 
   const app = await openApp(page, 'web serial', 4, { link: { corruptPercent: 1, dropPercent: 0.3, seed: 4242 } });
   await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected', { timeout: 60_000 });
   await page.getByTestId('start-test').click();
+  await page.getByRole('dialog').getByRole('button', { name: 'Expose now' }).click(); // the one confirmation (issue 17, item 4)
   await expect(page.getByTestId('job-state')).toHaveAttribute('data-state', /running|done/, { timeout: 90_000 });
   const stored = Array.from(app.sim!.printer.sd.files.values());
-  expect(stored).toEqual([encodeJob(testPattern())]);
+  expect(stored).toEqual([encodeJob(testPattern(4000))]); // the Job panel's full dose, 4 ms
   await page.getByTestId('tab-link').click();
   await expect(page.getByTestId('link-health')).toContainText(/[1-9]\d* resends|[1-9]\d* time-outs/);
   await page.screenshot({ path: info.outputPath('corrupted-link.png'), fullPage: true });
@@ -23,6 +24,7 @@ test('a disconnect mid-job leaves the UI truthful', async ({ page }, info) => {
   const app = await openApp(page, 'web serial', 2);
   await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected');
   await page.getByTestId('start-test').click();
+  await page.getByRole('dialog').getByRole('button', { name: 'Expose now' }).click(); // the one confirmation (issue 17, item 4)
   await expect(page.getByTestId('job-state')).toHaveAttribute('data-state', 'running', { timeout: 30_000 });
   await app.fake!.lose();
   await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'lost');
@@ -38,6 +40,7 @@ test('over-temperature stops the LEDs and the UI says why', async ({ page }, inf
   const app = await openApp(page, 'web serial', 5, { nano: { heatingCPerS: 1000 } });
   await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected');
   await page.getByTestId('start-test').click();
+  await page.getByRole('dialog').getByRole('button', { name: 'Expose now' }).click(); // the one confirmation (issue 17, item 4)
   await expect(page.getByTestId('faults')).toContainText(/E31 over-temperature/, { timeout: 60_000 });
   await expect(page.getByTestId('job-state')).toHaveAttribute('data-state', 'paused');
   await expect(page.getByTestId('job-state')).toContainText('(overtemp)');

@@ -17,6 +17,7 @@ for (const transport of TRANSPORTS) {
       const app = await openApp(page, transport);
       await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected');
       await page.getByTestId('start-test').click();
+      await page.getByRole('dialog').getByRole('button', { name: 'Expose now' }).click(); // the one confirmation (issue 17, item 4)
       // At 40x the job may already be done when we look.
       await expect(page.getByTestId('job-state')).toHaveAttribute('data-state', /running|done/, { timeout: 30_000 });
       await page.screenshot({ path: info.outputPath('running.png'), fullPage: true });
@@ -31,6 +32,7 @@ for (const transport of TRANSPORTS) {
       const app = await openApp(page, transport, 4);
       await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected');
       await page.getByTestId('start-test').click();
+      await page.getByRole('dialog').getByRole('button', { name: 'Expose now' }).click(); // the one confirmation (issue 17, item 4)
       await expect(page.getByTestId('job-state')).toHaveAttribute('data-state', 'running', { timeout: 30_000 });
       await page.getByRole('button', { name: 'Pause' }).click();
       await expect(page.getByTestId('job-state')).toHaveAttribute('data-state', 'paused');

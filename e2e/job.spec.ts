@@ -15,6 +15,7 @@ test('a job interrupted by a restart is offered for resume on connect, and runs 
   await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected');
   await expect(page.getByTestId('resume-offer')).toHaveCount(0);
   await page.getByTestId('start-test').click();
+  await page.getByRole('dialog').getByRole('button', { name: 'Expose now' }).click(); // the one confirmation (issue 17, item 4)
   await expect(page.getByTestId('job-state')).toContainText(/running: stop ([1-9]\d*) of/, { timeout: 30_000 });
   await expect(page.getByTestId('eta')).toContainText(/left, done at about/);
   await page.screenshot({ path: info.outputPath('running.png'), fullPage: true });
@@ -39,6 +40,7 @@ test('a discarded interrupted job is not offered again', async ({ page }) => {
   await page.goto('/?simSpeed=4');
   await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected');
   await page.getByTestId('start-test').click();
+  await page.getByRole('dialog').getByRole('button', { name: 'Expose now' }).click(); // the one confirmation (issue 17, item 4)
   await expect(page.getByTestId('job-state')).toContainText(/running: stop [1-9]/, { timeout: 30_000 });
   await reconnect(page);
   await page.getByTestId('discard-job').click();
@@ -54,8 +56,11 @@ test('framing takes the head round the drawing with the LEDs off, and ends where
   await drawFilledRectangle(page, [0.4, 0.4], [0.45, 0.45]);
   await page.getByTestId('tab-position').click();
   await page.getByTestId('frame').click();
+  // Not homed yet: it says so and homes only when the user agrees.
+  await expect(page.getByRole('dialog')).toContainText('Frame: home the machine first?');
+  await page.getByRole('dialog').getByRole('button', { name: 'Home and continue' }).click();
   const log = page.getByTestId('console-log');
-  await expect(log).toContainText('G28', { timeout: 30_000 }); // not homed yet: it homes, then goes on
+  await expect(log).toContainText('G28', { timeout: 30_000 });
   // Five moves: four corners and back to the first (a move refused for want of homing is sent again).
   const corners = page.getByTestId('console-log').locator('li', { hasText: /> G0 X/ });
   const sent = async () => (await corners.allTextContents()).map((l) => l.split('> ')[1]);

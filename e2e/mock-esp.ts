@@ -1,6 +1,8 @@
 // Test-only: the ESP of protocol/esp.md as the page sees it, through page.route and page.routeWebSocket.
 // Behind it runs the simulated printer, driven by the same windowed dialect client the app uses.
 import type { Page, Route, WebSocketRoute } from '@playwright/test';
+import { existsSync, readFileSync } from 'node:fs';
+import { extname, join, normalize } from 'node:path';
 import { DialectClient } from '../app/src/device/dialect-client';
 import { formatReply } from '../app/src/protocol/dialect-reply';
 import { encodeJob } from '../app/src/protocol/job-encode';
@@ -35,6 +37,9 @@ export class MockEsp {
   }
 
   async install(page: Page): Promise<void> {
+    // The hub serves the app from its flash: the ESP's own build (npm run build:esp), which is the
+    // one that asks GET /status. Registered first, so the API routes below take precedence.
+    await page.route('**/*', serveEspApp);
     await page.route('**/status', (route) =>
       route.fulfill({ status: 200, contentType: 'application/json', body: JSON.stringify(this.#status()) }),
     );
@@ -207,4 +212,18 @@ export class MockEsp {
     if (this.#statusTimer) clearInterval(this.#statusTimer);
     this.sim.stop();
   }
+}
+
+const ESP_APP = join(import.meta.dirname, '..', 'dist', 'esp-app');
+const TYPES: Record<string, string> = {
+  '.html': 'text/html', '.js': 'text/javascript', '.css': 'text/css', '.svg': 'image/svg+xml',
+  '.webmanifest': 'application/manifest+json', '.json': 'application/json',
+};
+
+/** A file of the ESP's app build, as the hub serves it; anything else goes on to the next route. */
+async function serveEspApp(route: Route): Promise<void> {
+  const path = new URL(route.request().url()).pathname;
+  const file = join(ESP_APP, normalize(path === '/' ? '/index.html' : path));
+  if (!file.startsWith(ESP_APP) || !existsSync(file) || route.request().method() !== 'GET') return route.fallback();
+  return route.fulfill({ status: 200, contentType: TYPES[extname(file)] ?? 'application/octet-stream', body: readFileSync(file) });
 }

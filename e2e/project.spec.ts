@@ -89,6 +89,8 @@ test('makes a √2 wedge as a project and exposes it; the project is kept before
   await page.screenshot({ path: info.outputPath('material-test.png'), fullPage: true });
 
   await page.getByTestId('expose-drawing').click();
+
+  await page.getByRole('dialog').getByRole('button', { name: 'Expose now' }).click(); // the one confirmation (issue 17, item 4)
   await expect(page.getByTestId('job-state')).toHaveAttribute('data-state', /running|done/, { timeout: 30_000 });
   await page.getByTestId('project-recent').click();
   await expect(page.getByTestId('recent-Material test (√2 wedge, 4 steps)')).toBeVisible();

@@ -30,6 +30,7 @@ test('installs from its manifest and starts offline from its service worker', as
     await expect(page.getByTestId('firmware')).toHaveText(/UVExposure/);
     await expect(page.getByTestId('thermal-chart').locator('canvas')).toHaveCount(1); // the chart's chunk, from the cache
     await page.getByTestId('start-test').click();
+    await page.getByRole('dialog').getByRole('button', { name: 'Expose now' }).click(); // the one confirmation (issue 17, item 4)
     await expect(page.getByTestId('job-state')).toHaveAttribute('data-state', 'done', { timeout: 60_000 });
     await page.screenshot({ path: info.outputPath('offline.png'), fullPage: true });
   } finally {

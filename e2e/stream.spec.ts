@@ -7,6 +7,7 @@ test('streams the test pattern to a Mega without an SD card, each stop once', as
   const app = await openApp(page, 'web serial', 40, { noSd: true });
   await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected');
   await page.getByTestId('start-test').click();
+  await page.getByRole('dialog').getByRole('button', { name: 'Expose now' }).click(); // the one confirmation (issue 17, item 4)
   await expect(page.getByTestId('job-state')).toHaveAttribute('data-state', /running|done/, { timeout: 30_000 });
   await expect(page.getByTestId('job-state')).toHaveAttribute('data-state', 'done', { timeout: 60_000 });
   const mega = app.sim!.printer.mega;

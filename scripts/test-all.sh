@@ -4,7 +4,6 @@
 set -uo pipefail
 cd "$(dirname "$0")/.."
 export PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD=1
-export NODE_OPTIONS="--import=$PWD/scripts/node20-polyfills.mjs"  # Vitest 5 on Node 20
 
 bash scripts/system-deps.sh || exit 1
 [[ -d node_modules ]] || npm ci

@@ -26,3 +26,18 @@ describe('console log', () => {
     expect(filterLog(log.entries, { text: 'LINE 6', levels: new Set(DEFAULT_LEVELS) }).map((e) => e.text)).toEqual(['echo:line 6']);
   });
 });
+
+describe('replies to what the user typed', () => {
+  it('shows a reply block\'s reports as replies, leaves errors and other auto-reports alone', () => {
+    const log = new ConsoleLog();
+    const auto = log.add('T:23.0 /55.0 T0:23.0 /55.0');
+    const reply = log.add('X:1.000 Y:2.000 Z:3.000 E:0.000 Count X:80 Y:160 Z:1200');
+    const err = log.add('Error:E10 unknown command');
+    log.markReplies([reply, err]);
+    expect(reply.level).toBe('reply');
+    expect(err.level).toBe('error');
+    expect(auto.level).toBe('report');
+    const shown = filterLog(log.entries, { text: '', levels: new Set(DEFAULT_LEVELS) });
+    expect(shown.map((e) => e.text)).toEqual([reply.text, err.text]);
+  });
+});

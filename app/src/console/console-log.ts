@@ -1,7 +1,8 @@
 // The console's log: each line from or to the printer with its time and a level, kept to a bound,
 // and the filter the console shows it through.
 
-export type Level = 'error' | 'warning' | 'info' | 'report' | 'sent' | 'link';
+/** `reply`: a line answering what the user typed, shown whatever its kind (M105's T:, M114's X:). */
+export type Level = 'error' | 'warning' | 'info' | 'report' | 'reply' | 'sent' | 'link';
 
 export interface Entry {
   atMs: number;
@@ -22,9 +23,19 @@ export class ConsoleLog {
   readonly entries: Entry[] = [];
   constructor(readonly max = 2000) {}
 
-  add(text: string, level: Level = levelOf(text), atMs = Date.now()): void {
-    this.entries.push({ atMs, level, text });
+  add(text: string, level: Level = levelOf(text), atMs = Date.now()): Entry {
+    const entry = { atMs, level, text };
+    this.entries.push(entry);
     if (this.entries.length > this.max) this.entries.splice(0, this.entries.length - this.max);
+    return entry;
+  }
+
+  /**
+   * The lines of a reply block answer the line the user typed: a report among them (M105's
+   * temperatures, M114's position) is shown as a reply, while auto-reports stay filtered.
+   */
+  markReplies(entries: Entry[]): void {
+    for (const e of entries) if (e.level === 'report' || e.level === 'info') e.level = 'reply';
   }
 }
 
@@ -34,7 +45,7 @@ export interface LogFilter {
   levels: Set<Level>;
 }
 
-export const DEFAULT_LEVELS: Level[] = ['error', 'warning', 'info', 'sent'];
+export const DEFAULT_LEVELS: Level[] = ['error', 'warning', 'info', 'reply', 'sent'];
 
 export function filterLog(entries: readonly Entry[], f: LogFilter, last = 300): Entry[] {
   const needle = f.text.trim().toLowerCase();

@@ -3,9 +3,11 @@
 
 import uPlot from 'uplot';
 import 'uplot/dist/uPlot.min.css';
+import { agoLabel, minutesAgo } from './chart-time';
 import { SENSOR_COLOURS } from './sensor-colours';
 
 export interface ThermalChart {
+  /** `data[0]` is the printer's time in seconds; the chart shows it as minutes before the newest sample. */
   update(data: [number[], ...number[][]], limitsC: number[] | null): void;
   resize(width: number): void;
   destroy(): void;
@@ -13,14 +15,27 @@ export interface ThermalChart {
 
 export function thermalChart(el: HTMLElement, names: string[], width: number): ThermalChart {
   let limits: number[] | null = null;
-  const celsius = (_u: uPlot, v: number | null) => (v == null ? '—' : `${v.toFixed(1)} °C`);
+  // The legend reads like a dashboard: each sensor's latest value, or its value under the cursor.
+  const celsius = (u: uPlot, v: number | null, sidx: number, idx: number | null) => {
+    const shown = idx == null ? (u.data[sidx]?.at(-1) as number | null | undefined) : v;
+    return shown == null || Number.isNaN(shown) ? '—' : `${shown.toFixed(1)} °C`;
+  };
   const plot = new uPlot(
     {
       width,
       height: 220,
-      scales: { x: { time: true }, y: { range: (_u, lo, hi) => [Math.floor(Math.min(lo, 20)), Math.ceil(Math.max(hi, ...(limits ?? [])) + 2)] } },
-      series: [{}, ...names.map((label, i) => ({ label, stroke: SENSOR_COLOURS[i], width: 1.5, value: celsius }))],
-      axes: [{}, { label: '°C', size: 44 }],
+      scales: {
+        x: { time: false },
+        y: { range: (_u, lo, hi) => [Math.floor(Math.min(lo, 20)), Math.ceil(Math.max(hi, ...(limits ?? [])) + 2)] },
+      },
+      series: [
+        { label: 'Time', value: (_u, v, _s, idx) => (idx == null || v == null ? 'now' : agoLabel(v)) },
+        ...names.map((label, i) => ({ label, stroke: SENSOR_COLOURS[i], width: 1.5, value: celsius })),
+      ],
+      axes: [
+        { label: 'minutes before now', values: (_u, ticks) => ticks.map(agoLabel) },
+        { label: '°C', size: 44 },
+      ],
       legend: { live: true },
       hooks: {
         draw: [
@@ -52,7 +67,9 @@ export function thermalChart(el: HTMLElement, names: string[], width: number): T
   return {
     update(data, limitsC) {
       limits = limitsC;
-      plot.setData(data);
+      const [times, ...sensors] = data;
+      plot.setData([minutesAgo(times), ...sensors]);
+      plot.setLegend({ idx: plot.cursor.idx ?? undefined }); // the latest values while the cursor is away
     },
     resize: (w) => plot.setSize({ width: w, height: 220 }),
     destroy: () => plot.destroy(),

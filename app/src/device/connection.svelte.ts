@@ -1,7 +1,8 @@
 // The app's one view of the printer: the connection lifecycle as a discriminated union, the device state
 // folded from every report, link health, and the job and machine actions the UI calls.
 
-import { ConsoleLog } from '../console/console-log';
+import { ConsoleLog, type Entry } from '../console/console-log';
+import { formatReply } from '../protocol/dialect-reply';
 import type { Reply } from '../protocol/dialect-reply';
 import type { PrintJob } from '../protocol/job-types';
 import { CommandError, type LinkHealth } from './dialect-client';
@@ -12,6 +13,7 @@ import type { PrinterLink, UploadProgress } from './link';
 import { configOf, interruptedOf, levelingOf, type InterruptedJob } from './printer-replies';
 import { parseMesh } from './mesh-report';
 import { ThermalHistory } from './thermal-history';
+import { DeviceClock } from './device-clock';
 import type { Mesh } from '../planner/mesh';
 import { PickerDismissed, SerialTransport } from './serial-transport';
 import { SimTransport, switchOffSimulatedPrinter } from './sim-transport';
@@ -29,6 +31,9 @@ export type Connection =
 export type Upload = { state: 'idle' } | ({ state: 'uploading' } & UploadProgress) | { state: 'failed'; error: string };
 
 export const SENSOR_NAMES = ['LED 0', 'LED 1', 'LED 2', 'LED 3', 'Driver', 'Frame'];
+
+/** The commands whose answer is a line of a kind the printer also sends as an auto-report. */
+const REPORT_ANSWERS: Record<string, Reply['kind']> = { M105: 'temps', M114: 'position', M27: 'job' };
 
 function describe(e: unknown): string {
   return e instanceof CommandError ? e.message : e instanceof Error ? e.message : String(e);
@@ -53,7 +58,21 @@ export class Printer {
   /** The mesh the printer last reported, and the one it had before the last probing, for comparison. */
   mesh = $state<Mesh | null>(null);
   previousMesh = $state<Mesh | null>(null);
+  /**
+   * Whether the machine is homed, as far as the app knows: false after the link opened a Mega (it
+   * restarts) or its motors were released, true after a homing or a move it took, null when unknown
+   * (the hub's Mega did not restart). The printer cannot be asked.
+   */
+  homed = $state<boolean | null>(null);
+  /** Printer seconds per wall second of the open link (the simulated printer at ?simSpeed=N runs N×). */
+  timeScale = $state(1);
   #link: PrinterLink | null = null;
+  /** The printer's time, which the thermal history is kept in: its rates are per the printer's second. */
+  readonly #clock = new DeviceClock();
+  /** Error codes an app-made query expects as an answer (no mesh yet): not errors the user must read. */
+  readonly #expected = new Map<number, number>();
+  /** Each reply's console line, so the lines answering what the user typed can be shown as replies. */
+  #logged = new WeakMap<Reply, Entry>();
 
   constructor(private readonly makeLink: (kind: TransportKind) => PrinterLink = defaultLink) {}
 
@@ -66,6 +85,8 @@ export class Printer {
     this.connection = { state: 'connecting', kind };
     const link = this.makeLink(kind);
     this.#link = link;
+    this.timeScale = link.timeScale;
+    this.homed = kind === 'esp' ? null : false;
     try {
       await link.open((r, line) => this.#onReply(r, line), (error) => {
         if (this.#link !== link) return;
@@ -112,7 +133,52 @@ export class Printer {
     if (!this.#link) throw new Error('not connected');
     this.log.add(line, 'sent');
     this.logRevision++;
-    return this.#link.command(line);
+    try {
+      const replies = await this.#link.command(line);
+      if (/^(G28|G0|G1)\b/i.test(line)) this.homed = true; // homed, or a move the printer took homed
+      else if (/^(M18|M84)\b/i.test(line)) this.homed = false; // released motors forget where they are
+      return replies;
+    } catch (e) {
+      if (e instanceof CommandError && e.code === 14) this.homed = false;
+      throw e;
+    }
+  }
+
+  /**
+   * A question the app asks on its own (not the user), where an error with one of `expected` codes
+   * is an answer ("no mesh"): it is logged for the debug view, not as an error, and resolves null.
+   */
+  async ask(line: string, expected: number[]): Promise<Reply[] | null> {
+    if (!this.#link) throw new Error('not connected');
+    for (const c of expected) this.#expected.set(c, (this.#expected.get(c) ?? 0) + 1);
+    try {
+      return await this.#link.command(line);
+    } catch (e) {
+      if (e instanceof CommandError && expected.includes(e.code)) return null;
+      throw e;
+    } finally {
+      for (const c of expected) {
+        const n = (this.#expected.get(c) ?? 1) - 1;
+        if (n > 0) this.#expected.set(c, n);
+        else this.#expected.delete(c);
+      }
+    }
+  }
+
+  /**
+   * A line the user typed (the console): its reply block is shown in the log as replies, so M105,
+   * M114 or M503 answer there without showing every auto-report.
+   */
+  async sendTyped(line: string): Promise<Reply[]> {
+    const replies = await this.send(line);
+    // A block holds every line since the last ok, auto-reports among them: of the report kinds only
+    // the one the command answers, and its last line, the one just before the ok, is its reply.
+    const answer = REPORT_ANSWERS[line.trim().split(/\s+/)[0].toUpperCase()];
+    const own = replies.filter((r) => r.kind === answer).at(-1);
+    const entries = own ? [this.#logged.get(own) ?? this.log.add(formatReply(own), 'reply')] : []; // over the ESP, a reply block comes apart from the relayed lines
+    this.log.markReplies(entries);
+    this.logRevision++;
+    return replies;
   }
 
   async startJob(job: PrintJob): Promise<void> {
@@ -139,17 +205,12 @@ export class Printer {
     this.interrupted = null;
   };
 
-  /** Lines sent one after another; a move the printer refuses for want of homing homes and goes on. */
+  /**
+   * Lines sent one after another. A move the printer refuses for want of homing (E14) is an error:
+   * homing moves every axis to its endstop, so the app asks first (JobControl.move), never silently.
+   */
   async moves(lines: string[]): Promise<void> {
-    for (const line of lines) {
-      try {
-        await this.send(line);
-      } catch (e) {
-        if (!(e instanceof CommandError && e.code === 14)) throw e;
-        await this.send('G28');
-        await this.send(line);
-      }
-    }
+    for (const line of lines) await this.send(line);
   }
 
   /** Deploys the probe, maps the bed on n × n points (`G29`), and stows it. */
@@ -189,10 +250,10 @@ export class Printer {
   abort = () => this.send('M524');
 
   #onReply(r: Reply, line: string): void {
-    this.log.add(line);
+    this.#logged.set(r, this.log.add(line, r.kind === 'error' && this.#expected.has(r.code) ? 'link' : undefined));
     this.logRevision++;
     if (r.kind === 'temps') {
-      this.thermal.add(Date.now() / 1000, r.deciC.map((d) => d / 10), this.device.job?.state === 'running');
+      this.thermal.add(this.#clock.nowS(this.timeScale), r.deciC.map((d) => d / 10), this.device.job?.state === 'running');
       this.thermalRevision = this.thermal.revision;
     }
     if (applyReport(this.device, r, Date.now())) this.device = { ...this.device };

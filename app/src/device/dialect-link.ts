@@ -16,12 +16,16 @@ export class DialectLink implements PrinterLink {
   #client: DialectClient;
   #jobs = 0;
 
-  constructor(transport: Transport, private readonly clientOptions: ClientOptions = {}) {
+  constructor(private readonly transport: Transport, private readonly clientOptions: ClientOptions = {}) {
     this.kind = transport.kind;
     this.#client = new DialectClient(transport, (r, line) => this.#onReply(r, line), clientOptions);
   }
 
   #onReply: (r: Reply, line: string) => void = () => {};
+
+  get timeScale(): number {
+    return this.transport.timeScale ?? 1;
+  }
 
   get health(): LinkHealth {
     return this.#client.health;

@@ -19,6 +19,8 @@ const COMMAND_TIMEOUT_MS = 30_000;
 
 export class EspLink implements PrinterLink {
   readonly kind = 'esp' as const;
+  /** The hub's Mega runs in real time. */
+  readonly timeScale = 1;
   readonly health: LinkHealth = { linesSent: 0, bytesSent: 0, resends: 0, timeouts: 0, bytesRetransmitted: 0, rttMs: 0 };
   #ws: WebSocket | null = null;
   #id = 0;

@@ -14,6 +14,8 @@ export interface UploadProgress {
 export interface PrinterLink {
   readonly kind: TransportKind;
   readonly health: LinkHealth;
+  /** Printer seconds per wall second (the simulated printer may run faster than real time). */
+  readonly timeScale: number;
   /** Every line the printer sends goes to `onReply`; `onClosed` fires once if the link drops. */
   open(onReply: (r: Reply, line: string) => void, onClosed: (error?: Error) => void): Promise<void>;
   /** One dialect line; resolves with its reply block, rejects with a CommandError. */

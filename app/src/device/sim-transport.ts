@@ -11,8 +11,15 @@ export const SIMULATOR_BUILT_IN = true;
 let machine: Worker | null = null;
 let listener: ((bytes: string) => void) | null = null;
 
+/** ?simSpeed=N runs the simulated printer N times real time (the worker's clock; at least 1). */
+function simSpeed(): number {
+  const n = Number(new URLSearchParams(location.search).get('simSpeed') ?? '1');
+  return Number.isFinite(n) ? Math.max(1, Math.min(1000, n)) : 1;
+}
+
 export class SimTransport implements Transport {
   readonly kind = 'sim' as const;
+  readonly timeScale = simSpeed();
 
   async open(onBytes: (bytes: string) => void): Promise<void> {
     listener = onBytes;
@@ -24,8 +31,7 @@ export class SimTransport implements Transport {
     machine.onmessage = (e: MessageEvent<{ type: 'rx'; bytes: string }>) => {
       if (e.data.type === 'rx') listener?.(e.data.bytes);
     };
-    const speed = Number(new URLSearchParams(location.search).get('simSpeed') ?? '1');
-    if (speed > 1) machine.postMessage({ type: 'init', speed });
+    if (this.timeScale > 1) machine.postMessage({ type: 'init', speed: this.timeScale });
   }
 
   async send(bytes: string): Promise<void> {

@@ -2,7 +2,11 @@
 
 import type { PrintJob } from '../protocol/job-types';
 
-export function testPattern(): PrintJob {
+/** Where the pattern lands on the bed, its corner in µm; 4.8 × 3.2 mm at the 100 µm pitch. */
+export const TEST_PATTERN_ORIGIN_UM = { x: 20000, y: 20000 };
+
+/** `fullUs`: a cell's exposure at 100 % dose, the Job panel's full dose. */
+export function testPattern(fullUs: number): PrintJob {
   const cols = 48, rows = 32;
   const gridData = Array.from({ length: rows }, (_, y) =>
     Array.from({ length: cols }, (_, x) => {
@@ -16,8 +20,8 @@ export function testPattern(): PrintJob {
     name: 'test-pattern',
     grid: { cols, rows },
     pitchUm: { x: 100, y: 100 },
-    originUm: { x: 20000, y: 20000 },
-    dose: { map: 'linear', fullUs: 4000 },
+    originUm: { ...TEST_PATTERN_ORIGIN_UM },
+    dose: { map: 'linear', fullUs },
     leds: { offsets: [[0, 0], [0, 1], [0, 2], [0, 3]] },
     strategy: { name: 'serpentine' },
     gridData,

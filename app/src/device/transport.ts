@@ -4,6 +4,8 @@ export type TransportKind = 'sim' | 'serial' | 'esp';
 
 export interface Transport {
   readonly kind: TransportKind;
+  /** Printer seconds per wall second: 1 for a real machine; the simulated printer may run faster. */
+  readonly timeScale?: number;
   /** Opens the link; `onBytes` gets everything the printer sends, `onClosed` fires once if the link drops. */
   open(onBytes: (bytes: string) => void, onClosed: (error?: Error) => void): Promise<void>;
   send(bytes: string): Promise<void>;

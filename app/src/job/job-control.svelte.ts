@@ -9,6 +9,22 @@ import type { GridEditor } from '../studio/editor.svelte';
 import { jobFromGrid } from '../studio/grid-job';
 import { DEFAULT_CONFIG, ledsOf, type MachineConfig } from '../studio/machine-config';
 import { framingMoves } from './framing';
+import { testPattern } from '../device/test-pattern';
+import { JobNotice } from './job-notice.svelte';
+
+/** What waits for the user's yes before anything moves or lights: an exposure, or a homing. */
+export type Pending =
+  | {
+      kind: 'expose';
+      what: 'drawing' | 'test pattern';
+      job: PrintJob;
+      findings: Finding[];
+      duty: number[];
+      estimateUs: number;
+      /** Where the job's cells lie on the bed, mm. */
+      areaMm: { x0: number; y0: number; x1: number; y1: number };
+    }
+  | { kind: 'home-first'; what: string; homed: boolean | null; run: () => Promise<unknown> };
 
 export class JobControl {
   /** The exposure of a cell at 100 % dose, ms. */
@@ -16,6 +32,8 @@ export class JobControl {
   strategy = $state<StrategyName>('serpentine');
   /** The last dry run's findings, and the job they were found for. */
   check = $state.raw<{ findings: Finding[]; job: PrintJob; duty: number[] } | null>(null);
+  /** The question the user has not answered yet; nothing moves or lights until they do. */
+  pending = $state.raw<Pending | null>(null);
   error = $state<string | null>(null);
   /** Each LED's share of the running job's time lit, from its dry run; null for a job not checked here. */
   duty = $state<number[] | null>(null);
@@ -34,37 +52,78 @@ export class JobControl {
   job(): PrintJob | null {
     const ed = this.editor();
     return jobFromGrid(ed.composed(), ed.machine, {
-      dose: { map: 'linear', fullUs: Math.round(this.fullMs * 1000) },
+      dose: { map: 'linear', fullUs: this.#fullUs() },
       strategy: { name: this.strategy },
       leds: ledsOf(this.config),
     });
   }
 
-  /** Dry run first; errors stop here, warnings wait for `exposeAnyway`. */
+  #fullUs(): number {
+    return Math.round(this.fullMs * 1000);
+  }
+
+  /** The dry run, then the question: the time, where it lands, the verdict. Nothing fires before the yes. */
   exposeDrawing = () =>
     this.#act(async () => {
       const job = this.job();
       if (!job) throw new Error('nothing is drawn');
-      const leveling = await this.printer.leveling();
-      const { findings, duty } = dryRun(job, this.config, { leveling: leveling.on, mesh: leveling.mesh });
-      this.check = { findings, job, duty };
-      if (findings.some((f) => f.level !== 'ok')) return;
-      await this.#run(job, duty);
+      await this.#ask('drawing', job);
     });
 
-  exposeAnyway = () => this.#act(async () => this.check && this.#run(this.check.job, this.check.duty));
+  /** The test pattern at the full dose set here, checked and asked about like a drawing. */
+  exposeTestPattern = () => this.#act(() => this.#ask('test pattern', { ...testPattern(this.#fullUs()), strategy: { name: this.strategy } }));
+
+  /** The user's yes to what is pending (an exposure without errors, or a homing). */
+  confirm = () =>
+    this.#act(async () => {
+      const p = this.pending;
+      this.pending = null;
+      if (!p) return;
+      if (p.kind === 'home-first') {
+        await this.printer.send('G28');
+        await p.run();
+      } else if (!p.findings.some((f) => f.level === 'error')) await this.#run(p.job, p.duty);
+    });
+
+  cancel = () => {
+    this.pending = null;
+  };
+
+  /**
+   * A head movement the user asked for (go to, jog, frame, a probe touch). A machine that may not be
+   * homed must home first, every axis to its endstop: the user is told and agrees before it moves.
+   */
+  move = (what: string, run: () => Promise<unknown>) => {
+    if (this.printer.homed === true) this.#act(run);
+    else this.pending = { kind: 'home-first', what, homed: this.printer.homed, run };
+  };
 
   /** The head goes round where the drawing will land, LEDs off. */
-  frame = () =>
-    this.#act(async () => {
-      const job = this.job();
-      if (!job) throw new Error('nothing is drawn');
-      await this.printer.moves(framingMoves(job, num(this.config, 'speed.travel')));
-    });
+  frame = () => {
+    const job = this.job();
+    if (!job) {
+      this.error = 'nothing is drawn';
+      return;
+    }
+    this.move('Frame', () => this.printer.moves(framingMoves(job, num(this.config, 'speed.travel'))));
+  };
 
   act = (f: () => Promise<unknown>) => this.#act(f);
 
+  async #ask(what: 'drawing' | 'test pattern', job: PrintJob): Promise<void> {
+    const leveling = await this.printer.leveling();
+    const { findings, duty, plan } = dryRun(job, this.config, { leveling: leveling.on, mesh: leveling.mesh });
+    this.check = { findings, job, duty };
+    const mm = (um: number) => Math.round(um) / 1000;
+    const areaMm = {
+      x0: mm(job.originUm.x), y0: mm(job.originUm.y),
+      x1: mm(job.originUm.x + job.grid.cols * job.pitchUm.x), y1: mm(job.originUm.y + job.grid.rows * job.pitchUm.y),
+    };
+    this.pending = { kind: 'expose', what, job, findings, duty, estimateUs: plan.estimateUs, areaMm };
+  }
+
   async #run(job: PrintJob, duty: number[] | null): Promise<void> {
+    JobNotice.askPermission(); // from the click that starts the job: its end can reach the desktop
     this.duty = duty;
     await this.beforeJob();
     await this.printer.send('G28');

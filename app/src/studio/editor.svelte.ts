@@ -9,6 +9,12 @@ import { bedOf, DEFAULT_CONFIG } from './machine-config';
 import { ObjectLayer } from './objects/object-layer.svelte';
 import { CORNERS, cornerOf, exposes, type Corner, type StudioObject } from './objects/objects';
 import { textWidth } from './objects/text-raster';
+import { typeKey } from './objects/typing';
+import { freePlace } from './objects/placement';
+import type { Rect } from './objects/objects';
+
+/** The Text tool's words until the user gives others: the first key typed replaces them. */
+const PLACEHOLDER_TEXT = 'Text';
 import { layOver } from './objects/raster';
 
 export type Tool = 'brush' | 'eraser' | 'line' | 'rect' | 'rect-filled' | 'fill' | 'select' | 'text' | 'frame' | 'pan';
@@ -30,7 +36,9 @@ export class GridEditor {
   /** The pictures, text and frames over the painted cells. */
   layer: ObjectLayer;
   /** What the text tool writes, in which font and how high (mm). */
-  text = $state({ text: 'Text', font: 'sans-serif', bold: false, heightMm: 5 });
+  text = $state({ text: PLACEHOLDER_TEXT, font: 'sans-serif', bold: false, heightMm: 5 });
+  /** The text object placed by the last click of the Text tool, taking the keys typed on the canvas. */
+  typing = $state<{ id: number; fresh: boolean } | null>(null);
   tool = $state<Tool>('brush');
   size = $state(5);
   dose = $state(255);
@@ -85,10 +93,14 @@ export class GridEditor {
     this.view = fit(this.grid.cols, this.grid.rows, width, height, 16, RULER);
   }
 
-  /** The cell in the middle of what the canvas shows (beside the rulers). */
-  centreCell(): { x: number; y: number } {
-    const c = toCell(this.view, RULER + (this.screen.width - RULER) / 2, RULER + (this.screen.height - RULER) / 2);
-    return { x: Math.round(c.x), y: Math.round(c.y) };
+  /**
+   * A place for a w × h object the pointer did not place (an import): in view and free of the other
+   * objects, never exactly on the one before (freePlace).
+   */
+  freeBox(w: number, h: number): Rect {
+    const a = toCell(this.view, RULER, RULER), b = toCell(this.view, this.screen.width, this.screen.height);
+    const visible = { x: Math.ceil(a.x), y: Math.ceil(a.y), w: Math.floor(b.x - a.x), h: Math.floor(b.y - a.y) };
+    return freePlace(this.layer.objects, w, h, visible, this.grid.cols, this.grid.rows);
   }
 
   zoom(factor: number, sx: number, sy: number): void {
@@ -101,6 +113,7 @@ export class GridEditor {
 
   /** A pointer went down at screen (sx, sy): a stroke or a shape begins. */
   down(sx: number, sy: number): void {
+    this.typing = null; // a click ends typing into a placed text
     if (this.tool === 'pan') return;
     if (this.tool === 'select') {
       this.layer.press(toCell(this.view, sx, sy), this.#cornerAt(sx, sy), HANDLE / this.view.scale);
@@ -190,13 +203,35 @@ export class GridEditor {
     this.#syncHistory();
   }
 
-  /** A text object with the text tool's settings, centred on a cell; then it is selected to edit. */
+  /**
+   * A text object with the text tool's settings where the user clicked: it starts at the click and
+   * is centred on it in height, so it grows to the right as it is typed. Then the keys typed on the
+   * canvas go into it (`type`), until Enter, Escape or another click.
+   */
   addText(cx: number, cy: number): void {
     const t = this.text;
-    const h = this.cells(t.heightMm, 'y');
-    const w = textWidth(t, h);
-    this.layer.add({ kind: 'text', ...this.layer.boxAt(cx, cy, w, h), text: t.text, font: t.font, bold: t.bold, dose: this.dose });
+    const h = Math.min(this.cells(t.heightMm, 'y'), this.grid.rows);
+    const w = Math.min(textWidth(t, h), this.grid.cols);
+    const x = Math.max(0, Math.min(this.grid.cols - w, cx));
+    const y = Math.max(0, Math.min(this.grid.rows - h, Math.round(cy - h / 2)));
+    const made = this.layer.add({ kind: 'text', x, y, w, h, text: t.text, font: t.font, bold: t.bold, dose: this.dose });
     this.tool = 'select';
+    this.typing = { id: made.id, fresh: t.text === PLACEHOLDER_TEXT }; // words prepared in the panel are kept and typed on
+  }
+
+  /** A key pressed on the canvas while a placed text takes typing; false if it is not typing. */
+  type(key: string, opts: { shift: boolean; mod: boolean }): boolean {
+    const o = this.typing && this.layer.objects.find((x) => x.id === this.typing!.id);
+    if (!o || o.kind !== 'text') return false;
+    const r = typeKey(o.text, key, { fresh: this.typing!.fresh, ...opts });
+    if (!r) return false;
+    if (r.done) this.typing = null;
+    else {
+      this.typing = { id: o.id, fresh: false };
+      const next = { ...o, text: r.text };
+      this.layer.update(o.id, { text: r.text, w: Math.max(1, Math.min(textWidth(next, o.h), this.grid.cols - o.x)) }, 'type text');
+    }
+    return true;
   }
 
   /** Paints the object into the cells (one step) and takes it off the layer. */

@@ -1,0 +1,33 @@
+import { readFileSync } from 'node:fs';
+import { describe, expect, it } from 'vitest';
+import { CONFIG_DEFAULTS, validConfig } from '../sim/config';
+import { nameOf, parseConfigTable, SETTING_DOCS, settingProblem } from './setting-docs';
+
+const md = readFileSync(new URL('../../../firmware/mega/CONFIG.md', import.meta.url), 'utf8');
+
+describe('settings, as CONFIG.md describes them', () => {
+  it('has every key of the table, each with a name in words, a unit, a range and a description', () => {
+    const docs = parseConfigTable(md);
+    expect(docs.map((d) => d.key).sort()).toEqual(Object.keys(CONFIG_DEFAULTS).sort());
+    for (const d of docs) {
+      expect(nameOf(d.key), d.key).not.toBeNull();
+      expect(d.unit, d.key).not.toBe('');
+      expect(d.description.split(' ').length, d.key).toBeGreaterThan(1);
+    }
+    expect(SETTING_DOCS.get('pitch.x')).toMatchObject({ name: 'X cell pitch', unit: 'µm', range: '1 to 100000 whole', description: 'default cell pitch along X for jobs made on the printer' });
+    expect(SETTING_DOCS.get('thermal.limit.3')?.description).toBe('the Mega\'s soft limit for sensor A3: no job starts or continues above it');
+    expect(SETTING_DOCS.get('led.gain.2')?.description).toBe('calibration gain of LED 2');
+  });
+  it('says what is wrong with a value, and agrees with what the printer takes', () => {
+    expect(settingProblem('pitch.x', 'abc')).toBe('not a number');
+    expect(settingProblem('pitch.x', '0')).toBe('out of range: 1 to 100000');
+    expect(settingProblem('pitch.x', '2.5')).toBe('a whole number');
+    expect(settingProblem('led.offset.1', '0;1')).toBe('two whole numbers with a comma, dx,dy');
+    expect(settingProblem('bed.x', '150.5')).toBeNull();
+    for (const key of Object.keys(CONFIG_DEFAULTS)) {
+      for (const v of ['abc', '', '0', '1', '-1', '2.5', '55', '60.001', '100000', '0,1', '5000,0', CONFIG_DEFAULTS[key]]) {
+        expect(settingProblem(key, v) === null, `${key} = ${v}`).toBe(validConfig(key, v));
+      }
+    }
+  });
+});
