@@ -54,7 +54,8 @@ report mega 253952 8192 60
 # its size is read from this image, so a change to it cannot make the estimate drift. `pio run` checks
 # the real figure too (firmware/mega/ram_budget.py).
 sdstorage_full=716; sdfat_statics=8
-sd_hex=$(avr-nm -S build/avr/mega.elf | awk '$4 ~ /_GLOBAL__N_12sdE/ { print $2; exit }')
+# awk reads to the end: leaving early would end avr-nm with SIGPIPE, which pipefail makes fatal.
+sd_hex=$(avr-nm -S build/avr/mega.elf | awk '$4 ~ /_GLOBAL__N_12sdE/ && !found { print $2; found = 1 }')
 if [[ -z $sd_hex ]]; then
   echo "FAIL: no SdStorage object (main.cpp's sd) in build/avr/mega.elf to estimate the full build from" >&2
   exit 1
