@@ -78,6 +78,10 @@ def main():
                 if field == "points":  # [x, y, expected z]: change the expectation, not the input
                     point = rng.choice(target[field])
                     point[2] += 1
+                elif field == "steps":  # a session's steps: change what a step expects, not what it sends
+                    step = rng.choice([st for st in target[field] if "reply" in st or "execute" in st])
+                    key = "reply" if "reply" in step else "execute"
+                    step[key] = mutate(step[key], rng)
                 else:
                     target[field] = mutate(target[field], rng)
                 json.dump(doc, open(os.path.join(tmp, file), "w"))
