@@ -137,6 +137,7 @@ class Machine {
   Result streamLine(HostLink& port, const LineSlot& line);
   // G-code files on the card (machine_card_gcode.cpp): true if the command was one of theirs.
   bool gcodeCommand(HostLink& port, const uv::Command& c, Result& r);
+  void saySelected(HostLink& port, const char* name, uint8_t len, uint32_t size);
   Result storeGcodeLine(HostLink& port, const LineSlot& line);
   // Runs the selected G-code file's next line when no host line ran this pass.
   void runCardLine();

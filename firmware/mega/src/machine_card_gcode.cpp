@@ -82,17 +82,7 @@ bool Machine::gcodeCommand(HostLink& port, const uv::Command& c, Result& r) {
         port.errorLine(uv::kFileNotFound, name);
         return true;
       }
-      char buf[64];
-      char* p = buf;
-      uvMemcpyP(p, UV_P("File opened: "), 13);
-      p += 13;
-      memcpy(p, name, c.textLen);
-      p += c.textLen;
-      uvMemcpyP(p, UV_P(" Size: "), 7);
-      p += 7;
-      p[uv::putUnsigned(gcode()->size(), p)] = 0;
-      port.line(buf);
-      port.lineP(UV_P("File selected"));
+      saySelected(port, name, c.textLen, gcode()->size());
       strcpy(selected_, name);
       jobPort_ = &port;
       jobState_ = uv::JobState::Idle;

@@ -133,17 +133,7 @@ Machine::Result Machine::select(HostLink& port, const uv::Command& c) {
     port.errorLine(uv::kFileNotFound, name);
     return Result::Done;
   }
-  char buf[64];
-  char* p = buf;
-  uvMemcpyP(p, UV_P("File opened: "), 13);
-  p += 13;
-  memcpy(p, name, c.textLen);
-  p += c.textLen;
-  uvMemcpyP(p, UV_P(" Size: "), 7);
-  p += 7;
-  p[uv::putUnsigned(sd_.size(f), p)] = 0;
-  port.line(buf);
-  port.lineP(UV_P("File selected"));
+  saySelected(port, name, c.textLen, sd_.size(f));
   clearArena();
   strcpy(selected_, name);
   jobState_ = uv::JobState::Idle;
@@ -310,6 +300,19 @@ Machine::Result Machine::jobCommand(HostLink& port, const uv::Command& c) {
     default:
       return Result::Done;
   }
+}
+
+// Marlin's two lines after M23, which OctoPrint waits for: the same for job files and G-code files.
+void Machine::saySelected(HostLink& port, const char* name, uint8_t len, uint32_t size) {
+  char buf[64];
+  char* p = buf;
+  p += uv::putFlash(UV_P("File opened: "), p);
+  memcpy(p, name, len);
+  p += len;
+  p += uv::putFlash(UV_P(" Size: "), p);
+  p[uv::putUnsigned(size, p)] = 0;
+  port.line(buf);
+  port.lineP(UV_P("File selected"));
 }
 
 }  // namespace mega
