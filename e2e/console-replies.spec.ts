@@ -13,7 +13,7 @@ test('M105, M114 and M503 answer in the console; auto-reports stay hidden', asyn
 
   await input.fill('M105');
   await input.press('Enter');
-  await expect(log.getByText(/^\S+ T:\d+\.\d \/\d+\.\d T0:/)).toHaveCount(1); // its reply, and no auto-report
+  await expect(log.getByText(/^\S+ T:\d+\.\d \/\d+\.\d S0:/)).toHaveCount(1); // its reply, and no auto-report
   await input.fill('M114');
   await input.press('Enter');
   await expect(log.getByText(/X:\d+\.\d{3} Y:\d+\.\d{3} Z:/)).toHaveCount(1);
@@ -22,9 +22,9 @@ test('M105, M114 and M503 answer in the console; auto-reports stay hidden', asyn
   await expect(log.getByText('M850 pitch.x 50').last()).toBeVisible();
   // Two seconds at 20× are 40 temperature auto-reports: none of them shows.
   await page.waitForTimeout(2000);
-  await expect(log.getByText(/^\S+ T:\d+\.\d \/\d+\.\d T0:/)).toHaveCount(1);
+  await expect(log.getByText(/^\S+ T:\d+\.\d \/\d+\.\d S0:/)).toHaveCount(1);
   await consoleRegion.screenshot({ path: info.outputPath('console-replies.png') });
   // Ticked, the reports come in too.
   await consoleRegion.getByLabel('reports').check();
-  await expect.poll(() => log.getByText(/T:\d+\.\d \/\d+\.\d T0:/).count()).toBeGreaterThan(3);
+  await expect.poll(() => log.getByText(/T:\d+\.\d \/\d+\.\d S0:/).count()).toBeGreaterThan(3);
 });

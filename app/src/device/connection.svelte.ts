@@ -64,6 +64,8 @@ export class Printer {
    * (the hub's Mega did not restart). The printer cannot be asked.
    */
   homed = $state<boolean | null>(null);
+  /** G28 lines sent and not yet answered: a move sent now runs after them, homed. */
+  homing = $state(0);
   /** Printer seconds per wall second of the open link (the simulated printer at ?simSpeed=N runs N×). */
   timeScale = $state(1);
   #link: PrinterLink | null = null;
@@ -133,6 +135,8 @@ export class Printer {
     if (!this.#link) throw new Error('not connected');
     this.log.add(line, 'sent');
     this.logRevision++;
+    const homing = /^G28\b/i.test(line);
+    if (homing) this.homing++;
     try {
       const replies = await this.#link.command(line);
       if (/^(G28|G0|G1)\b/i.test(line)) this.homed = true; // homed, or a move the printer took homed
@@ -141,6 +145,8 @@ export class Printer {
     } catch (e) {
       if (e instanceof CommandError && e.code === 14) this.homed = false;
       throw e;
+    } finally {
+      if (homing) this.homing--;
     }
   }
 

@@ -94,7 +94,8 @@ export class JobControl {
    * homed must home first, every axis to its endstop: the user is told and agrees before it moves.
    */
   move = (what: string, run: () => Promise<unknown>) => {
-    if (this.printer.homed === true) this.#act(run);
+    // A Home still running counts: the printer runs lines in order, so this move follows it.
+    if (this.printer.homed === true || this.printer.homing > 0) this.#act(run);
     else this.pending = { kind: 'home-first', what, homed: this.printer.homed, run };
   };
 
