@@ -23,7 +23,7 @@ test('a page load asks for no /status and logs no errors; opening Probe & mesh s
   await page.screenshot({ path: info.outputPath('probe-tab.png') });
   // Asked for on purpose, the debug view still shows the exchange.
   await page.getByLabel('debug').check();
-  await expect(log.getByText(/Error:E11/)).toBeVisible();
+  await expect(log.getByText(/echo:E11/)).toBeVisible();
 });
 
 test('at ?simSpeed=20 the thermal watch measures on the printer\'s clock: no false "rising" warning; the legend has current values and the axis minutes', async ({ page }, info) => {
