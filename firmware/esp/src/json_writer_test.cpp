@@ -52,7 +52,7 @@ TEST(JsonWriter, EscapesBytesThatAreNotUtf8) {
   w.string(broken);
   ASSERT_TRUE(w.ok());
   EXPECT_STREQ(buf, R"("a\u00e2\u0098b\u0080\u00c0\u00af")");
-  EXPECT_NO_THROW((void)nlohmann::json::parse(buf));
+  EXPECT_TRUE(nlohmann::json::accept(buf));
 }
 
 // JSON text is written whole or not at all: a writer that ran out of room leaves no cut-off
