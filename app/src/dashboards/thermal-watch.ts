@@ -1,7 +1,7 @@
 // Warnings for a sensor warming faster than the LEDs' duty explains: a fan that stopped, a heatsink
 // come loose, a driver running hot. The expected rate comes from the same thermal model as the dry run.
 
-import type { ThermalModel } from '../studio/dry-run';
+import type { HeadThermalModel } from '../sim/head-thermal';
 
 export interface Sample {
   tS: number;
@@ -36,17 +36,17 @@ function slope(t: number[], y: number[]): number {
  * `duty` is each LED's share of time lit while a job exposes (the job's plan), or null when it is
  * not known (a job the app did not start): then a running job may explain any warming of the LEDs.
  */
-export function rateWarnings(samples: Sample[], duty: number[] | null, model: ThermalModel): RateWarning[] {
+export function rateWarnings(samples: Sample[], duty: number[] | null, model: HeadThermalModel): RateWarning[] {
   if (samples.length < 3 || samples.at(-1)!.tS - samples[0].tS < MIN_SPAN_S) return [];
   const t = samples.map((s) => s.tS);
   const lit = samples.filter((s) => s.exposing).length / samples.length;
   const d = [0, 1, 2, 3].map((k) => lit * (duty ? duty[k] ?? 0 : 1));
   const mean = [0, 1, 2, 3, 4, 5].map((k) => samples.reduce((a, s) => a + s.celsius[k], 0) / samples.length);
-  const cooling = (c: number) => model.coolingPerS * (c - model.ambientC);
+  const cooling = (k: number) => model.coolingPerS * (mean[k] - model.ambientC[k]);
   const expected = [
-    ...d.map((dk, k) => model.heatingCPerS * dk - cooling(mean[k])),
-    model.heatingCPerS * model.driverShare * d.reduce((a, b) => a + b, 0) - cooling(mean[4]),
-    -cooling(mean[5]),
+    ...d.map((dk, k) => model.heatingCPerS * dk - cooling(k)),
+    model.heatingCPerS * model.driverShare * d.reduce((a, b) => a + b, 0) - cooling(4),
+    -cooling(5),
   ];
   const out: RateWarning[] = [];
   for (let k = 0; k < 6; k++) {

@@ -9,7 +9,7 @@ import { CommandError, type LinkHealth } from './dialect-client';
 import { DialectLink } from './dialect-link';
 import { applyReport, emptyState, type DeviceState, type JobProgress } from './device-state';
 import { EspLink } from './esp-link';
-import type { PrinterLink, UploadProgress } from './link';
+import type { PrinterLink, StartOptions, UploadProgress } from './link';
 import { configOf, interruptedOf, levelingOf, type InterruptedJob } from './printer-replies';
 import { parseMesh } from './mesh-report';
 import { ThermalHistory } from './thermal-history';
@@ -187,11 +187,11 @@ export class Printer {
     return replies;
   }
 
-  async startJob(job: PrintJob): Promise<void> {
+  async startJob(job: PrintJob, opts: StartOptions = {}): Promise<void> {
     const link = this.#link;
     if (!link) throw new Error('not connected');
     try {
-      await link.startJob(job, (p) => (this.upload = { state: 'uploading', ...p }));
+      await link.startJob(job, (p) => (this.upload = { state: 'uploading', ...p }), opts);
       this.upload = { state: 'idle' };
     } catch (e) {
       this.upload = { state: 'failed', error: describe(e) };
@@ -253,6 +253,8 @@ export class Printer {
 
   pause = () => this.send('M25');
   resume = () => this.send('M24');
+  /** Continues paced (mega.md "Pacing"): the printer waits to cool before a stop instead of pausing again. */
+  resumePaced = () => this.send('M24 P1');
   abort = () => this.send('M524');
 
   #onReply(r: Reply, line: string): void {

@@ -12,6 +12,9 @@ export interface JobProgress {
   reason?: string;
   /** Streamed (M828, no SD card): exposed as it arrives, and it cannot be resumed. */
   stream?: boolean;
+  /** Paced (mega.md "Pacing"), and now waiting for the head to cool before its next stop. */
+  paced?: boolean;
+  cooling?: boolean;
 }
 
 export interface Fault {
@@ -69,6 +72,8 @@ export function applyReport(s: DeviceState, r: Reply, nowMs: number): boolean {
         remainingS: f.remaining !== undefined ? Number(f.remaining) : undefined,
         reason: f.reason,
         stream: f.mode === 'stream',
+        paced: f.paced === '1',
+        cooling: f.cooling === '1',
       };
       if (f.leds !== undefined) s.leds = Number(f.leds);
       if (r.state !== 'running') s.leds = 0;

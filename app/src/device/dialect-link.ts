@@ -5,7 +5,7 @@ import type { Reply } from '../protocol/dialect-reply';
 import { encodeJob } from '../protocol/job-encode';
 import type { PrintJob } from '../protocol/job-types';
 import { CommandError, DialectClient, type ClientOptions, type LinkHealth } from './dialect-client';
-import type { PrinterLink, UploadProgress } from './link';
+import type { PrinterLink, StartOptions, UploadProgress } from './link';
 import type { Transport } from './transport';
 
 const UPLOAD_ATTEMPTS = 5;
@@ -41,7 +41,8 @@ export class DialectLink implements PrinterLink {
     return this.#client.command(line);
   }
 
-  async startJob(job: PrintJob, onProgress: (p: UploadProgress) => void): Promise<void> {
+  async startJob(job: PrintJob, onProgress: (p: UploadProgress) => void, opts: StartOptions = {}): Promise<void> {
+    const pace = opts.paced ? ' P1' : '';
     const text = encodeJob(job);
     const records = text.trimEnd().split('\n');
     const total = records.reduce((n, r) => n + r.length + 1, 0);
@@ -51,7 +52,7 @@ export class DialectLink implements PrinterLink {
       const file = `${(job.name ?? 'job').replace(/[^A-Za-z0-9_-]/g, '').slice(0, 20) || 'job'}-${++this.#jobs}.uvj`;
       try {
         onProgress({ bytesSent: sentBefore, bytesVerified: 0, bytesTotal: total });
-        streaming = await this.#openUpload(file);
+        streaming = await this.#openUpload(file, pace);
         let sent = 0;
         await this.#client.stream(records, (s, accepted) => {
           sent = s;
@@ -62,7 +63,7 @@ export class DialectLink implements PrinterLink {
         onProgress({ bytesSent: sentBefore, bytesVerified: total, bytesTotal: total });
         if (streaming) return; // a stream is already exposing
         await this.#client.command(`M23 ${file}`);
-        await this.#client.command('M24');
+        await this.#client.command(`M24${pace}`);
         return;
       } catch (e) {
         // On a noisy link a damaged line can slip past the 8-bit line checksum (mega.md): a bad record
@@ -75,14 +76,14 @@ export class DialectLink implements PrinterLink {
   }
 
   /** M28 to spool on the SD card; a Mega without one streams instead (M828), with no resume. True when streaming. */
-  async #openUpload(file: string): Promise<boolean> {
+  async #openUpload(file: string, pace: string): Promise<boolean> {
     try {
       await this.#client.command(`M28 ${file}`);
       return false;
     } catch (e) {
       if (!(e instanceof CommandError) || e.code !== 20) throw e;
     }
-    await this.#client.command('M828');
+    await this.#client.command(`M828${pace}`);
     return true;
   }
 

@@ -3,7 +3,7 @@
 import { parseReply, type Reply } from '../protocol/dialect-reply';
 import type { PrintJob } from '../protocol/job-types';
 import { CommandError, type LinkHealth } from './dialect-client';
-import type { PrinterLink, UploadProgress } from './link';
+import type { PrinterLink, StartOptions, UploadProgress } from './link';
 
 type FromEsp =
   | { type: 'hello'; protocol: number; firmware: string }
@@ -117,8 +117,8 @@ export class EspLink implements PrinterLink {
     });
   }
 
-  async startJob(job: PrintJob, onProgress: (p: UploadProgress) => void): Promise<void> {
-    const body = JSON.stringify({ ...job, gridData: job.gridData.map((row) => Array.from(row)) });
+  async startJob(job: PrintJob, onProgress: (p: UploadProgress) => void, opts: StartOptions = {}): Promise<void> {
+    const body = JSON.stringify({ ...job, ...(opts.paced ? { paced: true } : {}), gridData: job.gridData.map((row) => Array.from(row)) });
     const done = new Promise<void>((resolve, reject) => {
       this.#upload = (m) => {
         onProgress({ bytesSent: m.bytesSent, bytesVerified: m.bytesVerified, bytesTotal: m.bytesTotal });

@@ -20,7 +20,12 @@ export interface PrinterLink {
   open(onReply: (r: Reply, line: string) => void, onClosed: (error?: Error) => void): Promise<void>;
   /** One dialect line; resolves with its reply block, rejects with a CommandError. */
   command(line: string): Promise<Reply[]>;
-  /** Uploads the job, verifies it on the printer, selects and starts it. */
-  startJob(job: PrintJob, onProgress: (p: UploadProgress) => void): Promise<void>;
+  /** Uploads the job, verifies it on the printer, selects and starts it; `paced`: mega.md "Pacing". */
+  startJob(job: PrintJob, onProgress: (p: UploadProgress) => void, opts?: StartOptions): Promise<void>;
   close(): Promise<void>;
+}
+
+export interface StartOptions {
+  /** Run paced: the printer waits to cool before a stop rather than pause at a soft limit. */
+  paced?: boolean;
 }

@@ -21,6 +21,8 @@ export type Pending =
       findings: Finding[];
       duty: number[];
       estimateUs: number;
+      /** When the job would pause to cool: its time run paced (mega.md "Pacing"), which the user may choose. */
+      pacedUs: number | null;
       /** Where the job's cells lie on the bed, mm. */
       areaMm: { x0: number; y0: number; x1: number; y1: number };
     }
@@ -74,7 +76,7 @@ export class JobControl {
   exposeTestPattern = () => this.#act(() => this.#ask('test pattern', { ...testPattern(this.#fullUs()), strategy: { name: this.strategy } }));
 
   /** The user's yes to what is pending (an exposure without errors, or a homing). */
-  confirm = () =>
+  confirm = (opts: { paced?: boolean } = {}) =>
     this.#act(async () => {
       const p = this.pending;
       this.pending = null;
@@ -82,7 +84,7 @@ export class JobControl {
       if (p.kind === 'home-first') {
         await this.printer.send('G28');
         await p.run();
-      } else if (!p.findings.some((f) => f.level === 'error')) await this.#run(p.job, p.duty);
+      } else if (!p.findings.some((f) => f.level === 'error')) await this.#run(p.job, p.duty, !!opts.paced && p.pacedUs !== null);
     });
 
   cancel = () => {
@@ -113,22 +115,24 @@ export class JobControl {
 
   async #ask(what: 'drawing' | 'test pattern', job: PrintJob): Promise<void> {
     const leveling = await this.printer.leveling();
-    const { findings, duty, plan } = dryRun(job, this.config, { leveling: leveling.on, mesh: leveling.mesh });
+    const startC = this.printer.device.deciC?.map((d) => d / 10) ?? null;
+    const { findings, duty, plan, paced } = dryRun(job, this.config, { leveling: leveling.on, mesh: leveling.mesh, startC });
     this.check = { findings, job, duty };
     const mm = (um: number) => Math.round(um) / 1000;
     const areaMm = {
       x0: mm(job.originUm.x), y0: mm(job.originUm.y),
       x1: mm(job.originUm.x + job.grid.cols * job.pitchUm.x), y1: mm(job.originUm.y + job.grid.rows * job.pitchUm.y),
     };
-    this.pending = { kind: 'expose', what, job, findings, duty, estimateUs: plan.estimateUs, areaMm };
+    const pacedUs = paced && !paced.pause ? paced.totalUs : null;
+    this.pending = { kind: 'expose', what, job, findings, duty, estimateUs: plan.estimateUs, pacedUs, areaMm };
   }
 
-  async #run(job: PrintJob, duty: number[] | null): Promise<void> {
+  async #run(job: PrintJob, duty: number[] | null, paced: boolean): Promise<void> {
     JobNotice.askPermission(); // from the click that starts the job: its end can reach the desktop
     this.duty = duty;
     await this.beforeJob();
     await this.printer.send('G28');
-    await this.printer.startJob(job);
+    await this.printer.startJob(job, { paced });
   }
 
   async #act(f: () => Promise<unknown>): Promise<void> {

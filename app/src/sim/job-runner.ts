@@ -11,6 +11,7 @@ import type { Clock } from './clock';
 import { motionOf, num } from './config';
 import type { Motion, Xyz } from './motion';
 import type { NanoModel } from './nano-model';
+import { paceWaits } from './pacing';
 import type { SdCard } from './sd-card';
 
 export interface Exposure {
@@ -39,6 +40,16 @@ export class JobRunner {
   onProgress: (() => void) | null = null;
   #pauseRequested = false;
   #step: object | null = null;
+  /** Paced (protocol/mega.md "Pacing"): before a stop, wait while the head reads near a soft limit. */
+  paced = false;
+  /** A paced job waiting, LEDs off, for the head to cool before stop `#coolingStop`. */
+  cooling = false;
+  #coolingStop = -1;
+  /** Time spent waiting to cool, µs. */
+  cooledUs = 0;
+  #coolingSince = 0;
+  /** The Mega's latest temperature reading and its soft limits, 0.1 °C; the Mega sets these. */
+  thermal: { reading(): number[]; limits(): number[] } = { reading: () => [], limits: () => [] };
 
   constructor(
     private readonly clock: Clock,
@@ -106,6 +117,7 @@ export class JobRunner {
   /** Starts from stop `from` (a resume starts after the checkpoint). */
   start(from = 0): void {
     this.done = from;
+    this.cooledUs = 0;
     this.state = 'running';
     this.#pauseRequested = false;
     this.startedAtUs = this.clock.now;
@@ -116,6 +128,13 @@ export class JobRunner {
 
   pause(reason = 'user'): void {
     if (this.state !== 'running') return;
+    if (this.cooling) {
+      this.#endCooling();
+      this.state = 'paused';
+      this.reason = reason;
+      this.report('paused');
+      return;
+    }
     if (this.#starved) {
       this.#starved = false;
       this.state = 'paused';
@@ -141,6 +160,7 @@ export class JobRunner {
     this.nano.command('R\n');
     this.clock.cancel(this.#step);
     this.#starved = false;
+    this.#endCooling();
     if (this.state === 'running' || this.state === 'paused' || this.state === 'ready') {
       this.state = 'aborted';
       this.sd.checkpoint = null;
@@ -184,8 +204,38 @@ export class JobRunner {
     this.motion.whenIdle(() => {
       if (this.state !== 'running') return;
       const settle = moved ? num(this.config, 'settle_ms') * 1000 : 0;
-      this.#step = this.clock.after(settle + num(this.config, 'stop_overhead_us'), () => this.#fire(i));
+      this.#step = this.clock.after(settle + num(this.config, 'stop_overhead_us'), () => this.#fireWhenCool(i));
     });
+  }
+
+  /** As the Mega's Settle phase: a paced job whose head reads near a soft limit waits for readings. */
+  #fireWhenCool(i: number): void {
+    if (this.state !== 'running') return;
+    if (this.paced && paceWaits(this.thermal.reading(), this.thermal.limits(), false)) {
+      this.cooling = true;
+      this.#coolingStop = i;
+      this.#coolingSince = this.clock.now;
+      this.report('running'); // the JOB: line says cooling=1
+      return;
+    }
+    this.#fire(i);
+  }
+
+  /** A new temperature reading (every 500 ms, from the Mega's poll): a cooling job may go on. */
+  reading(): void {
+    if (!this.cooling || this.state !== 'running') return;
+    if (paceWaits(this.thermal.reading(), this.thermal.limits(), true)) return;
+    const i = this.#coolingStop;
+    this.#endCooling();
+    this.report('running');
+    this.#fire(i);
+  }
+
+  #endCooling(): void {
+    if (!this.cooling) return;
+    this.cooledUs += this.clock.now - this.#coolingSince;
+    this.cooling = false;
+    this.#coolingStop = -1;
   }
 
   #fire(i: number): void {
@@ -225,6 +275,7 @@ export class JobRunner {
   faulted(reason: string): void {
     if (this.state !== 'running') return;
     this.clock.cancel(this.#step);
+    this.#endCooling();
     this.nano.allOff();
     this.state = 'paused';
     this.reason = reason;

@@ -32,6 +32,8 @@ export function jobLine(m: MegaModel): string {
   };
   if (j.reason) fields.reason = j.reason;
   if (j.streaming) fields.mode = 'stream';
+  if (j.paced) fields.paced = '1';
+  if (j.cooling) fields.cooling = '1';
   return formatReply({ kind: 'job', state: j.state, fields });
 }
 

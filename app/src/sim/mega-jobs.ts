@@ -43,14 +43,29 @@ function select(m: MegaModel, name: string): { code: number; detail?: string } {
   return m.job.load(file) ? { code: 0 } : { code: 24 };
 }
 
+/** `P1` runs a job paced, `P0` unpaced (mega.md "Pacing"); without P a start is unpaced and a continue keeps its pacing. */
+function pacing(m: MegaModel, c: Command | null, fresh: boolean): boolean {
+  const p = c ? params(c).P : undefined;
+  if (p === undefined) return fresh ? false : m.job.paced;
+  return p === 1000;
+}
+
+/** P, when given, is 0 or 1. */
+function badPacing(c: Command | null): boolean {
+  const p = c ? params(c).P : undefined;
+  return p !== undefined && p !== 0 && p !== 1000;
+}
+
 /** M24: starts or continues the selected G-code file or job. */
-function start(m: MegaModel, done: () => void): void {
+function start(m: MegaModel, done: () => void, c: Command | null = null): void {
+  if (badPacing(c)) return m.error(11, done, 'P is 0 or 1');
   if (m.cardPrint) {
     m.cardPrint.running = true; // its lines run once this block has ended (MegaModel.pump)
     return done();
   }
   if (m.job.state === 'paused') {
     if (m.tooHot()) return m.error(31, done, 'printhead still faulted');
+    m.job.paced = pacing(m, c, false);
     m.job.resume();
     return done();
   }
@@ -59,6 +74,7 @@ function start(m: MegaModel, done: () => void): void {
   if (m.tooHot()) return m.error(31, done, 'printhead faulted');
   if (!homedXY(m)) return m.error(14, done, 'home first (G28)');
   if (m.job.state !== 'ready') m.job.load(m.selected);
+  m.job.paced = pacing(m, c, true);
   m.job.start(0);
   done();
 }
@@ -124,12 +140,14 @@ function resume(m: MegaModel, c: Command, done: () => void): void {
     return done();
   }
   if (m.cardPrint?.running) return m.error(12, done);
+  if (badPacing(c)) return m.error(11, done, 'P is 0 or 1');
   if (!cp) return m.error(27, done);
   if (!homedXY(m)) return m.error(14, done, 'home first (G28)');
   if (!m.job.load(cp.file)) return m.error(21, done, cp.file);
   m.selected = cp.file;
   m.cardPrint = null;
   const { from, verdict } = resumeVerdict(cp, parseNanoReply(m.nano.command('C\n') ?? ''));
+  m.job.paced = pacing(m, c, true);
   m.job.start(from);
   m.line(`echo:resume: stop ${cp.done} ${verdict}`);
   done();
@@ -147,12 +165,14 @@ export function jobCommands(m: MegaModel): Record<string, Handler> {
     M21: (_c, done) => (m.line(m.sd.present ? 'echo:SD card ok' : 'echo:SD init fail'), done()),
     M28: (c, done) => beginUpload(m, text(c), done),
     M29: (_c, done) => (m.stream ? endStream(m, done) : endUpload(m, done)),
-    M828: (_c, done) => {
+    M828: (c, done) => {
+      if (badPacing(c)) return m.error(11, done, 'P is 0 or 1');
       if (m.jobActive()) return m.error(12, done);
       if (!homedXY(m)) return m.error(14, done, 'home first (G28)');
       if (m.tooHot()) return m.error(31, done, 'printhead faulted');
       m.stream = new JobStream(m.job, m.job.machine(m.motion.now()), (e) => m.errorLine(e.code, `${e.line ? `line ${e.line}: ` : ''}${e.message}`));
       m.line('echo:Streaming: exposed as it arrives, no resume');
+      m.job.paced = pacing(m, c, true);
       m.job.beginStream('stream');
       done();
     },
@@ -165,7 +185,7 @@ export function jobCommands(m: MegaModel): Record<string, Handler> {
       const r = select(m, text(c));
       return r.code ? m.error(r.code, done, r.detail) : start(m, done);
     },
-    M24: (_c, done) => start(m, done),
+    M24: (c, done) => start(m, done, c),
     M25: (_c, done) => {
       if (m.cardPrint) m.cardPrint.running = false; // after the line that runs now
       else m.job.pause();

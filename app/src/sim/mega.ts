@@ -21,6 +21,7 @@ import { JobRunner } from './job-runner';
 import type { JobStream } from './job-stream';
 import { Motion } from './motion';
 import type { NanoModel } from './nano-model';
+import { overSoftLimit } from './pacing';
 import type { SdCard } from './sd-card';
 
 const WINDOW = 4;
@@ -85,6 +86,7 @@ export class MegaModel {
       this.line(`FAULT:E${code} ${message}`);
     });
     this.job.onProgress = () => this.stream?.progress();
+    this.job.thermal = { reading: () => this.reading, limits: () => this.#limitsDeciC() };
     this.#receiver = new LineReceiver({ movesFree: () => this.motion.movesFree, windowFree: () => WINDOW - this.#queue.length });
     this.#handlers = { ...infoCommands(this), ...motionCommands(this), ...probeCommands(this), ...jobCommands(this) };
     this.eeprom = o.eeprom ?? null;
@@ -249,6 +251,13 @@ export class MegaModel {
     return r;
   }
 
+  /** The printhead's temperatures as the Mega last read them (T, every 500 ms), 0.1 °C. */
+  reading: number[] = [];
+
+  #limitsDeciC(): number[] {
+    return this.reading.map((_, i) => num(this.config, `thermal.limit.${i}`) * 10);
+  }
+
   #activeFaults(): number {
     const r = this.nano.command('E\n');
     const e = r ? parseNanoReply(r) : null;
@@ -258,6 +267,7 @@ export class MegaModel {
   /** Background poll of the printhead, as the Mega does every 500 ms: faults stop the job. */
   #poll(): void {
     this.clock.after(POLL_US, () => this.#poll());
+    if (this.nano.present) this.reading = this.nano.deciC();
     const r = this.nanoSay('E');
     if (!r) return;
     this.#missedPolls = 0;
@@ -272,6 +282,7 @@ export class MegaModel {
     }
     this.#faultsShown = active & FAULT.OVERTEMP;
     this.#softLimits();
+    this.job.reading();
   }
 
   /** A hard fault on the Nano, or any sensor at or over the Mega's soft limit: no exposure may start. */
@@ -283,8 +294,8 @@ export class MegaModel {
   /** The Mega's own, lower limits (config thermal.limit.*): pause before the Nano has to cut. */
   #softLimits(): void {
     if (this.job.state !== 'running') return;
-    const t = this.nano.deciC();
-    const over = t.findIndex((v, i) => v >= num(this.config, `thermal.limit.${i}`) * 10);
+    const t = this.reading;
+    const over = overSoftLimit(t, this.#limitsDeciC());
     if (over < 0) return;
     this.line(`FAULT:E31 over-temperature T${over} ${(t[over] / 10).toFixed(1)} (soft limit)`);
     this.job.faulted('overtemp');

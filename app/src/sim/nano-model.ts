@@ -3,6 +3,7 @@
 
 import { FAULT, formatNanoReply, parseNanoCommand, SENSOR_COUNT, type NanoReply } from '../protocol/nano';
 import type { VirtualClock } from './clock';
+import { HEAD_THERMAL, HeadThermal } from './head-thermal';
 
 export interface NanoOptions {
   /** Resting temperature of each sensor, 0.1 °C. */
@@ -18,22 +19,23 @@ export interface NanoOptions {
   extraHeatingCPerS: number;
 }
 
+/** The head's thermal constants are the shared model's (head-thermal.ts), which the dry run also reads. */
 export const DEFAULT_NANO: NanoOptions = {
-  ambientDeciC: [231, 234, 229, 236, 224, 226],
+  ambientDeciC: HEAD_THERMAL.ambientC.map((c) => Math.round(c * 10)),
   limitDeciC: [600, 600, 600, 600, 600, 600],
   hysteresisDeciC: 50,
   capUs: 10_000_000,
-  heatingCPerS: 2.5,
-  coolingPerS: 0.08,
-  extraHeatingCPerS: 0,
+  heatingCPerS: HEAD_THERMAL.heatingCPerS,
+  coolingPerS: HEAD_THERMAL.coolingPerS,
+  extraHeatingCPerS: HEAD_THERMAL.extraHeatingCPerS,
 };
 
 export type ProbePin = 'stowed' | 'deployed' | 'alarm';
 
 export class NanoModel {
   lit = 0;
-  /** Temperatures in °C (floating), integrated in virtual time. */
-  readonly temp: number[];
+  /** The sensors, integrated in virtual time with the shared thermal model. */
+  readonly thermal: HeadThermal;
   probe: ProbePin = 'stowed';
   /** Set by the Mega model while the deployed pin touches the bed. */
   touching = false;
@@ -52,7 +54,13 @@ export class NanoModel {
   #hot = 0;
 
   constructor(private readonly clock: VirtualClock, private readonly o: NanoOptions = DEFAULT_NANO) {
-    this.temp = o.ambientDeciC.map((d) => d / 10);
+    const ambientC = o.ambientDeciC.map((d) => d / 10);
+    this.thermal = new HeadThermal({ ...HEAD_THERMAL, ambientC, heatingCPerS: o.heatingCPerS, coolingPerS: o.coolingPerS, extraHeatingCPerS: o.extraHeatingCPerS });
+  }
+
+  /** Temperatures in °C (floating). */
+  get temp(): number[] {
+    return this.thermal.temp;
   }
 
   /** One command line (with '\n'); returns the reply line, if the command has one. */
@@ -138,16 +146,10 @@ export class NanoModel {
   /** Advances the thermal model to now, and cuts the LEDs on over-temperature like the firmware. */
   #integrate(): void {
     const now = this.clock.now;
-    const dt = (now - this.#lastUs) / 1e6;
+    const dtUs = now - this.#lastUs;
     this.#lastUs = now;
-    if (dt <= 0) return;
-    const ambient = this.o.ambientDeciC.map((d) => d / 10);
-    for (let i = 0; i < SENSOR_COUNT; i++) {
-      const led = i < 4 && (this.lit >> i) & 1 ? this.o.heatingCPerS : 0;
-      const driver = i === 4 ? this.o.heatingCPerS * 0.3 * popcount(this.lit) : 0;
-      const extra = i < 4 ? this.o.extraHeatingCPerS : 0;
-      this.temp[i] += (led + driver + extra) * dt - (this.temp[i] - ambient[i]) * (1 - Math.exp(-this.o.coolingPerS * dt));
-    }
+    if (dtUs <= 0) return;
+    this.thermal.advance(dtUs, this.lit);
     for (let i = 0; i < SENSOR_COUNT; i++) {
       const t = this.temp[i] * 10;
       if (t >= this.o.limitDeciC[i]) this.#hot |= 1 << i;
@@ -161,8 +163,3 @@ export class NanoModel {
   }
 }
 
-function popcount(m: number): number {
-  let n = 0;
-  for (; m; m &= m - 1) n++;
-  return n;
-}

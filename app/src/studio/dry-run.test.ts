@@ -35,10 +35,31 @@ describe('dry run', () => {
     expect(levels(r).dose).toBe('error');
   });
 
-  it('warns when the LEDs would run hot, and about a job off the mesh', () => {
-    const hot = dryRun(job({ dose: { map: 'linear', fullUs: 2_000_000 } }, 4, 4), DEFAULT_CONFIG);
+  it('forecasts a pause at a soft limit, and the paced run that avoids it', () => {
+    const hot = dryRun(job({ dose: { map: 'linear', fullUs: 800_000 } }, 24, 16), DEFAULT_CONFIG);
     expect(levels(hot).thermal).toBe('warning');
-    expect(Math.max(...hot.duty)).toBeGreaterThan(0.9);
+    expect(Math.max(...hot.duty)).toBeGreaterThan(0.5);
+    expect(hot.thermal.pause?.sensor).toBe(4); // the driver: every lit LED warms it
+    expect(hot.findings.at(-1)!.message).toMatch(/^T4 would reach its 50 °C soft limit 0:00:\d\d in, at stop \d+ of \d+: the job would pause there to cool\. Paced, it waits/);
+    expect(hot.paced?.pause).toBeNull();
+    expect(hot.paced!.totalUs).toBeGreaterThan(hot.plan.estimateUs);
+    expect(Math.max(...hot.paced!.peakC.map((c, i) => c - [55, 55, 55, 55, 50, 50][i]))).toBeLessThan(0);
+  });
+
+  it('starts from the head as it is: a warm head pauses a job a cool one runs through', () => {
+    const long = job({ dose: { map: 'linear', fullUs: 100_000 } }, 24, 16);
+    expect(levels(dryRun(long, DEFAULT_CONFIG)).thermal).toBe('ok');
+    const warm = dryRun(long, DEFAULT_CONFIG, { startC: [54, 54, 54, 54, 49, 30] });
+    expect(warm.thermal.pause).not.toBeNull();
+  });
+
+  it('says when pacing cannot help: one stop alone heats past the limit', () => {
+    const r = dryRun(job({ dose: { map: 'linear', fullUs: 9_000_000 } }, 4, 4), DEFAULT_CONFIG, { startC: [45, 45, 45, 45, 40, 25] });
+    expect(r.paced?.pause).not.toBeNull();
+    expect(r.findings.at(-1)!.message).toMatch(/pacing cannot prevent it .*lower the dose$/);
+  });
+
+  it('warns about a job off the mesh', () => {
     const mesh = { nx: 3, ny: 3, x0: 50_000, y0: 50_000, dx: 50_000, dy: 50_000, z: [[0, 0, 0], [0, 0, 0], [0, 0, 0]] };
     expect(levels(dryRun(job(), DEFAULT_CONFIG, { leveling: true, mesh })).mesh).toBe('warning');
     expect(levels(dryRun(job({ originUm: { x: 60_000, y: 60_000 } }), DEFAULT_CONFIG, { leveling: true, mesh })).mesh).toBe('ok');

@@ -6,27 +6,15 @@ import { headerOf } from '../planner/job-header';
 import type { Mesh } from '../planner/mesh';
 import { planJob, type Plan } from '../planner/planner';
 import type { PrintJob } from '../protocol/job-types';
+import { hms } from '../job/hms';
 import { bedOf, limitsOf, motionOf, type MachineConfig } from './machine-config';
+import { forecastThermal, type ThermalRun } from './thermal-forecast';
 
 export interface Finding {
   check: 'envelope' | 'mesh' | 'dose' | 'thermal';
   level: 'error' | 'warning' | 'ok';
   message: string;
 }
-
-/**
- * How fast an LED's sensor warms with the LED lit and cools towards the room (°C/s, and the share
- * of the gap lost per second), and how much of that reaches the driver's sensor per LED. The
- * defaults are the simulated printer's; a real head should be measured (the thermal dashboard).
- */
-export interface ThermalModel {
-  heatingCPerS: number;
-  coolingPerS: number;
-  driverShare: number;
-  ambientC: number;
-}
-
-export const DEFAULT_THERMAL: ThermalModel = { heatingCPerS: 2.5, coolingPerS: 0.08, driverShare: 0.3, ambientC: 23 };
 
 /** nano.md: the printhead refuses any single duration over this (NANO_MAX_EXPOSURE_US). */
 export const NANO_MAX_EXPOSURE_US = 10_000_000;
@@ -36,12 +24,19 @@ export interface DryRun {
   findings: Finding[];
   /** Each LED's share of the job's time lit, 0-1. */
   duty: number[];
+  /** The thermal forecast as the job would run, and, when that pauses, as it would run paced. */
+  thermal: ThermalRun;
+  paced: ThermalRun | null;
 }
 
-/** `leveling` is whether the printer said exposures follow the mesh; null or absent if it did not say. */
-export function dryRun(job: PrintJob, config: MachineConfig, opts: { mesh?: Mesh | null; leveling?: boolean | null; thermal?: ThermalModel } = {}): DryRun {
+/**
+ * `leveling` is whether the printer said exposures follow the mesh; null or absent if it did not say.
+ * `startC` is the head's temperatures now (the printer's last report); a warm head pauses sooner.
+ */
+export function dryRun(job: PrintJob, config: MachineConfig, opts: { mesh?: Mesh | null; leveling?: boolean | null; startC?: number[] | null } = {}): DryRun {
   const header = headerOf(job);
-  const plan = planJob({ header, cells: job.gridData }, motionOf(config));
+  const machine = motionOf(config);
+  const plan = planJob({ header, cells: job.gridData }, machine);
   const findings: Finding[] = [];
   const { bedMm } = bedOf(config);
 
@@ -82,16 +77,24 @@ export function dryRun(job: PrintJob, config: MachineConfig, opts: { mesh?: Mesh
     ? { check: 'dose', level: 'error', message: `a stop would light an LED for ${(longest / 1e6).toFixed(1)} s; the printhead refuses more than ${NANO_MAX_EXPOSURE_US / 1e6} s` }
     : { check: 'dose', level: 'ok', message: `the longest exposure is ${(longest / 1000).toFixed(1)} ms` });
 
-  // Thermal: where each sensor settles at the job's duty (the model's steady state).
-  const t = opts.thermal ?? DEFAULT_THERMAL;
+  // Thermal: the plan played through the head's model, as the Mega reads and judges it.
   const duty = lit.map((us) => (plan.estimateUs ? us / plan.estimateUs : 0));
-  const limits = limitsOf(config);
-  const settle = duty.map((d) => t.ambientC + (t.heatingCPerS * d) / t.coolingPerS);
-  settle.push(t.ambientC + (t.heatingCPerS * t.driverShare * duty.reduce((a, b) => a + b, 0)) / t.coolingPerS);
-  const over = settle.map((c, i) => ({ c, i })).filter(({ c, i }) => c > limits[i] - 2);
-  findings.push(over.length
-    ? { check: 'thermal', level: 'warning', message: `at ${Math.round(Math.max(...duty) * 100)} % duty, ${over.map(({ c, i }) => `T${i} would reach about ${c.toFixed(0)} °C (limit ${limits[i]})`).join(', ')}: the job will pause to cool` }
-    : { check: 'thermal', level: 'ok', message: `the LEDs are lit at most ${Math.round(Math.max(...duty) * 100)} % of the time, within their thermal budget` });
+  const limitsC = limitsOf(config);
+  const forecast = (paced: boolean) => forecastThermal(plan, header, machine, { limitsC, startC: opts.startC ?? undefined, paced });
+  const thermal = forecast(false);
+  const paced = thermal.pause ? forecast(true) : null;
+  findings.push(thermalFinding(thermal, paced, plan.count, limitsC));
 
-  return { plan, findings, duty };
+  return { plan, findings, duty, thermal, paced };
+}
+
+function thermalFinding(run: ThermalRun, paced: ThermalRun | null, stops: number, limitsC: number[]): Finding {
+  const hottest = run.peakC.reduce((best, c, i) => (c - limitsC[i] > run.peakC[best] - limitsC[best] ? i : best), 0);
+  const peak = (r: ThermalRun, i: number) => `T${i} ${r.peakC[i].toFixed(0)} °C (limit ${limitsC[i]})`;
+  if (!run.pause) return { check: 'thermal', level: 'ok', message: `the hottest sensor stays below its soft limit: ${peak(run, hottest)}` };
+  const p = run.pause;
+  const where = `T${p.sensor} would reach its ${limitsC[p.sensor]} °C soft limit ${hms(p.atUs)} in, at stop ${p.stop} of ${stops}: the job would pause there to cool`;
+  if (!paced || paced.pause) return { check: 'thermal', level: 'warning', message: `${where}, and pacing cannot prevent it (a single stop heats too much): lower the dose` };
+  const top = paced.peakC.reduce((best, c, i) => (c - limitsC[i] > paced.peakC[best] - limitsC[best] ? i : best), 0);
+  return { check: 'thermal', level: 'warning', message: `${where}. Paced, it waits ${hms(paced.waitUs)} in all to cool, takes about ${hms(paced.totalUs)}, and stays below its limits (${peak(paced, top)})` };
 }
