@@ -77,7 +77,7 @@ void JobRunner::halt(RunState s, uint8_t reason) {
 void JobRunner::fail(uint8_t code) {
   head_.allOff(code);
   motion_.stop();
-  elapsedUs_ += now_ - since_;
+  count(now_);
   halt(RunState::Paused, code);  // the checkpoint stays: continue, or resume after a reset
 }
 
@@ -116,6 +116,15 @@ uint8_t JobRunner::tooHot() const {
   return 0;
 }
 
+bool JobRunner::paceWaits(bool cooling) const {
+  const int16_t* t = head_.deciC();
+  for (uint8_t i = 0; i < uv::kSensorCount; i++) {
+    int32_t limit = config_.milli(Key::ThermalLimit0 + i) / 100;
+    if (cooling ? t[i] > limit - kPaceUntilDeciC : t[i] >= limit - kPaceAtDeciC) return true;
+  }
+  return false;
+}
+
 uint32_t JobRunner::compensate(uint8_t led, uint32_t us) const {
   // job.md: t' = round(t × (100000 + c × (T − ref)) / 100000), T from the sensor beside LED i.
   int32_t c = header_.thermalCoeff;
@@ -126,9 +135,17 @@ uint32_t JobRunner::compensate(uint8_t led, uint32_t us) const {
   return t > kNanoCapUs ? kNanoCapUs : static_cast<uint32_t>(t);
 }
 
+void JobRunner::count(uint32_t nowUs) {
+  elapsedUs_ += nowUs - since_;
+  since_ = nowUs;
+  elapsedS_ += elapsedUs_ / 1000000;
+  elapsedUs_ %= 1000000;
+}
+
 void JobRunner::poll(uint32_t nowUs) {
   now_ = nowUs;
   if (state_ != RunState::Running) return;
+  count(nowUs);  // every pass: a job outlasts the 71 minutes a 32-bit µs count holds
   switch (phase_) {
     case Phase::Sync: {
       if (!head_.online()) return fail(uv::kNanoTimeout);
@@ -154,7 +171,7 @@ void JobRunner::poll(uint32_t nowUs) {
     case Phase::Load: {
       if (pauseWanted_) {
         pauseWanted_ = false;
-        elapsedUs_ += nowUs - since_;
+        count(nowUs);
         return halt(RunState::Paused, pauseReason_);
       }
       if (stopInHand_) {
@@ -164,12 +181,12 @@ void JobRunner::poll(uint32_t nowUs) {
         waiting_ = n == NextStop::Wait;
         if (waiting_) return;  // the rows its next stops read are still on their way
         if (n == NextStop::Error) {
-          elapsedUs_ += nowUs - since_;
+          count(nowUs);
           head_.allOff();
           return halt(RunState::Aborted, 0);
         }
         if (n == NextStop::End) {
-          elapsedUs_ += nowUs - since_;
+          count(nowUs);
           return halt(RunState::Done, 0);
         }
         // The job's geometry is known by its first stop: the header came before any row.
@@ -181,7 +198,7 @@ void JobRunner::poll(uint32_t nowUs) {
         header_.thermalRefDeciC = streamHeader_->thermalRefDeciC;
       } else {
         if (done_ >= header_.count) {
-          elapsedUs_ += nowUs - since_;
+          count(nowUs);
           checkpoint_.clear();
           sd_.close(stops_);
           stops_ = -1;
@@ -211,6 +228,11 @@ void JobRunner::poll(uint32_t nowUs) {
       uint8_t hot = tooHot();
       if (hot || head_.activeFaults()) return fail(uv::kOverTemperature);
       if (!head_.online()) return fail(uv::kNanoTimeout);
+      if (paced_ && paceWaits(false)) {
+        phase_ = Phase::Cool;  // LEDs off, the head still, until the readings show it cool
+        changed_ = true;
+        return;
+      }
       uint32_t us[4];
       uint8_t mask = 0;
       for (uint8_t i = 0; i < 4; i++) {
@@ -226,6 +248,16 @@ void JobRunner::poll(uint32_t nowUs) {
       phase_ = Phase::Fire;
       return;
     }
+    case Phase::Cool:
+      if (pauseWanted_) {
+        phase_ = Phase::Load;  // the stop is still in hand: the pause comes before it
+        return;
+      }
+      if (paceWaits(true)) return;
+      phase_ = Phase::Settle;  // due at once: the checks again, then the exposure
+      settleUntil_ = nowUs;
+      changed_ = true;
+      return;
     case Phase::Fire:
       if (head_.fireState() == FireState::Firing) return;
       if (head_.fireState() == FireState::Failed) {

@@ -17,6 +17,12 @@ namespace mega {
 
 enum class RunState : uint8_t { Running, Paused, Done, Aborted, Failed };
 
+// Pacing (protocol/mega.md "Pacing"): before a stop, a paced job waits with the LEDs off while a
+// sensor reads within kPaceAtDeciC of its soft limit, until every one reads kPaceUntilDeciC below it.
+// The app's dry run and simulated printer use the same numbers (app/src/sim/pacing.ts).
+constexpr int16_t kPaceAtDeciC = 20;
+constexpr int16_t kPaceUntilDeciC = 30;
+
 class JobRunner {
  public:
   // `mesh`: the bed mesh to follow in Z, or nullptr.
@@ -51,11 +57,16 @@ class JobRunner {
   // Stops everything at once: LEDs off, motion stopped, the checkpoint cleared.
   void abort();
 
+  // Paced or not (mega.md "Pacing"); a paced job waiting for the head to cool is `cooling`.
+  void setPaced(bool paced) { paced_ = paced; }
+  bool paced() const { return paced_; }
+  bool cooling() const { return phase_ == Phase::Cool; }
+
   RunState state() const { return state_; }
   uint8_t reason() const { return reason_; }
   uint32_t done() const { return done_; }
   uint32_t count() const { return source_ ? source_->count() : header_.count; }
-  uint32_t elapsedS(uint32_t nowUs) const { return (elapsedUs_ + (state_ == RunState::Running ? nowUs - since_ : 0)) / 1000000; }
+  uint32_t elapsedS(uint32_t nowUs) const { return elapsedS_ + (elapsedUs_ + (state_ == RunState::Running ? nowUs - since_ : 0)) / 1000000; }
   uint32_t remainingS() const;
   const char* file() const { return progress_.file; }
   // The state changed since the last call (for JOB: reports).
@@ -65,11 +76,12 @@ class JobRunner {
   uint32_t faultStop() const { return done_; }
 
  private:
-  enum class Phase : uint8_t { Sync, Load, Move, Settle, Fire, Wait };
+  enum class Phase : uint8_t { Sync, Load, Move, Settle, Cool, Fire, Wait };
   void fail(uint8_t code);
   void halt(RunState s, uint8_t reason);
   uint32_t compensate(uint8_t led, uint32_t us) const;
   uint8_t tooHot() const;
+  bool paceWaits(bool cooling) const;
 
   Storage& sd_;
   Motion& motion_;
@@ -91,13 +103,16 @@ class JobRunner {
   uint8_t reason_ = 0;
   bool pauseWanted_ = false;
   bool lit_ = false;  // the stop under way lights an LED
+  bool paced_ = false;
   uint8_t pauseReason_ = 0;
   bool changed_ = false;
   bool resuming_ = false;
   Resumed resumed_ = Resumed::NotYet;
   Progress checkpointed_ = {};
   uint32_t done_ = 0;
-  uint32_t since_ = 0, elapsedUs_ = 0, settleUntil_ = 0, now_ = 0;
+  // Time run: whole seconds, and the µs since the last whole second, folded in at every poll.
+  void count(uint32_t nowUs);
+  uint32_t since_ = 0, elapsedS_ = 0, elapsedUs_ = 0, settleUntil_ = 0, now_ = 0;
 };
 
 }  // namespace mega

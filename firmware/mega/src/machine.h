@@ -38,6 +38,21 @@ struct LoopStats {
 
 constexpr uint16_t larger(uint16_t a, uint16_t b) { return a > b ? a : b; }
 
+// The P of M24, M828 and M1000 (mega.md "Pacing"): P1 paces the job, P0 does not; anything else is E11.
+// A JOB: line's buffer. Its longest: `JOB:running` (11), a 31-character file (37), stop= with two
+// 10-digit counts (27), elapsed= and remaining= at their 7-digit cap (16 + 18), leds= (7), the longest
+// reason= (17) and paced= (8): 141 and the NUL. mode=stream comes only with the 6-letter file
+// `stream`, and cooling=1 only while running (no reason). A line must fit kTxRing - 1 whole.
+constexpr uint8_t kJobLineMax = 142;
+static_assert(kJobLineMax <= kTxRing - 1, "a JOB: line must fit the transmit ring");
+
+enum class Pace : uint8_t { Unsaid, Off, On, Bad };
+inline Pace paceOf(const uv::Command& c) {
+  if (!c.has('P')) return Pace::Unsaid;
+  if (!c.hasValue('P')) return Pace::Bad;
+  return c.value('P') == 0 ? Pace::Off : c.value('P') == 1000 ? Pace::On : Pace::Bad;
+}
+
 struct MachineParts {
   HostLink* ports[kPorts];
   Motion& motion;
@@ -119,7 +134,7 @@ class Machine {
   // M28 and M23 need a card and no job under way; false, or the refusal said.
   bool refuseCardJob(HostLink& port);
   Result select(HostLink& port, const uv::Command& c);
-  Result startOrContinue(HostLink& port);
+  Result startOrContinue(HostLink& port, const uv::Command& c);
   Result resumeInterrupted(HostLink& port, const uv::Command& c);
   // The planner's machine (planner.md "Time model") from the settings, starting at (x, y).
   uv::Machine plannerMachine(int32_t x, int32_t y) const;
@@ -130,10 +145,11 @@ class Machine {
   // Prints a line on both hosts if both have room for it now; false (nothing printed) if not.
   bool broadcastWhole(const char* text);
   void clearArena();
+  // The JOB: line into `out`, kJobLineMax bytes: the longest fits a host's transmit ring whole.
   uint8_t formatJob(char* out) const;
   void jobReports();
   uint8_t refuseExposure(HostLink& port);
-  Result startStream(HostLink& port);
+  Result startStream(HostLink& port, const uv::Command& c);
   Result streamLine(HostLink& port, const LineSlot& line);
   // G-code files on the card (machine_card_gcode.cpp): true if the command was one of theirs.
   bool gcodeCommand(HostLink& port, const uv::Command& c, Result& r);

@@ -164,9 +164,15 @@ Machine::Result Machine::select(HostLink& port, const uv::Command& c) {
   return Result::Long;
 }
 
-Machine::Result Machine::startOrContinue(HostLink& port) {
+Machine::Result Machine::startOrContinue(HostLink& port, const uv::Command& c) {
+  Pace pace = paceOf(c);
+  if (pace == Pace::Bad) {
+    port.errorLineP(uv::kBadParameter, UV_P("P is 0 or 1"));
+    return Result::Done;
+  }
   if (running() && run()->state() == RunState::Paused) {
     if (refuseExposure(port)) return Result::Done;
+    if (pace != Pace::Unsaid) run()->setPaced(pace == Pace::On);  // else as it was
     run()->resume(now_);
     return Result::Done;
   }
@@ -182,6 +188,7 @@ Machine::Result Machine::startOrContinue(HostLink& port) {
   clearArena();
   JobRunner* r = new (arenaMem_) JobRunner(sd_, motion_, head_, config_, leveling_ ? &mesh_ : nullptr);
   arena_ = Arena::Run;
+  r->setPaced(pace == Pace::On);
   uint8_t err = r->start(selected_, 0, now_);
   if (err) {
     clearArena();
@@ -229,7 +236,7 @@ Machine::Result Machine::jobCommand(HostLink& port, const uv::Command& c) {
       port.line(buf);
       return Result::Done;
     }
-    case 828: return startStream(port);
+    case 828: return startStream(port, c);
     case 29:
       if (((arena_ == Arena::Spool && !preparing_) || (arena_ == Arena::Stream && streaming_)) && &port != jobPort_) {
         port.errorLine(uv::kBusy);  // the other port's upload or stream is not this one's to end
@@ -252,7 +259,7 @@ Machine::Result Machine::jobCommand(HostLink& port, const uv::Command& c) {
       }
       return endUpload(port);
     case 23: return select(port, c);
-    case 24: return startOrContinue(port);
+    case 24: return startOrContinue(port, c);
     case 25:
       if (running()) run()->pause(0);
       return Result::Done;
@@ -277,7 +284,7 @@ Machine::Result Machine::jobCommand(HostLink& port, const uv::Command& c) {
         jobNext_ = now_ + jobPeriodUs_;
         return Result::Done;
       }
-      char buf[112];
+      char buf[kJobLineMax];
       formatJob(buf);
       port.line(buf);
       return Result::Done;

@@ -27,12 +27,15 @@ const char* reasonName(uint8_t code) {
   }
 }
 constexpr uint8_t kReasonLostHost = 99;
+
+// Times in a JOB: line stop at 9999999 s (115 days), which keeps the longest line whole (kJobLineMax).
+uint32_t capS(uint32_t s) { return s > 9999999 ? 9999999 : s; }
 }  // namespace
 
 uint8_t Machine::formatJob(char* out) const {
   uv::Reply r{};
   r.kind = uv::ReplyKind::Job;
-  char fields[80];
+  char fields[kJobLineMax - 11];  // the fields after `JOB:<state>`; see kJobLineMax
   char* p = fields;
   if (running()) {
     const JobRunner& j = *run();
@@ -47,10 +50,10 @@ uint8_t Machine::formatJob(char* out) const {
     *p++ = '/';
     p += uv::putUnsigned(j.count(), p);
     p += uv::putFlash(UV_P(" elapsed="), p);
-    p += uv::putUnsigned(j.elapsedS(now_), p);
+    p += uv::putUnsigned(capS(j.elapsedS(now_)), p);
     if (j.planComplete()) {  // a stream's end, and so its time left, is not known until its last row
       p += uv::putFlash(UV_P(" remaining="), p);
-      p += uv::putUnsigned(j.remainingS(), p);
+      p += uv::putUnsigned(capS(j.remainingS()), p);
     }
     p += uv::putFlash(UV_P(" leds="), p);
     p += uv::putUnsigned(head_.fireState() == FireState::Firing ? 1 : 0, p);
@@ -59,12 +62,14 @@ uint8_t Machine::formatJob(char* out) const {
       p += uv::putFlash(reasonName(j.reason()), p);
     }
     if (j.streaming()) p += uv::putFlash(UV_P(" mode=stream"), p);
+    if (j.paced()) p += uv::putFlash(UV_P(" paced=1"), p);
+    if (j.cooling()) p += uv::putFlash(UV_P(" cooling=1"), p);
   } else {
     r.state = static_cast<uint8_t>(arena_ == Arena::Spool ? uv::JobState::Uploading : jobState_);
   }
   r.text = fields;
   r.textLen = static_cast<uint8_t>(p - fields);
-  return static_cast<uint8_t>(uv::formatReply(r, out, 112));
+  return static_cast<uint8_t>(uv::formatReply(r, out, kJobLineMax));
 }
 
 
@@ -91,6 +96,11 @@ Machine::Result Machine::resumeInterrupted(HostLink& port, const uv::Command& c)
     port.line(buf);
     return Result::Done;
   }
+  Pace pace = paceOf(c);
+  if (pace == Pace::Bad) {
+    port.errorLineP(uv::kBadParameter, UV_P("P is 0 or 1"));
+    return Result::Done;
+  }
   if (jobActive()) {
     port.errorLine(uv::kBusy);
     return Result::Done;
@@ -108,6 +118,7 @@ Machine::Result Machine::resumeInterrupted(HostLink& port, const uv::Command& c)
   strcpy(selected_, p.file);
   JobRunner* r = new (arenaMem_) JobRunner(sd_, motion_, head_, config_, leveling_ ? &mesh_ : nullptr);
   arena_ = Arena::Run;
+  r->setPaced(pace == Pace::On);
   uint8_t err = r->resume(p, now_);
   if (err) {
     clearArena();
@@ -116,7 +127,12 @@ Machine::Result Machine::resumeInterrupted(HostLink& port, const uv::Command& c)
   return Result::Done;
 }
 
-Machine::Result Machine::startStream(HostLink& port) {
+Machine::Result Machine::startStream(HostLink& port, const uv::Command& c) {
+  Pace pace = paceOf(c);
+  if (pace == Pace::Bad) {
+    port.errorLineP(uv::kBadParameter, UV_P("P is 0 or 1"));
+    return Result::Done;
+  }
   if (jobActive()) {
     port.errorLine(uv::kBusy);
     return Result::Done;
@@ -135,6 +151,7 @@ Machine::Result Machine::startStream(HostLink& port) {
   streaming_ = true;
   streamWaiting_ = false;
   port.lineP(UV_P("echo:Streaming: exposed as it arrives, no resume"));
+  a->runner.setPaced(pace == Pace::On);
   a->runner.startStream(a->job, a->job.header(), now_);
   return Result::Done;
 }
@@ -225,7 +242,7 @@ void Machine::runJob() {
     faultToShow_ = false;
   }
   if (j.changed()) {  // every change of state goes to both hosts, whole
-    char buf[112];
+    char buf[kJobLineMax];
     formatJob(buf);
     if (broadcastWhole(buf)) j.clearChanged();
   }
@@ -234,7 +251,7 @@ void Machine::runJob() {
 void Machine::jobReports() {
   if (!jobPeriodUs_ || static_cast<int32_t>(now_ - jobNext_) < 0) return;
   jobNext_ = now_ + jobPeriodUs_;
-  char buf[112];
+  char buf[kJobLineMax];
   if (!formatCardProgress(buf)) formatJob(buf);  // M27 S reports what M27 answers
   broadcast(buf);
 }

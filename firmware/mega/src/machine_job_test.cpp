@@ -6,72 +6,11 @@
 #include <algorithm>
 #include <map>
 
-#include "job_fixture.h"
-#include "mega_rig.h"
+#include "machine_job_fixture.h"
 
 using namespace mega;
 
-namespace {
-
 using namespace jobs;
-
-class JobTest : public ::testing::Test {
- protected:
-  MegaRig m;
-  void SetUp() override {
-    m.begin();
-    m.run(600000);  // temperatures known
-  }
-  Lines payload(const std::string& body) { return MegaRig::payload(m.cmd(body)); }
-  Lines upload(const std::string& name, const Lines& records) {
-    Lines all = m.cmd("M28 " + name);
-    for (const std::string& r : records) {
-      Lines b = m.cmd(r);
-      all.insert(all.end(), b.begin(), b.end());
-    }
-    Lines end = m.cmd("M29");
-    all.insert(all.end(), end.begin(), end.end());
-    return all;
-  }
-  // Uploads the job, selects it, homes and starts it; returns the upload's lines.
-  Lines uploadAndStart(const std::string& name, const Lines& records) {
-    Lines got = upload(name, records);
-    m.cmd("M23 " + name);
-    m.cmd("G28");
-    m.cmd("M24");
-    return got;
-  }
-  // Runs until a JOB: line in `states` arrives; returns it.
-  std::string runUntilJob(std::initializer_list<const char*> states, uint64_t maxUs = 300000000) {
-    size_t from = m.usbLines.size();
-    for (uint64_t t = 0; t < maxUs; t += 1000) {
-      m.run(1000);
-      for (size_t i = from; i < m.usbLines.size(); i++)
-        for (const char* s : states)
-          if (m.usbLines[i].rfind(std::string("JOB:") + s, 0) == 0) return m.usbLines[i];
-      from = m.usbLines.size();
-    }
-    return "(none)";
-  }
-  void expectExposed(const uv::JobHeader& h, const std::vector<uv::Stop>& stops, size_t from = 0) {
-    ASSERT_GT(stops.size(), 0u);
-    ASSERT_EQ(m.nano.exposures.size() - from, stops.size());
-    for (size_t i = 0; i < stops.size(); i++) {
-      const Exposure& e = m.nano.exposures[from + i];
-      uint8_t mask = 0;
-      for (int k = 0; k < 4; k++) {
-        if (stops[i].us[k]) mask = static_cast<uint8_t>(mask | (1 << k));
-        EXPECT_EQ(e.litUs[k], stops[i].us[k]) << "stop " << i << " LED " << k;
-      }
-      EXPECT_EQ(e.mask, mask) << "stop " << i;
-      // 80 steps/mm: the head's bed position in µm × 0.08
-      EXPECT_EQ(m.firedAt[from + i][0], (static_cast<int32_t>(h.originUm[0]) + stops[i].hx * 100) * 80 / 1000) << "stop " << i;
-      EXPECT_EQ(m.firedAt[from + i][1], (static_cast<int32_t>(h.originUm[1]) + stops[i].hy * 100) * 80 / 1000) << "stop " << i;
-    }
-  }
-};
-
-}  // namespace
 
 TEST_F(JobTest, UploadedPlannedAndRunStopByStopExactlyAsThePlannerSays) {
   uv::JobHeader h = header(14, 9, uv::Strategy::Shortest);
