@@ -19,6 +19,10 @@ export interface Artwork {
   boundsMm: BoxMm;
   /** Pads flashed with a tool the file never defined, which the plotter skips. */
   unknownTools: string[];
+  /** Apertures with no shape at all (a macro that is not defined or draws nothing): their flashes are left out. */
+  shapelessTools: string[];
+  /** Shapes left out because a size or place in them is not a number (a macro short of parameters). */
+  malformed: number;
 }
 
 const MM_PER_INCH = 25.4;
@@ -30,11 +34,17 @@ export function plotToArtwork(plot: Plot): Artwork {
   const paints: Paint[] = [];
   const holes: Hole[] = [];
   const unknownTools = new Set<string>();
+  const shapelessTools = new Set<string>();
+  let malformed = 0;
   let clear = false;
   // Step and repeat: what is drawn while a repeat is on is gathered and laid down once per offset when it ends.
   let offsets: Point[] = [];
   let block: Paint[] = [];
-  const add = (shape: Shape) => (offsets.length ? block : paints).push(paint(shape, clear));
+  const add = (shape: Shape) => {
+    const p = paint(shape, clear);
+    if ([p.box.x0, p.box.y0, p.box.x1, p.box.y1].some((v) => Number.isNaN(v))) malformed++;
+    else (offsets.length ? block : paints).push(p);
+  };
   const endRepeat = () => {
     for (const [dx, dy] of offsets) for (const p of block) paints.push(dx === 0 && dy === 0 ? p : translatePaint(p, dx * k, dy * k));
     block = [];
@@ -53,6 +63,10 @@ export function plotToArtwork(plot: Plot): Artwork {
         const pad = pads.get(o.tool);
         if (!pad) {
           unknownTools.add(o.tool);
+          break;
+        }
+        if (pad.kind === 'stack' && pad.parts.length === 0) {
+          shapelessTools.add(o.tool);
           break;
         }
         const x = o.x * k;
@@ -81,7 +95,7 @@ export function plotToArtwork(plot: Plot): Artwork {
   endRepeat();
 
   const boundsMm = paints.reduce((b, p) => (p.clear ? b : unionBox(b, p.box)), EMPTY_BOX);
-  return { paints, holes, boundsMm, unknownTools: [...unknownTools] };
+  return { paints, holes, boundsMm, unknownTools: [...unknownTools], shapelessTools: [...shapelessTools], malformed };
 }
 
 function moveShape(s: Shape, x: number, y: number): Shape {

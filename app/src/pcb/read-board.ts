@@ -37,7 +37,9 @@ export interface BoardFile {
 }
 
 // Library warnings that mean something in the file was not drawn or was drawn differently from what it says.
+// Selecting tool 0 is how drill files put the tool away (KiCad ends with T0): not a loss.
 const DRAWING_LOST = /not defined|unknown tool|impossible arc|not strokable|cannot draw arc|unrecognized primitive|cannot change tool|flash in region/;
+const TOOL_PUT_AWAY = /^tool 0+ is not defined$/;
 
 // Image and aperture transformations the library does not apply (it skips the command); each changes the picture.
 const NOT_APPLIED: [RegExp, string][] = [
@@ -72,13 +74,20 @@ function readLayer(f: BoardFile, kind: LayerKind, problem: (message: string) => 
     const plot = plotFile(f.text, type);
     const art = plotToArtwork(plot);
     const format = plot.filetype === 'drill' ? 'excellon' : 'gerber';
+    const lost: string[] = [];
+    for (const tool of art.unknownTools) lost.push(`tool ${tool} is flashed but never defined: those flashes are left out`);
+    for (const tool of art.shapelessTools) lost.push(`aperture ${tool} has no shape (its macro is not defined or draws nothing): its flashes are left out`);
+    if (art.malformed) lost.push(`${art.malformed} shape${art.malformed > 1 ? 's' : ''} with a size or place that is not a number left out`);
     if (art.paints.length === 0 || isEmptyBox(art.boundsMm)) {
-      const recognised = plot.objects.some((o) => o.type === 'shape' || o.type === 'pad' || o.type === 'stroke' || o.type === 'fill');
-      return problem(recognised ? `the ${format === 'excellon' ? 'drill file has no holes' : 'Gerber file draws nothing'}` : 'not a Gerber or Excellon drill file: nothing in it draws'), null;
+      for (const message of lost) problem(message);
+      return problem(format === 'excellon' ? 'the drill file has no holes' : 'the Gerber file draws nothing'), null;
     }
     const notes: string[] = [];
-    for (const w of plot.warnings) (DRAWING_LOST.test(w.message) ? problem : (m: string) => notes.push(m))(lineOf(w));
-    for (const tool of art.unknownTools) problem(`tool ${tool} is flashed but never defined: those flashes are left out`);
+    for (const w of plot.warnings) {
+      if (DRAWING_LOST.test(w.message) && !TOOL_PUT_AWAY.test(w.message)) problem(lineOf(w));
+      else notes.push(lineOf(w));
+    }
+    for (const message of lost) problem(message);
     if (format === 'gerber') for (const [pattern, message] of NOT_APPLIED) if (pattern.test(f.text)) problem(message);
     return {
       file: f.name,
@@ -95,4 +104,5 @@ function readLayer(f: BoardFile, kind: LayerKind, problem: (message: string) => 
   }
 }
 
-const lineOf = (w: LibraryWarning) => `line ${w.line}: ${w.message}`;
+/** The library counts lines from 0. */
+const lineOf = (w: LibraryWarning) => `line ${w.line + 1}: ${w.message}`;
