@@ -22,8 +22,8 @@ export function unionAll(raw: Intervals, out: Intervals): Intervals {
     starts[i] = raw[2 * i];
     ends[i] = raw[2 * i + 1];
   }
-  const s = starts.subarray(0, n).sort();
-  const e = ends.subarray(0, n).sort();
+  const s = sorted(starts, n);
+  const e = sorted(ends, n);
   // Sweep starts and ends in order: an interval of the union closes where the count of open ones falls to 0.
   let i = 0;
   let j = 0;
@@ -39,6 +39,24 @@ export function unionAll(raw: Intervals, out: Intervals): Intervals {
     }
   }
   return out;
+}
+
+/**
+ * The first n values sorted in place. The rasteriser hands over spans nearly in order (it orders each row's
+ * shapes by their left edge), which insertion sorts in about one pass; very long lists go to the typed sort.
+ */
+function sorted(v: Float64Array, n: number): Float64Array {
+  if (n > 256) {
+    v.subarray(0, n).sort();
+    return v;
+  }
+  for (let i = 1; i < n; i++) {
+    const x = v[i];
+    let k = i - 1;
+    for (; k >= 0 && v[k] > x; k--) v[k + 1] = v[k];
+    v[k + 1] = x;
+  }
+  return v;
 }
 
 /** a ∪ b, both sorted and disjoint. */

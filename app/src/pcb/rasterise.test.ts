@@ -1,7 +1,7 @@
 import { describe, expect, it } from 'vitest';
 import { LINES_PER_CELL, rasteriseBoard, type RasteriseOptions } from './rasterise';
 import { at, boardOf, count, coveredArea, gerber, picture } from './test-boards';
-import type { BoardSet } from './read-board';
+import { readBoard, type BoardSet } from './read-board';
 
 const window = (x1: number, y1: number) => ({ x0: 0, y0: 0, x1, y1 });
 const raster = (set: BoardSet, win: { x0: number; y0: number; x1: number; y1: number }, pitchUm = 100, more: Partial<RasteriseOptions> = {}) =>
@@ -245,5 +245,48 @@ describe('the grid', () => {
     const at90 = count(raster(set, window(2, 2), 50, { threshold: 0.9 }));
     expect(at30).toBeGreaterThan(at50);
     expect(at50).toBeGreaterThan(at90);
+  });
+});
+
+describe('drill holes in copper', () => {
+  const copper = gerber(`%ADD10C,1.6*%\n%ADD11R,0.4X0.4*%\nD10*\n${at(1, 1)}D03*\nD11*\n${at(3, 1)}D03*`);
+  const drill = 'M48\nMETRIC\nT1C0.8\n%\nT1\nX1.0Y1.0\nX3.0Y1.0\nX5.0Y1.0\nM30\n';
+  const set = readBoard([
+    { name: 'board-F_Cu.gbr', text: copper },
+    { name: 'board-PTH.drl', text: drill },
+  ]);
+  const opts = (drillClear: RasteriseOptions['drillClear'], expose = ['copper-top']): RasteriseOptions => ({
+    expose,
+    pitchUm: { x: 50, y: 50 },
+    threshold: 0.5,
+    drillClear,
+    drillDotMm: 0.3,
+    windowMm: { x0: 0, y0: 0, x1: 6, y1: 2 },
+  });
+  const cell = (r: ReturnType<typeof rasteriseBoard>, x: number, y: number) => r.cells[Math.floor((2 - y) / 0.05) * r.cols + Math.floor(x / 0.05)];
+
+  it('leaves a dot unexposed at each hole centre, in copper only, the size asked', () => {
+    const plain = rasteriseBoard(set, opts('none'));
+    const dotted = rasteriseBoard(set, opts('unexposed-dot'));
+    expect(cell(plain, 1.01, 1.01)).toBe(1);
+    expect(cell(dotted, 1.01, 1.01)).toBe(0);
+    expect(cell(dotted, 1.3, 1.01)).toBe(1); // the pad beyond the dot
+    // The dot takes π·0.15² of each pad: 28 cells of 50 µm, give or take the edge cells.
+    const taken = count(plain) - count(dotted);
+    expect(taken).toBeGreaterThanOrEqual(2 * 24);
+    expect(taken).toBeLessThanOrEqual(2 * 32);
+    expect(coveredArea(plain) - coveredArea(dotted)).toBeCloseTo(2 * Math.PI * 0.15 * 0.15, 3);
+  });
+
+  it('exposes a dot at each hole centre when asked, even where the copper has none', () => {
+    const dotted = rasteriseBoard(set, opts('exposed-dot'));
+    expect(cell(dotted, 5.01, 1.01)).toBe(1);
+    // New copper only at the hole with no pad: the dots inside the round pad and the square one add nothing.
+    expect(coveredArea(dotted) - coveredArea(rasteriseBoard(set, opts('none')))).toBeCloseTo(Math.PI * 0.15 * 0.15, 3);
+  });
+
+  it('puts no dots on a layer that is not copper', () => {
+    const outline = rasteriseBoard(set, opts('exposed-dot', ['drill']));
+    expect(count(outline)).toBe(count(rasteriseBoard(set, opts('none', ['drill']))));
   });
 });

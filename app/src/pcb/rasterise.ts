@@ -87,25 +87,40 @@ export function rasteriseBoard(set: BoardSet, opts: RasteriseOptions): BoardRast
   const clearing = opts.drillClear ?? 'none';
   const dots = clearing !== 'none' && copper.length > 0 ? compile(drillDots(set.layers, opts.drillDotMm ?? DEFAULT_DRILL_DOT_MM), grid) : null;
 
+  const L = LINES_PER_CELL;
   const acc = new Float64Array(cols);
+  const full = new Int32Array(cols + 1);
   const s = new Scratch();
+  const lines: Intervals[] = new Array(L);
+  const layer: Intervals[] = new Array(L);
+  const dotLines: Intervals[] = new Array(L);
+  const area = L * px;
   for (let r = 0; r < rows; r++) {
     acc.fill(0);
-    for (let j = 0; j < LINES_PER_CELL; j++) {
-      const y = top - (r + (j + 0.5) / LINES_PER_CELL) * py - TIE_NUDGE_MM;
-      s.reset();
-      let line = s.empty();
-      for (const c of copper) line = s.union(line, scanLine(c, r, y, s));
-      if (dots && line.length) {
-        const d = scanLine(dots, r, y, s);
-        if (d.length) line = clearing === 'unexposed-dot' ? s.subtract(line, d) : s.union(line, d);
-      }
-      for (const c of others) line = s.union(line, scanLine(c, r, y, s));
-      accumulate(line, left + TIE_NUDGE_MM, px, acc);
+    full.fill(0);
+    s.reset();
+    // The rows' lines lie at the centres of L equal strips, nudged down for ties (TIE_NUDGE_MM).
+    const rowTop = top - r * py - TIE_NUDGE_MM;
+    for (let j = 0; j < L; j++) lines[j] = s.empty();
+    for (const c of copper) {
+      scanRow(c, r, rowTop, py / L, layer, s);
+      for (let j = 0; j < L; j++) lines[j] = s.union(lines[j], layer[j]);
     }
-    const area = LINES_PER_CELL * px;
+    if (dots) {
+      scanRow(dots, r, rowTop, py / L, dotLines, s);
+      for (let j = 0; j < L; j++) {
+        if (lines[j].length && dotLines[j].length) lines[j] = clearing === 'unexposed-dot' ? s.subtract(lines[j], dotLines[j]) : s.union(lines[j], dotLines[j]);
+      }
+    }
+    for (const c of others) {
+      scanRow(c, r, rowTop, py / L, layer, s);
+      for (let j = 0; j < L; j++) lines[j] = s.union(lines[j], layer[j]);
+    }
+    for (let j = 0; j < L; j++) accumulate(lines[j], left + TIE_NUDGE_MM, px, acc, full);
+    let whole = 0;
     for (let c = 0; c < cols; c++) {
-      const f = Math.min(1, acc[c] / area);
+      whole += full[c];
+      const f = Math.min(1, (acc[c] + whole * px) / area);
       coverage[r * cols + c] = f;
       // The tolerance only absorbs rounding (a full cell summing to 0.9999999…); ties are settled by TIE_NUDGE_MM.
       cells[r * cols + c] = f >= threshold - 1e-9 ? 1 : 0;
@@ -125,7 +140,15 @@ function drillDots(layers: readonly BoardLayer[], diameterMm: number): Paint[] {
 
 function compile(paints: readonly Paint[], g: { top: number; py: number; rows: number; left: number; right: number }): Compiled {
   const rowOf = (y: number) => Math.floor((g.top - y) / g.py);
-  const kept = paints.filter((p) => p.box.x1 > g.left && p.box.x0 < g.right && rowOf(p.box.y1) < g.rows && rowOf(p.box.y0) >= 0);
+  // Within a run of one polarity the order of drawing does not matter: left to right, the spans of a scan
+  // line come nearly sorted, which is what the union sorts fastest. Runs keep their order.
+  let run = 0;
+  const runOf = paints.map((p, i) => (i > 0 && p.clear !== paints[i - 1].clear ? ++run : run));
+  const kept = paints
+    .map((p, i) => ({ p, run: runOf[i] }))
+    .filter(({ p }) => p.box.x1 > g.left && p.box.x0 < g.right && rowOf(p.box.y1) < g.rows && rowOf(p.box.y0) >= 0)
+    .sort((a, b) => a.run - b.run || a.p.box.x0 - b.p.box.x0)
+    .map(({ p }) => p);
   const counts = new Int32Array(g.rows + 1);
   const span = (p: Paint) => [Math.max(0, rowOf(p.box.y1)), Math.min(g.rows - 1, rowOf(p.box.y0))];
   for (const p of kept) {
@@ -142,34 +165,48 @@ function compile(paints: readonly Paint[], g: { top: number; py: number; rows: n
   return { sources: kept.map((p) => spanSource(p.shape)), clear: kept.map((p) => p.clear), box: kept.map((p) => p.box), rowStart: counts, index };
 }
 
-/** One layer on one scan line: its paints in order, runs of dark ones unioned, clear ones taken away. */
-function scanLine(c: Compiled, row: number, y: number, s: Scratch): Intervals {
-  let line = s.empty();
-  const run = s.run();
-  let runClear = false;
-  const flush = () => {
-    if (run.length === 0) return;
-    const set = unionAll(run, s.temp());
-    line = runClear ? s.subtract(line, set) : s.union(line, set);
-    run.length = 0;
-  };
-  for (let k = c.rowStart[row]; k < c.rowStart[row + 1]; k++) {
-    const i = c.index[k];
-    const b = c.box[i];
-    if (y < b.y0 || y > b.y1) continue;
-    if (c.clear[i] !== runClear) {
-      flush();
-      runClear = c.clear[i];
+/**
+ * One layer on the lines of one cell row (line j at rowTop − (j + ½)·dy): its paints in order, each run of
+ * one polarity unioned and added or taken away. Paint by paint, all its lines at once, so each shape's data
+ * is fetched once per row.
+ */
+function scanRow(c: Compiled, row: number, rowTop: number, dy: number, out: Intervals[], s: Scratch): void {
+  const L = out.length;
+  for (let j = 0; j < L; j++) out[j] = s.empty();
+  const runs = s.runs(L);
+  const end = c.rowStart[row + 1];
+  for (let k = c.rowStart[row]; k < end; ) {
+    const clear = c.clear[c.index[k]];
+    let touched = false;
+    for (; k < end && c.clear[c.index[k]] === clear; k++) {
+      const i = c.index[k];
+      const b = c.box[i];
+      const first = Math.max(0, Math.ceil((rowTop - b.y1) / dy - 0.5));
+      const last = Math.min(L - 1, Math.floor((rowTop - b.y0) / dy - 0.5));
+      const source = c.sources[i];
+      for (let j = first; j <= last; j++) {
+        if (clear && out[j].length === 0) continue; // nothing to clear yet
+        source.spans(rowTop - (j + 0.5) * dy, runs[j]);
+        touched = true;
+      }
     }
-    if (runClear && line.length === 0) continue; // nothing to clear yet
-    c.sources[i].spans(y, run);
+    if (!touched) continue;
+    for (let j = 0; j < L; j++) {
+      const run = runs[j];
+      if (run.length === 0) continue;
+      const set = unionAll(run, s.temp());
+      out[j] = clear ? s.subtract(out[j], set) : s.union(out[j], set);
+      run.length = 0;
+    }
   }
-  flush();
-  return line;
 }
 
-/** Adds the lengths of the intervals within each cell of the row. */
-function accumulate(line: Intervals, left: number, px: number, acc: Float64Array): void {
+/**
+ * Adds the lengths of the intervals within each cell of the row: the cut cells at an interval's ends to
+ * `acc`, and the cells it covers whole as a count of lines, kept as differences in `full` (+1 where a run of
+ * whole cells starts, −1 after it ends), so a wide pour costs two entries, not one per cell.
+ */
+function accumulate(line: Intervals, left: number, px: number, acc: Float64Array, full: Int32Array): void {
   const cols = acc.length;
   const right = left + cols * px;
   for (let k = 0; k < line.length; k += 2) {
@@ -183,7 +220,10 @@ function accumulate(line: Intervals, left: number, px: number, acc: Float64Array
       continue;
     }
     acc[c0] += left + (c0 + 1) * px - a;
-    for (let c = c0 + 1; c < c1; c++) acc[c] += px;
+    if (c1 > c0 + 1) {
+      full[c0 + 1]++;
+      full[c1]--;
+    }
     acc[c1] += b - (left + c1 * px);
   }
 }
@@ -192,9 +232,9 @@ function accumulate(line: Intervals, left: number, px: number, acc: Float64Array
 class Scratch {
   #pool: Intervals[] = [];
   #used = 0;
-  #run: Intervals = [];
+  #runs: Intervals[] = [];
 
-  /** Lists handed out stay valid until `reset`, at the start of the next scan line. */
+  /** Lists handed out stay valid until `reset`, at the start of the next cell row. */
   empty(): Intervals {
     return this.temp();
   }
@@ -206,9 +246,11 @@ class Scratch {
     return l;
   }
 
-  run(): Intervals {
-    this.#run.length = 0;
-    return this.#run;
+  /** One list per line of a row to gather a run's spans in, each empty. */
+  runs(n: number): Intervals[] {
+    while (this.#runs.length < n) this.#runs.push([]);
+    for (const r of this.#runs) r.length = 0;
+    return this.#runs;
   }
 
   union(a: Intervals, b: Intervals): Intervals {
