@@ -74,5 +74,5 @@ describe('agreement with gerbv on real exports', () => {
       `  ${file.padEnd(38)} ${`${cols} × ${rows}`.padStart(11)} cells  ${pct(interior).padStart(9)}  ${pct(a.allAgree / a.all).padStart(9)}  rasterised in ${ms.toFixed(0)} ms${set.problems.length ? `  (${set.problems.length} problem${set.problems.length > 1 ? 's' : ''}: ${set.problems[0].message})` : ''}`,
     );
     expect(interior, `${file}: ${pct(interior)} of cells agree away from edges`).toBeGreaterThanOrEqual(0.99);
-  });
+  }, 300_000); // gerbv draws a large board in tiles, each a run of its own, on a shared machine
 });
