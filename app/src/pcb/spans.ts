@@ -164,8 +164,8 @@ class RingScan implements SpanSource {
   readonly #dir: Int8Array;
   #next = 0;
   #lastY = Infinity;
-  #active = new Int32Array(16);
-  #xs = new Float64Array(16);
+  #active: Int32Array = new Int32Array(16);
+  #xs: Float64Array = new Float64Array(16);
   #count = 0;
 
   constructor(ring: Float64Array) {
@@ -196,7 +196,7 @@ class RingScan implements SpanSource {
     this.#lastY = y;
     // An edge crosses the line when bottom ≤ y < top: half-open, so a vertex shared by two edges counts once.
     let m = 0;
-    let active = this.#active;
+    let active: Int32Array = this.#active;
     for (let i = 0; i < this.#count; i++) if (bottom[active[i]] <= y) active[m++] = active[i];
     for (; this.#next < top.length && top[this.#next] > y; this.#next++) {
       if (bottom[this.#next] > y) continue; // begins and ends between two lines

@@ -85,7 +85,7 @@ export function splitModeCodes(text: string): string {
 /** Parses and plots one file of the given type. May throw whatever the library throws; the caller makes that a problem. */
 export function plotFile(text: string, filetype: 'gerber' | 'drill'): Plot {
   const warnings: LibraryWarning[] = [];
-  const parser = gerberParser() as unknown as ParserInternals;
+  const parser = gerberParser({}) as unknown as ParserInternals;
   parser.on('warning', (w) => warnings.push(w));
   parser.format.filetype = filetype;
   parser._syncResult = [];
@@ -93,7 +93,7 @@ export function plotFile(text: string, filetype: 'gerber' | 'drill'): Plot {
   parser._flush();
   const commands = parser._syncResult;
 
-  const plotter = gerberPlotter() as unknown as PlotterInternals;
+  const plotter = gerberPlotter({}) as unknown as PlotterInternals;
   plotter.on('warning', (w) => warnings.push(w));
   const objects: PlotObject[] = [];
   plotter.push = (o) => (objects.push(o), true);
