@@ -7,7 +7,7 @@
 // cell's centre, so at a 50 % threshold a horizontal edge decides a cell exactly as a vertical one does.
 // protocol/artwork.md says what this means for a feature's width in cells.
 import { isEmptyBox, unionBox, EMPTY_BOX, type BoxMm, type Paint } from './artwork';
-import { subtract, union, unionAll, type Intervals } from './intervals';
+import { Intervals, subtract, union, unionAll } from './intervals';
 import { isCopper } from './layer-kind';
 import type { BoardLayer, BoardSet } from './read-board';
 import { spanSource, type SpanSource } from './spans';
@@ -210,8 +210,8 @@ function accumulate(line: Intervals, left: number, px: number, acc: Float64Array
   const cols = acc.length;
   const right = left + cols * px;
   for (let k = 0; k < line.length; k += 2) {
-    const a = Math.max(line[k], left);
-    const b = Math.min(line[k + 1], right);
+    const a = Math.max(line.v[k], left);
+    const b = Math.min(line.v[k + 1], right);
     if (!(b > a)) continue;
     const c0 = Math.min(cols - 1, Math.floor((a - left) / px));
     const c1 = Math.min(cols - 1, Math.floor((b - left) / px));
@@ -240,7 +240,7 @@ class Scratch {
   }
 
   temp(): Intervals {
-    if (this.#used === this.#pool.length) this.#pool.push([]);
+    if (this.#used === this.#pool.length) this.#pool.push(new Intervals());
     const l = this.#pool[this.#used++];
     l.length = 0;
     return l;
@@ -248,7 +248,7 @@ class Scratch {
 
   /** One list per line of a row to gather a run's spans in, each empty. */
   runs(n: number): Intervals[] {
-    while (this.#runs.length < n) this.#runs.push([]);
+    while (this.#runs.length < n) this.#runs.push(new Intervals());
     for (const r of this.#runs) r.length = 0;
     return this.#runs;
   }

@@ -1,6 +1,6 @@
 // Where a shape crosses one horizontal scan line: the exact x intervals it covers there (curves included, no flattening).
 import type { Shape } from './artwork';
-import { intersect, subtract, union, unionAll, type Intervals } from './intervals';
+import { intersect, Intervals, subtract, union, unionAll } from './intervals';
 
 /**
  * A shape made ready for scanning. `spans` appends the intervals the shape covers on the line at height y,
@@ -28,7 +28,7 @@ export function spanSource(s: Shape): SpanSource {
     case 'clip': {
       const shape = spanSource(s.shape);
       const within = spanSource(s.within);
-      const [raw, a, b, both] = [[], [], [], []] as Intervals[];
+      const [raw, a, b, both] = [new Intervals(), new Intervals(), new Intervals(), new Intervals()];
       return {
         spans(y, out) {
           raw.length = 0;
@@ -38,7 +38,7 @@ export function spanSource(s: Shape): SpanSource {
           raw.length = 0;
           within.spans(y, raw);
           unionAll(raw, b);
-          out.push(...intersect(a, b, both));
+          out.append(intersect(a, b, both));
         },
       };
     }
@@ -51,9 +51,10 @@ export function spanSource(s: Shape): SpanSource {
  */
 function add(out: Intervals, lo: number, hi: number): void {
   const n = out.length;
-  if (n > 0 && lo <= out[n - 1] && hi >= out[n - 2]) {
-    if (lo < out[n - 2]) out[n - 2] = lo;
-    if (hi > out[n - 1]) out[n - 1] = hi;
+  const v = out.v;
+  if (n > 0 && lo <= v[n - 1] && hi >= v[n - 2]) {
+    if (lo < v[n - 2]) v[n - 2] = lo;
+    if (hi > v[n - 1]) v[n - 1] = hi;
   } else {
     out.push(lo, hi);
   }
@@ -133,7 +134,9 @@ function stadium(x0: number, y0: number, x1: number, y1: number, r: number): Spa
 
 /** Parts in order, each dark part added and each clear one taken away, within the stack only. */
 function stack(parts: { source: SpanSource; clear: boolean }[]): SpanSource {
-  const [raw, part, acc, next] = [[], [], [], []] as Intervals[];
+  const [raw, part] = [new Intervals(), new Intervals()];
+  let acc = new Intervals();
+  let next = new Intervals();
   return {
     spans(y, out) {
       acc.length = 0;
@@ -143,10 +146,11 @@ function stack(parts: { source: SpanSource; clear: boolean }[]): SpanSource {
         if (raw.length === 0) continue;
         unionAll(raw, part);
         (p.clear ? subtract : union)(acc, part, next);
-        acc.length = 0;
-        acc.push(...next);
+        const done = next;
+        next = acc;
+        acc = done;
       }
-      out.push(...acc);
+      out.append(acc);
     },
   };
 }
