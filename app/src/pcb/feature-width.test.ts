@@ -42,7 +42,7 @@ describe('a feature’s width in cells at a 50 % threshold', () => {
       expect(widthInCells(pad(edge + 0.1, 1.5, 0.2, 1), 'x', 0.5), `pad, ${off} µm`).toBe(4);
       expect(widthInCells(pad(1.5, edge + 0.1, 1, 0.2), 'y', 0.5), `pad, ${off} µm`).toBe(4);
     }
-  });
+  }, 60_000);
 
   it('makes a width of n whole cells n cells, and any other width the cells whose centres it covers', () => {
     for (const w of [0.1, 0.15, 0.175, 0.25, 0.3, 0.33]) {
@@ -57,7 +57,7 @@ describe('a feature’s width in cells at a 50 % threshold', () => {
         }
       }
     }
-  });
+  }, 60_000); // many boards, on a shared machine
 });
 
 describe('a feature’s width in cells at other thresholds', () => {
@@ -70,7 +70,7 @@ describe('a feature’s width in cells at other thresholds', () => {
         }
       }
     }
-  });
+  }, 60_000);
 
   it('keeps within one cell of the rule down the scan, where coverage is sampled on 15 lines', () => {
     for (const t of [0.2, 0.3, 0.7, 0.8]) {
@@ -80,5 +80,5 @@ describe('a feature’s width in cells at other thresholds', () => {
         expect(Math.abs(n - cellsByRule(a, a + 0.2, t, 'y')), `t ${t} at ${off} µm`).toBeLessThanOrEqual(1);
       }
     }
-  });
+  }, 60_000); // many boards, on a shared machine
 });
