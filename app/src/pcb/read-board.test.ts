@@ -42,6 +42,88 @@ describe('a board of several files', () => {
   });
 });
 
+describe('a file as KiCad 7 writes it', () => {
+  // X2 attributes, KiCad's RoundRect macro, a trace and a region, in KiCad's negative Y.
+  const KICAD = `%TF.GenerationSoftware,KiCad,Pcbnew,7.0.10*%
+%TF.CreationDate,2024-01-01T00:00:00+00:00*%
+%TF.ProjectId,demo,64656d6f,rev?*%
+%TF.SameCoordinates,Original*%
+%TF.FileFunction,Copper,L1,Top*%
+%TF.FilePolarity,Positive*%
+%FSLAX46Y46*%
+G04 Gerber Fmt 4.6, Leading zero omitted, Abs format (unit mm)*
+G04 Created by KiCad (PCBNEW 7.0.10) date 2024-01-01 00:00:00*
+%MOMM*%
+%LPD*%
+G01*
+G04 APERTURE LIST*
+%TA.AperFunction,ComponentPad*%
+%ADD10R,1.700000X1.700000*%
+%TD*%
+%TA.AperFunction,ComponentPad*%
+%ADD11O,1.700000X1.700000*%
+%TD*%
+%TA.AperFunction,Conductor*%
+%ADD12C,0.250000*%
+%TD*%
+%AMRoundRect*
+0 Rectangle with rounded corners*
+0 $1 Rounding radius*
+0 $2 $3 $4 $5 $6 $7 $8 $9 X,Y pos of 4 corners*
+0 Add a 4 corners polygon primitive as box body*
+4,1,4,$2,$3,$4,$5,$6,$7,$8,$9,$2,$3,0*
+0 Add four circle primitives for the rounded corners*
+1,1,$1+$1,$2,$3*
+1,1,$1+$1,$4,$5*
+1,1,$1+$1,$6,$7*
+1,1,$1+$1,$8,$9*
+0 Add four rect primitives between the rounded corners*
+20,1,$1+$1,$2,$3,$4,$5,0*
+20,1,$1+$1,$4,$5,$6,$7,0*
+20,1,$1+$1,$6,$7,$8,$9,0*
+20,1,$1+$1,$8,$9,$2,$3,0*%
+%TA.AperFunction,SMDPad,CuDef*%
+%ADD13RoundRect,0.250000X-0.450000X0.350000X0.450000X0.350000X0.450000X-0.350000X-0.450000X-0.350000X0*%
+%TD*%
+G04 APERTURE END LIST*
+D10*
+%TO.P,J1,1,Pin_1*%
+%TO.N,Net-(J1-Pin_1)*%
+X100000000Y-100000000D03*
+%TD*%
+D11*
+X102540000Y-100000000D03*
+D13*
+X105000000Y-100000000D03*
+D12*
+%TO.N,Net-(J1-Pin_1)*%
+X100000000Y-100000000D02*
+X100000000Y-95000000D01*
+X105000000Y-95000000D01*
+%TD*%
+%TA.AperFunction,Conductor*%
+%TD*%
+G36*
+X110000000Y-90000000D02*
+G01*
+X115000000Y-90000000D01*
+X115000000Y-85000000D01*
+X110000000Y-85000000D01*
+X110000000Y-90000000D01*
+G37*
+M02*
+`;
+
+  it('reads without problems or notes, rounded pads and all', () => {
+    const set = one(KICAD);
+    expect(set.problems).toEqual([]);
+    expect(set.layers[0].notes).toEqual([]);
+    expect(set.layers[0].boundsMm).toEqual({ x0: 99.15, y0: -100.85, x1: 115, y1: -85 });
+    const roundRect = set.layers[0].paints[2].box;
+    expect([roundRect.x1 - roundRect.x0, roundRect.y1 - roundRect.y0].map((v) => +v.toFixed(9))).toEqual([1.4, 1.2]);
+  });
+});
+
 describe('what cannot be used is a problem, never a throw or a silent empty layer', () => {
   it.each([
     ['an empty file', '  \n', 'the file is empty'],

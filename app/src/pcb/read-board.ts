@@ -40,6 +40,8 @@ export interface BoardFile {
 // Selecting tool 0 is how drill files put the tool away (KiCad ends with T0): not a loss.
 const DRAWING_LOST = /not defined|unknown tool|impossible arc|not strokable|cannot draw arc|unrecognized primitive|cannot change tool|flash in region/;
 const TOOL_PUT_AWAY = /^tool 0+ is not defined$/;
+// Gerber X2 attributes (%TF, %TA, %TO, %TD) describe, they do not draw: the library skips them, and so do the notes.
+const ATTRIBUTE = /^block "%T[FAOD]\b/;
 
 // Image and aperture transformations the library does not apply (it skips the command); each changes the picture.
 const NOT_APPLIED: [RegExp, string][] = [
@@ -85,7 +87,7 @@ function readLayer(f: BoardFile, kind: LayerKind, problem: (message: string) => 
     const notes: string[] = [];
     for (const w of plot.warnings) {
       if (DRAWING_LOST.test(w.message) && !TOOL_PUT_AWAY.test(w.message)) problem(lineOf(w));
-      else notes.push(lineOf(w));
+      else if (!ATTRIBUTE.test(w.message)) notes.push(lineOf(w));
     }
     for (const message of lost) problem(message);
     if (format === 'gerber') for (const [pattern, message] of NOT_APPLIED) if (pattern.test(f.text)) problem(message);
