@@ -1,5 +1,11 @@
 // The one place that calls tracespace's gerber-parser and gerber-plotter (v4): a file's text in, the plotter's image objects out.
 //
+// Why v4 (gerber-parser 4.2.7, gerber-plotter 4.2.8, pinned exactly): it is tracespace's last stable line,
+// the one pcb-stackup and gerber-to-svg are built on, and it handles every construct a board needs:
+// apertures with holes, macros, regions, arcs in both quadrant modes, LPD/LPC, step and repeat, Excellon's
+// formats. The v5 rewrite (@tracespace/parser 5.0.0-next.0, @tracespace/plotter 5.0.0-alpha.0) never left
+// pre-release, and its plotter draws neither clear polarity nor step and repeat.
+//
 // Both are Node transform streams. Streaming would defer every object through process.nextTick, which a
 // browser lacks, so the parser runs through its own parseSync and the plotter's transform is called
 // directly, its push caught. Both still construct a stream, so the bundle carries the npm 'events' and
