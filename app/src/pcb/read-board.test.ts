@@ -179,3 +179,10 @@ describe('Excellon formats, read by the library', () => {
     expect(one(text, 'board.drl').problems).toEqual([]);
   });
 });
+
+describe('a board set as data', () => {
+  it('survives structuredClone, so a worker can take it', () => {
+    const set = one(gerber(`%ADD10C,0.5X0.2*%\nD10*\n${at(1, 1)}D03*\nG36*\n${at(0, 0)}D02*\nG01*\n${at(1, 0)}D01*\n${at(0, 1)}D01*\n${at(0, 0)}D01*\nG37*`));
+    expect(structuredClone(set)).toEqual(set);
+  });
+});
