@@ -238,6 +238,12 @@ describe('the grid', () => {
     expect(() => rasteriseBoard(set, { expose: [], pitchUm: { x: 0, y: 50 }, threshold: 0.5 })).toThrow(RangeError);
   });
 
+  it('exposes at a threshold of 0 only cells the artwork touches, and refuses one outside 0–1', () => {
+    const set = boardOf(gerber(`%ADD10R,0.3X0.2*%\nD10*\n${at(0.25, 0.2)}D03*`));
+    expect(picture(raster(set, window(0.6, 0.4), 100, { threshold: 0 }))).toEqual(['......', '.###..', '.###..', '......']);
+    expect(() => raster(set, window(0.6, 0.4), 100, { threshold: 50 })).toThrow(RangeError);
+  });
+
   it('exposes a cell from the threshold on: lower takes more of the edge cells, higher fewer', () => {
     const set = boardOf(gerber(`%ADD10C,1*%\nD10*\n${at(1, 1)}D03*`));
     const at30 = count(raster(set, window(2, 2), 50, { threshold: 0.3 }));

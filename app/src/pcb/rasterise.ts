@@ -23,6 +23,11 @@ export const DEFAULT_DRILL_DOT_MM = 0.4;
 export const TIE_NUDGE_MM = 1e-6;
 /** The largest grid side: far past any bed, and a guard against a window given in the wrong units. */
 export const MAX_CELLS_PER_SIDE = 20000;
+/**
+ * The least coverage that exposes a cell, whatever the threshold: the tie nudge leaves a few millionths of a
+ * cell beside an edge that lies on a cell boundary, and a threshold of 0 must not expose those.
+ */
+export const MIN_COVERAGE = 0.001;
 
 export type DrillClear = 'none' | 'unexposed-dot' | 'exposed-dot';
 
@@ -30,7 +35,7 @@ export interface RasteriseOptions {
   /** The layers to expose, by kind or by file name. */
   expose: readonly string[];
   pitchUm: { x: number; y: number };
-  /** The covered fraction of a cell from which it is exposed, 0–1. */
+  /** The covered fraction of a cell from which it is exposed, 0–1 (at least MIN_COVERAGE counts). */
   threshold?: number;
   /** A dot at each drill hole's centre in the copper layers, forced unexposed or exposed so the drill finds the centre. */
   drillClear?: DrillClear;
@@ -69,6 +74,8 @@ export function rasteriseBoard(set: BoardSet, opts: RasteriseOptions): BoardRast
   const py = opts.pitchUm.y / 1000;
   if (!(px > 0 && py > 0)) throw new RangeError(`the cell pitch must be positive, not ${opts.pitchUm.x} × ${opts.pitchUm.y} µm`);
   const threshold = opts.threshold ?? DEFAULT_THRESHOLD;
+  if (!(threshold >= 0 && threshold <= 1)) throw new RangeError(`the threshold is a fraction from 0 to 1, not ${threshold}`);
+  const least = Math.max(threshold, MIN_COVERAGE) - 1e-9;
   const win = opts.windowMm ?? boardBounds(set);
   const cols = isEmptyBox(win) ? 0 : Math.ceil((win.x1 - win.x0) / px - 1e-9);
   const rows = isEmptyBox(win) ? 0 : Math.ceil((win.y1 - win.y0) / py - 1e-9);
@@ -122,8 +129,8 @@ export function rasteriseBoard(set: BoardSet, opts: RasteriseOptions): BoardRast
       whole += full[c];
       const f = Math.min(1, (acc[c] + whole * px) / area);
       coverage[r * cols + c] = f;
-      // The tolerance only absorbs rounding (a full cell summing to 0.9999999…); ties are settled by TIE_NUDGE_MM.
-      cells[r * cols + c] = f >= threshold - 1e-9 ? 1 : 0;
+      // The 1e-9 only absorbs rounding (a full cell summing to 0.9999999…); ties are settled by TIE_NUDGE_MM.
+      cells[r * cols + c] = f >= least ? 1 : 0;
     }
   }
   return { cols, rows, cells, coverage, windowMm };
