@@ -56,7 +56,12 @@ const NOT_APPLIED: [RegExp, string][] = [
 
 /** Reads every file; a file that cannot be used is left out with a problem saying why. Never throws. */
 export function readBoard(files: readonly BoardFile[]): BoardSet {
-  const kinds = guessLayerKinds(files.map((f) => f.name));
+  let kinds: LayerKind[];
+  try {
+    kinds = guessLayerKinds(files.map((f) => f.name));
+  } catch {
+    kinds = files.map(() => 'other'); // a name the guesser chokes on says nothing about the file
+  }
   const layers: BoardLayer[] = [];
   const problems: BoardProblem[] = [];
   files.forEach((f, i) => {
