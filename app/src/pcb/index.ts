@@ -12,4 +12,5 @@ export {
   type RasteriseOptions,
 } from './rasterise';
 export type { BoxMm, Paint, Shape } from './artwork';
+export type { Orientation } from './orient';
 export type { Hole } from './plot-to-artwork';

@@ -10,6 +10,7 @@ import { isEmptyBox, unionBox, EMPTY_BOX, type BoxMm, type Paint } from './artwo
 import { Intervals, subtract, union, unionAll } from './intervals';
 import { isCopper } from './layer-kind';
 import type { BoardLayer, BoardSet } from './read-board';
+import { isIdentity, orientLayer, type Orientation } from './orient';
 import { spanSource, type SpanSource } from './spans';
 
 export const LINES_PER_CELL = 15;
@@ -40,8 +41,10 @@ export interface RasteriseOptions {
   /** A dot at each drill hole's centre in the copper layers, forced unexposed or exposed so the drill finds the centre. */
   drillClear?: DrillClear;
   drillDotMm?: number;
-  /** Board millimetres the grid covers; by default every layer's artwork, so all exposures of a board line up. */
+  /** Board millimetres the grid covers (after `orient`); by default every layer's artwork, so all exposures of a board line up. */
   windowMm?: BoxMm;
+  /** Mirror and turn the board about its origin before rasterising: a bottom layer seen from above, a board laid at an angle. */
+  orient?: Orientation;
 }
 
 export interface BoardRaster {
@@ -69,7 +72,8 @@ interface Compiled {
   index: Int32Array;
 }
 
-export function rasteriseBoard(set: BoardSet, opts: RasteriseOptions): BoardRaster {
+export function rasteriseBoard(board: BoardSet, opts: RasteriseOptions): BoardRaster {
+  const set = isIdentity(opts.orient) ? board : { ...board, layers: board.layers.map((l) => orientLayer(l, opts.orient!)) };
   const px = opts.pitchUm.x / 1000;
   const py = opts.pitchUm.y / 1000;
   if (!(px > 0 && py > 0)) throw new RangeError(`the cell pitch must be positive, not ${opts.pitchUm.x} × ${opts.pitchUm.y} µm`);
