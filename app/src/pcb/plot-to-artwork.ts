@@ -23,6 +23,8 @@ export interface Artwork {
   shapelessTools: string[];
   /** Shapes left out because a size or place in them is not a number (a macro short of parameters). */
   malformed: number;
+  /** Draws with a zero-width aperture: hairlines, which expose nothing. */
+  hairlines: number;
 }
 
 const MM_PER_INCH = 25.4;
@@ -36,6 +38,7 @@ export function plotToArtwork(plot: Plot): Artwork {
   const unknownTools = new Set<string>();
   const shapelessTools = new Set<string>();
   let malformed = 0;
+  let hairlines = 0;
   let clear = false;
   // Step and repeat: what is drawn while a repeat is on is gathered and laid down once per offset when it ends.
   let offsets: Point[] = [];
@@ -76,7 +79,8 @@ export function plotToArtwork(plot: Plot): Artwork {
         break;
       }
       case 'stroke':
-        for (const s of strokeShapes(o.path, (o.width / 2) * k, k)) add(s);
+        if (o.width > 0) for (const s of strokeShapes(o.path, (o.width / 2) * k, k)) add(s);
+        else hairlines++;
         break;
       case 'fill':
         add({ kind: 'polygon', rings: contours(o.path, k) });
@@ -95,7 +99,7 @@ export function plotToArtwork(plot: Plot): Artwork {
   endRepeat();
 
   const boundsMm = paints.reduce((b, p) => (p.clear ? b : unionBox(b, p.box)), EMPTY_BOX);
-  return { paints, holes, boundsMm, unknownTools: [...unknownTools], shapelessTools: [...shapelessTools], malformed };
+  return { paints, holes, boundsMm, unknownTools: [...unknownTools], shapelessTools: [...shapelessTools], malformed, hairlines };
 }
 
 function moveShape(s: Shape, x: number, y: number): Shape {

@@ -90,6 +90,7 @@ function readLayer(f: BoardFile, kind: LayerKind, problem: (message: string) => 
       return problem(format === 'excellon' ? 'the drill file has no holes' : 'the Gerber file draws nothing'), null;
     }
     const notes: string[] = [];
+    if (art.hairlines) notes.push(`${art.hairlines} draw${art.hairlines > 1 ? 's' : ''} with a zero-width aperture: hairlines expose nothing`);
     for (const w of plot.warnings) {
       if (DRAWING_LOST.test(w.message) && !TOOL_PUT_AWAY.test(w.message)) problem(lineOf(w));
       else if (!ATTRIBUTE.test(w.message)) notes.push(lineOf(w));
