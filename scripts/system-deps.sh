@@ -11,6 +11,7 @@ PACKAGES=(
   simavr libsimavr-dev libelf-dev           # running the AVR images in simulation
   python3 python3-venv                      # vector authoring, the vector-binding check, printcore's venv
   socat                                     # `npm run sim -- --pty`
+  gerbv                                     # Gerber import: reference rasters of its example boards (app/src/pcb)
 )
 
 missing=()

@@ -1,0 +1,150 @@
+// Test support: gerbv's own raster of a file on a given cell grid, and how far ours agrees with it (Node only).
+import { execFileSync } from 'node:child_process';
+import { mkdtempSync, readFileSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { inflateSync } from 'node:zlib';
+
+export interface Grid {
+  cols: number;
+  rows: number;
+  /** Lower left corner of the grid, mm. */
+  x0: number;
+  y0: number;
+  pitchMm: number;
+}
+
+/** gerbv is there to ask. */
+export function hasGerbv(): boolean {
+  try {
+    execFileSync('gerbv', ['--version'], { stdio: 'ignore' });
+    return true;
+  } catch {
+    return false;
+  }
+}
+
+/** gerbv draws at most 2000 pixels a side: larger grids are drawn in tiles of this many. */
+const TILE = 2000;
+
+/**
+ * gerbv's picture of one file, one cell per pixel: row 0 on top, 1 where it drew. No border, no antialiasing:
+ * cairo then lights a pixel whose centre the artwork covers.
+ */
+export function gerbvCells(path: string, g: Grid): Uint8Array {
+  const cells = new Uint8Array(g.cols * g.rows);
+  for (let r0 = 0; r0 < g.rows; r0 += TILE) {
+    for (let c0 = 0; c0 < g.cols; c0 += TILE) {
+      const cols = Math.min(TILE, g.cols - c0);
+      const rows = Math.min(TILE, g.rows - r0);
+      const tile = gerbvTile(path, { cols, rows, x0: g.x0 + c0 * g.pitchMm, y0: g.y0 + (g.rows - r0 - rows) * g.pitchMm, pitchMm: g.pitchMm });
+      for (let r = 0; r < rows; r++) cells.set(tile.subarray(r * cols, (r + 1) * cols), (r0 + r) * g.cols + c0);
+    }
+  }
+  return cells;
+}
+
+function gerbvTile(path: string, g: Grid): Uint8Array {
+  const dir = mkdtempSync(join(tmpdir(), 'gerbv-'));
+  try {
+    const png = join(dir, 'layer.png');
+    const dpi = 25.4 / g.pitchMm;
+    // gerbv reads an origin of at most 20 characters: the caller keeps the grid's corner to a few decimals.
+    const origin = `${+g.x0.toFixed(4)}x${+g.y0.toFixed(4)}`;
+    if (origin.length > 20) throw new Error(`origin ${origin} is too long for gerbv`);
+    // gerbv exits non-zero after a good export on some builds: the file it leaves is what counts.
+    try {
+      execFileSync('gerbv', ['-u', 'mm', '-x', 'png', '-D', String(+dpi.toFixed(6)), '-B', '0', '-O', origin, '-w', `${g.cols}x${g.rows}`, '-f', '#ffffff', '-b', '#000000', '-o', png, path], { stdio: 'pipe', timeout: 120_000 });
+    } catch (e) {
+      if (!existsPng(png)) throw e;
+    }
+    const image = decodePng(readFileSync(png));
+    if (image.width !== g.cols || image.height !== g.rows) throw new Error(`gerbv drew ${image.width} × ${image.height}, not ${g.cols} × ${g.rows}`);
+    const cells = new Uint8Array(g.cols * g.rows);
+    for (let i = 0; i < cells.length; i++) cells[i] = image.pixels[i * image.channels] > 127 ? 1 : 0;
+    return cells;
+  } finally {
+    rmSync(dir, { recursive: true, force: true });
+  }
+}
+
+function existsPng(path: string): boolean {
+  try {
+    return readFileSync(path).length > 0;
+  } catch {
+    return false;
+  }
+}
+
+/** An 8-bit PNG, truecolour or grey, with or without alpha, not interlaced: what gerbv writes. */
+export function decodePng(bytes: Buffer): { width: number; height: number; channels: number; pixels: Uint8Array } {
+  let width = 0;
+  let height = 0;
+  let channels = 0;
+  const idat: Buffer[] = [];
+  for (let i = 8; i < bytes.length; ) {
+    const len = bytes.readUInt32BE(i);
+    const type = bytes.toString('latin1', i + 4, i + 8);
+    const data = bytes.subarray(i + 8, i + 8 + len);
+    if (type === 'IHDR') {
+      width = data.readUInt32BE(0);
+      height = data.readUInt32BE(4);
+      if (data[8] !== 8 || data[12] !== 0) throw new Error('only 8-bit, non-interlaced PNGs');
+      channels = ({ 0: 1, 2: 3, 4: 2, 6: 4 } as Record<number, number>)[data[9]] ?? 0;
+      if (!channels) throw new Error(`PNG colour type ${data[9]} is not handled`);
+    } else if (type === 'IDAT') {
+      idat.push(data);
+    }
+    i += 12 + len;
+  }
+  const raw = inflateSync(Buffer.concat(idat));
+  const stride = width * channels;
+  const pixels = new Uint8Array(stride * height);
+  for (let y = 0; y < height; y++) {
+    const filter = raw[y * (stride + 1)];
+    const line = raw.subarray(y * (stride + 1) + 1, (y + 1) * (stride + 1));
+    const out = pixels.subarray(y * stride, (y + 1) * stride);
+    const up = y > 0 ? pixels.subarray((y - 1) * stride, y * stride) : new Uint8Array(stride);
+    for (let x = 0; x < stride; x++) {
+      const a = x >= channels ? out[x - channels] : 0;
+      const b = up[x];
+      const c = x >= channels ? up[x - channels] : 0;
+      const p = a + b - c;
+      const predictor = [0, a, b, (a + b) >> 1, Math.abs(p - a) <= Math.abs(p - b) && Math.abs(p - a) <= Math.abs(p - c) ? a : Math.abs(p - b) <= Math.abs(p - c) ? b : c][filter];
+      out[x] = (line[x] + predictor) & 255;
+    }
+  }
+  return { width, height, channels, pixels };
+}
+
+export interface Agreement {
+  /** Cells at least one cell away from any edge of gerbv's picture (their 3 × 3 neighbourhood is all one value). */
+  interior: number;
+  interiorAgree: number;
+  all: number;
+  allAgree: number;
+}
+
+export function agreement(ours: Uint8Array, theirs: Uint8Array, cols: number, rows: number): Agreement {
+  const a: Agreement = { interior: 0, interiorAgree: 0, all: cols * rows, allAgree: 0 };
+  for (let r = 0; r < rows; r++) {
+    for (let c = 0; c < cols; c++) {
+      const i = r * cols + c;
+      const same = ours[i] === theirs[i];
+      if (same) a.allAgree++;
+      let edge = false;
+      for (let dr = -1; dr <= 1 && !edge; dr++) {
+        for (let dc = -1; dc <= 1 && !edge; dc++) {
+          const rr = r + dr;
+          const cc = c + dc;
+          if (rr >= 0 && rr < rows && cc >= 0 && cc < cols && theirs[rr * cols + cc] !== theirs[i]) edge = true;
+        }
+      }
+      if (!edge) {
+        a.interior++;
+        if (same) a.interiorAgree++;
+      }
+    }
+  }
+  return a;
+}

@@ -1,0 +1,116 @@
+// Reads a board's Gerber and Excellon files into one set of layers, each with a guessed kind, and says plainly what went wrong.
+import { isEmptyBox, type BoxMm, type Paint } from './artwork';
+import { guessLayerKinds, type LayerKind } from './layer-kind';
+import { plotToArtwork, type Hole } from './plot-to-artwork';
+import { fileType, plotFile, type LibraryWarning, type Units } from './tracespace';
+
+export interface BoardLayer {
+  file: string;
+  /** Guessed from the file's name (an Excellon file is always 'drill'); the user may change it. */
+  kind: LayerKind;
+  format: 'gerber' | 'excellon';
+  /** The units the file is written in; everything here is in millimetres whatever they are. */
+  units: Units;
+  /** What the layer draws, in board millimetres, Y up as in the file. */
+  boundsMm: BoxMm;
+  /** The artwork in drawing order. */
+  paints: Paint[];
+  /** Flash centres of a drill file: the holes. Empty for other files. */
+  holes: Hole[];
+  /** The library's remarks that change nothing drawn (deprecated commands, assumed formats), with line numbers. */
+  notes: string[];
+}
+
+export interface BoardProblem {
+  file: string;
+  message: string;
+}
+
+export interface BoardSet {
+  layers: BoardLayer[];
+  problems: BoardProblem[];
+}
+
+export interface BoardFile {
+  name: string;
+  text: string;
+}
+
+// Library warnings that mean something in the file was not drawn or was drawn differently from what it says.
+// Selecting tool 0 is how drill files put the tool away (KiCad ends with T0): not a loss.
+const DRAWING_LOST = /not defined|unknown tool|impossible arc|not strokable|cannot draw arc|unrecognized primitive|cannot change tool|flash in region/;
+const TOOL_PUT_AWAY = /^tool 0+ is not defined$/;
+// Gerber X2 attributes (%TF, %TA, %TO, %TD) describe, they do not draw: the library skips them, and so do the notes.
+const ATTRIBUTE = /^block "%T[FAOD]\b/;
+
+// Image and aperture transformations the library does not apply (it skips the command); each changes the picture.
+const NOT_APPLIED: [RegExp, string][] = [
+  [/%IPNEG\*%/, 'a negative image (%IPNEG) is not supported: the layer is drawn positive'],
+  [/%MI(?:A1|B1|A1B1)\*%/, 'image mirroring (%MI) is not applied'],
+  [/%SF(?!A1(?:\.0*)?B1(?:\.0*)?\*%)[^%]*%/, 'image scaling (%SF) is not applied'],
+  [/%OF(?!A0(?:\.0*)?B0(?:\.0*)?\*%)[^%]*%/, 'image offset (%OF) is not applied'],
+  [/%IR(?:90|180|270)\*%/, 'image rotation (%IR) is not applied'],
+  [/%L[MRS](?!N\*|0(?:\.0*)?\*|1(?:\.0*)?\*)[^%]*%/, 'aperture mirroring, rotation or scaling (%LM, %LR, %LS) is not applied'],
+  [/%FS[LTD]?I|^G91\*/m, 'incremental coordinates are not supported: the layer is drawn as if absolute'],
+];
+
+/** Reads every file; a file that cannot be used is left out with a problem saying why. Never throws. */
+export function readBoard(files: readonly BoardFile[]): BoardSet {
+  let kinds: LayerKind[];
+  try {
+    kinds = guessLayerKinds(files.map((f) => f.name));
+  } catch {
+    kinds = files.map(() => 'other'); // a name the guesser chokes on says nothing about the file
+  }
+  const layers: BoardLayer[] = [];
+  const problems: BoardProblem[] = [];
+  files.forEach((f, i) => {
+    const said = (message: string) => problems.push({ file: f.name, message });
+    const layer = readLayer(f, kinds[i], said);
+    if (layer) layers.push(layer);
+  });
+  return { layers, problems };
+}
+
+function readLayer(f: BoardFile, kind: LayerKind, problem: (message: string) => void): BoardLayer | null {
+  if (f.text.trim() === '') return problem('the file is empty'), null;
+  if (/[\0-\x08\x0e-\x1f]/.test(f.text.slice(0, 4096))) return problem('not a Gerber or Excellon drill file: it is not text'), null;
+  const type = fileType(f.text);
+  if (!type) return problem('not a Gerber or Excellon drill file: it has no Gerber format or aperture commands, no drill header and no drill coordinates'), null;
+  try {
+    const plot = plotFile(f.text, type);
+    const art = plotToArtwork(plot);
+    const format = plot.filetype === 'drill' ? 'excellon' : 'gerber';
+    const lost: string[] = [];
+    for (const tool of art.unknownTools) lost.push(`tool ${tool} is flashed but never defined: those flashes are left out`);
+    for (const tool of art.shapelessTools) lost.push(`aperture ${tool} has no shape (its macro is not defined or draws nothing): its flashes are left out`);
+    if (art.malformed) lost.push(`${art.malformed} shape${art.malformed > 1 ? 's' : ''} with a size or place that is not a number left out`);
+    if (art.paints.length === 0 || isEmptyBox(art.boundsMm)) {
+      for (const message of lost) problem(message);
+      return problem(format === 'excellon' ? 'the drill file has no holes' : 'the Gerber file draws nothing'), null;
+    }
+    const notes: string[] = [];
+    if (art.hairlines) notes.push(`${art.hairlines} draw${art.hairlines > 1 ? 's' : ''} with a zero-width aperture: hairlines expose nothing`);
+    for (const w of plot.warnings) {
+      if (DRAWING_LOST.test(w.message) && !TOOL_PUT_AWAY.test(w.message)) problem(lineOf(w));
+      else if (!ATTRIBUTE.test(w.message)) notes.push(lineOf(w));
+    }
+    for (const message of lost) problem(message);
+    if (format === 'gerber') for (const [pattern, message] of NOT_APPLIED) if (pattern.test(f.text)) problem(message);
+    return {
+      file: f.name,
+      kind: format === 'excellon' ? 'drill' : kind,
+      format,
+      units: plot.units,
+      boundsMm: art.boundsMm,
+      paints: art.paints,
+      holes: art.holes,
+      notes,
+    };
+  } catch (e) {
+    return problem(`could not be read: ${e instanceof Error ? e.message : String(e)}`), null;
+  }
+}
+
+/** The library counts lines from 0. */
+const lineOf = (w: LibraryWarning) => `line ${w.line + 1}: ${w.message}`;

@@ -1,0 +1,115 @@
+// The one place that calls tracespace's gerber-parser and gerber-plotter (v4): a file's text in, the plotter's image objects out.
+//
+// Why v4 (gerber-parser 4.2.7, gerber-plotter 4.2.8, pinned exactly): it is tracespace's last stable line,
+// the one pcb-stackup and gerber-to-svg are built on, and it handles every construct a board needs:
+// apertures with holes, macros, regions, arcs in both quadrant modes, LPD/LPC, step and repeat, Excellon's
+// formats. The v5 rewrite (@tracespace/parser 5.0.0-next.0, @tracespace/plotter 5.0.0-alpha.0) never left
+// pre-release, and its plotter draws neither clear polarity nor step and repeat.
+//
+// Both are Node transform streams. Streaming would defer every object through process.nextTick, which a
+// browser lacks, so the parser runs through its own parseSync and the plotter's transform is called
+// directly, its push caught. Both still construct a stream, so the bundle carries the npm 'events' and
+// 'buffer' packages (dependencies of ours for that reason).
+import gerberParser from 'gerber-parser';
+import gerberPlotter from 'gerber-plotter';
+
+export type Point = [number, number];
+export type Units = 'mm' | 'in';
+
+/** The primitives of an aperture, in its own coordinates; a 'layer' entry switches the following ones dark or clear. */
+export type PadPrimitive =
+  | { type: 'circle'; cx: number; cy: number; r: number }
+  | { type: 'rect'; cx: number; cy: number; width: number; height: number; r: number }
+  | { type: 'poly'; points: Point[] }
+  | { type: 'ring'; cx: number; cy: number; r: number; width: number }
+  | { type: 'clip'; shape: PadPrimitive[]; clip: PadPrimitive }
+  | { type: 'layer'; polarity: 'dark' | 'clear' };
+
+export type Segment =
+  | { type: 'line'; start: Point; end: Point }
+  | { type: 'arc'; start: [number, number, number]; end: [number, number, number]; center: Point; sweep: number; radius: number; dir: 'cw' | 'ccw' };
+
+export type PlotObject =
+  | { type: 'shape'; tool: string; shape: PadPrimitive[] }
+  | { type: 'pad'; tool: string; x: number; y: number }
+  | { type: 'fill'; path: Segment[] }
+  | { type: 'stroke'; width: number; path: Segment[] }
+  | { type: 'polarity'; polarity: 'dark' | 'clear' }
+  | { type: 'repeat'; offsets: Point[] }
+  | { type: 'size'; box: [number, number, number, number]; units: Units };
+
+export interface LibraryWarning {
+  line: number;
+  message: string;
+}
+
+export interface Plot {
+  filetype: 'gerber' | 'drill';
+  /** The units of the plot's coordinates, as the file set them (or the library assumed: inches). */
+  units: Units;
+  objects: PlotObject[];
+  /** How many commands the parser found: 0 means the text was not a Gerber or drill file at all. */
+  commands: number;
+  warnings: LibraryWarning[];
+}
+
+interface ParserInternals {
+  format: { filetype: 'gerber' | 'drill' | null };
+  _syncResult: unknown[] | null;
+  _process(text: string, filetype: 'gerber' | 'drill'): void;
+  _flush(): void;
+  on(event: 'warning', listener: (w: LibraryWarning) => void): unknown;
+}
+
+/**
+ * Gerber or Excellon, from what the text says. The library's own guess (a '*' before the first line ends)
+ * calls a Gerber file whose first line is a comment without one a drill file; its parseSync always guesses,
+ * so the parse below is parseSync's three lines with the type given.
+ */
+export function fileType(text: string): 'gerber' | 'drill' | null {
+  if (/%(?:FS|MO|AD|AM)|^[^;\n]*D0*[123]\*/m.test(text)) return 'gerber';
+  if (/^\s*(?:M48|M71|M72|INCH|METRIC|;FILE_FORMAT|T\d+\s*[CF]|[XY][-+]?\d[\d.]*(?:[XY][-+]?\d[\d.]*)?\s*$)/m.test(text)) return 'drill';
+  return null;
+}
+
+interface PlotterInternals {
+  format: { units: Units | null };
+  push: (o: PlotObject) => boolean;
+  _transform(command: unknown, encoding: null, done: (error?: Error) => void): void;
+  _flush(done: (error?: Error) => void): void;
+  on(event: 'warning', listener: (w: LibraryWarning) => void): unknown;
+}
+
+/**
+ * Old files put a mode code and a draw in one block ("G75G03I150J0X3550Y1701D01*"); the parser keeps the
+ * first code and drops the rest of the block, draw included. Each such mode code gets a block of its own.
+ */
+export function splitModeCodes(text: string): string {
+  return text.replace(/(^|\*)(\s*G0*(?:70|71|74|75|90|91))(?=\s*[GXYIJD])/gm, '$1$2*');
+}
+
+/** Parses and plots one file of the given type. May throw whatever the library throws; the caller makes that a problem. */
+export function plotFile(text: string, filetype: 'gerber' | 'drill'): Plot {
+  const warnings: LibraryWarning[] = [];
+  const parser = gerberParser({}) as unknown as ParserInternals;
+  parser.on('warning', (w) => warnings.push(w));
+  parser.format.filetype = filetype;
+  parser._syncResult = [];
+  parser._process(filetype === 'gerber' ? splitModeCodes(text) : text, filetype);
+  parser._flush();
+  const commands = parser._syncResult;
+
+  const plotter = gerberPlotter({}) as unknown as PlotterInternals;
+  plotter.on('warning', (w) => warnings.push(w));
+  const objects: PlotObject[] = [];
+  plotter.push = (o) => (objects.push(o), true);
+  const fail = (error?: Error) => {
+    if (error) throw error;
+  };
+  for (const command of commands) plotter._transform(command, null, fail);
+  plotter._flush(fail);
+
+  const size = objects[objects.length - 1]; // the plotter's flush ends with the image's size and units
+  const units: Units = size?.type === 'size' ? size.units : (plotter.format.units ?? 'in');
+  return { filetype, units, objects, commands: commands.length, warnings };
+}
