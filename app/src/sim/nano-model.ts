@@ -43,6 +43,8 @@ export class NanoModel {
   present = true;
   /** This start's number (the firmware keeps a counter in EEPROM); the printer sets it at power-up. */
   boot = 1;
+  /** °C/s added to each LED's sensor, lit or not: over-temperature on demand (tests, the simulated printer's panel). */
+  extraHeatingCPerS: number;
   #fires = 0;
   #whole = true;
   #latched = 0;
@@ -53,6 +55,13 @@ export class NanoModel {
 
   constructor(private readonly clock: VirtualClock, private readonly o: NanoOptions = DEFAULT_NANO) {
     this.temp = o.ambientDeciC.map((d) => d / 10);
+    this.extraHeatingCPerS = o.extraHeatingCPerS;
+  }
+
+  /** Takes up the count of a start that never ended (a printer that ran on while its host was away). */
+  carryOn(boot: number, fires: number): void {
+    this.boot = boot;
+    this.#fires = fires;
   }
 
   /** One command line (with '\n'); returns the reply line, if the command has one. */
@@ -145,7 +154,7 @@ export class NanoModel {
     for (let i = 0; i < SENSOR_COUNT; i++) {
       const led = i < 4 && (this.lit >> i) & 1 ? this.o.heatingCPerS : 0;
       const driver = i === 4 ? this.o.heatingCPerS * 0.3 * popcount(this.lit) : 0;
-      const extra = i < 4 ? this.o.extraHeatingCPerS : 0;
+      const extra = i < 4 ? this.extraHeatingCPerS : 0;
       this.temp[i] += (led + driver + extra) * dt - (this.temp[i] - ambient[i]) * (1 - Math.exp(-this.o.coolingPerS * dt));
     }
     for (let i = 0; i < SENSOR_COUNT; i++) {
