@@ -193,8 +193,8 @@ export class SimPrinter {
    * A page that ran this printer went away mid-job, and its card says where the job stood: a real
    * printer would have run on, with no host to listen. Boots, takes the job up at its checkpoint
    * with the head at `pos`, and runs it for `ms` of the printer's time, or until it ends or stops
-   * (`budgetMs` of real time at most). The page that comes back opens the link, which resets it as
-   * any host's does (powerCycle): the job waits at its checkpoint for the resume.
+   * (`budgetMs` of real time at most). The page that comes back opens the link, which resets the
+   * Mega as any host's does (resetMega): the job waits at its checkpoint for the resume.
    */
   runOn(pos: Xyz, ms: number, budgetMs = 5000): void {
     const cp = this.sd.checkpoint;

@@ -1,6 +1,7 @@
 // Web Worker host of the simulated printer: bytes in and out by postMessage, real time as its clock
 // (times `speed`, which demos and tests may raise with ?simSpeed=N on the app's URL, and the simulated
-// printer's panel changes live), and a power cycle each time the app opens its link again.
+// printer's panel changes live), and a reset of its Mega each time the app opens its link again
+// (DTR): its memory goes, the printhead runs on.
 // Its card, checkpoint, EEPROM and start count are kept in the browser (sim-storage.ts), so a reload
 // finds the same machine: one that ran its job on while no page was there, then had its link opened.
 
@@ -31,7 +32,7 @@ onmessage = (e: MessageEvent<ToSimulator>) => (printer ? obey(printer, e.data) :
 
 function obey(p: SimPrinter, m: ToSimulator): void {
   if (m.type === 'tx') p.receive(m.bytes);
-  else if (m.type === 'reset') p.powerCycle(); // the link was opened again
+  else if (m.type === 'reset') p.resetMega(); // the link was opened again
   else if (m.type === 'speed') {
     speed = Math.max(1, Math.min(1000, m.speed));
     start = performance.now() - p.clock.now / 1000 / speed;
@@ -56,7 +57,7 @@ async function boot(): Promise<void> {
   if (kept.running) {
     // The page that ran it went away mid-job; the printer ran on meanwhile, at the speed it had.
     p.runOn(kept.running.pos, (Date.now() - kept.running.atMs) * kept.running.speed);
-    p.powerCycle(); // and this page opens its link
+    p.resetMega(); // and this page opens its link
   } else p.boot();
   printer = p;
   if (keeping === 'kept') {
