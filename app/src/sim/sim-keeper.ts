@@ -70,7 +70,7 @@ export class SimKeeper {
 /** What the page says about how the printer is kept, when it is not simply kept; `damage` is sim-snapshot's note. */
 export function keepingNote(keeping: Keeping, damage: string | null): string | null {
   if (keeping === 'another tab') return 'Another tab has the simulated printer: this tab has a second one, with an empty card, that a reload does not keep.';
-  if (keeping === 'unavailable') return 'This browser keeps no storage for the simulated printer (no IndexedDB here): it starts clean on every reload.';
+  if (keeping === 'unavailable') return 'This browser could not open a store for the simulated printer (IndexedDB is off or damaged): it starts clean on every reload.';
   if (keeping === 'failed') return 'The simulated printer could no longer be kept in this browser (a write failed): a reload may find an older card.';
   return damage;
 }
