@@ -1,11 +1,12 @@
 // npm run bench: every benchmark, printed as tables of medians and ratios to each group's baseline.
 import { printTable } from './harness';
 import { jobCodecBench } from './job-codec.bench';
+import { pcbBench } from './pcb.bench';
 import { editorBench } from './editor.bench';
 import { p1 } from './link.bench';
 import { p2, p7, printP2 } from './planner.bench';
 
-printTable([...jobCodecBench(), ...p7()]);
+printTable([...jobCodecBench(), ...p7(), ...pcbBench()]);
 printP2(p2());
 await p1();
 await editorBench();

@@ -10,10 +10,14 @@ async function reconnect(page: Page) {
   await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected');
 }
 
+/** A dose long enough that the test pattern outlasts a reconnect (the printer runs on while the link is closed). */
+const LONG_DOSE_MS = '40';
+
 test('a job interrupted by a restart is offered for resume on connect, and runs to its end', async ({ page }, info) => {
   await page.goto('/?simSpeed=4');
   await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected');
   await expect(page.getByTestId('resume-offer')).toHaveCount(0);
+  await page.getByTestId('full-ms').fill(LONG_DOSE_MS);
   await page.getByTestId('start-test').click();
   await page.getByRole('dialog').getByRole('button', { name: 'Expose now' }).click(); // the one confirmation (issue 17, item 4)
   await expect(page.getByTestId('job-state')).toContainText(/running: stop ([1-9]\d*) of/, { timeout: 30_000 });
@@ -39,6 +43,7 @@ test('a job interrupted by a restart is offered for resume on connect, and runs 
 test('a discarded interrupted job is not offered again', async ({ page }) => {
   await page.goto('/?simSpeed=4');
   await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected');
+  await page.getByTestId('full-ms').fill(LONG_DOSE_MS);
   await page.getByTestId('start-test').click();
   await page.getByRole('dialog').getByRole('button', { name: 'Expose now' }).click(); // the one confirmation (issue 17, item 4)
   await expect(page.getByTestId('job-state')).toContainText(/running: stop [1-9]/, { timeout: 30_000 });

@@ -17,11 +17,12 @@ import { DeviceClock } from './device-clock';
 import type { Mesh } from '../planner/mesh';
 import { PickerDismissed, SerialTransport } from './serial-transport';
 import { SimTransport, switchOffSimulatedPrinter } from './sim-transport';
-export { SIMULATOR_BUILT_IN } from './sim-transport';
+export { SIMULATOR_BUILT_IN, loadSimulatorPanel, tellSimulator } from './sim-transport';
 import type { TransportKind } from './transport';
 
 export type Connection =
-  | { state: 'idle' }
+  /** `job` is the job the printer ran when the app let go of it (Disconnect): it may still be running. */
+  | { state: 'idle'; job?: JobProgress | null }
   | { state: 'connecting'; kind: TransportKind }
   | { state: 'connected'; kind: TransportKind }
   /** The link dropped. `job` is the last progress seen: the printer may still be running it. */
@@ -82,6 +83,13 @@ export class Printer {
     return this.device.firmware;
   }
 
+  /** The job a dropped or closed link left running or paused on the printer, as last seen: it may still be exposing. */
+  get leftJob(): JobProgress | null {
+    const c = this.connection;
+    const job = c.state === 'idle' || c.state === 'lost' ? c.job : null;
+    return job && (job.state === 'running' || job.state === 'paused') ? job : null;
+  }
+
   async connect(kind: TransportKind): Promise<void> {
     await this.disconnect();
     this.connection = { state: 'connecting', kind };
@@ -119,6 +127,8 @@ export class Printer {
 
   async disconnect(): Promise<void> {
     const link = this.#link;
+    const c = this.connection;
+    const job = link ? this.device.job : c.state === 'lost' || c.state === 'idle' ? (c.job ?? null) : null;
     this.#link = null;
     this.device = emptyState();
     this.health = null;
@@ -127,7 +137,7 @@ export class Printer {
     this.interrupted = null;
     this.mesh = this.previousMesh = null;
     if (link) await link.close().catch(() => {});
-    this.connection = { state: 'idle' };
+    this.connection = { state: 'idle', job };
   }
 
   /** A raw dialect line from the console; resolves with its reply lines. */

@@ -19,3 +19,7 @@ export class SimTransport implements Transport {
 }
 
 export function switchOffSimulatedPrinter(): void {}
+
+export function tellSimulator(): void {}
+
+export const loadSimulatorPanel = (): Promise<never> => Promise.reject(new Error('no simulated printer in the app served by the printer'));

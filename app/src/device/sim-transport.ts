@@ -1,8 +1,11 @@
 // Transport to the simulated printer running in a Web Worker. Like a real machine, it keeps running
 // while no link is open, and opening the link restarts it, as opening a Mega's USB port does (DTR):
-// what was in its memory is gone, and its SD card, with a running job's checkpoint, is kept. It is
-// switched off when the app connects to a real printer.
+// what was in its memory is gone, and its SD card, with a running job's checkpoint, is kept. The
+// browser keeps the card, the checkpoint and the EEPROM, so a reload is a reconnect (sim-worker.ts).
+// It is switched off when the app connects to a real printer.
 
+import type { FromSimulator, ToSimulator } from '../sim/sim-messages';
+import { simulator } from './simulator.svelte';
 import type { Transport } from './transport';
 
 /** False in the ESP's flash image, which has sim-absent.ts in this module's place. */
@@ -10,6 +13,7 @@ export const SIMULATOR_BUILT_IN = true;
 
 let machine: Worker | null = null;
 let listener: ((bytes: string) => void) | null = null;
+let onLost: ((error?: Error) => void) | null = null;
 
 /** ?simSpeed=N runs the simulated printer N times real time (the worker's clock; at least 1). */
 function simSpeed(): number {
@@ -17,35 +21,52 @@ function simSpeed(): number {
   return Number.isFinite(n) ? Math.max(1, Math.min(1000, n)) : 1;
 }
 
+function hear(m: FromSimulator): void {
+  if (m.type === 'rx') listener?.(m.bytes);
+  else if (m.type === 'closed') {
+    const lost = onLost;
+    listener = onLost = null;
+    lost?.(new Error("the simulated printer's USB cable was pulled"));
+  } else Object.assign(simulator, { keeping: m.keeping, note: m.note, faults: m.faults });
+}
+
 export class SimTransport implements Transport {
   readonly kind = 'sim' as const;
-  readonly timeScale = simSpeed();
+  readonly timeScale = (simulator.speed = simSpeed());
 
-  async open(onBytes: (bytes: string) => void): Promise<void> {
+  async open(onBytes: (bytes: string) => void, onClosed: (error?: Error) => void): Promise<void> {
     listener = onBytes;
+    onLost = onClosed;
     if (machine) {
-      machine.postMessage({ type: 'reset' });
+      machine.postMessage({ type: 'reset' } satisfies ToSimulator);
       return;
     }
     machine = new Worker(new URL('../sim/sim-worker.ts', import.meta.url), { type: 'module' });
-    machine.onmessage = (e: MessageEvent<{ type: 'rx'; bytes: string }>) => {
-      if (e.data.type === 'rx') listener?.(e.data.bytes);
-    };
-    if (this.timeScale > 1) machine.postMessage({ type: 'init', speed: this.timeScale });
+    machine.onmessage = (e: MessageEvent<FromSimulator>) => hear(e.data);
+    if (this.timeScale > 1) tellSimulator({ type: 'speed', speed: this.timeScale });
   }
 
   async send(bytes: string): Promise<void> {
-    machine?.postMessage({ type: 'tx', bytes });
+    tellSimulator({ type: 'tx', bytes });
   }
 
   async close(): Promise<void> {
-    listener = null;
+    listener = onLost = null;
   }
 }
 
-/** Connecting to a real printer switches the simulated one off: its card goes with it. */
+/** A message to the running simulated printer (its panel: speed, faults, the cable). */
+export function tellSimulator(m: ToSimulator): void {
+  machine?.postMessage(m);
+}
+
+/** The simulated printer's panel, loaded when its tab is first opened (never in the ESP's image). */
+export const loadSimulatorPanel = () => import('../dashboards/SimulatorPanel.svelte');
+
+/** Connecting to a real printer switches the simulated one off: a job stops; the browser keeps its card. */
 export function switchOffSimulatedPrinter(): void {
-  machine?.terminate();
+  machine?.postMessage({ type: 'off' } satisfies ToSimulator); // it writes that, then ends
   machine = null;
-  listener = null;
+  listener = onLost = null;
+  simulator.keeping = simulator.note = null;
 }

@@ -63,6 +63,22 @@ export class NanoModel {
     return this.thermal.temp;
   }
 
+  /** °C/s added to each LED's sensor, lit or not: over-temperature on demand (tests, the simulated printer's panel), from now on. */
+  get extraHeatingCPerS(): number {
+    return this.thermal.model.extraHeatingCPerS;
+  }
+
+  set extraHeatingCPerS(c: number) {
+    this.#integrate();
+    this.thermal.model.extraHeatingCPerS = c;
+  }
+
+  /** Takes up the count of a start that never ended (a printer that ran on while its host was away). */
+  carryOn(boot: number, fires: number): void {
+    this.boot = boot;
+    this.#fires = fires;
+  }
+
   /** One command line (with '\n'); returns the reply line, if the command has one. */
   command(line: string): string | null {
     if (!this.present) return null;

@@ -10,8 +10,30 @@ export interface Checkpoint {
   fires: number;
 }
 
+/** The card's files; `revision` counts every write and delete, so a host keeping the card knows when to keep it again. */
+export class CardFiles extends Map<string, string> {
+  revision = 0;
+
+  override set(name: string, text: string): this {
+    super.set(name, text);
+    this.revision++;
+    return this;
+  }
+
+  override delete(name: string): boolean {
+    const had = super.delete(name);
+    if (had) this.revision++;
+    return had;
+  }
+
+  override clear(): void {
+    super.clear();
+    this.revision++;
+  }
+}
+
 export class SdCard {
-  files = new Map<string, string>();
+  readonly files = new CardFiles();
   checkpoint: Checkpoint | null = null;
   present = true;
 

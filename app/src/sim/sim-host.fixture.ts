@@ -10,13 +10,14 @@ export class SimHost {
   #partial = '';
   #n = 0;
 
-  constructor(options: SimOptions = {}) {
+  /** `boot` false leaves the power-up to the test (a printer that runs on before its host comes). */
+  constructor(options: SimOptions = {}, boot = true) {
     this.sim = new SimPrinter((bytes) => {
       const parts = (this.#partial + bytes).split('\n');
       this.#partial = parts.pop()!;
       this.lines.push(...parts);
     }, options);
-    this.sim.boot();
+    if (boot) this.sim.boot();
   }
 
   /** Sends one numbered line and runs virtual time until its `ok`; returns the lines of its reply block. */
@@ -30,6 +31,13 @@ export class SimHost {
       this.sim.advance(1);
     }
     throw new Error(`no ok for ${body} within ${maxMs} ms`);
+  }
+
+  /** Uploads a job file to the card: M28, its records, M29. */
+  upload(file: string, text: string): void {
+    this.cmd(`M28 ${file}`);
+    for (const record of text.trimEnd().split('\n')) this.cmd(record);
+    this.cmd('M29');
   }
 
   /** After the printer resets, its line counter is 0 again: resynchronise as hosts do on reconnect. */

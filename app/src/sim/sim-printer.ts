@@ -5,8 +5,20 @@ import { DEFAULT_BED, type BedShape } from './bed';
 import { ClockScope, VirtualClock } from './clock';
 import { FaultyLink, type LinkFaults } from './link-faults';
 import { MegaModel } from './mega';
+import type { Xyz } from './motion';
 import { DEFAULT_NANO, NanoModel, type NanoOptions } from './nano-model';
-import { SdCard } from './sd-card';
+import { SdCard, type Checkpoint } from './sd-card';
+import { saneFaults, withLinkFaults, type SimFaults } from './sim-faults';
+
+/** What outlives the page that ran the simulated printer (sim-snapshot.ts keeps it in the browser). */
+export interface SavedMachine {
+  files: [string, string][];
+  checkpoint: Checkpoint | null;
+  /** The Mega's EEPROM as M500 left it. */
+  eeprom: Record<string, string> | null;
+  /** Power-ups so far: the Nano's start counter, which the firmware keeps in its EEPROM. */
+  boots: number;
+}
 
 export interface SimOptions {
   firmwareName?: string;
@@ -24,6 +36,8 @@ export interface SimOptions {
   /** The probe goes into alarm on its next deploy. */
   probeAlarm?: boolean;
   noSd?: boolean;
+  /** The card, checkpoint, EEPROM and start count of an earlier run of this machine. */
+  saved?: SavedMachine | null;
 }
 
 export class SimPrinter {
@@ -31,7 +45,9 @@ export class SimPrinter {
   readonly sd = new SdCard();
   nano!: NanoModel;
   mega!: MegaModel;
+  #linkFaults: LinkFaults;
   #link: FaultyLink;
+  #faults: SimFaults;
   #stallUntil = 0;
   #held = '';
   #disconnected = false;
@@ -40,9 +56,42 @@ export class SimPrinter {
   #boots = 0;
   /** `emit` receives every byte the Mega would send. */
   constructor(private readonly emit: (bytes: string) => void, private readonly o: SimOptions = {}) {
-    this.#link = new FaultyLink(o.link ?? {});
+    this.#linkFaults = { ...o.link };
+    this.#link = new FaultyLink(this.#linkFaults);
+    this.#faults = saneFaults({ ...o.link, overheatCPerS: o.nano?.extraHeatingCPerS, probeAlarm: o.probeAlarm, missingNano: o.missingNano });
     this.sd.present = !o.noSd;
-    this.#build();
+    const saved = o.saved;
+    if (saved) {
+      for (const [name, text] of saved.files) this.sd.files.set(name, text);
+      this.sd.checkpoint = saved.checkpoint;
+      this.#boots = saved.boots;
+    }
+    this.#build(saved?.eeprom ?? null);
+  }
+
+  /** Power-ups so far, this one included. */
+  get boots(): number {
+    return this.#boots;
+  }
+
+  get faults(): SimFaults {
+    return { ...this.#faults };
+  }
+
+  /** Changes the faults while the printer runs (the simulated printer's panel). */
+  setFaults(faults: Partial<SimFaults>): void {
+    const before = this.#faults;
+    const f = (this.#faults = saneFaults({ ...before, ...faults }));
+    this.#linkFaults = withLinkFaults(this.#linkFaults, f);
+    this.#link = new FaultyLink(this.#linkFaults);
+    this.nano.present = !f.missingNano;
+    this.nano.extraHeatingCPerS = f.overheatCPerS;
+    if (faults.probeAlarm !== undefined) this.nano.alarmOnDeploy = faults.probeAlarm; // for the next deploy: the alarm release (X) disarms it
+  }
+
+  /** The USB cable comes out now: the printer runs on, nothing passes until a host opens the link again. */
+  unplug(): void {
+    this.#linkFaults = { ...this.#linkFaults, disconnectAfterMs: this.clock.now / 1000 };
   }
 
   #build(eeprom: Record<string, string> | null = null): void {
@@ -50,8 +99,9 @@ export class SimPrinter {
     if (this.o.ambientDeciC) nanoOptions.ambientDeciC = this.o.ambientDeciC;
     this.nano = new NanoModel(this.clock, nanoOptions);
     this.nano.boot = ++this.#boots; // each power-up is a new start, as the firmware's EEPROM counter says
-    this.nano.present = !this.o.missingNano;
-    this.nano.alarmOnDeploy = !!this.o.probeAlarm;
+    this.nano.present = !this.#faults.missingNano;
+    this.nano.alarmOnDeploy = this.#faults.probeAlarm;
+    this.nano.extraHeatingCPerS = this.#faults.overheatCPerS;
     this.#buildMega(eeprom);
     if (this.o.drift === false) this.nano.temp.forEach((_, i) => (this.nano.temp[i] = nanoOptions.ambientDeciC[i] / 10));
   }
@@ -73,6 +123,7 @@ export class SimPrinter {
    * while the Nano runs on and the card and the EEPROM keep what they hold. The Mega's reset turns the LEDs off.
    */
   resetMega(): void {
+    this.#disconnected = false; // a host has the port open again
     this.#buildMega(this.mega.eeprom);
     this.boot();
   }
@@ -84,6 +135,7 @@ export class SimPrinter {
 
   /** Power cycle: RAM state is lost, the SD card (jobs, checkpoint, config) and the EEPROM survive. */
   powerCycle(): void {
+    this.#disconnected = false;
     const now = this.clock.now;
     this.clock = new VirtualClock(); // the old models' timers go with the old clock
     this.clock.now = now;
@@ -106,10 +158,11 @@ export class SimPrinter {
 
   /** Advances virtual time to `us` (real-time hosts call this with their clock). */
   advanceTo(us: number): void {
-    const f = this.o.link ?? {};
+    const f = this.#linkFaults;
     if (f.disconnectAfterMs !== undefined && !this.#disconnected && us >= f.disconnectAfterMs * 1000) {
       this.clock.advanceTo(f.disconnectAfterMs * 1000);
       this.#disconnected = true;
+      this.#linkFaults = { ...f, disconnectAfterMs: undefined }; // once: a link opened again stays up
       this.onDisconnect();
       return;
     }
@@ -134,6 +187,32 @@ export class SimPrinter {
 
   get disconnected(): boolean {
     return this.#disconnected;
+  }
+
+  /**
+   * A page that ran this printer went away mid-job, and its card says where the job stood: a real
+   * printer would have run on, with no host to listen. Boots, takes the job up at its checkpoint
+   * with the head at `pos`, and runs it for `ms` of the printer's time, or until it ends or stops
+   * (`budgetMs` of real time at most). The page that comes back opens the link, which resets the
+   * Mega as any host's does (resetMega): the job waits at its checkpoint for the resume.
+   */
+  runOn(pos: Xyz, ms: number, budgetMs = 5000): void {
+    const cp = this.sd.checkpoint;
+    this.#disconnected = true; // nobody listens while it runs on
+    this.boot();
+    if (!cp || !this.mega.job.load(cp.file)) return;
+    this.nano.carryOn(cp.boot, cp.fires); // the printhead kept its start too
+    const { mega } = this;
+    mega.selected = cp.file;
+    mega.motion.homed = [true, true, true];
+    mega.motion.pos = [...pos];
+    mega.motion.enabled = true;
+    mega.job.start(cp.done);
+    const end = this.clock.now + Math.max(0, ms) * 1000;
+    const stopAt = performance.now() + budgetMs; // a runaway page must not hang its worker on a week-long job
+    while (mega.job.state === 'running' && this.clock.now < end && performance.now() < stopAt) {
+      this.advanceTo(Math.min(end, this.clock.now + 1_000_000));
+    }
   }
 
   #out(bytes: string): void {

@@ -1,0 +1,12 @@
+// What the app knows of the simulated printer besides its bytes: whether the browser keeps it and what
+// its store lost (the worker's words), its faults and its speed, for the page and the simulated printer's panel.
+
+import type { Keeping } from '../sim/sim-messages';
+import { NO_FAULTS, type SimFaults } from '../sim/sim-faults';
+
+export const simulator = $state<{ keeping: Keeping | null; note: string | null; faults: SimFaults; speed: number }>({
+  keeping: null,
+  note: null,
+  faults: { ...NO_FAULTS },
+  speed: 1,
+});
