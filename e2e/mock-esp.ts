@@ -73,7 +73,7 @@ export class MockEsp {
       const text = encodeJob(v.job);
       this.#job = { id, state: 'uploading', bytesSent: 0, bytesVerified: 0, bytesTotal: text.length };
       this.#cancelled = false;
-      void this.#upload(id, text);
+      void this.#upload(id, text, v.paced);
       return route.fulfill({ status: 202, contentType: 'application/json', body: JSON.stringify({ job: { id, state: 'uploading', cells: v.job.grid.cols * v.job.grid.rows } }) });
     });
     await page.routeWebSocket('**/ws', (ws) => {
@@ -146,7 +146,7 @@ export class MockEsp {
     return json(200, { apSsid: this.#wifi.apSsid, staSsid: this.#wifi.staSsid });
   }
 
-  async #upload(id: number, text: string): Promise<void> {
+  async #upload(id: number, text: string, paced: boolean): Promise<void> {
     const job = this.#job!;
     const tell = () => this.#broadcast({ type: 'upload', id, bytesSent: job.bytesSent, bytesVerified: job.bytesVerified, bytesTotal: job.bytesTotal, state: job.state });
     try {
@@ -164,7 +164,7 @@ export class MockEsp {
       });
       await esp('M29');
       await esp(`M23 ${file}`);
-      await esp('M24');
+      await esp(paced ? 'M24 P1' : 'M24'); // as the hub: a paced job starts paced (mega.md "Pacing")
       job.state = 'started';
       tell();
     } catch (e) {

@@ -515,12 +515,25 @@ esp_requests = [
     {"name": "too few rows", "body": body(set_key(bj, [[0, 1, 0, 0]], "gridData")), "status": 400, "error": "bad_job", "path": "/gridData"},
     {"name": "threshold without level", "body": body(drop_key(bj, "dose", "level")), "status": 400, "error": "bad_job", "path": "/dose/level"},
     {"name": "both full and target", "body": body(set_key(bj, 5, "dose", "targetUJcm2")), "status": 400, "error": "bad_job", "path": "/dose"},
+    {"name": "cols beyond any integer", "body": body(bj).replace('"cols":4', '"cols":1e300', 1), "status": 400, "error": "bad_job", "path": "/grid/cols"},
+    {"name": "cols beyond 64 bits", "body": body(set_key(bj, 2**64, "grid", "cols")), "status": 400, "error": "bad_job", "path": "/grid/cols"},
     {"name": "pitch zero", "body": body(set_key(bj, 0, "pitchUm", "x")), "status": 400, "error": "bad_job", "path": "/pitchUm/x"},
     {"name": "three LED offsets", "body": body(set_key(bj, [[0, 0], [0, 1], [0, 2]], "leds", "offsets")), "status": 400, "error": "bad_job", "path": "/leds/offsets"},
     {"name": "unknown strategy", "body": body(set_key(bj, "spiral", "strategy", "name")), "status": 400, "error": "bad_job", "path": "/strategy/name"},
     {"name": "bad name", "body": body(set_key(bj, "a/b", "name")), "status": 400, "error": "bad_job", "path": "/name"},
     {"name": "grid over 262144 cells", "body": body(set_key(bj, {"cols": 1024, "rows": 257}, "grid")), "status": 413, "error": "too_large"},
+    # "paced" rides beside the job (mega.md "Pacing"): the same text, started with M24 P1.
+    {"name": "paced job", "body": body(set_key(bj, True, "paced")), "status": 202, "text": job_text(bj)[0], "paced": True},
+    {"name": "paced false", "body": body(set_key(bj, False, "paced")), "status": 202, "text": job_text(bj)[0], "paced": False},
+    {"name": "paced as a string", "body": body(set_key(bj, "yes", "paced")), "status": 400, "error": "bad_job", "path": "/paced"},
+    {"name": "paced as a number", "body": body(set_key(bj, 1, "paced")), "status": 400, "error": "bad_job", "path": "/paced"},
+    {"name": "paced null", "body": body(set_key(bj, None, "paced")), "status": 400, "error": "bad_job", "path": "/paced"},
+    {"name": "paced is checked before gridData's rows",
+     "body": body(set_key(set_key(bj, [[0, 1, 0, 0], [0, 0, 0]], "gridData"), "yes", "paced")), "status": 400, "error": "bad_job", "path": "/paced"},
 ]
+for r in esp_requests:  # an accepted request says whether it runs paced
+    if r["status"] == 202:
+        r.setdefault("paced", False)
 write("esp.json", {"version": 1, "maxBody": 1200000, "maxCells": 262144, "requests": esp_requests})
 # ---------------------------------------------------------------- Mesh interpolation (planner.md)
 def mesh_z(m, x, y):

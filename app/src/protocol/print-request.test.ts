@@ -15,8 +15,10 @@ describe('ESP POST /print vectors', () => {
   it.each(cases(v.requests, 'name'))('%s', (_n, c: any) => {
     const r = validatePrintRequest(c.body);
     expect(r.status).toBe(c.status);
-    if (r.status === 202) expect(encodeJob(r.job)).toBe(c.text);
-    else {
+    if (r.status === 202) {
+      expect(encodeJob(r.job)).toBe(c.text);
+      expect(r.paced).toBe(c.paced); // beside the job, never in its text
+    } else {
       expect(r.error).toBe(c.error);
       if ('path' in c) expect(r.path).toBe(c.path);
     }

@@ -1,11 +1,13 @@
-// Validates a POST /print body (protocol/esp.md, print-job.schema.json) into a PrintJob or an HTTP error.
+// Validates a POST /print body (protocol/esp.md, print-job.schema.json) into a PrintJob and whether
+// to run it paced, or an HTTP error.
 
 import type { PrintJob } from './job-types';
 
 export const ESP_LIMITS = { maxBody: 1_200_000, maxCells: 262_144 } as const;
 
 export type PrintRequestResult =
-  | { status: 202; job: PrintJob }
+  /** `paced`: the body's "paced" (false without it), not part of the job; the hub starts it with `M24 P1` (mega.md "Pacing"). */
+  | { status: 202; job: PrintJob; paced: boolean }
   | { status: 400 | 413; error: 'bad_json' | 'bad_job' | 'too_large'; message: string; path?: string };
 
 class Invalid extends Error {
@@ -42,8 +44,8 @@ function xy(v: unknown, path: string, lo: number, hi: number): { x: number; y: n
   return { x: integer(o.x, `${path}/x`, lo, hi), y: integer(o.y, `${path}/y`, lo, hi) };
 }
 
-function validate(root: unknown): PrintJob {
-  const o = object(root, '', ['name', 'grid', 'pitchUm', 'originUm', 'dose', 'leds', 'thermal', 'strategy', 'gridData'],
+function validate(root: unknown): { job: PrintJob; paced: boolean } {
+  const o = object(root, '', ['name', 'grid', 'pitchUm', 'originUm', 'dose', 'leds', 'thermal', 'strategy', 'paced', 'gridData'],
     ['grid', 'pitchUm', 'originUm', 'dose', 'leds', 'strategy', 'gridData']);
   if ('name' in o && (typeof o.name !== 'string' || !/^[A-Za-z0-9_.-]{1,31}$/.test(o.name))) {
     throw new Invalid('/name', 'must be 1-31 of A-Z a-z 0-9 _ . -');
@@ -99,6 +101,8 @@ function validate(root: unknown): PrintJob {
   }
   job.strategy = { name: s.name as PrintJob['strategy']['name'] };
   if ('seed' in s) job.strategy.seed = integer(s.seed, '/strategy/seed', 0, 4294967295);
+  if ('paced' in o && typeof o.paced !== 'boolean') throw new Invalid('/paced', 'must be true or false');
+  const paced = o.paced === true;
 
   const data = array(o.gridData, '/gridData', rows, rows);
   job.gridData = data.map((row, r) => {
@@ -107,7 +111,7 @@ function validate(root: unknown): PrintJob {
     for (let c = 0; c < cols; c++) out[c] = integer(cells[c], `/gridData/${r}/${c}`, 0, 255);
     return out;
   });
-  return job;
+  return { job, paced };
 }
 
 /** `contentLength` is the request's header, checked before the body is read. */
@@ -122,7 +126,7 @@ export function validatePrintRequest(body: string, contentLength = body.length):
     return { status: 400, error: 'bad_json', message: (e as Error).message };
   }
   try {
-    return { status: 202, job: validate(root) };
+    return { status: 202, ...validate(root) };
   } catch (e) {
     if (!(e instanceof Invalid)) throw e;
     if (e.status === 413) return { status: 413, error: 'too_large', message: e.message };

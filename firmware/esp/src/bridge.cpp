@@ -208,11 +208,11 @@ Admission Bridge::admitPrint(uint32_t nowMs) {
   return Admission::Accepted;
 }
 
-void Bridge::startUpload(uint32_t id, JobText& text, uint32_t bytesTotal) {
+void Bridge::startUpload(uint32_t id, JobText& text, uint32_t bytesTotal, bool paced) {
   reserved_ = false;
   uploads_++;
   uploadState_ = 0xff;  // report the new upload at once
-  upload_.start(id, text, bytesTotal);
+  upload_.start(id, text, bytesTotal, paced);
 }
 
 bool Bridge::cancel() {

@@ -51,7 +51,8 @@ class Bridge : public MegaListener {
   void release() { reserved_ = false; }
   // The job's id names its file on the Mega's card (JOB<id>.UVJ): the glue keeps a counter that
   // survives restarts, so an interrupted job's file is never overwritten by the next upload.
-  void startUpload(uint32_t id, JobText& text, uint32_t bytesTotal);
+  // `paced`: the job starts paced (M24 P1, mega.md "Pacing").
+  void startUpload(uint32_t id, JobText& text, uint32_t bytesTotal, bool paced = false);
   // DELETE /print: cancels the upload, or aborts the running job. False: nothing to cancel.
   bool cancel();
   void writeStatus(JsonWriter& w, uint32_t nowMs) const;

@@ -40,7 +40,7 @@ class JobConversion {
   template <class J>
   bool begin(const J& root) {
     GridDataShape shape = rows_.open();
-    if (!validateHeader(root, shape, header_, error_)) return false;
+    if (!validateHeader(root, shape, header_, paced_, error_)) return false;
     encoder_.header(header_);
     return true;
   }
@@ -59,6 +59,8 @@ class JobConversion {
   }
 
   const JobHeader& header() const { return header_; }
+  // Run the job paced: the body said "paced": true.
+  bool paced() const { return paced_; }
   const RequestError& error() const { return error_; }
   uint32_t textBytes() const { return sink_.bytes(); }
   uint32_t textLines() const { return sink_.lines(); }
@@ -72,6 +74,7 @@ class JobConversion {
   JobHeader header_{};
   RequestError error_{};
   uint16_t next_ = 0;
+  bool paced_ = false;
 };
 
 }  // namespace esp

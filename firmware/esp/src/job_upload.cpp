@@ -7,8 +7,9 @@
 namespace uv {
 namespace esp {
 
-void JobUpload::start(uint32_t id, JobText& text, uint32_t bytesTotal) {
+void JobUpload::start(uint32_t id, JobText& text, uint32_t bytesTotal, bool paced) {
   text_ = &text;
+  paced_ = paced;
   progress_ = UploadProgress{};
   progress_.id = id;
   progress_.bytesTotal = bytesTotal;
@@ -42,7 +43,7 @@ uint16_t JobUpload::command(char* body) {
     case Phase::Open: fileCommand("M28", body); return kOpen;
     case Phase::Close: strcpy(body, "M29"); return kClose;
     case Phase::Select: fileCommand("M23", body); return kSelect;
-    case Phase::Start: strcpy(body, "M24"); return kStart;
+    case Phase::Start: strcpy(body, paced_ ? "M24 P1" : "M24"); return kStart;
     case Phase::Cleanup:
       if (cleanupAbort_) strcpy(body, "M524");
       else fileCommand("M30", body);

@@ -1,6 +1,6 @@
 // A POST /print job's way onto the Mega's card (protocol/esp.md): `M28 JOB<n>.UVJ`, every record
 // of the job text through the windowed sender, `M29` (the Mega checks the whole job's CRC), and
-// only then `M23` and `M24`. A job never starts half-received. A failed check or a Mega restart
+// only then `M23` and `M24` (`M24 P1` for a paced job). A job never starts half-received. A failed check or a Mega restart
 // sends the whole job again, up to kAttempts times. Plain C++: the job text sits behind JobText.
 #pragma once
 #include <stdint.h>
@@ -41,8 +41,9 @@ class JobUpload {
   // The upload leaves `reserve` of the sender's slots to others (the console).
   explicit JobUpload(MegaSender& sender, uint8_t reserve = 0) : sender_(sender), reserve_(reserve) {}
 
-  // Begins uploading `text` (bytesTotal bytes, '\n' included) as JOB<id>.UVJ.
-  void start(uint32_t id, JobText& text, uint32_t bytesTotal);
+  // Begins uploading `text` (bytesTotal bytes, '\n' included) as JOB<id>.UVJ; once verified it
+  // starts with `M24 P1` when `paced` (mega.md "Pacing"), else `M24`.
+  void start(uint32_t id, JobText& text, uint32_t bytesTotal, bool paced = false);
   // Feeds the sender as it has room; call every loop pass.
   void poll();
   static bool owns(uint16_t tag) { return tag >= kTagFirst && tag <= kTagLast; }
@@ -81,6 +82,7 @@ class JobUpload {
   bool pendingSend_ = false;  // phase_'s command still to queue (the sender was full)
   bool textDone_ = false;
   bool cancelled_ = false;
+  bool paced_ = false;
   bool cleanupAbort_ = false;  // the cleanup is M524 (the job had started), else M30
   uint16_t recordError_ = 0;
   char line_[kDialectMaxLine];

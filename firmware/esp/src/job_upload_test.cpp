@@ -57,6 +57,36 @@ struct Bench : esptest::NoisyMega, MegaListener {
   std::map<uint16_t, uint16_t> answers;
   std::vector<UploadProgress> seen;  // each change the bridge would report
   uint32_t lastChange = 0;
+  std::string wire;  // every byte the ESP wrote, before any noise
+
+  bool write(const char* data, uint16_t n) override {
+    wire.append(data, n);
+    return NoisyMega::write(data, n);
+  }
+  // The bodies of the framed lines the ESP sent (`N<n> <body>*<cs>#<crc>`), in order.
+  std::vector<std::string> sentBodies() const {
+    std::vector<std::string> out;
+    size_t at = 0;
+    for (size_t end; (end = wire.find('\n', at)) != std::string::npos; at = end + 1) {
+      std::string line = wire.substr(at, end - at);
+      size_t space = line.find(' '), star = line.rfind('*');
+      if (space != std::string::npos && star != std::string::npos && star > space) out.push_back(line.substr(space + 1, star - space - 1));
+    }
+    return out;
+  }
+  // The commands that start a job (M24 with or without P) the ESP sent.
+  std::vector<std::string> starts() const {
+    std::vector<std::string> out;
+    for (const std::string& b : sentBodies())
+      if (b == "M24" || b.rfind("M24 ", 0) == 0) out.push_back(b);
+    return out;
+  }
+  // The Mega's first JOB:running report, or "".
+  std::string runningLine() const {
+    for (const std::string& l : mega.espLines)
+      if (l.rfind("JOB:running", 0) == 0) return l;
+    return "";
+  }
 
   void line(const char*, uint8_t) override {}
   void answered(uint16_t tag, uint16_t error, bool) override {
@@ -141,10 +171,27 @@ TEST(JobUpload, ANoisyWireStillLandsEveryJobBitExact) {
   std::printf("[esp upload] 6 jobs through 1 %% corruption and 0.3 %% drops each way, all bit-exact, in %u attempts\n", attempts);
 }
 
+// mega.md "Pacing": a paced job starts with `M24 P1` and the Mega runs it paced; any other with `M24`.
+TEST(JobUpload, APacedJobStartsWithM24P1AndAnyOtherWithM24) {
+  for (bool paced : {false, true}) {
+    Bench b;
+    b.ready();
+    b.upload.start(10, b.text, b.text.bytes(), paced);
+    ASSERT_TRUE(b.runUntil([&] { return b.finished(); })) << paced;
+    ASSERT_EQ(b.upload.progress().state, UploadState::Started) << b.upload.progress().message;
+    std::vector<std::string> sent = b.sentBodies();
+    ASSERT_FALSE(sent.empty());
+    EXPECT_EQ(sent.back(), paced ? "M24 P1" : "M24");  // the upload's last command, after M23
+    EXPECT_EQ(b.starts().size(), 1u);
+    ASSERT_TRUE(b.runUntil([&] { return !b.runningLine().empty(); }, 5000000));
+    EXPECT_EQ(b.runningLine().find(" paced=1") != std::string::npos, paced) << b.runningLine();
+  }
+}
+
 TEST(JobUpload, AMegaRestartMidUploadSendsTheWholeJobAgain) {
   Bench b;
   b.ready(30, 20, 3);
-  b.upload.start(3, b.text, b.text.bytes());
+  b.upload.start(3, b.text, b.text.bytes(), true);  // and the retry keeps it paced
   ASSERT_TRUE(b.runUntil([&] { return b.upload.progress().bytesVerified > b.text.bytes() / 2; }));
   b.restart();
   bool restarted = false;
@@ -160,6 +207,7 @@ TEST(JobUpload, AMegaRestartMidUploadSendsTheWholeJobAgain) {
   EXPECT_EQ(b.upload.progress().attempt, 2);
   ASSERT_EQ(b.upload.progress().state, UploadState::Started) << b.upload.progress().message;
   EXPECT_EQ(b.mega.sd.contents("JOB3.UVJ"), b.text.text());
+  EXPECT_EQ(b.starts(), std::vector<std::string>{"M24 P1"});
 }
 
 TEST(JobUpload, ACancelledUploadLeavesNothingOnTheCardAndNeverStarts) {

@@ -15,6 +15,8 @@ struct View {
   bool isObject() const { return j->is_object(); }
   bool isArray() const { return j->is_array(); }
   bool isString() const { return j->is_string(); }
+  bool isBoolean() const { return j->is_boolean(); }
+  bool boolean() const { return j->get<bool>(); }
   // An integer that int64 holds (json_numbers.h); integer() is only asked of those.
   bool isInteger() const {
     int64_t v;

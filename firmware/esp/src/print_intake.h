@@ -47,6 +47,7 @@ class PrintIntake {
       if (s == ConversionStep::Failed) return refuse(conversion().error());
       JobHeader h = conversion().header();
       uint32_t bytes = conversion().textBytes();
+      bool paced = conversion().paced();
       conversion().~JobConversion();
       uint32_t id = nextId();
       if (textMade_) text().~StreamedJobText();
@@ -57,7 +58,7 @@ class PrintIntake {
       w.key("cells").number(static_cast<int64_t>(h.cols) * h.rows).endObject().endObject();
       status_ = 202;
       stage_ = Stage::Idle;
-      bridge_.startUpload(id, text(), bytes);
+      bridge_.startUpload(id, text(), bytes, paced);
       return Intake::Accepted;
     }
     return Intake::Working;

@@ -123,6 +123,31 @@ TEST(PrintIntake, ABodyStuffedWithFieldsOrCancelledIsRefusedAndTheMegaFreed) {
   EXPECT_EQ(h.bridge.admitPrint(h.nowMs()), Admission::Accepted);
 }
 
+// "paced": true starts the job with M24 P1 (mega.md "Pacing"), and the Mega runs it paced; without
+// it, or false, the job runs as before.
+TEST(PrintIntake, APacedBodyStartsItsJobPaced) {
+  for (const char* paced : {"", R"(,"paced":false)", R"(,"paced":true)"}) {
+    Hub h;
+    h.start();
+    h.mega.cmd("G28");
+    std::string body = R"({"grid":{"cols":4,"rows":2},"pitchUm":{"x":100,"y":100},"originUm":{"x":10000,"y":10000},)"
+                       R"("dose":{"map":"linear","fullUs":4000},"leds":{"offsets":[[0,0],[0,1],[0,2],[0,3]]},)"
+                       R"("strategy":{"name":"raster"},"gridData":[[0,1,2,3],[4,5,6,7]])" +
+                       std::string(paced) + "}";
+    ASSERT_EQ(h.post(body), Intake::Accepted) << paced << ": " << h.intake.response();
+    for (int i = 0; i < 3000 && h.bridge.uploading(); i++) h.run(10000);
+    ASSERT_EQ(h.bridge.lastUpload()->state, UploadState::Started) << h.bridge.lastUpload()->message;
+    std::string running;
+    for (int i = 0; i < 500 && running.empty(); i++) {
+      h.run(10000);
+      for (const std::string& l : h.mega.espLines)
+        if (l.rfind("JOB:running", 0) == 0) running = l;
+    }
+    ASSERT_FALSE(running.empty()) << paced;
+    EXPECT_EQ(running.find(" paced=1") != std::string::npos, std::string(paced).find("true") != std::string::npos) << running;
+  }
+}
+
 // Issue 15, defect 7: the 400 names the field at fault even when its name escapes to six times
 // its length (control characters), and the answer is always whole JSON.
 TEST(PrintIntake, AnUnknownFieldWithALongEscapedNameIsNamedInWholeJson) {

@@ -1,8 +1,9 @@
-// Validates a POST /print body (protocol/esp.md, print-job.schema.json) into a JobHeader and rows.
+// Validates a POST /print body (protocol/esp.md, print-job.schema.json) into a JobHeader and rows,
+// and whether to run the job paced (a flag beside the job, never part of its text).
 // A template over a small JSON view, so the same code runs on ArduinoJson (ESP) and nlohmann (host tests).
 // The header is checked first, then each row as it streams in; only one row is ever in RAM.
 //
-// A view J provides: isObject() isArray() isString() isInteger() integer() string() size()
+// A view J provides: isObject() isArray() isString() isInteger() isBoolean() integer() boolean() string() size()
 // element(i) has(key) member(key) and forEachKey(f) with f(const char*) returning false to stop.
 #pragma once
 #include <stdint.h>
@@ -124,15 +125,17 @@ bool xy(const J& parent, const char* key, int64_t lo, int64_t hi, uint32_t* out,
 
 // Everything but gridData's rows, in the order protocol/esp.md's validator uses (the vectors depend
 // on it). `root` may lack gridData (the ESP filters it out of the parse); `grid` says how the rows
-// walker found it. Its row count and rows are checked by grid_rows.h as they stream.
+// walker found it. Its row count and rows are checked by grid_rows.h as they stream. `paced`: the
+// body's optional "paced" (false without it), which starts the job with M24 P1 (mega.md "Pacing").
 template <class J>
-bool validateHeader(const J& root, GridDataShape grid, JobHeader& h, RequestError& e) {
+bool validateHeader(const J& root, GridDataShape grid, JobHeader& h, bool& paced, RequestError& e) {
   using namespace detail;
-  static const char* const rootKeys[] = {"name", "grid", "pitchUm", "originUm", "dose", "leds", "thermal", "strategy", "gridData"};
+  static const char* const rootKeys[] = {"name", "grid", "pitchUm", "originUm", "dose", "leds", "thermal", "strategy", "paced", "gridData"};
   static const char* const rootRequired[] = {"grid", "pitchUm", "originUm", "dose", "leds", "strategy"};
   e = {0, "", "", ""};
   h = JobHeader{};
-  if (!object(root, "", rootKeys, 9, rootRequired, 6, e)) return false;
+  paced = false;
+  if (!object(root, "", rootKeys, 10, rootRequired, 6, e)) return false;
   if (!grid.present) return fail(e, "/gridData", "missing");
   if (root.has("name")) {
     const J n = root.member("name");
@@ -220,6 +223,12 @@ bool validateHeader(const J& root, GridDataShape grid, JobHeader& h, RequestErro
   h.strategy = static_cast<Strategy>(strategy);
   h.seed = 0;
   if (s.has("seed") && !field(s, "/strategy", "seed", 0, 4294967295LL, h.seed, e)) return false;
+
+  if (root.has("paced")) {
+    const J p = root.member("paced");
+    if (!p.isBoolean()) return fail(e, "/paced", "must be true or false");
+    paced = p.boolean();
+  }
 
   if (!grid.isArray) return fail(e, "/gridData", "array of the wrong size");
   return true;

@@ -64,6 +64,7 @@ TEST(EspVectors, PrintRequests) {
     EXPECT_EQ(e.status, c["status"].get<int>()) << name << ": " << e.path << " " << e.message;
     if (e.status == 202) {
       EXPECT_EQ(out.text, c["text"].get<std::string>()) << name;
+      EXPECT_EQ(conversion.paced(), c.at("paced").get<bool>()) << name;  // beside the job, not in its text
     } else {
       EXPECT_STREQ(e.code, c["error"].get<std::string>().c_str()) << name;
       if (c.contains("path")) {

@@ -14,6 +14,9 @@ struct JsonView {
   bool isObject() const { return v.is<JsonObjectConst>(); }
   bool isArray() const { return v.is<JsonArrayConst>(); }
   bool isString() const { return v.is<const char*>(); }
+  // true or false only: ArduinoJson's is<bool>() holds for neither null nor 0 and 1.
+  bool isBoolean() const { return v.is<bool>(); }
+  bool boolean() const { return v.as<bool>(); }
   // An integer that int64 holds, 128 and 128.0 alike, as in the schema validator; a number out
   // of that range is refused, never wrapped or cast (json_numbers.h). integer() is only asked of
   // those.
