@@ -1,7 +1,7 @@
 // Warnings for a sensor warming faster than the LEDs' duty explains: a fan that stopped, a heatsink
 // come loose, a driver running hot. The expected rate comes from the same thermal model as the dry run.
 
-import type { ThermalModel } from '../studio/dry-run';
+import type { ThermalModel } from '../studio/thermal-model';
 
 export interface Sample {
   tS: number;
