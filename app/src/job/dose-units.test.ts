@@ -9,7 +9,7 @@ describe('the dose in mJ/cm²', () => {
     expect(calibrationOf(null)).toEqual({ missing: expect.stringMatching(/connect to the printer/) });
     const { 'led.irradiance.2': _, ...without } = calibrated;
     expect(calibrationOf(without)).toEqual({ missing: expect.stringMatching(/does not report/) });
-    expect(calibrationOf(CONFIG_DEFAULTS)).toEqual({ missing: expect.stringMatching(/firmware's default, not a measurement/) });
+    expect(calibrationOf(CONFIG_DEFAULTS)).toEqual({ missing: expect.stringMatching(/still the firmware's default, not a measurement/) });
     expect(calibrationOf(calibrated)).toEqual({ irradianceUWcm2: [2000000, 1950000, 2000000, 2050000] });
   });
 

@@ -20,7 +20,7 @@ export function calibrationOf(config: Record<string, string> | null): Calibratio
   const values = KEYS.map((k) => Number(config[k]));
   if (!values.every((v) => Number.isInteger(v) && v > 0)) return { missing: 'the printer does not report its LEDs\' irradiance (led.irradiance.0–3)' };
   if (KEYS.every((k) => config[k] === CONFIG_DEFAULTS[k]))
-    return { missing: 'the LEDs\' irradiance (led.irradiance.0–3) is the firmware\'s default, not a measurement: measure it and set it in Settings' };
+    return { missing: 'the LEDs\' irradiance (led.irradiance.0–3) is still the firmware\'s default, not a measurement; measure it and set it in Settings' };
   return { irradianceUWcm2: values };
 }
 
