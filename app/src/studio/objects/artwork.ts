@@ -2,7 +2,13 @@
 // Artwork that draws itself at any size in cells, each cell's grey the share of it left bare by
 // area; the object's tone and halftone then make doses (a threshold exposes a cell whose covered
 // share reaches it). A picture's pixels are averaged over each cell; an SVG is drawn supersampled
-// and averaged (svg-artwork.ts). A new kind (a Gerber layer group) is one more reader below.
+// and averaged (svg-artwork.ts).
+//
+// A new kind (a Gerber layer group) plugs in here: its object type in objects.ts (ArtworkFields
+// and its own kind, added to ArtworkObject, ARTWORK_KINDS and ARTWORK_WORDS), a reader in READERS
+// below giving an Artwork whose cover(w, h) rasterises it over w × h cells by area coverage, its
+// `src` pattern in project-file.ts, and its files recognised by import-artwork.ts with their size
+// in mm. Turning, mirroring, polarity, the threshold and clipping then apply to it unchanged.
 
 import { adjust } from '../image/adjust';
 import { toDoses } from '../image/dither';

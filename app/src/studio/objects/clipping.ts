@@ -1,7 +1,7 @@
 // Objects cut by the bed's edge, alike for every kind: how far each lies past each edge, and how
 // many of the cells it exposes fall off the bed and will not be exposed. The dry run names them.
 
-import { exposes, type Rect, type StudioObject } from './objects';
+import { ARTWORK_WORDS, exposes, isArtwork, type Rect, type StudioObject } from './objects';
 import type { Raster } from './raster';
 
 /** Cells past each edge of a cols × rows bed (0 where it does not reach it). */
@@ -31,8 +31,7 @@ export function isOffBed(o: Rect, cols: number, rows: number): boolean {
 }
 
 export function objectName(o: StudioObject): string {
-  if (o.kind === 'image') return `picture ${o.name}`;
-  if (o.kind === 'svg') return `SVG ${o.name}`;
+  if (isArtwork(o)) return `${ARTWORK_WORDS[o.kind]} ${o.name}`;
   if (o.kind === 'text') return `text “${o.text.length > 20 ? `${o.text.slice(0, 19)}…` : o.text}”`;
   return 'frame';
 }

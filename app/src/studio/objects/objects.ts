@@ -59,6 +59,9 @@ export type ArtworkObject = ImageObject | SvgObject;
 
 export const ARTWORK_KINDS: ArtworkObject['kind'][] = ['image', 'svg'];
 
+/** Each artwork kind in words, as its panel and the dry run name it. */
+export const ARTWORK_WORDS: Record<ArtworkObject['kind'], string> = { image: 'picture', svg: 'SVG' };
+
 export function isArtwork(o: StudioObject): o is ArtworkObject {
   return (ARTWORK_KINDS as string[]).includes(o.kind);
 }
