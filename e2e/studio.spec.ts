@@ -1,16 +1,8 @@
 // The studio's grid editor in Chromium: draw, undo and redo, zoom and pan, and expose the drawing
 // on the simulated printer.
-import { expect, test, type Page } from '@playwright/test';
-
-/** The colour the canvas shows at a point of its box (CSS pixels). */
-async function pixel(page: Page, x: number, y: number): Promise<[number, number, number]> {
-  return page.getByTestId('editor-canvas').evaluate((c: HTMLCanvasElement, [x, y]) => {
-    const dpr = window.devicePixelRatio || 1;
-    const d = c.getContext('2d')!.getImageData(Math.round(x * dpr), Math.round(y * dpr), 1, 1).data;
-    return [d[0], d[1], d[2]] as [number, number, number];
-  }, [x, y]);
-}
-const isDose = ([r, g]: number[]) => g < r - 15; // UV violet: neither the white bed nor the grey around it
+import { expect, test } from '@playwright/test';
+import { bedPoint, isDose, pixel } from './canvas';
+import { bmpFile, halfBlack } from '../app/src/studio/image/picture-files.fixture';
 
 test('draws a filled rectangle, undoes and redoes it, zooms, and exposes it', async ({ page }, info) => {
   await page.goto('/?simSpeed=40');
@@ -47,10 +39,10 @@ test('draws a filled rectangle, undoes and redoes it, zooms, and exposes it', as
   await page.keyboard.press('0'); // fit again
 
   await page.getByTestId('expose-drawing').click();
-  // The dry run comes first, in the question before any LED fires: on the bed, leveling (off since
-  // the link restarted the Mega), within the printhead's cap and the thermal budget.
+  // The dry run comes first, in the question before any LED fires: on the bed, nothing cut by its
+  // edge, leveling (off since the link restarted the Mega), within the printhead's cap and the thermal budget.
   const checks = page.getByTestId('dry-run').locator('li');
-  await expect(checks).toHaveCount(4);
+  await expect(checks).toHaveCount(5);
   for (const level of await checks.evaluateAll((li) => li.map((l) => l.getAttribute('data-level')))) expect(level).toBe('ok');
   await page.getByRole('dialog').getByRole('button', { name: 'Expose now' }).click(); // the one confirmation (issue 17, item 4)
   await expect(page.getByTestId('job-state')).toHaveAttribute('data-state', /running|done/, { timeout: 30_000 });
@@ -90,42 +82,19 @@ test('brush, eraser and fill paint at the dose picked', async ({ page }) => {
   await expect.poll(() => pixel(page, 5, box.height - 5).then(isDose)).toBe(false); // the fill stays on the bed
 });
 
-/** A BMP of w × h pixels, black on its left half and white on its right (24-bit, bottom-up rows). */
-function halfBlackBmp(w: number, h: number): Buffer {
-  const row = Math.ceil((w * 3) / 4) * 4;
-  const b = Buffer.alloc(54 + row * h);
-  b.write('BM', 0);
-  b.writeUInt32LE(b.length, 2);
-  b.writeUInt32LE(54, 10);
-  b.writeUInt32LE(40, 14);
-  b.writeInt32LE(w, 18);
-  b.writeInt32LE(h, 22);
-  b.writeUInt16LE(1, 26);
-  b.writeUInt16LE(24, 28);
-  b.writeUInt32LE(row * h, 34);
-  for (let y = 0; y < h; y++) for (let x = 0; x < w; x++) b.fill(x < w / 2 ? 0 : 255, 54 + y * row + x * 3, 54 + y * row + x * 3 + 3);
-  return b;
-}
-
-/** Where a point of the bed, in mm, is on the canvas (CSS pixels from its corner), the bed fitted to the view. */
-async function bedPoint(page: Page, mmX: number, mmY: number): Promise<{ x: number; y: number }> {
-  const [cols, rows, pitchUm] = (/^(\d+) × (\d+) cells of (\d+) µm/.exec((await page.getByTestId('grid-size').textContent())!) ?? []).slice(1).map(Number);
-  const box = (await page.getByTestId('editor-canvas').boundingBox())!;
-  const ruler = 22, margin = 16, aw = box.width - ruler, ah = box.height - ruler;
-  const scale = Math.min((aw - 2 * margin) / cols, (ah - 2 * margin) / rows);
-  const cell = (mm: number) => (mm * 1000) / pitchUm;
-  return { x: ruler + aw / 2 + (cell(mmX) - cols / 2) * scale, y: ruler + ah / 2 + (cell(mmY) - rows / 2) * scale };
-}
-
 test('imports a picture as an object: sized in mm, dithered, inverted, moved, resized and deleted', async ({ page }, info) => {
   await page.goto('/?simSpeed=40');
-  await page.getByTestId('import-file').setInputFiles({ name: 'half.bmp', mimeType: 'image/bmp', buffer: halfBlackBmp(40, 20) });
+  await page.getByTestId('import-file').setInputFiles({ name: 'half.bmp', mimeType: 'image/bmp', buffer: Buffer.from(bmpFile(40, 20, halfBlack(40))) });
+  // The file states no resolution: it is asked for, and gives the size.
+  await page.getByLabel('Resolution').fill('25.4');
+  await expect(page.getByTestId('import-dpi-size')).toHaveText('40.00 × 20.00 mm');
+  await page.getByRole('button', { name: 'Place' }).click();
   const panel = page.getByTestId('object-panel');
   await expect(panel).toHaveAttribute('data-kind', 'image');
   await page.getByTestId('object-w').fill('60');
   await page.getByTestId('object-w').press('Enter');
   await expect(page.getByTestId('object-h')).toHaveValue('30'); // 40 × 20 pixels keep their proportions
-  await page.getByTestId('object-halftone').selectOption('threshold');
+  await expect(page.getByTestId('object-halftone')).toHaveValue('threshold'); // black and white: line art
   const field = async (name: string) => Number(await page.getByTestId(`object-${name}`).inputValue());
   const x = await field('x'), y = await field('y');
   const black = await bedPoint(page, x + 15, y + 15), white = await bedPoint(page, x + 45, y + 15);

@@ -1,16 +1,20 @@
 // The job the studio's drawing becomes, and what happens before and while it runs: the exposure
-// settings, the dry run that must pass before any LED fires, framing with the LEDs off, and the run.
+// settings (the full dose as a time, or in mJ/cm² through the LEDs' calibration), the dry run that
+// must pass before any LED fires (loaded with the planner when first needed), framing with the
+// LEDs off, and the run.
 
 import type { Printer } from '../device/connection.svelte';
 import type { PrintJob, StrategyName } from '../protocol/job-types';
 import { num } from '../sim/config';
-import { dryRun, type Finding } from '../studio/dry-run';
+import type { Finding } from '../studio/dry-run';
+import type { Cut } from '../studio/objects/clipping';
 import type { GridEditor } from '../studio/editor.svelte';
 import { jobFromGrid } from '../studio/grid-job';
 import { DEFAULT_CONFIG, ledsOf, type MachineConfig } from '../studio/machine-config';
 import { framingMoves } from './framing';
 import { testPattern } from '../device/test-pattern';
 import { JobNotice } from './job-notice.svelte';
+import { calibrationOf, doseOf, msFor, type Calibration } from './dose-units';
 
 /** What waits for the user's yes before anything moves or lights: an exposure, or a homing. */
 export type Pending =
@@ -25,12 +29,17 @@ export type Pending =
       pacedUs: number | null;
       /** Where the job's cells lie on the bed, mm. */
       areaMm: { x0: number; y0: number; x1: number; y1: number };
+      /** The drawing's objects cut by the bed's edge, and whether the user accepted the cut. */
+      cuts: Cut[];
+      accepted: boolean;
     }
   | { kind: 'home-first'; what: string; homed: boolean | null; run: () => Promise<unknown> };
 
 export class JobControl {
-  /** The exposure of a cell at 100 % dose, ms. */
+  /** The exposure of a cell at 100 % dose, ms; for a dose set in mJ/cm², its time for LED 0. */
   fullMs = $state(4);
+  /** The full dose as energy, mJ/cm², or null when it is set as a time. */
+  doseMJcm2 = $state<number | null>(null);
   strategy = $state<StrategyName>('serpentine');
   /** The last dry run's findings, and the job they were found for. */
   check = $state.raw<{ findings: Finding[]; job: PrintJob; duty: number[] } | null>(null);
@@ -50,18 +59,26 @@ export class JobControl {
     return this.printer.config ?? DEFAULT_CONFIG;
   }
 
+  /** The LEDs' irradiance from the printer's settings, or why a dose in mJ/cm² cannot be used. */
+  get calibration(): Calibration {
+    return calibrationOf(this.printer.config);
+  }
+
+  /** Sets the full dose in mJ/cm² (null: as a time); the time kept beside it is LED 0's. */
+  setDoseMJcm2(mJcm2: number | null): void {
+    this.doseMJcm2 = mJcm2;
+    const c = this.calibration;
+    if (mJcm2 !== null && 'irradianceUWcm2' in c) this.fullMs = msFor(mJcm2, c.irradianceUWcm2[0]);
+  }
+
   /** The drawing as a job for this machine, or null when nothing is drawn. */
   job(): PrintJob | null {
     const ed = this.editor();
     return jobFromGrid(ed.composed(), ed.machine, {
-      dose: { map: 'linear', fullUs: this.#fullUs() },
+      dose: doseOf(this.fullMs, this.doseMJcm2, this.calibration),
       strategy: { name: this.strategy },
       leds: ledsOf(this.config),
     });
-  }
-
-  #fullUs(): number {
-    return Math.round(this.fullMs * 1000);
   }
 
   /** The dry run, then the question: the time, where it lands, the verdict. Nothing fires before the yes. */
@@ -69,11 +86,22 @@ export class JobControl {
     this.#act(async () => {
       const job = this.job();
       if (!job) throw new Error('nothing is drawn');
-      await this.#ask('drawing', job);
+      const ed = this.editor();
+      const { cutsOf } = await import('../studio/objects/clipping');
+      await this.#ask('drawing', job, cutsOf(ed.layer.objects, (o) => ed.layer.raster(o), ed.grid.cols, ed.grid.rows, ed.machine.pitchUm));
     });
 
   /** The test pattern at the full dose set here, checked and asked about like a drawing. */
-  exposeTestPattern = () => this.#act(() => this.#ask('test pattern', { ...testPattern(this.#fullUs()), strategy: { name: this.strategy } }));
+  exposeTestPattern = () =>
+    this.#act(() => this.#ask('test pattern', { ...testPattern(1), dose: doseOf(this.fullMs, this.doseMJcm2, this.calibration), strategy: { name: this.strategy } }));
+
+  /** The user accepts that the cut objects' parts off the bed are not exposed. */
+  acceptCuts = async () => {
+    const p = this.pending;
+    if (p?.kind !== 'expose') return;
+    const { clippingFinding } = await import('../studio/dry-run');
+    this.pending = { ...p, accepted: true, findings: p.findings.map((f) => (f.check === 'clipping' ? clippingFinding(p.cuts, true) : f)) };
+  };
 
   /** The user's yes to what is pending (an exposure without errors, or a homing). */
   confirm = (opts: { paced?: boolean } = {}) =>
@@ -113,10 +141,11 @@ export class JobControl {
 
   act = (f: () => Promise<unknown>) => this.#act(f);
 
-  async #ask(what: 'drawing' | 'test pattern', job: PrintJob): Promise<void> {
+  async #ask(what: 'drawing' | 'test pattern', job: PrintJob, cuts?: Cut[]): Promise<void> {
     const leveling = await this.printer.leveling();
     const startC = this.printer.device.deciC?.map((d) => d / 10) ?? null;
-    const { findings, duty, plan, paced } = dryRun(job, this.config, { leveling: leveling.on, mesh: leveling.mesh, startC });
+    const { dryRun } = await import('../studio/dry-run');
+    const { findings, duty, plan, paced } = dryRun(job, this.config, { leveling: leveling.on, mesh: leveling.mesh, startC, cuts });
     this.check = { findings, job, duty };
     const mm = (um: number) => Math.round(um) / 1000;
     const areaMm = {
@@ -124,7 +153,7 @@ export class JobControl {
       x1: mm(job.originUm.x + job.grid.cols * job.pitchUm.x), y1: mm(job.originUm.y + job.grid.rows * job.pitchUm.y),
     };
     const pacedUs = paced && !paced.pause ? paced.totalUs : null;
-    this.pending = { kind: 'expose', what, job, findings, duty, estimateUs: plan.estimateUs, pacedUs, areaMm };
+    this.pending = { kind: 'expose', what, job, findings, duty, estimateUs: plan.estimateUs, pacedUs, areaMm, cuts: cuts ?? [], accepted: false };
   }
 
   async #run(job: PrintJob, duty: number[] | null, paced: boolean): Promise<void> {

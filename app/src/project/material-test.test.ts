@@ -1,9 +1,9 @@
 import { describe, expect, it } from 'vitest';
-import { materialTestProject, msLabel, stepDoses, type MaterialTestSpec } from './material-test';
+import { doseLabel, materialTestProject, stepDoses, type MaterialTestSpec } from './material-test';
 import { decodeProject, encodeProject } from './project-file';
 
 const machine = { bedMm: { x: 100, y: 80 }, pitchUm: { x: 50, y: 50 } };
-const spec = (over: Partial<MaterialTestSpec> = {}): MaterialTestSpec => ({ kind: 'wedge', steps: 8, longestMs: 8, shortestMs: 1, patchMm: 8, machine, ...over });
+const spec = (over: Partial<MaterialTestSpec> = {}): MaterialTestSpec => ({ kind: 'wedge', steps: 8, unit: 'ms', longest: 8, shortest: 1, patchMm: 8, machine, ...over });
 /** A stand-in for the browser's fonts: each character 0.6 of the height. */
 const measure = (t: { text: string }, h: number) => Math.ceil(0.6 * h * t.text.length);
 
@@ -15,7 +15,7 @@ describe('material test', () => {
   });
 
   it('steps a strip evenly from the shortest to the longest', () => {
-    expect(stepDoses(spec({ kind: 'strip', steps: 5, shortestMs: 2, longestMs: 10 }))).toEqual([51, 102, 153, 204, 255]);
+    expect(stepDoses(spec({ kind: 'strip', steps: 5, shortest: 2, longest: 10 }))).toEqual([51, 102, 153, 204, 255]);
   });
 
   it('never asks for a dose of nothing, however many stops down', () => {
@@ -44,7 +44,8 @@ describe('material test', () => {
     const ys = new Set(p.objects.slice(1).map((o) => o.y));
     expect(ys.size).toBeGreaterThan(1);
     expect(() => materialTestProject(spec({ machine: { ...machine, bedMm: { x: 40, y: 20 } } }), measure)).toThrow(/does not fit/);
-    expect(() => materialTestProject(spec({ kind: 'strip', shortestMs: 9 }), measure)).toThrow(/shortest time/);
+    expect(() => materialTestProject(spec({ kind: 'strip', shortest: 9 }), measure)).toThrow(/shortest time/);
+    expect(() => materialTestProject(spec({ unit: 'mJ' }), measure)).toThrow(/needs the LEDs' calibrated irradiance/);
   });
 
   it('saves and opens as any project does', async () => {
@@ -54,7 +55,16 @@ describe('material test', () => {
     expect(Buffer.compare(back.paint.cells, p.paint.cells)).toBe(0);
   });
 
-  it('labels times with three figures', () => {
-    expect([msLabel(0.7234), msLabel(12.34), msLabel(250)]).toEqual(['0.72 ms', '12.3 ms', '250 ms']);
+  it('in mJ/cm²: patches labelled with their energy, the project\'s full dose set in mJ/cm², its time LED 0\'s', () => {
+    const p = materialTestProject(spec({ unit: 'mJ', longest: 40, irradianceUWcm2: [2e6, 2e6, 1.9e6, 2e6] }), measure);
+    expect(p.exposure).toEqual({ fullMs: 20, strategy: 'serpentine', mJcm2: 40 });
+    const labels = p.objects.map((o) => (o.kind === 'text' ? o.text : ''));
+    expect(labels[0]).toBe('√2 wedge from 40.0 mJ/cm²');
+    expect(labels.at(-1)).toBe('40.0 mJ/cm²');
+    expect(labels[1]).toBe('3.61 mJ/cm²');
+  });
+
+  it('labels doses with three figures', () => {
+    expect([doseLabel(0.7234, 'ms'), doseLabel(12.34, 'ms'), doseLabel(250, 'mJ')]).toEqual(['0.72 ms', '12.3 ms', '250 mJ/cm²']);
   });
 });

@@ -3,6 +3,7 @@ import { NEUTRAL_TONE } from '../studio/image/adjust';
 import { decodeProject, encodeProject, ProjectError, type Project } from './project-file';
 
 const PNG = 'data:image/png;base64,iVBORw0KGgo=';
+const SVG = `data:image/svg+xml;base64,${btoa('<svg xmlns="http://www.w3.org/2000/svg" width="3mm" height="2mm"/>')}`;
 
 function project(): Project {
   const cells = new Uint8Array(300 * 200);
@@ -12,11 +13,13 @@ function project(): Project {
   return {
     name: 'board',
     machine: { bedMm: { x: 15, y: 10 }, pitchUm: { x: 50, y: 50 } },
-    exposure: { fullMs: 4.5, strategy: 'shortest' },
+    exposure: { fullMs: 4.5, strategy: 'shortest', mJcm2: 12.5 },
+    polarity: 'positive',
     paint: { cols: 300, rows: 200, cells },
     objects: [
-      { kind: 'image', id: 1, x: -5, y: 3, w: 40, h: 20, name: 'logo.png', src: PNG, halftone: 'atkinson', level: 100, tone: { ...NEUTRAL_TONE, gamma: 1.4 } },
-      { kind: 'text', id: 2, x: 10, y: 10, w: 80, h: 20, text: 'PCB\nrev 2', font: 'DejaVu Sans', bold: true, dose: 200 },
+      { kind: 'image', id: 1, x: -5, y: 3, w: 40, h: 20, name: 'logo.png', src: PNG, halftone: 'atkinson', threshold: 40, tone: { ...NEUTRAL_TONE, gamma: 1.4 } },
+      { kind: 'text', id: 2, x: 10, y: 10, w: 80, h: 20, turn: 3, mirror: true, text: 'PCB\nrev 2', font: 'DejaVu Sans', bold: true, dose: 200 },
+      { kind: 'svg', id: 3, x: 100, y: 50, w: 60, h: 40, turn: 1, name: 'board.svg', src: SVG, halftone: 'threshold', threshold: 50, tone: { ...NEUTRAL_TONE } },
       { kind: 'frame', id: 5, x: 0, y: 0, w: 300, h: 200, line: 0, dose: 255 },
     ],
   };
@@ -31,7 +34,7 @@ async function reject(edit: (f: Record<string, any>) => void): Promise<string> {
 }
 
 describe('project files', () => {
-  it('come back as they were saved: cells, objects, machine and exposure', async () => {
+  it('come back as they were saved: cells, objects as turned and mirrored, machine, exposure and polarity', async () => {
     const p = project();
     const back = await decodeProject(await encodeProject(p));
     expect(back.paint.cells).toEqual(p.paint.cells);
@@ -57,18 +60,36 @@ describe('project files', () => {
   it('refuse what is not a project, or a newer one, saying so', async () => {
     await expect(decodeProject('{"grid":')).rejects.toThrow(/not a project file/);
     await expect(decodeProject('{"name":"x"}')).rejects.toThrow(/not a project file/);
-    expect(await reject((f) => (f.version = 2))).toMatch(/version 2; this app opens version 1/);
+    expect(await reject((f) => (f.version = 3))).toMatch(/version 3; this app opens versions 1 to 2/);
   });
 
   it('name the field that is wrong', async () => {
     expect(await reject((f) => (f.objects[0].halftone = 'sepia'))).toMatch(/^objects\[0\]\.halftone must be one of/);
     expect(await reject((f) => (f.objects[0].src = 'https://example.com/a.png'))).toMatch(/^objects\[0\]\.src must be a picture embedded/);
     expect(await reject((f) => (f.objects[1].dose = 300))).toMatch(/^objects\[1\]\.dose must be a whole number from 0 to 255/);
-    expect(await reject((f) => (f.objects[2].kind = 'circle'))).toMatch(/^objects\[2\]\.kind must be image, text or frame/);
-    expect(await reject((f) => (f.objects[2].id = 1))).toMatch(/two objects with the same id/);
+    expect(await reject((f) => (f.objects[3].kind = 'circle'))).toMatch(/^objects\[3\]\.kind must be image, svg, text or frame/);
+    expect(await reject((f) => (f.objects[3].id = 1))).toMatch(/two objects with the same id/);
+    expect(await reject((f) => (f.objects[1].turn = 4))).toMatch(/^objects\[1\]\.turn must be a whole number from 0 to 3/);
+    expect(await reject((f) => (f.objects[2].src = PNG))).toMatch(/^objects\[2\]\.src must be an SVG drawing embedded/);
+    expect(await reject((f) => (f.objects[0].threshold = 0))).toMatch(/^objects\[0\]\.threshold must be a number from 0.1 to 100/);
+    expect(await reject((f) => (f.polarity = 'both'))).toMatch(/^polarity must be negative or positive/);
     expect(await reject((f) => (f.paint.cols = 5000))).toMatch(/^paint\.cols must be a whole number from 1 to 4096/);
     expect(await reject((f) => (f.exposure.strategy = 'spiral'))).toMatch(/^exposure\.strategy must be one of/);
     expect(await reject((f) => (f.machine.pitchUm = 'fine'))).toMatch(/^machine\.pitchUm must be an object/);
+  });
+
+  it('open version 1 files: dry film, nothing turned, the threshold level in 255ths as the same cut in percent', async () => {
+    const f = JSON.parse(await encodeProject(project()));
+    f.version = 1;
+    delete f.polarity;
+    delete f.exposure.mJcm2;
+    f.objects = [{ ...f.objects[0], level: 128, threshold: undefined }, f.objects[3]];
+    const p = await decodeProject(JSON.stringify(f));
+    expect(p.polarity).toBe('negative');
+    expect(p.exposure).toEqual({ fullMs: 4.5, strategy: 'shortest' });
+    expect(p.objects[0]).toMatchObject({ kind: 'image', threshold: (128 * 100) / 255 });
+    expect(p.objects[0]).not.toHaveProperty('turn');
+    expect(p.objects[1]).toEqual(project().objects[3]);
   });
 
   it('find damaged or mis-sized cells', async () => {

@@ -1,15 +1,18 @@
-// A project as a file: JSON with the painted cells packed and every picture embedded as the file
-// it was imported from, so it opens anywhere with nothing beside it. Opening checks every field
-// and says which one is wrong; nothing of the project open in the editor is lost by a bad file.
+// A project as a file: JSON with the painted cells packed and every picture or drawing embedded as
+// the file it was imported from, so it opens anywhere with nothing beside it. Opening checks every
+// field and says which one is wrong; nothing of the project open in the editor is lost by a bad
+// file. Version 2 added the resist polarity, turned and mirrored objects, the coverage threshold
+// in percent (version 1's `level` in 255ths), SVG drawings and a dose in mJ/cm²; version 1 opens.
 
 import { MAX_SIDE } from '../studio/grid/grid';
-import { HALFTONES, type Halftone } from '../studio/image/dither';
-import type { StudioObject } from '../studio/objects/objects';
+import { HALFTONES, type Halftone } from '../studio/image/halftones';
+import type { StudioObject, Turn } from '../studio/objects/objects';
+import type { Polarity } from '../studio/objects/raster';
 import type { StrategyName } from '../protocol/job-types';
 import { packCells, unpackCells } from './cells-codec';
 
 export const PROJECT_FORMAT = 'uv-exposure-project';
-export const PROJECT_VERSION = 1;
+export const PROJECT_VERSION = 2;
 /** Larger files are refused before they are read. */
 export const MAX_PROJECT_BYTES = 200 * 1024 * 1024;
 const STRATEGIES: StrategyName[] = ['raster', 'serpentine', 'shortest', 'random'];
@@ -17,7 +20,9 @@ const STRATEGIES: StrategyName[] = ['raster', 'serpentine', 'shortest', 'random'
 export interface Project {
   name: string;
   machine: { bedMm: { x: number; y: number }; pitchUm: { x: number; y: number } };
-  exposure: { fullMs: number; strategy: StrategyName };
+  /** `mJcm2`: the full dose was set as energy; `fullMs` is then its time for LED 0, used where the LEDs' calibration is not known. */
+  exposure: { fullMs: number; strategy: StrategyName; mJcm2?: number };
+  polarity: Polarity;
   /** The painted cells, cols × rows, row 0 first. */
   paint: { cols: number; rows: number; cells: Uint8Array };
   objects: StudioObject[];
@@ -35,6 +40,7 @@ export async function encodeProject(p: Project, savedAt = new Date()): Promise<s
     savedAt: savedAt.toISOString(),
     machine: p.machine,
     exposure: p.exposure,
+    polarity: p.polarity,
     paint: { cols: p.paint.cols, rows: p.paint.rows, cells: empty ? null : await packCells(p.paint.cells) },
     objects: p.objects,
   });
@@ -72,7 +78,7 @@ function xy(v: unknown, path: string, min: number, max: number): { x: number; y:
   return { x: numIn(o.x, `${path}.x`, min, max), y: numIn(o.y, `${path}.y`, min, max) };
 }
 
-function object(v: unknown, path: string, cols: number, rows: number): StudioObject {
+function object(v: unknown, path: string, cols: number, rows: number, version: number): StudioObject {
   const o = obj(v, path);
   const box = {
     id: numIn(o.id, `${path}.id`, 1, 1e9, true),
@@ -80,24 +86,30 @@ function object(v: unknown, path: string, cols: number, rows: number): StudioObj
     y: numIn(o.y, `${path}.y`, -MAX_SIDE, rows, true),
     w: numIn(o.w, `${path}.w`, 1, 2 * MAX_SIDE, true),
     h: numIn(o.h, `${path}.h`, 1, 2 * MAX_SIDE, true),
+    ...(o.turn !== undefined && { turn: numIn(o.turn, `${path}.turn`, 0, 3, true) as Turn }),
+    ...(o.mirror !== undefined && { mirror: bool(o.mirror, `${path}.mirror`) }),
   };
   const dose = () => numIn(o.dose, `${path}.dose`, 0, 255, true);
   switch (o.kind) {
-    case 'image': {
+    case 'image':
+    case 'svg': {
       const src = str(o.src, `${path}.src`, MAX_PROJECT_BYTES);
-      if (!/^data:image\/[\w.+-]+;base64,/.test(src)) fail(`${path}.src`, 'must be a picture embedded as a data: URL');
+      const svg = o.kind === 'svg';
+      if (!(svg ? /^data:image\/svg\+xml;base64,/ : /^data:image\/[\w.+-]+;base64,/).test(src)) fail(`${path}.src`, `must be ${svg ? 'an SVG drawing' : 'a picture'} embedded as a data: URL`);
       const halftone = o.halftone as Halftone;
       if (!HALFTONES.includes(halftone)) fail(`${path}.halftone`, `must be one of ${HALFTONES.join(', ')}`);
       const t = obj(o.tone, `${path}.tone`);
       const tone = { invert: bool(t.invert, `${path}.tone.invert`), contrast: numIn(t.contrast, `${path}.tone.contrast`, -100, 100), gamma: numIn(t.gamma, `${path}.tone.gamma`, 0.05, 20) };
-      return { kind: 'image', ...box, name: str(o.name, `${path}.name`, 255), src, halftone, level: numIn(o.level, `${path}.level`, 1, 255, true), tone };
+      // Version 1 kept the threshold as a darkness level in 255ths: the same cut in percent.
+      const threshold = version === 1 ? (numIn(o.level, `${path}.level`, 1, 255, true) * 100) / 255 : numIn(o.threshold, `${path}.threshold`, 0.1, 100);
+      return { kind: svg ? 'svg' : 'image', ...box, name: str(o.name, `${path}.name`, 255), src, halftone, threshold, tone };
     }
     case 'text':
       return { kind: 'text', ...box, text: str(o.text, `${path}.text`, 10_000), font: str(o.font, `${path}.font`, 200), bold: bool(o.bold, `${path}.bold`), dose: dose() };
     case 'frame':
       return { kind: 'frame', ...box, line: numIn(o.line, `${path}.line`, 0, MAX_SIDE, true), dose: dose() };
     default:
-      fail(`${path}.kind`, 'must be image, text or frame');
+      fail(`${path}.kind`, 'must be image, svg, text or frame');
   }
 }
 
@@ -110,13 +122,20 @@ export async function decodeProject(text: string): Promise<Project> {
   }
   const f = obj(raw, 'the file');
   if (f.format !== PROJECT_FORMAT) throw new ProjectError('this is not a project file (no "format": "uv-exposure-project")');
-  if (f.version !== PROJECT_VERSION) throw new ProjectError(`this project is version ${String(f.version)}; this app opens version ${PROJECT_VERSION}`);
+  const version = f.version;
+  if (version !== 1 && version !== PROJECT_VERSION) throw new ProjectError(`this project is version ${String(f.version)}; this app opens versions 1 to ${PROJECT_VERSION}`);
   const m = obj(f.machine, 'machine');
   const machine = { bedMm: xy(m.bedMm, 'machine.bedMm', 1, 10_000), pitchUm: xy(m.pitchUm, 'machine.pitchUm', 1, 10_000) };
   const e = obj(f.exposure, 'exposure');
   const strategy = e.strategy as StrategyName;
   if (!STRATEGIES.includes(strategy)) fail('exposure.strategy', `must be one of ${STRATEGIES.join(', ')}`);
-  const exposure = { fullMs: numIn(e.fullMs, 'exposure.fullMs', 0.001, 60_000), strategy };
+  const exposure = {
+    fullMs: numIn(e.fullMs, 'exposure.fullMs', 0.001, 60_000),
+    strategy,
+    ...(e.mJcm2 !== undefined && { mJcm2: numIn(e.mJcm2, 'exposure.mJcm2', 0.001, 100_000) }),
+  };
+  const polarity = (f.polarity ?? 'negative') as Polarity; // version 1: the artwork was exposed
+  if (polarity !== 'negative' && polarity !== 'positive') fail('polarity', 'must be negative or positive');
   const p = obj(f.paint, 'paint');
   const cols = numIn(p.cols, 'paint.cols', 1, MAX_SIDE, true), rows = numIn(p.rows, 'paint.rows', 1, MAX_SIDE, true);
   let cells: Uint8Array = new Uint8Array(cols * rows);
@@ -128,8 +147,8 @@ export async function decodeProject(text: string): Promise<Project> {
     }
   }
   if (!Array.isArray(f.objects)) fail('objects', 'must be a list');
-  const objects = f.objects.map((o, i) => object(o, `objects[${i}]`, cols, rows));
+  const objects = f.objects.map((o, i) => object(o, `objects[${i}]`, cols, rows, version));
   const ids = new Set(objects.map((o) => o.id));
   if (ids.size !== objects.length) fail('objects', 'has two objects with the same id');
-  return { name: str(f.name, 'name', 255), machine, exposure, paint: { cols, rows, cells }, objects };
+  return { name: str(f.name, 'name', 255), machine, exposure, polarity, paint: { cols, rows, cells }, objects };
 }

@@ -5,7 +5,7 @@
 import type { JobControl } from '../job/job-control.svelte';
 import { GridEditor } from '../studio/editor.svelte';
 import { DoseGrid } from '../studio/grid/grid';
-import { grayOf } from '../studio/objects/picture';
+import { isArtwork } from '../studio/objects/objects';
 import { decodeProject, encodeProject, MAX_PROJECT_BYTES, ProjectError, type Project } from './project-file';
 import { loadAutosave, recentProjects, recentText, remember, saveAutosave } from './project-store';
 import type { RecentEntry } from './recent-list';
@@ -40,7 +40,8 @@ export class ProjectSession {
     return {
       name: this.name,
       machine: ed.machine,
-      exposure: { fullMs: this.control.fullMs, strategy: this.control.strategy },
+      exposure: { fullMs: this.control.fullMs, strategy: this.control.strategy, ...(this.control.doseMJcm2 !== null && { mJcm2: this.control.doseMJcm2 }) },
+      polarity: ed.layer.polarity,
       paint: { cols: ed.grid.cols, rows: ed.grid.rows, cells: ed.grid.cells },
       objects: ed.layer.objects,
     };
@@ -141,14 +142,18 @@ export class ProjectSession {
     const bed = DoseGrid.sizeForBed(p.machine.bedMm, p.machine.pitchUm);
     if (bed.cols !== p.paint.cols || bed.rows !== p.paint.rows)
       throw new ProjectError(`paint is ${p.paint.cols} × ${p.paint.rows} cells, but its machine's bed makes ${bed.cols} × ${bed.rows}`);
-    const ed = new GridEditor(p.machine, { cells: p.paint.cells, objects: p.objects });
+    const ed = new GridEditor(p.machine, { cells: p.paint.cells, objects: p.objects, polarity: p.polarity });
     this.replace(ed);
     this.name = p.name;
     this.control.fullMs = p.exposure.fullMs;
+    this.control.doseMJcm2 = p.exposure.mJcm2 ?? null;
     this.control.strategy = p.exposure.strategy;
-    // Pictures decode after the project shows; each appears as it is ready.
-    for (const src of new Set(p.objects.flatMap((o) => (o.kind === 'image' ? [o.src] : []))))
-      grayOf(src).then((g) => ed.layer.addGray(src, g), (e) => (this.error = `A picture of the project could not be read: ${(e as Error).message}`));
+    // Pictures and drawings are read after the project shows; each appears as it is ready.
+    const artwork = new Map(p.objects.filter(isArtwork).map((o) => [o.src, o]));
+    if (!artwork.size) return;
+    const { readArtwork } = await import('../studio/objects/artwork');
+    for (const [src, o] of artwork)
+      readArtwork(o).then((a) => ed.layer.addArtwork(src, a), (e) => (this.error = `A picture of the project could not be read: ${(e as Error).message}`));
   }
 
   /**

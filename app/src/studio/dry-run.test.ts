@@ -30,6 +30,16 @@ describe('dry run', () => {
     expect(r.findings[0].message).toMatch(/off the 200 × 200 mm bed/);
   });
 
+  it('stops a drawing with an object cut by the bed\'s edge, naming it, until the cut is accepted', () => {
+    const cut = { id: 4, name: 'picture board.png', overhangMm: { left: 0, right: 12, top: 0, bottom: 0 }, lost: 300, lit: 800 };
+    const stopped = dryRun(job(), DEFAULT_CONFIG, { cuts: [cut] });
+    expect(levels(stopped).clipping).toBe('error');
+    expect(stopped.findings.find((f) => f.check === 'clipping')!.message).toMatch(/^picture board\.png: 12 mm past the right edge; 38 % of its exposed cells are off the bed\. .*accept the cut/);
+    expect(levels(stopped).envelope).toBe('ok'); // the cut part is not in the job: the head stays on the bed
+    expect(levels(dryRun(job(), DEFAULT_CONFIG, { cuts: [cut], acceptCuts: true })).clipping).toBe('warning');
+    expect(levels(dryRun(job(), DEFAULT_CONFIG, { cuts: [] })).clipping).toBe('ok');
+  });
+
   it('stops an exposure longer than the printhead takes', () => {
     const r = dryRun(job({ dose: { map: 'linear', fullUs: 12_000_000 } }), DEFAULT_CONFIG);
     expect(levels(r).dose).toBe('error');

@@ -1,6 +1,7 @@
 // The check before any LED fires (issue 8 "Job control"): the job is planned as the Mega will
 // plan it, and the plan is held against the bed, the mesh, the printhead's exposure cap and
-// the LEDs' thermal budget. Errors stop the job; warnings ask the user.
+// the LEDs' thermal budget; the drawing's objects are held against the bed's edges (a cut
+// object is an error until the user accepts the cut). Errors stop the job; warnings ask the user.
 
 import { headerOf } from '../planner/job-header';
 import type { Mesh } from '../planner/mesh';
@@ -8,10 +9,11 @@ import { planJob, type Plan } from '../planner/planner';
 import type { PrintJob } from '../protocol/job-types';
 import { hms } from '../job/hms';
 import { bedOf, limitsOf, motionOf, type MachineConfig } from './machine-config';
+import { cutWords, type Cut } from './objects/clipping';
 import { forecastThermal, type ThermalRun } from './thermal-forecast';
 
 export interface Finding {
-  check: 'envelope' | 'mesh' | 'dose' | 'thermal';
+  check: 'envelope' | 'clipping' | 'mesh' | 'dose' | 'thermal';
   level: 'error' | 'warning' | 'ok';
   message: string;
 }
@@ -29,11 +31,25 @@ export interface DryRun {
   paced: ThermalRun | null;
 }
 
+/** Objects cut by the bed's edge: an error, or once the user accepts the cut, a warning. */
+export function clippingFinding(cuts: readonly Cut[], accepted: boolean): Finding {
+  if (!cuts.length) return { check: 'clipping', level: 'ok', message: 'every object lies on the bed' };
+  const what = cuts.map(cutWords).join('; ');
+  return accepted
+    ? { check: 'clipping', level: 'warning', message: `cut, accepted: ${what}. Only the part on the bed is exposed.` }
+    : { check: 'clipping', level: 'error', message: `${what}. The part off the bed would not be exposed: move ${cuts.length > 1 ? 'them' : 'it'} onto the bed, or accept the cut.` };
+}
+
 /**
- * `leveling` is whether the printer said exposures follow the mesh; null or absent if it did not say.
+ * `leveling` is whether the printer said exposures follow the mesh; null or absent if it did not
+ * say. `cuts`: the drawing's objects cut by the bed's edge (absent for a job with no objects).
  * `startC` is the head's temperatures now (the printer's last report); a warm head pauses sooner.
  */
-export function dryRun(job: PrintJob, config: MachineConfig, opts: { mesh?: Mesh | null; leveling?: boolean | null; startC?: number[] | null } = {}): DryRun {
+export function dryRun(
+  job: PrintJob,
+  config: MachineConfig,
+  opts: { mesh?: Mesh | null; leveling?: boolean | null; startC?: number[] | null; cuts?: readonly Cut[]; acceptCuts?: boolean } = {},
+): DryRun {
   const header = headerOf(job);
   const machine = motionOf(config);
   const plan = planJob({ header, cells: job.gridData }, machine);
@@ -52,6 +68,7 @@ export function dryRun(job: PrintJob, config: MachineConfig, opts: { mesh?: Mesh
   } else {
     findings.push({ check: 'envelope', level: 'ok', message: plan.count ? `the head stays within X ${mm(minX)}–${mm(maxX)}, Y ${mm(minY)}–${mm(maxY)} mm` : 'nothing to expose' });
   }
+  if (opts.cuts) findings.push(clippingFinding(opts.cuts, opts.acceptCuts ?? false));
 
   // Mesh: with leveling on, the job should lie within the probed points (beyond them Z is held at the edge).
   if (opts.leveling === false) findings.push({ check: 'mesh', level: 'ok', message: 'leveling is off: the whole job is exposed at one height' });

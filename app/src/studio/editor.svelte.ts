@@ -9,13 +9,14 @@ import { bedOf, DEFAULT_CONFIG } from './machine-config';
 import { ObjectLayer } from './objects/object-layer.svelte';
 import { CORNERS, cornerOf, exposes, type Corner, type StudioObject } from './objects/objects';
 import { textWidth } from './objects/text-raster';
+import { boxSize, frameSize } from './objects/orientation';
 import { typeKey } from './objects/typing';
 import { freePlace } from './objects/placement';
 import type { Rect } from './objects/objects';
 
 /** The Text tool's words until the user gives others: the first key typed replaces them. */
 const PLACEHOLDER_TEXT = 'Text';
-import { layOver } from './objects/raster';
+import { layOver, type Polarity } from './objects/raster';
 
 export type Tool = 'brush' | 'eraser' | 'line' | 'rect' | 'rect-filled' | 'fill' | 'select' | 'text' | 'frame' | 'pan';
 
@@ -58,14 +59,14 @@ export class GridEditor {
   #last: { x: number; y: number } | null = null;
   #start: { x: number; y: number } | null = null;
 
-  /** An empty bed, or a project's cells (as many as the bed has) and objects. */
-  constructor(readonly machine: Machine = DEFAULT_MACHINE, from?: { cells: Uint8Array; objects: StudioObject[] }) {
+  /** An empty bed, or a project's cells (as many as the bed has), objects and resist polarity. */
+  constructor(readonly machine: Machine = DEFAULT_MACHINE, from?: { cells: Uint8Array; objects: StudioObject[]; polarity?: Polarity }) {
     this.grid = DoseGrid.forBed(machine.bedMm, machine.pitchUm);
     this.history = new History(this.grid);
     this.layer = new ObjectLayer(this.history, this.grid.cols, this.grid.rows, () => this.#syncHistory());
     if (from) {
       this.grid.cells.set(from.cells);
-      this.layer.load(from.objects);
+      this.layer.load(from.objects, from.polarity);
       this.#syncHistory();
     }
   }
@@ -228,8 +229,11 @@ export class GridEditor {
     if (r.done) this.typing = null;
     else {
       this.typing = { id: o.id, fresh: false };
-      const next = { ...o, text: r.text };
-      this.layer.update(o.id, { text: r.text, w: Math.max(1, Math.min(textWidth(next, o.h), this.grid.cols - o.x)) }, 'type text');
+      // The text grows along its own frame's width: across the bed, or down it when turned.
+      const next = { ...o, text: r.text }, h = frameSize(o).h;
+      const room = (o.turn ?? 0) & 1 ? this.grid.rows - o.y : this.grid.cols - o.x;
+      const box = boxSize(o, Math.max(1, Math.min(textWidth(next, h), room)), h);
+      this.layer.update(o.id, { text: r.text, ...box }, 'type text');
     }
     return true;
   }

@@ -1,6 +1,6 @@
 // Draws the project's objects over the painted cells: each as the doses it will expose (a sprite
 // made from its raster, remade only when the raster is), a guide frame dashed, every object's
-// box faintly, and the selection with its corner handles.
+// box faintly, an object cut by the bed's edge in red, and the selection with its corner handles.
 
 import type { ObjectLayer } from '../objects/object-layer.svelte';
 import { CORNERS, cornerOf, exposes, type StudioObject } from '../objects/objects';
@@ -33,7 +33,26 @@ export class Sprites {
   }
 }
 
-export function drawObjects(ctx: CanvasRenderingContext2D, v: View, layer: ObjectLayer, sprites: Sprites): void {
+/** An exposing object past the bed's edge (cols × rows): the part off the bed hatched red, its box red. */
+function drawOffBed(ctx: CanvasRenderingContext2D, v: View, o: StudioObject, cols: number, rows: number): boolean {
+  if (!exposes(o) || (o.x >= 0 && o.y >= 0 && o.x + o.w <= cols && o.y + o.h <= rows)) return false;
+  const at = toScreen(v, o.x, o.y), bed = toScreen(v, 0, 0);
+  ctx.save();
+  ctx.beginPath();
+  ctx.rect(at.x, at.y, o.w * v.scale, o.h * v.scale);
+  ctx.clip();
+  ctx.beginPath();
+  ctx.rect(at.x - 1, at.y - 1, o.w * v.scale + 2, o.h * v.scale + 2);
+  ctx.rect(bed.x, bed.y, cols * v.scale, rows * v.scale);
+  ctx.fillStyle = '#d3262666';
+  ctx.fill('evenodd');
+  ctx.restore();
+  ctx.strokeStyle = '#d32626';
+  ctx.setLineDash([]);
+  return true;
+}
+
+export function drawObjects(ctx: CanvasRenderingContext2D, v: View, layer: ObjectLayer, sprites: Sprites, cols: number, rows: number): void {
   ctx.imageSmoothingEnabled = false;
   for (const o of layer.objects) {
     const at = toScreen(v, o.x, o.y), w = o.w * v.scale, h = o.h * v.scale;
@@ -47,7 +66,9 @@ export function drawObjects(ctx: CanvasRenderingContext2D, v: View, layer: Objec
     }
     ctx.save();
     ctx.lineWidth = 1;
-    if (o.kind === 'frame' && o.line === 0) {
+    if (drawOffBed(ctx, v, o, cols, rows)) {
+      // red: it is cut
+    } else if (o.kind === 'frame' && o.line === 0) {
       ctx.strokeStyle = ACCENT;
       ctx.setLineDash([6, 4]);
     } else {

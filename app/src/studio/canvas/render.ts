@@ -51,7 +51,7 @@ export function render(ctx: CanvasRenderingContext2D, w: number, h: number, ed: 
   ctx.lineWidth = 1;
   ctx.strokeRect(Math.round(bed.x) + 0.5, Math.round(bed.y) + 0.5, Math.round(cols * v.scale), Math.round(rows * v.scale));
 
-  drawObjects(ctx, v, ed.layer, sprites);
+  drawObjects(ctx, v, ed.layer, sprites, cols, rows);
 
   const p = ed.preview;
   if (p) {

@@ -1,7 +1,7 @@
 import { describe, expect, it } from 'vitest';
 import { adjust, NEUTRAL_TONE, toneCurve } from './adjust';
 import { HALFTONES, toDoses } from './dither';
-import { gridSizeFor, resample, toGray, type Gray } from './gray';
+import { isLineArt, resample, toGray, type Gray } from './gray';
 
 function ramp(width: number, height: number): Gray {
   const values = new Uint8Array(width * height);
@@ -21,13 +21,23 @@ describe('image import: grey, size and tone', () => {
     expect(Array.from(toGray(rgba, 4, 1).values)).toEqual([255, 182, 54, 0]);
   });
 
-  it('keeps the overall darkness of a fine pattern when shrinking, and sizes a picture to the bed', () => {
+  it('keeps the overall darkness of a fine pattern when shrinking', () => {
     const checker = { width: 64, height: 64, values: new Uint8Array(64 * 64).map((_, i) => (((i % 64) + Math.floor(i / 64)) % 2 ? 255 : 0)) };
     const small = resample(checker, 16, 16);
     for (const v of small.values) expect(Math.abs(v - 128)).toBeLessThanOrEqual(1);
     expect(resample(flat(3, 3, 40), 7, 5).values.every((v) => v === 40)).toBe(true);
-    expect(gridSizeFor({ width: 800, height: 600 }, 40, { x: 50, y: 50 })).toEqual({ cols: 800, rows: 600 });
-    expect(gridSizeFor({ width: 800, height: 400 }, 10, { x: 100, y: 50 })).toEqual({ cols: 100, rows: 100 });
+  });
+
+  it('reads a cell\'s grey as the share of it covered, by area: exactly half covered is half dark', () => {
+    // Three pixels to two cells: each takes one and a half pixels; the second is a third covered.
+    expect(Array.from(resample({ width: 3, height: 1, values: new Uint8Array([0, 0, 255]) }, 2, 1).values)).toEqual([0, 170]);
+    expect(255 - resample({ width: 2, height: 1, values: new Uint8Array([0, 255]) }, 1, 1).values[0]).toBe(128); // 127.5 rounds dark
+  });
+
+  it('knows line art (black and white, anti-aliased edges) from a photograph', () => {
+    const art = { width: 100, height: 1, values: new Uint8Array(100).map((_, i) => (i < 48 ? 0 : i < 51 ? 128 : 255)) };
+    expect(isLineArt(art)).toBe(true);
+    expect(isLineArt(ramp(100, 4))).toBe(false);
   });
 
   it('inverts, and contrast and gamma move the mid-tones as they should', () => {

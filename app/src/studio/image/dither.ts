@@ -3,10 +3,9 @@
 // don't take partial exposure well.
 
 import type { Gray } from './gray';
+import type { Halftone } from './halftones';
 
-export type Halftone = 'semitones' | 'threshold' | 'floyd-steinberg' | 'atkinson' | 'jarvis' | 'stucki' | 'ordered';
-
-export const HALFTONES: Halftone[] = ['semitones', 'threshold', 'floyd-steinberg', 'atkinson', 'jarvis', 'stucki', 'ordered'];
+export { HALFTONES, type Halftone } from './halftones';
 
 /** Error-diffusion kernels: [dx, dy, weight], with their divisor. */
 const KERNELS: Record<'floyd-steinberg' | 'atkinson' | 'jarvis' | 'stucki', { divisor: number; taps: [number, number, number][] }> = {

@@ -41,16 +41,19 @@ export function resample(src: Gray, width: number, height: number): Gray {
           area += w;
         }
       }
-      values[y * width + x] = area > 0 ? Math.round(sum / area) : 255;
+      // Half a level rounds towards black: a cell covered exactly half is half dark, as a threshold of 50 % reads it.
+      values[y * width + x] = area > 0 ? 255 - Math.round(255 - sum / area) : 255;
     }
   }
   return { width, height, values };
 }
 
-/** The grid size for a picture printed `widthMm` wide at the machine's cell pitch, keeping its aspect. */
-export function gridSizeFor(src: { width: number; height: number }, widthMm: number, pitchUm: { x: number; y: number }) {
-  const cols = Math.max(1, Math.round((widthMm * 1000) / pitchUm.x));
-  const heightMm = (widthMm * src.height) / src.width;
-  const rows = Math.max(1, Math.round((heightMm * 1000) / pitchUm.y));
-  return { cols, rows };
+/**
+ * Whether a picture is line art (a board's copper, a logo): nearly every pixel black or white, the
+ * greys only the anti-aliased edges. Line art is exposed by a coverage threshold; a photograph is dithered.
+ */
+export function isLineArt(src: Gray): boolean {
+  let grey = 0;
+  for (const v of src.values) if (v > 24 && v < 231) grey++;
+  return grey <= src.values.length * 0.05;
 }

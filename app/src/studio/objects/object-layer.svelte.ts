@@ -1,12 +1,12 @@
-// The project's objects in the editor: the list, the selection, moving and resizing by pointer,
-// and every change as one undo step in the grid's history. Rasters are cached per object and
-// remade only when what they show changes, not when the object moves.
+// The project's objects in the editor: the list, the selection, moving, resizing, turning and
+// mirroring, and every change as one undo step in the grid's history; the job's resist polarity.
+// Rasters are cached per object and remade only when what they show changes, not when it moves.
 
 import type { History } from '../grid/history';
 import type { DoseGrid } from '../grid/grid';
-import type { Gray } from '../image/gray';
 import { centredAt, keepsAspect, moved, objectAt, resized, type Corner, type Rect, type StudioObject } from './objects';
-import { compose, rasterOf, type Raster } from './raster';
+import { mirrored, turned } from './orientation';
+import { compose, rasterOf, type Polarity, type Raster, type ReadyArtwork } from './raster';
 import { textRaster } from './text-raster';
 
 /** An object before it has its id. */
@@ -23,12 +23,14 @@ function sameLook(a: StudioObject, b: StudioObject): boolean {
 export class ObjectLayer {
   objects = $state.raw<StudioObject[]>([]);
   selectedId = $state<number | null>(null);
-  /** Bumped when a picture's pixels arrive, so views redraw it. */
+  /** Bumped when an artwork's file is read, so views redraw it. */
   revision = $state(0);
+  /** Negative resist (dry film): the artwork is exposed; positive: what it does not cover. */
+  polarity = $state<Polarity>('negative');
   #nextId = 1;
   #drag: Drag | null = null;
-  #rasters = new Map<number, { of: StudioObject; raster: Raster }>();
-  #grays = new Map<string, Gray>();
+  #rasters = new Map<number, { of: StudioObject; polarity: Polarity; raster: Raster }>();
+  #artworks = new Map<string, ReadyArtwork>();
 
   constructor(private readonly history: History, private readonly cols: number, private readonly rows: number, private readonly onStep: () => void) {}
 
@@ -36,14 +38,14 @@ export class ObjectLayer {
     return this.objects.find((o) => o.id === this.selectedId) ?? null;
   }
 
-  /** A picture's decoded pixels, known by its data: URL. */
-  addGray(src: string, gray: Gray): void {
-    this.#grays.set(src, gray);
+  /** An artwork read from its file, known by its data: URL. */
+  addArtwork(src: string, artwork: ReadyArtwork): void {
+    this.#artworks.set(src, artwork);
     this.revision++;
   }
 
-  hasGray(src: string): boolean {
-    return this.#grays.has(src);
+  artwork(src: string): ReadyArtwork | undefined {
+    return this.#artworks.get(src);
   }
 
   add(o: NewObject, label = `add ${o.kind}`): StudioObject {
@@ -68,6 +70,18 @@ export class ObjectLayer {
     if (this.selectedId === id) this.selectedId = null;
   }
 
+  /** A quarter turn clockwise (1) or anticlockwise (-1) about the object's middle. */
+  turn(id: number, by: 1 | -1): void {
+    const o = this.objects.find((x) => x.id === id);
+    if (o) this.update(id, turned(o, by), by > 0 ? 'turn right' : 'turn left');
+  }
+
+  /** Mirrors the object across the bed's X (left to right) or Y (top to bottom). */
+  mirror(id: number, axis: 'x' | 'y'): void {
+    const o = this.objects.find((x) => x.id === id);
+    if (o) this.update(id, mirrored(o, axis), `mirror ${axis.toUpperCase()}`);
+  }
+
   /** Puts the object on top of the others or under them. */
   restack(id: number, toTop: boolean): void {
     const o = this.objects.find((x) => x.id === id);
@@ -77,8 +91,9 @@ export class ObjectLayer {
   }
 
   /** A project's objects, opened: no undo step (the history starts over with the project). */
-  load(objects: StudioObject[]): void {
+  load(objects: StudioObject[], polarity: Polarity = 'negative'): void {
     this.objects = objects;
+    this.polarity = polarity;
     this.#nextId = Math.max(0, ...objects.map((o) => o.id)) + 1;
     this.selectedId = null;
     this.#rasters.clear();
@@ -126,12 +141,12 @@ export class ObjectLayer {
     if (o) this.update(o.id, moved(o, dx, dy, this.cols, this.rows), 'move');
   }
 
-  /** The object's doses at its size, or null while its picture is still decoding. */
+  /** The object's doses at its size, or null while its artwork is still being read. */
   raster(o: StudioObject): Raster | null {
     const kept = this.#rasters.get(o.id);
-    if (kept && sameLook(kept.of, o)) return kept.raster;
-    const raster = rasterOf(o, { gray: (src) => this.#grays.get(src), text: textRaster });
-    if (raster) this.#rasters.set(o.id, { of: o, raster });
+    if (kept && kept.polarity === this.polarity && sameLook(kept.of, o)) return kept.raster;
+    const raster = rasterOf(o, { artwork: (src) => this.#artworks.get(src), text: textRaster }, this.polarity);
+    if (raster) this.#rasters.set(o.id, { of: o, polarity: this.polarity, raster });
     return raster;
   }
 
@@ -147,7 +162,7 @@ export class ObjectLayer {
   }
 
   composed(paint: DoseGrid): DoseGrid {
-    return compose(paint, this.objects, (o) => this.raster(o));
+    return compose(paint, this.objects, (o) => this.raster(o), this.polarity);
   }
 
   #change(label: string, next: StudioObject[]): void {

@@ -2,12 +2,14 @@ import { describe, expect, it } from 'vitest';
 import { DoseGrid } from '../grid/grid';
 import { NEUTRAL_TONE } from '../image/adjust';
 import { centredAt, exposes, moved, objectAt, resized, type FrameObject, type ImageObject, type StudioObject, type TextObject } from './objects';
-import { compose, frameRaster, imageRaster, layOver } from './raster';
+import { compose, frameRaster, layOver, rasterOf, type Polarity, type RasterSources } from './raster';
+import { bitmapArtwork, cutOf, ready } from './artwork';
+import type { Gray } from '../image/gray';
 import { cssFont, linesOf } from './text-raster';
 
 const frame = (over: Partial<FrameObject> = {}): FrameObject => ({ kind: 'frame', id: 1, x: 2, y: 3, w: 5, h: 4, line: 1, dose: 200, ...over });
 const picture = (over: Partial<ImageObject> = {}): ImageObject => ({
-  kind: 'image', id: 2, x: 0, y: 0, w: 4, h: 2, name: 'p.png', src: 'data:p', halftone: 'semitones', level: 128, tone: { ...NEUTRAL_TONE }, ...over,
+  kind: 'image', id: 2, x: 0, y: 0, w: 4, h: 2, name: 'p.png', src: 'data:p', halftone: 'semitones', threshold: 50, tone: { ...NEUTRAL_TONE }, ...over,
 });
 
 describe('objects', () => {
@@ -69,10 +71,50 @@ describe('rasters', () => {
     expect(Array.from(frameRaster(frame({ w: 3, h: 3, line: 5, dose: 1 })))).toEqual(Array(9).fill(1)); // too thick: solid
   });
 
+  /** A picture's rasters through the artwork it is read as. */
+  const sources = (gray: Gray): RasterSources => ({ artwork: () => ready(bitmapArtwork(gray)), text: () => new Uint8Array() });
+  const raster = (o: StudioObject, gray: Gray, polarity: Polarity = 'negative') => Array.from(rasterOf(o, sources(gray), polarity)!);
+
   it('turns a picture into doses at its box size: black is the full dose', () => {
     const gray = { width: 2, height: 1, values: new Uint8Array([0, 255]) };
-    expect(Array.from(imageRaster(picture({ w: 4, h: 2 }), gray))).toEqual([255, 255, 0, 0, 255, 255, 0, 0]);
-    expect(Array.from(imageRaster(picture({ w: 2, h: 1, tone: { ...NEUTRAL_TONE, invert: true } }), gray))).toEqual([0, 255]);
+    expect(raster(picture({ w: 4, h: 2 }), gray)).toEqual([255, 255, 0, 0, 255, 255, 0, 0]);
+    expect(raster(picture({ w: 2, h: 1, tone: { ...NEUTRAL_TONE, invert: true } }), gray)).toEqual([0, 255]);
+  });
+
+  it('exposes a cell by coverage: when the artwork covers at least the threshold\'s share of it', () => {
+    // Four pixels to one cell: three of them black covers 75 % of it; two, exactly half.
+    const threeQuarters = { width: 4, height: 1, values: new Uint8Array([0, 0, 0, 255]) };
+    const half = { width: 4, height: 1, values: new Uint8Array([0, 0, 255, 255]) };
+    const cell = (threshold: number, gray: Gray) => raster(picture({ w: 1, h: 1, halftone: 'threshold', threshold }), gray)[0];
+    expect([cell(50, threeQuarters), cell(75, threeQuarters), cell(76, threeQuarters)]).toEqual([255, 255, 0]);
+    expect([cell(50, half), cell(51, half)]).toEqual([255, 0]);
+    // Version 1's level in 255ths is the same cut as its share in percent.
+    for (let level = 1; level <= 255; level++) expect(cutOf((level * 100) / 255)).toBe(level);
+  });
+
+  it('turns and mirrors any kind alike: the upright raster moved onto the box', () => {
+    // A 3 × 2 picture, black only at its top-left pixel.
+    const corner = { width: 3, height: 2, values: new Uint8Array([0, 255, 255, 255, 255, 255]) };
+    expect(raster(picture({ w: 2, h: 3, turn: 1 }), corner)).toEqual([0, 255, 0, 0, 0, 0]); // top-right on the bed
+    expect(raster(picture({ w: 3, h: 2, mirror: true }), corner)).toEqual([0, 0, 255, 0, 0, 0]);
+    expect(raster(picture({ w: 3, h: 2, turn: 2, mirror: true }), corner)).toEqual([0, 0, 0, 255, 0, 0]);
+    expect(Array.from(rasterOf(frame({ w: 2, h: 4, line: 1, dose: 9, turn: 1 }), sources(corner))!)).toEqual(Array(8).fill(9));
+  });
+
+  it('with positive resist exposes what the artwork does not cover, at each object\'s own dose', () => {
+    const gray = { width: 2, height: 1, values: new Uint8Array([0, 255]) };
+    expect(raster(picture({ w: 2, h: 1 }), gray, 'positive')).toEqual([0, 255]);
+    expect(Array.from(rasterOf(frame({ w: 3, h: 3, line: 1, dose: 200 }), sources(gray), 'positive')!)).toEqual([0, 0, 0, 0, 200, 0, 0, 0, 0]);
+  });
+
+  it('with positive resist, copper drawn by any object keeps its resist where objects overlap', () => {
+    const paint = new DoseGrid(6, 1);
+    paint.cells[5] = 80;
+    // Two boxes overlapping on cells 2 and 3; the first has copper at cell 2, the second at cell 3.
+    const a = picture({ id: 1, x: 0, y: 0, w: 4, h: 1 }), b = picture({ id: 2, x: 2, y: 0, w: 3, h: 1 });
+    const exposure = (o: StudioObject) => new Uint8Array(o.id === 1 ? [255, 255, 0, 255] : [255, 0, 255]);
+    expect(Array.from(compose(paint, [a, b], exposure, 'positive').cells)).toEqual([255, 255, 0, 0, 255, 80]);
+    expect(Array.from(compose(paint, [a, b], exposure, 'negative').cells)).toEqual([255, 255, 255, 255, 255, 80]);
   });
 
   it('composes objects over the painted cells: the greater dose wins, the bed clips', () => {

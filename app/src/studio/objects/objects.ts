@@ -1,9 +1,10 @@
-// What a project places on the bed besides the painted cells (seed 004's project model): pictures,
-// text and frames, each a box in cells that can be selected, moved and resized. Objects are
-// immutable: a change makes a new one, so undo keeps the old list and rasters are cached by content.
+// What a project places on the bed besides the painted cells (seed 004's project model): artwork
+// read from a file (pictures, SVG drawings), text and frames, each a box in cells that can be
+// selected, moved, resized, turned and mirrored. Objects are immutable: a change makes a new one,
+// so undo keeps the old list and rasters are cached by content.
 
 import type { Tone } from '../image/adjust';
-import type { Halftone } from '../image/dither';
+import type { Halftone } from '../image/halftones';
 
 /** A box of cells: its top-left cell and its size. */
 export interface Rect {
@@ -13,19 +14,56 @@ export interface Rect {
   h: number;
 }
 
+/** Quarter turns clockwise. */
+export type Turn = 0 | 1 | 2 | 3;
+
+/**
+ * How an object lies on the bed: its box (as turned) and how its artwork is turned and mirrored.
+ * Every kind draws itself upright in its own frame; the turn and the mirror are applied to its
+ * cells after (orientation.ts), so every kind turns and mirrors alike.
+ */
 interface Placed extends Rect {
   id: number;
+  /** Quarter turns clockwise, after the mirror; none when absent. */
+  turn?: Turn;
+  /** Mirrored left to right, before the turn. */
+  mirror?: boolean;
 }
 
-export interface ImageObject extends Placed {
-  kind: 'image';
+/**
+ * Artwork read from a file, exposed by coverage: each cell by the share of it the artwork covers
+ * (a dark pixel, an SVG shape, a Gerber flash), through the tone and the halftone. A threshold
+ * exposes a cell whose share reaches it; a dither spreads the greys.
+ */
+interface ArtworkFields {
   name: string;
-  /** The picture's file as imported, as a data: URL: a saved project carries it. */
+  /** The file as imported, as a data: URL: a saved project carries it. */
   src: string;
   halftone: Halftone;
-  /** The threshold halftone's level, 1 … 255. */
-  level: number;
+  /** The threshold halftone's cut: a cell is exposed when the artwork covers at least this share of it, percent. */
+  threshold: number;
   tone: Tone;
+}
+
+/** A picture: PNG, JPEG, BMP, GIF or WebP. */
+export interface ImageObject extends Placed, ArtworkFields {
+  kind: 'image';
+}
+
+/** An SVG drawing, drawn again at every size. */
+export interface SvgObject extends Placed, ArtworkFields {
+  kind: 'svg';
+}
+
+export type ArtworkObject = ImageObject | SvgObject;
+
+export const ARTWORK_KINDS: ArtworkObject['kind'][] = ['image', 'svg'];
+
+/** Each artwork kind in words, as its panel and the dry run name it. */
+export const ARTWORK_WORDS: Record<ArtworkObject['kind'], string> = { image: 'picture', svg: 'SVG' };
+
+export function isArtwork(o: StudioObject): o is ArtworkObject {
+  return (ARTWORK_KINDS as string[]).includes(o.kind);
 }
 
 export interface TextObject extends Placed {
@@ -45,7 +83,7 @@ export interface FrameObject extends Placed {
   dose: number;
 }
 
-export type StudioObject = ImageObject | TextObject | FrameObject;
+export type StudioObject = ArtworkObject | TextObject | FrameObject;
 
 export type Corner = 'nw' | 'ne' | 'sw' | 'se';
 export const CORNERS: Corner[] = ['nw', 'ne', 'sw', 'se'];
@@ -55,7 +93,7 @@ export function exposes(o: StudioObject): boolean {
   return o.kind === 'frame' ? o.line > 0 && o.dose > 0 : o.kind === 'text' ? o.dose > 0 && o.text.trim() !== '' : true;
 }
 
-/** Pictures and text keep their proportions when resized; a frame is any rectangle. */
+/** Artwork and text keep their proportions when resized; a frame is any rectangle. */
 export function keepsAspect(o: StudioObject): boolean {
   return o.kind !== 'frame';
 }

@@ -1,13 +1,13 @@
-// A picture file as a project keeps it: the file itself as a data: URL (saved projects embed it),
-// and its grey pixels decoded, which rasters are made from.
+// A file as a project keeps it: the file itself as a data: URL (saved projects embed it); for a
+// picture, its grey pixels decoded, which rasters are made from.
 
 import { decodeImage } from '../image/decode';
 import type { Gray } from '../image/gray';
 
 /** Larger files are refused: a project embeds the file, and autosave keeps it in IndexedDB. */
-export const MAX_PICTURE_BYTES = 20 * 1024 * 1024;
+export const MAX_ARTWORK_BYTES = 20 * 1024 * 1024;
 
-function dataUrl(file: Blob): Promise<string> {
+export function dataUrl(file: Blob): Promise<string> {
   return new Promise((resolve, reject) => {
     const r = new FileReader();
     r.onload = () => resolve(String(r.result));
@@ -16,8 +16,12 @@ function dataUrl(file: Blob): Promise<string> {
   });
 }
 
+export function checkSize(file: Blob): void {
+  if (file.size > MAX_ARTWORK_BYTES) throw new Error(`the file is ${(file.size / 1048576).toFixed(1)} MB; at most ${MAX_ARTWORK_BYTES / 1048576} MB can be embedded in a project`);
+}
+
 export async function readPicture(file: Blob): Promise<{ src: string; gray: Gray }> {
-  if (file.size > MAX_PICTURE_BYTES) throw new Error(`the picture is ${(file.size / 1048576).toFixed(1)} MB; at most ${MAX_PICTURE_BYTES / 1048576} MB can be embedded in a project`);
+  checkSize(file);
   const gray = await decodeImage(file);
   return { src: await dataUrl(file), gray };
 }

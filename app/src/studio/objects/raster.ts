@@ -1,17 +1,32 @@
-// Objects as doses: each object rasterised at its box's size, and the project composed from the
-// painted grid and its objects for the planner. Where things overlap the greater dose wins, so a
-// picture's white background never erases what lies under it.
+// Objects as doses: each object drawn upright in its own frame, turned and mirrored onto its box,
+// and the project composed from the painted grid and its objects for the planner. With negative
+// resist (dry film) the artwork is what is exposed, and where objects overlap the greater dose
+// wins, so a picture's white background never erases what lies under it. With positive resist
+// what the artwork does not cover is exposed, and where objects overlap the lesser dose wins, so
+// copper drawn by any of them keeps its resist.
 
-import { adjust } from '../image/adjust';
-import { toDoses } from '../image/dither';
-import { resample, type Gray } from '../image/gray';
 import { DoseGrid } from '../grid/grid';
-import { exposes, type FrameObject, type ImageObject, type Rect, type StudioObject, type TextObject } from './objects';
+import { exposes, type ArtworkObject, type FrameObject, type Rect, type StudioObject, type TextObject } from './objects';
+import { frameSize, orient } from './orientation';
 
 /** The cells' doses of an object, w × h, row 0 first. */
 export type Raster = Uint8Array;
 
-export function frameRaster(o: FrameObject): Raster {
+/** Which side of the artwork is exposed, for the whole job. */
+export type Polarity = 'negative' | 'positive';
+
+/**
+ * An object's artwork once read (on-demand code decodes it): what any artwork kind gives the
+ * editor. Its doses come from coverage: how much of each cell the artwork covers.
+ */
+export interface ReadyArtwork {
+  /** Its own size: a picture's pixels, an SVG's CSS pixels; what a resolution in DPI applies to. */
+  pixels: { width: number; height: number };
+  /** Doses of w × h cells in its own frame (upright, not mirrored), by its tone, halftone and threshold. */
+  doses(o: ArtworkObject, w: number, h: number): Raster;
+}
+
+export function frameRaster(o: Pick<FrameObject, 'w' | 'h' | 'line' | 'dose'>): Raster {
   const out = new Uint8Array(o.w * o.h);
   const t = Math.min(o.line, Math.ceil(o.w / 2), Math.ceil(o.h / 2));
   for (let y = 0; y < o.h; y++)
@@ -19,36 +34,58 @@ export function frameRaster(o: FrameObject): Raster {
   return out;
 }
 
-export function imageRaster(o: ImageObject, source: Gray): Raster {
-  return toDoses(adjust(resample(source, o.w, o.h), o.tone), o.halftone, o.level);
-}
-
-/** What each kind needs from outside pure code: a picture's decoded pixels, text drawn by the browser. */
+/** What each kind needs from outside pure code: artwork read from its file, text drawn by the browser. */
 export interface RasterSources {
-  gray(src: string): Gray | undefined;
+  artwork(src: string): ReadyArtwork | undefined;
   text(o: TextObject): Raster;
 }
 
-export function rasterOf(o: StudioObject, sources: RasterSources): Raster | null {
-  if (o.kind === 'frame') return frameRaster(o);
-  if (o.kind === 'text') return sources.text(o);
-  const g = sources.gray(o.src);
-  return g ? imageRaster(o, g) : null;
+/** The dose of an object's solid parts: text and frames have their own, artwork the full dose. */
+export function fullDose(o: StudioObject): number {
+  return o.kind === 'text' || o.kind === 'frame' ? o.dose : 255;
+}
+
+/** The object's exposure on its box, or null while its artwork is still being read. */
+export function rasterOf(o: StudioObject, sources: RasterSources, polarity: Polarity = 'negative'): Raster | null {
+  const { w, h } = frameSize(o);
+  const upright = o.kind === 'frame' ? frameRaster({ ...o, w, h }) : o.kind === 'text' ? sources.text({ ...o, w, h }) : (sources.artwork(o.src)?.doses(o, w, h) ?? null);
+  if (!upright) return null;
+  const out = orient(upright, w, h, o);
+  if (polarity === 'negative') return out;
+  const full = fullDose(o);
+  return out.map((d) => full - Math.min(full, d));
 }
 
 /**
  * The cells the planner exposes: the painted grid with every exposing object laid over it, each
  * clipped to the bed. The painted grid itself comes back when no object exposes anything.
  */
-export function compose(paint: DoseGrid, objects: readonly StudioObject[], raster: (o: StudioObject) => Raster | null): DoseGrid {
+export function compose(paint: DoseGrid, objects: readonly StudioObject[], raster: (o: StudioObject) => Raster | null, polarity: Polarity = 'negative'): DoseGrid {
   const lit = objects.filter(exposes);
   if (lit.length === 0) return paint;
   const out = new DoseGrid(paint.cols, paint.rows, paint.cells.slice());
+  if (polarity === 'negative') {
+    for (const o of lit) {
+      const r = raster(o);
+      if (r) layOver(out, o, r);
+    }
+    return out;
+  }
+  const art = new DoseGrid(paint.cols, paint.rows);
+  const laid = new Uint8Array(paint.cols * paint.rows);
   for (const o of lit) {
     const r = raster(o);
-    if (r) layOver(out, o, r);
+    if (r) layUnder(art, laid, o, r);
   }
+  for (let i = 0; i < out.cells.length; i++) if (art.cells[i] > out.cells[i]) out.cells[i] = art.cells[i];
   return out;
+}
+
+/** The object's box within the grid, or null if none of it is on the grid. */
+function onGrid(grid: DoseGrid, o: Rect): { x0: number; y0: number; x1: number; y1: number } | null {
+  const x0 = Math.max(0, o.x), x1 = Math.min(grid.cols, o.x + o.w) - 1;
+  const y0 = Math.max(0, o.y), y1 = Math.min(grid.rows, o.y + o.h) - 1;
+  return x0 > x1 || y0 > y1 ? null : { x0, y0, x1, y1 };
 }
 
 /**
@@ -56,15 +93,28 @@ export function compose(paint: DoseGrid, objects: readonly StudioObject[], raste
  * clipped to the grid; returns the cells it covered, or null if none are on the grid.
  */
 export function layOver(grid: DoseGrid, o: Rect, r: Raster): { x0: number; y0: number; x1: number; y1: number } | null {
-  const x0 = Math.max(0, o.x), x1 = Math.min(grid.cols, o.x + o.w) - 1;
-  const y0 = Math.max(0, o.y), y1 = Math.min(grid.rows, o.y + o.h) - 1;
-  if (x0 > x1 || y0 > y1) return null;
-  for (let y = y0; y <= y1; y++) {
+  const b = onGrid(grid, o);
+  if (!b) return null;
+  for (let y = b.y0; y <= b.y1; y++) {
     const row = (y - o.y) * o.w - o.x;
-    for (let x = x0; x <= x1; x++) {
+    for (let x = b.x0; x <= b.x1; x++) {
       const d = r[row + x];
       if (d > grid.cells[y * grid.cols + x]) grid.cells[y * grid.cols + x] = d;
     }
   }
-  return { x0, y0, x1, y1 };
+  return b;
+}
+
+/** Positive resist: the lesser dose wins where objects overlap (`laid` marks the cells an object already set). */
+function layUnder(grid: DoseGrid, laid: Uint8Array, o: Rect, r: Raster): void {
+  const b = onGrid(grid, o);
+  if (!b) return;
+  for (let y = b.y0; y <= b.y1; y++) {
+    const row = (y - o.y) * o.w - o.x;
+    for (let x = b.x0; x <= b.x1; x++) {
+      const i = y * grid.cols + x, d = r[row + x];
+      if (!laid[i] || d < grid.cells[i]) grid.cells[i] = d;
+      laid[i] = 1;
+    }
+  }
 }
