@@ -12,6 +12,20 @@ std::string lastJob(const Lines& lines) {
     if (it->rfind("JOB:", 0) == 0) return *it;
   return "(none)";
 }
+
+// A job run to its end with the head held at `deciC`, started by `start`: its last JOB: line.
+class PacingTest : public JobTest {
+ protected:
+  std::string runWarm(const std::string& name, const uv::JobHeader& h, const Grid& g, int16_t deciC, const std::string& start) {
+    upload(name, encode(h, g));
+    m.cmd("M23 " + name);
+    m.cmd("G28");
+    m.nano.setTemps(deciC);
+    m.run(600000);
+    EXPECT_EQ(payload(start), Lines{});
+    return runUntilJob({"done", "paused"});
+  }
+};
 }  // namespace
 
 TEST_F(JobTest, APacedJobWaitsToCoolNearASoftLimitAndExposesEveryStop) {
@@ -39,18 +53,12 @@ TEST_F(JobTest, APacedJobWaitsToCoolNearASoftLimitAndExposesEveryStop) {
   expectExposed(h, plan(h, g));
 }
 
-TEST_F(JobTest, AnUnpacedJobDoesNotWaitNearTheLimitAndPIsZeroOrOne) {
-  uv::JobHeader h = header(8, 8, uv::Strategy::Raster);
-  Grid g = pattern(8, 8, 9);
-  upload("U.UVJ", encode(h, g));
-  m.cmd("M23 U.UVJ");
-  m.cmd("G28");
+TEST_F(PacingTest, AnUnpacedJobDoesNotWaitNearTheLimitAndPIsZeroOrOne) {
   EXPECT_EQ(payload("M24 P2"), (Lines{"echo:E11 bad or missing parameter: P is 0 or 1"}));
   EXPECT_EQ(payload("M828 P"), (Lines{"echo:E11 bad or missing parameter: P is 0 or 1"}));
-  m.nano.setTemps(485);
-  m.run(600000);
-  m.cmd("M24");
-  std::string done = runUntilJob({"done", "paused"});
+  uv::JobHeader h = header(8, 8, uv::Strategy::Raster);
+  Grid g = pattern(8, 8, 9);
+  std::string done = runWarm("U.UVJ", h, g, 485, "M24");  // T4 at 48.5 °C, within 2 °C of its limit
   EXPECT_EQ(done.rfind("JOB:done", 0), 0u) << done;
   EXPECT_EQ(done.find("paced"), std::string::npos) << done;
   EXPECT_FALSE(has(m.usbLines, "cooling=1"));
