@@ -1,9 +1,11 @@
+import { readFileSync } from 'node:fs';
 import { describe, expect, it } from 'vitest';
 import type { PrintJob } from '../protocol/job-types';
 import { durationTables } from './dose';
 import { GEOMETRIES, MACHINE, randomJob } from './golden';
 import { headerOf } from './job-header';
 import { passRows } from './planner';
+import { scanGoldenCases, type ScanCase } from './scan-golden';
 import { planScan, type ScanPlan } from './scan';
 import { moveTimeUs, type Machine } from './time-model';
 
@@ -119,5 +121,33 @@ describe('scan planner', () => {
   it('plans nothing for a job with no lit cell', () => {
     const p = plan(job(6, 4, [[1, 1, 50]], { dose: { map: 'threshold', level: 100, fullUs: 2000 } }));
     expect([p.passes.length, p.estimateUs]).toEqual([0, 0]);
+  });
+});
+
+describe('scan planner limits', () => {
+  it('plans nothing when a pass would outlast a 32-bit µs timer', () => {
+    const long = job(3000, 4, [[1, 0, 255]], { dose: { map: 'linear', fullUs: 1_500_000 } });
+    expect(plan(long).passes).toEqual([]);
+    long.grid.cols = 2800; // 2800 × 1.5 s < 2³² µs
+    expect(plan(long).passes.length).toBe(1);
+  });
+});
+
+describe('scan golden vectors', () => {
+  const load = (file: string): ScanCase[] => {
+    const dir = process.env.UV_VECTORS_DIR ? `file://${process.env.UV_VECTORS_DIR}/` : new URL('../../../protocol/vectors/', import.meta.url);
+    return JSON.parse(readFileSync(new URL(file, dir), 'utf8')).cases;
+  };
+  for (const file of ['scan-ts.json', 'scan-cpp.json']) {
+    it(`reproduces every scan plan in ${file}`, () => {
+      const cases = load(file);
+      expect(cases.length).toBeGreaterThan(10);
+      for (const c of cases) expect(plan(c.job, c.machine), c.name).toEqual(c.scan);
+      console.log(`[vectors] ${file}: ${cases.length} scan plans checked (TypeScript)`);
+    });
+  }
+
+  it('scan-ts.json is what this implementation makes', () => {
+    expect(scanGoldenCases().map((c) => c.scan)).toEqual(load('scan-ts.json').map((c) => c.scan));
   });
 });

@@ -46,13 +46,19 @@ export function scanMotion(h: JobHeader, machine: Machine, tables = durationTabl
   return { windowUs: Number(W), speedUmS: Number(roundDiv(p * 1_000_000n, W)), accelUs: Number(tA), overscanUm: Number(o) };
 }
 
+/** Every switch time of every pass fits 32 bits: (cols + the LEDs' spread in X) × W < 2³² µs. */
+export function fitsTimer(h: JobHeader, windowUs: number): boolean {
+  const dx = h.offsets.map((o) => o[0]);
+  return (h.cols + Math.max(...dx) - Math.min(...dx)) * windowUs < 2 ** 32;
+}
+
 export function planScan(job: PlannerJob, machine: Machine): ScanPlan {
   const h = job.header;
   const tables = durationTables(h);
   const motion = scanMotion(h, machine, tables);
   const plan: ScanPlan = { ...motion, passes: [], estimateUs: 0 };
   const W = motion.windowUs;
-  if (W === 0) return plan;
+  if (W === 0 || !fitsTimer(h, W)) return plan;
   const p = h.pitchUm[0];
   const reach = Math.ceil(p / 2) + motion.overscanUm; // from a column's centre to the run-up
   const X = (hx: number) => h.originUm[0] + hx * p;
