@@ -9,6 +9,9 @@ import { scanGoldenCases, type ScanCase } from './scan-golden';
 import { planScan, type ScanPlan } from './scan';
 import { moveTimeUs, type Machine } from './time-model';
 
+/** The fly of g blank windows on MACHINE at 50 µm, 2000 µs windows (planner.md "Blank stretches"). */
+const F = (g: number) => Math.max(1, moveTimeUs(g * 50 + 2 * 105, 150000, 3000000) - 2 * 8334);
+
 const plan = (job: PrintJob, machine: Machine = MACHINE) => planScan({ header: headerOf(job), cells: job.gridData }, machine);
 
 /** A job on a blank grid with the given lit cells [col, row, value]. */
@@ -27,14 +30,27 @@ function doses(j: PrintJob, p: ScanPlan): Map<string, [number, number]> {
   const out = new Map<string, [number, number]>();
   const W = p.windowUs;
   for (const pass of p.passes) {
+    // Window starts: W apart, but a jump [first blank window, g, µs] takes its µs for its g windows.
+    const S: number[] = [];
+    for (let w = 0, t = 0; w <= pass.last - pass.first; w++) {
+      const jump = pass.jumps.find(([at]) => at === w);
+      if (jump) {
+        t += jump[2];
+        w += jump[1] - 1;
+        continue;
+      }
+      S.push(w, t);
+      t += W;
+    }
     pass.leds.forEach((list, k) => {
       let end = -1;
       for (const [on, off] of list) {
         expect(on, 'intervals in time order, apart').toBeGreaterThan(end);
         expect(off).toBeGreaterThan(on);
         end = off;
-        for (let w = Math.floor(on / W); w * W < off; w++) {
-          const t = Math.min(off, (w + 1) * W) - Math.max(on, w * W);
+        for (let i = 0; i < S.length; i += 2) {
+          const w = S[i], t = Math.min(off, S[i + 1] + W) - Math.max(on, S[i + 1]);
+          if (t <= 0) continue;
           const hx = pass.descending ? pass.last - w : pass.first + w;
           const key = `${hx + j.leds.offsets[k][0]},${pass.hy + j.leds.offsets[k][1]}`;
           const had = out.get(key);
@@ -79,7 +95,7 @@ describe('scan planner', () => {
     expect([p.windowUs, p.speedUmS]).toEqual([2000, 25000]);
     // tA = ceil(50e12 / (3e6 × 2000)) = 8334 µs; o = ceil(50 × 8334 / 4000) = 105 µm.
     expect([p.accelUs, p.overscanUm]).toEqual([8334, 105]);
-    expect(p.passes).toEqual([{ hy: 0, descending: false, first: 3, last: 3, runUpUm: 1000 + 150 - 25 - 105, runOutUm: 1000 + 150 + 25 + 105, leds: [[[0, 2000]], [], [], []] }]);
+    expect(p.passes).toEqual([{ hy: 0, descending: false, first: 3, last: 3, runUpUm: 1000 + 150 - 25 - 105, runOutUm: 1000 + 150 + 25 + 105, leds: [[[0, 2000]], [], [], []], jumps: [] }]);
     const move = Math.max(moveTimeUs(1020, 150000, 3000000), moveTimeUs(2000, 100000, 2000000));
     expect(p.estimateUs).toBe(move + 2000 + 1500 + 2 * 8334 + 2000);
   });
@@ -95,9 +111,11 @@ describe('scan planner', () => {
     const p = plan(job(12, 8, [[2, 0, 255], [7, 0, 51], [3, 4, 51], [9, 4, 255], [9, 5, 102]]));
     const [a, b] = p.passes;
     expect([a.descending, a.first, a.last]).toEqual([false, 2, 7]);
-    expect(a.leds[0]).toEqual([[0, 2000], [5 * 2000 + 800, 5 * 2000 + 1200]]);
+    expect(a.jumps).toEqual([[1, 4, F(4)]]);
+    expect(a.leds[0]).toEqual([[0, 2000], [2000 + F(4) + 800, 2000 + F(4) + 1200]]);
     expect([b.hy, b.descending, b.first, b.last]).toEqual([4, true, 3, 9]);
-    expect(b.leds[0]).toEqual([[0, 2000], [6 * 2000 + 800, 6 * 2000 + 1200]]);
+    expect(b.jumps).toEqual([[1, 5, F(5)]]);
+    expect(b.leds[0]).toEqual([[0, 2000], [2000 + F(5) + 800, 2000 + F(5) + 1200]]);
     expect(b.leds[1]).toEqual([[600, 1400]]); // t(102) = 800
     expect([b.runUpUm, b.runOutUm]).toEqual([1000 + 9 * 50 + 25 + 105, 1000 + 3 * 50 - 25 - 105]);
   });
@@ -106,9 +124,23 @@ describe('scan planner', () => {
     const offsets: [number, number][] = [[0, 0], [-3, 1], [4, 2], [-1, 3]];
     const p = plan(job(12, 4, [[5, 0, 255], [5, 1, 255], [5, 2, 255], [5, 3, 255]], { leds: { offsets } }));
     const [pass] = p.passes;
-    // Head columns 5, 8, 1, 6: the pass runs from 1 to 8.
+    // Head columns 5, 8, 1, 6: the pass runs from 1 to 8, lit in windows 0, 4, 5 and 7.
     expect([pass.first, pass.last]).toEqual([1, 8]);
-    expect(pass.leds).toEqual([[[8000, 10000]], [[14000, 16000]], [[0, 2000]], [[10000, 12000]]]);
+    expect([F(1), F(3)]).toEqual([1950, 5240]); // each beats crossing at the speed: 2000, 6000 µs
+    expect(pass.jumps).toEqual([[1, 3, F(3)], [6, 1, F(1)]]);
+    const S4 = 2000 + F(3), S5 = S4 + 2000, S7 = S5 + 2000 + F(1);
+    expect(pass.leds).toEqual([[[S4, S4 + 2000]], [[S7, S7 + 2000]], [[0, 2000]], [[S5, S5 + 2000]]]);
+    const move = Math.max(moveTimeUs(1000 + 50 - 25 - 105, 150000, 3000000), moveTimeUs(2000, 100000, 2000000));
+    expect(p.estimateUs).toBe(move + 2000 + 1500 + 2 * 8334 + S7 + 2000);
+  });
+
+  it('flies no blank stretch when the speed is capped, and one only when it beats the speed', () => {
+    const slow = { ...MACHINE, vmaxUmS: [10000, 100000] as [number, number] };
+    expect(plan(job(40, 4, [[2, 0, 255], [30, 0, 255]]), slow).passes[0].jumps).toEqual([]);
+    // A slow axis: a fly of one window would take longer than the window.
+    const lazy = { ...MACHINE, accelUmS2: [300000, 2000000] as [number, number] };
+    const p = plan(job(40, 4, [[2, 0, 255], [4, 0, 255], [30, 0, 255]]), lazy);
+    expect(p.passes[0].jumps.map((j) => j.slice(0, 2))).toEqual([[3, 25]]);
   });
 
   it('caps the speed at the axis maximum: longer windows, same on-times, no merging', () => {

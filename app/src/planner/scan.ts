@@ -18,6 +18,8 @@ export interface ScanPass {
   runOutUm: number;
   /** Per LED 0-3: [on, off] µs after the start mark, in time order, touching intervals merged. */
   leds: [number, number][][];
+  /** Blank stretches flown: [first blank window, windows, µs]. */
+  jumps: [number, number, number][];
 }
 
 export interface ScanPlan {
@@ -64,6 +66,13 @@ export function planScan(job: PlannerJob, machine: Machine): ScanPlan {
   const X = (hx: number) => h.originUm[0] + hx * p;
   const Y = (hy: number) => h.originUm[1] + hy * h.pitchUm[1];
   const moves = new MoveTimes(machine);
+  // A blank stretch of g windows is flown in F(g) when that beats crossing it at the speed.
+  const flies = W > Math.ceil((p * 1_000_000) / machine.vmaxUmS[0]);
+  const fly = (g: number) => {
+    if (!flies) return 0;
+    const f = Math.max(1, moves.axis(0, g * p + 2 * motion.overscanUm) - 2 * motion.accelUs);
+    return f < g * W ? f : 0;
+  };
   let curX = machine.startUm[0], curY = machine.startUm[1];
 
   for (const { hy, ledRows } of passRows(h, job.cells)) {
@@ -79,21 +88,42 @@ export function planScan(job: PlannerJob, machine: Machine): ScanPlan {
     });
     if (first > last) continue;
     const descending = plan.passes.length % 2 === 1;
-    const leds = ledRows.map((r, k) => (r < 0 ? [] : switchTimes(job.cells[r], tables[k], h.offsets[k][0], descending ? last : first, descending, W)));
+    const n = last - first + 1;
+    const litAt = new Uint8Array(n); // by head column − first
+    ledRows.forEach((r, k) => {
+      if (r < 0) return;
+      const row = job.cells[r];
+      for (let c = 0; c < row.length; c++) if (tables[k][row[c]] > 0) litAt[c - h.offsets[k][0] - first] = 1;
+    });
+    const start = new Array<number>(n); // S(j)
+    const jumps: [number, number, number][] = [];
+    for (let j = 0, t = 0, prev = -1; j < n; j++, t += W) {
+      if (litAt[descending ? n - 1 - j : j]) {
+        const g = j - prev - 1;
+        const f = prev >= 0 && g > 0 ? fly(g) : 0;
+        if (f) {
+          t = start[prev] + W + f;
+          jumps.push([prev + 1, g, f]);
+        }
+        prev = j;
+      }
+      start[j] = t;
+    }
+    const leds = ledRows.map((r, k) => (r < 0 ? [] : switchTimes(job.cells[r], tables[k], h.offsets[k][0], descending ? last : first, descending, W, start)));
     const runUpUm = descending ? X(last) + reach : X(first) - reach;
     const runOutUm = descending ? X(first) - reach : X(last) + reach;
     const y = Y(hy);
     const move = Math.max(moves.axis(0, Math.abs(runUpUm - curX)), moves.axis(1, Math.abs(y - curY)));
-    plan.estimateUs += move + (move > 0 ? machine.settleUs : 0) + machine.overheadUs + 2 * motion.accelUs + (last - first + 1) * W;
+    plan.estimateUs += move + (move > 0 ? machine.settleUs : 0) + machine.overheadUs + 2 * motion.accelUs + start[n - 1] + W;
     curX = runOutUm;
     curY = y;
-    plan.passes.push({ hy, descending, first, last, runUpUm, runOutUm, leds });
+    plan.passes.push({ hy, descending, first, last, runUpUm, runOutUm, leds, jumps });
   }
   return plan;
 }
 
 /** One LED's [on, off] list for its row: each lit cell centred in its window, touching intervals merged. */
-function switchTimes(row: ArrayLike<number>, table: Uint32Array, dx: number, startHx: number, descending: boolean, W: number): [number, number][] {
+function switchTimes(row: ArrayLike<number>, table: Uint32Array, dx: number, startHx: number, descending: boolean, W: number, start: number[]): [number, number][] {
   const out: [number, number][] = [];
   const n = row.length;
   for (let i = 0; i < n; i++) {
@@ -101,7 +131,7 @@ function switchTimes(row: ArrayLike<number>, table: Uint32Array, dx: number, sta
     const t = table[row[c]];
     if (t === 0) continue;
     const j = descending ? startHx - (c - dx) : c - dx - startHx;
-    const on = j * W + Math.floor((W - t) / 2);
+    const on = start[j] + Math.floor((W - t) / 2);
     const prev = out[out.length - 1];
     if (prev && prev[1] === on) prev[1] = on + t;
     else out.push([on, on + t]);

@@ -27,7 +27,8 @@ ScanMotion scanMotion(const JobHeader& h, const Durations& dose, const Machine& 
 }
 
 ScanPlanner::ScanPlanner(const JobHeader& h, CellSource& cells, const Machine& m)
-    : h_(h), cells_(cells), m_(m), dose_(h), motion_(scanMotion(h, dose_, m)), curX_(m.startUm[0]), curY_(m.startUm[1]) {
+    : h_(h), cells_(cells), m_(m), dose_(h), motion_(scanMotion(h, dose_, m)), curX_(m.startUm[0]), curY_(m.startUm[1]),
+      flies_(motion_.windowUs > ceilDiv(static_cast<uint64_t>(h.pitchUm[0]) * 1000000u, m.vmaxUmS[0])) {
   dyMin_ = dyMax_ = h.offsets[0][1];
   for (uint8_t k = 1; k < 4; k++) {
     if (h.offsets[k][1] < dyMin_) dyMin_ = h.offsets[k][1];
@@ -72,12 +73,35 @@ bool ScanPlanner::nextPass(ScanPass& out) {
       if (rk < 0 || rk >= h_.rows || covered(rk)) continue;
       cover(rk);
       row_[k] = static_cast<int16_t>(rk);
-      int32_t hx;
-      uint32_t us;
-      cells_.open(k, static_cast<uint16_t>(rk), false);
-      if (readLit(k, hx, us) && hx < first) first = hx;
-      cells_.open(k, static_cast<uint16_t>(rk), true);
-      if (readLit(k, hx, us) && hx > last) last = hx;
+    }
+    // The lit windows, ascending: the extent, and the pass's time with its flown stretches.
+    for (uint8_t k = 0; k < 4; k++) {
+      live_[k] = false;
+      if (row_[k] < 0) continue;
+      cells_.open(k, static_cast<uint16_t>(row_[k]), false);
+      peek(k);
+    }
+    uint64_t span = 0;  // S(n − 1) + W
+    for (;;) {
+      bool any = false;
+      int32_t best = 0;
+      for (uint8_t k = 0; k < 4; k++)
+        if (live_[k] && (!any || hx_[k] < best)) {
+          best = hx_[k];
+          any = true;
+        }
+      if (!any) break;
+      if (first > last) {
+        first = best;
+        span = motion_.windowUs;
+      } else {
+        const uint32_t g = static_cast<uint32_t>(best - last - 1);
+        const uint32_t f = g ? fly(g) : 0;
+        span += f ? f + motion_.windowUs : static_cast<uint64_t>(g + 1) * motion_.windowUs;
+      }
+      last = best;
+      for (uint8_t k = 0; k < 4; k++)
+        if (live_[k] && hx_[k] == best) peek(k);
     }
     if (first > last) continue;  // no lit cell: the pass is dropped
     uncover(scan_);
@@ -90,7 +114,11 @@ bool ScanPlanner::nextPass(ScanPass& out) {
       if (row_[k] < 0) continue;
       cells_.open(k, static_cast<uint16_t>(row_[k]), descending_);
       peek(k);
+      pending_[k] = false;
     }
+    started_ = false;
+    ready_ = 0;
+    jumpReady_ = false;
     const int32_t reach = static_cast<int32_t>((h_.pitchUm[0] + 1) / 2 + motion_.overscanUm);
     out.hy = hy;
     out.descending = descending_;
@@ -102,8 +130,7 @@ bool ScanPlanner::nextPass(ScanPass& out) {
     const uint32_t tx = moveTimeUs(absDiff(out.runUpUm, curX_), m_.vmaxUmS[0], m_.accelUmS2[0]);
     const uint32_t ty = moveTimeUs(absDiff(y, curY_), m_.vmaxUmS[1], m_.accelUmS2[1]);
     const uint32_t move = tx > ty ? tx : ty;
-    estimate_ += move + (move ? m_.settleUs : 0) + m_.overheadUs + 2ull * motion_.accelUs +
-                 static_cast<uint64_t>(last - first + 1) * motion_.windowUs;
+    estimate_ += move + (move ? m_.settleUs : 0) + m_.overheadUs + 2ull * motion_.accelUs + span;
     curX_ = out.runOutUm;
     curY_ = y;
     passes_++;
@@ -112,19 +139,85 @@ bool ScanPlanner::nextPass(ScanPass& out) {
   return false;
 }
 
-bool ScanPlanner::nextSwitch(uint8_t led, uint32_t& onUs, uint32_t& offUs) {
-  if (!live_[led]) return false;
+// F(g) when flying g blank windows beats crossing them at the speed, else 0.
+uint32_t ScanPlanner::fly(uint32_t g) {
+  if (!flies_) return 0;
+  const int64_t move = moveTimeUs(g * h_.pitchUm[0] + 2 * motion_.overscanUm, m_.vmaxUmS[0], m_.accelUmS2[0]);
+  int64_t f = move - 2 * static_cast<int64_t>(motion_.accelUs);
+  if (f < 1) f = 1;
+  return static_cast<uint64_t>(f) < static_cast<uint64_t>(g) * motion_.windowUs ? static_cast<uint32_t>(f) : 0;
+}
+
+// Takes the pass's next lit window in its direction: its start S(j), a jump before it if flown, and
+// its LEDs' cells, which extend or close each LED's open interval.
+bool ScanPlanner::nextLitWindow(uint32_t& j) {
+  bool any = false;
+  int32_t best = 0;
+  for (uint8_t k = 0; k < 4; k++)
+    if (live_[k] && (!any || (descending_ ? hx_[k] > best : hx_[k] < best))) {
+      best = hx_[k];
+      any = true;
+    }
+  if (!any) return false;
   const uint32_t w = motion_.windowUs;
-  const auto onOf = [&](int32_t hx, uint32_t us) {
-    const uint32_t j = static_cast<uint32_t>(descending_ ? start_ - hx : hx - start_);
-    return j * w + (w - us) / 2;
-  };
-  onUs = onOf(hx_[led], us_[led]);
-  offUs = onUs + us_[led];
+  j = static_cast<uint32_t>(descending_ ? start_ - best : best - start_);
+  uint32_t s = j * w;
+  if (started_) {
+    const uint32_t g = j - lastJ_ - 1;
+    const uint32_t f = g ? fly(g) : 0;
+    s = f ? lastS_ + w + f : lastS_ + (j - lastJ_) * w;
+    if (f) {
+      jumpReady_ = true;
+      jumpWindow_ = lastJ_ + 1;
+      jumpWindows_ = g;
+      jumpUs_ = f;
+    }
+  }
+  started_ = true;
+  lastJ_ = j;
+  lastS_ = s;
+  for (uint8_t k = 0; k < 4; k++) {
+    if (!live_[k] || hx_[k] != best) continue;
+    const uint32_t on = s + (w - us_[k]) / 2, off = on + us_[k];
+    if (pending_[k] && pendOff_[k] == on) {
+      pendOff_[k] = off;  // touching: the LED stays on
+    } else {
+      if (pending_[k]) {
+        ready_ |= static_cast<uint8_t>(1 << k);
+        readyOn_[k] = pendOn_[k];
+        readyOff_[k] = pendOff_[k];
+      }
+      pending_[k] = true;
+      pendOn_[k] = on;
+      pendOff_[k] = off;
+    }
+    peek(k);
+  }
+  return true;
+}
+
+bool ScanPlanner::next(ScanEvent& out) {
   for (;;) {
-    peek(led);
-    if (!live_[led] || onOf(hx_[led], us_[led]) != offUs) return true;
-    offUs += us_[led];  // touching: the LED stays on
+    if (jumpReady_) {
+      jumpReady_ = false;
+      out = ScanEvent{true, 0, 0, 0, jumpWindow_, jumpWindows_, jumpUs_};
+      return true;
+    }
+    for (uint8_t k = 0; k < 4; k++) {
+      if (!(ready_ & (1 << k))) continue;
+      ready_ &= static_cast<uint8_t>(~(1 << k));
+      out = ScanEvent{false, k, readyOn_[k], readyOff_[k], 0, 0, 0};
+      return true;
+    }
+    uint32_t j;
+    if (nextLitWindow(j)) continue;
+    for (uint8_t k = 0; k < 4; k++) {  // the pass's end closes every open interval
+      if (!pending_[k]) continue;
+      pending_[k] = false;
+      out = ScanEvent{false, k, pendOn_[k], pendOff_[k], 0, 0, 0};
+      return true;
+    }
+    return false;
   }
 }
 

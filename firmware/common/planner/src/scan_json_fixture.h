@@ -16,15 +16,14 @@ inline nlohmann::json scanPlanJson(const uv::JobHeader& h, const std::vector<std
   json passes = json::array();
   uv::ScanPass p;
   while (planner.nextPass(p)) {
-    json leds = json::array();
-    for (uint8_t k = 0; k < 4; k++) {
-      json list = json::array();
-      uint32_t on, off;
-      while (planner.nextSwitch(k, on, off)) list.push_back({on, off});
-      leds.push_back(list);
+    json leds = {json::array(), json::array(), json::array(), json::array()}, jumps = json::array();
+    uv::ScanEvent e;
+    while (planner.next(e)) {
+      if (e.jump) jumps.push_back({e.window, e.windows, e.flyUs});
+      else leds[e.led].push_back({e.onUs, e.offUs});
     }
     passes.push_back({{"hy", p.hy}, {"descending", p.descending}, {"first", p.first}, {"last", p.last},
-                      {"runUpUm", p.runUpUm}, {"runOutUm", p.runOutUm}, {"leds", leds}});
+                      {"runUpUm", p.runUpUm}, {"runOutUm", p.runOutUm}, {"leds", leds}, {"jumps", jumps}});
   }
   return {{"windowUs", motion.windowUs}, {"speedUmS", motion.speedUmS}, {"accelUs", motion.accelUs},
           {"overscanUm", motion.overscanUm}, {"passes", passes}, {"estimateUs", planner.estimateUs()}};

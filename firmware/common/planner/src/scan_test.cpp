@@ -63,12 +63,23 @@ JobHeader smallJob(uint16_t cols, uint16_t rows) {
   return h;
 }
 
-std::vector<std::vector<uint32_t>> switchesOf(ScanPlanner& planner, uint8_t led) {
-  std::vector<std::vector<uint32_t>> out;
-  uint32_t on, off;
-  while (planner.nextSwitch(led, on, off)) out.push_back({on, off});
+// The current pass's events: each LED's intervals, then the jumps, as lists of numbers.
+struct PassEvents {
+  std::vector<std::vector<uint32_t>> leds[4];
+  std::vector<std::vector<uint32_t>> jumps;
+};
+
+PassEvents eventsOf(ScanPlanner& planner) {
+  PassEvents out;
+  ScanEvent e;
+  while (planner.next(e)) {
+    if (e.jump) out.jumps.push_back({e.window, e.windows, e.flyUs});
+    else out.leds[e.led].push_back({e.onUs, e.offUs});
+  }
   return out;
 }
+
+using Lists = std::vector<std::vector<uint32_t>>;
 
 }  // namespace
 
@@ -94,14 +105,19 @@ TEST(ScanPlanner, CentresGrayCellsMergesFullRunsAndReversesTheSecondPass) {
   EXPECT_EQ(p.first, 2);
   EXPECT_EQ(p.last, 5);
   EXPECT_EQ(p.runUpUm, 1000 + 100 - 25 - 105);
-  EXPECT_EQ(switchesOf(planner, 0), (std::vector<std::vector<uint32_t>>{{0, 4000}, {4498, 5502}, {6000, 8000}}));
+  PassEvents a = eventsOf(planner);
+  EXPECT_EQ(a.leds[0], (Lists{{0, 4000}, {4498, 5502}, {6000, 8000}}));
+  EXPECT_EQ(a.jumps, Lists{});
   ASSERT_TRUE(planner.nextPass(p));
   EXPECT_TRUE(p.descending);
   EXPECT_EQ(p.hy, 4);
   EXPECT_EQ(p.first, 3);
   EXPECT_EQ(p.last, 9);
   EXPECT_EQ(p.runUpUm, 1000 + 450 + 25 + 105);
-  EXPECT_EQ(switchesOf(planner, 0), (std::vector<std::vector<uint32_t>>{{0, 2000}, {12800, 13200}}));
+  // Five blank windows flown in F(5) = 2 × isqrt(460e12 / 3e6) − 2 × 8334 = 8096 µs, not 10000.
+  PassEvents b = eventsOf(planner);
+  EXPECT_EQ(b.jumps, (Lists{{1, 5, 8096}}));
+  EXPECT_EQ(b.leds[0], (Lists{{0, 2000}, {2000 + 8096 + 800, 2000 + 8096 + 1200}}));
   EXPECT_FALSE(planner.nextPass(p));
 }
 
@@ -117,8 +133,11 @@ TEST(ScanPlanner, NegativeOffsetsAndTheSpeedCap) {
   ASSERT_TRUE(planner.nextPass(p));
   EXPECT_EQ(p.first, 1);
   EXPECT_EQ(p.last, 8);
-  const uint32_t on[4] = {8000, 14000, 0, 10000};
-  for (uint8_t k = 0; k < 4; k++) EXPECT_EQ(switchesOf(planner, k), (std::vector<std::vector<uint32_t>>{{on[k], on[k] + 2000}}));
+  // Lit in windows 0, 4, 5 and 7: F(3) = 5240 and F(1) = 1950 µs beat 6000 and 2000.
+  PassEvents e = eventsOf(planner);
+  EXPECT_EQ(e.jumps, (Lists{{1, 3, 5240}, {6, 1, 1950}}));
+  const uint32_t on[4] = {7240, 13190, 0, 9240};
+  for (uint8_t k = 0; k < 4; k++) EXPECT_EQ(e.leds[k], (Lists{{on[k], on[k] + 2000}})) << "LED " << int(k);
 
   Machine slow = kMachine;
   slow.vmaxUmS[0] = 10000;  // 5000 µs windows: full cells no longer touch
@@ -129,7 +148,7 @@ TEST(ScanPlanner, NegativeOffsetsAndTheSpeedCap) {
   EXPECT_EQ(capped.motion().windowUs, 5000u);
   EXPECT_EQ(capped.motion().speedUmS, 10000u);
   ASSERT_TRUE(capped.nextPass(p));
-  EXPECT_EQ(switchesOf(capped, 0), (std::vector<std::vector<uint32_t>>{{1500, 3500}, {6500, 8500}}));
+  EXPECT_EQ(eventsOf(capped).leds[0], (Lists{{1500, 3500}, {6500, 8500}}));
 }
 
 TEST(ScanPlanner, PlansAPassAtATimeWithoutTheHeap) {
@@ -143,15 +162,14 @@ TEST(ScanPlanner, PlansAPassAtATimeWithoutTheHeap) {
   ScanPass p;
   int passes = 0;
   while (planner.nextPass(p)) {
-    uint32_t on, off;
-    for (uint8_t k = 0; k < 4; k++)
-      while (planner.nextSwitch(k, on, off)) {
-      }
+    ScanEvent e;
+    while (planner.next(e)) {
+    }
     passes++;
   }
   EXPECT_EQ(allocations - before, 0) << "the scan planner allocated";
   EXPECT_EQ(passes, 16);
-  // Each LED's row is read three times: for the first lit cell, the last, and the switch times.
-  EXPECT_EQ(cells.rowsOpened, 3 * 64);
+  // Each LED's row is read twice: for the pass's extent and time, then for its events.
+  EXPECT_EQ(cells.rowsOpened, 2 * 64);
   std::printf("[scan memory] sizeof(ScanPlanner) = %zu bytes\n", sizeof(ScanPlanner));
 }
