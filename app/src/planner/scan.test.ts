@@ -4,7 +4,7 @@ import type { PrintJob } from '../protocol/job-types';
 import { durationTables } from './dose';
 import { GEOMETRIES, MACHINE, randomJob } from './golden';
 import { headerOf } from './job-header';
-import { passRows } from './planner';
+import { passRows, planJob } from './planner';
 import { scanGoldenCases, type ScanCase } from './scan-golden';
 import { planScan, type ScanPlan } from './scan';
 import { moveTimeUs, type Machine } from './time-model';
@@ -88,6 +88,18 @@ describe('scan planner', () => {
       }
     }
     expect(cells).toBeGreaterThan(5000);
+  });
+
+  it('exposes the rows in the passes of the stop planner, serpentine', () => {
+    for (const offsets of Object.values(GEOMETRIES)) {
+      for (let seed = 0; seed < 20; seed++) {
+        const j = randomJob(7000 + seed, offsets, 'serpentine');
+        const stops = planJob({ header: headerOf(j), cells: j.gridData }, MACHINE);
+        const rows = [...new Set(stops.hy)];
+        expect(plan(j).passes.map((p) => p.hy)).toEqual(rows);
+        expect(plan(j).passes.map((p) => p.descending)).toEqual(rows.map((_, i) => i % 2 === 1));
+      }
+    }
   });
 
   it('centres a one-cell feature in its window, at the window, speed and overscan of the protocol', () => {

@@ -4,11 +4,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <vector>
 
 #include "grid_cells.h"
 #include "job_json_fixture.h"
+#include "planner.h"
 #include "scan_json_fixture.h"
 #include "vectors_fixture.h"
 
@@ -44,6 +46,17 @@ void checkScanGolden(const char* file) {
   }
   std::printf("[vectors] %s: %zu scan plans checked (C++)\n", file, v["cases"].size());
 }
+
+// The random jobs' source: xorshift32, a number below n each call.
+struct Xorshift {
+  uint32_t seed;
+  uint32_t operator()(uint32_t n) {
+    seed ^= seed << 13;
+    seed ^= seed >> 17;
+    seed ^= seed << 5;
+    return seed % n;
+  }
+};
 
 const Machine kMachine{{150000, 100000}, {3000000, 2000000}, 2000, 1500, {0, 0}};
 
@@ -172,4 +185,77 @@ TEST(ScanPlanner, PlansAPassAtATimeWithoutTheHeap) {
   // Each LED's row is read twice: for the pass's extent and time, then for its events.
   EXPECT_EQ(cells.rowsOpened, 2 * 64);
   std::printf("[scan memory] sizeof(ScanPlanner) = %zu bytes\n", sizeof(ScanPlanner));
+}
+
+TEST(ScanPlanner, EveryLitCellItsDoseOnceWithLedsSpreadOverManyRows) {
+  // As the stop planner's property test: rows taken live in a ring of kCoveredWindowRows, jobs are
+  // taller than it, and every lit cell still gets exactly its t_k(v) once, read back from the events.
+  Xorshift rnd{4242};
+  for (int trial = 0; trial < 16; trial++) {
+    const uint16_t rows = static_cast<uint16_t>(1200 + rnd(1500)), cols = static_cast<uint16_t>(3 + rnd(30));
+    std::vector<std::vector<uint8_t>> grid(rows, std::vector<uint8_t>(cols, 0));
+    for (auto& row : grid)
+      for (auto& v : row)
+        if (rnd(3) == 0) v = static_cast<uint8_t>(1 + rnd(255));
+    JobHeader h = smallJob(cols, rows);
+    h.fullUs = 500 + rnd(3000);
+    const uint16_t spread = trial % 3 == 0 ? static_cast<uint16_t>(kCoveredWindowRows - 1) : static_cast<uint16_t>(rnd(kCoveredWindowRows));
+    for (int k = 0; k < 4; k++) {
+      h.gainPermille[k] = static_cast<uint16_t>(800 + rnd(400));
+      h.offsets[k][0] = static_cast<int16_t>(rnd(7)) - 3;
+      h.offsets[k][1] = static_cast<int16_t>(k == 3 ? spread : rnd(spread + 1u));
+    }
+    GridCells cells(grid);
+    ScanPlanner planner(h, cells, kMachine);
+    ASSERT_TRUE(planner.supported());
+    const Durations dose(h);
+    const uint32_t w = planner.motion().windowUs;
+    std::vector<std::vector<int64_t>> got(rows, std::vector<int64_t>(cols, 0));
+    ScanPass p;
+    while (planner.nextPass(p)) {
+      PassEvents e = eventsOf(planner);
+      // Window starts S(j), with the jumps' windows skipped.
+      const uint32_t n = static_cast<uint32_t>(p.last - p.first + 1);
+      std::vector<int64_t> s(n, -1);
+      size_t next = 0;
+      for (uint32_t j = 0, t = 0; j < n; j++) {
+        if (next < e.jumps.size() && e.jumps[next][0] == j) {
+          t += e.jumps[next][2];
+          j += e.jumps[next][1] - 1;
+          next++;
+          continue;
+        }
+        s[j] = t;
+        t += w;
+      }
+      ASSERT_EQ(next, e.jumps.size()) << "trial " << trial;
+      for (uint8_t k = 0; k < 4; k++) {
+        for (const auto& iv : e.leds[k]) {
+          for (uint32_t j = 0; j < n; j++) {
+            if (s[j] < 0) continue;
+            const int64_t lo = std::max<int64_t>(iv[0], s[j]), hi = std::min<int64_t>(iv[1], s[j] + w);
+            if (hi <= lo) continue;
+            const int32_t hx = p.descending ? p.last - static_cast<int32_t>(j) : p.first + static_cast<int32_t>(j);
+            const int32_t r = p.hy + h.offsets[k][1], c = hx + h.offsets[k][0];
+            ASSERT_TRUE(r >= 0 && r < rows && c >= 0 && c < cols) << "trial " << trial;
+            ASSERT_EQ(got[r][c], 0) << "trial " << trial << ": cell " << r << "," << c << " exposed twice";
+            got[r][c] = (hi - lo) * 8 + k;  // its time, and which LED
+          }
+        }
+      }
+    }
+    // The LED that exposes each row: the stop planner's, which this shares the pass rules with.
+    std::vector<int> led(rows, -1);
+    Planner stops(h, cells, kMachine);
+    Stop st;
+    while (stops.next(st))
+      for (int k = 0; k < 4; k++)
+        if (st.us[k]) led[st.hy + h.offsets[k][1]] = k;
+    for (int r = 0; r < rows; r++)
+      for (int c = 0; c < cols; c++) {
+        const int k = led[r];
+        const int64_t want = k >= 0 && dose.us(static_cast<uint8_t>(k), grid[r][c]) ? dose.us(static_cast<uint8_t>(k), grid[r][c]) * 8 + k : 0;
+        ASSERT_EQ(got[r][c], want) << "trial " << trial << " cell " << r << "," << c;
+      }
+  }
 }
