@@ -5,8 +5,10 @@ import { pcbBench } from './pcb.bench';
 import { editorBench } from './editor.bench';
 import { p1 } from './link.bench';
 import { p2, p7, printP2 } from './planner.bench';
+import { p10, printP10 } from './scan.bench';
 
 printTable([...jobCodecBench(), ...p7(), ...pcbBench()]);
 printP2(p2());
+printP10(p10());
 await p1();
 await editorBench();

@@ -22,11 +22,13 @@ EXPECTED = {
     "planner-ts.json": {"cases": "plan"},
     "planner-cpp.json": {"cases": "plan"},
     "mesh.json": {"cases": "points"},
+    "scan-ts.json": {"cases": "scan"},
+    "scan-cpp.json": {"cases": "scan"},
 }
 # The C++ test program that reads each file.
 CXX_BINARY = {"nano.json": "protocol_tests", "mega.json": "protocol_tests", "job.json": "protocol_tests",
               "esp.json": "esp_tests", "planner-ts.json": "planner_tests", "planner-cpp.json": "planner_tests",
-              "mesh.json": "planner_tests"}
+              "mesh.json": "planner_tests", "scan-ts.json": "planner_tests", "scan-cpp.json": "planner_tests"}
 
 
 def mutate(value, rng):

@@ -92,13 +92,18 @@ interface Pass {
   last: number;
 }
 
-/** Passes in the order they open (protocol/planner.md "Passes"), stops merged ascending. */
-function buildPasses(h: JobHeader, rows: ArrayLike<number>[], tables: Uint32Array[]): Pass[] {
-  const dx = h.offsets.map((o) => o[0]);
+/** A pass's head row and the row each LED exposes in it, or -1. */
+export interface PassRows {
+  hy: number;
+  ledRows: number[];
+}
+
+/** The rows each pass gives its LEDs, in the order the passes open (protocol/planner.md "Passes"). */
+export function passRows(h: JobHeader, rows: ArrayLike<number>[]): PassRows[] {
   const dy = h.offsets.map((o) => o[1]);
   const dyMin = Math.min(...dy);
   const covered = new Uint8Array(h.rows);
-  const passes: Pass[] = [];
+  const out: PassRows[] = [];
   for (let r = 0; r < h.rows; r++) {
     if (covered[r]) continue;
     const row = rows[r];
@@ -106,15 +111,24 @@ function buildPasses(h: JobHeader, rows: ArrayLike<number>[], tables: Uint32Arra
     for (let c = 0; c < row.length && !nonEmpty; c++) nonEmpty = row[c] > 0;
     if (!nonEmpty) continue;
     const hy = r - dyMin;
-    const cols: (Int32Array | null)[] = [null, null, null, null];
     const ledRows = [-1, -1, -1, -1];
     for (let k = 0; k < 4; k++) {
       const rk = hy + dy[k];
       if (rk < 0 || rk >= h.rows || covered[rk]) continue;
       covered[rk] = 1;
       ledRows[k] = rk;
-      cols[k] = nonZeroColumns(rows[rk]);
     }
+    out.push({ hy, ledRows });
+  }
+  return out;
+}
+
+/** Passes in the order they open (protocol/planner.md "Passes"), stops merged ascending. */
+function buildPasses(h: JobHeader, rows: ArrayLike<number>[], tables: Uint32Array[]): Pass[] {
+  const dx = h.offsets.map((o) => o[0]);
+  const passes: Pass[] = [];
+  for (const { hy, ledRows } of passRows(h, rows)) {
+    const cols = ledRows.map((rk) => (rk < 0 ? null : nonZeroColumns(rows[rk])));
     let first = Infinity, last = -Infinity, total = 0;
     for (let k = 0; k < 4; k++) {
       const ck = cols[k];

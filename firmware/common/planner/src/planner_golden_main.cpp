@@ -1,5 +1,5 @@
-// Writes protocol/vectors/planner-cpp.json: golden plans made by the C++ planner, for the TypeScript
-// suite to check (npm run vectors:planner). Host tool, not firmware.
+// Writes protocol/vectors/planner-cpp.json (and scan-cpp.json): golden plans made by the C++ planners,
+// for the TypeScript suite to check (npm run vectors:planner). Host tool, not firmware.
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -8,6 +8,7 @@
 #include "grid_cells.h"
 #include "job_json_fixture.h"
 #include "planner.h"
+#include "scan_json_fixture.h"
 #include "time_model.h"
 
 using nlohmann::json;
@@ -54,11 +55,42 @@ json makeJob(Rng& r, const std::vector<std::array<int, 2>>& offsets, const char*
           {"gridData", grid}};
 }
 
+// Scan plans (planner.md "Scan mode") of random jobs, on the same machine and on one that caps the speed.
+void writeScans(const char* path, const std::vector<std::pair<const char*, std::vector<std::array<int, 2>>>>& geometries,
+                const uv::Machine& fast, const json& fastJson) {
+  const uv::Machine slow{{8000, 90000}, {600000, 1500000}, 1000, 900, {0, 4000}};
+  const json slowJson = {{"vmaxUmS", {8000, 90000}}, {"accelUmS2", {600000, 1500000}}, {"settleUs", 1000},
+                         {"overheadUs", 900}, {"startUm", {0, 4000}}};
+  Rng r(20261124);
+  json cases = json::array();
+  for (const auto& [gname, offsets] : geometries) {
+    for (int n = 0; n < 5; n++) {
+      json job = makeJob(r, offsets, "serpentine");
+      // Real doses: a window under a second or so (random targets make minutes).
+      if (job["dose"].contains("targetUJcm2")) job["dose"]["targetUJcm2"] = job["dose"]["targetUJcm2"].get<int>() / 1000 + 1;
+      if (n == 4) {  // full cells at uncapped speed fill their windows: runs merge
+        job["dose"] = {{"map", "threshold"}, {"level", 60}, {"fullUs", 1200 + r.below(900)}};
+        job["leds"]["gainPermille"] = {1000, 1000, 1000, 1000};
+      }
+      const bool capped = n % 2 == 1;
+      uv::JobHeader h = uvtest::headerFrom(job);
+      std::vector<std::vector<uint8_t>> rows;
+      for (const auto& row : job["gridData"]) rows.emplace_back(row.begin(), row.end());
+      cases.push_back({{"name", std::string("c++ scan ") + gname + " #" + std::to_string(n)},
+                       {"job", job},
+                       {"machine", capped ? slowJson : fastJson},
+                       {"scan", uvtest::scanPlanJson(h, rows, capped ? slow : fast)}});
+    }
+  }
+  std::ofstream(path) << json({{"version", 1}, {"madeBy", "c++"}, {"cases", cases}}).dump() << "\n";
+  std::printf("wrote %zu scan cases\n", cases.size());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 2) {
-    std::fprintf(stderr, "usage: planner_golden <out.json>\n");
+  if (argc != 2 && argc != 3) {
+    std::fprintf(stderr, "usage: planner_golden <planner out.json> [<scan out.json>]\n");
     return 2;
   }
   const std::vector<std::pair<const char*, std::vector<std::array<int, 2>>>> geometries = {
@@ -98,5 +130,6 @@ int main(int argc, char** argv) {
   }
   std::ofstream(argv[1]) << json({{"version", 1}, {"madeBy", "c++"}, {"cases", cases}}).dump() << "\n";
   std::printf("wrote %zu cases\n", cases.size());
+  if (argc == 3) writeScans(argv[2], geometries, m, machine);
   return 0;
 }

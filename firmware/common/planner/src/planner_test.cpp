@@ -18,8 +18,12 @@
 using namespace uv;
 using namespace uvtest;
 
-namespace {
+namespace uvtest {
+// Heap allocations so far: scan_test.cpp counts them too.
 std::atomic<long> allocations{0};
+}  // namespace uvtest
+
+namespace {
 
 // The random jobs' source: xorshift32, a number below n each call.
 struct Xorshift {

@@ -1,0 +1,42 @@
+// Golden scan cases: random small jobs over several geometries and machines, with the scan plan this
+// implementation makes. `npm run vectors:planner` writes them to protocol/vectors/scan-ts.json.
+
+import type { PrintJob } from '../protocol/job-types';
+import { GEOMETRIES, MACHINE, randomJob } from './golden';
+import { headerOf } from './job-header';
+import { planScan, type ScanPlan } from './scan';
+import type { Machine } from './time-model';
+
+/** A machine whose X maximum caps the speed of most jobs. */
+export const SLOW_MACHINE: Machine = { ...MACHINE, vmaxUmS: [9000, 100_000], accelUmS2: [700_000, 2_000_000], startUm: [3000, 500] };
+
+export interface ScanCase {
+  name: string;
+  job: PrintJob;
+  machine: Machine;
+  scan: ScanPlan;
+}
+
+export function scanCase(name: string, job: PrintJob, machine: Machine): ScanCase {
+  // Keep a window under a second or so, as real doses are: random targets make minutes.
+  if ('targetUJcm2' in job.dose) job.dose.targetUJcm2 = Math.ceil(job.dose.targetUJcm2 / 1000);
+  return { name, job, machine, scan: planScan({ header: headerOf(job), cells: job.gridData }, machine) };
+}
+
+export function scanGoldenCases(): ScanCase[] {
+  const out: ScanCase[] = [];
+  let seed = 3000;
+  for (const [g, offsets] of Object.entries(GEOMETRIES)) {
+    for (let n = 0; n < 4; n++) out.push(scanCase(`ts scan ${g} #${n}`, randomJob(seed++, offsets, 'serpentine'), n % 2 ? SLOW_MACHINE : MACHINE));
+    out.push(scanCase(`ts scan ${g} wide`, randomJob(seed++, offsets, 'serpentine', [70, 12]), MACHINE));
+    out.push(scanCase(`ts scan ${g} sparse`, randomJob(seed++, offsets, 'serpentine', [60, 30], 0.03), SLOW_MACHINE));
+  }
+  // Full cells at uncapped speed fill their windows: runs merge into one interval per LED.
+  for (const [g, offsets] of Object.entries(GEOMETRIES)) {
+    const j = randomJob(seed++, offsets, 'serpentine', [40, 10], 0.8);
+    j.dose = { map: 'threshold', level: 100, fullUs: 1500 + (seed % 7) * 113 };
+    j.leds.gainPermille = [1000, 1000, 1000, 1000];
+    out.push(scanCase(`ts scan ${g} runs`, j, MACHINE));
+  }
+  return out;
+}

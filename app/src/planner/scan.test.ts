@@ -1,0 +1,197 @@
+import { readFileSync } from 'node:fs';
+import { describe, expect, it } from 'vitest';
+import type { PrintJob } from '../protocol/job-types';
+import { durationTables } from './dose';
+import { GEOMETRIES, MACHINE, randomJob } from './golden';
+import { headerOf } from './job-header';
+import { passRows, planJob } from './planner';
+import { scanGoldenCases, type ScanCase } from './scan-golden';
+import { planScan, type ScanPlan } from './scan';
+import { moveTimeUs, type Machine } from './time-model';
+
+/** The fly of g blank windows on MACHINE at 50 µm, 2000 µs windows (planner.md "Blank stretches"). */
+const F = (g: number) => Math.max(1, moveTimeUs(g * 50 + 2 * 105, 150000, 3000000) - 2 * 8334);
+
+const plan = (job: PrintJob, machine: Machine = MACHINE) => planScan({ header: headerOf(job), cells: job.gridData }, machine);
+
+/** A job on a blank grid with the given lit cells [col, row, value]. */
+function job(cols: number, rows: number, lit: [number, number, number][], over: Partial<PrintJob> = {}): PrintJob {
+  const gridData = Array.from({ length: rows }, () => new Array<number>(cols).fill(0));
+  for (const [c, r, v] of lit) gridData[r][c] = v;
+  return {
+    grid: { cols, rows }, pitchUm: { x: 50, y: 50 }, originUm: { x: 1000, y: 2000 },
+    dose: { map: 'linear', fullUs: 2000 }, leds: { offsets: GEOMETRIES.adjacent }, strategy: { name: 'serpentine' },
+    gridData, ...over,
+  };
+}
+
+/** Each cell's on-time, read back from the switch lists: the part of each interval inside each window. */
+function doses(j: PrintJob, p: ScanPlan): Map<string, [number, number]> {
+  const out = new Map<string, [number, number]>();
+  const W = p.windowUs;
+  for (const pass of p.passes) {
+    // Window starts: W apart, but a jump [first blank window, g, µs] takes its µs for its g windows.
+    const S: number[] = [];
+    for (let w = 0, t = 0; w <= pass.last - pass.first; w++) {
+      const jump = pass.jumps.find(([at]) => at === w);
+      if (jump) {
+        t += jump[2];
+        w += jump[1] - 1;
+        continue;
+      }
+      S.push(w, t);
+      t += W;
+    }
+    pass.leds.forEach((list, k) => {
+      let end = -1;
+      for (const [on, off] of list) {
+        expect(on, 'intervals in time order, apart').toBeGreaterThan(end);
+        expect(off).toBeGreaterThan(on);
+        end = off;
+        for (let i = 0; i < S.length; i += 2) {
+          const w = S[i], t = Math.min(off, S[i + 1] + W) - Math.max(on, S[i + 1]);
+          if (t <= 0) continue;
+          const hx = pass.descending ? pass.last - w : pass.first + w;
+          const key = `${hx + j.leds.offsets[k][0]},${pass.hy + j.leds.offsets[k][1]}`;
+          const had = out.get(key);
+          if (had) expect(had[1], `${key} lit by two LEDs`).toBe(k);
+          out.set(key, [(had?.[0] ?? 0) + t, k]);
+        }
+      }
+    });
+  }
+  return out;
+}
+
+describe('scan planner', () => {
+  it('gives every lit cell its stop-mode dose to the µs, once, and nothing else', () => {
+    let cells = 0;
+    for (const offsets of Object.values(GEOMETRIES)) {
+      for (let seed = 0; seed < 40; seed++) {
+        const j = randomJob(5000 + seed, offsets, 'serpentine');
+        const tables = durationTables(headerOf(j));
+        const p = plan(j, seed % 3 ? MACHINE : { ...MACHINE, vmaxUmS: [2000, 2000] });
+        const got = doses(j, p);
+        const owner = new Array<number>(j.grid.rows).fill(-1); // the LED its pass gives each row
+        for (const { ledRows } of passRows(headerOf(j), j.gridData)) ledRows.forEach((r, k) => r >= 0 && (owner[r] = k));
+        j.gridData.forEach((row, r) =>
+          Array.from(row).forEach((v, c) => {
+            const k = owner[r];
+            const [d, by] = got.get(`${c},${r}`) ?? [0, k];
+            if (d) cells++;
+            expect([d, by], `cell ${c},${r} value ${v}`).toEqual([k >= 0 ? tables[k][v] : 0, k]);
+            got.delete(`${c},${r}`);
+          }),
+        );
+        expect([...got.keys()], 'light outside the grid').toEqual([]);
+        p.passes.forEach((pass, i) => expect(pass.descending).toBe(i % 2 === 1));
+      }
+    }
+    expect(cells).toBeGreaterThan(5000);
+  });
+
+  it('exposes the rows in the passes of the stop planner, serpentine', () => {
+    for (const offsets of Object.values(GEOMETRIES)) {
+      for (let seed = 0; seed < 20; seed++) {
+        const j = randomJob(7000 + seed, offsets, 'serpentine');
+        const stops = planJob({ header: headerOf(j), cells: j.gridData }, MACHINE);
+        const rows = [...new Set(stops.hy)];
+        expect(plan(j).passes.map((p) => p.hy)).toEqual(rows);
+        expect(plan(j).passes.map((p) => p.descending)).toEqual(rows.map((_, i) => i % 2 === 1));
+      }
+    }
+  });
+
+  it('centres a one-cell feature in its window, at the window, speed and overscan of the protocol', () => {
+    const p = plan(job(10, 4, [[3, 0, 255]]));
+    expect([p.windowUs, p.speedUmS]).toEqual([2000, 25000]);
+    // tA = ceil(50e12 / (3e6 × 2000)) = 8334 µs; o = ceil(50 × 8334 / 4000) = 105 µm.
+    expect([p.accelUs, p.overscanUm]).toEqual([8334, 105]);
+    expect(p.passes).toEqual([{ hy: 0, descending: false, first: 3, last: 3, runUpUm: 1000 + 150 - 25 - 105, runOutUm: 1000 + 150 + 25 + 105, leds: [[[0, 2000]], [], [], []], jumps: [] }]);
+    const move = Math.max(moveTimeUs(1020, 150000, 3000000), moveTimeUs(2000, 100000, 2000000));
+    expect(p.estimateUs).toBe(move + 2000 + 1500 + 2 * 8334 + 2000);
+  });
+
+  it('writes gray levels as on-time within the window, and merges only runs that fill their windows', () => {
+    const p = plan(job(10, 4, [[2, 0, 255], [3, 0, 255], [4, 0, 128], [5, 0, 255], [2, 1, 51], [3, 1, 51]]));
+    // t(128) = round(2000 × 128 / 255) = 1004: (2000 − 1004) / 2 = 498 µs in. t(51) = 400.
+    expect(p.passes[0].leds[0]).toEqual([[0, 4000], [4000 + 498, 4000 + 498 + 1004], [6000, 8000]]);
+    expect(p.passes[0].leds[1]).toEqual([[800, 1200], [2800, 3200]]);
+  });
+
+  it('reverses the second pass: windows count from the last column, times mirror', () => {
+    const p = plan(job(12, 8, [[2, 0, 255], [7, 0, 51], [3, 4, 51], [9, 4, 255], [9, 5, 102]]));
+    const [a, b] = p.passes;
+    expect([a.descending, a.first, a.last]).toEqual([false, 2, 7]);
+    expect(a.jumps).toEqual([[1, 4, F(4)]]);
+    expect(a.leds[0]).toEqual([[0, 2000], [2000 + F(4) + 800, 2000 + F(4) + 1200]]);
+    expect([b.hy, b.descending, b.first, b.last]).toEqual([4, true, 3, 9]);
+    expect(b.jumps).toEqual([[1, 5, F(5)]]);
+    expect(b.leds[0]).toEqual([[0, 2000], [2000 + F(5) + 800, 2000 + F(5) + 1200]]);
+    expect(b.leds[1]).toEqual([[600, 1400]]); // t(102) = 800
+    expect([b.runUpUm, b.runOutUm]).toEqual([1000 + 9 * 50 + 25 + 105, 1000 + 3 * 50 - 25 - 105]);
+  });
+
+  it('places each LED by its own column offset, negative ones too', () => {
+    const offsets: [number, number][] = [[0, 0], [-3, 1], [4, 2], [-1, 3]];
+    const p = plan(job(12, 4, [[5, 0, 255], [5, 1, 255], [5, 2, 255], [5, 3, 255]], { leds: { offsets } }));
+    const [pass] = p.passes;
+    // Head columns 5, 8, 1, 6: the pass runs from 1 to 8, lit in windows 0, 4, 5 and 7.
+    expect([pass.first, pass.last]).toEqual([1, 8]);
+    expect([F(1), F(3)]).toEqual([1950, 5240]); // each beats crossing at the speed: 2000, 6000 µs
+    expect(pass.jumps).toEqual([[1, 3, F(3)], [6, 1, F(1)]]);
+    const S4 = 2000 + F(3), S5 = S4 + 2000, S7 = S5 + 2000 + F(1);
+    expect(pass.leds).toEqual([[[S4, S4 + 2000]], [[S7, S7 + 2000]], [[0, 2000]], [[S5, S5 + 2000]]]);
+    const move = Math.max(moveTimeUs(1000 + 50 - 25 - 105, 150000, 3000000), moveTimeUs(2000, 100000, 2000000));
+    expect(p.estimateUs).toBe(move + 2000 + 1500 + 2 * 8334 + S7 + 2000);
+  });
+
+  it('flies no blank stretch when the speed is capped, and one only when it beats the speed', () => {
+    const slow = { ...MACHINE, vmaxUmS: [10000, 100000] as [number, number] };
+    expect(plan(job(40, 4, [[2, 0, 255], [30, 0, 255]]), slow).passes[0].jumps).toEqual([]);
+    // A slow axis: a fly of one window would take longer than the window.
+    const lazy = { ...MACHINE, accelUmS2: [300000, 2000000] as [number, number] };
+    const p = plan(job(40, 4, [[2, 0, 255], [4, 0, 255], [30, 0, 255]]), lazy);
+    expect(p.passes[0].jumps.map((j) => j.slice(0, 2))).toEqual([[3, 25]]);
+  });
+
+  it('caps the speed at the axis maximum: longer windows, same on-times, no merging', () => {
+    const slow = { ...MACHINE, vmaxUmS: [10000, 100000] as [number, number] };
+    const p = plan(job(10, 4, [[2, 0, 255], [3, 0, 255], [4, 0, 128]]), slow);
+    expect([p.windowUs, p.speedUmS]).toEqual([5000, 10000]);
+    expect(p.passes[0].leds[0]).toEqual([[1500, 3500], [6500, 8500], [10000 + 1998, 10000 + 1998 + 1004]]);
+  });
+
+  it('plans nothing for a job with no lit cell', () => {
+    const p = plan(job(6, 4, [[1, 1, 50]], { dose: { map: 'threshold', level: 100, fullUs: 2000 } }));
+    expect([p.passes.length, p.estimateUs]).toEqual([0, 0]);
+  });
+});
+
+describe('scan planner limits', () => {
+  it('plans nothing when a pass would outlast a 32-bit µs timer', () => {
+    const long = job(3000, 4, [[1, 0, 255]], { dose: { map: 'linear', fullUs: 1_500_000 } });
+    expect(plan(long).passes).toEqual([]);
+    long.grid.cols = 2800; // 2800 × 1.5 s < 2³² µs
+    expect(plan(long).passes.length).toBe(1);
+  });
+});
+
+describe('scan golden vectors', () => {
+  const load = (file: string): ScanCase[] => {
+    const dir = process.env.UV_VECTORS_DIR ? `file://${process.env.UV_VECTORS_DIR}/` : new URL('../../../protocol/vectors/', import.meta.url);
+    return JSON.parse(readFileSync(new URL(file, dir), 'utf8')).cases;
+  };
+  for (const file of ['scan-ts.json', 'scan-cpp.json']) {
+    it(`reproduces every scan plan in ${file}`, () => {
+      const cases = load(file);
+      expect(cases.length).toBeGreaterThan(10);
+      for (const c of cases) expect(plan(c.job, c.machine), c.name).toEqual(c.scan);
+      console.log(`[vectors] ${file}: ${cases.length} scan plans checked (TypeScript)`);
+    });
+  }
+
+  it('scan-ts.json is what this implementation makes', () => {
+    expect(scanGoldenCases().map((c) => c.scan)).toEqual(load('scan-ts.json').map((c) => c.scan));
+  });
+});

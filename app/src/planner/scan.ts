@@ -1,0 +1,140 @@
+// The scan planner (protocol/planner.md "Scan mode"): passes exposed on the move, their LED switch times and a time estimate.
+
+import type { JobHeader } from '../protocol/job-types';
+import { durationTables } from './dose';
+import { passRows, type PlannerJob } from './planner';
+import { MoveTimes, type Machine } from './time-model';
+
+export interface ScanPass {
+  /** Head row. */
+  hy: number;
+  /** Towards −X (the 2nd, 4th, … pass). */
+  descending: boolean;
+  /** Smallest and largest head column with a lit cell; the pass has last − first + 1 windows. */
+  first: number;
+  last: number;
+  /** Bed X (µm) where the pass starts and ends at rest. */
+  runUpUm: number;
+  runOutUm: number;
+  /** Per LED 0-3: [on, off] µs after the start mark, in time order, touching intervals merged. */
+  leds: [number, number][][];
+  /** Blank stretches flown: [first blank window, windows, µs]. */
+  jumps: [number, number, number][];
+}
+
+export interface ScanPlan {
+  /** The cell window in µs (every window of every pass). */
+  windowUs: number;
+  /** round(pitch × 10⁶ / window), for display; the exact speed is pitch / window µm/µs. */
+  speedUmS: number;
+  /** Time to reach the speed from rest, and the distance it takes (µm). */
+  accelUs: number;
+  overscanUm: number;
+  passes: ScanPass[];
+  estimateUs: number;
+}
+
+const ceilDiv = (n: bigint, d: bigint) => (n + d - 1n) / d;
+const roundDiv = (n: bigint, d: bigint) => (2n * n + d) / (2n * d);
+
+/** The window, speed and overscan of a job's passes; windowUs 0 when nothing is lit. */
+export function scanMotion(h: JobHeader, machine: Machine, tables = durationTables(h)) {
+  const T = Math.max(...tables.map((t) => t[255]));
+  if (T === 0) return { windowUs: 0, speedUmS: 0, accelUs: 0, overscanUm: 0 };
+  const p = BigInt(h.pitchUm[0]);
+  const W = BigInt(Math.max(T, Number(ceilDiv(p * 1_000_000n, BigInt(machine.vmaxUmS[0])))));
+  const tA = ceilDiv(p * 1_000_000_000_000n, BigInt(machine.accelUmS2[0]) * W);
+  const o = ceilDiv(p * tA, 2n * W);
+  return { windowUs: Number(W), speedUmS: Number(roundDiv(p * 1_000_000n, W)), accelUs: Number(tA), overscanUm: Number(o) };
+}
+
+/** Every switch time of every pass fits 32 bits: (cols + the LEDs' spread in X) × W < 2³² µs. */
+export function fitsTimer(h: JobHeader, windowUs: number): boolean {
+  const dx = h.offsets.map((o) => o[0]);
+  return (h.cols + Math.max(...dx) - Math.min(...dx)) * windowUs < 2 ** 32;
+}
+
+export function planScan(job: PlannerJob, machine: Machine): ScanPlan {
+  const h = job.header;
+  const tables = durationTables(h);
+  const motion = scanMotion(h, machine, tables);
+  const plan: ScanPlan = { ...motion, passes: [], estimateUs: 0 };
+  const W = motion.windowUs;
+  if (W === 0 || !fitsTimer(h, W)) return plan;
+  const p = h.pitchUm[0];
+  const reach = Math.ceil(p / 2) + motion.overscanUm; // from a column's centre to the run-up
+  const X = (hx: number) => h.originUm[0] + hx * p;
+  const Y = (hy: number) => h.originUm[1] + hy * h.pitchUm[1];
+  const moves = new MoveTimes(machine);
+  // A blank stretch of g windows is flown in F(g) when that beats crossing it at the speed.
+  const flies = W > Math.ceil((p * 1_000_000) / machine.vmaxUmS[0]);
+  const fly = (g: number) => {
+    if (!flies) return 0;
+    const f = Math.max(1, moves.axis(0, g * p + 2 * motion.overscanUm) - 2 * motion.accelUs);
+    return f < g * W ? f : 0;
+  };
+  let curX = machine.startUm[0], curY = machine.startUm[1];
+
+  for (const { hy, ledRows } of passRows(h, job.cells)) {
+    let first = Infinity, last = -Infinity;
+    ledRows.forEach((r, k) => {
+      if (r < 0) return;
+      const row = job.cells[r];
+      for (let c = 0; c < row.length; c++) {
+        if (tables[k][row[c]] === 0) continue;
+        first = Math.min(first, c - h.offsets[k][0]);
+        last = Math.max(last, c - h.offsets[k][0]);
+      }
+    });
+    if (first > last) continue;
+    const descending = plan.passes.length % 2 === 1;
+    const n = last - first + 1;
+    const litAt = new Uint8Array(n); // by head column − first
+    ledRows.forEach((r, k) => {
+      if (r < 0) return;
+      const row = job.cells[r];
+      for (let c = 0; c < row.length; c++) if (tables[k][row[c]] > 0) litAt[c - h.offsets[k][0] - first] = 1;
+    });
+    const start = new Array<number>(n); // S(j)
+    const jumps: [number, number, number][] = [];
+    for (let j = 0, t = 0, prev = -1; j < n; j++, t += W) {
+      if (litAt[descending ? n - 1 - j : j]) {
+        const g = j - prev - 1;
+        const f = prev >= 0 && g > 0 ? fly(g) : 0;
+        if (f) {
+          t = start[prev] + W + f;
+          jumps.push([prev + 1, g, f]);
+        }
+        prev = j;
+      }
+      start[j] = t;
+    }
+    const leds = ledRows.map((r, k) => (r < 0 ? [] : switchTimes(job.cells[r], tables[k], h.offsets[k][0], descending ? last : first, descending, W, start)));
+    const runUpUm = descending ? X(last) + reach : X(first) - reach;
+    const runOutUm = descending ? X(first) - reach : X(last) + reach;
+    const y = Y(hy);
+    const move = Math.max(moves.axis(0, Math.abs(runUpUm - curX)), moves.axis(1, Math.abs(y - curY)));
+    plan.estimateUs += move + (move > 0 ? machine.settleUs : 0) + machine.overheadUs + 2 * motion.accelUs + start[n - 1] + W;
+    curX = runOutUm;
+    curY = y;
+    plan.passes.push({ hy, descending, first, last, runUpUm, runOutUm, leds, jumps });
+  }
+  return plan;
+}
+
+/** One LED's [on, off] list for its row: each lit cell centred in its window, touching intervals merged. */
+function switchTimes(row: ArrayLike<number>, table: Uint32Array, dx: number, startHx: number, descending: boolean, W: number, start: number[]): [number, number][] {
+  const out: [number, number][] = [];
+  const n = row.length;
+  for (let i = 0; i < n; i++) {
+    const c = descending ? n - 1 - i : i;
+    const t = table[row[c]];
+    if (t === 0) continue;
+    const j = descending ? startHx - (c - dx) : c - dx - startHx;
+    const on = start[j] + Math.floor((W - t) / 2);
+    const prev = out[out.length - 1];
+    if (prev && prev[1] === on) prev[1] = on + t;
+    else out.push([on, on + t]);
+  }
+  return out;
+}

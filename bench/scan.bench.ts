@@ -1,0 +1,60 @@
+// P10: exposure on the move (issue 19) against stop-and-fire and against the two limits of a scan.
+import type { JobHeader, StrategyName } from '../app/src/protocol/job-types';
+import { durationTables } from '../app/src/planner/dose';
+import { planJob } from '../app/src/planner/planner';
+import { planScan, type ScanPlan } from '../app/src/planner/scan';
+import { BENCH_MACHINE, GEOMETRY } from './planner.bench';
+import { boardMask, fillMask, photoMask, sparseMask, textMask, type Mask } from './masks';
+
+export interface P10Row {
+  mask: string;
+  scan: ScanPlan;
+  /** The better of serpentine and shortest stop-and-fire. */
+  stops: number;
+  /** Σ dose ÷ 4: four LEDs lit all the time. */
+  lightLimit: number;
+  /** The passes' lengths at the X axis's maximum speed. */
+  travelLimit: number;
+}
+
+function header(mask: Mask, strategy: StrategyName, map: 'linear' | 'threshold'): JobHeader {
+  return {
+    cols: mask.cols, rows: mask.rows, pitchUm: [50, 50], originUm: [10000, 10000], map, level: 128, fullUs: 2000,
+    gainPermille: [1000, 1000, 1000, 1000], thermal: [0, 250], offsets: GEOMETRY['adjacent rows'], strategy, seed: 7,
+  };
+}
+
+export function p10(): P10Row[] {
+  const masks: [Mask, 'linear' | 'threshold'][] = [
+    [boardMask(800, 400), 'threshold'],
+    [sparseMask(800, 400), 'threshold'],
+    [fillMask(200, 200), 'threshold'],
+    [photoMask(300, 200), 'linear'],
+    [textMask(800, 400), 'threshold'],
+  ];
+  return masks.map(([mask, map]) => {
+    const cells = mask.cells;
+    const h = header(mask, 'serpentine', map);
+    const stops = Math.min(...(['serpentine', 'shortest'] as StrategyName[]).map((s) => planJob({ header: header(mask, s, map), cells }, BENCH_MACHINE).estimateUs));
+    const scan = planScan({ header: h, cells }, BENCH_MACHINE);
+    const table = durationTables(h)[0];
+    let dose = 0;
+    for (const row of cells) for (let c = 0; c < row.length; c++) dose += table[row[c]];
+    const travelLimit = scan.passes.reduce((t, p) => t + ((p.last - p.first + 1) * h.pitchUm[0] * 1e6) / BENCH_MACHINE.vmaxUmS[0], 0);
+    return { mask: mask.name, scan, stops, lightLimit: dose / 4, travelLimit };
+  });
+}
+
+export function printP10(rows: P10Row[]): void {
+  console.log('\nP10 scan (exposure on the move) vs stop-and-fire (goal: pcb >= 5x) and vs the larger limit (goal: pcb <= 1.3x)');
+  console.log('  adjacent rows; scan, stop-and-fire, light limit (dose/4), travel limit (passes at vmax); window, passes');
+  const s = (us: number) => `${(us / 1e6).toFixed(1)} s`;
+  for (const r of rows) {
+    const limit = Math.max(r.lightLimit, r.travelLimit);
+    console.log(
+      `P10 ${r.mask.padEnd(7)} scan ${s(r.scan.estimateUs).padStart(8)}  stop-and-fire ${s(r.stops).padStart(8)}  light ${s(r.lightLimit).padStart(7)}  travel ${s(r.travelLimit).padStart(7)}` +
+        `  speed-up ${(r.stops / r.scan.estimateUs).toFixed(2)}x  /limit ${(r.scan.estimateUs / limit).toFixed(2)}x` +
+        `  (window ${r.scan.windowUs} us, ${r.scan.passes.length} passes)`,
+    );
+  }
+}

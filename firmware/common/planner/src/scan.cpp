@@ -1,0 +1,224 @@
+// The scan planner (protocol/planner.md "Scan mode"): passes exposed on the move, one pass at a time from a CellSource.
+#include "scan.h"
+
+namespace uv {
+
+namespace {
+uint64_t ceilDiv(uint64_t n, uint64_t d) { return (n + d - 1) / d; }
+uint64_t roundDiv(uint64_t n, uint64_t d) { return (2 * n + d) / (2 * d); }
+uint32_t absDiff(int32_t a, int32_t b) { return static_cast<uint32_t>(a > b ? a - b : b - a); }
+}  // namespace
+
+ScanMotion scanMotion(const JobHeader& h, const Durations& dose, const Machine& m) {
+  ScanMotion out{0, 0, 0, 0};
+  uint32_t longest = 0;
+  for (uint8_t k = 0; k < 4; k++)
+    if (dose.us(k, 255) > longest) longest = dose.us(k, 255);
+  if (longest == 0) return out;
+  const uint64_t p = h.pitchUm[0];
+  uint64_t w = ceilDiv(p * 1000000u, m.vmaxUmS[0]);
+  if (w < longest) w = longest;
+  const uint64_t tA = ceilDiv(p * 1000000000000ull, static_cast<uint64_t>(m.accelUmS2[0]) * w);
+  out.windowUs = static_cast<uint32_t>(w);
+  out.speedUmS = static_cast<uint32_t>(roundDiv(p * 1000000u, w));
+  out.accelUs = static_cast<uint32_t>(tA);
+  out.overscanUm = static_cast<uint32_t>(ceilDiv(p * tA, 2 * w));
+  return out;
+}
+
+ScanPlanner::ScanPlanner(const JobHeader& h, CellSource& cells, const Machine& m)
+    : h_(h), cells_(cells), m_(m), dose_(h), motion_(scanMotion(h, dose_, m)), curX_(m.startUm[0]), curY_(m.startUm[1]),
+      flies_(motion_.windowUs > ceilDiv(static_cast<uint64_t>(h.pitchUm[0]) * 1000000u, m.vmaxUmS[0])) {
+  dyMin_ = dyMax_ = h.offsets[0][1];
+  for (uint8_t k = 1; k < 4; k++) {
+    if (h.offsets[k][1] < dyMin_) dyMin_ = h.offsets[k][1];
+    if (h.offsets[k][1] > dyMax_) dyMax_ = h.offsets[k][1];
+  }
+}
+
+// The LED's next cell with light in the cursor's direction: its head column and on-time.
+bool ScanPlanner::readLit(uint8_t led, int32_t& hx, uint32_t& us) {
+  uint16_t col;
+  uint8_t value;
+  while (cells_.next(led, col, value)) {
+    us = dose_.us(led, value);
+    if (us == 0) continue;
+    hx = static_cast<int32_t>(col) - h_.offsets[led][0];
+    return true;
+  }
+  return false;
+}
+
+bool ScanPlanner::supported() const {
+  int32_t dxMin = h_.offsets[0][0], dxMax = dxMin;
+  for (uint8_t k = 1; k < 4; k++) {
+    if (h_.offsets[k][0] < dxMin) dxMin = h_.offsets[k][0];
+    if (h_.offsets[k][0] > dxMax) dxMax = h_.offsets[k][0];
+  }
+  const uint64_t span = static_cast<uint64_t>(h_.cols + dxMax - dxMin);
+  return dyMax_ - dyMin_ < static_cast<int16_t>(kCoveredWindowRows) && span * motion_.windowUs < (1ull << 32);
+}
+
+bool ScanPlanner::nextPass(ScanPass& out) {
+  if (!supported() || motion_.windowUs == 0) return false;
+  for (; scan_ < h_.rows; uncover(scan_), scan_++) {
+    const uint16_t r = scan_;
+    if (covered(r) || !cells_.rowNonEmpty(r)) continue;
+    // The rows of this pass, as planner.md "Passes" gives them (the same as the stop planner's).
+    const int32_t hy = static_cast<int32_t>(r) - dyMin_;
+    int32_t first = INT32_MAX, last = INT32_MIN;
+    for (uint8_t k = 0; k < 4; k++) {
+      row_[k] = -1;
+      const int32_t rk = hy + h_.offsets[k][1];
+      if (rk < 0 || rk >= h_.rows || covered(rk)) continue;
+      cover(rk);
+      row_[k] = static_cast<int16_t>(rk);
+    }
+    // The lit windows, ascending: the extent, and the pass's time with its flown stretches.
+    for (uint8_t k = 0; k < 4; k++) {
+      live_[k] = false;
+      if (row_[k] < 0) continue;
+      cells_.open(k, static_cast<uint16_t>(row_[k]), false);
+      peek(k);
+    }
+    uint64_t span = 0;  // S(n − 1) + W
+    for (;;) {
+      bool any = false;
+      int32_t best = 0;
+      for (uint8_t k = 0; k < 4; k++)
+        if (live_[k] && (!any || hx_[k] < best)) {
+          best = hx_[k];
+          any = true;
+        }
+      if (!any) break;
+      if (first > last) {
+        first = best;
+        span = motion_.windowUs;
+      } else {
+        const uint32_t g = static_cast<uint32_t>(best - last - 1);
+        const uint32_t f = g ? fly(g) : 0;
+        span += f ? f + motion_.windowUs : static_cast<uint64_t>(g + 1) * motion_.windowUs;
+      }
+      last = best;
+      for (uint8_t k = 0; k < 4; k++)
+        if (live_[k] && hx_[k] == best) peek(k);
+    }
+    if (first > last) continue;  // no lit cell: the pass is dropped
+    uncover(scan_);
+    scan_++;
+
+    descending_ = passes_ % 2 == 1;
+    start_ = descending_ ? last : first;
+    for (uint8_t k = 0; k < 4; k++) {
+      live_[k] = false;
+      if (row_[k] < 0) continue;
+      cells_.open(k, static_cast<uint16_t>(row_[k]), descending_);
+      peek(k);
+      pending_[k] = false;
+    }
+    started_ = false;
+    ready_ = 0;
+    jumpReady_ = false;
+    const int32_t reach = static_cast<int32_t>((h_.pitchUm[0] + 1) / 2 + motion_.overscanUm);
+    out.hy = hy;
+    out.descending = descending_;
+    out.first = first;
+    out.last = last;
+    out.runUpUm = descending_ ? X(last) + reach : X(first) - reach;
+    out.runOutUm = descending_ ? X(first) - reach : X(last) + reach;
+    const int32_t y = Y(hy);
+    const uint32_t tx = moveTimeUs(absDiff(out.runUpUm, curX_), m_.vmaxUmS[0], m_.accelUmS2[0]);
+    const uint32_t ty = moveTimeUs(absDiff(y, curY_), m_.vmaxUmS[1], m_.accelUmS2[1]);
+    const uint32_t move = tx > ty ? tx : ty;
+    estimate_ += move + (move ? m_.settleUs : 0) + m_.overheadUs + 2ull * motion_.accelUs + span;
+    curX_ = out.runOutUm;
+    curY_ = y;
+    passes_++;
+    return true;
+  }
+  return false;
+}
+
+// F(g) when flying g blank windows beats crossing them at the speed, else 0.
+uint32_t ScanPlanner::fly(uint32_t g) {
+  if (!flies_) return 0;
+  const int64_t move = moveTimeUs(g * h_.pitchUm[0] + 2 * motion_.overscanUm, m_.vmaxUmS[0], m_.accelUmS2[0]);
+  int64_t f = move - 2 * static_cast<int64_t>(motion_.accelUs);
+  if (f < 1) f = 1;
+  return static_cast<uint64_t>(f) < static_cast<uint64_t>(g) * motion_.windowUs ? static_cast<uint32_t>(f) : 0;
+}
+
+// Takes the pass's next lit window in its direction: its start S(j), a jump before it if flown, and
+// its LEDs' cells, which extend or close each LED's open interval.
+bool ScanPlanner::nextLitWindow(uint32_t& j) {
+  bool any = false;
+  int32_t best = 0;
+  for (uint8_t k = 0; k < 4; k++)
+    if (live_[k] && (!any || (descending_ ? hx_[k] > best : hx_[k] < best))) {
+      best = hx_[k];
+      any = true;
+    }
+  if (!any) return false;
+  const uint32_t w = motion_.windowUs;
+  j = static_cast<uint32_t>(descending_ ? start_ - best : best - start_);
+  uint32_t s = j * w;
+  if (started_) {
+    const uint32_t g = j - lastJ_ - 1;
+    const uint32_t f = g ? fly(g) : 0;
+    s = f ? lastS_ + w + f : lastS_ + (j - lastJ_) * w;
+    if (f) {
+      jumpReady_ = true;
+      jumpWindow_ = lastJ_ + 1;
+      jumpWindows_ = g;
+      jumpUs_ = f;
+    }
+  }
+  started_ = true;
+  lastJ_ = j;
+  lastS_ = s;
+  for (uint8_t k = 0; k < 4; k++) {
+    if (!live_[k] || hx_[k] != best) continue;
+    const uint32_t on = s + (w - us_[k]) / 2, off = on + us_[k];
+    if (pending_[k] && pendOff_[k] == on) {
+      pendOff_[k] = off;  // touching: the LED stays on
+    } else {
+      if (pending_[k]) {
+        ready_ |= static_cast<uint8_t>(1 << k);
+        readyOn_[k] = pendOn_[k];
+        readyOff_[k] = pendOff_[k];
+      }
+      pending_[k] = true;
+      pendOn_[k] = on;
+      pendOff_[k] = off;
+    }
+    peek(k);
+  }
+  return true;
+}
+
+bool ScanPlanner::next(ScanEvent& out) {
+  for (;;) {
+    if (jumpReady_) {
+      jumpReady_ = false;
+      out = ScanEvent{true, 0, 0, 0, jumpWindow_, jumpWindows_, jumpUs_};
+      return true;
+    }
+    for (uint8_t k = 0; k < 4; k++) {
+      if (!(ready_ & (1 << k))) continue;
+      ready_ &= static_cast<uint8_t>(~(1 << k));
+      out = ScanEvent{false, k, readyOn_[k], readyOff_[k], 0, 0, 0};
+      return true;
+    }
+    uint32_t j;
+    if (nextLitWindow(j)) continue;
+    for (uint8_t k = 0; k < 4; k++) {  // the pass's end closes every open interval
+      if (!pending_[k]) continue;
+      pending_[k] = false;
+      out = ScanEvent{false, k, pendOn_[k], pendOff_[k], 0, 0, 0};
+      return true;
+    }
+    return false;
+  }
+}
+
+}  // namespace uv

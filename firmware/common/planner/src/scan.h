@@ -1,0 +1,97 @@
+// The scan planner (protocol/planner.md "Scan mode"): passes exposed on the move, one pass at a time from a CellSource.
+#pragma once
+#include <stdint.h>
+
+#include "cell_source.h"
+#include "job_types.h"
+#include "planner.h"
+#include "time_model.h"
+
+namespace uv {
+
+// The speed of every pass: one cell pitch per window.
+struct ScanMotion {
+  uint32_t windowUs;    // 0 when nothing is lit
+  uint32_t speedUmS;    // round(pitch × 10⁶ / window), for display
+  uint32_t accelUs;     // from rest to the speed
+  uint32_t overscanUm;  // the distance that takes
+};
+
+ScanMotion scanMotion(const JobHeader& h, const Durations& dose, const Machine& m);
+
+struct ScanPass {
+  int32_t hy;
+  bool descending;        // towards −X
+  int32_t first, last;    // head columns of the first and last lit cell; last − first + 1 windows
+  int32_t runUpUm, runOutUm;  // bed X where the pass starts and ends at rest
+};
+
+// What a pass does, in the order the planner finds it: an LED's interval of light (merged runs), or
+// a blank stretch flown. Each LED's intervals come in time order.
+struct ScanEvent {
+  bool jump;
+  uint8_t led;              // interval: LED `led` is on from `onUs` to `offUs` after the start mark
+  uint32_t onUs, offUs;
+  uint32_t window, windows;  // jump: the first blank window, how many, and the fly's µs
+  uint32_t flyUs;
+};
+
+class ScanPlanner {
+ public:
+  ScanPlanner(const JobHeader& h, CellSource& cells, const Machine& m);
+
+  const ScanMotion& motion() const { return motion_; }
+  // Opens the next pass with a lit cell and adds its time to the estimate; false when done.
+  bool nextPass(ScanPass& out);
+  // The current pass's next event; false at its end.
+  bool next(ScanEvent& out);
+  uint64_t estimateUs() const { return estimate_; }
+  uint16_t passes() const { return passes_; }
+  // As Planner::supported(): the LEDs' rows span less than kCoveredWindowRows. And every switch
+  // time fits 32 bits: (cols + the LEDs' spread in X) × window < 2³² µs.
+  bool supported() const;
+
+ private:
+  bool readLit(uint8_t led, int32_t& hx, uint32_t& us);
+  void peek(uint8_t led) { live_[led] = readLit(led, hx_[led], us_[led]); }
+  bool nextLitWindow(uint32_t& j);
+  uint32_t fly(uint32_t g);
+  void flush(uint8_t led, ScanEvent& out);
+  bool covered(int32_t row) const { return covered_[(row & (kCoveredWindowRows - 1)) >> 3] & (1 << (row & 7)); }
+  void cover(int32_t row) { covered_[(row & (kCoveredWindowRows - 1)) >> 3] |= static_cast<uint8_t>(1 << (row & 7)); }
+  void uncover(int32_t row) { covered_[(row & (kCoveredWindowRows - 1)) >> 3] &= static_cast<uint8_t>(~(1 << (row & 7))); }
+  int32_t X(int32_t hx) const { return static_cast<int32_t>(h_.originUm[0]) + hx * static_cast<int32_t>(h_.pitchUm[0]); }
+  int32_t Y(int32_t hy) const { return static_cast<int32_t>(h_.originUm[1]) + hy * static_cast<int32_t>(h_.pitchUm[1]); }
+
+  const JobHeader& h_;
+  CellSource& cells_;
+  const Machine& m_;
+  Durations dose_;
+  ScanMotion motion_;
+  uint8_t covered_[kCoveredWindowRows / 8] = {};
+  uint16_t scan_ = 0;  // next row that may open a pass
+  int16_t dyMin_ = 0, dyMax_ = 0;
+  int32_t curX_, curY_;  // where the last pass ended, µm
+  uint64_t estimate_ = 0;
+  uint16_t passes_ = 0;
+  bool flies_;  // the speed is below the maximum: blank stretches may be flown
+  // The current pass and each LED's next lit cell in its direction.
+  int16_t row_[4] = {-1, -1, -1, -1};
+  bool descending_ = false;
+  int32_t start_ = 0;  // head column of window 0
+  bool live_[4] = {};
+  int32_t hx_[4] = {};
+  uint32_t us_[4] = {};
+  // Emission: the last lit window and its start S(j); each LED's interval not yet closed; the
+  // intervals the current window closed, waiting to be handed out.
+  bool started_ = false;
+  uint32_t lastJ_ = 0, lastS_ = 0;
+  bool pending_[4] = {};
+  uint32_t pendOn_[4] = {}, pendOff_[4] = {};
+  uint8_t ready_ = 0;  // bit k: LED k's closed interval waits in readyOn_/readyOff_
+  uint32_t readyOn_[4] = {}, readyOff_[4] = {};
+  bool jumpReady_ = false;
+  uint32_t jumpWindow_ = 0, jumpWindows_ = 0, jumpUs_ = 0;
+};
+
+}  // namespace uv

@@ -1,0 +1,32 @@
+// Host-only: a C++ scan plan as the golden vectors write it (vectors/scan-*.json), for the tests and the golden tool.
+#pragma once
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "grid_cells.h"
+#include "scan.h"
+
+namespace uvtest {
+
+inline nlohmann::json scanPlanJson(const uv::JobHeader& h, const std::vector<std::vector<uint8_t>>& rows, const uv::Machine& m) {
+  using nlohmann::json;
+  GridCells cells(rows);
+  uv::ScanPlanner planner(h, cells, m);
+  const uv::ScanMotion& motion = planner.motion();
+  json passes = json::array();
+  uv::ScanPass p;
+  while (planner.nextPass(p)) {
+    json leds = {json::array(), json::array(), json::array(), json::array()}, jumps = json::array();
+    uv::ScanEvent e;
+    while (planner.next(e)) {
+      if (e.jump) jumps.push_back({e.window, e.windows, e.flyUs});
+      else leds[e.led].push_back({e.onUs, e.offUs});
+    }
+    passes.push_back({{"hy", p.hy}, {"descending", p.descending}, {"first", p.first}, {"last", p.last},
+                      {"runUpUm", p.runUpUm}, {"runOutUm", p.runOutUm}, {"leds", leds}, {"jumps", jumps}});
+  }
+  return {{"windowUs", motion.windowUs}, {"speedUmS", motion.speedUmS}, {"accelUs", motion.accelUs},
+          {"overscanUm", motion.overscanUm}, {"passes", passes}, {"estimateUs", planner.estimateUs()}};
+}
+
+}  // namespace uvtest

@@ -1,0 +1,261 @@
+// Host tests of the C++ scan planner: golden scan plans from both implementations, switch times of
+// small features, and a pass at a time without the heap.
+#include "scan.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <atomic>
+#include <vector>
+
+#include "grid_cells.h"
+#include "job_json_fixture.h"
+#include "planner.h"
+#include "scan_json_fixture.h"
+#include "vectors_fixture.h"
+
+using namespace uv;
+using namespace uvtest;
+
+namespace uvtest {
+extern std::atomic<long> allocations;  // counted by planner_test.cpp's operator new
+}
+
+namespace {
+
+Machine scanMachineFrom(const json& m) {
+  Machine out{};
+  for (int a = 0; a < 2; a++) {
+    out.vmaxUmS[a] = m["vmaxUmS"][a];
+    out.accelUmS2[a] = m["accelUmS2"][a];
+    out.startUm[a] = m["startUm"][a];
+  }
+  out.settleUs = m["settleUs"];
+  out.overheadUs = m["overheadUs"];
+  return out;
+}
+
+void checkScanGolden(const char* file) {
+  const json v = loadVectors(file);
+  ASSERT_GT(v["cases"].size(), 10u) << file;
+  for (const json& c : v["cases"]) {
+    std::vector<std::vector<uint8_t>> rows;
+    for (const auto& r : c["job"]["gridData"]) rows.emplace_back(r.begin(), r.end());
+    const JobHeader h = headerFrom(c["job"]);
+    EXPECT_EQ(scanPlanJson(h, rows, scanMachineFrom(c["machine"])), c["scan"]) << c["name"];
+  }
+  std::printf("[vectors] %s: %zu scan plans checked (C++)\n", file, v["cases"].size());
+}
+
+// The random jobs' source: xorshift32, a number below n each call.
+struct Xorshift {
+  uint32_t seed;
+  uint32_t operator()(uint32_t n) {
+    seed ^= seed << 13;
+    seed ^= seed >> 17;
+    seed ^= seed << 5;
+    return seed % n;
+  }
+};
+
+const Machine kMachine{{150000, 100000}, {3000000, 2000000}, 2000, 1500, {0, 0}};
+
+JobHeader smallJob(uint16_t cols, uint16_t rows) {
+  JobHeader h{};
+  h.cols = cols;
+  h.rows = rows;
+  h.pitchUm[0] = h.pitchUm[1] = 50;
+  h.originUm[0] = 1000;
+  h.originUm[1] = 2000;
+  h.map = DoseMap::Linear;
+  h.fullUs = 2000;
+  for (int k = 0; k < 4; k++) {
+    h.gainPermille[k] = 1000;
+    h.offsets[k][1] = static_cast<int16_t>(k);
+  }
+  return h;
+}
+
+// The current pass's events: each LED's intervals, then the jumps, as lists of numbers.
+struct PassEvents {
+  std::vector<std::vector<uint32_t>> leds[4];
+  std::vector<std::vector<uint32_t>> jumps;
+};
+
+PassEvents eventsOf(ScanPlanner& planner) {
+  PassEvents out;
+  ScanEvent e;
+  while (planner.next(e)) {
+    if (e.jump) out.jumps.push_back({e.window, e.windows, e.flyUs});
+    else out.leds[e.led].push_back({e.onUs, e.offUs});
+  }
+  return out;
+}
+
+using Lists = std::vector<std::vector<uint32_t>>;
+
+}  // namespace
+
+TEST(ScanGolden, ReproducesTypeScriptScans) { checkScanGolden("scan-ts.json"); }
+TEST(ScanGolden, ReproducesItsOwnScans) { checkScanGolden("scan-cpp.json"); }
+
+TEST(ScanPlanner, CentresGrayCellsMergesFullRunsAndReversesTheSecondPass) {
+  JobHeader h = smallJob(12, 8);
+  std::vector<std::vector<uint8_t>> rows(8, std::vector<uint8_t>(12, 0));
+  rows[0][2] = rows[0][3] = rows[0][5] = 255;
+  rows[0][4] = 128;  // t = 1004 µs, 498 µs into its window
+  rows[4][3] = 51;   // t = 400 µs
+  rows[4][9] = 255;
+  GridCells cells(rows);
+  ScanPlanner planner(h, cells, kMachine);
+  EXPECT_EQ(planner.motion().windowUs, 2000u);
+  EXPECT_EQ(planner.motion().speedUmS, 25000u);
+  EXPECT_EQ(planner.motion().accelUs, 8334u);
+  EXPECT_EQ(planner.motion().overscanUm, 105u);
+  ScanPass p;
+  ASSERT_TRUE(planner.nextPass(p));
+  EXPECT_FALSE(p.descending);
+  EXPECT_EQ(p.first, 2);
+  EXPECT_EQ(p.last, 5);
+  EXPECT_EQ(p.runUpUm, 1000 + 100 - 25 - 105);
+  PassEvents a = eventsOf(planner);
+  EXPECT_EQ(a.leds[0], (Lists{{0, 4000}, {4498, 5502}, {6000, 8000}}));
+  EXPECT_EQ(a.jumps, Lists{});
+  ASSERT_TRUE(planner.nextPass(p));
+  EXPECT_TRUE(p.descending);
+  EXPECT_EQ(p.hy, 4);
+  EXPECT_EQ(p.first, 3);
+  EXPECT_EQ(p.last, 9);
+  EXPECT_EQ(p.runUpUm, 1000 + 450 + 25 + 105);
+  // Five blank windows flown in F(5) = 2 × isqrt(460e12 / 3e6) − 2 × 8334 = 8096 µs, not 10000.
+  PassEvents b = eventsOf(planner);
+  EXPECT_EQ(b.jumps, (Lists{{1, 5, 8096}}));
+  EXPECT_EQ(b.leds[0], (Lists{{0, 2000}, {2000 + 8096 + 800, 2000 + 8096 + 1200}}));
+  EXPECT_FALSE(planner.nextPass(p));
+}
+
+TEST(ScanPlanner, NegativeOffsetsAndTheSpeedCap) {
+  JobHeader h = smallJob(12, 4);
+  const int16_t dx[4] = {0, -3, 4, -1};
+  for (int k = 0; k < 4; k++) h.offsets[k][0] = dx[k];
+  std::vector<std::vector<uint8_t>> rows(4, std::vector<uint8_t>(12, 0));
+  for (auto& r : rows) r[5] = 255;
+  GridCells cells(rows);
+  ScanPlanner planner(h, cells, kMachine);
+  ScanPass p;
+  ASSERT_TRUE(planner.nextPass(p));
+  EXPECT_EQ(p.first, 1);
+  EXPECT_EQ(p.last, 8);
+  // Lit in windows 0, 4, 5 and 7: F(3) = 5240 and F(1) = 1950 µs beat 6000 and 2000.
+  PassEvents e = eventsOf(planner);
+  EXPECT_EQ(e.jumps, (Lists{{1, 3, 5240}, {6, 1, 1950}}));
+  const uint32_t on[4] = {7240, 13190, 0, 9240};
+  for (uint8_t k = 0; k < 4; k++) EXPECT_EQ(e.leds[k], (Lists{{on[k], on[k] + 2000}})) << "LED " << int(k);
+
+  Machine slow = kMachine;
+  slow.vmaxUmS[0] = 10000;  // 5000 µs windows: full cells no longer touch
+  std::vector<std::vector<uint8_t>> run(4, std::vector<uint8_t>(12, 0));
+  run[0][2] = run[0][3] = 255;
+  GridCells runCells(run);
+  ScanPlanner capped(smallJob(12, 4), runCells, slow);
+  EXPECT_EQ(capped.motion().windowUs, 5000u);
+  EXPECT_EQ(capped.motion().speedUmS, 10000u);
+  ASSERT_TRUE(capped.nextPass(p));
+  EXPECT_EQ(eventsOf(capped).leds[0], (Lists{{1500, 3500}, {6500, 8500}}));
+}
+
+TEST(ScanPlanner, PlansAPassAtATimeWithoutTheHeap) {
+  std::vector<std::vector<uint8_t>> rows(64, std::vector<uint8_t>(4096, 0));
+  for (size_t y = 0; y < rows.size(); y++)
+    for (size_t x = y % 7; x < 4096; x += 3) rows[y][x] = static_cast<uint8_t>(1 + (x * y) % 255);
+  JobHeader h = smallJob(4096, 64);
+  GridCells cells(rows);
+  const long before = allocations;
+  ScanPlanner planner(h, cells, kMachine);
+  ScanPass p;
+  int passes = 0;
+  while (planner.nextPass(p)) {
+    ScanEvent e;
+    while (planner.next(e)) {
+    }
+    passes++;
+  }
+  EXPECT_EQ(allocations - before, 0) << "the scan planner allocated";
+  EXPECT_EQ(passes, 16);
+  // Each LED's row is read twice: for the pass's extent and time, then for its events.
+  EXPECT_EQ(cells.rowsOpened, 2 * 64);
+  std::printf("[scan memory] sizeof(ScanPlanner) = %zu bytes\n", sizeof(ScanPlanner));
+}
+
+TEST(ScanPlanner, EveryLitCellItsDoseOnceWithLedsSpreadOverManyRows) {
+  // As the stop planner's property test: rows taken live in a ring of kCoveredWindowRows, jobs are
+  // taller than it, and every lit cell still gets exactly its t_k(v) once, read back from the events.
+  Xorshift rnd{4242};
+  for (int trial = 0; trial < 16; trial++) {
+    const uint16_t rows = static_cast<uint16_t>(1200 + rnd(1500)), cols = static_cast<uint16_t>(3 + rnd(30));
+    std::vector<std::vector<uint8_t>> grid(rows, std::vector<uint8_t>(cols, 0));
+    for (auto& row : grid)
+      for (auto& v : row)
+        if (rnd(3) == 0) v = static_cast<uint8_t>(1 + rnd(255));
+    JobHeader h = smallJob(cols, rows);
+    h.fullUs = 500 + rnd(3000);
+    const uint16_t spread = trial % 3 == 0 ? static_cast<uint16_t>(kCoveredWindowRows - 1) : static_cast<uint16_t>(rnd(kCoveredWindowRows));
+    for (int k = 0; k < 4; k++) {
+      h.gainPermille[k] = static_cast<uint16_t>(800 + rnd(400));
+      h.offsets[k][0] = static_cast<int16_t>(rnd(7)) - 3;
+      h.offsets[k][1] = static_cast<int16_t>(k == 3 ? spread : rnd(spread + 1u));
+    }
+    GridCells cells(grid);
+    ScanPlanner planner(h, cells, kMachine);
+    ASSERT_TRUE(planner.supported());
+    const Durations dose(h);
+    const uint32_t w = planner.motion().windowUs;
+    std::vector<std::vector<int64_t>> got(rows, std::vector<int64_t>(cols, 0));
+    ScanPass p;
+    while (planner.nextPass(p)) {
+      PassEvents e = eventsOf(planner);
+      // Window starts S(j), with the jumps' windows skipped.
+      const uint32_t n = static_cast<uint32_t>(p.last - p.first + 1);
+      std::vector<int64_t> s(n, -1);
+      size_t next = 0;
+      for (uint32_t j = 0, t = 0; j < n; j++) {
+        if (next < e.jumps.size() && e.jumps[next][0] == j) {
+          t += e.jumps[next][2];
+          j += e.jumps[next][1] - 1;
+          next++;
+          continue;
+        }
+        s[j] = t;
+        t += w;
+      }
+      ASSERT_EQ(next, e.jumps.size()) << "trial " << trial;
+      for (uint8_t k = 0; k < 4; k++) {
+        for (const auto& iv : e.leds[k]) {
+          for (uint32_t j = 0; j < n; j++) {
+            if (s[j] < 0) continue;
+            const int64_t lo = std::max<int64_t>(iv[0], s[j]), hi = std::min<int64_t>(iv[1], s[j] + w);
+            if (hi <= lo) continue;
+            const int32_t hx = p.descending ? p.last - static_cast<int32_t>(j) : p.first + static_cast<int32_t>(j);
+            const int32_t r = p.hy + h.offsets[k][1], c = hx + h.offsets[k][0];
+            ASSERT_TRUE(r >= 0 && r < rows && c >= 0 && c < cols) << "trial " << trial;
+            ASSERT_EQ(got[r][c], 0) << "trial " << trial << ": cell " << r << "," << c << " exposed twice";
+            got[r][c] = (hi - lo) * 8 + k;  // its time, and which LED
+          }
+        }
+      }
+    }
+    // The LED that exposes each row: the stop planner's, which this shares the pass rules with.
+    std::vector<int> led(rows, -1);
+    Planner stops(h, cells, kMachine);
+    Stop st;
+    while (stops.next(st))
+      for (int k = 0; k < 4; k++)
+        if (st.us[k]) led[st.hy + h.offsets[k][1]] = k;
+    for (int r = 0; r < rows; r++)
+      for (int c = 0; c < cols; c++) {
+        const int k = led[r];
+        const int64_t want = k >= 0 && dose.us(static_cast<uint8_t>(k), grid[r][c]) ? dose.us(static_cast<uint8_t>(k), grid[r][c]) * 8 + k : 0;
+        ASSERT_EQ(got[r][c], want) << "trial " << trial << " cell " << r << "," << c;
+      }
+  }
+}
