@@ -24,7 +24,7 @@ function project(): Project {
       { kind: 'frame', id: 5, x: 0, y: 0, w: 300, h: 200, line: 0, dose: 255 },
       {
         kind: 'board', id: 6, x: 20, y: 20, w: 200, h: 100, mirror: true, name: 'demo', src: BOARD, halftone: 'threshold', threshold: 50, tone: { ...NEUTRAL_TONE },
-        layers: [{ kind: 'copper-top', expose: false }, { kind: 'copper-bottom', expose: true }], drillClear: 'exposed-dot', marks: [{ x: 2, y: 3.5 }],
+        layers: [{ file: 'a-F_Cu.gbr', kind: 'copper-top', expose: false }, { file: 'a-B_Cu.gbr', kind: 'copper-bottom', expose: true }], drillClear: 'exposed-dot', marks: [{ x: 2, y: 3.5 }],
       },
     ],
   };

@@ -120,7 +120,7 @@ function object(v: unknown, path: string, cols: number, rows: number, version: n
       const layers = o.layers.map((v, i) => {
         const l = obj(v, `${path}.layers[${i}]`);
         if (!BOARD_LAYER_KINDS.includes(l.kind as BoardLayerKind)) fail(`${path}.layers[${i}].kind`, `must be one of ${BOARD_LAYER_KINDS.join(', ')}`);
-        return { kind: l.kind as BoardLayerKind, expose: bool(l.expose, `${path}.layers[${i}].expose`) };
+        return { file: str(l.file, `${path}.layers[${i}].file`, 255), kind: l.kind as BoardLayerKind, expose: bool(l.expose, `${path}.layers[${i}].expose`) };
       });
       const drillClear = o.drillClear as DrillClear;
       if (!DRILL_CLEARS.includes(drillClear)) fail(`${path}.drillClear`, `must be one of ${DRILL_CLEARS.join(', ')}`);

@@ -3,7 +3,7 @@ import { describe, expect, it } from 'vitest';
 import { bottomSide, markOnBed, newBoardFields, originAtHead } from './board-object';
 import type { BoardObject } from './objects';
 
-const KINDS = ['copper-top', 'copper-bottom', 'outline', 'drill'] as const;
+const KINDS = (['copper-top', 'copper-bottom', 'outline', 'drill'] as const).map((kind) => ({ file: `demo-${kind}.gbr`, kind }));
 const board = (more: Partial<BoardObject> = {}): BoardObject => ({
   id: 1, kind: 'board', name: 'demo', src: 'data:', halftone: 'threshold', threshold: 50, tone: { invert: false, contrast: 0, gamma: 1 },
   x: 100, y: 50, w: 300, h: 200, ...newBoardFields(KINDS), ...more,
@@ -12,8 +12,9 @@ const WINDOW = { width: 30000, height: 20000 }; // 30 × 20 mm over 300 × 200 c
 
 describe('a new board', () => {
   it('exposes its top copper and leaves a dot at each hole unexposed', () => {
-    expect(newBoardFields(KINDS)).toEqual({ layers: [{ kind: 'copper-top', expose: true }, { kind: 'copper-bottom', expose: false }, { kind: 'outline', expose: false }, { kind: 'drill', expose: false }], drillClear: 'unexposed-dot', marks: [] });
-    expect(newBoardFields(['copper-bottom', 'outline']).layers.map((l) => l.expose)).toEqual([true, false]);
+    expect(newBoardFields(KINDS)).toMatchObject({ layers: [{ kind: 'copper-top', expose: true }, { kind: 'copper-bottom', expose: false }, { kind: 'outline', expose: false }, { kind: 'drill', expose: false }], drillClear: 'unexposed-dot', marks: [] });
+    expect(newBoardFields(KINDS.slice(1, 3)).layers.map((l) => l.expose)).toEqual([true, false]);
+    expect(newBoardFields(KINDS.slice(1, 3)).drillClear).toBe('none');
   });
 });
 

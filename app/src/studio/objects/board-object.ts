@@ -10,10 +10,11 @@ export type FlipAxis = 'left-right' | 'top-bottom';
 export type FlipAt = 'centre' | 'start' | 'end';
 
 /** A new board's choices: the top copper exposed (else the first copper), drill dots left unexposed where there are holes. */
-export function newBoardFields(kinds: readonly BoardLayerKind[]): Pick<BoardObject, 'layers' | 'drillClear' | 'marks'> {
+export function newBoardFields(files: readonly { file: string; kind: BoardLayerKind }[]): Pick<BoardObject, 'layers' | 'drillClear' | 'marks'> {
+  const kinds = files.map((f) => f.kind);
   const exposed = kinds.includes('copper-top') ? 'copper-top' : kinds.find((k) => k === 'copper-bottom');
   const drillClear: DrillClear = kinds.includes('drill') ? 'unexposed-dot' : 'none';
-  return { layers: kinds.map((kind) => ({ kind, expose: kind === exposed })), drillClear, marks: [] };
+  return { layers: files.map(({ file, kind }) => ({ file, kind, expose: kind === exposed })), drillClear, marks: [] };
 }
 
 /**

@@ -10,6 +10,7 @@ import { isLineArt } from '../image/gray';
 import { svgSize } from '../image/svg-size';
 import { bitmapArtwork, boardReader, ready } from './artwork';
 import { newBoardFields } from './board-object';
+import type { NewObject } from './object-layer.svelte';
 import type { ArtworkObject, BoardObject, Rect } from './objects';
 import { checkSize, dataUrl, readPicture } from './picture';
 import type { ReadyArtwork } from './raster';
@@ -47,7 +48,7 @@ export async function importBoard(files: readonly File[]): Promise<ImportedArtwo
   const pcb = await import('../../pcb');
   const src = pcb.boardSrc(texts);
   const board = pcb.boardArtwork(src); // throws when nothing in the files draws
-  const kinds = texts.map((t) => board.set.layers.find((l) => l.file === t.name)?.kind ?? 'other');
+  const kinds = texts.map((t) => ({ file: t.name, kind: board.set.layers.find((l) => l.file === t.name)?.kind ?? 'other' }));
   const art = boardReader(board);
   const mm = { x: art.pixels.width / 1000, y: art.pixels.height / 1000 };
   return { kind: 'board', name: boardName(texts.map((t) => t.name)), src, artwork: ready(art), sizeMm: mm, dpi: null, lineArt: true, board: newBoardFields(kinds), problems: board.set.problems.map((p) => `${p.file}: ${p.message}`) };
@@ -88,7 +89,7 @@ export function cellsFor(mm: { x: number; y: number }, pitchUm: { x: number; y: 
 }
 
 /** The new object: line art by a 50 % coverage threshold, a greyscale picture by Floyd–Steinberg. */
-export function artworkObject(a: ImportedArtwork, box: Rect): Omit<ArtworkObject, 'id'> {
+export function artworkObject(a: ImportedArtwork, box: Rect): NewObject {
   if (a.kind === 'board') return { kind: 'board', ...box, name: a.name, src: a.src, halftone: 'threshold', threshold: 50, tone: { ...NEUTRAL_TONE }, ...(a.board ?? newBoardFields([])) };
   return { kind: a.kind, ...box, name: a.name, src: a.src, halftone: a.lineArt ? 'threshold' : 'floyd-steinberg', threshold: 50, tone: { ...NEUTRAL_TONE } };
 }

@@ -70,8 +70,8 @@ export const DRILL_CLEARS: readonly DrillClear[] = ['none', 'unexposed-dot', 'ex
  */
 export interface BoardObject extends Placed, ArtworkFields {
   kind: 'board';
-  /** Each file of `src`, in order: its kind (guessed from its name, then the user's) and whether it is exposed. */
-  layers: { kind: BoardLayerKind; expose: boolean }[];
+  /** Each file of `src`, in order: its name, its kind (guessed from the name, then the user's) and whether it is exposed. */
+  layers: { file: string; kind: BoardLayerKind; expose: boolean }[];
   drillClear: DrillClear;
   /** Registration marks, mm from the board window's lower left corner (Y up, as in the files): a copper ring with a bare centre to drill. */
   marks: { x: number; y: number }[];
