@@ -105,6 +105,12 @@ test('a two-sided board: layers chosen, drill dots, positive resist, the bottom 
   await expect(clipping).toContainText('board demo (bottom)');
   await dialog.screenshot({ path: info.outputPath('board-dry-run-cut.png') });
   await dialog.getByRole('button', { name: 'Close' }).click();
+  // Left out of the job (while the top side is exposed), the bottom side stops nothing.
+  await page.getByTestId('board-left-out').check();
+  await page.getByRole('button', { name: 'Expose drawing' }).click();
+  await expect(clipping).toHaveAttribute('data-level', 'ok', { timeout: 30_000 });
+  await dialog.getByRole('button', { name: 'Cancel' }).click();
+  await page.getByTestId('board-left-out').uncheck();
 
   // The head jogged over the drilled mark (here: sent to 60, 70 mm), the job origin set there.
   await page.getByTestId('tab-position').click();

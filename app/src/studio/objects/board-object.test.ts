@@ -1,7 +1,7 @@
 // The double-sided workflow's arithmetic: the bottom side, marks on the bed, the job origin at the head.
 import { describe, expect, it } from 'vitest';
 import { bottomSide, markOnBed, newBoardFields, originAtHead } from './board-object';
-import type { BoardObject } from './objects';
+import { exposes, type BoardObject } from './objects';
 
 const KINDS = (['copper-top', 'copper-bottom', 'outline', 'drill'] as const).map((kind) => ({ file: `demo-${kind}.gbr`, kind }));
 const board = (more: Partial<BoardObject> = {}): BoardObject => ({
@@ -15,6 +15,13 @@ describe('a new board', () => {
     expect(newBoardFields(KINDS)).toMatchObject({ layers: [{ kind: 'copper-top', expose: true }, { kind: 'copper-bottom', expose: false }, { kind: 'outline', expose: false }, { kind: 'drill', expose: false }], drillClear: 'unexposed-dot', marks: [] });
     expect(newBoardFields(KINDS.slice(1, 3)).layers.map((l) => l.expose)).toEqual([true, false]);
     expect(newBoardFields(KINDS.slice(1, 3)).drillClear).toBe('none');
+  });
+});
+
+describe('a side left out of the job', () => {
+  it('exposes nothing until taken back', () => {
+    expect(exposes(board())).toBe(true);
+    expect(exposes(board({ leftOut: true }))).toBe(false);
   });
 });
 

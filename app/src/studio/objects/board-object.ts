@@ -22,7 +22,7 @@ export function newBoardFields(files: readonly { file: string; kind: BoardLayerK
  * across it, its box reflected about the line (in place for the centre), exposing the bottom copper.
  */
 export function bottomSide(o: BoardObject, axis: FlipAxis, at: FlipAt): Omit<BoardObject, 'id'> {
-  const { id: _, ...rest } = o;
+  const { id: _, leftOut: __, ...rest } = o; // a new side takes part in the job
   const across = axis === 'left-right' ? 'x' : 'y';
   const side = across === 'x' ? o.w : o.h;
   const shift = at === 'centre' ? 0 : at === 'start' ? -side : side;

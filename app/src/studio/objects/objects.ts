@@ -75,6 +75,8 @@ export interface BoardObject extends Placed, ArtworkFields {
   drillClear: DrillClear;
   /** Registration marks, mm from the board window's lower left corner (Y up, as in the files): a copper ring with a bare centre to drill. */
   marks: { x: number; y: number }[];
+  /** Left out of the job while the board's other side is exposed: drawn by its outline only. */
+  leftOut?: boolean;
 }
 
 export type ArtworkObject = ImageObject | SvgObject | BoardObject;
@@ -112,7 +114,7 @@ export const CORNERS: Corner[] = ['nw', 'ne', 'sw', 'se'];
 
 /** Whether the object puts any light on the bed (a guide frame does not). */
 export function exposes(o: StudioObject): boolean {
-  return o.kind === 'frame' ? o.line > 0 && o.dose > 0 : o.kind === 'text' ? o.dose > 0 && o.text.trim() !== '' : true;
+  return o.kind === 'frame' ? o.line > 0 && o.dose > 0 : o.kind === 'text' ? o.dose > 0 && o.text.trim() !== '' : o.kind === 'board' ? !o.leftOut : true;
 }
 
 /** Artwork and text keep their proportions when resized; a frame is any rectangle. */
