@@ -5,6 +5,7 @@
 // then "set the job origin here" with the head over the mark, and the exposure on the simulated
 // printer. The Gerber parser loads on demand through the stream stand-ins (app/src/pcb/*-shim.ts).
 import { expect, test, type Page } from '@playwright/test';
+import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { bedPoint, isDose, pixel } from './canvas';
 
@@ -42,9 +43,14 @@ test('a two-sided board: layers chosen, drill dots, positive resist, the bottom 
   await page.goto('/?simSpeed=40');
   await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected', { timeout: 20_000 });
 
-  // The five files picked together: one object, at the board's window, 30.1 × 20.1 mm.
-  await page.getByLabel('Import artwork (SVG, PNG, JPG, BMP, GIF)').setInputFiles(FILES.map((f) => join(DEMO, f)));
+  // The five files picked together, and a stray one: one object, at the board's window, 30.1 × 20.1 mm; the stray file named.
+  const stray = { name: 'demo-notes.gbr', mimeType: 'application/octet-stream', buffer: Buffer.from('ordered from the fab on Monday') };
+  await page.getByLabel('Import artwork (SVG, PNG, JPG, BMP, GIF)').setInputFiles([...FILES.map((f) => ({ name: f, mimeType: 'application/octet-stream', buffer: readFileSync(join(DEMO, f)) })), stray]);
   await expect(panel(page)).toContainText('Board demo', { timeout: 20_000 });
+  await expect(page.getByTestId('import-problems')).toContainText('demo-notes.gbr:');
+  await page.getByTestId('import-problems').getByRole('button', { name: 'OK' }).click();
+  await expect(page.getByTestId('import-problems')).toHaveCount(0);
+  await expect(layer(page, 'demo-notes.gbr').getByTestId('board-layer-kind')).toHaveValue('other');
   let box = await placed(page);
   expect([box.w, box.h]).toEqual([30.1, 20.1]);
   const kinds = { 'demo-B_Cu.gbr': 'copper-bottom', 'demo-Edge_Cuts.gbr': 'outline', 'demo-F_Cu.gbr': 'copper-top', 'demo-F_Mask.gbr': 'mask-top', 'demo-PTH.drl': 'drill' };
