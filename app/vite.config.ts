@@ -5,7 +5,17 @@ import { bundleSize, formatBundleSize } from '../scripts/bundle-size.ts';
 import { serviceWorker } from './pwa.ts';
 
 /** What loads only when a panel is first opened: grouped into one chunk. */
-const ON_DEMAND_PANELS = /\/(PositionDashboard|ProbeDashboard|MeshDashboard|LinkDashboard|mesh-image|Settings|setting-groups|setting-docs|Lamp|PreviewPanel|exposure-preview|plan-client|preview-colours|MaterialTest|material-test|ObjectPanel|fonts|Panel|ImportFile|import-artwork|artwork|svg-artwork|svg-size|density|picture|decode|clipping|dry-run|planner|job-header|time-model|adjust|gray|dither|ConfirmDialog|hms|thermal-forecast|pacing)\.(svelte|ts)|\/CONFIG\.md\?raw$/; // CONFIG.md: the settings' words (setting-docs.ts)
+const ON_DEMAND_PANELS = /\/(PositionDashboard|ProbeDashboard|MeshDashboard|LinkDashboard|mesh-image|Settings|setting-groups|setting-docs|Lamp|PreviewPanel|exposure-preview|plan-client|preview-colours|MaterialTest|material-test|ObjectPanel|BoardPanel|board-object|fonts|Panel|ImportFile|import-artwork|artwork|svg-artwork|svg-size|density|picture|decode|clipping|dry-run|planner|job-header|time-model|adjust|gray|dither|ConfirmDialog|hms|thermal-forecast|pacing)\.(svelte|ts)|\/CONFIG\.md\?raw$/; // CONFIG.md: the settings' words (setting-docs.ts)
+
+/**
+ * The Gerber parser and plotter are Node transform streams that app/src/pcb/tracespace.ts drives by
+ * hand: small stand-ins for readable-stream and string_decoder keep Node's stream polyfills (half the
+ * Gerber chunk) out of the build. Why each is enough is in its file.
+ */
+export const STREAM_SHIMS = [
+  { find: /^readable-stream$/, replacement: fileURLToPath(new URL('src/pcb/stream-shim.ts', import.meta.url)) },
+  { find: /^string_decoder$/, replacement: fileURLToPath(new URL('src/pcb/string-decoder-shim.ts', import.meta.url)) },
+];
 
 const outDir = fileURLToPath(new URL('../dist/app', import.meta.url));
 
@@ -38,6 +48,9 @@ export default defineConfig(({ mode }) => ({
   worker: { format: 'es' },
   server: { port: 5173 },
   preview: { port: 4173 },
-  // The ESP's flash image (scripts/build-esp-fs.mjs) leaves the simulated printer out.
-  resolve: mode === 'esp' ? { alias: [{ find: /^\.\/sim-transport$/, replacement: fileURLToPath(new URL('src/device/sim-absent.ts', import.meta.url)) }] } : {},
+  // The Gerber libraries' Node streams give way to stand-ins (STREAM_SHIMS); the ESP's flash image
+  // (scripts/build-esp-fs.mjs) also leaves the simulated printer out.
+  resolve: {
+    alias: [...STREAM_SHIMS, ...(mode === 'esp' ? [{ find: /^\.\/sim-transport$/, replacement: fileURLToPath(new URL('src/device/sim-absent.ts', import.meta.url)) }] : [])],
+  },
 }));

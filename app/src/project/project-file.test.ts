@@ -3,6 +3,7 @@ import { NEUTRAL_TONE } from '../studio/image/adjust';
 import { decodeProject, encodeProject, ProjectError, type Project } from './project-file';
 
 const PNG = 'data:image/png;base64,iVBORw0KGgo=';
+const BOARD = `data:application/vnd.uv-exposure.board+json;base64,${btoa('{"files":[]}')}`;
 const SVG = `data:image/svg+xml;base64,${btoa('<svg xmlns="http://www.w3.org/2000/svg" width="3mm" height="2mm"/>')}`;
 
 function project(): Project {
@@ -21,6 +22,10 @@ function project(): Project {
       { kind: 'text', id: 2, x: 10, y: 10, w: 80, h: 20, turn: 3, mirror: true, text: 'PCB\nrev 2', font: 'DejaVu Sans', bold: true, dose: 200 },
       { kind: 'svg', id: 3, x: 100, y: 50, w: 60, h: 40, turn: 1, name: 'board.svg', src: SVG, halftone: 'threshold', threshold: 50, tone: { ...NEUTRAL_TONE } },
       { kind: 'frame', id: 5, x: 0, y: 0, w: 300, h: 200, line: 0, dose: 255 },
+      {
+        kind: 'board', id: 6, x: 20, y: 20, w: 200, h: 100, mirror: true, name: 'demo', src: BOARD, halftone: 'threshold', threshold: 50, tone: { ...NEUTRAL_TONE },
+        layers: [{ file: 'a-F_Cu.gbr', kind: 'copper-top', expose: false }, { file: 'a-B_Cu.gbr', kind: 'copper-bottom', expose: true }], drillClear: 'exposed-dot', marks: [{ x: 2, y: 3.5 }], leftOut: true,
+      },
     ],
   };
 }
@@ -67,11 +72,16 @@ describe('project files', () => {
     expect(await reject((f) => (f.objects[0].halftone = 'sepia'))).toMatch(/^objects\[0\]\.halftone must be one of/);
     expect(await reject((f) => (f.objects[0].src = 'https://example.com/a.png'))).toMatch(/^objects\[0\]\.src must be a picture embedded/);
     expect(await reject((f) => (f.objects[1].dose = 300))).toMatch(/^objects\[1\]\.dose must be a whole number from 0 to 255/);
-    expect(await reject((f) => (f.objects[3].kind = 'circle'))).toMatch(/^objects\[3\]\.kind must be image, svg, text or frame/);
+    expect(await reject((f) => (f.objects[3].kind = 'circle'))).toMatch(/^objects\[3\]\.kind must be image, svg, board, text or frame/);
     expect(await reject((f) => (f.objects[3].id = 1))).toMatch(/two objects with the same id/);
     expect(await reject((f) => (f.objects[1].turn = 4))).toMatch(/^objects\[1\]\.turn must be a whole number from 0 to 3/);
     expect(await reject((f) => (f.objects[2].src = PNG))).toMatch(/^objects\[2\]\.src must be an SVG drawing embedded/);
     expect(await reject((f) => (f.objects[0].threshold = 0))).toMatch(/^objects\[0\]\.threshold must be a number from 0.1 to 100/);
+    expect(await reject((f) => (f.objects[4].src = SVG))).toMatch(/^objects\[4\]\.src must be a board's files embedded/);
+    expect(await reject((f) => (f.objects[4].layers[1].kind = 'copper-inner'))).toMatch(/^objects\[4\]\.layers\[1\]\.kind must be one of copper-top/);
+    expect(await reject((f) => (f.objects[4].leftOut = 'yes'))).toMatch(/^objects\[4\]\.leftOut must be true or false/);
+    expect(await reject((f) => (f.objects[4].drillClear = 'drill'))).toMatch(/^objects\[4\]\.drillClear must be one of none/);
+    expect(await reject((f) => (f.objects[4].marks = [{ x: 1 }]))).toMatch(/^objects\[4\]\.marks\[0\]\.y must be a number/);
     expect(await reject((f) => (f.polarity = 'both'))).toMatch(/^polarity must be negative or positive/);
     expect(await reject((f) => (f.paint.cols = 5000))).toMatch(/^paint\.cols must be a whole number from 1 to 4096/);
     expect(await reject((f) => (f.exposure.strategy = 'spiral'))).toMatch(/^exposure\.strategy must be one of/);

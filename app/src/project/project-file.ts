@@ -2,17 +2,21 @@
 // the file it was imported from, so it opens anywhere with nothing beside it. Opening checks every
 // field and says which one is wrong; nothing of the project open in the editor is lost by a bad
 // file. Version 2 added the resist polarity, turned and mirrored objects, the coverage threshold
-// in percent (version 1's `level` in 255ths), SVG drawings and a dose in mJ/cm²; version 1 opens.
+// in percent (version 1's `level` in 255ths), SVG drawings and a dose in mJ/cm², and later boards (Gerber and Excellon files, kind 'board') that
+// older apps refuse by name; version 1 opens.
 
 import { MAX_SIDE } from '../studio/grid/grid';
 import { HALFTONES, type Halftone } from '../studio/image/halftones';
-import type { StudioObject, Turn } from '../studio/objects/objects';
+import type { Tone } from '../studio/image/adjust';
+import { BOARD_LAYER_KINDS, DRILL_CLEARS, type BoardLayerKind, type DrillClear, type StudioObject, type Turn } from '../studio/objects/objects';
 import type { Polarity } from '../studio/objects/raster';
 import type { StrategyName } from '../protocol/job-types';
 import { packCells, unpackCells } from './cells-codec';
 
 export const PROJECT_FORMAT = 'uv-exposure-project';
 export const PROJECT_VERSION = 2;
+/** How a board's files are embedded (app/src/pcb/board-artwork.ts's BOARD_SRC_PREFIX, which loads on demand). */
+const BOARD_SRC = 'data:application/vnd.uv-exposure.board+json;base64,';
 /** Larger files are refused before they are read. */
 export const MAX_PROJECT_BYTES = 200 * 1024 * 1024;
 const STRATEGIES: StrategyName[] = ['raster', 'serpentine', 'shortest', 'random'];
@@ -78,6 +82,17 @@ function xy(v: unknown, path: string, min: number, max: number): { x: number; y:
   return { x: numIn(o.x, `${path}.x`, min, max), y: numIn(o.y, `${path}.y`, min, max) };
 }
 
+/** An artwork's halftone, threshold and tone. */
+function artworkLook(o: Json, path: string, version: number): { halftone: Halftone; threshold: number; tone: Tone } {
+  const halftone = o.halftone as Halftone;
+  if (!HALFTONES.includes(halftone)) fail(`${path}.halftone`, `must be one of ${HALFTONES.join(', ')}`);
+  const t = obj(o.tone, `${path}.tone`);
+  const tone = { invert: bool(t.invert, `${path}.tone.invert`), contrast: numIn(t.contrast, `${path}.tone.contrast`, -100, 100), gamma: numIn(t.gamma, `${path}.tone.gamma`, 0.05, 20) };
+  // Version 1 kept the threshold as a darkness level in 255ths: the same cut in percent.
+  const threshold = version === 1 ? (numIn(o.level, `${path}.level`, 1, 255, true) * 100) / 255 : numIn(o.threshold, `${path}.threshold`, 0.1, 100);
+  return { halftone, threshold, tone };
+}
+
 function object(v: unknown, path: string, cols: number, rows: number, version: number): StudioObject {
   const o = obj(v, path);
   const box = {
@@ -96,20 +111,30 @@ function object(v: unknown, path: string, cols: number, rows: number, version: n
       const src = str(o.src, `${path}.src`, MAX_PROJECT_BYTES);
       const svg = o.kind === 'svg';
       if (!(svg ? /^data:image\/svg\+xml;base64,/ : /^data:image\/[\w.+-]+;base64,/).test(src)) fail(`${path}.src`, `must be ${svg ? 'an SVG drawing' : 'a picture'} embedded as a data: URL`);
-      const halftone = o.halftone as Halftone;
-      if (!HALFTONES.includes(halftone)) fail(`${path}.halftone`, `must be one of ${HALFTONES.join(', ')}`);
-      const t = obj(o.tone, `${path}.tone`);
-      const tone = { invert: bool(t.invert, `${path}.tone.invert`), contrast: numIn(t.contrast, `${path}.tone.contrast`, -100, 100), gamma: numIn(t.gamma, `${path}.tone.gamma`, 0.05, 20) };
-      // Version 1 kept the threshold as a darkness level in 255ths: the same cut in percent.
-      const threshold = version === 1 ? (numIn(o.level, `${path}.level`, 1, 255, true) * 100) / 255 : numIn(o.threshold, `${path}.threshold`, 0.1, 100);
-      return { kind: svg ? 'svg' : 'image', ...box, name: str(o.name, `${path}.name`, 255), src, halftone, threshold, tone };
+      return { kind: svg ? 'svg' : 'image', ...box, name: str(o.name, `${path}.name`, 255), src, ...artworkLook(o, path, version) };
+    }
+    case 'board': {
+      const src = str(o.src, `${path}.src`, MAX_PROJECT_BYTES);
+      if (!src.startsWith(BOARD_SRC)) fail(`${path}.src`, "must be a board's files embedded as a data: URL");
+      if (!Array.isArray(o.layers)) fail(`${path}.layers`, 'must be a list');
+      const layers = o.layers.map((v, i) => {
+        const l = obj(v, `${path}.layers[${i}]`);
+        if (!BOARD_LAYER_KINDS.includes(l.kind as BoardLayerKind)) fail(`${path}.layers[${i}].kind`, `must be one of ${BOARD_LAYER_KINDS.join(', ')}`);
+        return { file: str(l.file, `${path}.layers[${i}].file`, 255), kind: l.kind as BoardLayerKind, expose: bool(l.expose, `${path}.layers[${i}].expose`) };
+      });
+      const drillClear = o.drillClear as DrillClear;
+      if (!DRILL_CLEARS.includes(drillClear)) fail(`${path}.drillClear`, `must be one of ${DRILL_CLEARS.join(', ')}`);
+      if (!Array.isArray(o.marks)) fail(`${path}.marks`, 'must be a list');
+      const marks = o.marks.map((m, i) => xy(m, `${path}.marks[${i}]`, -10_000, 10_000));
+      const leftOut = o.leftOut !== undefined && { leftOut: bool(o.leftOut, `${path}.leftOut`) };
+      return { kind: 'board', ...box, name: str(o.name, `${path}.name`, 255), src, ...artworkLook(o, path, version), layers, drillClear, marks, ...leftOut };
     }
     case 'text':
       return { kind: 'text', ...box, text: str(o.text, `${path}.text`, 10_000), font: str(o.font, `${path}.font`, 200), bold: bool(o.bold, `${path}.bold`), dose: dose() };
     case 'frame':
       return { kind: 'frame', ...box, line: numIn(o.line, `${path}.line`, 0, MAX_SIDE, true), dose: dose() };
     default:
-      fail(`${path}.kind`, 'must be image, svg, text or frame');
+      fail(`${path}.kind`, 'must be image, svg, board, text or frame');
   }
 }
 

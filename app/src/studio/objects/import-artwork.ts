@@ -8,8 +8,10 @@ import { NEUTRAL_TONE } from '../image/adjust';
 import { densityOf, type Density } from '../image/density';
 import { isLineArt } from '../image/gray';
 import { svgSize } from '../image/svg-size';
-import { bitmapArtwork, ready } from './artwork';
-import type { ArtworkObject, Rect } from './objects';
+import { bitmapArtwork, boardReader, ready } from './artwork';
+import { newBoardFields } from './board-object';
+import type { NewObject } from './object-layer.svelte';
+import type { ArtworkObject, BoardObject, Rect } from './objects';
 import { checkSize, dataUrl, readPicture } from './picture';
 import type { ReadyArtwork } from './raster';
 
@@ -23,12 +25,42 @@ export interface ImportedArtwork {
   /** The resolution a picture's header states. */
   dpi: Density | null;
   lineArt: boolean;
+  /** A board's layers, drill dots and marks as first chosen. */
+  board?: Pick<BoardObject, 'layers' | 'drillClear' | 'marks'>;
+  /** Files of a board that could not be read, and why: the rest is placed. */
+  problems?: string[];
 }
 
 const INCH_MM = 25.4;
 /** The resolution offered when none was used before: a common export resolution for boards. */
 const FIRST_DPI = 600;
 const LAST_DPI_KEY = 'uv-exposure.import-dpi';
+
+const PICTURE = /\.(svg|png|jpe?g|bmp|gif|webp)$/i;
+
+/** Several files at once, or one that is no picture or drawing (a .gbr, .gtl, .drl…): a board's files. */
+export const isBoardPick = (files: readonly File[]): boolean => files.length > 1 || (files.length === 1 && !files[0].type.startsWith('image/') && !PICTURE.test(files[0].name));
+
+/** A board's files as one object at the size of its window, each file's kind guessed from its name. */
+export async function importBoard(files: readonly File[]): Promise<ImportedArtwork> {
+  for (const f of files) checkSize(f);
+  const texts = await Promise.all(files.map(async (f) => ({ name: f.name, text: await f.text() })));
+  const pcb = await import('../../pcb');
+  const src = pcb.boardSrc(texts);
+  const board = pcb.boardArtwork(src); // throws when nothing in the files draws
+  const kinds = texts.map((t) => ({ file: t.name, kind: board.set.layers.find((l) => l.file === t.name)?.kind ?? 'other' }));
+  const art = boardReader(board);
+  const mm = { x: art.pixels.width / 1000, y: art.pixels.height / 1000 };
+  return { kind: 'board', name: boardName(texts.map((t) => t.name)), src, artwork: ready(art), sizeMm: mm, dpi: null, lineArt: true, board: newBoardFields(kinds), problems: board.set.problems.map((p) => `${p.file}: ${p.message}`) };
+}
+
+/** What the files' names share (KiCad's "board-F_Cu.gbr", "board-PTH.drl": "board"), else the first name. */
+export function boardName(names: readonly string[]): string {
+  let common = names[0] ?? 'board';
+  for (const n of names) while (!n.startsWith(common)) common = common.slice(0, -1);
+  common = common.replace(/[-_. ]+$/, '');
+  return common.length >= 2 ? common : (names[0] ?? 'board');
+}
 
 const isSvg = (file: File) => file.type === 'image/svg+xml' || /\.svg$/i.test(file.name);
 
@@ -57,7 +89,8 @@ export function cellsFor(mm: { x: number; y: number }, pitchUm: { x: number; y: 
 }
 
 /** The new object: line art by a 50 % coverage threshold, a greyscale picture by Floyd–Steinberg. */
-export function artworkObject(a: ImportedArtwork, box: Rect): Omit<ArtworkObject, 'id'> {
+export function artworkObject(a: ImportedArtwork, box: Rect): NewObject {
+  if (a.kind === 'board') return { kind: 'board', ...box, name: a.name, src: a.src, halftone: 'threshold', threshold: 50, tone: { ...NEUTRAL_TONE }, ...(a.board ?? newBoardFields([])) };
   return { kind: a.kind, ...box, name: a.name, src: a.src, halftone: a.lineArt ? 'threshold' : 'floyd-steinberg', threshold: 50, tone: { ...NEUTRAL_TONE } };
 }
 

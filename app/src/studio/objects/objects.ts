@@ -55,12 +55,36 @@ export interface SvgObject extends Placed, ArtworkFields {
   kind: 'svg';
 }
 
-export type ArtworkObject = ImageObject | SvgObject;
+/** What a board's file is, as the user settles it (app/src/pcb's LayerKind, which loads on demand). */
+export type BoardLayerKind = 'copper-top' | 'copper-bottom' | 'mask-top' | 'mask-bottom' | 'silk-top' | 'silk-bottom' | 'paste-top' | 'paste-bottom' | 'outline' | 'drill' | 'other';
+export const BOARD_LAYER_KINDS: readonly BoardLayerKind[] = ['copper-top', 'copper-bottom', 'mask-top', 'mask-bottom', 'silk-top', 'silk-bottom', 'paste-top', 'paste-bottom', 'outline', 'drill', 'other'];
 
-export const ARTWORK_KINDS: ArtworkObject['kind'][] = ['image', 'svg'];
+/** What a drill hole leaves in the copper: nothing, or a dot of resist unexposed or exposed so the drill centres itself. */
+export type DrillClear = 'none' | 'unexposed-dot' | 'exposed-dot';
+export const DRILL_CLEARS: readonly DrillClear[] = ['none', 'unexposed-dot', 'exposed-dot'];
+
+/**
+ * A board's Gerber and Excellon files as one object, drawn over the window of all its layers so
+ * every exposure of the board lines up. `src` embeds the files; which of them expose, what each
+ * is, the drill dots and the registration marks are the object's own.
+ */
+export interface BoardObject extends Placed, ArtworkFields {
+  kind: 'board';
+  /** Each file of `src`, in order: its name, its kind (guessed from the name, then the user's) and whether it is exposed. */
+  layers: { file: string; kind: BoardLayerKind; expose: boolean }[];
+  drillClear: DrillClear;
+  /** Registration marks, mm from the board window's lower left corner (Y up, as in the files): a copper ring with a bare centre to drill. */
+  marks: { x: number; y: number }[];
+  /** Left out of the job while the board's other side is exposed: drawn by its outline only. */
+  leftOut?: boolean;
+}
+
+export type ArtworkObject = ImageObject | SvgObject | BoardObject;
+
+export const ARTWORK_KINDS: ArtworkObject['kind'][] = ['image', 'svg', 'board'];
 
 /** Each artwork kind in words, as its panel and the dry run name it. */
-export const ARTWORK_WORDS: Record<ArtworkObject['kind'], string> = { image: 'picture', svg: 'SVG' };
+export const ARTWORK_WORDS: Record<ArtworkObject['kind'], string> = { image: 'picture', svg: 'SVG', board: 'board' };
 
 export function isArtwork(o: StudioObject): o is ArtworkObject {
   return (ARTWORK_KINDS as string[]).includes(o.kind);
@@ -90,7 +114,7 @@ export const CORNERS: Corner[] = ['nw', 'ne', 'sw', 'se'];
 
 /** Whether the object puts any light on the bed (a guide frame does not). */
 export function exposes(o: StudioObject): boolean {
-  return o.kind === 'frame' ? o.line > 0 && o.dose > 0 : o.kind === 'text' ? o.dose > 0 && o.text.trim() !== '' : true;
+  return o.kind === 'frame' ? o.line > 0 && o.dose > 0 : o.kind === 'text' ? o.dose > 0 && o.text.trim() !== '' : o.kind === 'board' ? !o.leftOut : true;
 }
 
 /** Artwork and text keep their proportions when resized; a frame is any rectangle. */

@@ -1,0 +1,56 @@
+// A board object's double-sided workflow, as pure arithmetic: the bottom side as a second object
+// mirrored about the flip axis the user chooses, where a registration mark lies on the bed, and
+// the move that puts a mark under the head ("set the job origin here").
+import type { BoardLayerKind, BoardObject, DrillClear, Rect } from './objects';
+import { frameSize, mirrored } from './orientation';
+
+/** How the board is turned over: about a vertical line (its left and right swap) or a horizontal one. */
+export type FlipAxis = 'left-right' | 'top-bottom';
+/** Where that line lies: the board's middle (it turns over in place) or one of its edges. */
+export type FlipAt = 'centre' | 'start' | 'end';
+
+/** A new board's choices: the top copper exposed (else the first copper), drill dots left unexposed where there are holes. */
+export function newBoardFields(files: readonly { file: string; kind: BoardLayerKind }[]): Pick<BoardObject, 'layers' | 'drillClear' | 'marks'> {
+  const kinds = files.map((f) => f.kind);
+  const exposed = kinds.includes('copper-top') ? 'copper-top' : kinds.find((k) => k === 'copper-bottom');
+  const drillClear: DrillClear = kinds.includes('drill') ? 'unexposed-dot' : 'none';
+  return { layers: files.map(({ file, kind }) => ({ file, kind, expose: kind === exposed })), drillClear, marks: [] };
+}
+
+/**
+ * The bottom side of the board lying as the board will once turned over about the axis: mirrored
+ * across it, its box reflected about the line (in place for the centre), exposing the bottom copper.
+ */
+export function bottomSide(o: BoardObject, axis: FlipAxis, at: FlipAt): Omit<BoardObject, 'id'> {
+  const { id: _, leftOut: __, ...rest } = o; // a new side takes part in the job
+  const across = axis === 'left-right' ? 'x' : 'y';
+  const side = across === 'x' ? o.w : o.h;
+  const shift = at === 'centre' ? 0 : at === 'start' ? -side : side;
+  return {
+    ...rest,
+    ...mirrored(o, across),
+    name: `${o.name} (bottom)`,
+    [across]: o[across] + shift,
+    layers: o.layers.map((l) => ({ ...l, expose: l.kind === 'copper-bottom' })),
+  };
+}
+
+/**
+ * Where a mark's centre lies on the bed, in cells (fractional: a cell's corner is whole). `windowUm`
+ * is the board's window, which the object's frame spans: the mark is mm from its lower left corner.
+ */
+export function markOnBed(o: BoardObject, mark: { x: number; y: number }, windowUm: { width: number; height: number }): { x: number; y: number } {
+  const { w, h } = frameSize(o);
+  let u = ((mark.x * 1000) / windowUm.width) * w;
+  const v = (1 - (mark.y * 1000) / windowUm.height) * h;
+  if (o.mirror) u = w - u;
+  const turn = o.turn ?? 0;
+  const [x, y] = turn === 0 ? [u, v] : turn === 1 ? [h - v, u] : turn === 2 ? [w - u, h - v] : [v, w - u];
+  return { x: o.x + x, y: o.y + y };
+}
+
+/** The object's place with the mark under the head (µm on the bed), to the nearest cell. */
+export function originAtHead(o: BoardObject, mark: { x: number; y: number }, windowUm: { width: number; height: number }, headUm: readonly number[], pitchUm: { x: number; y: number }): Pick<Rect, 'x' | 'y'> {
+  const m = markOnBed(o, mark, windowUm);
+  return { x: o.x + Math.round(headUm[0] / pitchUm.x - m.x), y: o.y + Math.round(headUm[1] / pitchUm.y - m.y) };
+}
