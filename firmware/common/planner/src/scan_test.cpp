@@ -157,7 +157,8 @@ TEST(ScanPlanner, NegativeOffsetsAndTheSpeedCap) {
   std::vector<std::vector<uint8_t>> run(4, std::vector<uint8_t>(12, 0));
   run[0][2] = run[0][3] = 255;
   GridCells runCells(run);
-  ScanPlanner capped(smallJob(12, 4), runCells, slow);
+  const JobHeader plain = smallJob(12, 4);  // the planner keeps a reference: it must outlive it
+  ScanPlanner capped(plain, runCells, slow);
   EXPECT_EQ(capped.motion().windowUs, 5000u);
   EXPECT_EQ(capped.motion().speedUmS, 10000u);
   ASSERT_TRUE(capped.nextPass(p));
