@@ -134,6 +134,8 @@ class Machine {
   // M28 and M23 need a card and no job under way; false, or the refusal said.
   bool refuseCardJob(HostLink& port);
   Result select(HostLink& port, const uv::Command& c);
+  // M24, M828 and M1000's P: its value, or Pace::Bad once E11 has been answered.
+  Pace paceParam(HostLink& port, const uv::Command& c);
   Result startOrContinue(HostLink& port, const uv::Command& c);
   Result resumeInterrupted(HostLink& port, const uv::Command& c);
   // The planner's machine (planner.md "Time model") from the settings, starting at (x, y).

@@ -165,11 +165,8 @@ Machine::Result Machine::select(HostLink& port, const uv::Command& c) {
 }
 
 Machine::Result Machine::startOrContinue(HostLink& port, const uv::Command& c) {
-  Pace pace = paceOf(c);
-  if (pace == Pace::Bad) {
-    port.errorLineP(uv::kBadParameter, UV_P("P is 0 or 1"));
-    return Result::Done;
-  }
+  Pace pace = paceParam(port, c);
+  if (pace == Pace::Bad) return Result::Done;
   if (running() && run()->state() == RunState::Paused) {
     if (refuseExposure(port)) return Result::Done;
     if (pace != Pace::Unsaid) run()->setPaced(pace == Pace::On);  // else as it was

@@ -73,6 +73,12 @@ uint8_t Machine::formatJob(char* out) const {
 }
 
 
+Pace Machine::paceParam(HostLink& port, const uv::Command& c) {
+  Pace pace = paceOf(c);
+  if (pace == Pace::Bad) port.errorLineP(uv::kBadParameter, UV_P("P is 0 or 1"));
+  return pace;
+}
+
 Machine::Result Machine::resumeInterrupted(HostLink& port, const uv::Command& c) {
   Progress p;
   bool have = sd_.present() && Checkpoint::read(sd_, p);
@@ -96,11 +102,8 @@ Machine::Result Machine::resumeInterrupted(HostLink& port, const uv::Command& c)
     port.line(buf);
     return Result::Done;
   }
-  Pace pace = paceOf(c);
-  if (pace == Pace::Bad) {
-    port.errorLineP(uv::kBadParameter, UV_P("P is 0 or 1"));
-    return Result::Done;
-  }
+  Pace pace = paceParam(port, c);
+  if (pace == Pace::Bad) return Result::Done;
   if (jobActive()) {
     port.errorLine(uv::kBusy);
     return Result::Done;
@@ -128,11 +131,8 @@ Machine::Result Machine::resumeInterrupted(HostLink& port, const uv::Command& c)
 }
 
 Machine::Result Machine::startStream(HostLink& port, const uv::Command& c) {
-  Pace pace = paceOf(c);
-  if (pace == Pace::Bad) {
-    port.errorLineP(uv::kBadParameter, UV_P("P is 0 or 1"));
-    return Result::Done;
-  }
+  Pace pace = paceParam(port, c);
+  if (pace == Pace::Bad) return Result::Done;
   if (jobActive()) {
     port.errorLine(uv::kBusy);
     return Result::Done;

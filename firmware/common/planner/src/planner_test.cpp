@@ -11,6 +11,7 @@
 
 #include "grid_cells.h"
 #include "job_json_fixture.h"
+#include "machine_json_fixture.h"
 #include "mesh.h"
 #include "time_model.h"
 #include "vectors_fixture.h"
@@ -53,18 +54,6 @@ struct Planned {
   uint64_t estimate;
   uint64_t travel[2];
 };
-
-Machine machineFrom(const json& m) {
-  Machine out{};
-  for (int a = 0; a < 2; a++) {
-    out.vmaxUmS[a] = m["vmaxUmS"][a];
-    out.accelUmS2[a] = m["accelUmS2"][a];
-    out.startUm[a] = m["startUm"][a];
-  }
-  out.settleUs = m["settleUs"];
-  out.overheadUs = m["overheadUs"];
-  return out;
-}
 
 std::vector<std::vector<uint8_t>> gridFrom(const json& job) {
   std::vector<std::vector<uint8_t>> rows;

@@ -10,6 +10,7 @@
 
 #include "grid_cells.h"
 #include "job_json_fixture.h"
+#include "machine_json_fixture.h"
 #include "planner.h"
 #include "scan_json_fixture.h"
 #include "vectors_fixture.h"
@@ -23,18 +24,6 @@ extern std::atomic<long> allocations;  // counted by planner_test.cpp's operator
 
 namespace {
 
-Machine scanMachineFrom(const json& m) {
-  Machine out{};
-  for (int a = 0; a < 2; a++) {
-    out.vmaxUmS[a] = m["vmaxUmS"][a];
-    out.accelUmS2[a] = m["accelUmS2"][a];
-    out.startUm[a] = m["startUm"][a];
-  }
-  out.settleUs = m["settleUs"];
-  out.overheadUs = m["overheadUs"];
-  return out;
-}
-
 void checkScanGolden(const char* file) {
   const json v = loadVectors(file);
   ASSERT_GT(v["cases"].size(), 10u) << file;
@@ -42,7 +31,7 @@ void checkScanGolden(const char* file) {
     std::vector<std::vector<uint8_t>> rows;
     for (const auto& r : c["job"]["gridData"]) rows.emplace_back(r.begin(), r.end());
     const JobHeader h = headerFrom(c["job"]);
-    EXPECT_EQ(scanPlanJson(h, rows, scanMachineFrom(c["machine"])), c["scan"]) << c["name"];
+    EXPECT_EQ(scanPlanJson(h, rows, machineFrom(c["machine"])), c["scan"]) << c["name"];
   }
   std::printf("[vectors] %s: %zu scan plans checked (C++)\n", file, v["cases"].size());
 }

@@ -1,0 +1,21 @@
+// Host-only: the planner's machine as the golden vectors write it (vectors/planner-*.json, scan-*.json).
+#pragma once
+#include <nlohmann/json.hpp>
+
+#include "time_model.h"
+
+namespace uvtest {
+
+inline uv::Machine machineFrom(const nlohmann::json& m) {
+  uv::Machine out{};
+  for (int a = 0; a < 2; a++) {
+    out.vmaxUmS[a] = m["vmaxUmS"][a];
+    out.accelUmS2[a] = m["accelUmS2"][a];
+    out.startUm[a] = m["startUm"][a];
+  }
+  out.settleUs = m["settleUs"];
+  out.overheadUs = m["overheadUs"];
+  return out;
+}
+
+}  // namespace uvtest
