@@ -24,11 +24,13 @@ EXPECTED = {
     "mesh.json": {"cases": "points"},
     "scan-ts.json": {"cases": "scan"},
     "scan-cpp.json": {"cases": "scan"},
+    "nano-program.json": {"programs": "lines"},
 }
 # The C++ test program that reads each file.
 CXX_BINARY = {"nano.json": "protocol_tests", "mega.json": "protocol_tests", "job.json": "protocol_tests",
               "esp.json": "esp_tests", "planner-ts.json": "planner_tests", "planner-cpp.json": "planner_tests",
-              "mesh.json": "planner_tests", "scan-ts.json": "planner_tests", "scan-cpp.json": "planner_tests"}
+              "mesh.json": "planner_tests", "scan-ts.json": "planner_tests", "scan-cpp.json": "planner_tests",
+              "nano-program.json": "protocol_tests"}
 
 
 def mutate(value, rng):

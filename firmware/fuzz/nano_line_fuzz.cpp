@@ -21,6 +21,22 @@ struct Io : nano::PrintheadIo {
     lit = p.onMask;
   }
   void allOff() override { lit = 0; }
+  // A chain runs to its end at once; every event it hands out must be one the protocol allows.
+  bool startProgram(nano::ScanStore& store) override {
+    uint32_t d;
+    uint8_t m, was = 0;
+    uint64_t on[4] = {};
+    while (store.next(d, m) == nano::ScanStore::Step::Event) {
+      FUZZ_REQUIRE(m <= 15 && d <= uv::kProgramMaxDelta, "an event no program may hold");
+      for (uint8_t i = 0; i < 4; i++) {
+        if (was >> i & 1) on[i] += d;
+        FUZZ_REQUIRE(on[i] <= capUs, "an LED kept on past the exposure cap by a program");
+        if (!(m >> i & 1)) on[i] = 0;
+      }
+      was = m;
+    }
+    return true;
+  }
   uint8_t litMask() const override { return lit; }
   void servoPulse(uint16_t us) override { FUZZ_REQUIRE(us >= 500 && us <= 2500, "a servo pulse no CR Touch takes"); }
   bool probeTriggered() override { return false; }

@@ -62,6 +62,8 @@ nano_commands = [
     {"line": "E\n", "command": {"op": "E"}, "flash": "dim_white"},
     {"line": "V\n", "command": {"op": "V"}, "flash": "dim_white"},
     {"line": "C\n", "command": {"op": "C"}, "flash": "dim_white"},
+    {"line": "G\n", "command": {"op": "G"}, "flash": "purple"},
+    {"line": "Q\n", "command": {"op": "Q"}, "flash": "dim_white"},
 ]
 nano_parse_only = [
     {"line": "S\r\n", "command": {"op": "S"}},
@@ -70,7 +72,8 @@ nano_parse_only = [
 ]
 nano_malformed = [
     {"line": "s\n", "why": "lower case"},
-    {"line": "Q\n", "why": "unknown command"},
+    {"line": "Z\n", "why": "unknown command"},
+    {"line": "G1\n", "why": "trailing characters after G"},
     {"line": "S1\n", "why": "trailing characters"},
     {"line": "S \n", "why": "trailing space"},
     {"line": "F:16,1,1,1,1\n", "why": "mask over 15"},
@@ -102,13 +105,20 @@ nano_replies = [
     {"line": "C:0,0,1\n", "reply": {"op": "C", "boot": 0, "fires": 0, "whole": True}},
     {"line": "C:65535,4294967295,0\n", "reply": {"op": "C", "boot": 65535, "fires": 4294967295, "whole": False}},
     {"line": "C:17,3,1\n", "reply": {"op": "C", "boot": 17, "fires": 3, "whole": True}},
+    {"line": "K:0\n", "reply": {"op": "K", "code": 0}},
+    {"line": "K:7\n", "reply": {"op": "K", "code": 7}},
+    {"line": "Q:2,0,0\n", "reply": {"op": "Q", "free": 2, "armed": 0, "pass": 0}},
+    {"line": "Q:0,2,6\n", "reply": {"op": "Q", "free": 0, "armed": 2, "pass": 6}},
+    {"line": "Q:1,0,1\n", "reply": {"op": "Q", "free": 1, "armed": 0, "pass": 1}},
 ]
 nano_bad_replies = [
     {"line": "S:16\n"}, {"line": "S:\n"}, {"line": "S15\n"}, {"line": "P:2\n"},
     {"line": "T:23.5,24.0,-5.2,100.0,22.1\n"}, {"line": "T:23,24.0,-5.2,100.0,22.1,0.0\n"},
     {"line": "T:23.55,24.0,-5.2,100.0,22.1,0.0\n"}, {"line": "T:1000.0,24.0,-5.2,100.0,22.1,0.0\n"},
     {"line": "T:-0.0x,24.0,-5.2,100.0,22.1,0.0\n"}, {"line": "E:256\n"}, {"line": "V:1\n"},
-    {"line": "Q:1\n"}, {"line": "S:1"},
+    {"line": "Z:1\n"}, {"line": "S:1"},
+    {"line": "K:8\n"}, {"line": "K:\n"}, {"line": "K:12\n"}, {"line": "Q:3,0,0\n"}, {"line": "Q:0,3,0\n"},
+    {"line": "Q:0,0,7\n"}, {"line": "Q:0,0\n"}, {"line": "Q:0,0,0,0\n"},
     {"line": "C:65536,0,1\n"}, {"line": "C:1,4294967296,1\n"}, {"line": "C:1,2,3\n"}, {"line": "C:1,2\n"}, {"line": "C:1,2,1,0\n"},
 ]
 nano_streams = [
@@ -570,4 +580,103 @@ for m in meshes:
     ys = [mm["y0"] - 1, mm["y0"] + mm["dy"] // 2 + 1, mm["y0"] + (mm["ny"] - 1) * mm["dy"], mm["y0"] + 999999]
     m["points"] = [[x, y, mesh_z(mm, x, y)] for x in xs for y in ys]
 write("mesh.json", {"version": 1, "cases": meshes})
-print("wrote nano.json mega.json job.json esp.json mesh.json")
+
+
+# ---------------------------------------------------------------- Scan programs (nano.md)
+MAX_DELTA = (1 << 28) - 1
+
+
+def check_events(events):
+    """CRC-16/CCITT-FALSE over each event's word d*16+m, 4 bytes little-endian."""
+    c = 0xFFFF
+    for d, m in events:
+        for b in ((d << 4) | m).to_bytes(4, "little"):
+            c ^= b << 8
+            for _ in range(8):
+                c = ((c << 1) ^ 0x1021) & 0xFFFF if c & 0x8000 else (c << 1) & 0xFFFF
+    return c
+
+
+def merge(leds):
+    """Per-LED [on, off] lists -> (t, state) events, one per distinct switching time."""
+    times = sorted({t for iv in leds for a, b in iv for t in (a, b)})
+    out = []
+    for t in times:
+        m = 0
+        for k, iv in enumerate(leds):
+            if any(a <= t < b for a, b in iv):
+                m |= 1 << k
+        out.append((t, m))
+    return out
+
+
+def program_lines(events):
+    """Absolute (t, m) events -> the chain's A and K lines, 64 events a program, 63 bytes a line."""
+    lines, programs = [], []
+    for i in range(0, len(events), 64):
+        programs.append(events[i:i + 64])
+    prev = None
+    for p_i, prog in enumerate(programs):
+        rel = []
+        for t, m in prog:
+            rel.append((t if prev is None else t - prev, m))
+            prev = t
+        seq, cur = 0, None
+        for d, m in rel:
+            pair = f",{d},{m}"
+            if cur is not None and len(cur) + len(pair) > 63:
+                lines.append(cur)
+                cur = None
+            if cur is None:
+                cur = f"A:{seq}"
+                seq += 1
+            cur += pair
+        lines.append(cur)
+        flags = (1 if p_i else 0) | (2 if p_i < len(programs) - 1 else 0)
+        lines.append(f"K:{flags},{len(rel)},{check_events(rel)}")
+    return lines
+
+
+def gray_row():
+    """A pass as the scan planner lays it out: 2000 us windows, every LED, gray and full cells."""
+    W, leds = 2000, [[], [], [], []]
+    for k in range(4):
+        for j in range(40):
+            v = (j * 37 + k * 11) % 7
+            if v == 0:
+                continue
+            t = W if v == 6 else v * 250 + k
+            on = j * W + (W - t) // 2
+            if leds[k] and leds[k][-1][1] == on:
+                leds[k][-1][1] = on + t
+            else:
+                leds[k].append([on, on + t])
+    return leds
+
+
+program_cases = [
+    {"name": "one LED, one cell", "leds": [[[0, 2000]], [], [], []]},
+    {"name": "LEDs switching together merge", "leds": [[[995, 1005], [2000, 6000]], [[995, 3000]], [], [[5999, 6000]]]},
+    {"name": "a long dark gap", "leds": [[[0, 10], [268435000, 268435100]], [], [], []]},
+    {"name": "a pass of gray cells: a chain of programs", "leds": gray_row()},
+]
+for c in program_cases:
+    c["events"] = [[t, m] for t, m in merge(c["leds"])]
+    c["lines"] = program_lines(c["events"])
+    assert all(len(l) <= 63 for l in c["lines"])
+program_bad = [
+    {"line": "A:0", "why": "no events"},
+    {"line": "A:0,1", "why": "half an event"},
+    {"line": "A:0,1,16", "why": "state over 15"},
+    {"line": "A:0,268435456,1", "why": "delay of 2^28 us"},
+    {"line": "A:65536,1,1", "why": "line number over 65535"},
+    {"line": "A:0,1,1,", "why": "trailing comma"},
+    {"line": "A:0,-1,1", "why": "negative"},
+    {"line": "K:4,1,0", "why": "flags over 3"},
+    {"line": "K:0,0,0", "why": "no events"},
+    {"line": "K:0,65,0", "why": "over 64 events"},
+    {"line": "K:0,1,65536", "why": "check over 16 bits"},
+    {"line": "K:0,1", "why": "no check"},
+]
+write("nano-program.json", {"version": 1, "maxEvents": 64, "startLeadUs": 1000, "programs": program_cases, "bad": program_bad})
+print("wrote nano.json mega.json job.json esp.json mesh.json nano-program.json")

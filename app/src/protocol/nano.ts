@@ -8,7 +8,7 @@ export const LED_COUNT = 4;
 export const SENSOR_COUNT = 6;
 
 export type NanoCommand =
-  | { op: 'S' | 'D' | 'U' | 'X' | 'P' | 'T' | 'R' | 'E' | 'V' | 'C' }
+  | { op: 'S' | 'D' | 'U' | 'X' | 'P' | 'T' | 'R' | 'E' | 'V' | 'C' | 'G' | 'Q' }
   | { op: 'F'; mask: number; durations: [number, number, number, number] };
 
 export type NanoReply =
@@ -18,7 +18,11 @@ export type NanoReply =
   | { op: 'E'; flags: number }
   | { op: 'V'; protocol: number; firmware: string }
   /** The Nano's start count, exposures lit since then, and whether the last one ran its full time. */
-  | { op: 'C'; boot: number; fires: number; whole: boolean };
+  | { op: 'C'; boot: number; fires: number; whole: boolean }
+  /** A scan program's seal: 0 armed, else why it was refused (protocol/nano.md "Scan programs"). */
+  | { op: 'K'; code: number }
+  /** Buffers free to load, programs armed, and what became of the last chain started. */
+  | { op: 'Q'; free: number; armed: number; pass: number };
 
 export type Colour = 'green' | 'dim_white' | 'purple' | 'cyan' | 'orange' | 'red';
 
@@ -45,6 +49,7 @@ export const FAULT = {
 const FLASH: Record<NanoCommand['op'], Colour> = {
   S: 'dim_white', T: 'dim_white', E: 'dim_white', V: 'dim_white', C: 'dim_white',
   F: 'purple', D: 'cyan', U: 'cyan', X: 'cyan', P: 'cyan', R: 'orange',
+  G: 'purple', Q: 'dim_white',
 };
 
 export function flashColour(op: NanoCommand['op']): Colour {
@@ -67,7 +72,7 @@ export function nanoLineUsable(line: SplitLine): boolean {
 
 /** Parses one line (without terminator). null = malformed: the Nano drops it. */
 export function parseNanoCommand(line: string): NanoCommand | null {
-  if (line.length === 1 && 'SDUXPTREVC'.includes(line)) {
+  if (line.length === 1 && 'SDUXPTREVCGQ'.includes(line)) {
     return { op: line as 'S' };
   }
   if (!line.startsWith('F:')) return null;
@@ -112,6 +117,8 @@ export function formatNanoReply(r: NanoReply): string {
     case 'E': return `E:${r.flags}\n`;
     case 'V': return `V:${r.protocol},${r.firmware}\n`;
     case 'C': return `C:${r.boot},${r.fires},${r.whole ? 1 : 0}\n`;
+    case 'K': return `K:${r.code}\n`;
+    case 'Q': return `Q:${r.free},${r.armed},${r.pass}\n`;
   }
 }
 
@@ -119,7 +126,7 @@ export function formatNanoReply(r: NanoReply): string {
 export function parseNanoReply(raw: string): NanoReply | null {
   if (!raw.endsWith('\n')) return null;
   const line = raw.slice(0, -1);
-  const m = /^([SPTEVC]):(.*)$/.exec(line);
+  const m = /^([SPTEVCKQ]):(.*)$/.exec(line);
   if (!m) return null;
   const body = m[2];
   switch (m[1]) {
@@ -147,6 +154,12 @@ export function parseNanoReply(raw: string): NanoReply | null {
       const v = /^([0-9]{1,5}),([0-9]{1,10}),([01])$/.exec(body);
       if (!v || Number(v[1]) > 65535 || Number(v[2]) > U32_MAX) return null;
       return { op: 'C', boot: Number(v[1]), fires: Number(v[2]), whole: v[3] === '1' };
+    }
+    case 'K':
+      return /^[0-7]$/.test(body) ? { op: 'K', code: Number(body) } : null;
+    case 'Q': {
+      const v = /^([0-2]),([0-2]),([0-6])$/.exec(body);
+      return v ? { op: 'Q', free: Number(v[1]), armed: Number(v[2]), pass: Number(v[3]) } : null;
     }
   }
   return null;

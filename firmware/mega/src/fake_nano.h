@@ -15,6 +15,11 @@
 
 namespace mega {
 
+struct ScanLight {
+  uint8_t led;
+  uint32_t onUs, offUs;
+};
+
 struct Exposure {
   uint32_t startUs;
   uint8_t mask;
@@ -51,6 +56,7 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
   // --- the test's side ---
   void advance(uint32_t toUs) {
     nowUs = toUs;
+    runProgram();
     for (uint8_t i = 0; i < 4; i++) {
       if ((lit_ & (1 << i)) && !stuck && nowUs >= offAt_[i]) off(i, offAt_[i]);
     }
@@ -78,6 +84,7 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
   bool uartFull = false;
   uint32_t nowUs = 0;
   std::vector<Exposure> exposures;
+  std::vector<ScanLight> scanLight;
   std::vector<std::string> lines;  // every line the Mega sent
   uint16_t servoUs = 0;
   bool probe = false;
@@ -103,6 +110,45 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
   void allOff() override {
     for (uint8_t i = 0; i < 4; i++)
       if (lit_ & (1 << i)) off(i, nowUs);
+    program_ = nullptr;
+  }
+  // A scan chain runs in simulated time: advance() takes its events as they fall due.
+  bool startProgram(nano::ScanStore& store) override {
+    program_ = &store;
+    eventAt_ = nowUs + uv::kProgramStartLeadUs;
+    return takeEvent();
+  }
+  bool takeEvent() {
+    uint32_t d;
+    uint8_t m;
+    if (program_->next(d, m) != nano::ScanStore::Step::Event) {
+      program_ = nullptr;
+      setLit(0, eventAt_);
+      return false;
+    }
+    eventAt_ += d;
+    nextMask_ = m;
+    return true;
+  }
+  void runProgram() {
+    while (program_ && !stuck && nowUs >= eventAt_) {
+      setLit(nextMask_, eventAt_);
+      takeEvent();
+    }
+  }
+  // Scan light is logged per LED as [on, off) µs intervals.
+  void setLit(uint8_t m, uint32_t atUs) {
+    for (uint8_t i = 0; i < 4; i++) {
+      bool was = lit_ >> i & 1, is = m >> i & 1;
+      if (!was && is) scanLight.push_back({i, atUs, atUs});
+      if (was && !is)
+        for (auto it = scanLight.rbegin(); it != scanLight.rend(); ++it)
+          if (it->led == i) {
+            it->offUs = atUs;
+            break;
+          }
+    }
+    lit_ = m;
   }
   void servoPulse(uint16_t us) override { servoUs = us; }
   bool probeTriggered() override { return probe; }
@@ -118,6 +164,9 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
   uint8_t lit_ = 0;
   uint32_t offAt_[4] = {};
   uint32_t startAt_ = 0;
+  nano::ScanStore* program_ = nullptr;
+  uint32_t eventAt_ = 0;
+  uint8_t nextMask_ = 0;
   uint16_t boot_ = 7;
   int16_t temps_ = 250;
 };

@@ -6,11 +6,9 @@
 #include <map>
 #include <sstream>
 
-#include "nano_rig.h"
+#include "nano_sim_fixture.h"
 
 namespace {
-
-constexpr double kByteTimeUs = 1e6 * 10 / 115200;  // one byte at the real 115200 baud: 86.8 µs
 
 // Worst figures over the whole run, printed at exit (npm run bench shows them).
 struct Budget {
@@ -29,46 +27,10 @@ struct Budget {
   }
 } budget;
 
-std::unique_ptr<NanoRig> bootedRig() {
-  auto rig = std::make_unique<NanoRig>(NANO_ELF);
-  rig->runUs(30000);  // start-up and the first temperature sweeps
-  rig->resetInterruptStats();  // the C runtime starts with interrupts off, before the UART is on
-  return rig;
-}
-
-double us(uint64_t cycles) { return cycles / NanoRig::kCyclesPerUs; }
-
 void noteInterrupts(const NanoRig& rig) {
   double off = us(rig.maxInterruptsOff);
   budget.interruptsOffUs = std::max(budget.interruptsOffUs, off);
   EXPECT_LT(off, kByteTimeUs) << "interrupts off long enough to lose a received byte";
-}
-
-// Replies the Nano wrote, with the line they answered when the test asked for that.
-std::string reply(NanoRig& rig, const std::string& cmd) {
-  rig.takeLines();
-  rig.send(cmd + "\n");
-  std::vector<std::string> lines;
-  rig.runUntil([&] {
-    auto l = rig.takeLines();
-    lines.insert(lines.end(), l.begin(), l.end());
-    return !lines.empty();
-  }, 20000);
-  return lines.empty() ? "" : lines.back();
-}
-
-// High spans of one pin after `from`: (rise, fall) cycles.
-std::vector<std::pair<uint64_t, uint64_t>> pulses(const std::vector<NanoRig::Edge>& edges, uint64_t from = 0) {
-  std::vector<std::pair<uint64_t, uint64_t>> out;
-  uint64_t rise = 0;
-  bool high = false;
-  for (const auto& e : edges) {
-    if (e.cycle < from) continue;
-    if (e.high && !high) rise = e.cycle;
-    if (!e.high && high) out.push_back({rise, e.cycle});
-    high = e.high;
-  }
-  return out;
 }
 
 // WS2812 frames on PB0, decoded to RGB; checks every bit's high time against the datasheet.

@@ -12,6 +12,7 @@
 #include "printhead.h"
 #include "probe_input.h"
 #include "servo_pulse.h"
+#include "uart.h"
 
 namespace {
 
@@ -34,16 +35,33 @@ void earliest() {
 // wake, with room to spare.
 constexpr uint16_t kPixelQuietTicks = 1500;  // 93.75 µs
 
+// A scan program's time 0, in Timer1 ticks after the receive interrupt read TCNT1 for the `\n` of
+// its `G`: the protocol's lead, less the interrupt's own entry before that read (measured on the
+// pins in simavr, firmware/nano/sim/nano_sim_test.cpp).
+constexpr uint16_t kStampLatencyTicks = 46;
+constexpr uint16_t kStartLeadTicks = static_cast<uint16_t>(uv::kProgramStartLeadUs * nano::kTicksPerUs - kStampLatencyTicks);
+
 class Board : public nano::PrintheadIo {
  public:
   void fire(const nano::FirePlan& plan) override { nano::led_timer::fire(plan); }
   void allOff() override { nano::led_timer::allOff(); }
+  bool cutByReset() override { return nano::uart::takeResetCut(); }
+  bool startProgram(nano::ScanStore& store) override {
+    uint16_t tick;
+    uint32_t us;
+    uint8_t sreg = SREG;
+    cli();  // no interrupt between the check and the timer's start
+    bool inTime = nano::uart::takeStart(tick, us) && micros() - us <= uv::kProgramLateUs;
+    if (inTime) nano::led_timer::run(store, static_cast<uint16_t>(tick + kStartLeadTicks));
+    SREG = sreg;
+    return inTime;
+  }
   uint8_t litMask() const override { return nano::led_timer::lit(); }
   void servoPulse(uint16_t us) override { nano::servo_pulse::set(us); }
   bool probeTriggered() override { return nano::probe_input::takeTriggered(); }
   void reply(const char* text, uint8_t len) override {
     // Never block: a reply that finds no room is dropped, and the Mega's time-out asks again.
-    if (Serial.availableForWrite() >= len) Serial.write(text, len);
+    nano::uart::write(text, len);
   }
 };
 
@@ -65,7 +83,7 @@ void updatePixel(uint32_t nowMs) {
   if (pixelWritten && want == shown) return;
   // Not while a line is arriving: the write holds interrupts off for tens of µs, and a poll's reply
   // must not wait behind it. Between lines it ends before the next line's last byte can arrive.
-  if (splitter.pending() || Serial.available()) return;
+  if (splitter.pending() || nano::uart::available()) return;
   if (!nano::led_timer::quietFor(kPixelQuietTicks) || !nano::servo_pulse::quietFor(kPixelQuietTicks)) return;
   uv::Rgb c = uv::colourRgb(want);
   nano::neopixel::show(c.r, c.g, c.b);
@@ -88,7 +106,7 @@ void setup() {
   uint16_t boot = static_cast<uint16_t>(eeprom_read_word(bootCount) + 1);
   eeprom_update_word(bootCount, boot);  // about 7 ms, before the watchdog and the UART start
   head.setBoot(boot);
-  Serial.begin(115200);
+  nano::uart::begin(115200);
   wdt_enable(WDTO_250MS);
 }
 
@@ -98,8 +116,9 @@ void loop() {
   uint16_t mv[uv::kSensorCount];
   if (nano::adc_sampler::take(mv)) head.readings(mv);
   int budget = 64;  // bytes per pass, so the pixel and the watchdog are served under a flood
-  while (budget-- > 0 && Serial.available()) {
-    if (splitter.push(static_cast<char>(Serial.read()))) {
+  int16_t c;
+  while (budget-- > 0 && (c = nano::uart::read()) >= 0) {
+    if (splitter.push(static_cast<char>(c))) {
       head.line(splitter.text(), splitter.length(), splitter.overflow(), now);
     }
   }

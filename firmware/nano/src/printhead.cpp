@@ -8,20 +8,58 @@ namespace nano {
 void Printhead::line(const char* text, uint8_t len, bool overflow, uint32_t nowMs) {
   if (len == 0 && !overflow) return;  // empty lines are ignored without a flag
   uv::NanoCommand c;  // not zeroed: parse sets what each command uses (saves ~100 cycles a line)
-  if (!uv::nanoLineUsable(text, len, overflow) || !uv::parseNanoCommand(text, len, c)) {
+  if (uv::nanoLineUsable(text, len, overflow) && len >= 2 && text[1] == ':' && (text[0] == 'A' || text[0] == 'K')) {
+    c.op = text[0];  // a program line: flashes dim white like a poll
+  } else if (!uv::nanoLineUsable(text, len, overflow) || !uv::parseNanoCommand(text, len, c)) {
     latched_ |= uv::fault::kMalformed;
     return;
   }
   uv::Colour flash = uv::flashColour(c.op);
   // A status poll (S, T, E, V, C: dim white) comes right after every F in a job: it must not hide
   // the exposure's purple, which would then never be seen (the pixel is written between edges).
-  bool exposing = colour(nowMs) == uv::Colour::Purple;
-  if (!(exposing && flash == uv::Colour::DimWhite)) {
+  bool purple = colour(nowMs) == uv::Colour::Purple;
+  if (!(purple && flash == uv::Colour::DimWhite)) {
     flash_ = flash;
     flashUntilMs_ = nowMs + kFlashMs;
     flashing_ = true;
   }
+  if (c.op == 'A' || c.op == 'K') return program(text, len);
   handle(c, nowMs);
+}
+
+void Printhead::program(const char* text, uint8_t len) {
+  if (text[0] == 'A') {
+    if (!store_.append(text, len)) latched_ |= uv::fault::kMalformed;
+    return;
+  }
+  uv::Seal s;
+  if (!uv::parseSeal(text, len, s)) {
+    latched_ |= uv::fault::kMalformed;
+    return;
+  }
+  uv::NanoReply r;
+  r.op = 'K';
+  r.code = static_cast<uint8_t>(store_.seal(s));
+  send(r);
+}
+
+void Printhead::start() {
+  if (guard_.active() || !measured_) {
+    latched_ |= uv::fault::kRefused;
+  } else if (exposing()) {
+    latched_ |= uv::fault::kBusy;
+  } else if (store_.startable()) {
+    store_.start();
+    if (io_.startProgram(store_)) {
+      fires_++;
+      whole_ = true;
+      programLast_ = true;
+      return;
+    }
+    store_.discard(uv::PassState::Refused);  // time 0 went by: the chain cannot run as planned
+    return;
+  }
+  store_.refuse();
 }
 
 void Printhead::handle(const uv::NanoCommand& c, uint32_t) {
@@ -33,9 +71,17 @@ void Printhead::handle(const uv::NanoCommand& c, uint32_t) {
       return send(r);
     case 'F':
       return fire(c);
+    case 'G':
+      return start();
+    case 'Q':
+      r.free = store_.freeBuffers();
+      r.armed = store_.armed();
+      r.pass = static_cast<uint8_t>(store_.pass());
+      return send(r);
     case 'R':
-      if (io_.litMask()) whole_ = false;  // an exposure cut short
-      return io_.allOff();
+      if (exposing() || io_.cutByReset()) whole_ = false;  // an exposure cut short
+      io_.allOff();
+      return store_.discard(uv::PassState::CutByReset);
     case 'D':
       return io_.servoPulse(kServoDeployUs);
     case 'U':
@@ -55,7 +101,7 @@ void Printhead::handle(const uv::NanoCommand& c, uint32_t) {
     case 'C':
       r.boot = boot_;
       r.fires = fires_;
-      r.whole = whole_;
+      r.whole = whole_ && !(programLast_ && store_.pass() == uv::PassState::Underrun);
       return send(r);
     case 'V':
       r.protocol = 1;
@@ -69,7 +115,7 @@ void Printhead::fire(const uv::NanoCommand& c) {
     latched_ |= uv::fault::kRefused;
     return;
   }
-  if (io_.litMask()) {
+  if (exposing()) {
     latched_ |= uv::fault::kBusy;
     return;
   }
@@ -81,6 +127,7 @@ void Printhead::fire(const uv::NanoCommand& c) {
       io_.fire(plan);
       fires_++;
       whole_ = true;
+      programLast_ = false;
       return;
   }
 }
@@ -88,15 +135,16 @@ void Printhead::fire(const uv::NanoCommand& c) {
 void Printhead::readings(const uint16_t mv[uv::kSensorCount]) {
   for (uint8_t i = 0; i < uv::kSensorCount; i++) deciC_[i] = tmp36DeciC(mv[i]);
   measured_ = true;
-  if (guard_.update(mv) && io_.litMask()) {
+  if (guard_.update(mv) && exposing()) {
     io_.allOff();
+    store_.discard(uv::PassState::CutByFault);
     whole_ = false;
     latched_ |= uv::fault::kCutoff;
   }
 }
 
 uv::Colour Printhead::colour(uint32_t nowMs) {
-  if (io_.litMask()) return uv::Colour::Purple;  // while any LED is lit, whatever came since
+  if (exposing()) return uv::Colour::Purple;  // while any LED is lit or a pass runs, whatever came since
   if (flashing_ && static_cast<int32_t>(nowMs - flashUntilMs_) < 0) return flash_;
   flashing_ = false;  // so a flash cannot come back when the millisecond clock wraps
   return guard_.active() ? uv::Colour::Red : uv::Colour::Green;

@@ -5,6 +5,7 @@
 
 #include "fire_plan.h"
 #include "nano_codec.h"
+#include "scan_store.h"
 #include "thermal_guard.h"
 
 namespace nano {
@@ -19,6 +20,13 @@ class PrintheadIo {
  public:
   virtual void fire(const FirePlan& plan) = 0;  // LEDs on in one port write, offs on the timer
   virtual void allOff() = 0;                    // every LED off in one write, pending offs cleared
+  // Whether the board already switched everything off for this R the moment it arrived (the
+  // UART's interrupt does, so R acts within microseconds however busy the main loop is), and
+  // something was lit or still to switch then.
+  virtual bool cutByReset() { return false; }
+  // Runs the store's armed chain from the `G` just received; false when the G's time 0 has gone
+  // by (the Nano took it too late) and nothing runs.
+  virtual bool startProgram(ScanStore& store) = 0;
   virtual uint8_t litMask() const = 0;
   virtual void servoPulse(uint16_t us) = 0;     // 50 Hz train of this width from now on
   virtual bool probeTriggered() = 0;            // level now, or a latched pulse since the last call
@@ -33,7 +41,7 @@ struct PrintheadConfig {
 
 class Printhead {
  public:
-  Printhead(PrintheadIo& io, const PrintheadConfig& cfg) : io_(io), cfg_(cfg), guard_(cfg.thermal) {}
+  Printhead(PrintheadIo& io, const PrintheadConfig& cfg) : io_(io), cfg_(cfg), guard_(cfg.thermal), store_(cfg.capUs) {}
 
   // One line from the UART splitter (without terminator).
   void line(const char* text, uint8_t len, bool overflow, uint32_t nowMs);
@@ -47,15 +55,20 @@ class Printhead {
   uv::Colour colour(uint32_t nowMs);
   uint8_t faults() const { return static_cast<uint8_t>(guard_.active() | latched_); }
   const int16_t* deciC() const { return deciC_; }
+  const ScanStore& store() const { return store_; }
 
  private:
   void handle(const uv::NanoCommand& c, uint32_t nowMs);
   void fire(const uv::NanoCommand& c);
+  void program(const char* text, uint8_t len);
+  void start();
+  bool exposing() const { return io_.litMask() || store_.running(); }
   void send(const uv::NanoReply& r);
 
   PrintheadIo& io_;
   const PrintheadConfig& cfg_;
   ThermalGuard guard_;
+  ScanStore store_;
   int16_t deciC_[uv::kSensorCount] = {};
   uint8_t latched_ = 0;
   uv::Colour flash_ = uv::Colour::Green;
@@ -65,6 +78,7 @@ class Printhead {
   uint16_t boot_ = 0;
   uint32_t fires_ = 0;     // F commands that lit since start
   bool whole_ = true;      // the last one was not cut short by R or a fault
+  bool programLast_ = false;  // the last one was a scan chain: an underrun also cuts it short
 };
 
 }  // namespace nano

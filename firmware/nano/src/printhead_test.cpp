@@ -26,6 +26,13 @@ struct FakeIo : PrintheadIo {
     lit = 0;
   }
   uint8_t litMask() const override { return lit; }
+  bool late = false;  // the G's time 0 has gone by when the Nano takes it
+  ScanStore* running = nullptr;
+  bool startProgram(ScanStore& s) override {
+    if (late) return false;
+    running = &s;
+    return true;
+  }
   void servoPulse(uint16_t us) override { servo = us; }
   bool probeTriggered() override { return probe; }
   void reply(const char* t, uint8_t n) override { out.append(t, n); }
@@ -179,7 +186,7 @@ TEST(Printhead, PixelFlashesTheCommandColourThenIdles) {
   EXPECT_EQ(h.ph.colour(1060), uv::Colour::Green);
   h.send("R", 2000);
   EXPECT_EQ(h.ph.colour(2010), uv::Colour::Orange);
-  h.send("Q", 2020);  // malformed: no flash
+  h.send("Z", 2020);  // malformed: no flash
   EXPECT_EQ(h.ph.colour(2030), uv::Colour::Orange);
   h.mv[0] = 500 + 650;
   h.ph.readings(h.mv);
@@ -208,4 +215,108 @@ TEST(Printhead, APollRightAfterFDoesNotHideTheExposure) {
   EXPECT_EQ(h.ph.colour(2001), uv::Colour::Orange);
   h.send("T", 2100);
   EXPECT_EQ(h.ph.colour(2100), uv::Colour::DimWhite);  // with nothing lit, a poll flashes as ever
+}
+
+namespace {
+std::string loadLines(const std::vector<std::pair<uint32_t, uint8_t>>& ev, uint8_t flags) {
+  uint16_t c = uv::kCheckInit;
+  std::string a = "A:0";
+  for (auto& e : ev) {
+    a += "," + std::to_string(e.first) + "," + std::to_string(e.second);
+    c = uv::checkEvent(c, e.first, e.second);
+  }
+  return a + "\nK:" + std::to_string(flags) + "," + std::to_string(ev.size()) + "," + std::to_string(c);
+}
+void sendLines(Head& h, const std::string& text) {
+  size_t at = 0;
+  while (at <= text.size()) {
+    size_t nl = text.find('\n', at);
+    if (nl == std::string::npos) nl = text.size();
+    h.send(text.substr(at, nl - at));
+    at = nl + 1;
+  }
+}
+}  // namespace
+
+TEST(PrintheadScan, LoadsSealsStartsAndReports) {
+  Head h;
+  h.send("Q");
+  EXPECT_EQ(h.take(), "Q:2,0,0\n");
+  sendLines(h, loadLines({{0, 1}, {2000, 0}}, 0));
+  EXPECT_EQ(h.take(), "K:0\n");
+  h.send("Q");
+  EXPECT_EQ(h.take(), "Q:1,1,0\n");
+  h.send("G");
+  ASSERT_NE(h.io.running, nullptr);
+  h.send("Q");
+  EXPECT_EQ(h.take(), "Q:1,0,1\n");  // the running program holds its buffer
+  EXPECT_EQ(h.ph.colour(0), uv::Colour::Purple);  // a pass shows purple even between lit cells
+  h.send("F:1,10,0,0,0");                          // no F while a pass runs
+  EXPECT_TRUE(h.io.fired.empty());
+  h.send("C");
+  EXPECT_EQ(h.take(), "C:0,1,1\n");               // the pass counts as an exposure
+  uint32_t d;
+  uint8_t m;
+  while (h.io.running->next(d, m) == ScanStore::Step::Event) {
+  }
+  h.send("Q");
+  EXPECT_EQ(h.take(), "Q:2,0,2\n");
+  h.send("E");
+  EXPECT_EQ(h.take(), "E:8\n");                   // BUSY from the F
+}
+
+TEST(PrintheadScan, RefusesAStartItCannotKeep) {
+  Head h;
+  h.send("G");  // nothing armed
+  h.send("Q");
+  EXPECT_EQ(h.take(), "Q:2,0,6\n");
+  sendLines(h, loadLines({{0, 1}, {2000, 0}}, 0));
+  h.take();
+  h.io.late = true;  // time 0 has gone by: the chain is dropped, not run late
+  h.send("G");
+  h.send("Q");
+  EXPECT_EQ(h.take(), "Q:2,0,6\n");
+  h.io.late = false;
+  sendLines(h, loadLines({{0, 1}, {2000, 0}}, 0));
+  h.take();
+  uint16_t hot[6] = {1200, 740, 745, 750, 755, 760};  // 70 °C on sensor 0
+  h.ph.readings(hot);
+  h.send("G");
+  EXPECT_EQ(h.io.running, nullptr);
+  h.send("E");
+  EXPECT_EQ(h.take(), "E:17\n");  // OVERTEMP, REFUSED
+}
+
+TEST(PrintheadScan, ResetAndFaultsCutARunningPass) {
+  Head h;
+  sendLines(h, loadLines({{0, 1}, {2000, 0}}, 0));
+  h.take();
+  h.send("G");
+  h.io.lit = 1;
+  h.send("R");
+  EXPECT_EQ(h.io.lit, 0);
+  h.send("Q");
+  EXPECT_EQ(h.take(), "Q:2,0,3\n");
+  h.send("C");
+  EXPECT_EQ(h.take(), "C:0,1,0\n");
+  sendLines(h, loadLines({{0, 1}, {2000, 0}}, 0));
+  h.take();
+  h.send("G");
+  uint16_t hot[6] = {1200, 740, 745, 750, 755, 760};
+  h.ph.readings(hot);  // no LED lit at this instant, but the pass is cut all the same
+  h.send("Q");
+  EXPECT_EQ(h.take(), "Q:2,0,4\n");
+  h.send("E");
+  EXPECT_EQ(h.take(), "E:129\n");  // OVERTEMP, CUTOFF
+}
+
+TEST(PrintheadScan, AMalformedProgramLineIsLatchedAndSpoilsTheLoad) {
+  Head h;
+  h.send("A:0,0,1,5,0");
+  h.send("A:1,5,99");
+  h.send("K:0,2,1");
+  EXPECT_EQ(h.take(), "K:1\n");
+  h.send("K:4,2,1");  // flags over 3
+  h.send("E");
+  EXPECT_EQ(h.take(), "E:32\n");
 }

@@ -22,10 +22,10 @@ Rgb colourRgb(Colour c) {
 
 Colour flashColour(char op) {
   switch (op) {
-    case 'F': return Colour::Purple;
+    case 'F': case 'G': return Colour::Purple;
     case 'D': case 'U': case 'X': case 'P': return Colour::Cyan;
     case 'R': return Colour::Orange;
-    default: return Colour::DimWhite;  // S T E V C
+    default: return Colour::DimWhite;  // S T E V C A K Q
   }
 }
 
@@ -34,7 +34,7 @@ bool nanoLineUsable(const char* text, uint8_t len, bool overflow) {
 }
 
 bool parseNanoCommand(const char* line, uint8_t len, NanoCommand& out) {
-  if (len == 1 && strchr("SDUXPTREVC", line[0]) && line[0] != '\0') {
+  if (len == 1 && strchr("SDUXPTREVCGQ", line[0]) && line[0] != '\0') {
     out.op = line[0];
     return true;
   }
@@ -124,6 +124,14 @@ size_t formatNanoReply(const NanoReply& r, char* out, size_t size) {
         n += formatDeciC(r.deciC[i], out + n);
       }
       break;
+    case 'K': n += putUnsigned(r.code, out + n); break;
+    case 'Q':
+      n += putUnsigned(r.free, out + n);
+      out[n++] = ',';
+      n += putUnsigned(r.armed, out + n);
+      out[n++] = ',';
+      n += putUnsigned(r.pass, out + n);
+      break;
     case 'V': {
       n += putUnsigned(r.protocol, out + n);
       out[n++] = ',';
@@ -162,6 +170,25 @@ bool parseNanoReply(const char* line, size_t len, NanoReply& r) {
       p = scanUnsigned(p, end, 3, 255, v);
       r.flags = static_cast<uint8_t>(v);
       return p == end;
+    case 'K':
+      p = scanUnsigned(p, end, 1, 7, v);
+      r.code = static_cast<uint8_t>(v);
+      return p == end;
+    case 'Q': {
+      uint32_t q[3];  // free, armed, pass
+      for (uint8_t i = 0; i < 3; i++) {
+        if (i) {
+          if (p >= end || *p != ',') return false;
+          p++;
+        }
+        p = scanUnsigned(p, end, 1, i == 2 ? 6 : 2, q[i]);
+        if (!p) return false;
+      }
+      r.free = static_cast<uint8_t>(q[0]);
+      r.armed = static_cast<uint8_t>(q[1]);
+      r.pass = static_cast<uint8_t>(q[2]);
+      return p == end;
+    }
     case 'T':
       for (uint8_t i = 0; i < kSensorCount; i++) {
         if (i) {

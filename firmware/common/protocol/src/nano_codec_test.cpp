@@ -71,6 +71,8 @@ json replyJson(const NanoReply& r) {
     case 'T': j["deciC"] = std::vector<int>(r.deciC, r.deciC + kSensorCount); break;
     case 'V': j["protocol"] = r.protocol; j["firmware"] = r.firmware; break;
     case 'C': j["boot"] = r.boot; j["fires"] = r.fires; j["whole"] = r.whole; break;
+    case 'K': j["code"] = r.code; break;
+    case 'Q': j["free"] = r.free; j["armed"] = r.armed; j["pass"] = r.pass; break;
   }
   return j;
 }
@@ -87,6 +89,10 @@ NanoReply replyFrom(const json& j) {
   if (j.contains("boot")) r.boot = j["boot"];
   if (j.contains("fires")) r.fires = j["fires"];
   if (j.contains("whole")) r.whole = j["whole"];
+  if (j.contains("code")) r.code = j["code"];
+  if (j.contains("free")) r.free = j["free"];
+  if (j.contains("armed")) r.armed = j["armed"];
+  if (j.contains("pass")) r.pass = j["pass"];
   if (j.contains("firmware")) snprintf(r.firmware, sizeof r.firmware, "%s", j["firmware"].get<std::string>().c_str());
   return r;
 }

@@ -1,0 +1,59 @@
+import { describe, expect, it } from 'vitest';
+import { checkEvents, mergeLight, parseAppend, parseSeal, programLines, PROGRAM_EVENTS, PROGRAM_START_LEAD_US, type ScanEvent } from './scan-program';
+import { cases, loadVectors, vectorCounter } from './vectors.fixture';
+
+const v = loadVectors('nano-program.json');
+const count = vectorCounter('nano-program.json');
+
+describe('scan program vectors', () => {
+  it('agrees on the limits', () => {
+    expect(PROGRAM_EVENTS).toBe(v.maxEvents);
+    expect(PROGRAM_START_LEAD_US).toBe(v.startLeadUs);
+  });
+
+  it.each(cases(v.programs, 'name'))('%s: light merges into events and events into lines', (_n, c: any) => {
+    expect(mergeLight(c.leds)).toEqual(c.events);
+    expect(programLines(c.events)).toEqual(c.lines);
+    count();
+  });
+
+  it.each(cases(v.programs, 'name'))('%s: the lines parse back to the events and their checks', (_n, c: any) => {
+    const events: ScanEvent[] = [];
+    let t = 0;
+    let program: [number, number][] = [];
+    for (const line of c.lines as string[]) {
+      if (line.startsWith('K:')) {
+        const seal = parseSeal(line)!;
+        expect(seal.events).toBe(program.length);
+        expect(seal.check).toBe(checkEvents(program));
+        program = [];
+        continue;
+      }
+      for (const [d, m] of parseAppend(line)!.events) {
+        t += d;
+        events.push([t, m]);
+        program.push([d, m]);
+      }
+    }
+    expect(events).toEqual(c.events);
+  });
+
+  it.each(cases(v.bad, 'why'))('bad line (%s) is refused', (_w, c: any) => {
+    expect(c.line.startsWith('K') ? parseSeal(c.line) : parseAppend(c.line)).toBeNull();
+    count();
+  });
+});
+
+describe('programLines', () => {
+  it('refuses events out of order or too far apart', () => {
+    expect(() => programLines([])).toThrow(RangeError);
+    expect(() => programLines([[10, 1], [10, 0]])).toThrow(RangeError);
+    expect(() => programLines([[10, 1], [5, 0]])).toThrow(RangeError);
+    expect(() => programLines([[10, 1], [10 + 2 ** 28, 0]])).toThrow(RangeError);
+    expect(() => programLines([[0, 16]])).toThrow(RangeError);
+  });
+
+  it('keeps an LED on across touching intervals', () => {
+    expect(mergeLight([[[0, 2000], [2000, 4000]], [], [], []])).toEqual([[0, 1], [4000, 0]]);
+  });
+});

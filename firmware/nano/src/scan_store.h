@@ -1,0 +1,70 @@
+// The printhead's two scan-program buffers (protocol/nano.md "Scan programs"): loading A lines,
+// sealing with the check and the cap, and handing the running chain's events to the LED timer.
+// Plain C++, tested on the host; the main loop loads and seals, the timer interrupt calls next().
+#pragma once
+#include <stdint.h>
+
+#include "nano_codec.h"
+#include "scan_program.h"
+
+namespace nano {
+
+class ScanStore {
+ public:
+  explicit ScanStore(uint32_t capUs) : capUs_(capUs) {}
+
+  // Main loop. append() is false for a malformed line (the caller latches MALFORMED).
+  // Not inlined into the main loop, where the AVR compiler ran short of registers and the seal's
+  // loop spilled every value to the stack (1.4 ms for 64 events, measured in simavr).
+  __attribute__((noinline)) bool append(const char* line, uint8_t len);
+  __attribute__((noinline)) uv::SealCode seal(const uv::Seal& s);
+  uint8_t freeBuffers() const;
+  uint8_t armed() const;
+  // The oldest armed program starts a chain, and nothing runs.
+  bool startable() const;
+  // With the timer idle: that program runs from its first event.
+  void start();
+  // Every program, loading, armed or running, is dropped; the pass becomes `why` if one ran.
+  void discard(uv::PassState why);
+  void refuse() { pass_ = uv::PassState::Refused; }
+  uv::PassState pass() const { return pass_; }
+  bool running() const { return run_ != kNone; }
+
+  // Timer interrupt: the running chain's next event, d in µs since the one before (or time 0).
+  enum class Step : uint8_t { Event, End, Underrun };
+  Step next(uint32_t& d, uint8_t& m);
+
+ private:
+  static constexpr uint8_t kNone = 0xFF;
+  enum State : uint8_t { Free, Loading, Armed, Running };
+  // An event as stored: the LED state in the top 4 bits above d, so neither needs a 32-bit shift.
+  static uint32_t pack(uint32_t d, uint8_t m) { return d | static_cast<uint32_t>(static_cast<uint8_t>(m << 4)) << 24; }
+  static uint32_t delay(uint32_t w) { return w & uv::kProgramMaxDelta; }
+  static uint8_t state(uint32_t w) { return static_cast<uint8_t>(w >> 24) >> 4; }
+  struct Buffer {
+    uint32_t words[uv::kProgramEvents];  // pack(d, m)
+    volatile uint8_t state;
+    uint8_t count, flags, order;
+  };
+  void spoil(uv::SealCode why);
+  bool live(uint8_t i) const { return i != kNone && (buf_[i].state == Armed || buf_[i].state == Running); }
+
+  uint32_t capUs_;
+  Buffer buf_[2] = {};
+  // Loading: which buffer, the next line number, the check so far, or why the load is spoiled.
+  uint8_t loading_ = kNone;
+  uint16_t nextSeq_ = 0;
+  uint16_t check_ = uv::kCheckInit;
+  uv::SealCode loadError_ = uv::SealCode::NoLoad;
+  // The newest sealed program, which a continuation follows: its end state for the cap check.
+  uint8_t newest_ = kNone;
+  uint8_t chainMask_ = 0;
+  uint32_t chainTail_[uv::kLedCount] = {};  // how long each lit LED has been on at its end, µs
+  uint8_t order_ = 0;
+  // Running.
+  volatile uint8_t run_ = kNone;
+  uint8_t pos_ = 0;
+  volatile uv::PassState pass_ = uv::PassState::None;
+};
+
+}  // namespace nano

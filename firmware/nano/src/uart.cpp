@@ -1,0 +1,128 @@
+// USART0 for the Mega link: the receive interrupt appends to one ring, notes when a `G` line ends
+// and switches the LEDs off when an `R` line does; the transmit interrupt drains the other ring.
+// One writer and one reader per ring.
+#include "uart.h"
+
+#include "led_timer.h"
+
+#include <Arduino.h>
+#include <avr/interrupt.h>
+#include <avr/io.h>
+
+namespace nano {
+namespace uart {
+namespace {
+
+struct Ring {
+  char buf[kRing];
+  volatile uint8_t in, out;  // free-running; slot = index % kRing
+  uint8_t used() const { return static_cast<uint8_t>(in - out); }
+};
+static_assert((kRing & (kRing - 1)) == 0, "free-running 8-bit indices: the ring must divide 256");
+
+Ring rx, tx;
+// Where the receiver is in a line that is just `G` or `R`, as the line splitter reads it: 1 at a
+// line start, the letter after it, the letter in lower case after its one `\r`, 0 elsewhere.
+uint8_t shortLine = 1;
+volatile bool started = false;
+volatile uint16_t startTick;
+volatile uint32_t startUs;
+volatile bool resetCut = false;
+
+}  // namespace
+
+void begin(uint32_t baud) {
+  UCSR0A = 1 << U2X0;
+  UBRR0 = static_cast<uint16_t>((F_CPU / 4 / baud - 1) / 2);  // as Arduino rounds it: 16 at 115200
+  UCSR0C = (1 << UCSZ01) | (1 << UCSZ00);                      // 8N1
+  UCSR0B = (1 << RXEN0) | (1 << TXEN0) | (1 << RXCIE0);
+}
+
+int16_t read() {
+  if (!rx.used()) return -1;
+  uint8_t c = static_cast<uint8_t>(rx.buf[rx.out % kRing]);
+  rx.out = static_cast<uint8_t>(rx.out + 1);
+  return c;
+}
+
+bool available() { return rx.used() != 0; }
+
+bool write(const char* data, uint8_t n) {
+  if (n > kRing - tx.used()) return false;
+  if (n && tx.used() == 0 && (UCSR0A & (1 << UDRE0))) {  // idle: the first byte goes out now
+    UDR0 = static_cast<uint8_t>(*data++);
+    n--;
+  }
+  uint8_t in = tx.in;
+  for (uint8_t i = 0; i < n; i++) tx.buf[in++ % kRing] = data[i];
+  tx.in = in;
+  if (n) UCSR0B |= 1 << UDRIE0;
+  return true;
+}
+
+bool takeResetCut() {
+  uint8_t sreg = SREG;
+  cli();
+  bool cut = resetCut;
+  resetCut = false;
+  SREG = sreg;
+  return cut;
+}
+
+bool takeStart(uint16_t& tick, uint32_t& us) {
+  uint8_t sreg = SREG;
+  cli();
+  bool got = started;
+  tick = startTick;
+  us = startUs;
+  started = false;
+  SREG = sreg;
+  return got;
+}
+
+}  // namespace uart
+}  // namespace nano
+
+using nano::uart::rx;
+
+ISR(USART_RX_vect) {
+  uint16_t tick = TCNT1;  // first: the start mark is timed from here
+  using namespace nano::uart;
+  bool bad = UCSR0A & ((1 << FE0) | (1 << DOR0));
+  char c = static_cast<char>(UDR0);
+  // Never a silently shortened line: the last free slot takes a mark in place of the byte that
+  // does not fit, so the line that lost bytes is malformed (a line lost whole never runs at all).
+  // Noise, too, makes its line malformed. The G and R patterns read what the splitter will read.
+  uint8_t used = rx.used();
+  if (bad || used >= kRing - 1) c = '\x01';
+  if (used < kRing) {
+    rx.buf[rx.in % kRing] = c;
+    rx.in = static_cast<uint8_t>(rx.in + 1);
+  }
+  if (c == '\n') {
+    if (shortLine == 'G' || shortLine == 'g') {
+      startTick = tick;
+      startUs = micros();
+      started = true;
+    } else if (shortLine == 'R' || shortLine == 'r') {
+      if (nano::led_timer::allOff()) resetCut = true;  // the main loop's R handler does the rest
+    }
+    shortLine = 1;
+  } else if (shortLine == 1 && (c == 'G' || c == 'R')) {
+    shortLine = static_cast<uint8_t>(c);
+  } else if ((shortLine == 'G' || shortLine == 'R') && c == '\r') {
+    shortLine = static_cast<uint8_t>(shortLine | 0x20);  // its one carriage return: g or r
+  } else {
+    shortLine = 0;
+  }
+}
+
+ISR(USART_UDRE_vect) {
+  using namespace nano::uart;
+  if (tx.out == tx.in) {
+    UCSR0B &= static_cast<uint8_t>(~(1 << UDRIE0));
+    return;
+  }
+  UDR0 = static_cast<uint8_t>(tx.buf[tx.out % kRing]);
+  tx.out = static_cast<uint8_t>(tx.out + 1);
+}
