@@ -1,7 +1,10 @@
 // Runs a verified job on the simulated machine: plans it with the app's planner, then moves, settles and fires
-// stop by stop in virtual time, checkpointing after each stop so an interrupted job can resume.
+// stop by stop (or exposes pass by pass on the move, for a scan job) in virtual time, checkpointing
+// after each stop or pass so an interrupted job can resume.
 
-import { planJob, type Plan } from '../planner/planner';
+import { planAnyJob } from '../planner/job-plan';
+import type { Plan } from '../planner/planner';
+import type { ScanPlan } from '../planner/scan';
 import type { Machine } from '../planner/time-model';
 import type { JobState } from '../protocol/dialect-reply';
 import type { JobHeader } from '../protocol/job-types';
@@ -12,6 +15,7 @@ import { motionOf, num } from './config';
 import type { Motion, Xyz } from './motion';
 import type { NanoModel } from './nano-model';
 import { paceWaits } from './pacing';
+import { ScanPassRun, type ScanExposure } from './scan-pass';
 import type { SdCard } from './sd-card';
 
 export interface Exposure {
@@ -25,11 +29,16 @@ export class JobRunner {
   state: JobState = 'idle';
   file = '';
   plan: Plan | null = null;
+  /** A scan job's plan; `plan` then counts its passes as stops. */
+  scan: ScanPlan | null = null;
   header: JobHeader | null = null;
   done = 0;
   startedAtUs = 0;
   /** Every stop fired, in order: the tests' proof that each cell was exposed exactly once. */
   readonly exposures: Exposure[] = [];
+  /** Every scan pass exposed whole, with each LED's on-intervals as the printhead switched them. */
+  readonly scanExposures: ScanExposure[] = [];
+  #pass: ScanPassRun | null = null;
   /** Why the job last paused or failed, for JOB: reports. */
   reason = '';
   /** Stream mode (M828): the plan is a prefix that grows as rows arrive, and there is no checkpoint. */
@@ -74,7 +83,7 @@ export class JobRunner {
     const cells = Array.from({ length: header.rows }, () => new Uint8Array(header.cols));
     verifyJobText(text, (s) => cells[s.row].set(s.cells, s.col));
     this.header = header;
-    this.plan = planJob({ header, cells }, this.machine(this.motion.now()));
+    ({ plan: this.plan, scan: this.scan } = planAnyJob({ header, cells }, this.machine(this.motion.now())));
     this.file = file;
     this.done = 0;
     this.streaming = false;
@@ -88,6 +97,7 @@ export class JobRunner {
     this.file = file;
     this.header = null;
     this.plan = null;
+    this.scan = null;
     this.streaming = true;
     this.#planComplete = false;
     this.start(0);
@@ -156,6 +166,7 @@ export class JobRunner {
 
   /** LEDs off, motion stopped, checkpoint cleared. */
   abort(): void {
+    this.#cutPass();
     this.nano.allOff();
     this.nano.command('R\n');
     this.clock.cancel(this.#step);
@@ -197,6 +208,7 @@ export class JobRunner {
       return;
     }
     const i = this.done;
+    if (this.scan) return this.#nextPass(i, h, this.scan);
     const to: Xyz = [h.originUm[0] + p.hx[i] * h.pitchUm[0], h.originUm[1] + p.hy[i] * h.pitchUm[1], this.motion.pos[2]];
     const from = this.motion.now();
     const moved = to[0] !== from[0] || to[1] !== from[1];
@@ -206,6 +218,58 @@ export class JobRunner {
       const settle = moved ? num(this.config, 'settle_ms') * 1000 : 0;
       this.#step = this.clock.after(settle + num(this.config, 'stop_overhead_us'), () => this.#fireWhenCool(i));
     });
+  }
+
+  /** A scan pass: to its run-up at its row, settle and overhead, then across at the speed, LEDs switching on the plan's times. */
+  #nextPass(i: number, h: JobHeader, scan: ScanPlan): void {
+    const pass = scan.passes[i];
+    const to: Xyz = [pass.runUpUm, h.originUm[1] + pass.hy * h.pitchUm[1], this.motion.pos[2]];
+    const from = this.motion.now();
+    const moved = to[0] !== from[0] || to[1] !== from[1];
+    this.motion.enqueue(to, num(this.config, 'speed.travel'));
+    this.motion.whenIdle(() => {
+      if (this.state !== 'running') return;
+      const settle = moved ? num(this.config, 'settle_ms') * 1000 : 0;
+      this.#step = this.clock.after(settle + num(this.config, 'stop_overhead_us'), () => this.#fireWhenCool(i));
+    });
+  }
+
+  #runPass(i: number): void {
+    const scan = this.scan!;
+    const pass = scan.passes[i];
+    const to: Xyz = [pass.runOutUm, this.motion.pos[1], this.motion.pos[2]];
+    this.#pass = new ScanPassRun(this.clock, this.nano, scan, i, {
+      moveUs: (us) => this.motion.enqueueTimed(to, us),
+      refused: () => {
+        const hot = this.#refusalWasHeat();
+        this.#cutPass();
+        this.fault(hot ? 31 : 33, hot ? `over-temperature in pass ${i}` : `printhead refused an exposure in pass ${i}`);
+        this.faulted(hot ? 'overtemp' : 'refused');
+      },
+      done: (exposure) => {
+        this.#pass = null;
+        if (this.state !== 'running') return;
+        this.scanExposures.push(exposure);
+        this.done = i + 1;
+        if (!this.streaming) this.#checkpoint(this.plan!.count);
+        this.onProgress?.();
+        if (this.state === 'running') this.#next();
+      },
+    });
+  }
+
+  /** Stops a pass under way at once: LEDs off, the head halted where it is. The pass is not counted. */
+  #cutPass(): void {
+    if (!this.#pass) return;
+    this.#pass.cancel();
+    this.#pass = null;
+    this.nano.allOff();
+    this.motion.stop();
+  }
+
+  #refusalWasHeat(): boolean {
+    const flags = parseNanoReply(this.nano.command('E\n') ?? '');
+    return flags?.op === 'E' && (flags.flags & FAULT.OVERTEMP) !== 0;
   }
 
   /** As the Mega's Settle phase: a paced job whose head reads near a soft limit waits for readings. */
@@ -239,6 +303,7 @@ export class JobRunner {
   }
 
   #fire(i: number): void {
+    if (this.scan) return this.#runPass(i);
     const p = this.plan!;
     const us = Array.from(p.durations.subarray(i * 4, i * 4 + 4));
     let mask = 0;
@@ -274,6 +339,7 @@ export class JobRunner {
   /** A fault cut the LEDs mid-stop: the stop is not counted, and the job waits for the user. */
   faulted(reason: string): void {
     if (this.state !== 'running') return;
+    this.#cutPass();
     this.clock.cancel(this.#step);
     this.#endCooling();
     this.nano.allOff();
