@@ -48,6 +48,8 @@ export class JobControl {
   error = $state<string | null>(null);
   /** Each LED's share of the running job's time lit, from its dry run; null for a job not checked here. */
   duty = $state<number[] | null>(null);
+  /** The job started here is a scan job: its progress counts passes. */
+  runningScan = $state(false);
 
   /** Called before every job starts (the project is kept then); set by the app. */
   beforeJob: () => Promise<void> = async () => {};
@@ -159,6 +161,7 @@ export class JobControl {
   async #run(job: PrintJob, duty: number[] | null, paced: boolean): Promise<void> {
     JobNotice.askPermission(); // from the click that starts the job: its end can reach the desktop
     this.duty = duty;
+    this.runningScan = job.strategy.name === 'scan';
     await this.beforeJob();
     await this.printer.send('G28');
     await this.printer.startJob(job, { paced });
