@@ -50,6 +50,8 @@ export class JobControl {
   duty = $state<number[] | null>(null);
   /** The job started here is a scan job: its progress counts passes. */
   runningScan = $state(false);
+  /** The estimate the user was shown for the job started here (its paced time when run paced), µs. */
+  runningEstimateUs = $state<number | null>(null);
 
   /** Called before every job starts (the project is kept then); set by the app. */
   beforeJob: () => Promise<void> = async () => {};
@@ -114,7 +116,11 @@ export class JobControl {
       if (p.kind === 'home-first') {
         await this.printer.send('G28');
         await p.run();
-      } else if (!p.findings.some((f) => f.level === 'error')) await this.#run(p.job, p.duty, !!opts.paced && p.pacedUs !== null);
+      } else if (!p.findings.some((f) => f.level === 'error')) {
+        const paced = !!opts.paced && p.pacedUs !== null;
+        this.runningEstimateUs = paced ? p.pacedUs : p.estimateUs;
+        await this.#run(p.job, p.duty, paced);
+      }
     });
 
   cancel = () => {

@@ -70,6 +70,23 @@ export class JobRunner {
     private readonly fault: (code: number, message: string) => void,
   ) {}
 
+  #elapsedUs = 0;
+  #runningSince: number | null = null;
+
+  /** Time spent running, µs, as the Mega counts it (job_runner.h elapsedS): not while paused, nor after the end. */
+  elapsedUs(): number {
+    return this.#elapsedUs + (this.#runningSince !== null ? this.clock.now - this.#runningSince : 0);
+  }
+
+  #report(state: JobState): void {
+    if (state === 'running') this.#runningSince ??= this.clock.now;
+    else if (this.#runningSince !== null) {
+      this.#elapsedUs += this.clock.now - this.#runningSince;
+      this.#runningSince = null;
+    }
+    this.report(state);
+  }
+
   machine(start: Xyz): Machine {
     return motionOf(this.config, [start[0], start[1]]);
   }
@@ -131,8 +148,10 @@ export class JobRunner {
     this.state = 'running';
     this.#pauseRequested = false;
     this.startedAtUs = this.clock.now;
+    this.#elapsedUs = 0;
+    this.#runningSince = null;
     this.reason = '';
-    this.report('running');
+    this.#report('running');
     this.#next();
   }
 
@@ -142,14 +161,14 @@ export class JobRunner {
       this.#endCooling();
       this.state = 'paused';
       this.reason = reason;
-      this.report('paused');
+      this.#report('paused');
       return;
     }
     if (this.#starved) {
       this.#starved = false;
       this.state = 'paused';
       this.reason = reason;
-      this.report('paused');
+      this.#report('paused');
       return;
     }
     this.#pauseRequested = true;
@@ -160,7 +179,7 @@ export class JobRunner {
     if (this.state !== 'paused') return;
     this.state = 'running';
     this.reason = '';
-    this.report('running');
+    this.#report('running');
     this.#next();
   }
 
@@ -175,7 +194,7 @@ export class JobRunner {
     if (this.state === 'running' || this.state === 'paused' || this.state === 'ready') {
       this.state = 'aborted';
       this.sd.checkpoint = null;
-      this.report('aborted');
+      this.#report('aborted');
     }
   }
 
@@ -191,7 +210,7 @@ export class JobRunner {
     if (this.#pauseRequested) {
       this.#pauseRequested = false;
       this.state = 'paused';
-      this.report('paused');
+      this.#report('paused');
       return;
     }
     const p = this.plan;
@@ -204,7 +223,7 @@ export class JobRunner {
     if (this.done >= p.count) {
       this.state = 'done';
       this.sd.checkpoint = null;
-      this.report('done');
+      this.#report('done');
       return;
     }
     const i = this.done;
@@ -279,7 +298,7 @@ export class JobRunner {
       this.cooling = true;
       this.#coolingStop = i;
       this.#coolingSince = this.clock.now;
-      this.report('running'); // the JOB: line says cooling=1
+      this.#report('running'); // the JOB: line says cooling=1
       return;
     }
     this.#fire(i);
@@ -291,7 +310,7 @@ export class JobRunner {
     if (paceWaits(this.thermal.reading(), this.thermal.limits(), true)) return;
     const i = this.#coolingStop;
     this.#endCooling();
-    this.report('running');
+    this.#report('running');
     this.#fire(i);
   }
 
@@ -345,6 +364,6 @@ export class JobRunner {
     this.nano.allOff();
     this.state = 'paused';
     this.reason = reason;
-    this.report('paused');
+    this.#report('paused');
   }
 }

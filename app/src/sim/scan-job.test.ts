@@ -57,6 +57,9 @@ describe('simulated printer: scan jobs (exposure on the move)', () => {
     const planned = [0, 1, 2, 3].map((k) => scan.passes.reduce((s, p) => s + onTime(p.leds)[k], 0));
     expect(h.sim.nano.onUs.map((t, k) => t - onBefore[k])).toEqual(planned);
     expect(h.cmd('M1000 S')[0]).toBe('JOB:idle');
+    // Its time as reported stays the job's time once it has ended, as the Mega counts it.
+    h.sim.advance(5000);
+    expect(h.cmd('M27')[0]).toContain(` elapsed=${Math.floor(took / 1e6)} `);
   });
 
   it('reports progress per pass', () => {

@@ -98,14 +98,16 @@ export function dryRun(
     longest = Math.max(longest, plan.durations[i]);
     lit[i & 3] += plan.durations[i];
   }
+  // A scan job's LED stays on across a run of full cells (planner.md "Switch times": touching
+  // intervals merge only when a cell fills its window), so a cell's exposure is at most the window.
   for (const pass of scan?.passes ?? []) {
     pass.leds.forEach((list, k) => list.forEach(([on, off]) => {
-      longest = Math.max(longest, off - on);
+      longest = Math.max(longest, Math.min(off - on, scan!.windowUs));
       lit[k] += off - on;
     }));
   }
   findings.push(longest > NANO_MAX_EXPOSURE_US
-    ? { check: 'dose', level: 'error', message: `${scan ? 'a pass' : 'a stop'} would light an LED for ${(longest / 1e6).toFixed(1)} s; the printhead refuses more than ${NANO_MAX_EXPOSURE_US / 1e6} s` }
+    ? { check: 'dose', level: 'error', message: `${scan ? 'a cell' : 'a stop'} would light an LED for ${(longest / 1e6).toFixed(1)} s; the printhead refuses more than ${NANO_MAX_EXPOSURE_US / 1e6} s` }
     : { check: 'dose', level: 'ok', message: `the longest exposure is ${(longest / 1000).toFixed(1)} ms` });
 
   // Thermal: the plan played through the head's model, as the Mega reads and judges it.

@@ -56,6 +56,13 @@ describe('dry run of a scan job', () => {
     expect(r.findings.every((f) => f.level !== 'error')).toBe(true);
   });
 
+  it('judges the dose per cell: a run of full cells lights an LED without a break, and is no error', () => {
+    const job = block(4000, 1, 10, 4); // 4 s a cell, 40 s a pass with the LEDs on throughout
+    const r = dryRun(job, DEFAULT_CONFIG);
+    expect(r.findings.find((f) => f.check === 'dose')).toEqual({ check: 'dose', level: 'ok', message: 'the longest exposure is 4000.0 ms' });
+    expect(dryRun(block(10_001, 0.5, 4, 4), DEFAULT_CONFIG).findings.find((f) => f.check === 'dose')?.level).toBe('error');
+  });
+
   it('holds the whole pass, run-up to run-out, against the bed', () => {
     const job = block(4, 1, 10, 4);
     job.originUm = { x: 0, y: 20_000 }; // the run-up lies left of X 0
