@@ -16,7 +16,7 @@ test('a drawing exposed as a scan job: passes in the preview, scan in the dry ru
 
   await page.getByTestId('view-preview').click();
   const summary = page.getByTestId('preview-summary');
-  await expect(summary).toContainText(/^Scan \(on the move\): (\d+) passes at 1\.3 mm\/s, a 40\.00 ms window per cell, about \d:\d\d:\d\d, \d+ mm of travel$/);
+  await expect(summary).toContainText(/^Scan \(on the move\): (\d+) passes at 1\.25 mm\/s, a 40\.00 ms window per cell, about \d:\d\d:\d\d, \d+ mm of travel$/);
   const passes = Number(/: (\d+) passes/.exec((await summary.textContent())!)![1]);
   expect(passes).toBeGreaterThan(1);
   await expect(page.getByTestId('preview-at')).toContainText(`${passes} of ${passes} passes`);

@@ -10,6 +10,7 @@ import type { Plan } from '../planner/planner';
 import type { ScanPlan } from '../planner/scan';
 import type { PrintJob } from '../protocol/job-types';
 import { hms } from '../job/hms';
+import { scanWords } from '../job/scan-words';
 import { bedOf, limitsOf, motionOf, type MachineConfig } from './machine-config';
 import { cutWords, type Cut } from './objects/clipping';
 import { forecastScanThermal, forecastThermal, type ThermalRun } from './thermal-forecast';
@@ -127,12 +128,7 @@ export function dryRun(
 /** What a scan job is: its passes, their speed and the cell window. */
 export function scanFinding(scan: ScanPlan): Finding {
   if (!scan.passes.length) return { check: 'mode', level: 'ok', message: 'scan job (on the move): nothing to expose' };
-  const mmS = scan.speedUmS / 1000;
-  return {
-    check: 'mode',
-    level: 'ok',
-    message: `scan job (on the move): ${scan.passes.length} pass${scan.passes.length > 1 ? 'es' : ''} at ${mmS.toFixed(mmS < 10 ? 2 : 1)} mm/s, a ${(scan.windowUs / 1000).toFixed(2)} ms window per cell`,
-  };
+  return { check: 'mode', level: 'ok', message: `scan job (on the move): ${scanWords(scan.passes.length, scan.speedUmS, scan.windowUs)}` };
 }
 
 function thermalFinding(run: ThermalRun, paced: ThermalRun | null, stops: number, limitsC: number[], unit: 'stop' | 'pass'): Finding {
