@@ -258,7 +258,12 @@ export class JobRunner {
     const pass = scan.passes[i];
     const to: Xyz = [pass.runOutUm, this.motion.pos[1], this.motion.pos[2]];
     this.#pass = new ScanPassRun(this.clock, this.nano, scan, i, {
-      moveUs: (us) => this.motion.enqueueTimed(to, us),
+      moveUs: (us) => {
+        this.motion.enqueueTimed(to, us);
+        // The head stopped under a pass (M410): the LEDs must not go on lighting one place.
+        const end = this.clock.now + us;
+        this.motion.whenIdle(() => this.#pass && this.clock.now < end && this.faulted('stopped'));
+      },
       refused: () => {
         const hot = this.#refusalWasHeat();
         this.#cutPass();

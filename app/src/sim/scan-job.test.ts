@@ -99,6 +99,21 @@ describe('simulated printer: scan jobs (exposure on the move)', () => {
     expect(h.sim.mega.job.scanExposures.map((r) => r.pass)).toEqual(scan.passes.map((_, i) => i));
   });
 
+  it('pauses with the LEDs off when the head is stopped under a pass (M410), and exposes that pass again', () => {
+    const { h, scan } = started();
+    while (h.sim.mega.job.scanExposures.length < 1) h.sim.advance(1);
+    while (h.sim.nano.lit === 0) h.sim.advance(1); // mid-pass 2
+    h.cmd('M410');
+    expect(h.sim.nano.lit).toBe(0);
+    expect(h.cmd('M27')[0]).toMatch(/^JOB:paused .*reason=stopped/);
+    const on = [...h.sim.nano.onUs];
+    h.sim.advance(2000);
+    expect(h.sim.nano.onUs).toEqual(on);
+    h.cmd('M24');
+    h.waitFor(/^JOB:done/);
+    expect(h.sim.mega.job.scanExposures.map((r) => r.pass)).toEqual(scan.passes.map((_, i) => i));
+  });
+
   it('exposes a pass cut by a power cut again on resume', () => {
     const { h, scan } = started();
     while (h.sim.mega.job.scanExposures.length < 2) h.sim.advance(1);
