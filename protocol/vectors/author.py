@@ -427,6 +427,13 @@ jobs = [
     {"name": "raster, full row of 40",
      "job": base_job(grid={"cols": 40, "rows": 2}, dose={"map": "linear", "fullUs": 10000000},
                      strategy={"name": "raster"}, gridData=[[255] * 40, [0] * 39 + [1]])},
+    # Exposure on the move (planner.md "Scan mode"): 1-cell tracks and gray pads, seed written as 0.
+    {"name": "scan, tracks and gray pads",
+     "job": base_job(grid={"cols": 12, "rows": 3}, dose={"map": "linear", "fullUs": 4000},
+                     leds={"offsets": [[0, 0], [0, 1], [0, 2], [0, 3]]}, strategy={"name": "scan"},
+                     gridData=[[255, 0, 255, 0, 0, 128, 128, 128, 0, 255, 0, 255],
+                               [0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0],
+                               [255, 255, 255, 255, 0, 64, 0, 0, 200, 200, 0, 1]])},
 ]
 for j in jobs:
     j["text"], j["crc"] = job_text(j["job"])
@@ -474,6 +481,8 @@ invalid_jobs = [
     {"why": "gain zero", "text": replace(6, "gain 0 1000 1000 1000"), "error": 23},
     {"why": "unknown strategy", "text": replace(9, "strategy spiral 0"), "error": 23},
     {"why": "seed on a non-random strategy", "text": replace(9, "strategy serpentine 7"), "error": 23},
+    {"why": "seed on scan", "text": replace(9, "strategy scan 7"), "error": 23},
+    {"why": "scan misspelt", "text": replace(9, "strategy Scan 0"), "error": 23},
     {"why": "segment past the grid", "text": replace(10, "r 0 3 ffff"), "error": 23},
     {"why": "row past the grid", "text": replace(11, "r 2 2 80"), "error": 23},
     {"why": "segments out of order", "text": rebuild(good_lines[:10] + [good_lines[11], good_lines[10]]), "error": 23},
@@ -515,6 +524,7 @@ bj = base_job()
 esp_requests = [
     {"name": "valid job", "body": body(bj), "status": 202, "text": job_text(bj)[0]},
     {"name": "valid target-dose job", "body": body(jobs[2]["job"]), "status": 202, "text": jobs[2]["text"]},
+    {"name": "valid scan job", "body": body(jobs[5]["job"]), "status": 202, "text": jobs[5]["text"]},
     {"name": "not JSON", "body": "{\"grid\":", "status": 400, "error": "bad_json"},
     {"name": "not an object", "body": "[1,2]", "status": 400, "error": "bad_job", "path": ""},
     {"name": "missing gridData", "body": body(drop_key(bj, "gridData")), "status": 400, "error": "bad_job", "path": "/gridData"},

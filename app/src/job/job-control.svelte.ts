@@ -48,6 +48,10 @@ export class JobControl {
   error = $state<string | null>(null);
   /** Each LED's share of the running job's time lit, from its dry run; null for a job not checked here. */
   duty = $state<number[] | null>(null);
+  /** The job started here is a scan job: its progress counts passes. */
+  runningScan = $state(false);
+  /** The estimate the user was shown for the job started here (its paced time when run paced), µs. */
+  runningEstimateUs = $state<number | null>(null);
 
   /** Called before every job starts (the project is kept then); set by the app. */
   beforeJob: () => Promise<void> = async () => {};
@@ -112,7 +116,11 @@ export class JobControl {
       if (p.kind === 'home-first') {
         await this.printer.send('G28');
         await p.run();
-      } else if (!p.findings.some((f) => f.level === 'error')) await this.#run(p.job, p.duty, !!opts.paced && p.pacedUs !== null);
+      } else if (!p.findings.some((f) => f.level === 'error')) {
+        const paced = !!opts.paced && p.pacedUs !== null;
+        this.runningEstimateUs = paced ? p.pacedUs : p.estimateUs;
+        await this.#run(p.job, p.duty, paced);
+      }
     });
 
   cancel = () => {
@@ -159,6 +167,7 @@ export class JobControl {
   async #run(job: PrintJob, duty: number[] | null, paced: boolean): Promise<void> {
     JobNotice.askPermission(); // from the click that starts the job: its end can reach the desktop
     this.duty = duty;
+    this.runningScan = job.strategy.name === 'scan';
     await this.beforeJob();
     await this.printer.send('G28');
     await this.printer.startJob(job, { paced });

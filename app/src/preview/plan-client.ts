@@ -5,6 +5,7 @@
 import type { Plan } from '../planner/planner';
 import type { Machine } from '../planner/time-model';
 import type { PrintJob } from '../protocol/job-types';
+import type { ScanPreview } from './scan-preview';
 
 export interface Planned {
   plan: Plan;
@@ -12,6 +13,8 @@ export interface Planned {
   clock: Float64Array;
   /** Cells each LED exposes. */
   coverage: number[];
+  /** A scan job's passes and light from its switch times (the plan then counts passes); null for stops. */
+  scan: ScanPreview | null;
 }
 
 export type PlanRequest = { id: number; job: PrintJob; machine: Machine };

@@ -2,14 +2,19 @@
 // each LED's share. Apart from the worker's message plumbing, so it is tested in Node.
 
 import { headerOf } from '../planner/job-header';
-import { planJob } from '../planner/planner';
+import { planAnyJob } from '../planner/job-plan';
 import { ledCoverage, timeline } from './exposure-preview';
 import type { PlanReply, PlanRequest } from './plan-client';
+import { scanCoverage, scanPreview, scanTimeline } from './scan-preview';
 
 export function planReply({ id, job, machine }: PlanRequest): PlanReply {
   try {
-    const plan = planJob({ header: headerOf(job), cells: job.gridData }, machine);
-    return { id, planned: { plan, clock: timeline(job, plan, machine), coverage: ledCoverage(plan) } };
+    const { plan, scan } = planAnyJob({ header: headerOf(job), cells: job.gridData }, machine);
+    if (scan) {
+      const preview = scanPreview(job, scan);
+      return { id, planned: { plan, clock: scanTimeline(job, scan, machine), coverage: scanCoverage(preview.doses), scan: preview } };
+    }
+    return { id, planned: { plan, clock: timeline(job, plan, machine), coverage: ledCoverage(plan), scan: null } };
   } catch (e) {
     return { id, error: (e as Error).message };
   }

@@ -47,6 +47,12 @@ describe('project files', () => {
     expect({ ...back, paint: null, objects: null }).toEqual({ ...p, paint: null, objects: null });
   });
 
+  it('keep the scan strategy (exposure on the move), and refuse a strategy not known by name', async () => {
+    const p = { ...project(), exposure: { fullMs: 4, strategy: 'scan' as const } };
+    expect((await decodeProject(await encodeProject(p))).exposure).toEqual({ fullMs: 4, strategy: 'scan' });
+    expect(await reject((f) => (f.exposure.strategy = 'spiral'))).toMatch(/^exposure\.strategy must be one of raster, serpentine, shortest, random, scan/);
+  });
+
   it('pack a whole empty-but-for-a-trace 4096² bed into a few KB', async () => {
     const cells = new Uint8Array(4096 * 4096);
     cells.fill(255, 4096 * 2048, 4096 * 2048 + 4096);

@@ -3,14 +3,14 @@
 // field and says which one is wrong; nothing of the project open in the editor is lost by a bad
 // file. Version 2 added the resist polarity, turned and mirrored objects, the coverage threshold
 // in percent (version 1's `level` in 255ths), SVG drawings and a dose in mJ/cm², and later boards (Gerber and Excellon files, kind 'board') that
-// older apps refuse by name; version 1 opens.
+// older apps refuse by name, as they refuse the strategy `scan` (exposure on the move); version 1 opens.
 
 import { MAX_SIDE } from '../studio/grid/grid';
 import { HALFTONES, type Halftone } from '../studio/image/halftones';
 import type { Tone } from '../studio/image/adjust';
 import { BOARD_LAYER_KINDS, DRILL_CLEARS, type BoardLayerKind, type DrillClear, type StudioObject, type Turn } from '../studio/objects/objects';
 import type { Polarity } from '../studio/objects/raster';
-import type { StrategyName } from '../protocol/job-types';
+import { STRATEGY_NAMES, type StrategyName } from '../protocol/job-types';
 import { packCells, unpackCells } from './cells-codec';
 
 export const PROJECT_FORMAT = 'uv-exposure-project';
@@ -19,7 +19,7 @@ export const PROJECT_VERSION = 2;
 const BOARD_SRC = 'data:application/vnd.uv-exposure.board+json;base64,';
 /** Larger files are refused before they are read. */
 export const MAX_PROJECT_BYTES = 200 * 1024 * 1024;
-const STRATEGIES: StrategyName[] = ['raster', 'serpentine', 'shortest', 'random'];
+const STRATEGIES = STRATEGY_NAMES;
 
 export interface Project {
   name: string;

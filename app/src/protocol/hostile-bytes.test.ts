@@ -84,7 +84,7 @@ describe('the printhead link against hostile bytes', () => {
   });
 });
 
-const strategies: StrategyName[] = ['raster', 'serpentine', 'shortest', 'random'];
+const strategies: StrategyName[] = ['raster', 'serpentine', 'shortest', 'random', 'scan'];
 const job: fc.Arbitrary<PrintJob> = fc.record({ cols: fc.integer({ min: 1, max: 40 }), rows: fc.integer({ min: 1, max: 12 }) }).chain(({ cols, rows }) =>
   fc.record({
     grid: fc.constant({ cols, rows }),

@@ -1,6 +1,9 @@
 // The exposure job as the app, the ESP body (protocol/print-job.schema.json) and the planner see it.
 
-export type StrategyName = 'raster' | 'serpentine' | 'shortest' | 'random';
+/** `scan` exposes each pass on the move (protocol/planner.md "Scan mode"); the others stop and fire. */
+export type StrategyName = 'raster' | 'serpentine' | 'shortest' | 'random' | 'scan';
+
+export const STRATEGY_NAMES: readonly StrategyName[] = ['raster', 'serpentine', 'shortest', 'random', 'scan'];
 
 export type Dose =
   | { map: 'linear' | 'threshold'; level?: number; fullUs: number }

@@ -1,7 +1,7 @@
 // Streaming verifier of job text (protocol/job.md): record syntax, order, bounds and the whole-job CRC.
 
 import { crc32Hex, crc32Update } from './crc32';
-import { JOB_LIMITS, type JobHeader, type StrategyName } from './job-types';
+import { JOB_LIMITS, STRATEGY_NAMES, type JobHeader, type StrategyName } from './job-types';
 
 export type JobError = { code: 23 | 24 | 25; line: number; message: string };
 
@@ -12,7 +12,7 @@ export interface Segment {
 }
 
 const NUM = /^(0|-?[1-9][0-9]*)$/;
-const STRATEGIES = new Set(['raster', 'serpentine', 'shortest', 'random']);
+const STRATEGIES = new Set<string>(STRATEGY_NAMES);
 
 /** Integer field in [lo, hi], or null. */
 function int(s: string | undefined, lo: number, hi: number): number | null {

@@ -1,7 +1,7 @@
 // Validates a POST /print body (protocol/esp.md, print-job.schema.json) into a PrintJob and whether
 // to run it paced, or an HTTP error.
 
-import type { PrintJob } from './job-types';
+import { STRATEGY_NAMES, type PrintJob } from './job-types';
 
 export const ESP_LIMITS = { maxBody: 1_200_000, maxCells: 262_144 } as const;
 
@@ -96,8 +96,8 @@ function validate(root: unknown): { job: PrintJob; paced: boolean } {
     job.thermal = { coeffCentiPctPerC: integer(t.coeffCentiPctPerC, '/thermal/coeffCentiPctPerC', -1000, 1000), refDeciC: integer(t.refDeciC, '/thermal/refDeciC', -400, 1250) };
   }
   const s = object(o.strategy, '/strategy', ['name', 'seed'], ['name']);
-  if (!['raster', 'serpentine', 'shortest', 'random'].includes(s.name as string)) {
-    throw new Invalid('/strategy/name', 'must be raster, serpentine, shortest or random');
+  if (!(STRATEGY_NAMES as readonly unknown[]).includes(s.name)) {
+    throw new Invalid('/strategy/name', 'must be raster, serpentine, shortest, random or scan');
   }
   job.strategy = { name: s.name as PrintJob['strategy']['name'] };
   if ('seed' in s) job.strategy.seed = integer(s.seed, '/strategy/seed', 0, 4294967295);

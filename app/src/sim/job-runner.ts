@@ -1,7 +1,10 @@
 // Runs a verified job on the simulated machine: plans it with the app's planner, then moves, settles and fires
-// stop by stop in virtual time, checkpointing after each stop so an interrupted job can resume.
+// stop by stop (or exposes pass by pass on the move, for a scan job) in virtual time, checkpointing
+// after each stop or pass so an interrupted job can resume.
 
-import { planJob, type Plan } from '../planner/planner';
+import { planAnyJob } from '../planner/job-plan';
+import type { Plan } from '../planner/planner';
+import type { ScanPlan } from '../planner/scan';
 import type { Machine } from '../planner/time-model';
 import type { JobState } from '../protocol/dialect-reply';
 import type { JobHeader } from '../protocol/job-types';
@@ -12,6 +15,7 @@ import { motionOf, num } from './config';
 import type { Motion, Xyz } from './motion';
 import type { NanoModel } from './nano-model';
 import { paceWaits } from './pacing';
+import { ScanPassRun, type ScanExposure } from './scan-pass';
 import type { SdCard } from './sd-card';
 
 export interface Exposure {
@@ -25,11 +29,16 @@ export class JobRunner {
   state: JobState = 'idle';
   file = '';
   plan: Plan | null = null;
+  /** A scan job's plan; `plan` then counts its passes as stops. */
+  scan: ScanPlan | null = null;
   header: JobHeader | null = null;
   done = 0;
   startedAtUs = 0;
   /** Every stop fired, in order: the tests' proof that each cell was exposed exactly once. */
   readonly exposures: Exposure[] = [];
+  /** Every scan pass exposed whole, with each LED's on-intervals as the printhead switched them. */
+  readonly scanExposures: ScanExposure[] = [];
+  #pass: ScanPassRun | null = null;
   /** Why the job last paused or failed, for JOB: reports. */
   reason = '';
   /** Stream mode (M828): the plan is a prefix that grows as rows arrive, and there is no checkpoint. */
@@ -61,6 +70,23 @@ export class JobRunner {
     private readonly fault: (code: number, message: string) => void,
   ) {}
 
+  #elapsedUs = 0;
+  #runningSince: number | null = null;
+
+  /** Time spent running, µs, as the Mega counts it (job_runner.h elapsedS): not while paused, nor after the end. */
+  elapsedUs(): number {
+    return this.#elapsedUs + (this.#runningSince !== null ? this.clock.now - this.#runningSince : 0);
+  }
+
+  #report(state: JobState): void {
+    if (state === 'running') this.#runningSince ??= this.clock.now;
+    else if (this.#runningSince !== null) {
+      this.#elapsedUs += this.clock.now - this.#runningSince;
+      this.#runningSince = null;
+    }
+    this.report(state);
+  }
+
   machine(start: Xyz): Machine {
     return motionOf(this.config, [start[0], start[1]]);
   }
@@ -74,7 +100,7 @@ export class JobRunner {
     const cells = Array.from({ length: header.rows }, () => new Uint8Array(header.cols));
     verifyJobText(text, (s) => cells[s.row].set(s.cells, s.col));
     this.header = header;
-    this.plan = planJob({ header, cells }, this.machine(this.motion.now()));
+    ({ plan: this.plan, scan: this.scan } = planAnyJob({ header, cells }, this.machine(this.motion.now())));
     this.file = file;
     this.done = 0;
     this.streaming = false;
@@ -88,6 +114,7 @@ export class JobRunner {
     this.file = file;
     this.header = null;
     this.plan = null;
+    this.scan = null;
     this.streaming = true;
     this.#planComplete = false;
     this.start(0);
@@ -121,8 +148,10 @@ export class JobRunner {
     this.state = 'running';
     this.#pauseRequested = false;
     this.startedAtUs = this.clock.now;
+    this.#elapsedUs = 0;
+    this.#runningSince = null;
     this.reason = '';
-    this.report('running');
+    this.#report('running');
     this.#next();
   }
 
@@ -132,14 +161,14 @@ export class JobRunner {
       this.#endCooling();
       this.state = 'paused';
       this.reason = reason;
-      this.report('paused');
+      this.#report('paused');
       return;
     }
     if (this.#starved) {
       this.#starved = false;
       this.state = 'paused';
       this.reason = reason;
-      this.report('paused');
+      this.#report('paused');
       return;
     }
     this.#pauseRequested = true;
@@ -150,12 +179,13 @@ export class JobRunner {
     if (this.state !== 'paused') return;
     this.state = 'running';
     this.reason = '';
-    this.report('running');
+    this.#report('running');
     this.#next();
   }
 
   /** LEDs off, motion stopped, checkpoint cleared. */
   abort(): void {
+    this.#cutPass();
     this.nano.allOff();
     this.nano.command('R\n');
     this.clock.cancel(this.#step);
@@ -164,7 +194,7 @@ export class JobRunner {
     if (this.state === 'running' || this.state === 'paused' || this.state === 'ready') {
       this.state = 'aborted';
       this.sd.checkpoint = null;
-      this.report('aborted');
+      this.#report('aborted');
     }
   }
 
@@ -180,7 +210,7 @@ export class JobRunner {
     if (this.#pauseRequested) {
       this.#pauseRequested = false;
       this.state = 'paused';
-      this.report('paused');
+      this.#report('paused');
       return;
     }
     const p = this.plan;
@@ -193,10 +223,11 @@ export class JobRunner {
     if (this.done >= p.count) {
       this.state = 'done';
       this.sd.checkpoint = null;
-      this.report('done');
+      this.#report('done');
       return;
     }
     const i = this.done;
+    if (this.scan) return this.#nextPass(i, h, this.scan);
     const to: Xyz = [h.originUm[0] + p.hx[i] * h.pitchUm[0], h.originUm[1] + p.hy[i] * h.pitchUm[1], this.motion.pos[2]];
     const from = this.motion.now();
     const moved = to[0] !== from[0] || to[1] !== from[1];
@@ -208,6 +239,63 @@ export class JobRunner {
     });
   }
 
+  /** A scan pass: to its run-up at its row, settle and overhead, then across at the speed, LEDs switching on the plan's times. */
+  #nextPass(i: number, h: JobHeader, scan: ScanPlan): void {
+    const pass = scan.passes[i];
+    const to: Xyz = [pass.runUpUm, h.originUm[1] + pass.hy * h.pitchUm[1], this.motion.pos[2]];
+    const from = this.motion.now();
+    const moved = to[0] !== from[0] || to[1] !== from[1];
+    this.motion.enqueue(to, num(this.config, 'speed.travel'));
+    this.motion.whenIdle(() => {
+      if (this.state !== 'running') return;
+      const settle = moved ? num(this.config, 'settle_ms') * 1000 : 0;
+      this.#step = this.clock.after(settle + num(this.config, 'stop_overhead_us'), () => this.#fireWhenCool(i));
+    });
+  }
+
+  #runPass(i: number): void {
+    const scan = this.scan!;
+    const pass = scan.passes[i];
+    const to: Xyz = [pass.runOutUm, this.motion.pos[1], this.motion.pos[2]];
+    this.#pass = new ScanPassRun(this.clock, this.nano, scan, i, {
+      moveUs: (us) => {
+        this.motion.enqueueTimed(to, us);
+        // The head stopped under a pass (M410): the LEDs must not go on lighting one place.
+        const end = this.clock.now + us;
+        this.motion.whenIdle(() => this.#pass && this.clock.now < end && this.faulted('stopped'));
+      },
+      refused: () => {
+        const hot = this.#refusalWasHeat();
+        this.#cutPass();
+        this.fault(hot ? 31 : 33, hot ? `over-temperature in pass ${i}` : `printhead refused an exposure in pass ${i}`);
+        this.faulted(hot ? 'overtemp' : 'refused');
+      },
+      done: (exposure) => {
+        this.#pass = null;
+        if (this.state !== 'running') return;
+        this.scanExposures.push(exposure);
+        this.done = i + 1;
+        if (!this.streaming) this.#checkpoint(this.plan!.count);
+        this.onProgress?.();
+        if (this.state === 'running') this.#next();
+      },
+    });
+  }
+
+  /** Stops a pass under way at once: LEDs off, the head halted where it is. The pass is not counted. */
+  #cutPass(): void {
+    if (!this.#pass) return;
+    this.#pass.cancel();
+    this.#pass = null;
+    this.nano.allOff();
+    this.motion.stop();
+  }
+
+  #refusalWasHeat(): boolean {
+    const flags = parseNanoReply(this.nano.command('E\n') ?? '');
+    return flags?.op === 'E' && (flags.flags & FAULT.OVERTEMP) !== 0;
+  }
+
   /** As the Mega's Settle phase: a paced job whose head reads near a soft limit waits for readings. */
   #fireWhenCool(i: number): void {
     if (this.state !== 'running') return;
@@ -215,7 +303,7 @@ export class JobRunner {
       this.cooling = true;
       this.#coolingStop = i;
       this.#coolingSince = this.clock.now;
-      this.report('running'); // the JOB: line says cooling=1
+      this.#report('running'); // the JOB: line says cooling=1
       return;
     }
     this.#fire(i);
@@ -227,7 +315,7 @@ export class JobRunner {
     if (paceWaits(this.thermal.reading(), this.thermal.limits(), true)) return;
     const i = this.#coolingStop;
     this.#endCooling();
-    this.report('running');
+    this.#report('running');
     this.#fire(i);
   }
 
@@ -239,6 +327,7 @@ export class JobRunner {
   }
 
   #fire(i: number): void {
+    if (this.scan) return this.#runPass(i);
     const p = this.plan!;
     const us = Array.from(p.durations.subarray(i * 4, i * 4 + 4));
     let mask = 0;
@@ -274,11 +363,12 @@ export class JobRunner {
   /** A fault cut the LEDs mid-stop: the stop is not counted, and the job waits for the user. */
   faulted(reason: string): void {
     if (this.state !== 'running') return;
+    this.#cutPass();
     this.clock.cancel(this.#step);
     this.#endCooling();
     this.nano.allOff();
     this.state = 'paused';
     this.reason = reason;
-    this.report('paused');
+    this.#report('paused');
   }
 }

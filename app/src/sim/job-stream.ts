@@ -12,7 +12,7 @@ import type { JobRunner } from './job-runner';
 export const STREAM_BUFFER_CELLS = 4096;
 
 /** A record's error (E23-E25), or E28 when the buffer cannot hold the rows the next stops need. */
-export type StreamError = Omit<JobError, 'code'> & { code: JobError['code'] | 28 };
+export type StreamError = Omit<JobError, 'code'> & { code: JobError['code'] | 28 | 29 };
 
 export class JobStream {
   readonly verifier: JobVerifier;
@@ -60,6 +60,11 @@ export class JobStream {
       return done();
     }
     const h = this.verifier.header;
+    if (h?.strategy === 'scan') {
+      // A pass is planned from its whole rows and runs without a stop: a scan job goes to the card (M28), as on the Mega.
+      this.#fail({ code: 29, line: 0, message: 'a scan job is not streamed: upload it to the card' });
+      return done();
+    }
     if (h && !this.#header) {
       this.#header = h;
       this.#cells = Array.from({ length: h.rows }, () => new Uint8Array(h.cols));

@@ -26,7 +26,7 @@ export function jobLine(m: MegaModel): string {
   const fields: Record<string, string> = {
     file: j.file,
     stop: `${j.done}/${j.plan.count}`,
-    elapsed: String(Math.floor((m.clock.now - j.startedAtUs) / 1e6)),
+    elapsed: String(Math.floor(j.elapsedUs() / 1e6)), // running time, as the Mega counts it
     ...(j.planComplete ? { remaining: String(Math.round(j.remainingUs() / 1e6)) } : {}), // unknown mid-stream
     leds: String(m.nano.lit),
   };

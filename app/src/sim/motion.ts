@@ -10,6 +10,8 @@ interface Move {
   to: Xyz;
   /** mm/s along each axis, capped per axis. */
   feed: number;
+  /** A move whose time the caller knows (a scan pass at its speed), µs. */
+  us?: number;
 }
 
 export const MOVE_QUEUE = 8;
@@ -65,6 +67,13 @@ export class Motion {
     if (!this.#current) this.#startNext();
   }
 
+  /** A move that takes `us` µs, as a scan pass from its run-up to its run-out does. */
+  enqueueTimed(to: Xyz, us: number): void {
+    this.enabled = true;
+    this.#queue.push({ to, feed: 0, us });
+    if (!this.#current) this.#startNext();
+  }
+
   /** Calls `fn` once the queue is empty and the axes stand still. */
   whenIdle(fn: () => void): void {
     if (!this.#current) fn();
@@ -95,7 +104,7 @@ export class Motion {
     }
     const from = [...this.pos] as Xyz;
     const start = this.clock.now;
-    const end = start + this.duration(from, m.to, m.feed);
+    const end = start + (m.us ?? this.duration(from, m.to, m.feed));
     this.#current = { from, to: m.to, start, end };
     this.#timer = this.clock.at(end, () => {
       this.pos = m.to;

@@ -45,6 +45,8 @@ export class NanoModel {
   present = true;
   /** This start's number (the firmware keeps a counter in EEPROM); the printer sets it at power-up. */
   boot = 1;
+  /** Each LED's on-time since power-up, µs: the dose the head has given, whatever switched it. */
+  readonly onUs = [0, 0, 0, 0];
   #fires = 0;
   #whole = true;
   #latched = 0;
@@ -115,6 +117,33 @@ export class NanoModel {
     }
   }
 
+  /**
+   * A scan pass begins (exposure on the move): it counts as one fire, and is whole only once it
+   * ends, so a resume after a cut pass exposes it again (mega.md "Resume").
+   */
+  beginScanPass(): void {
+    this.#integrate();
+    this.#fires++;
+    this.#whole = false;
+  }
+
+  endScanPass(): void {
+    this.#integrate();
+    if (!this.lit) this.#whole = true;
+  }
+
+  /** Sets the LEDs of a scan pass at one of its switch times; false (and latched) if the head is too hot. */
+  scanSwitch(mask: number): boolean {
+    this.#integrate();
+    if (mask && this.#active()) {
+      this.#latched |= FAULT.REFUSED;
+      this.allOff();
+      return false;
+    }
+    this.lit = mask & 15;
+    return true;
+  }
+
   /** The probe pin touched the bed: latch the trigger, as the pin-change interrupt does. */
   trigger(): void {
     this.#latchedTrigger = true;
@@ -126,6 +155,7 @@ export class NanoModel {
   }
 
   allOff(): void {
+    this.#integrate(); // the on-time up to now counts
     this.lit = 0;
     this.#off.forEach((e) => this.clock.cancel(e));
     this.#off = [null, null, null, null];
@@ -165,6 +195,7 @@ export class NanoModel {
     const dtUs = now - this.#lastUs;
     this.#lastUs = now;
     if (dtUs <= 0) return;
+    for (let k = 0; k < 4; k++) if ((this.lit >> k) & 1) this.onUs[k] += dtUs;
     this.thermal.advance(dtUs, this.lit);
     for (let i = 0; i < SENSOR_COUNT; i++) {
       const t = this.temp[i] * 10;

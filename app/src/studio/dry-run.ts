@@ -5,15 +5,18 @@
 
 import { headerOf } from '../planner/job-header';
 import type { Mesh } from '../planner/mesh';
-import { planJob, type Plan } from '../planner/planner';
+import { planAnyJob } from '../planner/job-plan';
+import type { Plan } from '../planner/planner';
+import type { ScanPlan } from '../planner/scan';
 import type { PrintJob } from '../protocol/job-types';
 import { hms } from '../job/hms';
+import { scanWords } from '../job/scan-words';
 import { bedOf, limitsOf, motionOf, type MachineConfig } from './machine-config';
 import { cutWords, type Cut } from './objects/clipping';
-import { forecastThermal, type ThermalRun } from './thermal-forecast';
+import { forecastScanThermal, forecastThermal, type ThermalRun } from './thermal-forecast';
 
 export interface Finding {
-  check: 'envelope' | 'clipping' | 'mesh' | 'dose' | 'thermal';
+  check: 'mode' | 'envelope' | 'clipping' | 'mesh' | 'dose' | 'thermal';
   level: 'error' | 'warning' | 'ok';
   message: string;
 }
@@ -22,7 +25,10 @@ export interface Finding {
 export const NANO_MAX_EXPOSURE_US = 10_000_000;
 
 export interface DryRun {
+  /** For a scan job, one entry per pass. */
   plan: Plan;
+  /** A scan job's plan (exposure on the move), else null. */
+  scan: ScanPlan | null;
   findings: Finding[];
   /** Each LED's share of the job's time lit, 0-1. */
   duty: number[];
@@ -52,15 +58,18 @@ export function dryRun(
 ): DryRun {
   const header = headerOf(job);
   const machine = motionOf(config);
-  const plan = planJob({ header, cells: job.gridData }, machine);
+  const { plan, scan } = planAnyJob({ header, cells: job.gridData }, machine);
   const findings: Finding[] = [];
   const { bedMm } = bedOf(config);
+  if (scan) findings.push(scanFinding(scan));
 
-  // Envelope: every head position the plan stops at, on the bed.
+  // Envelope: every head position the plan stops at (for a scan job, each pass from run-up to run-out), on the bed.
   let minX = Infinity, minY = Infinity, maxX = -Infinity, maxY = -Infinity;
   for (let i = 0; i < plan.count; i++) {
-    const x = job.originUm.x + plan.hx[i] * job.pitchUm.x, y = job.originUm.y + plan.hy[i] * job.pitchUm.y;
-    minX = Math.min(minX, x), maxX = Math.max(maxX, x), minY = Math.min(minY, y), maxY = Math.max(maxY, y);
+    const y = job.originUm.y + plan.hy[i] * job.pitchUm.y;
+    const xs = scan ? [scan.passes[i].runUpUm, scan.passes[i].runOutUm] : [job.originUm.x + plan.hx[i] * job.pitchUm.x];
+    for (const x of xs) minX = Math.min(minX, x), maxX = Math.max(maxX, x);
+    minY = Math.min(minY, y), maxY = Math.max(maxY, y);
   }
   const mm = (um: number) => (um / 1000).toFixed(1);
   if (plan.count && (minX < 0 || minY < 0 || maxX > bedMm.x * 1000 || maxY > bedMm.y * 1000)) {
@@ -90,28 +99,45 @@ export function dryRun(
     longest = Math.max(longest, plan.durations[i]);
     lit[i & 3] += plan.durations[i];
   }
+  // A scan job's LED stays on across a run of full cells (planner.md "Switch times": touching
+  // intervals merge only when a cell fills its window), so a cell's exposure is at most the window.
+  for (const pass of scan?.passes ?? []) {
+    pass.leds.forEach((list, k) => list.forEach(([on, off]) => {
+      longest = Math.max(longest, Math.min(off - on, scan!.windowUs));
+      lit[k] += off - on;
+    }));
+  }
   findings.push(longest > NANO_MAX_EXPOSURE_US
-    ? { check: 'dose', level: 'error', message: `a stop would light an LED for ${(longest / 1e6).toFixed(1)} s; the printhead refuses more than ${NANO_MAX_EXPOSURE_US / 1e6} s` }
+    ? { check: 'dose', level: 'error', message: `${scan ? 'a cell' : 'a stop'} would light an LED for ${(longest / 1e6).toFixed(1)} s; the printhead refuses more than ${NANO_MAX_EXPOSURE_US / 1e6} s` }
     : { check: 'dose', level: 'ok', message: `the longest exposure is ${(longest / 1000).toFixed(1)} ms` });
 
   // Thermal: the plan played through the head's model, as the Mega reads and judges it.
   const duty = lit.map((us) => (plan.estimateUs ? us / plan.estimateUs : 0));
   const limitsC = limitsOf(config);
-  const forecast = (paced: boolean) => forecastThermal(plan, header, machine, { limitsC, startC: opts.startC ?? undefined, paced });
+  const forecast = (paced: boolean) => {
+    const o = { limitsC, startC: opts.startC ?? undefined, paced };
+    return scan ? forecastScanThermal(scan, header, machine, o) : forecastThermal(plan, header, machine, o);
+  };
   const thermal = forecast(false);
   const paced = thermal.pause ? forecast(true) : null;
-  findings.push(thermalFinding(thermal, paced, plan.count, limitsC));
+  findings.push(thermalFinding(thermal, paced, plan.count, limitsC, scan ? 'pass' : 'stop'));
 
-  return { plan, findings, duty, thermal, paced };
+  return { plan, scan, findings, duty, thermal, paced };
 }
 
-function thermalFinding(run: ThermalRun, paced: ThermalRun | null, stops: number, limitsC: number[]): Finding {
+/** What a scan job is: its passes, their speed and the cell window. */
+export function scanFinding(scan: ScanPlan): Finding {
+  if (!scan.passes.length) return { check: 'mode', level: 'ok', message: 'scan job (on the move): nothing to expose' };
+  return { check: 'mode', level: 'ok', message: `scan job (on the move): ${scanWords(scan.passes.length, scan.speedUmS, scan.windowUs)}` };
+}
+
+function thermalFinding(run: ThermalRun, paced: ThermalRun | null, stops: number, limitsC: number[], unit: 'stop' | 'pass'): Finding {
   const hottest = run.peakC.reduce((best, c, i) => (c - limitsC[i] > run.peakC[best] - limitsC[best] ? i : best), 0);
   const peak = (r: ThermalRun, i: number) => `T${i} ${r.peakC[i].toFixed(0)} °C (limit ${limitsC[i]})`;
   if (!run.pause) return { check: 'thermal', level: 'ok', message: `the hottest sensor stays below its soft limit: ${peak(run, hottest)}` };
   const p = run.pause;
-  const where = `T${p.sensor} would reach its ${limitsC[p.sensor]} °C soft limit ${hms(p.atUs)} in, at stop ${p.stop} of ${stops}: the job would pause there to cool`;
-  if (!paced || paced.pause) return { check: 'thermal', level: 'warning', message: `${where}, and pacing cannot prevent it (a single stop heats too much): lower the dose` };
+  const where = `T${p.sensor} would reach its ${limitsC[p.sensor]} °C soft limit ${hms(p.atUs)} in, at ${unit} ${p.stop} of ${stops}: the job would pause there to cool`;
+  if (!paced || paced.pause) return { check: 'thermal', level: 'warning', message: `${where}, and pacing cannot prevent it (a single ${unit} heats too much): lower the dose` };
   const top = paced.peakC.reduce((best, c, i) => (c - limitsC[i] > paced.peakC[best] - limitsC[best] ? i : best), 0);
   return { check: 'thermal', level: 'warning', message: `${where}. Paced, it waits ${hms(paced.waitUs)} in all to cool, takes about ${hms(paced.totalUs)}, and stays below its limits (${peak(paced, top)})` };
 }

@@ -2,9 +2,12 @@
 // (sim/head-thermal.ts) in the planner's time model, with the Mega's temperature readings every
 // 500 ms and its rules for them (sim/pacing.ts): an unpaced job pauses when a reading reaches a soft
 // limit; a paced one waits before a stop while a reading is near one. The simulated printer runs the
-// same model and rules, so the forecast is what it then does (thermal-forecast.test.ts).
+// same model and rules, so the forecast is what it then does (thermal-forecast.test.ts). A scan job
+// is played pass by pass with its LEDs' switch times.
 
+import { passDurationUs, passSwitches } from '../planner/job-plan';
 import type { Plan } from '../planner/planner';
+import type { ScanPlan } from '../planner/scan';
 import { MoveTimes, type Machine } from '../planner/time-model';
 import { HEAD_THERMAL, HeadThermal, type HeadThermalModel } from '../sim/head-thermal';
 import { overSoftLimit, paceWaits, READING_PERIOD_US } from '../sim/pacing';
@@ -35,52 +38,59 @@ export interface PlanPlace {
   pitchUm: [number, number];
 }
 
-export function forecastThermal(plan: Plan, place: PlanPlace, machine: Machine, o: ForecastOptions): ThermalRun {
+/** The head and the Mega's readings through a job's timeline: what each forecast plays its job into. */
+function forecastHead(o: ForecastOptions) {
   const head = new HeadThermal(o.model ?? HEAD_THERMAL, o.startC);
   const limits = o.limitsC.map((c) => Math.round(c * 10));
-  const moves = new MoveTimes(machine);
-  let t = 0;
-  let nextRead = READING_PERIOD_US;
-  let reading = head.deciC();
-  let stop = 0;
-  let pause: ThermalRun['pause'] = null;
-  let waitUs = 0;
+  const s = { t: 0, nextRead: READING_PERIOD_US, reading: head.deciC(), stop: 0, pause: null as ThermalRun['pause'], waitUs: 0 };
 
   /** Holds `lit` for `dt`, taking the Mega's readings on the way; false once a reading pauses the job. */
   const hold = (dt: number, lit: number): boolean => {
-    while (t + dt >= nextRead) {
-      const step = nextRead - t;
+    while (s.t + dt >= s.nextRead) {
+      const step = s.nextRead - s.t;
       head.advance(step, lit);
-      t = nextRead;
+      s.t = s.nextRead;
       dt -= step;
-      nextRead += READING_PERIOD_US;
-      reading = head.deciC();
-      const over = overSoftLimit(reading, limits);
+      s.nextRead += READING_PERIOD_US;
+      s.reading = head.deciC();
+      const over = overSoftLimit(s.reading, limits);
       if (over >= 0) {
-        pause = { stop, sensor: over, atUs: t, c: reading[over] / 10 };
+        s.pause = { stop: s.stop, sensor: over, atUs: s.t, c: s.reading[over] / 10 };
         return false;
       }
     }
     head.advance(dt, lit);
-    t += dt;
+    s.t += dt;
     return true;
   };
 
+  /** A paced job waits, LEDs off, until a reading shows the head cool enough (the Mega's Settle phase); false if it paused. */
+  const paceWait = (): boolean => {
+    if (!o.paced || !paceWaits(s.reading, limits, false)) return true;
+    const from = s.t;
+    while (paceWaits(s.reading, limits, true)) if (!hold(s.nextRead - s.t, 0)) return false;
+    s.waitUs += s.t - from;
+    return true;
+  };
+
+  const result = (): ThermalRun => ({ peakC: head.peak.slice(), pause: s.pause, waitUs: s.waitUs, totalUs: s.t });
+  return { s, hold, paceWait, result };
+}
+
+export function forecastThermal(plan: Plan, place: PlanPlace, machine: Machine, o: ForecastOptions): ThermalRun {
+  const { s, hold, paceWait, result } = forecastHead(o);
+  const moves = new MoveTimes(machine);
   let x = machine.startUm[0], y = machine.startUm[1];
   const d = [0, 0, 0, 0];
-  run: for (stop = 0; stop < plan.count; stop++) {
+  run: for (s.stop = 0; s.stop < plan.count; s.stop++) {
+    const stop = s.stop;
     const nx = place.originUm[0] + plan.hx[stop] * place.pitchUm[0];
     const ny = place.originUm[1] + plan.hy[stop] * place.pitchUm[1];
     let longest = 0;
     for (let k = 0; k < 4; k++) longest = Math.max(longest, (d[k] = plan.durations[stop * 4 + k]));
     if (!hold(moves.stop(nx, ny, x, y, longest) - longest, 0)) break;
     x = nx, y = ny;
-    if (o.paced && paceWaits(reading, limits, false)) {
-      // Wait, LEDs off, until a reading shows the head cool enough (the Mega's Settle phase).
-      const from = t;
-      while (paceWaits(reading, limits, true)) if (!hold(nextRead - t, 0)) break run;
-      waitUs += t - from;
-    }
+    if (!paceWait()) break;
     // The exposure: every LED of the stop lit at once, each off after its own time.
     let at = 0;
     while (at < longest) {
@@ -90,5 +100,33 @@ export function forecastThermal(plan: Plan, place: PlanPlace, machine: Machine, 
       at = next;
     }
   }
-  return { peakC: head.peak.slice(), pause, waitUs, totalUs: t };
+  return result();
+}
+
+/**
+ * A scan job (exposure on the move) played the same way, pass by pass: the move to its run-up,
+ * settle and overhead with the LEDs off, then the pass with each LED lit exactly over its
+ * on-intervals, so the head warms with the LEDs' real duty (on-time against the pass's wall time).
+ * A pause is reported at the pass under way (`stop` counts passes).
+ */
+export function forecastScanThermal(scan: ScanPlan, place: PlanPlace, machine: Machine, o: ForecastOptions): ThermalRun {
+  const { s, hold, paceWait, result } = forecastHead(o);
+  const moves = new MoveTimes(machine);
+  let x = machine.startUm[0], y = machine.startUm[1];
+  run: for (s.stop = 0; s.stop < scan.passes.length; s.stop++) {
+    const pass = scan.passes[s.stop];
+    const ny = place.originUm[1] + pass.hy * place.pitchUm[1];
+    const move = Math.max(moves.axis(0, Math.abs(pass.runUpUm - x)), moves.axis(1, Math.abs(ny - y)));
+    if (!hold(move + (move > 0 ? machine.settleUs : 0) + machine.overheadUs, 0)) break;
+    if (!paceWait()) break;
+    let at = -scan.accelUs, lit = 0; // µs after the pass's start mark
+    for (const sw of passSwitches(pass)) {
+      if (!hold(sw.atUs - at, lit)) break run;
+      at = sw.atUs;
+      lit = sw.mask;
+    }
+    if (!hold(passDurationUs(scan, pass) - scan.accelUs - at, lit)) break;
+    x = pass.runOutUm, y = ny;
+  }
+  return result();
 }

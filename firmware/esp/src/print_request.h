@@ -217,9 +217,9 @@ bool validateHeader(const J& root, GridDataShape grid, JobHeader& h, bool& paced
   if (!object(s, "/strategy", sKeys, 2, sRequired, 1, e)) return false;
   const J name = s.member("name");
   int8_t strategy = -1;
-  for (uint8_t i = 0; i < 4 && name.isString(); i++)
+  for (uint8_t i = 0; i < kStrategyCount && name.isString(); i++)
     if (strcmp(name.string(), strategyName(static_cast<Strategy>(i))) == 0) strategy = static_cast<int8_t>(i);
-  if (strategy < 0) return fail(e, "/strategy/name", "must be raster, serpentine, shortest or random");
+  if (strategy < 0) return fail(e, "/strategy/name", "must be raster, serpentine, shortest, random or scan");
   h.strategy = static_cast<Strategy>(strategy);
   h.seed = 0;
   if (s.has("seed") && !field(s, "/strategy", "seed", 0, 4294967295LL, h.seed, e)) return false;

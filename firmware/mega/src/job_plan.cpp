@@ -39,6 +39,11 @@ uint8_t JobPlan::begin(const char* name) {
     close();
     return error_;
   }
+  if (header_.strategy == uv::Strategy::Scan) {  // this firmware plans stops only: refused before any light
+    error_ = uv::kScanUnsupported;
+    close();
+    return error_;
+  }
   source_ = new (sourceMem_) SdCells(sd_, cells_, index_);
   planner_ = new (plannerMem_) uv::Planner(header_, *source_, machine_);
   if (!planner_->supported()) {  // the LEDs' rows span 1024 rows or more: planner.md "Memory on the Mega"

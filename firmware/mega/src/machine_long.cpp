@@ -67,6 +67,7 @@ void Machine::runLong() {
       preparedSelect_ = true;
       err = startPlanning(header);
       if (err) {
+        preparedSelect_ = false;  // else the next upload's M29 would not say "Done saving file."
         planRefused(*long_.port, err);
         long_.port->ok();
         long_.op = Op::None;

@@ -42,6 +42,8 @@ uint8_t StreamJob::record(const char* text, uint8_t len) {
   }
   uint8_t err = verifier_.push(text, len);
   if (err) return fail(err);
+  // This firmware plans stops only: a scan job ends with its header, before any light.
+  if (!planner_ && verifier_.headerDone() && verifier_.header().strategy == uv::Strategy::Scan) return fail(uv::kScanUnsupported);
   if (!planner_ && verifier_.headerDone()) planner_ = new (plannerMem_) uv::Planner(verifier_.header(), cells_, machine_);
   if (planner_) {
     if (verifier_.complete()) known_ = verifier_.header().rows;

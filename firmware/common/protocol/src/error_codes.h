@@ -26,6 +26,7 @@ enum ErrorCode : uint8_t {
   kNoJob = 26,
   kNoResume = 27,
   kStreamOverflow = 28,
+  kScanUnsupported = 29,
   kNanoTimeout = 30,
   kOverTemperature = 31,
   kSensorFault = 32,

@@ -9,7 +9,9 @@ constexpr uint8_t kJobMaxCellsPerRecord = 32;
 constexpr uint8_t kJobMaxGap = 4;
 
 enum class DoseMap : uint8_t { Linear, Threshold };
-enum class Strategy : uint8_t { Raster, Serpentine, Shortest, Random };
+// Scan exposes each pass on the move (protocol/planner.md "Scan mode"); the others stop and fire.
+enum class Strategy : uint8_t { Raster, Serpentine, Shortest, Random, Scan };
+constexpr uint8_t kStrategyCount = 5;
 
 struct JobHeader {
   uint16_t cols, rows;

@@ -13,8 +13,8 @@ namespace uv {
 namespace {
 
 const char kRaster[] UV_FLASH = "raster", kSerpentine[] UV_FLASH = "serpentine", kShortest[] UV_FLASH = "shortest",
-           kRandom[] UV_FLASH = "random";
-const char* const kStrategies[] UV_FLASH = {kRaster, kSerpentine, kShortest, kRandom};
+           kRandom[] UV_FLASH = "random", kScan[] UV_FLASH = "scan";
+const char* const kStrategies[kStrategyCount] UV_FLASH = {kRaster, kSerpentine, kShortest, kRandom, kScan};
 
 // Cursor over single-space separated words.
 struct Words {
@@ -178,7 +178,7 @@ bool JobVerifier::headerRecord(const char* p, const char* end) {
       const char *n, *ne;
       if (!w.next(n, ne)) return false;
       int8_t s = -1;
-      for (uint8_t i = 0; i < 4; i++) {
+      for (uint8_t i = 0; i < kStrategyCount; i++) {
         const char* name = uvFlashPtr(kStrategies[i]);
         if (static_cast<size_t>(ne - n) == uvStrlenP(name) && uvMemcmpP(n, name, ne - n) == 0) s = static_cast<int8_t>(i);
       }

@@ -1,0 +1,49 @@
+import { describe, expect, it } from 'vitest';
+import { passDurationUs, passSwitches, planAnyJob } from './job-plan';
+import { planJob } from './planner';
+import type { ScanPass, ScanPlan } from './scan';
+import { headerOf } from './job-header';
+import type { Machine } from './time-model';
+import type { StrategyName } from '../protocol/job-types';
+
+const MACHINE: Machine = { vmaxUmS: [100_000, 100_000], accelUmS2: [2_000_000, 2_000_000], settleUs: 2000, overheadUs: 1500, startUm: [0, 0] };
+
+const header = (cols: number, rows: number, name: StrategyName) => headerOf({
+  grid: { cols, rows }, pitchUm: { x: 50, y: 50 }, originUm: { x: 5000, y: 5000 }, dose: { map: 'linear', fullUs: 4000 },
+  leds: { offsets: [[0, 0], [0, 1], [0, 2], [0, 3]] }, strategy: { name }, gridData: [],
+});
+
+const pass = (leds: [number, number][][], jumps: [number, number, number][] = []): ScanPass =>
+  ({ hy: 0, descending: false, first: 0, last: 9, runUpUm: 0, runOutUm: 0, leds, jumps });
+
+describe('a scan pass as the machine runs it', () => {
+  it('switches the LEDs in time order, one mask per instant, an LED going off where another comes on', () => {
+    const p = pass([[[10, 20], [30, 40]], [[20, 30]], [], [[10, 40]]]);
+    expect(passSwitches(p)).toEqual([
+      { atUs: 10, mask: 0b1001 },
+      { atUs: 20, mask: 0b1010 },
+      { atUs: 30, mask: 0b1001 },
+      { atUs: 40, mask: 0 },
+    ]);
+  });
+
+  it('lasts its accelerating, its windows with the flown stretches in their place, and its braking', () => {
+    const scan = { windowUs: 100, accelUs: 7 } as ScanPlan;
+    expect(passDurationUs(scan, pass([]))).toBe(2 * 7 + 10 * 100);
+    expect(passDurationUs(scan, pass([], [[3, 4, 150]]))).toBe(2 * 7 + 6 * 100 + 150);
+  });
+});
+
+describe('planning by strategy', () => {
+  it('plans stops for the stop-and-fire strategies and passes, counted as stops, for scan', () => {
+    const cells = [[255, 0, 0, 255, 128, 0], [0, 0, 0, 0, 0, 0], [64, 64, 0, 0, 0, 0]];
+    const stops = planAnyJob({ header: header(6, 3, 'serpentine'), cells }, MACHINE);
+    expect(stops.scan).toBeNull();
+    expect(stops.plan).toEqual(planJob({ header: header(6, 3, 'serpentine'), cells }, MACHINE));
+    const scan = planAnyJob({ header: header(6, 3, 'scan'), cells }, MACHINE);
+    expect(scan.scan?.passes.length).toBeGreaterThan(0);
+    expect(scan.plan.count).toBe(scan.scan!.passes.length);
+    expect(scan.plan.estimateUs).toBe(scan.scan!.estimateUs);
+    expect(Array.from(scan.plan.hy)).toEqual(scan.scan!.passes.map((p) => p.hy));
+  });
+});

@@ -1,0 +1,66 @@
+// Plans a job by its strategy: stop and fire (planner.ts), or exposure on the move (scan.ts) seen
+// through the same Plan, one "stop" per pass, so progress, estimates and checkpoints count passes.
+
+import type { JobHeader } from '../protocol/job-types';
+import { planJob, type Plan, type PlannerJob } from './planner';
+import { planScan, type ScanPlan } from './scan';
+import type { Machine } from './time-model';
+
+export interface JobPlan {
+  plan: Plan;
+  /** Set for a scan job: its passes, their switch times and its motion. */
+  scan: ScanPlan | null;
+}
+
+export function planAnyJob(job: PlannerJob, machine: Machine): JobPlan {
+  if (job.header.strategy !== 'scan') return { plan: planJob(job, machine), scan: null };
+  const scan = planScan(job, machine);
+  return { plan: scanAsPlan(scan, machine, job.header), scan };
+}
+
+/** A scan plan as a Plan of one entry per pass (at its first head column), with no stop durations. */
+export function scanAsPlan(scan: ScanPlan, machine: Machine, h: Pick<JobHeader, 'originUm' | 'pitchUm'>): Plan {
+  const n = scan.passes.length;
+  const travel: [number, number] = [0, 0];
+  let x = machine.startUm[0], y = machine.startUm[1];
+  for (const p of scan.passes) {
+    travel[0] += Math.abs(p.runUpUm - x) + Math.abs(p.runOutUm - p.runUpUm);
+    x = p.runOutUm;
+    const py = h.originUm[1] + p.hy * h.pitchUm[1];
+    travel[1] += Math.abs(py - y);
+    y = py;
+  }
+  return {
+    count: n,
+    hx: Int32Array.from(scan.passes, (p) => (p.descending ? p.last : p.first)),
+    hy: Int32Array.from(scan.passes, (p) => p.hy),
+    durations: new Uint32Array(4 * n),
+    passes: n,
+    estimateUs: scan.estimateUs,
+    travelUm: travel,
+  };
+}
+
+/** A pass's time from its start at rest to its end at rest: accelerate, the windows and flown stretches, brake. */
+export function passDurationUs(scan: ScanPlan, pass: ScanPlan['passes'][number]): number {
+  const n = pass.last - pass.first + 1;
+  let t = n * scan.windowUs;
+  for (const [, g, f] of pass.jumps) t += f - g * scan.windowUs;
+  return 2 * scan.accelUs + t;
+}
+
+/** The LEDs' mask after each switch of a pass, in time order, µs after its start mark. */
+export function passSwitches(pass: ScanPlan['passes'][number]): { atUs: number; mask: number }[] {
+  const edges: [number, number, boolean][] = [];
+  pass.leds.forEach((list, k) => list.forEach(([on, off]) => edges.push([on, k, true], [off, k, false])));
+  edges.sort((a, b) => a[0] - b[0] || Number(a[2]) - Number(b[2])); // off before on at one instant
+  const out: { atUs: number; mask: number }[] = [];
+  let mask = 0;
+  for (const [at, k, on] of edges) {
+    mask = on ? mask | (1 << k) : mask & ~(1 << k);
+    const last = out[out.length - 1];
+    if (last && last.atUs === at) last.mask = mask;
+    else out.push({ atUs: at, mask });
+  }
+  return out;
+}

@@ -1,0 +1,86 @@
+// The dry run of a scan job (exposure on the move): it says so, estimates with the scan planner,
+// and forecasts the head's heat from the LEDs' real switch times, as the simulated printer then heats.
+
+import { describe, expect, it } from 'vitest';
+import { headerOf } from '../planner/job-header';
+import { planScan } from '../planner/scan';
+import { encodeJob } from '../protocol/job-encode';
+import type { PrintJob } from '../protocol/job-types';
+import { CONFIG_DEFAULTS, motionOf } from '../sim/config';
+import { SimHost } from '../sim/sim-host.fixture';
+import { dryRun } from './dry-run';
+import { DEFAULT_CONFIG, limitsOf } from './machine-config';
+import { forecastScanThermal } from './thermal-forecast';
+
+function block(fullMs: number, fill: number, cols = 24, rows = 16): PrintJob {
+  let seed = 11;
+  const rand = () => ((seed = (seed * 1103515245 + 12345) >>> 0) / 2 ** 32);
+  return {
+    grid: { cols, rows },
+    pitchUm: { x: 50, y: 50 },
+    originUm: { x: 20_000, y: 20_000 },
+    dose: { map: 'linear', fullUs: fullMs * 1000 },
+    leds: { offsets: [[0, 0], [0, 1], [0, 2], [0, 3]] },
+    strategy: { name: 'scan' },
+    gridData: Array.from({ length: rows }, () => Array.from({ length: cols }, () => (rand() < fill ? (rand() < 0.5 ? 255 : 128) : 0))),
+  };
+}
+
+function simulate(job: PrintJob) {
+  const h = new SimHost({ drift: false });
+  h.cmd('G28');
+  h.upload('F.UVJ', encodeJob(job));
+  h.cmd('M23 F.UVJ');
+  const startC = h.sim.nano.temp.slice();
+  h.sim.nano.thermal.resetPeak();
+  const from = h.sim.clock.now;
+  h.cmd('M24');
+  const end = h.waitFor(/^JOB:(done|paused)/, 3_600_000);
+  return { startC, end, peakC: h.sim.nano.thermal.peak.slice(), us: h.sim.clock.now - from, passes: h.sim.mega.job.scanExposures.length };
+}
+
+describe('dry run of a scan job', () => {
+  it('says it is a scan job, with its passes, speed and window, and estimates with the scan planner', () => {
+    const job = block(4, 0.5, 40, 12);
+    const r = dryRun(job, DEFAULT_CONFIG);
+    const scan = planScan({ header: headerOf(job), cells: job.gridData }, motionOf(DEFAULT_CONFIG));
+    expect(r.scan).not.toBeNull();
+    expect(r.plan.estimateUs).toBe(scan.estimateUs);
+    expect(r.plan.count).toBe(scan.passes.length);
+    const mode = r.findings.find((f) => f.check === 'mode')!;
+    expect(mode.message).toBe(`scan job (on the move): ${scan.passes.length} passes at 12.5 mm/s, a 4.00 ms window per cell`);
+    expect(scan.speedUmS).toBe(12500); // 50 µm in 4 ms
+    // The LEDs' duty is their on-time over the job's time, from the switch times.
+    const on = [0, 1, 2, 3].map((k) => scan.passes.reduce((s, p) => s + p.leds[k].reduce((a, [x, y]) => a + y - x, 0), 0));
+    expect(r.duty).toEqual(on.map((us) => us / scan.estimateUs));
+    expect(r.findings.every((f) => f.level !== 'error')).toBe(true);
+  });
+
+  it('judges the dose per cell: a run of full cells lights an LED without a break, and is no error', () => {
+    const job = block(4000, 1, 10, 4); // 4 s a cell, 40 s a pass with the LEDs on throughout
+    const r = dryRun(job, DEFAULT_CONFIG);
+    expect(r.findings.find((f) => f.check === 'dose')).toEqual({ check: 'dose', level: 'ok', message: 'the longest exposure is 4000.0 ms' });
+    expect(dryRun(block(10_001, 0.5, 4, 4), DEFAULT_CONFIG).findings.find((f) => f.check === 'dose')?.level).toBe('error');
+  });
+
+  it('holds the whole pass, run-up to run-out, against the bed', () => {
+    const job = block(4, 1, 10, 4);
+    job.originUm = { x: 0, y: 20_000 }; // the run-up lies left of X 0
+    const r = dryRun(job, DEFAULT_CONFIG);
+    expect(r.findings.find((f) => f.check === 'envelope')?.level).toBe('error');
+  });
+
+  it.each([[200, 1], [400, 0.5]])('forecasts the heat of a scan job at %i ms, %f lit, as the simulated printer heats (2 °C)', (fullMs, fill) => {
+    const job = block(fullMs, fill);
+    const sim = simulate(job);
+    const header = headerOf(job);
+    const machine = motionOf(CONFIG_DEFAULTS, [0, 0]);
+    const scan = planScan({ header, cells: job.gridData }, machine);
+    const run = forecastScanThermal(scan, header, machine, { limitsC: limitsOf(CONFIG_DEFAULTS), startC: sim.startC, paced: false });
+    expect(sim.end.startsWith('JOB:paused')).toBe(run.pause !== null);
+    if (run.pause) expect(Math.abs(sim.us - run.pause.atUs)).toBeLessThanOrEqual(1_000_000);
+    else expect(Math.abs(sim.us - run.totalUs) / run.totalUs).toBeLessThan(0.02);
+    for (let i = 0; i < 6; i++) expect(Math.abs(run.peakC[i] - sim.peakC[i]), `T${i}`).toBeLessThanOrEqual(2);
+    expect(Math.max(...run.peakC.slice(0, 4))).toBeGreaterThan(30); // the LEDs' heat shows
+  });
+});
