@@ -107,7 +107,7 @@ describe('scan planner', () => {
     expect([p.windowUs, p.speedUmS]).toEqual([2000, 25000]);
     // tA = ceil(50e12 / (3e6 × 2000)) = 8334 µs; o = ceil(50 × 8334 / 4000) = 105 µm.
     expect([p.accelUs, p.overscanUm]).toEqual([8334, 105]);
-    expect(p.passes).toEqual([{ hy: 0, descending: false, first: 3, last: 3, runUpUm: 1000 + 150 - 25 - 105, runOutUm: 1000 + 150 + 25 + 105, leds: [[[0, 2000]], [], [], []], jumps: [] }]);
+    expect(p.passes).toEqual([{ hy: 0, descending: false, first: 3, last: 3, runUpUm: 1000 + 150 - 25 - 105, runOutUm: 1000 + 150 + 25 + 105, leds: [[[0, 2000]], [], [], []], jumps: [], events: [[0, 1], [2000, 0]] }]);
     const move = Math.max(moveTimeUs(1020, 150000, 3000000), moveTimeUs(2000, 100000, 2000000));
     expect(p.estimateUs).toBe(move + 2000 + 1500 + 2 * 8334 + 2000);
   });
@@ -117,6 +117,8 @@ describe('scan planner', () => {
     // t(128) = round(2000 × 128 / 255) = 1004: (2000 − 1004) / 2 = 498 µs in. t(51) = 400.
     expect(p.passes[0].leds[0]).toEqual([[0, 4000], [4000 + 498, 4000 + 498 + 1004], [6000, 8000]]);
     expect(p.passes[0].leds[1]).toEqual([[800, 1200], [2800, 3200]]);
+    // As the Nano runs it: LED 0 stays on from 0 to 4000 across the boundary of two full cells.
+    expect(p.passes[0].events).toEqual([[0, 1], [800, 3], [1200, 1], [2800, 3], [3200, 1], [4000, 0], [4498, 1], [5502, 0], [6000, 1], [8000, 0]]);
   });
 
   it('reverses the second pass: windows count from the last column, times mirror', () => {

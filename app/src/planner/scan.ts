@@ -4,6 +4,7 @@ import type { JobHeader } from '../protocol/job-types';
 import { durationTables } from './dose';
 import { passRows, type PlannerJob } from './planner';
 import { MoveTimes, type Machine } from './time-model';
+import { mergeLight, type ScanEvent } from '../protocol/scan-program';
 
 export interface ScanPass {
   /** Head row. */
@@ -20,6 +21,8 @@ export interface ScanPass {
   leds: [number, number][][];
   /** Blank stretches flown: [first blank window, windows, µs]. */
   jumps: [number, number, number][];
+  /** The pass as the Nano runs it: [t µs after the mark, the LEDs' state from then on], one per switching moment. */
+  events: ScanEvent[];
 }
 
 export interface ScanPlan {
@@ -117,7 +120,7 @@ export function planScan(job: PlannerJob, machine: Machine): ScanPlan {
     plan.estimateUs += move + (move > 0 ? machine.settleUs : 0) + machine.overheadUs + 2 * motion.accelUs + start[n - 1] + W;
     curX = runOutUm;
     curY = y;
-    plan.passes.push({ hy, descending, first, last, runUpUm, runOutUm, leds, jumps });
+    plan.passes.push({ hy, descending, first, last, runUpUm, runOutUm, leds, jumps, events: mergeLight(leds) });
   }
   return plan;
 }

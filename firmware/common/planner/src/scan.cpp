@@ -119,6 +119,9 @@ bool ScanPlanner::nextPass(ScanPass& out) {
     started_ = false;
     ready_ = 0;
     jumpReady_ = false;
+    edgeCount_ = edgeNext_ = 0;
+    held_ = false;
+    state_ = emitted_ = 0;
     const int32_t reach = static_cast<int32_t>((h_.pitchUm[0] + 1) / 2 + motion_.overscanUm);
     out.hy = hy;
     out.descending = descending_;
@@ -177,7 +180,9 @@ bool ScanPlanner::nextLitWindow(uint32_t& j) {
   lastJ_ = j;
   lastS_ = s;
   for (uint8_t k = 0; k < 4; k++) {
+    winUs_[k] = 0;
     if (!live_[k] || hx_[k] != best) continue;
+    winUs_[k] = us_[k];
     const uint32_t on = s + (w - us_[k]) / 2, off = on + us_[k];
     if (pending_[k] && pendOff_[k] == on) {
       pendOff_[k] = off;  // touching: the LED stays on
@@ -218,6 +223,52 @@ bool ScanPlanner::next(ScanEvent& out) {
       return true;
     }
     return false;
+  }
+}
+
+// The next lit window's edges, in time order (insertion sort of at most 8).
+bool ScanPlanner::fillEdges() {
+  uint32_t j;
+  if (!nextLitWindow(j)) return false;
+  edgeCount_ = edgeNext_ = 0;
+  const uint32_t w = motion_.windowUs;
+  for (uint8_t k = 0; k < 4; k++) {
+    if (!winUs_[k]) continue;
+    const uint32_t on = lastS_ + (w - winUs_[k]) / 2;
+    const Edge two[2] = {{on, k, true}, {on + winUs_[k], k, false}};
+    for (const Edge& e : two) {
+      uint8_t i = edgeCount_++;
+      while (i > 0 && edges_[i - 1].t > e.t) {
+        edges_[i] = edges_[i - 1];
+        i--;
+      }
+      edges_[i] = e;
+    }
+  }
+  return true;
+}
+
+// Gathers every edge of one moment before handing out the state after it: an LED whose cell ends
+// where its next cell begins (full cells at an uncapped speed) switches off and on at the same
+// moment, which is no event at all.
+bool ScanPlanner::nextEvent(uint32_t& t, uint8_t& m) {
+  for (;;) {
+    const bool more = edgeNext_ < edgeCount_ || fillEdges();
+    if (held_ && (!more || edges_[edgeNext_].t > heldT_)) {
+      held_ = false;
+      if (state_ != emitted_) {
+        emitted_ = state_;
+        t = heldT_;
+        m = state_;
+        return true;
+      }
+    }
+    if (!more) return false;
+    const Edge& e = edges_[edgeNext_++];
+    const uint8_t bit = static_cast<uint8_t>(1 << e.led);
+    state_ = e.on ? static_cast<uint8_t>(state_ | bit) : static_cast<uint8_t>(state_ & ~bit);
+    heldT_ = e.t;
+    held_ = true;
   }
 }
 

@@ -45,6 +45,10 @@ class ScanPlanner {
   bool nextPass(ScanPass& out);
   // The current pass's next event; false at its end.
   bool next(ScanEvent& out);
+  // Or, instead of next(): the pass as the Nano runs it (protocol/nano.md "Scan programs"), one
+  // event per moment an LED switches, in time order: t µs after the start mark, and the state of
+  // the four LEDs from then on. false at the pass's end (its last event leaves every LED off).
+  bool nextEvent(uint32_t& t, uint8_t& m);
   uint64_t estimateUs() const { return estimate_; }
   uint16_t passes() const { return passes_; }
   // As Planner::supported(): the LEDs' rows span less than kCoveredWindowRows. And every switch
@@ -92,6 +96,20 @@ class ScanPlanner {
   uint32_t readyOn_[4] = {}, readyOff_[4] = {};
   bool jumpReady_ = false;
   uint32_t jumpWindow_ = 0, jumpWindows_ = 0, jumpUs_ = 0;
+  // Events: each LED's on-time in the window nextLitWindow() last took (0: none); that window's
+  // edges, sorted; the moment being gathered and the state after it; the last state handed out.
+  uint32_t winUs_[4] = {};
+  struct Edge {
+    uint32_t t;
+    uint8_t led;
+    bool on;
+  };
+  Edge edges_[8];
+  uint8_t edgeCount_ = 0, edgeNext_ = 0;
+  bool held_ = false;
+  uint32_t heldT_ = 0;
+  uint8_t state_ = 0, emitted_ = 0;
+  bool fillEdges();
 };
 
 }  // namespace uv

@@ -10,20 +10,26 @@ namespace uvtest {
 
 inline nlohmann::json scanPlanJson(const uv::JobHeader& h, const std::vector<std::vector<uint8_t>>& rows, const uv::Machine& m) {
   using nlohmann::json;
-  GridCells cells(rows);
+  GridCells cells(rows), cellsForEvents(rows);
   uv::ScanPlanner planner(h, cells, m);
+  uv::ScanPlanner eventPlanner(h, cellsForEvents, m);  // the same passes, read as the Nano's events
   const uv::ScanMotion& motion = planner.motion();
   json passes = json::array();
-  uv::ScanPass p;
-  while (planner.nextPass(p)) {
+  uv::ScanPass p, q;
+  while (planner.nextPass(p) && eventPlanner.nextPass(q)) {
     json leds = {json::array(), json::array(), json::array(), json::array()}, jumps = json::array();
     uv::ScanEvent e;
     while (planner.next(e)) {
       if (e.jump) jumps.push_back({e.window, e.windows, e.flyUs});
       else leds[e.led].push_back({e.onUs, e.offUs});
     }
+    json events = json::array();
+    uint32_t t;
+    uint8_t state;
+    while (eventPlanner.nextEvent(t, state)) events.push_back({t, state});
     passes.push_back({{"hy", p.hy}, {"descending", p.descending}, {"first", p.first}, {"last", p.last},
-                      {"runUpUm", p.runUpUm}, {"runOutUm", p.runOutUm}, {"leds", leds}, {"jumps", jumps}});
+                      {"runUpUm", p.runUpUm}, {"runOutUm", p.runOutUm}, {"leds", leds}, {"jumps", jumps},
+                      {"events", events}});
   }
   return {{"windowUs", motion.windowUs}, {"speedUmS", motion.speedUmS}, {"accelUs", motion.accelUs},
           {"overscanUm", motion.overscanUm}, {"passes", passes}, {"estimateUs", planner.estimateUs()}};

@@ -249,3 +249,22 @@ TEST(ScanPlanner, EveryLitCellItsDoseOnceWithLedsSpreadOverManyRows) {
       }
   }
 }
+
+// The pass as the Nano runs it: one event per switching moment, touching full cells one stretch.
+TEST(ScanPlanner, GivesThePassAsTheNanosEvents) {
+  JobHeader h = smallJob(10, 4);
+  std::vector<std::vector<uint8_t>> rows(4, std::vector<uint8_t>(10, 0));
+  rows[0][2] = rows[0][3] = rows[0][5] = 255;
+  rows[0][4] = 128;
+  rows[1][2] = rows[1][3] = 51;
+  GridCells cells(rows);
+  ScanPlanner planner(h, cells, kMachine);
+  ScanPass p;
+  ASSERT_TRUE(planner.nextPass(p));
+  std::vector<std::pair<uint32_t, uint8_t>> events;
+  uint32_t t;
+  uint8_t m;
+  while (planner.nextEvent(t, m)) events.push_back({t, m});
+  EXPECT_EQ(events, (std::vector<std::pair<uint32_t, uint8_t>>{
+                        {0, 1}, {800, 3}, {1200, 1}, {2800, 3}, {3200, 1}, {4000, 0}, {4498, 1}, {5502, 0}, {6000, 1}, {8000, 0}}));
+}
