@@ -1,3 +1,4 @@
+import { mergeLight } from '../protocol/scan-program';
 import { describe, expect, it } from 'vitest';
 import { passDurationUs, passSwitches, planAnyJob } from './job-plan';
 import { planJob } from './planner';
@@ -14,7 +15,7 @@ const header = (cols: number, rows: number, name: StrategyName) => headerOf({
 });
 
 const pass = (leds: [number, number][][], jumps: [number, number, number][] = []): ScanPass =>
-  ({ hy: 0, descending: false, first: 0, last: 9, runUpUm: 0, runOutUm: 0, leds, jumps });
+  ({ hy: 0, descending: false, first: 0, last: 9, runUpUm: 0, runOutUm: 0, leds, jumps, events: mergeLight(leds) });
 
 describe('a scan pass as the machine runs it', () => {
   it('switches the LEDs in time order, one mask per instant, an LED going off where another comes on', () => {

@@ -51,16 +51,5 @@ export function passDurationUs(scan: ScanPlan, pass: ScanPlan['passes'][number])
 
 /** The LEDs' mask after each switch of a pass, in time order, µs after its start mark. */
 export function passSwitches(pass: ScanPlan['passes'][number]): { atUs: number; mask: number }[] {
-  const edges: [number, number, boolean][] = [];
-  pass.leds.forEach((list, k) => list.forEach(([on, off]) => edges.push([on, k, true], [off, k, false])));
-  edges.sort((a, b) => a[0] - b[0] || Number(a[2]) - Number(b[2])); // off before on at one instant
-  const out: { atUs: number; mask: number }[] = [];
-  let mask = 0;
-  for (const [at, k, on] of edges) {
-    mask = on ? mask | (1 << k) : mask & ~(1 << k);
-    const last = out[out.length - 1];
-    if (last && last.atUs === at) last.mask = mask;
-    else out.push({ atUs: at, mask });
-  }
-  return out;
+  return pass.events.map(([atUs, mask]) => ({ atUs, mask }));
 }

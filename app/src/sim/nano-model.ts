@@ -4,6 +4,8 @@
 import { FAULT, formatNanoReply, parseNanoCommand, SENSOR_COUNT, type NanoReply } from '../protocol/nano';
 import type { VirtualClock } from './clock';
 import { HEAD_THERMAL, HeadThermal } from './head-thermal';
+import { NanoPrograms, PASS } from './nano-programs';
+import { PROGRAM_START_LEAD_US } from '../protocol/scan-program';
 
 export interface NanoOptions {
   /** Resting temperature of each sensor, 0.1 °C. */
@@ -47,6 +49,10 @@ export class NanoModel {
   boot = 1;
   /** Each LED's on-time since power-up, µs: the dose the head has given, whatever switched it. */
   readonly onUs = [0, 0, 0, 0];
+  /** Scan programs: loaded by A and K, run by G on the clock (protocol/nano.md "Scan programs"). */
+  readonly programs: NanoPrograms;
+  #chainEvent: ReturnType<VirtualClock['at']> | null = null;
+  #programLast = false;
   #fires = 0;
   #whole = true;
   #latched = 0;
@@ -57,6 +63,7 @@ export class NanoModel {
 
   constructor(private readonly clock: VirtualClock, private readonly o: NanoOptions = DEFAULT_NANO) {
     const ambientC = o.ambientDeciC.map((d) => d / 10);
+    this.programs = new NanoPrograms(o.capUs);
     this.thermal = new HeadThermal({ ...HEAD_THERMAL, ambientC, heatingCPerS: o.heatingCPerS, coolingPerS: o.coolingPerS, extraHeatingCPerS: o.extraHeatingCPerS });
   }
 
@@ -85,7 +92,17 @@ export class NanoModel {
   command(line: string): string | null {
     if (!this.present) return null;
     this.#integrate();
-    const cmd = parseNanoCommand(line.replace(/\r?\n$/, ''));
+    const text = line.replace(/\r?\n$/, '');
+    if (text.startsWith('A:')) {
+      if (!this.programs.append(text)) this.#latched |= FAULT.MALFORMED;
+      return null;
+    }
+    if (text.startsWith('K:')) {
+      const code = this.programs.seal(text);
+      if (code === null) this.#latched |= FAULT.MALFORMED;
+      return code === null ? null : formatNanoReply({ op: 'K', code });
+    }
+    const cmd = parseNanoCommand(text);
     if (!cmd) {
       this.#latched |= FAULT.MALFORMED;
       return null;
@@ -105,10 +122,16 @@ export class NanoModel {
         return reply({ op: 'E', flags });
       }
       case 'V': return reply({ op: 'V', protocol: 1, firmware: '0.2.0-sim' });
-      case 'C': return reply({ op: 'C', boot: this.boot, fires: this.#fires, whole: this.#whole });
+      case 'C': {
+        const whole = this.#whole && !(this.#programLast && this.programs.pass === PASS.UNDERRUN);
+        return reply({ op: 'C', boot: this.boot, fires: this.#fires, whole });
+      }
+      case 'Q': return reply({ op: 'Q', free: this.programs.free, armed: this.programs.armed, pass: this.programs.pass });
+      case 'G': this.#start(); return null;
       case 'R':
-        if (this.lit) this.#whole = false; // an exposure cut short
+        if (this.lit || this.programs.running) this.#whole = false; // an exposure cut short
         this.allOff();
+        this.programs.discard(PASS.CUT_BY_RESET);
         return null;
       case 'D': this.probe = this.alarmOnDeploy ? 'alarm' : 'deployed'; return null;
       case 'U': if (this.probe !== 'alarm') this.probe = 'stowed'; return null;
@@ -159,6 +182,40 @@ export class NanoModel {
     this.lit = 0;
     this.#off.forEach((e) => this.clock.cancel(e));
     this.#off = [null, null, null, null];
+    this.clock.cancel(this.#chainEvent);
+    this.#chainEvent = null;
+  }
+
+  /** G: the armed chain runs from 1000 µs after now, its events on the clock. */
+  #start(): void {
+    if (this.#active()) this.#latched |= FAULT.REFUSED;
+    else if (this.lit || this.programs.running) this.#latched |= FAULT.BUSY;
+    else if (this.programs.startable()) {
+      this.programs.start();
+      this.#fires++;
+      this.#whole = true;
+      this.#programLast = true;
+      return this.#schedule(this.clock.now + PROGRAM_START_LEAD_US);
+    }
+    this.programs.pass = PASS.REFUSED;
+  }
+
+  /** The chain's next event after the one at `atUs` (or time 0); at the chain's end every LED is off. */
+  #schedule(atUs: number): void {
+    const step = this.programs.next();
+    if (typeof step === 'string') {
+      this.#integrate();
+      this.lit = 0;
+      this.#chainEvent = null;
+      return;
+    }
+    const when = atUs + step.d;
+    this.#chainEvent = this.clock.at(when, () => {
+      this.#integrate();
+      if (!this.programs.running) return; // cut meanwhile (the thermal check above)
+      this.lit = step.m;
+      this.#schedule(when);
+    });
   }
 
   #active(): number {
@@ -167,7 +224,7 @@ export class NanoModel {
 
   #fire(mask: number, durations: number[]): void {
     if (this.#active()) return void (this.#latched |= FAULT.REFUSED);
-    if (this.lit) return void (this.#latched |= FAULT.BUSY);
+    if (this.lit || this.programs.running) return void (this.#latched |= FAULT.BUSY);
     let on = 0;
     for (let k = 0; k < 4; k++) {
       if (!((mask >> k) & 1) || durations[k] === 0) continue;
@@ -179,6 +236,7 @@ export class NanoModel {
     this.lit = on;
     this.#fires++;
     this.#whole = true;
+    this.#programLast = false;
     for (let k = 0; k < 4; k++) {
       if (!((on >> k) & 1)) continue;
       this.#off[k] = this.clock.after(durations[k], () => {
@@ -202,8 +260,9 @@ export class NanoModel {
       if (t >= this.o.limitDeciC[i]) this.#hot |= 1 << i;
       else if (t < this.o.limitDeciC[i] - this.o.hysteresisDeciC) this.#hot &= ~(1 << i);
     }
-    if (this.#hot && this.lit) {
+    if (this.#hot && (this.lit || this.programs.running)) {
       this.allOff();
+      this.programs.discard(PASS.CUT_BY_FAULT);
       this.#whole = false;
       this.#latched |= FAULT.CUTOFF;
     }
