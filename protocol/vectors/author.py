@@ -688,5 +688,58 @@ program_bad = [
     {"line": "K:0,1,65536", "why": "check over 16 bits"},
     {"line": "K:0,1", "why": "no check"},
 ]
-write("nano-program.json", {"version": 1, "maxEvents": 64, "startLeadUs": 1000, "programs": program_cases, "bad": program_bad})
+
+
+def load(events, flags):
+    """One program's A line(s) and its K line, events given as (d, m)."""
+    body = "".join(f",{d},{m}" for d, m in events)
+    return [f"A:0{body}", f"K:{flags},{len(events)},{check_events(events)}"]
+
+
+def steps(*items):
+    """Lines sent and the reply each expects ('' for none); RUN lets the running chain play out."""
+    out = []
+    for it in items:
+        if it == "RUN":
+            out.append({"run": True})
+        elif isinstance(it, tuple):
+            out.append({"send": it[0], "reply": it[1]})
+        else:
+            out.append({"send": it})
+    return out
+
+
+ONE = [(0, 1), (2000, 0)]
+program_sessions = [
+    {"name": "a program arms, runs whole, and frees its buffer",
+     "steps": steps(load(ONE, 0)[0], (load(ONE, 0)[1], "K:0"), ("Q", "Q:1,1,0"), "G", ("Q", "Q:1,0,1"), "RUN", ("Q", "Q:2,0,2"))},
+    {"name": "a chain of two: the continuation follows the first",
+     "steps": steps(load([(0, 3), (500, 1)], 2)[0], (load([(0, 3), (500, 1)], 2)[1], "K:0"),
+                    load([(700, 0)], 1)[0], (load([(700, 0)], 1)[1], "K:0"), ("Q", "Q:0,2,0"), "G", "RUN", ("Q", "Q:2,0,2"))},
+    {"name": "a chain whose continuation never came is cut short",
+     "steps": steps(load([(0, 1), (100, 1)], 2)[0], (load([(0, 1), (100, 1)], 2)[1], "K:0"), "G", "RUN", ("Q", "Q:2,0,5"))},
+    {"name": "R cuts a running chain and drops the armed ones",
+     "steps": steps(load(ONE, 0)[0], (load(ONE, 0)[1], "K:0"), load(ONE, 0)[0], (load(ONE, 0)[1], "K:0"), "G", "R", ("Q", "Q:2,0,3"))},
+    {"name": "G with nothing armed is refused",
+     "steps": steps("G", ("Q", "Q:2,0,6"))},
+    {"name": "every refusal of a seal has its code",
+     "steps": steps(("K:0,1,0", "K:1"),
+                    "A:0,0,1,5,0", (f"K:0,1,{check_events([(0, 1), (5, 0)])}", "K:2"),
+                    "A:0,0,1,5,0", (f"K:0,2,{check_events([(0, 1), (5, 0)]) ^ 1}", "K:2"),
+                    load([(0, 1), (5, 2)], 0)[0], (load([(0, 1), (5, 2)], 0)[1], "K:4"),
+                    load([(0, 1), (10000001, 0)], 0)[0], (load([(0, 1), (10000001, 0)], 0)[1], "K:3"),
+                    load([(5, 0)], 1)[0], (load([(5, 0)], 1)[1], "K:7"),
+                    "A:0,0,1", "A:2,5,0", (f"K:0,2,{check_events([(0, 1), (5, 0)])}", "K:1"),
+                    "A:0,0,0", *[f"A:{q},10,1,10,0,10,1,10,0,10,1" for q in range(1, 14)], ("K:0,64,0", "K:5"),
+                    ("Q", "Q:2,0,0"))},
+    {"name": "the cap holds across the chain",
+     "steps": steps(load([(0, 1), (6000000, 1)], 2)[0], (load([(0, 1), (6000000, 1)], 2)[1], "K:0"),
+                    load([(4000001, 0)], 1)[0], (load([(4000001, 0)], 1)[1], "K:3"),
+                    load([(4000000, 0)], 1)[0], (load([(4000000, 0)], 1)[1], "K:0"))},
+    {"name": "no third buffer",
+     "steps": steps(load(ONE, 0)[0], (load(ONE, 0)[1], "K:0"), load(ONE, 0)[0], (load(ONE, 0)[1], "K:0"),
+                    load(ONE, 0)[0], (load(ONE, 0)[1], "K:6"), ("Q", "Q:0,2,0"))},
+]
+write("nano-program.json", {"version": 1, "maxEvents": 64, "startLeadUs": 1000, "capUs": 10000000,
+                            "programs": program_cases, "bad": program_bad, "sessions": program_sessions})
 print("wrote nano.json mega.json job.json esp.json mesh.json nano-program.json")

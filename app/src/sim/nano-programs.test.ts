@@ -1,11 +1,12 @@
 import { describe, expect, it } from 'vitest';
 import { checkEvents, programLines, type ScanEvent } from '../protocol/scan-program';
-import { cases, loadVectors } from '../protocol/vectors.fixture';
+import { cases, loadVectors, vectorCounter } from '../protocol/vectors.fixture';
 import { VirtualClock } from './clock';
-import { NanoModel } from './nano-model';
+import { DEFAULT_NANO, NanoModel } from './nano-model';
 import { NanoPrograms, PASS, SEAL } from './nano-programs';
 
 const v = loadVectors('nano-program.json');
+const count = vectorCounter('nano-program.json');
 
 /** Sends lines to the simulated Nano; returns its replies. */
 function send(nano: NanoModel, lines: string[]): string[] {
@@ -87,6 +88,21 @@ describe('the simulated Nano runs scan programs as nano.md says', () => {
     send(nano, ['F:2,100,100,100,100']);
     expect(nano.lit).toBe(1);
     expect(send(nano, ['E'])).toEqual(['E:8\n']); // BUSY
+  });
+});
+
+describe('scan-program sessions (nano-program.json): the simulated Nano answers as the firmware does', () => {
+  it.each(cases(v.sessions, 'name'))('%s', (_n, c: any) => {
+    const clock = new VirtualClock();
+    const nano = new NanoModel(clock, { ...DEFAULT_NANO, capUs: v.capUs });
+    for (const step of c.steps) {
+      if (step.run) {
+        while (clock.next < Infinity) clock.advanceTo(clock.next);
+        continue;
+      }
+      expect(nano.command(`${step.send}\n`) ?? '', step.send).toBe(step.reply ? `${step.reply}\n` : '');
+    }
+    count();
   });
 });
 
