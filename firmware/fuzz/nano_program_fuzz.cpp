@@ -1,0 +1,136 @@
+// Fuzzes the printhead's scan programs with well-formed chains that the fuzzer then breaks: lines
+// dropped, repeated, reordered or with a byte changed, G, R, Q and hot sensors in between, while
+// the chain plays out. Holds: no LED stays on longer than the cap, in a program or across a chain;
+// a chain ends with every LED off; nothing is lit after R or under a thermal fault; every K and Q
+// answer is one the protocol has.
+#include <fuzzer/FuzzedDataProvider.h>
+
+#include <string>
+#include <vector>
+
+#include "fuzz_checks.h"
+#include "printhead.h"
+#include "scan_program.h"
+
+namespace {
+
+constexpr uint32_t kCapUs = 50000;  // small, so random chains reach it
+
+struct Board : nano::PrintheadIo {
+  uint8_t lit = 0;
+  nano::ScanStore* chain = nullptr;
+  uint32_t on[4] = {};  // how long each lit LED has been on, µs
+  std::string out;
+  void fire(const nano::FirePlan& p) override { lit = p.onMask; }
+  void allOff() override {
+    lit = 0;
+    chain = nullptr;
+  }
+  uint8_t litMask() const override { return lit; }
+  bool startProgram(nano::ScanStore& s) override {
+    chain = &s;
+    for (uint32_t& t : on) t = 0;
+    return true;
+  }
+  void servoPulse(uint16_t) override {}
+  bool probeTriggered() override { return false; }
+  void reply(const char* t, uint8_t n) override { out.append(t, n); }
+  // The timer's work: up to `events` of the running chain; an F's LEDs (a changed byte can make
+  // one) go off in their own time.
+  void play(uint16_t events) {
+    if (!chain) lit = 0;
+    while (chain && events--) {
+      uint32_t d;
+      uint8_t m;
+      nano::ScanStore::Step s = chain->next(d, m);
+      if (s != nano::ScanStore::Step::Event) {
+        lit = 0;  // the end of the chain, or an underrun: the runner writes every LED off
+        chain = nullptr;
+        return;
+      }
+      for (uint8_t k = 0; k < 4; k++) {
+        if (lit >> k & 1) on[k] += d;
+        FUZZ_REQUIRE(on[k] <= kCapUs, "an LED kept on past the cap by a chain");
+        if (!(m >> k & 1)) on[k] = 0;
+      }
+      lit = m;
+    }
+  }
+};
+
+void collect(void* ctx, const char* line, size_t len) {
+  static_cast<std::vector<std::string>*>(ctx)->emplace_back(line, len - 1);
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  FuzzedDataProvider in(data, size);
+  // A chain as the Mega would write it: events at rising times, possibly long and lit.
+  std::vector<std::string> lines;
+  uv::ProgramWriter writer(collect, &lines);
+  uint32_t t = 0;
+  uint16_t n = in.ConsumeIntegralInRange<uint16_t>(1, 200);
+  for (uint16_t i = 0; i < n; i++) {
+    t += i ? in.ConsumeIntegralInRange<uint32_t>(1, 30000) : in.ConsumeIntegralInRange<uint32_t>(0, 10);
+    writer.add(t, in.ConsumeIntegralInRange<uint8_t>(0, 15));
+  }
+  writer.add(t + 1, 0);
+  writer.finish();
+
+  Board board;
+  const nano::PrintheadConfig config = {kCapUs, {{600, 600, 600, 600, 600, 600}, 50, 100, 1750}, "0.2.0"};
+  nano::Printhead head(board, config);
+  uint16_t cool[6] = {750, 750, 750, 750, 750, 750};
+  head.readings(cool);
+  size_t next = 0;
+  auto send = [&](std::string line) {
+    head.line(line.data(), static_cast<uint8_t>(line.size() > 255 ? 255 : line.size()), line.size() > uv::kNanoMaxLine, 0);
+  };
+  while (in.remaining_bytes()) {
+    switch (in.ConsumeIntegralInRange<uint8_t>(0, 9)) {
+      case 0: case 1: case 2:  // the next line as written
+        if (next < lines.size()) send(lines[next++]);
+        break;
+      case 3:  // dropped
+        if (next < lines.size()) next++;
+        break;
+      case 4:  // repeated, or an earlier one again
+        if (next) send(lines[in.ConsumeIntegralInRange<size_t>(0, next - 1)]);
+        break;
+      case 5:  // a byte changed
+        if (next < lines.size()) {
+          std::string l = lines[next++];
+          l[in.ConsumeIntegralInRange<size_t>(0, l.size() - 1)] = static_cast<char>(in.ConsumeIntegralInRange<uint8_t>(0x20, 0x7e));
+          send(l);
+        }
+        break;
+      case 6:
+        send("G");
+        break;
+      case 7:
+        send("R");
+        FUZZ_REQUIRE(board.lit == 0 && !board.chain, "an LED lit or a chain running after R");
+        break;
+      case 8: {  // a sweep, sometimes hot
+        uint16_t mv[6];
+        for (uint16_t& m : mv) m = in.ConsumeBool() ? 750 : in.ConsumeIntegralInRange<uint16_t>(0, 5500);
+        head.readings(mv);
+        if (head.faults() & uv::fault::kActive) FUZZ_REQUIRE(board.lit == 0 && !board.chain, "an LED lit under a thermal fault");
+        break;
+      }
+      case 9:
+        board.play(in.ConsumeIntegralInRange<uint16_t>(1, 80));
+        send("Q");
+        break;
+    }
+    for (std::string& l : fuzz::takeLines(board.out)) {
+      std::string withEnd = l + "\n";
+      uv::NanoReply r{};
+      FUZZ_REQUIRE(uv::parseNanoReply(withEnd.data(), withEnd.size(), r), ("a reply the Mega cannot parse: " + l).c_str());
+    }
+  }
+  board.play(0xffff);
+  FUZZ_REQUIRE(board.lit == 0, "a chain that ended with an LED on");
+  return 0;
+}
