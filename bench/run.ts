@@ -5,10 +5,12 @@ import { pcbBench } from './pcb.bench';
 import { editorBench } from './editor.bench';
 import { p1 } from './link.bench';
 import { p2, p7, printP2 } from './planner.bench';
-import { p10, printP10 } from './scan.bench';
+import { p10, printP10, printP11 } from './scan.bench';
 
 printTable([...jobCodecBench(), ...p7(), ...pcbBench()]);
 printP2(p2());
-printP10(p10());
+const scans = p10();
+printP10(scans);
+printP11(scans);
 await p1();
 await editorBench();

@@ -3,6 +3,7 @@ import type { JobHeader, StrategyName } from '../app/src/protocol/job-types';
 import { durationTables } from '../app/src/planner/dose';
 import { planJob } from '../app/src/planner/planner';
 import { planScan, type ScanPlan } from '../app/src/planner/scan';
+import { programLines } from '../app/src/protocol/scan-program';
 import { BENCH_MACHINE, GEOMETRY } from './planner.bench';
 import { boardMask, fillMask, photoMask, sparseMask, textMask, type Mask } from './masks';
 
@@ -55,6 +56,43 @@ export function printP10(rows: P10Row[]): void {
       `P10 ${r.mask.padEnd(7)} scan ${s(r.scan.estimateUs).padStart(8)}  stop-and-fire ${s(r.stops).padStart(8)}  light ${s(r.lightLimit).padStart(7)}  travel ${s(r.travelLimit).padStart(7)}` +
         `  speed-up ${(r.stops / r.scan.estimateUs).toFixed(2)}x  /limit ${(r.scan.estimateUs / limit).toFixed(2)}x` +
         `  (window ${r.scan.windowUs} us, ${r.scan.passes.length} passes)`,
+    );
+  }
+}
+
+/** Bytes a second the printhead link carries: 115200 baud, 10 bits a byte. */
+const LINK_BYTES_S = 11520;
+
+/**
+ * P11: how hard each scan job works the printhead link. A pass's programs (nano.md "Scan
+ * programs") must cross the 115200-baud link no slower than the pass plays them, less the two
+ * loaded before it starts; above 1.00x the chain would underrun, and the Mega must cross that
+ * pass slower.
+ */
+export function printP11(rows: P10Row[]): void {
+  console.log('\nP11 printhead link load of scan passes (program bytes against 115200 baud over the pass time; above 1.00x a chain underruns)');
+  for (const r of rows) {
+    let worst = 0, bytes = 0, busyUs = 0, events = 0;
+    for (const p of r.scan.passes) {
+      if (!p.events.length) continue;
+      const lines = programLines(p.events);
+      const total = lines.reduce((n, l) => n + l.length + 1, 0);
+      // What the first two programs take is loaded during the move to the run-up.
+      let ahead = 0, programs = 0;
+      for (const l of lines) {
+        if (programs >= 2) break;
+        ahead += l.length + 1;
+        if (l.startsWith('K:')) programs++;
+      }
+      const passUs = Math.max(1, p.events[p.events.length - 1][0]);
+      worst = Math.max(worst, ((total - ahead) / LINK_BYTES_S) * 1e6 / passUs);
+      bytes += total;
+      busyUs += passUs;
+      events += p.events.length;
+    }
+    console.log(
+      `P11 ${r.mask.padEnd(7)} worst pass ${worst.toFixed(2)}x  whole job ${((bytes / LINK_BYTES_S) * 1e6 / Math.max(1, busyUs)).toFixed(2)}x` +
+        `  (${events} events, ${(bytes / 1024).toFixed(0)} KiB of program lines)`,
     );
   }
 }
