@@ -110,6 +110,7 @@ nano_replies = [
     {"line": "Q:2,0,0\n", "reply": {"op": "Q", "free": 2, "armed": 0, "pass": 0}},
     {"line": "Q:0,2,6\n", "reply": {"op": "Q", "free": 0, "armed": 2, "pass": 6}},
     {"line": "Q:1,0,1\n", "reply": {"op": "Q", "free": 1, "armed": 0, "pass": 1}},
+    {"line": "Q:2,0,7\n", "reply": {"op": "Q", "free": 2, "armed": 0, "pass": 7}},
 ]
 nano_bad_replies = [
     {"line": "S:16\n"}, {"line": "S:\n"}, {"line": "S15\n"}, {"line": "P:2\n"},
@@ -118,7 +119,7 @@ nano_bad_replies = [
     {"line": "T:-0.0x,24.0,-5.2,100.0,22.1,0.0\n"}, {"line": "E:256\n"}, {"line": "V:1\n"},
     {"line": "Z:1\n"}, {"line": "S:1"},
     {"line": "K:8\n"}, {"line": "K:\n"}, {"line": "K:12\n"}, {"line": "Q:3,0,0\n"}, {"line": "Q:0,3,0\n"},
-    {"line": "Q:0,0,7\n"}, {"line": "Q:0,0\n"}, {"line": "Q:0,0,0,0\n"},
+    {"line": "Q:0,0,8\n"}, {"line": "Q:0,0\n"}, {"line": "Q:0,0,0,0\n"},
     {"line": "C:65536,0,1\n"}, {"line": "C:1,4294967296,1\n"}, {"line": "C:1,2,3\n"}, {"line": "C:1,2\n"}, {"line": "C:1,2,1,0\n"},
 ]
 nano_streams = [

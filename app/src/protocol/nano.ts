@@ -158,7 +158,7 @@ export function parseNanoReply(raw: string): NanoReply | null {
     case 'K':
       return /^[0-7]$/.test(body) ? { op: 'K', code: Number(body) } : null;
     case 'Q': {
-      const v = /^([0-2]),([0-2]),([0-6])$/.exec(body);
+      const v = /^([0-2]),([0-2]),([0-7])$/.exec(body);
       return v ? { op: 'Q', free: Number(v[1]), armed: Number(v[2]), pass: Number(v[3]) } : null;
     }
   }

@@ -8,6 +8,8 @@ export const PROGRAM_EVENTS = 64;
 export const PROGRAM_MAX_DELTA = 2 ** 28 - 1;
 /** A chain's time 0 is this long after the `\n` of its `G` arrives. */
 export const PROGRAM_START_LEAD_US = 1000;
+/** A running chain that hears no line for longer than this is cut (the Mega, and so the head, stopped). */
+export const CHAIN_SILENCE_US = 50_000;
 export const SEAL_CONTINUATION = 1;
 export const SEAL_MORE = 2;
 

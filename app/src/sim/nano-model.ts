@@ -5,7 +5,7 @@ import { FAULT, formatNanoReply, parseNanoCommand, SENSOR_COUNT, type NanoReply 
 import type { VirtualClock } from './clock';
 import { HEAD_THERMAL, HeadThermal } from './head-thermal';
 import { NanoPrograms, PASS } from './nano-programs';
-import { PROGRAM_START_LEAD_US } from '../protocol/scan-program';
+import { CHAIN_SILENCE_US, PROGRAM_START_LEAD_US } from '../protocol/scan-program';
 
 export interface NanoOptions {
   /** Resting temperature of each sensor, 0.1 °C. */
@@ -52,6 +52,8 @@ export class NanoModel {
   /** Scan programs: loaded by A and K, run by G on the clock (protocol/nano.md "Scan programs"). */
   readonly programs: NanoPrograms;
   #chainEvent: ReturnType<VirtualClock['at']> | null = null;
+  /** Cuts a running chain that hears no line for CHAIN_SILENCE_US (nano.md "Scan programs"). */
+  #silence: ReturnType<VirtualClock['at']> | null = null;
   #programLast = false;
   #fires = 0;
   #whole = true;
@@ -92,6 +94,7 @@ export class NanoModel {
   command(line: string): string | null {
     if (!this.present) return null;
     this.#integrate();
+    this.#heard();
     const text = line.replace(/\r?\n$/, '');
     if (text.startsWith('A:')) {
       if (!this.programs.append(text)) this.#latched |= FAULT.MALFORMED;
@@ -184,6 +187,19 @@ export class NanoModel {
     this.#off = [null, null, null, null];
     this.clock.cancel(this.#chainEvent);
     this.#chainEvent = null;
+  }
+
+  /** A line arrived: a running chain's Mega is alive for another CHAIN_SILENCE_US. */
+  #heard(): void {
+    this.clock.cancel(this.#silence);
+    this.#silence = this.clock.after(CHAIN_SILENCE_US + 1, () => {
+      this.#silence = null;
+      if (!this.programs.running) return;
+      this.#integrate();
+      this.allOff();
+      this.programs.discard(PASS.CUT_BY_SILENCE);
+      this.#whole = false;
+    });
   }
 
   /** G: the armed chain runs from 1000 µs after now, its events on the clock. */

@@ -13,12 +13,20 @@ function send(nano: NanoModel, lines: string[]): string[] {
   return lines.map((l) => nano.command(`${l}\n`)).filter((r): r is string => r !== null);
 }
 
-/** Records every change of the lit mask, [µs, mask], by stepping the clock event by event. */
-function run(clock: VirtualClock, nano: NanoModel, untilUs: number): [number, number][] {
+/**
+ * Records every change of the lit mask, [µs, mask], by stepping the clock event by event, and polls
+ * Q every 20 ms as a Mega running a pass does (a chain that hears nothing for 50 ms is cut).
+ */
+function run(clock: VirtualClock, nano: NanoModel, untilUs: number, poll = true): [number, number][] {
   const seen: [number, number][] = [];
   let last = nano.lit;
-  while (clock.next <= untilUs) {
-    clock.advanceTo(clock.next);
+  let nextPoll = clock.now + 20_000;
+  while (Math.min(clock.next, poll ? nextPoll : Infinity) <= untilUs) {
+    if (poll && nextPoll <= clock.next) {
+      clock.advanceTo(nextPoll);
+      nano.command('Q\n');
+      nextPoll += 20_000;
+    } else clock.advanceTo(clock.next);
     if (nano.lit !== last) seen.push([clock.now, (last = nano.lit)]);
   }
   clock.advanceTo(untilUs);
@@ -75,6 +83,16 @@ describe('the simulated Nano runs scan programs as nano.md says', () => {
     run(clock, nano, clock.now + 600_000);
     expect(nano.lit).toBe(0);
     expect(send(nano, ['Q', 'C'])).toEqual([`Q:2,0,${PASS.CUT_BY_RESET}\n`, 'C:1,1,0\n']);
+  });
+
+  it('cuts a chain whose Mega falls silent for 50 ms: the head has stopped with it', () => {
+    const clock = new VirtualClock();
+    const nano = new NanoModel(clock);
+    send(nano, programLines([[0, 1], [40_000, 3], [200_000, 0]]));
+    send(nano, ['G']);
+    const g = clock.now;
+    expect(run(clock, nano, g + 300_000, false)).toEqual([[g + 1000, 1], [g + 41_000, 3], [g + 50_001, 0]]);
+    expect(send(nano, ['Q', 'C'])).toEqual([`Q:2,0,${PASS.CUT_BY_SILENCE}\n`, 'C:1,1,0\n']);
   });
 
   it('refuses a G with nothing armed, and an F while a chain runs', () => {

@@ -6,7 +6,7 @@ import { checkEvents, parseAppend, parseSeal, PROGRAM_EVENTS, SEAL_CONTINUATION,
 /** The K reply's codes. */
 export const SEAL = { ARMED: 0, NO_LOAD: 1, MISMATCH: 2, CAPPED: 3, ENDS_LIT: 4, TOO_MANY: 5, NO_BUFFER: 6, BAD_START: 7 } as const;
 /** The Q reply's pass states. */
-export const PASS = { NONE: 0, RUNNING: 1, WHOLE: 2, CUT_BY_RESET: 3, CUT_BY_FAULT: 4, UNDERRUN: 5, REFUSED: 6 } as const;
+export const PASS = { NONE: 0, RUNNING: 1, WHOLE: 2, CUT_BY_RESET: 3, CUT_BY_FAULT: 4, UNDERRUN: 5, REFUSED: 6, CUT_BY_SILENCE: 7 } as const;
 
 type State = 'free' | 'loading' | 'armed' | 'running';
 interface Buffer {

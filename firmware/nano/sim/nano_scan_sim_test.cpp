@@ -13,7 +13,7 @@
 namespace {
 
 struct ScanBudget {
-  double edgeErrorUs = 0, startErrorUs = 0, interruptsOffUs = 0, sealReplyUs = 0;
+  double edgeErrorUs = 0, startErrorUs = 0, interruptsOffUs = 0, sealReplyUs = 0, silenceCutMs = 0;
   int edges = 0, starts = 0;
   ~ScanBudget() {
     std::printf("[nano budget] scan program: time 0 off the G's newline + 1000 us, worst of %d starts: %.3f us (budget 20 us)\n",
@@ -22,6 +22,7 @@ struct ScanBudget {
                 edges, edgeErrorUs);
     std::printf("[nano budget] scan program: longest interrupts-off window while a chain runs: %.1f us\n", interruptsOffUs);
     std::printf("[nano budget] scan program: K answered, worst: %.1f us after its newline (budget 2000 us)\n", sealReplyUs);
+    std::printf("[nano budget] scan program: a chain cut %.1f ms after the Mega's last line (rule: 50 ms)\n", silenceCutMs);
   }
 } budget;
 
@@ -138,6 +139,14 @@ void checkEdges(NanoRig& rig, const Events& ev, uint64_t gCycle) {
   budget.edgeErrorUs = std::max(budget.edgeErrorUs, worst);
 }
 
+// Runs for `us`, a Q poll every 20 ms as a Mega running a pass sends them.
+void runPolling(NanoRig& rig, double us) {
+  for (double t = 0; t < us; t += 20000) {
+    rig.send("Q\n");
+    rig.runUs(std::min(20000.0, us - t));
+  }
+}
+
 void noteInterrupts(const NanoRig& rig) {
   double off = us(rig.maxInterruptsOff);
   budget.interruptsOffUs = std::max(budget.interruptsOffUs, off);
@@ -192,7 +201,7 @@ TEST(NanoScanSim, AContinuationNotArmedInTimeCutsThePass) {
   ASSERT_EQ(load(*rig, chain[0]), "K:0");
   rig->clearEdges();
   uint64_t g = start(*rig);
-  rig->runUs(uv::kProgramStartLeadUs + ev[63].first + 100);  // the first program's last event
+  runPolling(*rig, uv::kProgramStartLeadUs + ev[63].first + 100);  // the first program's last event
   EXPECT_EQ(reply(*rig, "Q"), "Q:2,0,5");
   for (int k = 0; k < 4; k++) EXPECT_FALSE(rig->level('B', 2 + k)) << "LED " << k << " left on";
   EXPECT_EQ(reply(*rig, "C").substr(1), ":0,1,0");  // cut short
@@ -230,4 +239,24 @@ TEST(NanoScanSim, ALateOrRepeatedGDoesNothing) {
   rig->send("G\nG\n");
   rig->runUs(5000);
   EXPECT_EQ(pulses(rig->edges('B', 2)).size(), 1u);  // the second G found nothing armed
+}
+
+TEST(NanoScanSim, AChainWhoseMegaFallsSilentIsCut) {
+  auto rig = bootedRig();
+  Events ev = {{0, 15}, {400000, 0}};
+  ASSERT_EQ(load(*rig, programs(ev)[0]), "K:0");
+  rig->clearEdges();
+  start(*rig);
+  rig->runUntil([&] { return rig->lineEnds.size() > 0; }, 1000);
+  uint64_t lastLine = rig->lineEnds.back();  // the G: nothing follows it
+  rig->runUs(80000);
+  for (int k = 0; k < 4; k++) {
+    ASSERT_FALSE(rig->level('B', 2 + k)) << "LED " << k << " still on";
+    double cutMs = us(rig->edges('B', 2 + k).back().cycle - lastLine) / 1000;
+    EXPECT_GT(cutMs, 50.0);
+    EXPECT_LT(cutMs, 53.0) << "cut late";
+    budget.silenceCutMs = std::max(budget.silenceCutMs, cutMs);
+  }
+  EXPECT_EQ(reply(*rig, "Q"), "Q:2,0,7");
+  EXPECT_EQ(reply(*rig, "C").substr(1), ":0,1,0");
 }

@@ -122,5 +122,6 @@ void loop() {
       head.line(splitter.text(), splitter.length(), splitter.overflow(), now);
     }
   }
+  head.poll(now);
   updatePixel(now);
 }

@@ -6,6 +6,7 @@
 namespace nano {
 
 void Printhead::line(const char* text, uint8_t len, bool overflow, uint32_t nowMs) {
+  lastLineMs_ = nowMs;  // any line: the Mega is alive
   if (len == 0 && !overflow) return;  // empty lines are ignored without a flag
   uv::NanoCommand c;  // not zeroed: parse sets what each command uses (saves ~100 cycles a line)
   if (uv::nanoLineUsable(text, len, overflow) && len >= 2 && text[1] == ':' && (text[0] == 'A' || text[0] == 'K')) {
@@ -130,6 +131,16 @@ void Printhead::fire(const uv::NanoCommand& c) {
       programLast_ = false;
       return;
   }
+}
+
+// A chain runs on the Nano's clock while the head moves on the Mega's. If the Mega stops (a reset,
+// a hang), so does the head, and the chain would go on lighting one place: a Mega that runs a pass
+// sends a line at least every 20 ms, and a chain that hears none for 50 ms is cut.
+void Printhead::poll(uint32_t nowMs) {
+  if (!store_.running() || nowMs - lastLineMs_ <= uv::kChainSilenceMs) return;
+  io_.allOff();
+  store_.discard(uv::PassState::CutBySilence);
+  whole_ = false;
 }
 
 void Printhead::readings(const uint16_t mv[uv::kSensorCount]) {

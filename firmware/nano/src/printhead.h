@@ -45,6 +45,8 @@ class Printhead {
 
   // One line from the UART splitter (without terminator).
   void line(const char* text, uint8_t len, bool overflow, uint32_t nowMs);
+  // Every pass of the main loop: a running chain whose Mega has fallen silent is cut.
+  void poll(uint32_t nowMs);
   // A fresh set of oversampled readings, in mV. Cuts the LEDs on a fault.
   void readings(const uint16_t mv[uv::kSensorCount]);
   void watchdogReset() { latched_ |= uv::fault::kWatchdog; }
@@ -79,6 +81,7 @@ class Printhead {
   uint32_t fires_ = 0;     // F commands that lit since start
   bool whole_ = true;      // the last one was not cut short by R or a fault
   bool programLast_ = false;  // the last one was a scan chain: an underrun also cuts it short
+  uint32_t lastLineMs_ = 0;   // when the last complete line arrived
 };
 
 }  // namespace nano

@@ -320,3 +320,22 @@ TEST(PrintheadScan, AMalformedProgramLineIsLatchedAndSpoilsTheLoad) {
   h.send("E");
   EXPECT_EQ(h.take(), "E:32\n");
 }
+
+TEST(PrintheadScan, AChainWhoseMegaFallsSilentIsCut) {
+  Head h;
+  sendLines(h, loadLines({{0, 1}, {200000, 0}}, 0));
+  h.take();
+  h.send("G", 1000);
+  h.io.lit = 1;
+  h.ph.poll(1030);
+  h.send("Q", 1040);  // the Mega's poll keeps it alive
+  h.take();
+  h.ph.poll(1090);
+  EXPECT_EQ(h.io.lit, 1);
+  h.ph.poll(1091);  // 51 ms after the last line
+  EXPECT_EQ(h.io.lit, 0);
+  h.send("Q");
+  EXPECT_EQ(h.take(), "Q:2,0,7\n");
+  h.send("C");
+  EXPECT_EQ(h.take(), "C:0,1,0\n");
+}

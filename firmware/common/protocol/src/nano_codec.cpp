@@ -181,7 +181,7 @@ bool parseNanoReply(const char* line, size_t len, NanoReply& r) {
           if (p >= end || *p != ',') return false;
           p++;
         }
-        p = scanUnsigned(p, end, 1, i == 2 ? 6 : 2, q[i]);
+        p = scanUnsigned(p, end, 1, i == 2 ? 7 : 2, q[i]);
         if (!p) return false;
       }
       r.free = static_cast<uint8_t>(q[0]);

@@ -12,13 +12,14 @@ constexpr uint8_t kProgramEvents = 64;                 // events a program holds
 constexpr uint32_t kProgramMaxDelta = (1UL << 28) - 1;  // d of one event, µs
 constexpr uint32_t kProgramStartLeadUs = 1000;         // time 0 after the '\n' of G arrives
 constexpr uint32_t kProgramLateUs = 800;               // a G taken later than this is refused
+constexpr uint32_t kChainSilenceMs = 50;               // a running chain with no line for longer is cut
 constexpr uint8_t kSealContinuation = 1, kSealMore = 2;
 constexpr uint16_t kCheckInit = 0xFFFF;
 
 // The K reply's code.
 enum class SealCode : uint8_t { Armed, NoLoad, Mismatch, Capped, EndsLit, TooMany, NoBuffer, BadStart };
 // The Q reply's pass state.
-enum class PassState : uint8_t { None, Running, Whole, CutByReset, CutByFault, Underrun, Refused };
+enum class PassState : uint8_t { None, Running, Whole, CutByReset, CutByFault, Underrun, Refused, CutBySilence };
 
 // The check of a program: CRC-16/CCITT-FALSE over each event's word d × 16 + m, 4 bytes LE.
 uint16_t checkEvent(uint16_t crc, uint32_t d, uint8_t m);
