@@ -287,7 +287,7 @@ export class JobRunner {
     if (!this.#pass) return;
     this.#pass.cancel();
     this.#pass = null;
-    this.nano.allOff();
+    this.nano.command('R\n'); // every LED off, and the chain and its armed programs dropped
     this.motion.stop();
   }
 

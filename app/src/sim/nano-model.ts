@@ -52,6 +52,8 @@ export class NanoModel {
   /** Scan programs: loaded by A and K, run by G on the clock (protocol/nano.md "Scan programs"). */
   readonly programs: NanoPrograms;
   #chainEvent: ReturnType<VirtualClock['at']> | null = null;
+  /** Told every change of the LEDs a running chain makes (the simulated Mega records a pass's light by it). */
+  onChainSwitch: ((mask: number) => void) | null = null;
   /** Cuts a running chain that hears no line for CHAIN_SILENCE_US (nano.md "Scan programs"). */
   #silence: ReturnType<VirtualClock['at']> | null = null;
   #programLast = false;
@@ -143,33 +145,6 @@ export class NanoModel {
     }
   }
 
-  /**
-   * A scan pass begins (exposure on the move): it counts as one fire, and is whole only once it
-   * ends, so a resume after a cut pass exposes it again (mega.md "Resume").
-   */
-  beginScanPass(): void {
-    this.#integrate();
-    this.#fires++;
-    this.#whole = false;
-  }
-
-  endScanPass(): void {
-    this.#integrate();
-    if (!this.lit) this.#whole = true;
-  }
-
-  /** Sets the LEDs of a scan pass at one of its switch times; false (and latched) if the head is too hot. */
-  scanSwitch(mask: number): boolean {
-    this.#integrate();
-    if (mask && this.#active()) {
-      this.#latched |= FAULT.REFUSED;
-      this.allOff();
-      return false;
-    }
-    this.lit = mask & 15;
-    return true;
-  }
-
   /** The probe pin touched the bed: latch the trigger, as the pin-change interrupt does. */
   trigger(): void {
     this.#latchedTrigger = true;
@@ -185,6 +160,7 @@ export class NanoModel {
     this.lit = 0;
     this.#off.forEach((e) => this.clock.cancel(e));
     this.#off = [null, null, null, null];
+    if (this.#chainEvent) this.onChainSwitch?.(0);
     this.clock.cancel(this.#chainEvent);
     this.#chainEvent = null;
   }
@@ -223,6 +199,7 @@ export class NanoModel {
       this.#integrate();
       this.lit = 0;
       this.#chainEvent = null;
+      this.onChainSwitch?.(0);
       return;
     }
     const when = atUs + step.d;
@@ -230,6 +207,7 @@ export class NanoModel {
       this.#integrate();
       if (!this.programs.running) return; // cut meanwhile (the thermal check above)
       this.lit = step.m;
+      this.onChainSwitch?.(step.m);
       this.#schedule(when);
     });
   }
