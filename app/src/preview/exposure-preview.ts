@@ -20,13 +20,19 @@ export interface PreviewGrid {
   maxUs: number;
 }
 
-/** The job's light up to (not including) stop `upTo`, in bins of at most `maxSide` per side. */
-export function previewGrid(job: PrintJob, plan: Plan, upTo: number, maxSide = 512): PreviewGrid {
+/** Empty bins for the job's grid, at most `maxSide` per side (maxUs still 0). */
+export function emptyGrid(job: PrintJob, maxSide: number): PreviewGrid {
   const { cols, rows } = job.grid;
   const scale = Math.max(1, Math.ceil(Math.max(cols, rows) / maxSide));
   const width = Math.ceil(cols / scale), height = Math.ceil(rows / scale);
-  const doseUs = new Float32Array(width * height);
-  const led = new Uint8Array(width * height);
+  return { width, height, scale, doseUs: new Float32Array(width * height), led: new Uint8Array(width * height), maxUs: 0 };
+}
+
+/** The job's light up to (not including) stop `upTo`, in bins of at most `maxSide` per side. */
+export function previewGrid(job: PrintJob, plan: Plan, upTo: number, maxSide = 512): PreviewGrid {
+  const { cols, rows } = job.grid;
+  const grid = emptyGrid(job, maxSide);
+  const { width, scale, doseUs, led } = grid;
   const offsets = job.leds.offsets;
   let maxUs = 0;
   for (let i = 0; i < plan.count; i++) {
@@ -41,7 +47,7 @@ export function previewGrid(job: PrintJob, plan: Plan, upTo: number, maxSide = 5
       if (us > doseUs[b]) (doseUs[b] = us), (led[b] = k + 1);
     }
   }
-  return { width, height, scale, doseUs, led, maxUs };
+  return { ...grid, maxUs };
 }
 
 /** The time model's clock when each stop ends, µs: timeline[i] is the job's time through stop i. */

@@ -8,7 +8,7 @@ import type { Machine } from '../planner/time-model';
 import { MoveTimes } from '../planner/time-model';
 import { passDurationUs } from '../planner/job-plan';
 import type { PrintJob } from '../protocol/job-types';
-import type { PreviewGrid } from './exposure-preview';
+import { emptyGrid, type PreviewGrid } from './exposure-preview';
 
 /** Light per cell, pass by pass: entries `from[p]`…`from[p + 1] − 1` belong to pass p. */
 export interface ScanDoses {
@@ -98,11 +98,9 @@ export function scanPreview(job: PrintJob, scan: ScanPlan): ScanPreview {
 
 /** The job's light up to (not including) pass `upTo`, binned as previewGrid bins a stop plan. */
 export function scanPreviewGrid(job: PrintJob, doses: ScanDoses, upTo: number, maxSide = 512): PreviewGrid {
-  const { cols, rows } = job.grid;
-  const scale = Math.max(1, Math.ceil(Math.max(cols, rows) / maxSide));
-  const width = Math.ceil(cols / scale), height = Math.ceil(rows / scale);
-  const doseUs = new Float32Array(width * height);
-  const led = new Uint8Array(width * height);
+  const { cols } = job.grid;
+  const grid = emptyGrid(job, maxSide);
+  const { width, scale, doseUs, led } = grid;
   let maxUs = 0;
   const end = doses.from[Math.min(upTo, doses.from.length - 1)];
   for (let i = 0; i < doses.cell.length; i++) {
@@ -113,7 +111,7 @@ export function scanPreviewGrid(job: PrintJob, doses: ScanDoses, upTo: number, m
     const b = Math.floor(Math.floor(c / cols) / scale) * width + Math.floor((c % cols) / scale);
     if (us > doseUs[b]) (doseUs[b] = us), (led[b] = doses.led[i] + 1);
   }
-  return { width, height, scale, doseUs, led, maxUs };
+  return { ...grid, maxUs };
 }
 
 /** The clock when each pass ends, µs, as planScan's estimate counts it. */

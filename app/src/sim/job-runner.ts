@@ -227,22 +227,18 @@ export class JobRunner {
       return;
     }
     const i = this.done;
-    if (this.scan) return this.#nextPass(i, h, this.scan);
-    const to: Xyz = [h.originUm[0] + p.hx[i] * h.pitchUm[0], h.originUm[1] + p.hy[i] * h.pitchUm[1], this.motion.pos[2]];
-    const from = this.motion.now();
-    const moved = to[0] !== from[0] || to[1] !== from[1];
-    this.motion.enqueue(to, num(this.config, 'speed.travel'));
-    this.motion.whenIdle(() => {
-      if (this.state !== 'running') return;
-      const settle = moved ? num(this.config, 'settle_ms') * 1000 : 0;
-      this.#step = this.clock.after(settle + num(this.config, 'stop_overhead_us'), () => this.#fireWhenCool(i));
-    });
+    if (this.scan) {
+      const pass = this.scan.passes[i];
+      return this.#goTo(i, [pass.runUpUm, h.originUm[1] + pass.hy * h.pitchUm[1], this.motion.pos[2]]);
+    }
+    this.#goTo(i, [h.originUm[0] + p.hx[i] * h.pitchUm[0], h.originUm[1] + p.hy[i] * h.pitchUm[1], this.motion.pos[2]]);
   }
 
-  /** A scan pass: to its run-up at its row, settle and overhead, then across at the speed, LEDs switching on the plan's times. */
-  #nextPass(i: number, h: JobHeader, scan: ScanPlan): void {
-    const pass = scan.passes[i];
-    const to: Xyz = [pass.runUpUm, h.originUm[1] + pass.hy * h.pitchUm[1], this.motion.pos[2]];
+  /**
+   * To stop `i`, or a scan pass's run-up at its row, at the travel speed; then the settle (if the
+   * head moved) and the overhead; then its exposure.
+   */
+  #goTo(i: number, to: Xyz): void {
     const from = this.motion.now();
     const moved = to[0] !== from[0] || to[1] !== from[1];
     this.motion.enqueue(to, num(this.config, 'speed.travel'));

@@ -8,23 +8,12 @@ import { encodeJob } from '../protocol/job-encode';
 import type { PrintJob } from '../protocol/job-types';
 import { CONFIG_DEFAULTS, motionOf } from '../sim/config';
 import { SimHost } from '../sim/sim-host.fixture';
+import { blockJob } from './block-job.fixture';
 import { dryRun } from './dry-run';
 import { DEFAULT_CONFIG, limitsOf } from './machine-config';
 import { forecastScanThermal } from './thermal-forecast';
 
-function block(fullMs: number, fill: number, cols = 24, rows = 16): PrintJob {
-  let seed = 11;
-  const rand = () => ((seed = (seed * 1103515245 + 12345) >>> 0) / 2 ** 32);
-  return {
-    grid: { cols, rows },
-    pitchUm: { x: 50, y: 50 },
-    originUm: { x: 20_000, y: 20_000 },
-    dose: { map: 'linear', fullUs: fullMs * 1000 },
-    leds: { offsets: [[0, 0], [0, 1], [0, 2], [0, 3]] },
-    strategy: { name: 'scan' },
-    gridData: Array.from({ length: rows }, () => Array.from({ length: cols }, () => (rand() < fill ? (rand() < 0.5 ? 255 : 128) : 0))),
-  };
-}
+const block = (fullMs: number, fill: number, cols = 24, rows = 16): PrintJob => blockJob(fullMs, fill, cols, rows, { seed: 11, strategy: 'scan', gray: true });
 
 function simulate(job: PrintJob) {
   const h = new SimHost({ drift: false });

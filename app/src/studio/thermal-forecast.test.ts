@@ -9,23 +9,12 @@ import { encodeJob } from '../protocol/job-encode';
 import type { PrintJob } from '../protocol/job-types';
 import { CONFIG_DEFAULTS, motionOf } from '../sim/config';
 import { SimHost } from '../sim/sim-host.fixture';
+import { blockJob } from './block-job.fixture';
 import { forecastThermal } from './thermal-forecast';
 import { limitsOf } from './machine-config';
 
 /** A `cols` × `rows` block at 50 µm whose cells are lit with probability `fill`, at a full dose of `fullMs`. */
-function block(fullMs: number, fill: number, cols = 24, rows = 16): PrintJob {
-  let seed = 7;
-  const rand = () => ((seed = (seed * 1103515245 + 12345) >>> 0) / 2 ** 32);
-  return {
-    grid: { cols, rows },
-    pitchUm: { x: 50, y: 50 },
-    originUm: { x: 20_000, y: 20_000 },
-    dose: { map: 'linear', fullUs: fullMs * 1000 },
-    leds: { offsets: [[0, 0], [0, 1], [0, 2], [0, 3]] },
-    strategy: { name: 'serpentine' },
-    gridData: Array.from({ length: rows }, () => Array.from({ length: cols }, () => (rand() < fill ? 255 : 0))),
-  };
-}
+const block = (fullMs: number, fill: number, cols = 24, rows = 16): PrintJob => blockJob(fullMs, fill, cols, rows, { seed: 7, strategy: 'serpentine', gray: false });
 
 function simulate(job: PrintJob, paced: boolean) {
   const h = new SimHost({ drift: false });
