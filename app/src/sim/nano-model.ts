@@ -181,8 +181,10 @@ export class NanoModel {
   /** G: the armed chain runs from 1000 µs after now, its events on the clock. */
   #start(): void {
     if (this.#active()) this.#latched |= FAULT.REFUSED;
-    else if (this.lit || this.programs.running) this.#latched |= FAULT.BUSY;
-    else if (this.programs.startable()) {
+    else if (this.lit || this.programs.running) {
+      this.#latched |= FAULT.BUSY;
+      if (this.programs.running) return; // Q goes on telling the running chain's state
+    } else if (this.programs.startable()) {
       this.programs.start();
       this.#fires++;
       this.#whole = true;

@@ -9,9 +9,14 @@ void Printhead::line(const char* text, uint8_t len, bool overflow, uint32_t nowM
   lastLineMs_ = nowMs;  // any line: the Mega is alive
   if (len == 0 && !overflow) return;  // empty lines are ignored without a flag
   uv::NanoCommand c;  // not zeroed: parse sets what each command uses (saves ~100 cycles a line)
-  if (uv::nanoLineUsable(text, len, overflow) && len >= 2 && text[1] == ':' && (text[0] == 'A' || text[0] == 'K')) {
-    c.op = text[0];  // a program line: flashes dim white like a poll
-  } else if (!uv::nanoLineUsable(text, len, overflow) || !uv::parseNanoCommand(text, len, c)) {
+  bool usable = uv::nanoLineUsable(text, len, overflow);
+  if (usable && len >= 2 && text[1] == ':' && (text[0] == 'A' || text[0] == 'K')) {
+    if (!program(text, len)) {  // a program line, taken first: a malformed one flashes nothing
+      latched_ |= uv::fault::kMalformed;
+      return;
+    }
+    c.op = text[0];  // then it flashes dim white, like a poll
+  } else if (!usable || !uv::parseNanoCommand(text, len, c)) {
     latched_ |= uv::fault::kMalformed;
     return;
   }
@@ -24,24 +29,19 @@ void Printhead::line(const char* text, uint8_t len, bool overflow, uint32_t nowM
     flashUntilMs_ = nowMs + kFlashMs;
     flashing_ = true;
   }
-  if (c.op == 'A' || c.op == 'K') return program(text, len);
+  if (c.op == 'A' || c.op == 'K') return;
   handle(c, nowMs);
 }
 
-void Printhead::program(const char* text, uint8_t len) {
-  if (text[0] == 'A') {
-    if (!store_.append(text, len)) latched_ |= uv::fault::kMalformed;
-    return;
-  }
+bool Printhead::program(const char* text, uint8_t len) {
+  if (text[0] == 'A') return store_.append(text, len);
   uv::Seal s;
-  if (!uv::parseSeal(text, len, s)) {
-    latched_ |= uv::fault::kMalformed;
-    return;
-  }
+  if (!uv::parseSeal(text, len, s)) return false;
   uv::NanoReply r;
   r.op = 'K';
   r.code = static_cast<uint8_t>(store_.seal(s));
   send(r);
+  return true;
 }
 
 void Printhead::start() {
@@ -49,6 +49,7 @@ void Printhead::start() {
     latched_ |= uv::fault::kRefused;
   } else if (exposing()) {
     latched_ |= uv::fault::kBusy;
+    if (store_.running()) return;  // Q goes on telling the running chain's state
   } else if (store_.startable()) {
     store_.start();
     if (io_.startProgram(store_)) {

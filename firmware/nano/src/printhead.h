@@ -62,7 +62,7 @@ class Printhead {
  private:
   void handle(const uv::NanoCommand& c, uint32_t nowMs);
   void fire(const uv::NanoCommand& c);
-  void program(const char* text, uint8_t len);
+  bool program(const char* text, uint8_t len);  // an A or K line; false when malformed
   void start();
   bool exposing() const { return io_.litMask() || store_.running(); }
   void send(const uv::NanoReply& r);

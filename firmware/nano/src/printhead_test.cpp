@@ -253,6 +253,9 @@ TEST(PrintheadScan, LoadsSealsStartsAndReports) {
   EXPECT_EQ(h.ph.colour(0), uv::Colour::Purple);  // a pass shows purple even between lit cells
   h.send("F:1,10,0,0,0");                          // no F while a pass runs
   EXPECT_TRUE(h.io.fired.empty());
+  h.send("G");                                     // nor a second chain, and Q keeps telling this one
+  h.send("Q");
+  EXPECT_EQ(h.take(), "Q:1,0,1\n");
   h.send("C");
   EXPECT_EQ(h.take(), "C:0,1,1\n");               // the pass counts as an exposure
   uint32_t d;
@@ -312,8 +315,10 @@ TEST(PrintheadScan, ResetAndFaultsCutARunningPass) {
 
 TEST(PrintheadScan, AMalformedProgramLineIsLatchedAndSpoilsTheLoad) {
   Head h;
-  h.send("A:0,0,1,5,0");
-  h.send("A:1,5,99");
+  h.send("A:0,0,1,5,0", 1000);
+  EXPECT_EQ(h.ph.colour(1001), uv::Colour::DimWhite);
+  h.send("A:1,5,99", 2000);
+  EXPECT_EQ(h.ph.colour(2001), uv::Colour::Green);  // a malformed line flashes nothing
   h.send("K:0,2,1");
   EXPECT_EQ(h.take(), "K:1\n");
   h.send("K:4,2,1");  // flags over 3
