@@ -58,25 +58,34 @@ struct Board : nano::PrintheadIo {
   }
 };
 
-void collect(void* ctx, const char* line, size_t len) {
-  static_cast<std::vector<std::string>*>(ctx)->emplace_back(line, len - 1);
-}
+// The chain's events, drawn from the fuzzer's bytes as the Mega's planner would hand them out.
+struct Draw {
+  FuzzedDataProvider& in;
+  uint16_t left;  // events still to hand out; the last one puts every LED off
+  uint32_t t;     // the first event's time, then the last one's
+  bool started = false;
+  static bool take(void* ctx, uint32_t& t, uint8_t& m) {
+    auto* d = static_cast<Draw*>(ctx);
+    if (!d->left) return false;
+    if (d->started) d->t += d->left == 1 ? 1 : d->in.ConsumeIntegralInRange<uint32_t>(1, 30000);
+    d->started = true;
+    d->left--;
+    t = d->t;
+    m = d->left ? d->in.ConsumeIntegralInRange<uint8_t>(0, 15) : 0;
+    return true;
+  }
+};
 
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   FuzzedDataProvider in(data, size);
   // A chain as the Mega would write it: events at rising times, possibly long and lit.
+  Draw draw{in, in.ConsumeIntegralInRange<uint16_t>(2, 201), in.ConsumeIntegralInRange<uint32_t>(0, 10)};
+  uv::ProgramLines writer(Draw::take, &draw);
   std::vector<std::string> lines;
-  uv::ProgramWriter writer(collect, &lines);
-  uint32_t t = 0;
-  uint16_t n = in.ConsumeIntegralInRange<uint16_t>(1, 200);
-  for (uint16_t i = 0; i < n; i++) {
-    t += i ? in.ConsumeIntegralInRange<uint32_t>(1, 30000) : in.ConsumeIntegralInRange<uint32_t>(0, 10);
-    writer.add(t, in.ConsumeIntegralInRange<uint8_t>(0, 15));
-  }
-  writer.add(t + 1, 0);
-  writer.finish();
+  char out[uv::kNanoMaxLine + 2];
+  while (uint8_t len = writer.next(out)) lines.emplace_back(out, len - 1);
 
   Board board;
   const nano::PrintheadConfig config = {kCapUs, {{600, 600, 600, 600, 600, 600}, 50, 100, 1750}, "0.2.0"};

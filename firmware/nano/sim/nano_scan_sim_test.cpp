@@ -60,16 +60,25 @@ Events passEvents(int windows, uint32_t W, bool gray) {
 
 // The chain's lines, one program (its A lines and K line) per entry.
 std::vector<std::string> programs(const Events& ev) {
-  std::vector<std::string> out(1);
-  uv::ProgramWriter w(
-      [](void* ctx, const char* line, size_t len) {
-        auto& o = *static_cast<std::vector<std::string>*>(ctx);
-        o.back().append(line, len);
-        if (line[0] == 'K') o.emplace_back();
+  struct Cursor {
+    const Events& ev;
+    size_t i;
+  } cursor{ev, 0};
+  uv::ProgramLines lines(
+      [](void* ctx, uint32_t& t, uint8_t& m) {
+        auto& c = *static_cast<Cursor*>(ctx);
+        if (c.i == c.ev.size()) return false;
+        t = c.ev[c.i].first;
+        m = c.ev[c.i++].second;
+        return true;
       },
-      &out);
-  for (auto& e : ev) w.add(e.first, e.second);
-  w.finish();
+      &cursor);
+  std::vector<std::string> out(1);
+  char line[uv::kNanoMaxLine + 2];
+  while (uint8_t n = lines.next(line)) {
+    out.back().append(line, n);
+    if (line[0] == 'K') out.emplace_back();
+  }
   out.pop_back();
   return out;
 }

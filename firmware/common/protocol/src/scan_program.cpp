@@ -85,56 +85,58 @@ size_t formatSeal(const Seal& s, char* out) {
   return n;
 }
 
-bool ProgramWriter::add(uint32_t t, uint8_t m) {
-  if (m > 15) return false;
-  if (any_ && (t <= last_ || t - last_ > kProgramMaxDelta)) return false;
-  if (!any_ && t > kProgramMaxDelta) return false;
-  if (events_ == kProgramEvents) seal(true);
-  uint32_t d = any_ ? t - last_ : t;
-  char pair[16];
-  size_t n = 0;
-  pair[n++] = ',';
-  n += putUnsigned(d, pair + n);
-  pair[n++] = ',';
-  n += putUnsigned(m, pair + n);
-  if (len_ && len_ + n > kNanoMaxLine) flushLine();
-  if (!len_) {
-    line_[len_++] = 'A';
-    line_[len_++] = ':';
-    len_ = static_cast<uint8_t>(len_ + putUnsigned(seq_++, line_ + len_));
+bool ProgramLines::peek() {
+  if (have_ || ended_) return have_;
+  if (!source_(ctx_, t_, m_)) {
+    ended_ = true;
+    return false;
   }
-  memcpy(line_ + len_, pair, n);
-  len_ = static_cast<uint8_t>(len_ + n);
-  check_ = checkEvent(check_, d, m);
-  events_++;
-  last_ = t;
-  any_ = true;
+  if (m_ > 15 || (any_ && (t_ <= last_ || t_ - last_ > kProgramMaxDelta)) || (!any_ && t_ > kProgramMaxDelta)) {
+    ended_ = failed_ = true;
+    return false;
+  }
+  have_ = true;
   return true;
 }
 
-void ProgramWriter::flushLine() {
-  line_[len_++] = '\n';
-  line_[len_] = '\0';
-  sink_(ctx_, line_, len_);
-  len_ = 0;
-}
-
-void ProgramWriter::seal(bool more) {
-  if (len_) flushLine();
-  Seal s{static_cast<uint8_t>((programs_ ? kSealContinuation : 0) | (more ? kSealMore : 0)), events_, check_};
-  char out[24];
-  size_t n = formatSeal(s, out);
-  sink_(ctx_, out, n);
+uint8_t ProgramLines::seal(char* out) {
+  Seal s{static_cast<uint8_t>((programs_ ? kSealContinuation : 0) | (peek() ? kSealMore : 0)), events_, check_};
   programs_++;
   seq_ = 0;
   events_ = 0;
   check_ = kCheckInit;
+  return static_cast<uint8_t>(formatSeal(s, out));
 }
 
-bool ProgramWriter::finish() {
-  if (!events_) return false;
-  seal(false);
-  return true;
+uint8_t ProgramLines::next(char* out) {
+  const bool more = peek();
+  if (failed_) return 0;  // the program under way stays unsealed
+  if (events_ && (events_ == kProgramEvents || !more)) return seal(out);
+  if (!more) return 0;
+  uint8_t n = 0;
+  out[n++] = 'A';
+  out[n++] = ':';
+  n = static_cast<uint8_t>(n + putUnsigned(seq_++, out + n));
+  while (events_ < kProgramEvents && peek()) {
+    const uint32_t d = any_ ? t_ - last_ : t_;
+    char pair[16];
+    size_t p = 0;
+    pair[p++] = ',';
+    p += putUnsigned(d, pair + p);
+    pair[p++] = ',';
+    p += putUnsigned(m_, pair + p);
+    if (n + p > kNanoMaxLine) break;
+    memcpy(out + n, pair, p);
+    n = static_cast<uint8_t>(n + p);
+    check_ = checkEvent(check_, d, m_);
+    events_++;
+    last_ = t_;
+    any_ = true;
+    have_ = false;
+  }
+  out[n++] = '\n';
+  out[n] = '\0';
+  return n;
 }
 
 }  // namespace uv

@@ -51,32 +51,38 @@ bool parseSeal(const char* line, uint8_t len, Seal& out);
 // Writes `K:f,n,c\n` and a NUL into out (at least 24 bytes); returns the length without the NUL.
 size_t formatSeal(const Seal& s, char* out);
 
-// Cuts a pass's events, given at absolute µs after time 0 in time order, into programs of at most
-// 64 events and those into A lines of at most 63 bytes. Feed events with add(), then finish();
-// each completed line goes to the sink, and each completed program's K line after its A lines.
-class ProgramWriter {
+// Cuts a pass's events into the chain's lines, one line per call, so a sender takes a line only
+// when its UART has room for it (the Mega's ring holds one). Events come from `source` at absolute
+// µs after time 0, in time order; each program holds at most 64 and each A line at most 63 bytes,
+// and each program's K line follows its A lines.
+class ProgramLines {
  public:
-  using Sink = void (*)(void* ctx, const char* line, size_t len);
-  ProgramWriter(Sink sink, void* ctx) : sink_(sink), ctx_(ctx) {}
-  // false (and nothing sent) when t goes backwards, repeats, or leaves a gap of 2²⁸ µs or more.
-  bool add(uint32_t t, uint8_t m);
-  // Seals the last program (the end of the chain); false when nothing was added.
-  bool finish();
+  // The next event; false at the end of the pass.
+  using Source = bool (*)(void* ctx, uint32_t& t, uint8_t& m);
+  ProgramLines(Source source, void* ctx) : source_(source), ctx_(ctx) {}
+  // Writes the next line with its '\n' and a NUL into out[kNanoMaxLine + 2]; returns its length
+  // without the NUL, or 0 once the chain is written. An event that goes backwards, repeats a time
+  // or leaves a gap of 2²⁸ µs or more ends it early: failed() then says so, and the last program
+  // was not sealed (the Nano never runs it).
+  uint8_t next(char* out);
+  bool failed() const { return failed_; }
   uint16_t programs() const { return programs_; }
 
  private:
-  void flushLine();
-  void seal(bool more);
+  bool peek();
+  uint8_t seal(char* out);
 
-  Sink sink_;
+  Source source_;
   void* ctx_;
-  char line_[kNanoMaxLine + 2];  // a full line, its newline and a NUL
-  uint8_t len_ = 0;
+  bool have_ = false;  // an event taken from the source, not yet placed
+  uint32_t t_ = 0;
+  uint8_t m_ = 0;
+  bool ended_ = false, failed_ = false;
+  bool any_ = false;   // an event was placed: last_ is its time
+  uint32_t last_ = 0;
   uint16_t seq_ = 0;
   uint8_t events_ = 0;  // in the current program
   uint16_t check_ = kCheckInit;
-  uint32_t last_ = 0;
-  bool any_ = false;
   uint16_t programs_ = 0;
 };
 

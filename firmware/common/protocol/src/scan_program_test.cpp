@@ -17,10 +17,31 @@ namespace {
 const json V = loadVectors("nano-program.json");
 VectorCounter counted("nano-program.json");
 
-void collect(void* ctx, const char* line, size_t len) {
-  auto* out = static_cast<std::vector<std::string>*>(ctx);
-  ASSERT_EQ(line[len - 1], '\n');
-  out->emplace_back(line, len - 1);
+// A pass's events, handed out one at a time as the Mega's planner does.
+struct Events {
+  std::vector<std::pair<uint32_t, uint8_t>> list;
+  size_t next = 0;
+  static bool take(void* ctx, uint32_t& t, uint8_t& m) {
+    auto* e = static_cast<Events*>(ctx);
+    if (e->next == e->list.size()) return false;
+    t = e->list[e->next].first;
+    m = e->list[e->next++].second;
+    return true;
+  }
+};
+
+// Every line the chain has, without its '\n'.
+std::vector<std::string> linesOf(Events& events, bool* failed = nullptr) {
+  ProgramLines writer(Events::take, &events);
+  std::vector<std::string> lines;
+  char out[kNanoMaxLine + 2];
+  while (uint8_t n = writer.next(out)) {
+    EXPECT_EQ(out[n - 1], '\n');
+    EXPECT_LE(n - 1, kNanoMaxLine);
+    lines.emplace_back(out, n - 1);
+  }
+  if (failed) *failed = writer.failed();
+  return lines;
 }
 
 }  // namespace
@@ -29,11 +50,9 @@ TEST(ProgramVectors, TheWriterCutsEventsIntoTheChainsLines) {
   EXPECT_EQ(V["maxEvents"].get<int>(), kProgramEvents);
   EXPECT_EQ(V["startLeadUs"].get<uint32_t>(), kProgramStartLeadUs);
   for (const json& c : V["programs"]) {
-    std::vector<std::string> lines;
-    ProgramWriter w(collect, &lines);
-    for (const json& e : c["events"]) ASSERT_TRUE(w.add(e[0], e[1])) << c["name"];
-    ASSERT_TRUE(w.finish());
-    EXPECT_EQ(json(lines), c["lines"]) << c["name"];
+    Events events;
+    for (const json& e : c["events"]) events.list.push_back({e[0], e[1]});
+    EXPECT_EQ(json(linesOf(events)), c["lines"]) << c["name"];
     counted();
   }
 }
@@ -98,16 +117,24 @@ TEST(ProgramVectors, BadLinesAreRefused) {
   }
 }
 
-TEST(ProgramWriter, RefusesEventsOutOfOrderOrTooFarApart) {
-  std::vector<std::string> lines;
-  ProgramWriter w(collect, &lines);
-  EXPECT_FALSE(w.finish());  // nothing to seal
-  EXPECT_TRUE(w.add(10, 1));
-  EXPECT_FALSE(w.add(10, 0));                     // the same time twice
-  EXPECT_FALSE(w.add(5, 0));                      // backwards
-  EXPECT_FALSE(w.add(10 + kProgramMaxDelta + 1, 0));  // a gap of 2²⁸ µs
-  EXPECT_FALSE(w.add(20, 16));                    // no such LEDs
-  EXPECT_TRUE(w.add(10 + kProgramMaxDelta, 0));
-  EXPECT_TRUE(w.finish());
-  EXPECT_EQ(lines.size(), 2u);
+TEST(ProgramLines, StopsUnsealedAtAnEventOutOfOrderOrTooFarApart) {
+  const std::vector<std::vector<std::pair<uint32_t, uint8_t>>> bad = {
+      {{10, 1}, {10, 0}},                          // the same time twice
+      {{10, 1}, {5, 0}},                           // backwards
+      {{10, 1}, {10 + kProgramMaxDelta + 1, 0}},   // a gap of 2²⁸ µs
+      {{10, 1}, {20, 16}},                         // no such LEDs
+  };
+  for (const auto& list : bad) {
+    Events events{list};
+    bool failed = false;
+    std::vector<std::string> lines = linesOf(events, &failed);
+    EXPECT_TRUE(failed);
+    for (const std::string& l : lines) EXPECT_NE(l[0], 'K') << "a program sealed around a bad event";
+  }
+  Events none;
+  EXPECT_TRUE(linesOf(none).empty());
+  Events far{{{10, 1}, {10 + kProgramMaxDelta, 0}}};
+  bool failed = true;
+  EXPECT_EQ(linesOf(far, &failed).size(), 2u);
+  EXPECT_FALSE(failed);
 }
