@@ -56,7 +56,7 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
   // --- the test's side ---
   void advance(uint32_t toUs) {
     nowUs = toUs;
-    runProgram();
+    if (program_) return runProgram();  // a scan chain's LEDs follow its events, not an F's offs
     for (uint8_t i = 0; i < 4; i++) {
       if ((lit_ & (1 << i)) && !stuck && nowUs >= offAt_[i]) off(i, offAt_[i]);
     }
@@ -108,9 +108,13 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
     exposures.back().litUs[i] = atUs - startAt_;
   }
   void allOff() override {
+    if (program_) {
+      setLit(0, nowUs);  // a chain cut: its light ends now
+      program_ = nullptr;
+      return;
+    }
     for (uint8_t i = 0; i < 4; i++)
       if (lit_ & (1 << i)) off(i, nowUs);
-    program_ = nullptr;
   }
   // A scan chain runs in simulated time: advance() takes its events as they fall due.
   bool startProgram(nano::ScanStore& store) override {

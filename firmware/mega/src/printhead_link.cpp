@@ -67,6 +67,24 @@ bool PrintheadLink::fire(uint8_t mask, const uint32_t us[uv::kLedCount], uint32_
   return true;
 }
 
+bool PrintheadLink::programLine(const char* line, uint8_t len, uint32_t nowUs) {
+  const bool seal = line[0] == 'K';
+  if ((seal && inFlight_) || offPending_ || !io_.write(line, len)) return false;
+  sent_++;
+  if (seal) {
+    inFlight_ = 'K';
+    askedAt_ = nowUs;
+    sealAnswered_ = false;
+  }
+  return true;
+}
+
+bool PrintheadLink::startChain() {
+  uv::NanoCommand g{};
+  g.op = 'G';
+  return !offPending_ && send(g);
+}
+
 bool PrintheadLink::servo(char op) {
   uv::NanoCommand c{};
   c.op = op;
@@ -143,6 +161,16 @@ void PrintheadLink::handle(const uv::NanoReply& r, uint32_t nowUs) {
       whole_ = r.whole;
       countersAnswered_ = true;
       break;
+    case 'K':
+      sealCode_ = r.code;
+      sealAnswered_ = true;
+      break;
+    case 'Q':
+      passFree_ = r.free;
+      passArmed_ = r.armed;
+      passState_ = r.pass;
+      passAnswered_ = true;
+      break;
     case 'V':
       memcpy(firmware_, r.firmware, sizeof firmware_ - 1);
       firmware_[sizeof firmware_ - 1] = 0;
@@ -169,6 +197,11 @@ void PrintheadLink::poll(uint32_t nowUs) {
   if (inFlight_ && due(nowUs, askedAt_ + kNanoReplyTimeoutUs)) {
     if (inFlight_ == 'V') identityWanted_ = false;  // asked once; its absence is not a fault
     if (inFlight_ == 'C') countersWanted_ = true;   // asked again until answered
+    if (inFlight_ == 'Q') passWanted_ = true;
+    if (inFlight_ == 'K') {  // the program's fate is unknown: the runner treats it as refused
+      sealCode_ = kSealUnanswered;
+      sealAnswered_ = true;
+    }
     inFlight_ = 0;
     missed(nowUs);
   }
@@ -182,6 +215,10 @@ void PrintheadLink::poll(uint32_t nowUs) {
       ask('S', nowUs);
       return;
     }
+  }
+  if (passWanted_) {  // a pass polls every 10 ms: the Nano cuts a chain after 50 ms of silence
+    if (ask('Q', nowUs)) passWanted_ = false;
+    return;
   }
   if (probeWanted_) {
     if (ask('P', nowUs)) probeWanted_ = false;

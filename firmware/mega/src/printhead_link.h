@@ -66,6 +66,27 @@ class PrintheadLink {
   uint32_t fires() const { return fires_; }
   bool lastWhole() const { return whole_; }
 
+  // Scan programs (protocol/nano.md "Scan programs"). A line of the chain, with its '\n' (from
+  // uv::ProgramLines): an A line goes out at once; a K line waits for its answer, so it needs the
+  // link free of requests too. False when it cannot go now: try again later.
+  bool programLine(const char* line, uint8_t len, uint32_t nowUs);
+  bool sealAnswered() const { return sealAnswered_; }
+  // The K answer's code (0 armed), or kSealUnanswered when the Nano never answered.
+  uint8_t sealCode() const { return sealCode_; }
+  static constexpr uint8_t kSealUnanswered = 0xFF;
+  // Starts the armed chain: its time 0 is 1000 µs after the G's newline reaches the Nano. (On the
+  // board the step interrupt times the G; this sends it now.) False if the UART is full.
+  bool startChain();
+  // Asks Q: the Nano's free buffers, armed programs and the last chain's state (uv::PassState).
+  void requestPass() {
+    passWanted_ = true;
+    passAnswered_ = false;
+  }
+  bool passAnswered() const { return passAnswered_; }
+  uint8_t passFree() const { return passFree_; }
+  uint8_t passArmed() const { return passArmed_; }
+  uint8_t passState() const { return passState_; }
+
   bool online() const { return online_; }
   bool tempsKnown() const { return tempsKnown_; }
   const int16_t* deciC() const { return deciC_; }
@@ -115,6 +136,8 @@ class PrintheadLink {
   bool fireCheckWanted_ = false;  // S said off: ask E once
   uint8_t events_ = 0;
   uint32_t sent_ = 0;
+  bool sealAnswered_ = false, passWanted_ = false, passAnswered_ = false;
+  uint8_t sealCode_ = 0, passFree_ = 0, passArmed_ = 0, passState_ = 0;
 };
 
 }  // namespace mega
