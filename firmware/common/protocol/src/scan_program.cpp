@@ -2,38 +2,21 @@
 #include "scan_program.h"
 
 #include <string.h>
-#ifdef __AVR__
-#include <util/crc16.h>
-#endif
 
+#include "crc16.h"
 #include "text_scan.h"
 
 namespace uv {
-
-namespace {
-// One byte of CRC-16/CCITT-FALSE. On the AVR, avr-libc's XMODEM step (the same polynomial, not
-// reflected; only the initial value differs, and that is the caller's): about 20 cycles a byte
-// instead of about 100 for the bit loop, which the Nano runs on every event it loads.
-inline uint16_t crcByte(uint16_t crc, uint8_t b) {
-#ifdef __AVR__
-  return _crc_xmodem_update(crc, b);
-#else
-  crc ^= static_cast<uint16_t>(b << 8);
-  for (uint8_t k = 0; k < 8; k++) crc = (crc & 0x8000) ? static_cast<uint16_t>((crc << 1) ^ 0x1021) : static_cast<uint16_t>(crc << 1);
-  return crc;
-#endif
-}
-}  // namespace
 
 uint16_t checkEvent(uint16_t crc, uint32_t d, uint8_t m) {
   // The word d × 16 + m, least significant byte first, from d's bytes: 8-bit shifts only (an AVR
   // shifts a 32-bit value one bit per pass of a loop).
   uint8_t b0 = static_cast<uint8_t>(d), b1 = static_cast<uint8_t>(d >> 8), b2 = static_cast<uint8_t>(d >> 16),
           b3 = static_cast<uint8_t>(d >> 24);
-  crc = crcByte(crc, static_cast<uint8_t>(b0 << 4 | m));
-  crc = crcByte(crc, static_cast<uint8_t>(b1 << 4 | b0 >> 4));
-  crc = crcByte(crc, static_cast<uint8_t>(b2 << 4 | b1 >> 4));
-  return crcByte(crc, static_cast<uint8_t>(b3 << 4 | b2 >> 4));
+  crc = crc16Update(crc, static_cast<uint8_t>(b0 << 4 | m));
+  crc = crc16Update(crc, static_cast<uint8_t>(b1 << 4 | b0 >> 4));
+  crc = crc16Update(crc, static_cast<uint8_t>(b2 << 4 | b1 >> 4));
+  return crc16Update(crc, static_cast<uint8_t>(b3 << 4 | b2 >> 4));
 }
 
 bool AppendLine::begin(const char* line, uint8_t len) {
