@@ -115,18 +115,21 @@ uint8_t ScanStore::freeBuffers() const {
 
 uint8_t ScanStore::armed() const { return (buf_[0].state == Armed) + (buf_[1].state == Armed); }
 
-bool ScanStore::startable() const {
-  if (run_ != kNone) return false;
+uint8_t ScanStore::oldestArmed() const {
   uint8_t oldest = kNone;
   for (uint8_t i = 0; i < 2; i++)
     if (buf_[i].state == Armed && (oldest == kNone || static_cast<int8_t>(buf_[i].order - buf_[oldest].order) < 0)) oldest = i;
+  return oldest;
+}
+
+bool ScanStore::startable() const {
+  if (run_ != kNone) return false;
+  const uint8_t oldest = oldestArmed();
   return oldest != kNone && !(buf_[oldest].flags & uv::kSealContinuation);
 }
 
 void ScanStore::start() {
-  uint8_t oldest = kNone;
-  for (uint8_t i = 0; i < 2; i++)
-    if (buf_[i].state == Armed && (oldest == kNone || static_cast<int8_t>(buf_[i].order - buf_[oldest].order) < 0)) oldest = i;
+  const uint8_t oldest = oldestArmed();
   if (oldest == kNone) return;
   buf_[oldest].state = Running;
   pos_ = 0;

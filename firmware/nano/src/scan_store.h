@@ -47,6 +47,7 @@ class ScanStore {
     uint8_t count, flags, order;
   };
   void spoil(uv::SealCode why);
+  uint8_t oldestArmed() const;  // the armed program sealed first, or kNone
   bool live(uint8_t i) const { return i != kNone && (buf_[i].state == Armed || buf_[i].state == Running); }
 
   uint32_t capUs_;
