@@ -54,8 +54,8 @@ export class NanoModel {
   #chainEvent: ReturnType<VirtualClock['at']> | null = null;
   /** Told every change of the LEDs a running chain makes (the simulated Mega records a pass's light by it). */
   onChainSwitch: ((mask: number) => void) | null = null;
-  /** Cuts a running chain that hears no line for CHAIN_SILENCE_US (nano.md "Scan programs"). */
-  #silence: ReturnType<VirtualClock['at']> | null = null;
+  /** When the last line arrived: a running chain that hears none for CHAIN_SILENCE_US is cut (nano.md "Scan programs"). */
+  #lastLineUs = 0;
   #programLast = false;
   #fires = 0;
   #whole = true;
@@ -96,7 +96,7 @@ export class NanoModel {
   command(line: string): string | null {
     if (!this.present) return null;
     this.#integrate();
-    this.#heard();
+    this.#lastLineUs = this.clock.now;
     const text = line.replace(/\r?\n$/, '');
     if (text.startsWith('A:')) {
       if (!this.programs.append(text)) this.#latched |= FAULT.MALFORMED;
@@ -165,12 +165,11 @@ export class NanoModel {
     this.#chainEvent = null;
   }
 
-  /** A line arrived: a running chain's Mega is alive for another CHAIN_SILENCE_US. */
-  #heard(): void {
-    this.clock.cancel(this.#silence);
-    this.#silence = this.clock.after(CHAIN_SILENCE_US + 1, () => {
-      this.#silence = null;
+  /** While a chain runs, as the firmware's main loop does: cut it once no line came for CHAIN_SILENCE_US. */
+  #watchSilence(): void {
+    this.clock.at(this.#lastLineUs + CHAIN_SILENCE_US + 1, () => {
       if (!this.programs.running) return;
+      if (this.clock.now - this.#lastLineUs <= CHAIN_SILENCE_US) return this.#watchSilence();
       this.#integrate();
       this.allOff();
       this.programs.discard(PASS.CUT_BY_SILENCE);
@@ -189,6 +188,7 @@ export class NanoModel {
       this.#fires++;
       this.#whole = true;
       this.#programLast = true;
+      this.#watchSilence();
       return this.#schedule(this.clock.now + PROGRAM_START_LEAD_US);
     }
     this.programs.pass = PASS.REFUSED;
