@@ -3,12 +3,12 @@
 // runs, a Q poll every 10 ms; the light comes out at the events' times after the G's time 0.
 #include <gtest/gtest.h>
 
-#include <algorithm>
-#include <cstdlib>
 #include <vector>
 
 #include "fake_nano.h"
+#include "grid_cells.h"
 #include "printhead_link.h"
+#include "scan.h"
 #include "scan_program.h"
 
 using namespace mega;
@@ -73,29 +73,34 @@ struct Chain : ::testing::Test {
   }
 };
 
-// A pass as the scan planner lays it out: 2 ms windows, cells of 0.25-1.75 ms centred in theirs
-// on four LEDs; one event per moment, with the state after its switches (as nextEvent gives).
-Events pass(int windows) {
-  std::vector<std::pair<uint32_t, int>> edges;  // µs, LED + 1 going on or −(LED + 1) going off
-  for (int j = 0; j < windows; j++)
-    for (int k = 0; k < 4; k++) {
-      if ((j * 7 + k * 3) % 5 == 0) continue;
-      const uint32_t t = 250u * (1 + (j + k) % 7), on = j * 2000u + (2000 - t) / 2 + k;
-      edges.push_back({on, k + 1});
-      edges.push_back({on + t, -(k + 1)});
-    }
-  std::sort(edges.begin(), edges.end());
-  Events merged;
-  uint8_t m = 0;
-  for (size_t i = 0; i < edges.size();) {
-    const uint32_t t = edges[i].first;
-    for (; i < edges.size() && edges[i].first == t; i++) {
-      const uint8_t bit = static_cast<uint8_t>(1 << (std::abs(edges[i].second) - 1));
-      m = edges[i].second > 0 ? static_cast<uint8_t>(m | bit) : static_cast<uint8_t>(m & ~bit);
-    }
-    if (merged.empty() || merged.back().second != m) merged.push_back({t, m});
+// A pass as the scan planner makes it (ScanPlanner::nextEvent): 2 ms windows, each of the four
+// LEDs on its own row, gray cells of 14-99 % centred in theirs, some windows dark.
+Events pass(uint16_t windows) {
+  uv::JobHeader h{};
+  h.cols = windows;
+  h.rows = 4;
+  h.pitchUm[0] = h.pitchUm[1] = 50;
+  h.originUm[0] = 1000;
+  h.originUm[1] = 2000;
+  h.map = uv::DoseMap::Linear;
+  h.fullUs = 2000;
+  std::vector<std::vector<uint8_t>> rows(4, std::vector<uint8_t>(windows, 0));
+  for (int k = 0; k < 4; k++) {
+    h.gainPermille[k] = 1000;
+    h.offsets[k][1] = static_cast<int16_t>(k);
+    for (int j = 0; j < windows; j++)
+      if ((j * 7 + k * 3) % 5) rows[k][j] = static_cast<uint8_t>(36 * (1 + (j + k) % 7));
   }
-  return merged;
+  const uv::Machine machine{{150000, 100000}, {3000000, 2000000}, 2000, 1500, {0, 0}};
+  uvtest::GridCells cells(rows);
+  uv::ScanPlanner planner(h, cells, machine);
+  uv::ScanPass p;
+  Events ev;
+  if (!planner.nextPass(p)) return ev;
+  uint32_t t;
+  uint8_t m;
+  while (planner.nextEvent(t, m)) ev.push_back({t, m});
+  return ev;
 }
 
 }  // namespace
