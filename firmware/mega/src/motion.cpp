@@ -92,6 +92,32 @@ bool Motion::moveSteps(uint8_t axis, int32_t steps, uint32_t rateStepsS) {
   return push(delta, lim, -1);
 }
 
+Profile Motion::strokeProfile(uint32_t steps, uint16_t interval, uint16_t frac) const {
+  const uint32_t total[3] = {steps, 0, 0};
+  AxisLimits lim[3] = {limits(0, 0), limits(1, 0), limits(2, 0)};
+  // The whole-tick rate at or just above the exact one, so no ramp segment outruns the middle.
+  const uint64_t exact = (static_cast<uint64_t>(interval) << 16) | frac;
+  lim[0].rate = static_cast<uint32_t>(((static_cast<uint64_t>(kTickHz) << 16) + exact - 1) / exact);
+  return profileFor(total, lim);
+}
+
+uint32_t Motion::strokeRampSteps(uint16_t interval, uint16_t frac) const { return strokeProfile(1, interval, frac).rampSteps; }
+
+bool Motion::stroke(const Stroke& k) {
+  if (!accepting() || strokeSlot_ >= 0 || k.steps == 0) return false;
+  const uint32_t n = static_cast<uint32_t>(k.steps < 0 ? -k.steps : k.steps);
+  StepBlock b{{n, 0, 0}, static_cast<uint8_t>(k.steps < 0 ? 1 : 0), -1};
+  const uint8_t slot = e_.pushBlock(b);
+  profiles_[slot] = strokeProfile(n, k.interval, k.frac);
+  strokeSlot_ = static_cast<int8_t>(slot);
+  strokeInterval_ = k.interval;
+  strokeFrac_ = k.frac;
+  strokeMark_ = k.markStep;
+  target_[0] += k.steps;
+  feed();
+  return true;
+}
+
 void Motion::feed() {
   while (e_.segmentFree()) {
     if (planSlot_ < 0) {
@@ -102,8 +128,24 @@ void Motion::feed() {
     }
     const Profile& p = profiles_[planSlot_];
     Segment s = nextSegment(p, planDone_);
+    uint16_t frac = 0;
+    bool mark = false;
+    if (planSlot_ == strokeSlot_) {
+      // A stroke's middle runs at its exact interval; segments are cut where the ramps end and
+      // where the mark is, so each is all ramp or all middle and the mark starts one.
+      const uint32_t up = p.rampSteps, down = p.total > p.rampSteps ? p.total - p.rampSteps : 0;
+      const uint32_t cuts[3] = {up, down, strokeMark_ ? strokeMark_ - 1 : 0};
+      for (uint32_t c : cuts)
+        if (c > planDone_ && c < planDone_ + s.steps) s.steps = static_cast<uint16_t>(c - planDone_);
+      if (planDone_ >= up && planDone_ + s.steps <= down) {
+        s.interval = strokeInterval_;
+        frac = strokeFrac_;
+      }
+      mark = strokeMark_ && planDone_ == strokeMark_ - 1;
+    }
     bool last = planDone_ + s.steps >= p.total;
-    if (!e_.pushSegment(static_cast<uint8_t>(planSlot_), s.steps, s.interval, last)) {
+    if (last && planSlot_ == strokeSlot_) strokeSlot_ = -1;  // its every segment is queued
+    if (!e_.pushSegment(static_cast<uint8_t>(planSlot_), s.steps, s.interval, last, frac, mark)) {
       planSlot_ = -1;  // a seek whose endstop closed: the rest of it is dropped
       continue;
     }
@@ -123,6 +165,7 @@ void Motion::poll() {
 void Motion::stop() {
   StepEngine::Cut c = e_.cutAfterCurrent();
   e_.dropBlocksAfter(c.running ? c.slot : 0xff);
+  strokeSlot_ = -1;  // a stroke cut short slows down as any move
   nextPlan_ = e_.blockHead();
   planSlot_ = -1;
   stopping_ = true;
@@ -147,6 +190,7 @@ void Motion::stop() {
 
 void Motion::halt() {
   e_.halt();
+  strokeSlot_ = -1;
   nextPlan_ = e_.blockHead();
   planSlot_ = -1;
   stopping_ = false;

@@ -20,6 +20,18 @@ class Motion {
   bool seek(uint8_t axis, int32_t steps, uint32_t rateStepsS);
   // Queues a move of `steps` on one axis at a given rate (homing back-off).
   bool moveSteps(uint8_t axis, int32_t steps, uint32_t rateStepsS);
+  // A scan pass's stroke (issue 19): an X move of `steps` from rest to rest whose middle, all but
+  // the ramps at either end, runs at exactly `interval` + frac/65536 ticks a step, the fraction
+  // carried from step to step. Step `markStep` (1-based, in that middle; 0 for none) goes out with
+  // the pass's G (StepTick::mark). The ramps are the X axis's acceleration. One stroke at a time.
+  struct Stroke {
+    int32_t steps;
+    uint16_t interval, frac;
+    uint32_t markStep;
+  };
+  bool stroke(const Stroke& s);
+  // Steps the stroke's ramp takes at either end (the middle begins after them).
+  uint32_t strokeRampSteps(uint16_t interval, uint16_t frac) const;
   // Feeds the step interrupt; call every pass of the main loop. Never waits.
   void poll();
   // Decelerates to rest at the configured acceleration and drops every queued move (M410, jog end).
@@ -47,6 +59,7 @@ class Motion {
  private:
   bool push(const int32_t delta[3], const AxisLimits lim[3], int8_t seekAxis);
   void feed();
+  Profile strokeProfile(uint32_t steps, uint16_t interval, uint16_t frac) const;
 
   StepEngine& e_;
   const Config& c_;
@@ -56,6 +69,10 @@ class Motion {
   uint8_t nextPlan_ = 0;    // sequence number of the next block to cut
   uint32_t planDone_ = 0;
   bool stopping_ = false;
+  // The stroke queued or running: its block's slot (−1: none), exact interval and mark.
+  int8_t strokeSlot_ = -1;
+  uint16_t strokeInterval_ = 0, strokeFrac_ = 0;
+  uint32_t strokeMark_ = 0;
 };
 
 }  // namespace mega

@@ -29,6 +29,8 @@ class MotionRig {
   uint32_t loopTicks = 2000;  // the main loop's period: 1 ms
   std::function<uint32_t()> loopJitter;  // extra ticks before the next main loop pass
   std::vector<StepEvent> steps;
+  std::vector<uint64_t> marks;  // when a marked step went out (ticks)
+  std::function<void(uint64_t)> onMark;  // what a mark does (a scan pass's G), at its step
   bool record = true;
   bool timerOn = false;   // the step timer runs (kept between runs, like the hardware)
   uint64_t nextTick = 0;
@@ -75,6 +77,11 @@ class MotionRig {
         break;
       }
       if (t.step && record) steps.push_back(StepEvent{now, t.interval, t.step, t.dirNeg});
+      if (t.mark) {
+        marks.push_back(now);
+        engine.markSent(true);
+        if (onMark) onMark(now);
+      }
       nextTick = now + t.interval;
     }
     if (ticks > now) now = ticks;

@@ -13,11 +13,13 @@ uint8_t StepEngine::pushBlock(const StepBlock& b) {
   return slot;
 }
 
-bool StepEngine::pushSegment(uint8_t slot, uint16_t steps, uint16_t interval, bool last) {
+bool StepEngine::pushSegment(uint8_t slot, uint16_t steps, uint16_t interval, bool last, uint16_t frac, bool mark) {
+  static_assert(kBlocks <= kSlotBits + 1, "a slot fits its bits");
   bool pushed = false;
+  const uint8_t flags = static_cast<uint8_t>(slot | (last ? kLast : 0) | (mark ? kMark : 0));
   UV_ATOMIC {
     if (!ended_[slot]) {
-      segs_[segHead_ % kSegments] = QueuedSegment{steps, interval, slot, last};
+      segs_[segHead_ % kSegments] = QueuedSegment{steps, interval, frac, flags};
       segHead_ = static_cast<uint8_t>(segHead_ + 1);
       pushed = true;
     }
@@ -95,8 +97,10 @@ bool StepEngine::loadSegment(StepTick& t) {
     return false;
   }
   const QueuedSegment& s = segs_[segTail_ % kSegments];
-  if (s.slot != curSlot_) {  // a new block: Bresenham from the middle, new directions
-    curSlot_ = s.slot;
+  const uint8_t slot = s.flags & kSlotBits;
+  if (slot != curSlot_) {  // a new block: Bresenham from the middle, new directions
+    curSlot_ = slot;
+    fracAcc_ = 0;
     const StepBlock& b = blocks_[curSlot_];
     steps0_ = b.steps[0];
     steps1_ = b.steps[1];
@@ -117,8 +121,10 @@ bool StepEngine::loadSegment(StepTick& t) {
   }
   segLeft_ = s.steps;
   interval_ = s.interval;
+  frac_ = s.frac;
   lastInterval_ = s.interval;
-  lastSegment_ = s.last;
+  lastSegment_ = s.flags & kLast;
+  t.mark = s.flags & kMark;
   running_ = true;
   return true;
 }
@@ -127,7 +133,7 @@ void StepEngine::endSeek() {
   seekHit_ = true;
   seekSteps_ = blockDone_;
   // Drop this block's queued segments; pushSegment refuses any more for it.
-  while (segHead_ != segTail_ && segs_[segTail_ % kSegments].slot == curSlot_) segTail_ = static_cast<uint8_t>(segTail_ + 1);
+  while (segHead_ != segTail_ && (segs_[segTail_ % kSegments].flags & kSlotBits) == curSlot_) segTail_ = static_cast<uint8_t>(segTail_ + 1);
   segLeft_ = 0;
   running_ = false;
   finishBlock();
@@ -143,9 +149,14 @@ void StepEngine::endSegment() {
 
 // The hot path runs every step: no loops, no shifts by a variable, the block's numbers in scalars.
 StepTick StepEngine::tick(uint8_t endstops) {
-  StepTick t{0, dirNeg_, false, 0, false};
+  StepTick t{0, dirNeg_, false, 0, false, false};
   if (segLeft_ == 0 && !loadSegment(t)) return t;
   t.interval = interval_;
+  if (frac_) {
+    const uint16_t acc = static_cast<uint16_t>(fracAcc_ + frac_);
+    if (acc < fracAcc_) t.interval++;  // the fraction carried a whole tick
+    fracAcc_ = acc;
+  }
   if (endstops & seekMask_) {
     // Closed: confirm with a second reading one interval later, without stepping, so the
     // position where the seek ends is exactly where the switch closed.

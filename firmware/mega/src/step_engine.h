@@ -18,6 +18,7 @@ struct StepTick {
   bool dirChanged;    // the direction pins changed: wait their setup time before the pulse
   uint16_t interval;  // ticks until the next call
   bool idle;          // nothing to run: the timer may stop
+  bool mark;          // this step starts a marked segment: send the printhead its G now (markSent())
 };
 
 class StepEngine {
@@ -34,7 +35,10 @@ class StepEngine {
   bool segmentFree() const { return static_cast<uint8_t>(segHead_ - segTail_) < kSegments; }
   // Queues a segment of block `slot` unless that block was ended early (a seek that hit its
   // endstop); `last` marks the block's final segment. Returns false if the block has ended.
-  bool pushSegment(uint8_t slot, uint16_t steps, uint16_t interval, bool last);
+  // `frac`: a further frac/65536 tick per step, carried from step to step through the block, so a
+  // constant speed is exact over a whole pass rather than rounded to whole ticks. `mark`: the
+  // segment's first step is the one a scan pass's G goes out with (StepTick::mark).
+  bool pushSegment(uint8_t slot, uint16_t steps, uint16_t interval, bool last, uint16_t frac = 0, bool mark = false);
   // Stops at once: every queued segment and block is dropped. Steps may be lost at speed.
   void halt();
   // Keeps the running segment and drops the ones queued after it; returns where the running
@@ -57,10 +61,18 @@ class StepEngine {
   bool blockEnded(uint8_t slot) const { return ended_[slot]; }
   // Times the interrupt found no segment in the middle of a block (the main loop was late).
   uint16_t underruns() const { return underruns_; }
+  // Marks reached, and of those how many found the printhead's UART busy so their G could not go
+  // out on time (the interrupt's driver reports each through markSent()).
+  uint8_t marks() const { return marks_; }
+  uint8_t marksMissed() const { return marksMissed_; }
 
   // --- interrupt side ---
   // endstops: bit a set while axis a's endstop is closed.
   StepTick tick(uint8_t endstops);
+  void markSent(bool onTime) {
+    marks_++;
+    if (!onTime) marksMissed_++;
+  }
 
  private:
   uint8_t blockCount() const { return static_cast<uint8_t>(blockHead_ - blockTail_); }
@@ -71,10 +83,10 @@ class StepEngine {
   void endSeek();
 
   struct QueuedSegment {
-    uint16_t steps, interval;
-    uint8_t slot;
-    bool last;
+    uint16_t steps, interval, frac;
+    uint8_t flags;  // the block's slot, kLast, kMark
   };
+  static constexpr uint8_t kSlotBits = 0x0f, kLast = 0x40, kMark = 0x80;
 
   // The queues index with free-running 8-bit counters: their sizes must divide 256.
   static_assert((kBlocks & (kBlocks - 1)) == 0 && (kSegments & (kSegments - 1)) == 0, "ring sizes must be powers of two");
@@ -89,6 +101,7 @@ class StepEngine {
   bool lastSegment_ = false;
   uint16_t segLeft_ = 0;
   uint16_t interval_ = 0;
+  uint16_t frac_ = 0, fracAcc_ = 0;  // the running segment's fraction, and what it has carried
   uint8_t curSlot_ = 0xff;
   uint8_t seekMask_ = 0;
   uint32_t total_ = 0, steps0_ = 0, steps1_ = 0, steps2_ = 0;
@@ -98,6 +111,7 @@ class StepEngine {
   uint8_t debounce_ = 0;
   uint16_t lastInterval_ = 0;
   uint16_t underruns_ = 0;
+  volatile uint8_t marks_ = 0, marksMissed_ = 0;
   int32_t pos_[3] = {};
   bool seekHit_ = false;
   uint32_t seekSteps_ = 0;
