@@ -27,7 +27,7 @@ ScanMotion scanMotion(const JobHeader& h, const Durations& dose, const Machine& 
 }
 
 ScanPlanner::ScanPlanner(const JobHeader& h, CellSource& cells, const Machine& m)
-    : h_(h), cells_(cells), m_(m), dose_(h), motion_(scanMotion(h, dose_, m)), curX_(m.startUm[0]), curY_(m.startUm[1]),
+    : h_(h), cells_(cells), m_(m), dose_(h), motion_(scanMotion(h, dose_, m)), known_(h.rows), curX_(m.startUm[0]), curY_(m.startUm[1]),
       flies_(motion_.windowUs > ceilDiv(static_cast<uint64_t>(h.pitchUm[0]) * 1000000u, m.vmaxUmS[0])) {
   dyMin_ = dyMax_ = h.offsets[0][1];
   for (uint8_t k = 1; k < 4; k++) {
@@ -60,9 +60,16 @@ bool ScanPlanner::supported() const {
 }
 
 bool ScanPlanner::nextPass(ScanPass& out) {
+  starved_ = false;
   if (!supported() || motion_.windowUs == 0) return false;
   for (; scan_ < h_.rows; uncover(scan_), scan_++) {
     const uint16_t r = scan_;
+    low_ = r;
+    // A pass opened here reads the rows up to r + (dyMax − dyMin): they must all have arrived.
+    if (known_ < h_.rows && static_cast<int32_t>(r) + (dyMax_ - dyMin_) >= static_cast<int32_t>(known_)) {
+      starved_ = true;
+      return false;
+    }
     if (covered(r) || !cells_.rowNonEmpty(r)) continue;
     // The rows of this pass, as planner.md "Passes" gives them (the same as the stop planner's).
     const int32_t hy = static_cast<int32_t>(r) - dyMin_;

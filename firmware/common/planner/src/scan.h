@@ -54,6 +54,14 @@ class ScanPlanner {
   // As Planner::supported(): the LEDs' rows span less than kCoveredWindowRows. And every switch
   // time fits 32 bits: (cols + the LEDs' spread in X) × window < 2³² µs.
   bool supported() const;
+  // The speed is below the X axis's maximum, so a blank stretch may be flown (planner.md "Blank stretches").
+  bool mayFly() const { return flies_; }
+  // Stream mode, as Planner's: rows below `known` have arrived. nextPass() opens a pass only once
+  // every row it reads has arrived; until then it says false with starved() true.
+  void setKnownRows(uint16_t known) { known_ = known; }
+  bool starved() const { return starved_; }
+  // The lowest row a later call may still read: rows below it may be dropped.
+  int32_t lowestRowNeeded() const { return low_; }
 
  private:
   bool readLit(uint8_t led, int32_t& hx, uint32_t& us);
@@ -74,6 +82,9 @@ class ScanPlanner {
   ScanMotion motion_;
   uint8_t covered_[kCoveredWindowRows / 8] = {};
   uint16_t scan_ = 0;  // next row that may open a pass
+  uint16_t known_;     // rows that have arrived (all, unless streaming)
+  bool starved_ = false;
+  int32_t low_ = 0;    // the open pass's lowest row, or the next that may open one
   int16_t dyMin_ = 0, dyMax_ = 0;
   int32_t curX_, curY_;  // where the last pass ended, µm
   uint64_t estimate_ = 0;

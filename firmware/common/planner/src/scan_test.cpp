@@ -268,3 +268,48 @@ TEST(ScanPlanner, GivesThePassAsTheNanosEvents) {
   EXPECT_EQ(events, (std::vector<std::pair<uint32_t, uint8_t>>{
                         {0, 1}, {800, 3}, {1200, 1}, {2800, 3}, {3200, 1}, {4000, 0}, {4498, 1}, {5502, 0}, {6000, 1}, {8000, 0}}));
 }
+
+// Stream mode: rows arriving a few at a time give the very passes and events of the whole job, and
+// no pass opens before the rows it reads are there.
+TEST(ScanPlanner, PlansTheSamePassesWhileRowsArrive) {
+  Xorshift rnd{77};
+  const uint16_t rows = 90, cols = 40;
+  std::vector<std::vector<uint8_t>> grid(rows, std::vector<uint8_t>(cols, 0));
+  for (auto& row : grid)
+    for (auto& v : row)
+      if (rnd(4) == 0) v = static_cast<uint8_t>(1 + rnd(255));
+  JobHeader h = smallJob(cols, rows);
+  for (int k = 0; k < 4; k++) h.offsets[k][1] = static_cast<int16_t>(k * 3);
+  using Pass = std::vector<std::pair<uint32_t, uint8_t>>;
+  auto plan = [&](bool streamed) {
+    GridCells cells(grid);
+    ScanPlanner planner(h, cells, kMachine);
+    std::vector<Pass> out;
+    uint16_t known = 0;
+    if (streamed) planner.setKnownRows(known);
+    ScanPass p;
+    for (;;) {
+      if (!planner.nextPass(p)) {
+        if (!planner.starved()) break;
+        EXPECT_LT(known, rows);
+        known = static_cast<uint16_t>(known + 1 + rnd(5));
+        if (known > rows) known = rows;
+        planner.setKnownRows(known);
+        continue;
+      }
+      if (streamed) {
+        EXPECT_TRUE(known == rows || p.hy + 9 < known) << "a pass read a row not yet arrived";
+        EXPECT_LE(planner.lowestRowNeeded(), p.hy + 0);
+      }
+      Pass e;
+      uint32_t t;
+      uint8_t m;
+      while (planner.nextEvent(t, m)) e.push_back({t, m});
+      out.push_back(e);
+    }
+    return out;
+  };
+  const std::vector<Pass> whole = plan(false), streamed = plan(true);
+  EXPECT_GT(whole.size(), 10u);
+  EXPECT_EQ(streamed, whole);
+}

@@ -17,8 +17,17 @@ struct Ring {
 static_assert((NanoUart::kRing & (NanoUart::kRing - 1)) == 0, "free-running 8-bit indices: the ring must divide 256");
 
 Ring rx, tx;
+volatile bool markNewline = false;  // the G's newline goes out next, before the ring
 
 }  // namespace
+
+bool nanoUartSendMark() {
+  if (tx.used() || markNewline || !(UCSR1A & (1 << UDRE1))) return false;
+  UDR1 = 'G';
+  markNewline = true;
+  UCSR1B |= 1 << UDRIE1;
+  return true;
+}
 
 void NanoUart::begin(uint32_t baud) {
   UCSR1A = 1 << U2X1;
@@ -45,6 +54,7 @@ bool NanoUart::write(const char* data, uint8_t n) {
 
 }  // namespace mega
 
+using mega::markNewline;
 using mega::rx;
 using mega::tx;
 using mega::NanoUart;
@@ -58,6 +68,11 @@ ISR(USART1_RX_vect) {
 }
 
 ISR(USART1_UDRE_vect) {
+  if (markNewline) {
+    UDR1 = '\n';
+    markNewline = false;
+    return;
+  }
   if (tx.out == tx.in) {
     UCSR1B &= static_cast<uint8_t>(~(1 << UDRIE1));
     return;

@@ -19,4 +19,10 @@ class NanoUart : public ByteStream {
   bool write(const char* data, uint8_t n) override;
 };
 
+// For the step interrupt only: a scan pass's G (protocol/nano.md "Scan programs"), "G\n" now, when
+// nothing is waiting to go out, so its newline reaches the Nano two byte-times from now. The 'G'
+// goes straight into UDR1 and the newline follows from the transmit interrupt ahead of the ring,
+// so a line the main loop is writing meanwhile cannot split it. False when the line is busy.
+bool nanoUartSendMark();
+
 }  // namespace mega

@@ -7,6 +7,7 @@
 #include <Arduino.h>
 #include <util/delay.h>
 
+#include "hw/nano_uart.h"
 #include "pins.h"
 
 namespace mega {
@@ -76,6 +77,7 @@ void stepInterrupt() {
   if (t.step & 1) STEP_XY_PORT |= STEP_X_BIT;
   if (t.step & 2) STEP_XY_PORT |= STEP_Y_BIT;
   if (t.step & 4) STEP_Z_PORT |= STEP_Z_BIT;
+  if (t.mark) stepEngine.markSent(nanoUartSendMark());  // with its step: the head's place is known
   uint16_t took = TCNT1;  // ticks since this compare match (the timer restarted from 0 then)
   // Never set a compare the counter has already passed: it would wait a whole 32 ms wrap.
   OCR1A = t.interval > took + 4 ? t.interval : took + 4;
