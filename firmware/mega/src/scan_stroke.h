@@ -1,0 +1,42 @@
+// Where a scan pass's stroke starts and ends in steps, its exact step interval, the step its G goes
+// out with, and how much later than the Nano's time 0 the plan's start mark falls (issue 19).
+//
+// The head crosses one cell pitch p in the window W µs, so a step takes 2W·10⁶ / (p·S) timer ticks
+// (S: milli-steps per mm), exact to 1/65536 tick. The Nano's time 0 is kMarkLeadUs after the step
+// that sends G. The stroke starts far enough back that the ramp ends, and the G step comes, before
+// the mark; the mark falls `shiftUs` after time 0, which delays every event by that much.
+#pragma once
+#include <stdint.h>
+
+namespace mega {
+
+// The G and its newline at 115200 (85 µs a byte with the Mega's U2X divisor), then the Nano's
+// kProgramStartLeadUs: from the step that sends G to the Nano's time 0.
+constexpr uint32_t kMarkLeadUs = 1000 + 2 * 85;
+
+struct StrokePlan {
+  int32_t startSteps;   // X at rest before the stroke
+  int32_t steps;        // signed: the stroke's length and direction
+  uint16_t interval;    // the middle's ticks a step, and 1/65536 ticks more
+  uint16_t frac;
+  uint32_t markStep;    // 1-based: the step that sends G
+  uint32_t shiftUs;     // the plan's time 0 is this long after the Nano's
+};
+
+struct StrokeInput {
+  int32_t markX2Um;     // twice the bed X of the start mark (half a pitch before window 0's column)
+  int32_t endX2Um;      // twice the bed X where the last window ends
+  bool descending;      // towards −X
+  uint32_t windowUs;
+  uint32_t pitchUm;
+  uint32_t stepsMilli;  // X steps per mm × 1000
+  uint32_t rampSteps;   // the stroke's ramp at its interval (Motion::strokeRampSteps)
+};
+
+// The interval of a step at the pass's speed, as 16.16 ticks; false if outside what the step engine
+// runs (kMaxStepRate, 16-bit intervals).
+bool strokeInterval(uint32_t windowUs, uint32_t pitchUm, uint32_t stepsMilli, uint16_t& interval, uint16_t& frac);
+// False when the speed is out of range.
+bool planStroke(const StrokeInput& in, StrokePlan& out);
+
+}  // namespace mega
