@@ -16,6 +16,8 @@ int32_t Motion::toSteps(uint8_t axis, int32_t um) const {
   return roundDiv(static_cast<int64_t>(um) * c_.milli(kSteps[axis]), 1000000);
 }
 
+uint32_t Motion::stepsMilli(uint8_t axis) const { return static_cast<uint32_t>(c_.milli(kSteps[axis])); }
+
 int32_t Motion::toUm(uint8_t axis, int32_t steps) const {
   return roundDiv(static_cast<int64_t>(steps) * 1000000, c_.milli(kSteps[axis]));
 }
@@ -72,6 +74,16 @@ bool Motion::moveTo(const int32_t um[3], uint32_t feedUmS) {
   for (uint8_t a = 0; a < 3; a++) {
     delta[a] = toSteps(a, um[a]) - target_[a];
     lim[a] = limits(a, feedUmS);
+  }
+  return push(delta, lim, -1);
+}
+
+bool Motion::moveToSteps(const int32_t steps[3]) {
+  int32_t delta[3];
+  AxisLimits lim[3];
+  for (uint8_t a = 0; a < 3; a++) {
+    delta[a] = steps[a] - target_[a];
+    lim[a] = limits(a, 0);
   }
   return push(delta, lim, -1);
 }

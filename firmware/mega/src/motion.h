@@ -16,6 +16,8 @@ class Motion {
   // Queues a move to `um` (bed µm) at up to `feedUmS` per axis (0: the configured speeds).
   // False when the queue is full or a stop is still running down: try again later.
   bool moveTo(const int32_t um[3], uint32_t feedUmS);
+  // The same to a position in steps (a scan pass's start, which must be exact).
+  bool moveToSteps(const int32_t steps[3]);
   // Queues a move of `steps` on one axis towards −/+ that ends early when the axis's endstop closes.
   bool seek(uint8_t axis, int32_t steps, uint32_t rateStepsS);
   // Queues a move of `steps` on one axis at a given rate (homing back-off).
@@ -48,9 +50,13 @@ class Motion {
   void setPositionSteps(const int32_t steps[3]);
   // Where the queued moves end, µm (the base of a relative move).
   void targetUm(int32_t out[3]) const;
+  void targetSteps(int32_t out[3]) const {
+    for (uint8_t a = 0; a < 3; a++) out[a] = target_[a];
+  }
 
   const StepEngine& engine() const { return e_; }
   int32_t toSteps(uint8_t axis, int32_t um) const;
+  uint32_t stepsMilli(uint8_t axis) const;  // steps per mm × 1000
   int32_t toUm(uint8_t axis, int32_t steps) const;
   // Steps/s for a speed in thousandths of mm/s on an axis.
   uint32_t rateFor(uint8_t axis, int32_t milliMmS) const;

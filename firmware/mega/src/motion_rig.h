@@ -30,7 +30,7 @@ class MotionRig {
   std::function<uint32_t()> loopJitter;  // extra ticks before the next main loop pass
   std::vector<StepEvent> steps;
   std::vector<uint64_t> marks;  // when a marked step went out (ticks)
-  std::function<void(uint64_t)> onMark;  // what a mark does (a scan pass's G), at its step
+  std::function<bool(uint64_t)> onMark;  // sends a scan pass's G at its step; false: the UART was busy
   bool record = true;
   bool timerOn = false;   // the step timer runs (kept between runs, like the hardware)
   uint64_t nextTick = 0;
@@ -79,8 +79,7 @@ class MotionRig {
       if (t.step && record) steps.push_back(StepEvent{now, t.interval, t.step, t.dirNeg});
       if (t.mark) {
         marks.push_back(now);
-        engine.markSent(true);
-        if (onMark) onMark(now);
+        engine.markSent(onMark ? onMark(now) : true);
       }
       nextTick = now + t.interval;
     }

@@ -205,7 +205,7 @@ void PrintheadLink::poll(uint32_t nowUs) {
     inFlight_ = 0;
     missed(nowUs);
   }
-  if (inFlight_) return;
+  if (inFlight_ || held_) return;
   if (fire_ == FireState::Firing) {
     if (fireCheckWanted_) {
       ask('E', nowUs);

@@ -83,6 +83,8 @@ class PrintheadLink {
     passAnswered_ = false;
   }
   bool passAnswered() const { return passAnswered_; }
+  // Asks nothing while held: a scan pass's G must find the UART idle when its step comes.
+  void hold(bool quiet) { held_ = quiet; }
   uint8_t passFree() const { return passFree_; }
   uint8_t passArmed() const { return passArmed_; }
   uint8_t passState() const { return passState_; }
@@ -136,7 +138,7 @@ class PrintheadLink {
   bool fireCheckWanted_ = false;  // S said off: ask E once
   uint8_t events_ = 0;
   uint32_t sent_ = 0;
-  bool sealAnswered_ = false, passWanted_ = false, passAnswered_ = false;
+  bool sealAnswered_ = false, passWanted_ = false, passAnswered_ = false, held_ = false;
   uint8_t sealCode_ = 0, passFree_ = 0, passArmed_ = 0, passState_ = 0;
 };
 

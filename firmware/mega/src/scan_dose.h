@@ -1,0 +1,105 @@
+// Test support: the dose each cell received in a scan job, measured from what the machine did (the
+// LEDs' on/off times and the head's steps over time), against what the job asked for. Shared by the
+// host test (scan_run_test.cpp) and the simavr test of the real images (sim/scan_sim_test.cpp).
+#pragma once
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "job_types.h"
+#include "planner.h"
+
+namespace scandose {
+
+struct Light {
+  uint8_t led;
+  double onUs, offUs;
+};
+
+// The head's X and Y in steps after each step, with its time (µs).
+struct Track {
+  std::vector<double> t;
+  std::vector<int32_t> x, y;
+  void add(double us, int32_t xs, int32_t ys) {
+    t.push_back(us);
+    x.push_back(xs);
+    y.push_back(ys);
+  }
+  size_t at(double us) const { return static_cast<size_t>(std::upper_bound(t.begin(), t.end(), us) - t.begin()); }
+  // X in steps at `us`: linear between the step before and the step after (the rotor's travel).
+  double xAt(double us) const {
+    size_t i = at(us);
+    if (i == 0) return x.front();
+    if (i == t.size()) return x.back();
+    return x[i - 1] + (x[i] - x[i - 1]) * (us - t[i - 1]) / (t[i] - t[i - 1]);
+  }
+  int32_t yAt(double us) const {
+    size_t i = at(us);
+    return i == 0 ? y.front() : y[i - 1];
+  }
+};
+
+struct Figures {
+  double worstDosePct = 0;   // of the full dose (the longest on-time), over every cell
+  double worstCentreUm = 0;  // a cell's light's centroid from the cell's centre
+  double worstEdgeUm = 0;    // an LED's switching from where the plan puts that edge on the bed
+  int cells = 0, lit = 0;    // cells checked (the job's and a margin round it), cells that should have light
+  int stray = 0;             // samples of light beyond the margin
+};
+
+// `stepsPerMm`: X and Y; `windowUs`: the pass's cell window. Every sample of light falls on the cell
+// under its LED at that moment. The jobs measured give every LED the same gain.
+inline Figures measure(const uv::JobHeader& h, const std::vector<std::vector<uint8_t>>& grid, const std::vector<Light>& lights,
+                       const Track& track, const double stepsPerMm[2], double windowUs, double sampleUs = 0.25) {
+  const uv::Durations dose(h);
+  double full = 0;
+  for (uint8_t k = 0; k < 4; k++) full = std::max(full, static_cast<double>(dose.us(k, 255)));
+  const double px = h.pitchUm[0], py = h.pitchUm[1];
+  // The job's cells and a margin of kMargin around them, where no light is wanted.
+  constexpr int kMargin = 2;
+  const int rowsM = h.rows + 2 * kMargin, colsM = h.cols + 2 * kMargin;
+  std::vector<std::vector<double>> got(rowsM, std::vector<double>(colsM, 0)), xsum(rowsM, std::vector<double>(colsM, 0));
+  auto want = [&](int r, int c) -> double {
+    return r < 0 || r >= h.rows || c < 0 || c >= h.cols ? 0 : dose.us(0, grid[r][c]);  // every LED's gain is 1 here
+  };
+  Figures f;
+  auto headCol = [&](double xSteps) { return (xSteps * 1000.0 / stepsPerMm[0] - h.originUm[0]) / px; };
+  auto headRow = [&](int32_t ySteps) { return static_cast<int>(std::lround((ySteps * 1000.0 / stepsPerMm[1] - h.originUm[1]) / py)); };
+  for (const Light& l : lights) {
+    const int row = headRow(track.yAt(l.onUs)) + h.offsets[l.led][1];
+    for (double t = l.onUs + sampleUs / 2; t < l.offUs; t += sampleUs) {
+      const double col = headCol(track.xAt(t)) + h.offsets[l.led][0];
+      const int c = static_cast<int>(std::floor(col + 0.5));
+      if (row < -kMargin || row >= h.rows + kMargin || c < -kMargin || c >= h.cols + kMargin) {
+        f.stray++;
+        continue;
+      }
+      got[row + kMargin][c + kMargin] += sampleUs;
+      xsum[row + kMargin][c + kMargin] += (col - c) * px * sampleUs;
+    }
+    // The edges: on where the first cell's light should begin, off where the last's should end.
+    const double on = headCol(track.xAt(l.onUs)) + h.offsets[l.led][0], off = headCol(track.xAt(l.offUs)) + h.offsets[l.led][0];
+    const double dir = off >= on ? 1 : -1;
+    const int c0 = static_cast<int>(std::floor(on + dir * 0.01 + 0.5)), c1 = static_cast<int>(std::floor(off - dir * 0.01 + 0.5));
+    if (row >= 0 && row < h.rows && c0 >= 0 && c0 < h.cols && c1 >= 0 && c1 < h.cols) {
+      const double t0 = dose.us(l.led, grid[row][c0]), t1 = dose.us(l.led, grid[row][c1]);
+      // Centred in its window: half its on-time either side of the centre, one pitch a window.
+      f.worstEdgeUm = std::max(f.worstEdgeUm, std::fabs((on - (c0 - dir * t0 / (2 * windowUs))) * px));
+      f.worstEdgeUm = std::max(f.worstEdgeUm, std::fabs((off - (c1 + dir * t1 / (2 * windowUs))) * px));
+    }
+  }
+  for (int r = -kMargin; r < h.rows + kMargin; r++)
+    for (int c = -kMargin; c < h.cols + kMargin; c++) {
+      const double w = want(r, c), g = got[r + kMargin][c + kMargin];
+      f.cells++;
+      f.worstDosePct = std::max(f.worstDosePct, std::fabs(g - w) * 100 / full);
+      if (w <= 0) continue;
+      f.lit++;
+      // Where a cell's own light is centred (slivers of a neighbour's at its edge count in the dose).
+      if (g > 0) f.worstCentreUm = std::max(f.worstCentreUm, std::fabs(xsum[r + kMargin][c + kMargin] / g));
+    }
+  return f;
+}
+
+}  // namespace scandose

@@ -1,0 +1,165 @@
+// A scan job's passes on the machine: see scan_run.h.
+#include "scan_run.h"
+
+#include "error_codes.h"
+
+namespace mega {
+
+namespace {
+bool due(uint32_t now, uint32_t at) { return static_cast<int32_t>(now - at) >= 0; }
+}  // namespace
+
+bool ScanRun::source(void* ctx, uint32_t& t, uint8_t& m) {
+  ScanRun* s = static_cast<ScanRun*>(ctx);
+  if (!s->planner_.nextEvent(t, m)) return false;
+  t += s->stroke_.shiftUs;  // the plan's time 0 falls this long after the Nano's
+  return true;
+}
+
+ScanRun::Step ScanRun::fail(PrintheadLink& head, uint8_t code) {
+  head.hold(false);
+  error_ = code;
+  return Step::Failed;
+}
+
+void ScanRun::cut(PrintheadLink& head) {
+  head.hold(false);
+  phase_ = Phase::Open;
+}
+
+bool ScanRun::open(Motion& motion, const uv::JobHeader& h) {
+  uv::ScanPass p;
+  if (!planner_.nextPass(p)) return false;
+  const int32_t pitch = static_cast<int32_t>(h.pitchUm[0]), dir = p.descending ? -1 : 1;
+  const int32_t x0 = static_cast<int32_t>(h.originUm[0]);
+  // Window 0's column and the last window's, in the pass's direction.
+  const int32_t firstX = x0 + (p.descending ? p.last : p.first) * pitch;
+  const int32_t lastX = x0 + (p.descending ? p.first : p.last) * pitch;
+  StrokeInput in{};
+  in.markX2Um = 2 * firstX - dir * pitch;
+  in.endX2Um = 2 * lastX + dir * pitch;
+  in.descending = p.descending;
+  in.windowUs = planner_.motion().windowUs;
+  in.pitchUm = h.pitchUm[0];
+  in.stepsMilli = motion.stepsMilli(0);
+  uint16_t interval = 0, frac = 0;
+  if (!strokeInterval(in.windowUs, in.pitchUm, in.stepsMilli, interval, frac)) {
+    error_ = uv::kScanUnsupported;
+    return true;
+  }
+  in.rampSteps = motion.strokeRampSteps(interval, frac);
+  planStroke(in, stroke_);
+  y_ = static_cast<int32_t>(h.originUm[1]) + p.hy * static_cast<int32_t>(h.pitchUm[1]);
+  lines_ = uv::ProgramLines(source, this);
+  held_ = 0;
+  sealSent_ = written_ = moved_ = false;
+  armed_ = 0;
+  return true;
+}
+
+bool ScanRun::sendProgram(PrintheadLink& head, uint32_t nowUs) {
+  for (;;) {
+    if (sealSent_) {
+      if (!head.sealAnswered()) return false;
+      sealSent_ = false;
+      if (head.sealCode() != 0) {
+        error_ = uv::kExposureRefused;
+        return false;
+      }
+      return true;
+    }
+    if (!held_ && !(held_ = lines_.next(line_))) {
+      written_ = true;
+      if (lines_.failed()) error_ = uv::kScanUnsupported;  // a gap of 2²⁸ µs or more
+      return false;
+    }
+    const bool seal = line_[0] == 'K';
+    if (!head.programLine(line_, held_, nowUs)) return false;  // the UART is full or a request waits
+    held_ = 0;
+    sealSent_ = seal;
+  }
+}
+
+ScanRun::Step ScanRun::poll(Motion& motion, PrintheadLink& head, const uv::JobHeader& h, uint32_t nowUs) {
+  if (error_) return Step::Failed;
+  switch (phase_) {
+    case Phase::Open:
+      if (!open(motion, h)) return planner_.starved() ? Step::Starved : Step::End;
+      if (error_) return fail(head, error_);
+      phase_ = Phase::Load;
+      return Step::Busy;
+    case Phase::Load: {
+      if (!moved_) {
+        int32_t to[3];
+        motion.targetSteps(to);  // Z stays where the job put it
+        to[0] = stroke_.startSteps;
+        to[1] = motion.toSteps(1, y_);
+        moved_ = motion.moveToSteps(to);
+      }
+      // Two programs armed before the head sets off (the Nano's two buffers), or the whole chain.
+      while (armed_ < 2 && !written_) {
+        if (!sendProgram(head, nowUs)) break;
+        armed_++;
+      }
+      if (error_) return fail(head, error_);
+      if (!moved_ || !motion.idle() || (armed_ < 2 && !written_)) return Step::Busy;
+      phase_ = Phase::Arm;
+      return Step::Busy;
+    }
+    case Phase::Arm:
+      if (armed_ == 0) {  // a pass whose chain is empty cannot happen: the planner drops dark passes
+        phase_ = Phase::Open;
+        return Step::PassDone;
+      }
+      head.hold(true);  // from here until the G is out, nothing else goes to the Nano
+      marks_ = motion.engine().marks();
+      missed_ = motion.engine().marksMissed();
+      if (!motion.stroke({stroke_.steps, stroke_.interval, stroke_.frac, stroke_.markStep})) return fail(head, uv::kExposureRefused);
+      phase_ = Phase::Run;
+      return Step::Busy;
+    case Phase::Run:
+      if (motion.engine().marks() == marks_) {
+        if (motion.idle()) return fail(head, uv::kExposureRefused);  // the stroke ended unmarked
+        return Step::Busy;
+      }
+      head.hold(false);
+      if (motion.engine().marksMissed() != missed_) return fail(head, uv::kExposureRefused);  // the UART was busy
+      phase_ = Phase::Finish;
+      asked_ = loading_ = false;
+      until_ = 0;
+      nextPoll_ = nowUs;
+      return Step::Busy;
+    case Phase::Finish: {
+      if (asked_ && head.passAnswered()) {
+        asked_ = false;
+        const uint8_t state = head.passState();
+        if (state >= static_cast<uint8_t>(uv::PassState::CutByReset)) {
+          return fail(head, state == static_cast<uint8_t>(uv::PassState::CutByFault) ? uv::kOverTemperature : uv::kExposureRefused);
+        }
+        if (!written_ && head.passFree() > 0) loading_ = true;  // a buffer is free: the next program
+        if (motion.idle() && written_ && state == static_cast<uint8_t>(uv::PassState::Whole)) {
+          passes_++;
+          phase_ = Phase::Open;
+          return Step::PassDone;
+        }
+      }
+      if (loading_) {
+        if (sendProgram(head, nowUs) || written_) loading_ = false;
+        if (error_) return fail(head, error_);
+      }
+      if (!asked_ && due(nowUs, nextPoll_)) {
+        head.requestPass();
+        asked_ = true;
+        nextPoll_ = nowUs + kScanPollUs;
+      }
+      if (motion.idle()) {
+        if (!until_) until_ = nowUs + kScanSettleUs;
+        else if (due(nowUs, until_)) return fail(head, uv::kExposureRefused);  // the chain never ended
+      }
+      return Step::Busy;
+    }
+  }
+  return Step::Busy;
+}
+
+}  // namespace mega

@@ -1,0 +1,64 @@
+// Runs a scan job's passes (issue 19; protocol/nano.md "Scan programs"), one at a time as the scan
+// planner opens them: to the pass's start, its first two programs loaded and armed on the Nano, the
+// stroke queued with its G on the marked step, the rest of the chain sent as the Nano's buffers
+// free up (asked by Q every 10 ms, which also keeps the chain from being cut as silent), and the
+// pass confirmed whole by the Nano's Q before the next opens.
+#pragma once
+#include <stdint.h>
+
+#include "config.h"
+#include "motion.h"
+#include "printhead_link.h"
+#include "scan.h"
+#include "scan_program.h"
+#include "scan_stroke.h"
+
+namespace mega {
+
+constexpr uint32_t kScanPollUs = 10000;      // Q while a chain runs: well inside the Nano's 50 ms
+constexpr uint32_t kScanSettleUs = 50000;    // after the stroke, the chain must have ended by then
+
+class ScanRun {
+ public:
+  explicit ScanRun(uv::ScanPlanner& planner) : planner_(planner), lines_(source, this) {}
+
+  enum class Step : uint8_t { Busy, Starved, PassDone, End, Failed };
+  // `h`: the job (its origin and pitch place each pass on the bed).
+  Step poll(Motion& motion, PrintheadLink& head, const uv::JobHeader& h, uint32_t nowUs);
+  // Why it failed: an error code (29 the speed is out of the step engine's range, 31 the Nano cut
+  // the chain for a fault, 33 the Nano refused or cut it otherwise).
+  uint8_t error() const { return error_; }
+  // The pass under way is abandoned (the runner switched the LEDs off and stopped the motion).
+  void cut(PrintheadLink& head);
+  uint16_t passes() const { return passes_; }
+  // For the tests: the last stroke.
+  const StrokePlan& stroke() const { return stroke_; }
+
+ private:
+  enum class Phase : uint8_t { Open, Load, Arm, Run, Finish };
+  static bool source(void* ctx, uint32_t& t, uint8_t& m);
+  bool open(Motion& motion, const uv::JobHeader& h);
+  // Sends the chain's lines up to the end of one program; true once its K is answered 0.
+  bool sendProgram(PrintheadLink& head, uint32_t nowUs);
+  Step fail(PrintheadLink& head, uint8_t code);
+
+  uv::ScanPlanner& planner_;
+  uv::ProgramLines lines_;
+  char line_[uv::kNanoMaxLine + 2];
+  uint8_t held_ = 0;          // a line taken from lines_, not sent yet
+  bool sealSent_ = false;     // its K went out; its answer is awaited
+  bool written_ = false;      // the chain's every line has gone
+  uint8_t armed_ = 0;         // programs answered K:0 before the stroke
+  bool asked_ = false;        // a Q is out: its answer is awaited
+  bool loading_ = false;      // a Q found a buffer free: the next program goes out
+  Phase phase_ = Phase::Open;
+  bool moved_ = false;        // the move to the pass's start is queued
+  uint8_t marks_ = 0, missed_ = 0;  // the step engine's counts before the stroke
+  uint8_t error_ = 0;
+  uint16_t passes_ = 0;
+  uint32_t nextPoll_ = 0, until_ = 0;
+  int32_t y_ = 0;
+  StrokePlan stroke_ = {};
+};
+
+}  // namespace mega

@@ -1,0 +1,180 @@
+// A scan job's passes run by ScanRun through the real printhead link and the real Nano logic
+// (FakeNano), with the step interrupt's code moving the head in simulated time: the G goes out on
+// its step and reaches the Nano two byte-times later, and every cell's dose and every LED edge is
+// measured from the light's times and the head's steps (scan_dose.h).
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "fake_nano.h"
+#include "grid_cells.h"
+#include "motion_rig.h"
+#include "printhead_link.h"
+#include "scan_dose.h"
+#include "scan_run.h"
+
+using namespace mega;
+
+namespace {
+
+constexpr uint64_t kLoopTicks = 1000;  // the main loop every 500 µs
+constexpr uint64_t kGTicks = 2 * 170;  // "G\n" on the wire
+
+struct ScanRunTest : ::testing::Test {
+  Config config;  // 80 steps/mm, 100 mm/s, 2000 mm/s²
+  MotionRig rig{config};
+  FakeNano nano;
+  PrintheadLink link{nano};
+  uint64_t gAt = 0;
+
+  uv::JobHeader job(uint16_t cols, uint16_t rows, uint32_t fullUs) {
+    uv::JobHeader h{};
+    h.cols = cols;
+    h.rows = rows;
+    h.pitchUm[0] = h.pitchUm[1] = 50;
+    h.originUm[0] = 10000;
+    h.originUm[1] = 5000;
+    h.map = uv::DoseMap::Linear;
+    h.fullUs = fullUs;
+    for (int k = 0; k < 4; k++) {
+      h.gainPermille[k] = 1000;
+      h.offsets[k][0] = static_cast<int16_t>(k % 2 ? 1 : -2);
+      h.offsets[k][1] = static_cast<int16_t>(k);
+    }
+    return h;
+  }
+  uv::Machine machine() const {
+    uv::Machine m{};
+    m.vmaxUmS[0] = m.vmaxUmS[1] = static_cast<uint32_t>(config.milli(Key::SpeedTravel));
+    m.accelUmS2[0] = static_cast<uint32_t>(config.milli(Key::AccelX));
+    m.accelUmS2[1] = static_cast<uint32_t>(config.milli(Key::AccelY));
+    return m;
+  }
+  uint32_t us() const { return static_cast<uint32_t>(rig.now / 2); }
+  // One main-loop pass, then the step interrupt until the next, the G delivered at its moment.
+  void loop() {
+    nano.advance(us());
+    link.poll(us());
+    rig.motion.poll();
+    const uint64_t next = rig.now + kLoopTicks;
+    for (;;) {
+      const uint64_t until = gAt && gAt < next ? gAt : next;
+      rig.isrUntil(until);
+      if (gAt && rig.now >= gAt) {
+        nano.advance(static_cast<uint32_t>(gAt / 2));
+        nano.write("G\n", 2);
+        gAt = 0;
+      }
+      if (rig.now >= next) break;
+    }
+  }
+  void SetUp() override {
+    rig.onMark = [this](uint64_t t) {
+      gAt = t + kGTicks;
+      return true;
+    };
+    link.begin(us());
+    for (int i = 0; i < 1200; i++) loop();  // the link identifies the Nano
+  }
+  // Runs the job to its end; returns the last step.
+  ScanRun::Step run(ScanRun& s, const uv::JobHeader& h, uint32_t maxUs = 60000000) {
+    ScanRun::Step st = ScanRun::Step::Busy;
+    while (us() < maxUs) {
+      st = s.poll(rig.motion, link, h, us());
+      if (st == ScanRun::Step::End || st == ScanRun::Step::Failed) break;
+      loop();
+    }
+    return st;
+  }
+  scandose::Figures measure(const uv::JobHeader& h, const std::vector<std::vector<uint8_t>>& grid, uint32_t windowUs) {
+    scandose::Track track;
+    int32_t x = 0, y = 0;
+    track.add(0, 0, 0);
+    for (const StepEvent& e : rig.steps) {
+      if (e.axes & 1) x += (e.dirNeg & 1) ? -1 : 1;
+      if (e.axes & 2) y += (e.dirNeg & 2) ? -1 : 1;
+      track.add(e.us2 / 2.0, x, y);
+    }
+    std::vector<scandose::Light> lights;
+    for (const ScanLight& l : nano.scanLight) lights.push_back({l.led, static_cast<double>(l.onUs), static_cast<double>(l.offUs)});
+    const double spm[2] = {config.milli(Key::StepsX) / 1000.0, config.milli(Key::StepsY) / 1000.0};
+    return scandose::measure(h, grid, lights, track, spm, windowUs);
+  }
+};
+
+// 1-cell features and gray levels: every other cell, runs of full cells, steps of gray.
+std::vector<std::vector<uint8_t>> pattern(uint16_t cols, uint16_t rows) {
+  std::vector<std::vector<uint8_t>> g(rows, std::vector<uint8_t>(cols, 0));
+  for (uint16_t r = 0; r < rows; r++)
+    for (uint16_t c = 0; c < cols; c++) {
+      if (r % 3 == 0) g[r][c] = (c % 2) ? 255 : 0;                      // 1-cell lines
+      else if (r % 3 == 1) g[r][c] = (c / 5) % 2 ? 255 : 0;             // runs
+      else g[r][c] = static_cast<uint8_t>((c * 37 + r * 11) % 256);    // gray
+    }
+  return g;
+}
+
+}  // namespace
+
+TEST_F(ScanRunTest, ExposesEveryCellItsDoseInPlaceOnTheMove) {
+  const uint16_t cols = 60, rows = 11;
+  const auto grid = pattern(cols, rows);
+  uv::JobHeader h = job(cols, rows, 500);  // 500 µs at 50 µm: 100 mm/s, the axis's maximum
+  uvtest::GridCells cells(grid);
+  const uv::Machine m = machine();
+  uv::ScanPlanner planner(h, cells, m);
+  ASSERT_FALSE(planner.mayFly());
+  ScanRun scan(planner);
+  ASSERT_EQ(run(scan, h), ScanRun::Step::End) << "error " << int(scan.error());
+  EXPECT_EQ(scan.passes(), planner.passes());
+  EXPECT_GE(scan.passes(), 3);
+  EXPECT_EQ(nano.lit(), 0);
+  EXPECT_EQ(rig.engine.marksMissed(), 0);
+  const scandose::Figures f = measure(h, grid, planner.motion().windowUs);
+  std::printf("[scan host] %d cells (%d lit), %u passes: worst dose error %.2f %% of full, worst centroid %.2f um, worst edge %.2f um (cell 50 um)\n",
+              f.cells, f.lit, scan.passes(), f.worstDosePct, f.worstCentreUm, f.worstEdgeUm);
+  EXPECT_EQ(f.stray, 0);
+  EXPECT_LE(f.worstDosePct, 2.0);
+  EXPECT_LE(f.worstEdgeUm, 50 / 4.0);
+  EXPECT_LE(f.worstCentreUm, 50 / 4.0);
+}
+
+TEST_F(ScanRunTest, APassTheNanoCutsForHeatFailsTheRunDark) {
+  const uint16_t cols = 400, rows = 4;  // one long pass: 0.2 s of windows
+  const auto grid = pattern(cols, rows);
+  uv::JobHeader h = job(cols, rows, 500);
+  uvtest::GridCells cells(grid);
+  const uv::Machine m = machine();
+  uv::ScanPlanner planner(h, cells, m);
+  ScanRun scan(planner);
+  ScanRun::Step st = ScanRun::Step::Busy;
+  bool heated = false;
+  while (us() < 10000000) {
+    st = scan.poll(rig.motion, link, h, us());
+    if (st == ScanRun::Step::End || st == ScanRun::Step::Failed) break;
+    if (!heated && !nano.scanLight.empty() && us() > nano.scanLight.front().onUs + 50000) {
+      nano.setTemps(900);  // 90 °C: over every limit, the Nano's own logic cuts the chain
+      heated = true;
+    }
+    loop();
+  }
+  ASSERT_TRUE(heated);
+  EXPECT_EQ(st, ScanRun::Step::Failed);
+  EXPECT_EQ(scan.error(), 31);
+  EXPECT_EQ(nano.lit(), 0);
+  EXPECT_EQ(scan.passes(), 0);
+}
+
+TEST_F(ScanRunTest, AGTheUartCannotSendOnItsStepFailsThePass) {
+  const uint16_t cols = 30, rows = 4;
+  const auto grid = pattern(cols, rows);
+  uv::JobHeader h = job(cols, rows, 500);
+  uvtest::GridCells cells(grid);
+  const uv::Machine m = machine();
+  uv::ScanPlanner planner(h, cells, m);
+  ScanRun scan(planner);
+  rig.onMark = [](uint64_t) { return false; };  // as if a byte were still going out: no G
+  EXPECT_EQ(run(scan, h), ScanRun::Step::Failed);
+  EXPECT_EQ(scan.error(), 33);
+  EXPECT_TRUE(nano.scanLight.empty());
+}
