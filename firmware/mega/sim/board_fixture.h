@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "board_sim.h"
+#include "dialect_frame.h"
 
 class BoardTest : public ::testing::Test {
  protected:
@@ -25,6 +26,23 @@ class BoardTest : public ::testing::Test {
       return !got.empty() && got.back().rfind("ok", 0) == 0;
     }, maxUs);
     if (!done) got.push_back("(no ok)");
+    return got;
+  }
+  // Sends a numbered line (a job's records must be) and runs until the ok that names it.
+  uint32_t lineNo = 0;
+  std::vector<std::string> numbered(const std::string& body) {
+    char frame[128];
+    uv::encodeFrame(++lineNo, body.c_str(), frame, sizeof frame);
+    std::string ok = "ok N" + std::to_string(lineNo) + " ";
+    sim.send(std::string(frame) + "\n");
+    std::vector<std::string> got;
+    sim.runUntil([&] {
+      for (std::string& l : sim.takeLines()) {
+        got.push_back(l);
+        seen.push_back(l);
+      }
+      return !got.empty() && got.back().rfind(ok, 0) == 0;
+    }, 5e6);
     return got;
   }
   bool said(const std::vector<std::string>& lines, const std::string& prefix) {

@@ -108,6 +108,10 @@ BoardSim::BoardSim(const std::string& megaElf, const std::string& nanoElf) {
     switchIrq_[a] = avr_io_getirq(mega_, AVR_IOCTL_IOPORT_GETIRQ(switchPort[a]), switchBit[a]);
     avr_raise_irq(switchIrq_[a], 1);  // open: the pull-up holds it high
   }
+  for (int k = 0; k < 4; k++) {  // the UV LEDs: PB2-PB5
+    ledRefs_[k] = {this, k};
+    avr_irq_register_notify(avr_io_getirq(nano_, AVR_IOCTL_IOPORT_GETIRQ('B'), 2 + k), onLed, &ledRefs_[k]);
+  }
   for (int ch = 0; ch < 6; ch++) setNanoMv(ch, 750);  // 25.0 °C
   avr_raise_irq(avr_io_getirq(nano_, AVR_IOCTL_IOPORT_GETIRQ('D'), 7), 0);  // probe open
 
@@ -176,6 +180,16 @@ void BoardSim::onStep(avr_irq_t*, uint32_t value, void* param) {
   BoardSim* s = ref->sim;
   s->pos[ref->axis] += s->dirHigh[ref->axis] ? -1 : 1;  // direction pin high: towards the switch
   s->setSwitch(ref->axis);
+  if (s->logging && ref->axis < 2) s->headSteps.push_back({s->mega_->cycle, s->pos[0], s->pos[1]});
+}
+
+void BoardSim::onLed(avr_irq_t*, uint32_t value, void* param) {
+  auto* ref = static_cast<AxisRef*>(param);
+  BoardSim* s = ref->sim;
+  const bool on = value != 0;
+  if (on == s->ledOn_[ref->axis]) return;  // a write that left the pin as it was
+  s->ledOn_[ref->axis] = on;
+  if (s->logging) s->ledEdges.push_back({s->nano_->cycle, ref->axis, on});
 }
 
 void BoardSim::onDir(avr_irq_t*, uint32_t value, void* param) {
@@ -207,7 +221,15 @@ void BoardSim::onMegaToNano(avr_irq_t*, uint32_t value, void* param) {
 }
 
 void BoardSim::onNanoToMega(avr_irq_t*, uint32_t value, void* param) {
-  static_cast<BoardSim*>(param)->toMega_.pending.push_back(static_cast<char>(value));
+  auto* s = static_cast<BoardSim*>(param);
+  char c = static_cast<char>(value);
+  s->toMega_.pending.push_back(c);
+  if (c == '\n') {
+    s->nanoReplies.push_back(s->replyPartial_);
+    s->replyPartial_.clear();
+  } else {
+    s->replyPartial_ += c;
+  }
 }
 
 void BoardSim::onRxTaken(avr_irq_t*, uint32_t value, void* param) {

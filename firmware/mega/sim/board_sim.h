@@ -36,8 +36,8 @@ class BoardSim {
   void send(const std::string& bytes);
   // Lines the Mega sent the host since the last call.
   std::vector<std::string> takeLines();
-  // Every line the Mega sent the Nano.
-  std::vector<std::string> nanoLines;
+  // Every line the Mega sent the Nano, and every line the Nano answered.
+  std::vector<std::string> nanoLines, nanoReplies;
 
   // The Mega's longest stretch with the global interrupt flag clear (ISRs included), in cycles,
   // and where it began: an interrupt's vector (bytes: 4 × its number), or the code that cleared it.
@@ -57,6 +57,21 @@ class BoardSim {
   // Sets the Nano's sensor input `ch` (TMP36: 500 mV + 10 mV/°C).
   void setNanoMv(int ch, uint32_t mv);
 
+  // While `logging`: every X or Y step with the head's place after it, and every edge of the Nano's
+  // four LED pins (D10-D13), each with its time in cycles (both chips run at 16 MHz in step).
+  bool logging = false;
+  struct HeadStep {
+    uint64_t cycle;
+    int32_t x, y;
+  };
+  std::vector<HeadStep> headSteps;
+  struct LedEdge {
+    uint64_t cycle;
+    int led;
+    bool on;
+  };
+  std::vector<LedEdge> ledEdges;
+
   int32_t pos[3] = {0, 0, 0};                       // steps counted on the pins
   int32_t switchAt[3] = {INT32_MIN, INT32_MIN, INT32_MIN};  // a switch closes at or below this
   bool dirHigh[3] = {false, false, false};
@@ -75,6 +90,7 @@ class BoardSim {
   void setSwitch(int axis);
   static void onStep(avr_irq_t* irq, uint32_t value, void* param);
   static void onDir(avr_irq_t* irq, uint32_t value, void* param);
+  static void onLed(avr_irq_t* irq, uint32_t value, void* param);
   static void onHostOut(avr_irq_t* irq, uint32_t value, void* param);
   static void onMegaToNano(avr_irq_t* irq, uint32_t value, void* param);
   static void onNanoToMega(avr_irq_t* irq, uint32_t value, void* param);
@@ -88,11 +104,12 @@ class BoardSim {
   struct AxisRef {
     BoardSim* sim;
     int axis;
-  } axisRefs_[3];
-  std::string hostPartial_, nanoPartial_;
+  } axisRefs_[3], ledRefs_[4];
+  std::string hostPartial_, nanoPartial_, replyPartial_;
   std::deque<std::string> hostLines_;
   avr_irq_t* switchIrq_[3] = {};
   bool switchClosed_[3] = {false, false, false};
+  bool ledOn_[4] = {false, false, false, false};
   bool megaOff_ = false;
   uint64_t megaOffSince_ = 0;
   uint32_t megaOffPc_ = 0;

@@ -7,27 +7,12 @@
 #include <set>
 
 #include "board_fixture.h"
-#include "dialect_frame.h"
 #include "job_fixture.h"
 
 namespace {
 
 class PanelTest : public BoardTest {
  protected:
-  uint32_t lineNo = 0;
-  // Sends a numbered line (a job's records must be) and runs until the ok that names it.
-  std::vector<std::string> numbered(const std::string& body) {
-    char frame[128];
-    uv::encodeFrame(++lineNo, body.c_str(), frame, sizeof frame);
-    std::string ok = "ok N" + std::to_string(lineNo) + " ";
-    sim.send(std::string(frame) + "\n");
-    std::vector<std::string> got;
-    sim.runUntil([&] {
-      for (std::string& l : sim.takeLines()) got.push_back(l);
-      return !got.empty() && got.back().rfind(ok, 0) == 0;
-    }, 5e6);
-    return got;
-  }
   std::string row(int r) { return sim.panel.row(static_cast<uint8_t>(r)); }
   // Runs until row r reads `text` (the screen sweeps its rows every 24 ms); false after maxUs.
   bool shows(int r, const std::string& text, double maxUs = 300000) {

@@ -189,6 +189,10 @@ void JobRunner::poll(uint32_t nowUs) {
           count(nowUs);
           return halt(RunState::Done, 0);
         }
+        if (n == NextStop::Scan) {
+          phase_ = Phase::Scan;  // exposed on the move, pass by pass
+          return;
+        }
         // The job's geometry is known by its first stop: the header came before any row.
         header_.originUm[0] = streamHeader_->originUm[0];
         header_.originUm[1] = streamHeader_->originUm[1];
@@ -268,6 +272,8 @@ void JobRunner::poll(uint32_t nowUs) {
       head_.clearFire();
       phase_ = Phase::Wait;
       return;
+    case Phase::Scan:
+      return pollScan(nowUs);
     case Phase::Wait:
       stopInHand_ = false;
       done_++;

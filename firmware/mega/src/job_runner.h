@@ -76,12 +76,14 @@ class JobRunner {
   uint32_t faultStop() const { return done_; }
 
  private:
-  enum class Phase : uint8_t { Sync, Load, Move, Settle, Cool, Fire, Wait };
+  enum class Phase : uint8_t { Sync, Load, Move, Settle, Cool, Fire, Wait, Scan };
   void fail(uint8_t code);
   void halt(RunState s, uint8_t reason);
   uint32_t compensate(uint8_t led, uint32_t us) const;
   uint8_t tooHot() const;
   bool paceWaits(bool cooling) const;
+  // A scan job's passes (job_runner_scan.cpp).
+  void pollScan(uint32_t nowUs);
 
   Storage& sd_;
   Motion& motion_;

@@ -121,6 +121,12 @@ class MegaRig {
   std::function<int32_t(int32_t xUm, int32_t yUm)> bed;
 
   void begin() {
+    // A scan pass's G leaves on its step (the board's step interrupt writes it to the Nano's UART)
+    // and its newline reaches the Nano two byte-times later.
+    rig.onMark = [this](uint64_t ticks) {
+      gAt_ = ticks + 2 * 170;
+      return true;
+    };
     machine.begin(static_cast<uint32_t>(nowUs));
     run(1000);
   }
@@ -173,7 +179,15 @@ class MegaRig {
         rig.motion.positionSteps(p.data());
         firedAt.push_back(p);
       }
-      rig.isrUntil((nowUs + 100) * 2);
+      for (const uint64_t until = (nowUs + 100) * 2;;) {
+        rig.isrUntil(gAt_ && gAt_ < until ? gAt_ : until);
+        if (gAt_ && rig.now >= gAt_) {
+          nano.advance(static_cast<uint32_t>(gAt_ / 2));
+          nano.write("G\n", 2);
+          gAt_ = 0;
+        }
+        if (rig.now >= until) break;
+      }
       if (bed) {  // the CR Touch's pin, when out, closes on the bed
         int32_t um[3];
         rig.motion.positionUm(um);
@@ -221,6 +235,7 @@ class MegaRig {
 
  private:
   uint32_t usbN_ = 0, espN_ = 0;
+  uint64_t gAt_ = 0;  // a scan pass's G on its way to the Nano: when it arrives (ticks)
 };
 
 }  // namespace mega

@@ -37,6 +37,7 @@ void PrintheadLink::begin(uint32_t nowUs) {
 void PrintheadLink::allOff(uint8_t why) {
   uv::NanoCommand r{};
   r.op = 'R';
+  held_ = false;  // whatever a scan pass was waiting for, it is over
   offPending_ = !send(r);  // a full UART: poll() sends it before anything else
   if (fire_ == FireState::Firing) fireFailed(why);
 }

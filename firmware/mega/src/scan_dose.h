@@ -81,7 +81,9 @@ inline Figures measure(const uv::JobHeader& h, const std::vector<std::vector<uin
     // The edges: on where the first cell's light should begin, off where the last's should end.
     const double on = headCol(track.xAt(l.onUs)) + h.offsets[l.led][0], off = headCol(track.xAt(l.offUs)) + h.offsets[l.led][0];
     const double dir = off >= on ? 1 : -1;
-    const int c0 = static_cast<int>(std::floor(on + dir * 0.01 + 0.5)), c1 = static_cast<int>(std::floor(off - dir * 0.01 + 0.5));
+    // Each end's cell: the middle of that cell's own light, half of it (at most half a cell) in.
+    const double half = std::min(std::fabs(off - on), 1.0) / 2;
+    const int c0 = static_cast<int>(std::floor(on + dir * half + 0.5)), c1 = static_cast<int>(std::floor(off - dir * half + 0.5));
     if (row >= 0 && row < h.rows && c0 >= 0 && c0 < h.cols && c1 >= 0 && c1 < h.cols) {
       const double t0 = dose.us(l.led, grid[row][c0]), t1 = dose.us(l.led, grid[row][c1]);
       // Centred in its window: half its on-time either side of the centre, one pitch a window.

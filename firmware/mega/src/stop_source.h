@@ -3,11 +3,13 @@
 #pragma once
 #include <stdint.h>
 
+#include "scan_run.h"
 #include "time_model.h"
 
 namespace mega {
 
-enum class NextStop : uint8_t { Stop, Wait, End, Error };
+// Scan: the job is exposed on the move, pass by pass (scanStep), not stop by stop.
+enum class NextStop : uint8_t { Stop, Wait, End, Error, Scan };
 
 class StopSource {
  public:
@@ -16,6 +18,13 @@ class StopSource {
   // Stops known so far; all of them once complete().
   virtual uint32_t count() const = 0;
   virtual bool complete() const = 0;
+  // A scan job's passes (after next() said Scan): the next step of the one under way, and why the
+  // last failed. Passes count as its stops in count().
+  virtual ScanRun::Step scanStep(Motion& motion, PrintheadLink& head, uint32_t nowUs) {
+    (void)motion, (void)head, (void)nowUs;
+    return ScanRun::Step::End;
+  }
+  virtual uint8_t scanError() const { return 0; }
 };
 
 }  // namespace mega

@@ -21,6 +21,7 @@ constexpr uint8_t kSegmentHead = 5;
 
 StreamJob::~StreamJob() {
   if (planner_) planner_->~Planner();
+  if (scan_) scan_->~ScanParts();
 }
 
 void StreamJob::segment(uint16_t row, uint16_t col, const char* hex, uint8_t cells) {
@@ -34,7 +35,7 @@ uint8_t StreamJob::record(const char* text, uint8_t len) {
   if (error_) return error_;  // after a failure the rest is only read
   uint8_t n = recordCells(text, len);
   if (n && cells_.used() + kSegmentHead + n > cells_.size()) {
-    if (planner_) cells_.freeBelow(static_cast<uint16_t>(planner_->lowestRowNeeded()));
+    if (planner_ || scan_) freeRows(lowestRowNeeded());
     if (cells_.used() + kSegmentHead + n > cells_.size()) {
       // Full. If the planner waits for rows to plan the next stop, they can never come: E28.
       return starved_ ? fail(uv::kStreamOverflow) : kRecordWaits;
@@ -42,13 +43,24 @@ uint8_t StreamJob::record(const char* text, uint8_t len) {
   }
   uint8_t err = verifier_.push(text, len);
   if (err) return fail(err);
-  // This firmware plans stops only: a scan job ends with its header, before any light.
-  if (!planner_ && verifier_.headerDone() && verifier_.header().strategy == uv::Strategy::Scan) return fail(uv::kScanUnsupported);
-  if (!planner_ && verifier_.headerDone()) planner_ = new (plannerMem_) uv::Planner(verifier_.header(), cells_, machine_);
+  if (!planner_ && !scan_ && verifier_.headerDone()) {
+    if (verifier_.header().strategy != uv::Strategy::Scan) {
+      planner_ = new (plannerMem_) uv::Planner(verifier_.header(), cells_, machine_);
+    } else {
+      scan_ = new (plannerMem_) ScanParts(verifier_.header(), cells_, machine_);
+      // This firmware scans each pass at one speed from end to end: a job whose passes the plan
+      // would speed up across blank stretches (its speed below the axis's) ends here, before any light.
+      if (scan_->planner.mayFly()) return fail(uv::kScanUnsupported);
+    }
+  }
+  if (verifier_.complete()) known_ = verifier_.header().rows;
   if (planner_) {
-    if (verifier_.complete()) known_ = verifier_.header().rows;
     planner_->setKnownRows(known_);
     if (!planner_->supported()) return fail(uv::kJobMalformed);
+  }
+  if (scan_) {
+    scan_->planner.setKnownRows(known_);
+    if (!scan_->planner.supported()) return fail(uv::kJobMalformed);
   }
   return 0;
 }
@@ -58,11 +70,22 @@ uint8_t StreamJob::finish() {
   uint8_t err = verifier_.finish();
   if (err) return fail(err);
   if (planner_) planner_->setKnownRows(verifier_.header().rows);
+  if (scan_) scan_->planner.setKnownRows(verifier_.header().rows);
   return 0;
+}
+
+ScanRun::Step StreamJob::scanStep(Motion& motion, PrintheadLink& head, uint32_t nowUs) {
+  if (error_) return ScanRun::Step::Failed;
+  const ScanRun::Step s = scan_->run.poll(motion, head, verifier_.header(), nowUs);
+  if (s == ScanRun::Step::Starved || s == ScanRun::Step::PassDone) freeRows(lowestRowNeeded());
+  starved_ = s == ScanRun::Step::Starved;
+  if (s == ScanRun::Step::End) done_ = true;
+  return s;
 }
 
 NextStop StreamJob::next(uint32_t, uv::Stop& out) {
   if (error_) return NextStop::Error;
+  if (scan_) return NextStop::Scan;
   if (!planner_) {
     starved_ = true;
     return NextStop::Wait;

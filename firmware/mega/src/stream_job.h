@@ -26,13 +26,15 @@ class StreamJob : public StopSource, private uv::SegmentSink {
   uint8_t finish();
   uint8_t error() const { return error_; }
   uint32_t errorLine() const { return verifier_.errorLine(); }
-  bool headerReady() const { return planner_ != nullptr; }
+  bool headerReady() const { return planner_ != nullptr || scan_ != nullptr; }
   const uv::JobHeader& header() const { return verifier_.header(); }
   uint16_t heldCells() const { return cells_.cells(); }
 
   NextStop next(uint32_t index, uv::Stop& out) override;
-  uint32_t count() const override { return planned_; }
+  uint32_t count() const override { return scan_ ? scan_->planner.passes() : planned_; }
   bool complete() const override { return done_; }
+  ScanRun::Step scanStep(Motion& motion, PrintheadLink& head, uint32_t nowUs) override;
+  uint8_t scanError() const override { return error_ ? error_ : scan_ ? scan_->run.error() : 0; }
 
  private:
   void segment(uint16_t row, uint16_t col, const char* hex, uint8_t cells) override;
@@ -41,8 +43,19 @@ class StreamJob : public StopSource, private uv::SegmentSink {
   uv::JobVerifier verifier_;
   StreamCells cells_;
   uv::Machine machine_;
+  // A scan job's planner and the runner of its passes, in the stop planner's place.
+  struct ScanParts {
+    ScanParts(const uv::JobHeader& h, uv::CellSource& cells, const uv::Machine& m) : planner(h, cells, m), run(planner) {}
+    uv::ScanPlanner planner;
+    ScanRun run;
+  };
+  void freeRows(int32_t lowest) { cells_.freeBelow(static_cast<uint16_t>(lowest)); }
+  int32_t lowestRowNeeded() const { return scan_ ? scan_->planner.lowestRowNeeded() : planner_->lowestRowNeeded(); }
+
   uv::Planner* planner_ = nullptr;
-  alignas(4) uint8_t plannerMem_[sizeof(uv::Planner)];
+  ScanParts* scan_ = nullptr;
+  static constexpr size_t kPlannerBytes = sizeof(uv::Planner) > sizeof(ScanParts) ? sizeof(uv::Planner) : sizeof(ScanParts);
+  alignas(4) uint8_t plannerMem_[kPlannerBytes];
   uint32_t planned_ = 0;
   uint16_t known_ = 0;
   bool done_ = false;

@@ -72,8 +72,15 @@ bool fetch() {
 // does every event due soon, then arms the compare for the next one.
 void service(uint32_t nowTick) {
   while (pending_) {
+    // `nowTick` is where the caller expects the counter to be; a compare interrupt held up by a
+    // long interrupts-off stretch runs later than that. Arming from the expected tick would then
+    // set a compare the counter has already passed, and the event would wait a whole 4.096 ms wrap
+    // (seen on the real images in the Mega's scan test: chains shifted 4 and 8 ms). So the low 16
+    // bits come from TCNT1 itself; the caller is never off by half a wrap.
+    nowTick += static_cast<uint32_t>(static_cast<int32_t>(static_cast<int16_t>(static_cast<uint16_t>(TCNT1 - anchor_) - static_cast<uint16_t>(nowTick))));
     uint32_t target = pendTick_ - kEdgeCorrectionTicks;
-    if (target - nowTick <= static_cast<uint32_t>(kMarginTicks) + kMinLeadTicks) {
+    // Due soon, or already due (an interrupt held up past it): done now, by the wait below.
+    if (static_cast<int32_t>(target - nowTick) <= static_cast<int32_t>(kMarginTicks) + kMinLeadTicks) {
       uint16_t at = static_cast<uint16_t>(anchor_ + static_cast<uint16_t>(target));
       uint16_t quiet = static_cast<uint16_t>(at - kQuietTicks);
       if (static_cast<int16_t>(TCNT1 - quiet) < 0) {

@@ -79,8 +79,10 @@ void stepInterrupt() {
   if (t.step & 4) STEP_Z_PORT |= STEP_Z_BIT;
   if (t.mark) stepEngine.markSent(nanoUartSendMark());  // with its step: the head's place is known
   uint16_t took = TCNT1;  // ticks since this compare match (the timer restarted from 0 then)
-  // Never set a compare the counter has already passed: it would wait a whole 32 ms wrap.
-  OCR1A = t.interval > took + 4 ? t.interval : took + 4;
+  // In CTC mode the period is OCR1A + 1 ticks (the count runs 0 to OCR1A inclusive). Never set a
+  // compare the counter has already passed: it would wait a whole 32 ms wrap.
+  const uint16_t top = static_cast<uint16_t>(t.interval - 1);
+  OCR1A = top > took + 4 ? top : took + 4;
   if (took > worst) worst = took;
 }
 

@@ -1,0 +1,70 @@
+// A scan job streamed to the machine (M828) and exposed on the move: the whole Mega (host link,
+// stream, job runner, ScanRun, motion) with the real Nano logic, each cell's dose and each LED edge
+// measured against the job (scan_dose.h).
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "machine_job_fixture.h"
+#include "scan_dose.h"
+
+using namespace mega;
+using namespace jobs;
+
+namespace {
+
+// 1-cell lines, runs and gray steps; every LED at the same gain, so a cell's dose is its value's.
+Grid scanPattern(uint16_t cols, uint16_t rows) {
+  Grid g(rows, std::vector<uint8_t>(cols, 0));
+  for (uint16_t r = 0; r < rows; r++)
+    for (uint16_t c = 0; c < cols; c++) {
+      if (r % 3 == 0) g[r][c] = (c % 2) ? 255 : 0;
+      else if (r % 3 == 1) g[r][c] = (c / 4) % 2 ? 255 : 0;
+      else g[r][c] = static_cast<uint8_t>((c * 41 + r * 13) % 256);
+    }
+  return g;
+}
+
+uv::JobHeader scanHeader(uint16_t cols, uint16_t rows, uint32_t fullUs) {
+  uv::JobHeader h = header(cols, rows, uv::Strategy::Scan);
+  h.fullUs = fullUs;
+  for (int k = 0; k < 4; k++) h.gainPermille[k] = 1000;
+  return h;
+}
+
+}  // namespace
+
+TEST_F(JobTest, AStreamedScanJobIsExposedOnTheMoveEveryCellItsDoseInPlace) {
+  ASSERT_TRUE(has(m.cmd("G28"), "ok"));
+  const uint16_t cols = 40, rows = 10;
+  const Grid g = scanPattern(cols, rows);
+  const uv::JobHeader h = scanHeader(cols, rows, 1000);  // 1 ms a 100 µm cell: 100 mm/s, the axis's top speed
+  m.rig.steps.clear();
+  m.cmd("M828");
+  for (const std::string& r : encode(h, g)) m.cmd(r);
+  m.cmd("M29");
+  const std::string end = runUntilJob({"done", "failed", "paused", "aborted"}, 60000000);
+  ASSERT_NE(end.find("JOB:done"), std::string::npos) << end;
+  EXPECT_NE(end.find("stop=3/3"), std::string::npos) << end;  // 10 rows, 4 LEDs: 3 passes
+  EXPECT_EQ(m.nano.lit(), 0);
+  EXPECT_TRUE(m.nano.exposures.empty());  // no F: all of it came from the chains
+  // The head's track from every step since the job began, and the light.
+  scandose::Track track;
+  int32_t x = 0, y = 0;
+  track.add(0, 0, 0);
+  for (const StepEvent& e : m.rig.steps) {
+    if (e.axes & 1) x += (e.dirNeg & 1) ? -1 : 1;
+    if (e.axes & 2) y += (e.dirNeg & 2) ? -1 : 1;
+    track.add(e.us2 / 2.0, x, y);
+  }
+  std::vector<scandose::Light> lights;
+  for (const ScanLight& l : m.nano.scanLight) lights.push_back({l.led, static_cast<double>(l.onUs), static_cast<double>(l.offUs)});
+  const double spm[2] = {80, 80};
+  const scandose::Figures f = scandose::measure(h, g, lights, track, spm, 1000);
+  std::printf("[scan machine] %d cells (%d lit): worst dose error %.2f %% of full, worst centroid %.2f um, worst edge %.2f um (cell 100 um)\n",
+              f.cells, f.lit, f.worstDosePct, f.worstCentreUm, f.worstEdgeUm);
+  EXPECT_EQ(f.stray, 0);
+  EXPECT_LE(f.worstDosePct, 2.0);
+  EXPECT_LE(f.worstEdgeUm, 100 / 4.0);
+  EXPECT_LE(f.worstCentreUm, 100 / 4.0);
+}
