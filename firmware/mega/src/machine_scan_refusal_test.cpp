@@ -1,6 +1,6 @@
-// A scan job (strategy `scan`, exposure on the move) on a Mega whose firmware plans stops only:
-// refused before any light with E29, whether uploaded to the card or streamed, and the machine
-// stays fine for the next job.
+// A scan job (strategy `scan`, exposure on the move) uploaded to the card: this firmware runs scan
+// jobs only as streams (machine_scan_stream_test.cpp), so it refuses it before any light with E29,
+// and the machine stays fine for the next job.
 #include <gtest/gtest.h>
 
 #include "machine_job_fixture.h"
@@ -38,20 +38,4 @@ TEST_F(JobTest, AnUploadedScanJobIsRefusedWithE29AndNothingIsPlannedOrLit) {
   ASSERT_TRUE(has(second, "echo:Done saving file.")) << ::testing::PrintToString(second);
   ASSERT_NE(runUntilJob({"done"}), "(none)");
   expectExposed(r, plan(r, g));
-}
-
-TEST_F(JobTest, AStreamedScanJobEndsAtItsHeaderWithE29BeforeAnyLight) {
-  m.cmd("G28");
-  uv::JobHeader h = header(12, 6, uv::Strategy::Scan);
-  size_t from = m.usbLines.size();
-  m.cmd("M828");
-  for (const std::string& r : encode(h, pattern(12, 6, 9))) m.cmd(r);
-  m.cmd("M29");
-  m.run(2000000);
-  Lines got(m.usbLines.begin() + static_cast<long>(from), m.usbLines.end());
-  EXPECT_TRUE(has(got, "echo:E29 scan jobs need newer Mega firmware")) << ::testing::PrintToString(got);
-  EXPECT_TRUE(m.nano.exposures.empty());
-  EXPECT_EQ(m.nano.lit(), 0);
-  EXPECT_FALSE(startsWith(got, "JOB:done"));
-  EXPECT_EQ(payload("M1000 S"), (Lines{"JOB:idle"}));  // nothing to resume
 }

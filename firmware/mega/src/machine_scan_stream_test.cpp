@@ -34,33 +34,58 @@ uv::JobHeader scanHeader(uint16_t cols, uint16_t rows, uint32_t fullUs) {
 
 }  // namespace
 
-TEST_F(JobTest, AStreamedScanJobIsExposedOnTheMoveEveryCellItsDoseInPlace) {
+struct ScanStreamTest : JobTest {
+  // Streams the job, runs it to its end; returns the figures of its light.
+  scandose::Figures expose(const uv::JobHeader& h, const Grid& g, uint32_t windowUs, std::string& end) {
+    m.rig.steps.clear();
+    m.cmd("M828");
+    for (const std::string& r : encode(h, g)) m.cmd(r);
+    m.cmd("M29");
+    end = runUntilJob({"done", "failed", "paused", "aborted"}, 120000000);
+    scandose::Track track;
+    int32_t x = 0, y = 0;
+    track.add(0, 0, 0);
+    for (const StepEvent& e : m.rig.steps) {
+      if (e.axes & 1) x += (e.dirNeg & 1) ? -1 : 1;
+      if (e.axes & 2) y += (e.dirNeg & 2) ? -1 : 1;
+      track.add(e.us2 / 2.0, x, y);
+    }
+    std::vector<scandose::Light> lights;
+    for (const ScanLight& l : m.nano.scanLight) lights.push_back({l.led, static_cast<double>(l.onUs), static_cast<double>(l.offUs)});
+    const double spm[2] = {80, 80};
+    return scandose::measure(h, g, lights, track, spm, windowUs);
+  }
+};
+
+TEST_F(ScanStreamTest, AScanJobSlowerThanTheTopSpeedCrossesItsBlankStretchesAtItsSpeed) {
+  ASSERT_TRUE(has(m.cmd("G28"), "ok"));
+  const uint16_t cols = 60, rows = 8;
+  Grid g(rows, std::vector<uint8_t>(cols, 0));
+  for (uint16_t r = 0; r < rows; r++)
+    for (uint16_t c : {2, 3, 4, 20, 41, 42, 59}) g[r][c] = static_cast<uint8_t>(c == 20 ? 128 : 255);  // pads far apart
+  const uv::JobHeader h = scanHeader(cols, rows, 2000);  // 2 ms a 100 µm cell: 50 mm/s, half the top speed
+  std::string end;
+  const scandose::Figures f = expose(h, g, 2000, end);
+  ASSERT_NE(end.find("JOB:done"), std::string::npos) << end;
+  EXPECT_NE(end.find("stop=2/2"), std::string::npos) << end;
+  std::printf("[scan machine] blank stretches crossed at 50 mm/s: worst dose error %.2f %% of full, worst edge %.2f um (cell 100 um)\n",
+              f.worstDosePct, f.worstEdgeUm);
+  EXPECT_EQ(f.stray, 0);
+  EXPECT_LE(f.worstDosePct, 2.0);
+  EXPECT_LE(f.worstEdgeUm, 100 / 4.0);
+}
+
+TEST_F(ScanStreamTest, AStreamedScanJobIsExposedOnTheMoveEveryCellItsDoseInPlace) {
   ASSERT_TRUE(has(m.cmd("G28"), "ok"));
   const uint16_t cols = 40, rows = 10;
   const Grid g = scanPattern(cols, rows);
   const uv::JobHeader h = scanHeader(cols, rows, 1000);  // 1 ms a 100 µm cell: 100 mm/s, the axis's top speed
-  m.rig.steps.clear();
-  m.cmd("M828");
-  for (const std::string& r : encode(h, g)) m.cmd(r);
-  m.cmd("M29");
-  const std::string end = runUntilJob({"done", "failed", "paused", "aborted"}, 60000000);
+  std::string end;
+  const scandose::Figures f = expose(h, g, 1000, end);
   ASSERT_NE(end.find("JOB:done"), std::string::npos) << end;
   EXPECT_NE(end.find("stop=3/3"), std::string::npos) << end;  // 10 rows, 4 LEDs: 3 passes
   EXPECT_EQ(m.nano.lit(), 0);
   EXPECT_TRUE(m.nano.exposures.empty());  // no F: all of it came from the chains
-  // The head's track from every step since the job began, and the light.
-  scandose::Track track;
-  int32_t x = 0, y = 0;
-  track.add(0, 0, 0);
-  for (const StepEvent& e : m.rig.steps) {
-    if (e.axes & 1) x += (e.dirNeg & 1) ? -1 : 1;
-    if (e.axes & 2) y += (e.dirNeg & 2) ? -1 : 1;
-    track.add(e.us2 / 2.0, x, y);
-  }
-  std::vector<scandose::Light> lights;
-  for (const ScanLight& l : m.nano.scanLight) lights.push_back({l.led, static_cast<double>(l.onUs), static_cast<double>(l.offUs)});
-  const double spm[2] = {80, 80};
-  const scandose::Figures f = scandose::measure(h, g, lights, track, spm, 1000);
   std::printf("[scan machine] %d cells (%d lit): worst dose error %.2f %% of full, worst centroid %.2f um, worst edge %.2f um (cell 100 um)\n",
               f.cells, f.lit, f.worstDosePct, f.worstCentreUm, f.worstEdgeUm);
   EXPECT_EQ(f.stray, 0);

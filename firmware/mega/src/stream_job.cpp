@@ -48,9 +48,9 @@ uint8_t StreamJob::record(const char* text, uint8_t len) {
       planner_ = new (plannerMem_) uv::Planner(verifier_.header(), cells_, machine_);
     } else {
       scan_ = new (plannerMem_) ScanParts(verifier_.header(), cells_, machine_);
-      // This firmware scans each pass at one speed from end to end: a job whose passes the plan
-      // would speed up across blank stretches (its speed below the axis's) ends here, before any light.
-      if (scan_->planner.mayFly()) return fail(uv::kScanUnsupported);
+      // This firmware runs each pass at one speed from end to end: blank stretches are crossed at
+      // the pass's speed, not flown, and the events keep to that (a slower pass than the app's plan).
+      scan_->planner.neverFly();
     }
   }
   if (verifier_.complete()) known_ = verifier_.header().rows;

@@ -313,3 +313,35 @@ TEST(ScanPlanner, PlansTheSamePassesWhileRowsArrive) {
   EXPECT_GT(whole.size(), 10u);
   EXPECT_EQ(streamed, whole);
 }
+
+// A machine that cannot fly: the same light at the same places, every window W after the last.
+TEST(ScanPlanner, NeverFlyCrossesBlankStretchesAtTheSpeed) {
+  const uint16_t cols = 200;
+  std::vector<std::vector<uint8_t>> rows(4, std::vector<uint8_t>(cols, 0));
+  for (uint16_t c : {3, 4, 60, 61, 62, 150, 199}) rows[0][c] = 200;
+  JobHeader h = smallJob(cols, 4);  // 2 ms at 50 µm: 25 mm/s, a quarter of the top speed
+  GridCells flyCells(rows), slowCells(rows);
+  ScanPlanner flying(h, flyCells, kMachine), slow(h, slowCells, kMachine);
+  ASSERT_TRUE(flying.mayFly());
+  slow.neverFly();
+  EXPECT_FALSE(slow.mayFly());
+  ScanPass a, b;
+  ASSERT_TRUE(flying.nextPass(a));
+  ASSERT_TRUE(slow.nextPass(b));
+  std::vector<std::pair<uint32_t, uint8_t>> fe, se;
+  uint32_t t;
+  uint8_t m;
+  while (flying.nextEvent(t, m)) fe.push_back({t, m});
+  while (slow.nextEvent(t, m)) se.push_back({t, m});
+  ASSERT_EQ(fe.size(), se.size());
+  const uint32_t w = slow.motion().windowUs, on = Durations(h).us(0, 200), lead = (w - on) / 2;
+  for (const auto& e : se) {
+    // Each edge sits in the window of its column at the constant speed: j·W plus its offset.
+    const uint32_t j = e.first / w;
+    EXPECT_TRUE(e.first % w == lead || e.first % w == lead + on) << e.first;
+    EXPECT_TRUE(j <= 199u);
+  }
+  EXPECT_LT(fe.back().first, se.back().first);  // flying is quicker
+  EXPECT_EQ(se.back().first, 196 * w + lead + on);  // column 199, window 196
+  EXPECT_GT(slow.estimateUs(), flying.estimateUs());
+}
