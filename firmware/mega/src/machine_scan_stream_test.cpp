@@ -93,3 +93,50 @@ TEST_F(ScanStreamTest, AStreamedScanJobIsExposedOnTheMoveEveryCellItsDoseInPlace
   EXPECT_LE(f.worstEdgeUm, 100 / 4.0);
   EXPECT_LE(f.worstCentreUm, 100 / 4.0);
 }
+
+TEST_F(ScanStreamTest, M524MidPassSwitchesTheLedsOffAndStopsTheHead) {
+  ASSERT_TRUE(has(m.cmd("G28"), "ok"));
+  const uint16_t cols = 90, rows = 4;  // one pass of 90 ms (the 512-byte stream buffer holds its 4 rows)
+  const uv::JobHeader h = scanHeader(cols, rows, 1000);
+  const Grid g = scanPattern(cols, rows);
+  m.cmd("M828");
+  for (const std::string& r : encode(h, g)) m.cmd(r);
+  m.cmd("M29");
+  // Until the light is on, then abort.
+  for (int i = 0; i < 20000 && m.nano.lit() == 0; i++) m.run(100);
+  ASSERT_NE(m.nano.lit(), 0) << ::testing::PrintToString(m.usbLines);
+  m.cmd("M524");
+  m.run(1000);
+  EXPECT_EQ(m.nano.lit(), 0);
+  m.run(300000);
+  EXPECT_TRUE(has(m.usbLines, "JOB:aborted"));
+  EXPECT_TRUE(m.rig.motion.idle());
+  const size_t lights = m.nano.scanLight.size();
+  m.run(1000000);
+  EXPECT_EQ(m.nano.scanLight.size(), lights);  // nothing more lit
+  EXPECT_TRUE(has(payload("M114"), "X:"));     // and the machine takes commands again
+}
+
+TEST_F(ScanStreamTest, M25PausesBetweenPassesAndM24GoesOnWithTheNext) {
+  ASSERT_TRUE(has(m.cmd("G28"), "ok"));
+  const uint16_t cols = 40, rows = 10;
+  const uv::JobHeader h = scanHeader(cols, rows, 1000);
+  const Grid g = scanPattern(cols, rows);
+  m.cmd("M828");
+  for (const std::string& r : encode(h, g)) m.cmd(r);
+  m.cmd("M29");
+  for (int i = 0; i < 20000 && m.nano.lit() == 0; i++) m.run(100);
+  ASSERT_NE(m.nano.lit(), 0);  // in the first pass
+  m.cmd("M25");
+  const std::string paused = runUntilJob({"paused", "done", "failed"}, 20000000);
+  ASSERT_NE(paused.find("JOB:paused"), std::string::npos) << paused;
+  EXPECT_NE(paused.find("stop=1/"), std::string::npos) << paused;  // the pass under way ran whole first
+  EXPECT_EQ(m.nano.lit(), 0);
+  const size_t lights = m.nano.scanLight.size();
+  m.run(500000);
+  EXPECT_EQ(m.nano.scanLight.size(), lights);
+  m.cmd("M24");
+  const std::string end = runUntilJob({"done", "failed"}, 60000000);
+  ASSERT_NE(end.find("JOB:done"), std::string::npos) << end;
+  EXPECT_NE(end.find("stop=3/3"), std::string::npos) << end;
+}
