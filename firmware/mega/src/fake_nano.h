@@ -56,6 +56,7 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
   // --- the test's side ---
   void advance(uint32_t toUs) {
     nowUs = toUs;
+    if (!silent) head_.poll(nowUs / 1000);  // the chain the Mega stopped talking to is cut after 50 ms
     if (program_) return runProgram();  // a scan chain's LEDs follow its events, not an F's offs
     for (uint8_t i = 0; i < 4; i++) {
       if ((lit_ & (1 << i)) && !stuck && nowUs >= offAt_[i]) off(i, offAt_[i]);

@@ -8,6 +8,18 @@
 
 namespace mega {
 
+uv::Machine plannerMachine(const Config& config, int32_t x, int32_t y) {
+  uv::Machine m{};
+  m.vmaxUmS[0] = m.vmaxUmS[1] = static_cast<uint32_t>(config.milli(Key::SpeedTravel));
+  m.accelUmS2[0] = static_cast<uint32_t>(config.milli(Key::AccelX));
+  m.accelUmS2[1] = static_cast<uint32_t>(config.milli(Key::AccelY));
+  m.settleUs = static_cast<uint32_t>(config.whole(Key::SettleMs)) * 1000;
+  m.overheadUs = static_cast<uint32_t>(config.whole(Key::StopOverheadUs));
+  m.startUm[0] = x;
+  m.startUm[1] = y;
+  return m;
+}
+
 JobPlan::JobPlan(Storage& sd, const uv::JobHeader& header, const uv::Machine& machine)
     : sd_(sd), header_(header), machine_(machine), clock_(header_, machine_) {}
 
@@ -15,6 +27,8 @@ JobPlan::~JobPlan() { close(); }
 
 void JobPlan::close() {
   if (planner_) planner_->~Planner();
+  if (scan_) scan_->~ScanPlanner();
+  scan_ = nullptr;
   if (source_) source_->SdCells::~SdCells();  // placed in the arena as exactly an SdCells
   planner_ = nullptr;
   source_ = nullptr;
@@ -39,14 +53,17 @@ uint8_t JobPlan::begin(const char* name) {
     close();
     return error_;
   }
-  if (header_.strategy == uv::Strategy::Scan) {  // this firmware plans stops only: refused before any light
-    error_ = uv::kScanUnsupported;
-    close();
-    return error_;
-  }
   source_ = new (sourceMem_) SdCells(sd_, cells_, index_);
-  planner_ = new (plannerMem_) uv::Planner(header_, *source_, machine_);
-  if (!planner_->supported()) {  // the LEDs' rows span 1024 rows or more: planner.md "Memory on the Mega"
+  bool supported;
+  if (header_.strategy == uv::Strategy::Scan) {
+    scan_ = new (plannerMem_) uv::ScanPlanner(header_, *source_, machine_);
+    scan_->neverFly();  // as the passes will run (scan_run.h ScanJob)
+    supported = scan_->supported();
+  } else {
+    planner_ = new (plannerMem_) uv::Planner(header_, *source_, machine_);
+    supported = planner_->supported();
+  }
+  if (!supported) {  // the LEDs' rows span 1024 rows or more: planner.md "Memory on the Mega"
     error_ = uv::kJobMalformed;
     close();
     return error_;
@@ -54,25 +71,42 @@ uint8_t JobPlan::begin(const char* name) {
   return 0;
 }
 
+bool JobPlan::finish(uint64_t estimateUs) {
+  StopFileHeader h = {};
+  h.count = count_;
+  h.estimateS = static_cast<uint32_t>((estimateUs + 500000) / 1000000);
+  h.originUm[0] = header_.originUm[0];
+  h.originUm[1] = header_.originUm[1];
+  h.pitchUm[0] = header_.pitchUm[0];
+  h.pitchUm[1] = header_.pitchUm[1];
+  h.thermalCoeff = header_.thermalCoeff;
+  h.thermalRefDeciC = header_.thermalRefDeciC;
+  h.scan = scan_ != nullptr;
+  if (source_->failed() || !writeStopHeader(sd_, stops_, h) || (h.scan && !writeScanHeader(sd_, stops_, header_)) || !sd_.sync(stops_))
+    error_ = uv::kFileError;
+  close();
+  done_ = true;
+  return true;
+}
+
+// One pass: opened, and its events walked to its end, for the count and the time.
+bool JobPlan::stepScan() {
+  uv::ScanPass p;
+  if (!scan_->nextPass(p)) return finish(scan_->estimateUs());
+  uint32_t t;
+  uint8_t m;
+  while (scan_->nextEvent(t, m)) {
+  }
+  count_++;
+  return false;
+}
+
 bool JobPlan::step(uint16_t stops) {
   if (done_ || error_) return true;
+  if (scan_) return stepScan();
   uv::Stop s;
   for (uint16_t i = 0; i < stops; i++) {
-    if (!planner_->next(s)) {
-      StopFileHeader h = {};
-      h.count = count_;
-      h.estimateS = static_cast<uint32_t>((clock_.totalUs() + 500000) / 1000000);
-      h.originUm[0] = header_.originUm[0];
-      h.originUm[1] = header_.originUm[1];
-      h.pitchUm[0] = header_.pitchUm[0];
-      h.pitchUm[1] = header_.pitchUm[1];
-      h.thermalCoeff = header_.thermalCoeff;
-      h.thermalRefDeciC = header_.thermalRefDeciC;
-      if (source_->failed() || !writeStopHeader(sd_, stops_, h) || !sd_.sync(stops_)) error_ = uv::kFileError;
-      close();
-      done_ = true;
-      return true;
-    }
+    if (!planner_->next(s)) return finish(clock_.totalUs());
     clock_.add(s);
     if (!writeStop(sd_, stops_, s)) {
       error_ = uv::kFileError;

@@ -1,14 +1,21 @@
 // Plans a spooled job into its stop file (name~s), a few stops each main-loop pass, so the host
-// links and the rest of the Mega keep running while it works.
+// links and the rest of the Mega keep running while it works. A scan job is planned a pass at a
+// time for its passes' count and time; they are planned again as they run (card_scan.h).
 #pragma once
 #include <stdint.h>
 
+#include "config.h"
 #include "planner.h"
+#include "scan.h"
 #include "sd_cells.h"
 #include "stop_file.h"
 #include "storage.h"
 
 namespace mega {
+
+// The machine the planners see, from the settings, with the head starting at (x, y) µm. Jobs on
+// the card are planned from the origin, so they plan the same whenever they run.
+uv::Machine plannerMachine(const Config& config, int32_t x, int32_t y);
 
 class JobPlan {
  public:
@@ -17,13 +24,15 @@ class JobPlan {
 
   // Opens the files; 0 or 22 (file_error). `name` is the job's.
   uint8_t begin(const char* name);
-  // Plans up to `stops` more. Returns true once finished (check error()).
+  // Plans up to `stops` more (a scan job: one pass). Returns true once finished (check error()).
   bool step(uint16_t stops);
   uint8_t error() const { return error_; }
   uint32_t planned() const { return count_; }
 
  private:
   void close();
+  bool finish(uint64_t estimateUs);
+  bool stepScan();
 
   Storage& sd_;
   uv::JobHeader header_;
@@ -31,12 +40,14 @@ class JobPlan {
   FileHandle cells_ = -1, index_ = -1, stops_ = -1;
   SdCells* source_ = nullptr;
   uv::Planner* planner_ = nullptr;
+  uv::ScanPlanner* scan_ = nullptr;  // a scan job's, in the stop planner's place
   uv::PlanClock clock_;
   uint32_t count_ = 0;
   uint8_t error_ = 0;
   bool done_ = false;
   // The planner and its cursors live here, only while planning.
   alignas(4) uint8_t sourceMem_[sizeof(SdCells)];
+  static_assert(sizeof(uv::ScanPlanner) <= sizeof(uv::Planner), "the scan planner takes the stop planner's place");
   alignas(4) uint8_t plannerMem_[sizeof(uv::Planner)];
 };
 

@@ -1,10 +1,12 @@
 // Runs a planned job from its stop file, stop by stop, with a checkpoint after each confirmed one.
 #include "job_runner.h"
 
+#include <new>
 #include <string.h>
 
 #include "error_codes.h"
 #include "job_files.h"
+#include "job_plan.h"
 #include "progmem.h"
 
 namespace mega {
@@ -15,6 +17,7 @@ bool due(uint32_t now, uint32_t at) { return static_cast<int32_t>(now - at) >= 0
 }  // namespace
 
 JobRunner::~JobRunner() {
+  if (card_) card_->~CardScan();
   if (stops_ >= 0) sd_.close(stops_);
   checkpoint_.close();
 }
@@ -25,6 +28,13 @@ uint8_t JobRunner::start(const char* name, uint32_t from, uint32_t nowUs) {
   stops_ = sd_.open(work, Storage::Mode::Read);
   if (stops_ < 0) return uv::kFileNotFound;
   if (!readStopHeader(sd_, stops_, header_) || from > header_.count) return uv::kFileError;
+  if (header_.scan) {
+    uv::JobHeader job;
+    if (!readScanHeader(sd_, stops_, job) || !scanMem_ || scanBytes_ < sizeof(CardScan)) return uv::kFileError;
+    card_ = new (scanMem_) CardScan(sd_, job, plannerMachine(config_, 0, 0), header_.count);
+    const uint8_t err = card_->open(name);
+    if (err) return err;
+  }
   strncpy(progress_.file, name, kFileNameMax);
   progress_.file[kFileNameMax] = 0;
   progress_.count = header_.count;
@@ -207,6 +217,11 @@ void JobRunner::poll(uint32_t nowUs) {
           sd_.close(stops_);
           stops_ = -1;
           return halt(RunState::Done, 0);
+        }
+        if (card_) {
+          card_->seek(done_);  // the pass that is next, planned again if need be
+          phase_ = Phase::Scan;
+          return;
         }
         if (!readStop(sd_, stops_, done_, stop_)) return fail(uv::kFileError);
       }

@@ -4,6 +4,7 @@
 #pragma once
 #include <stdint.h>
 
+#include "card_scan.h"
 #include "checkpoint.h"
 #include "config.h"
 #include "mesh_store.h"
@@ -30,7 +31,13 @@ class JobRunner {
       : sd_(sd), motion_(motion), head_(head), config_(config), mesh_(mesh), checkpoint_(sd) {}
   ~JobRunner();
 
-  // Opens the job's stops and starts at stop `from`. Returns 0, or 21 (not planned) / 22.
+  // Where a scan job on the card keeps its planner while it runs (the job arena after the runner).
+  void setScanMemory(uint8_t* mem, uint16_t bytes) {
+    scanMem_ = mem;
+    scanBytes_ = bytes;
+  }
+  // Opens the job's stops (a scan job: its passes) and starts at stop `from`. Returns 0, or 21
+  // (not planned) / 22.
   uint8_t start(const char* name, uint32_t from, uint32_t nowUs);
   // Runs a stream (M828): stops come from `source` as they are planned; `header` fills as the job's
   // first records arrive. No checkpoint: a stream cannot resume.
@@ -94,6 +101,9 @@ class JobRunner {
   Checkpoint checkpoint_;
   FileHandle stops_ = -1;
   StopSource* source_ = nullptr;
+  CardScan* card_ = nullptr;  // a scan job on the card: its passes' planner and runner
+  uint8_t* scanMem_ = nullptr;
+  uint16_t scanBytes_ = 0;
   const uv::JobHeader* streamHeader_ = nullptr;
   bool waiting_ = false;
   bool stopInHand_ = false;  // stop_ is the next to expose (read, not yet confirmed)

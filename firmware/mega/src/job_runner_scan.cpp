@@ -1,7 +1,8 @@
-// A scan job's passes in the job runner (issue 19): the stream's planner opens each pass and
-// ScanRun exposes it on the move. Passes count as the job's stops. A pause, and the checks that
-// come before every exposure, take effect between passes; a pass the Nano cut short cannot be
-// exposed again from a stream (its rows are gone), so the job ends failed, dark and stopped.
+// A scan job's passes in the job runner (issue 19): the planner opens each pass (the stream's, or
+// the card job's own, card_scan.h) and ScanRun exposes it on the move. Passes count as the job's
+// stops, and a card job checkpoints after each. A pause, and the checks that come before every
+// exposure, take effect between passes. A pass the Nano cut short is exposed again on continue
+// from the card; a stream cannot (its rows are gone), so it ends failed, dark and stopped.
 #include "error_codes.h"
 #include "job_runner.h"
 
@@ -19,7 +20,8 @@ void JobRunner::pollScan(uint32_t nowUs) {
     if (!head_.online()) return fail(uv::kNanoTimeout);
     stopInHand_ = true;
   }
-  switch (source_->scanStep(motion_, head_, nowUs)) {
+  StopSource& passes = card_ ? *static_cast<StopSource*>(card_) : *source_;
+  switch (passes.scanStep(motion_, head_, nowUs)) {
     case ScanRun::Step::Busy:
       waiting_ = false;
       return;
@@ -33,13 +35,20 @@ void JobRunner::pollScan(uint32_t nowUs) {
       progress_.done = done_;
       progress_.fires++;  // the Nano counts a chain as one exposure
       changed_ = true;
+      if (card_ && !checkpoint_.write(progress_)) return fail(uv::kFileError);
       return;
     case ScanRun::Step::End:
       stopInHand_ = false;
       count(nowUs);
+      if (card_) checkpoint_.clear();
       return halt(RunState::Done, 0);
     case ScanRun::Step::Failed: {
-      const uint8_t code = source_->scanError();
+      const uint8_t code = passes.scanError();
+      stopInHand_ = false;
+      if (card_) {
+        phase_ = Phase::Load;  // on continue: the pass again, planned afresh
+        return fail(code ? code : static_cast<uint8_t>(uv::kExposureRefused));
+      }
       head_.allOff(code);
       motion_.stop();
       stopInHand_ = false;

@@ -57,16 +57,13 @@ Machine::Result Machine::uploadRecord(HostLink& port, const LineSlot& line) {
   return Result::Done;
 }
 
-uv::Machine Machine::plannerMachine(int32_t x, int32_t y) const {
-  uv::Machine m{};
-  m.vmaxUmS[0] = m.vmaxUmS[1] = static_cast<uint32_t>(config_.milli(Key::SpeedTravel));
-  m.accelUmS2[0] = static_cast<uint32_t>(config_.milli(Key::AccelX));
-  m.accelUmS2[1] = static_cast<uint32_t>(config_.milli(Key::AccelY));
-  m.settleUs = static_cast<uint32_t>(config_.whole(Key::SettleMs)) * 1000;
-  m.overheadUs = static_cast<uint32_t>(config_.whole(Key::StopOverheadUs));
-  m.startUm[0] = x;
-  m.startUm[1] = y;
-  return m;
+uv::Machine Machine::plannerMachine(int32_t x, int32_t y) const { return mega::plannerMachine(config_, x, y); }
+
+JobRunner* Machine::newRunner() {
+  JobRunner* r = new (arenaMem_) JobRunner(sd_, motion_, head_, config_, leveling_ ? &mesh_ : nullptr);
+  r->setScanMemory(arenaMem_ + kRunnerBytes, static_cast<uint16_t>(kArenaBytes - kRunnerBytes));
+  arena_ = Arena::Run;
+  return r;
 }
 
 uint8_t Machine::startPlanning(const uv::JobHeader& header) {
@@ -183,8 +180,7 @@ Machine::Result Machine::startOrContinue(HostLink& port, const uv::Command& c) {
   }
   if (refuseExposure(port)) return Result::Done;
   clearArena();
-  JobRunner* r = new (arenaMem_) JobRunner(sd_, motion_, head_, config_, leveling_ ? &mesh_ : nullptr);
-  arena_ = Arena::Run;
+  JobRunner* r = newRunner();
   r->setPaced(pace == Pace::On);
   uint8_t err = r->start(selected_, 0, now_);
   if (err) {

@@ -119,8 +119,7 @@ Machine::Result Machine::resumeInterrupted(HostLink& port, const uv::Command& c)
   if (refuseExposure(port)) return Result::Done;
   clearArena();
   strcpy(selected_, p.file);
-  JobRunner* r = new (arenaMem_) JobRunner(sd_, motion_, head_, config_, leveling_ ? &mesh_ : nullptr);
-  arena_ = Arena::Run;
+  JobRunner* r = newRunner();
   r->setPaced(pace == Pace::On);
   uint8_t err = r->resume(p, now_);
   if (err) {

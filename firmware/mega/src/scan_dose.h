@@ -46,6 +46,7 @@ struct Figures {
   double worstEdgeUm = 0;    // an LED's switching from where the plan puts that edge on the bed
   int cells = 0, lit = 0;    // cells checked (the job's and a margin round it), cells that should have light
   int stray = 0;             // samples of light beyond the margin
+  std::vector<std::vector<double>> dose;  // µs each of the job's cells received, [row][col]
 };
 
 // `stepsPerMm`: X and Y; `windowUs`: the pass's cell window. Every sample of light falls on the cell
@@ -91,6 +92,9 @@ inline Figures measure(const uv::JobHeader& h, const std::vector<std::vector<uin
       f.worstEdgeUm = std::max(f.worstEdgeUm, std::fabs((off - (c1 + dir * t1 / (2 * windowUs))) * px));
     }
   }
+  f.dose.assign(h.rows, std::vector<double>(h.cols, 0));
+  for (int r = 0; r < h.rows; r++)
+    for (int c = 0; c < h.cols; c++) f.dose[r][c] = got[r + kMargin][c + kMargin];
   for (int r = -kMargin; r < h.rows + kMargin; r++)
     for (int c = -kMargin; c < h.cols + kMargin; c++) {
       const double w = want(r, c), g = got[r + kMargin][c + kMargin];

@@ -22,11 +22,6 @@ ScanRun::Step ScanRun::fail(PrintheadLink& head, uint8_t code) {
   return Step::Failed;
 }
 
-void ScanRun::cut(PrintheadLink& head) {
-  head.hold(false);
-  phase_ = Phase::Open;
-}
-
 bool ScanRun::open(Motion& motion, const uv::JobHeader& h) {
   uv::ScanPass p;
   if (!planner_.nextPass(p)) return false;

@@ -28,8 +28,8 @@ class ScanRun {
   // Why it failed: an error code (29 the speed is out of the step engine's range, 31 the Nano cut
   // the chain for a fault, 33 the Nano refused or cut it otherwise).
   uint8_t error() const { return error_; }
-  // The pass under way is abandoned (the runner switched the LEDs off and stopped the motion).
-  void cut(PrintheadLink& head);
+  // Between passes, and not failed: the next poll opens the next pass.
+  bool idle() const { return phase_ == Phase::Open && !error_; }
   uint16_t passes() const { return passes_; }
   // For the tests: the last stroke.
   const StrokePlan& stroke() const { return stroke_; }
@@ -59,6 +59,14 @@ class ScanRun {
   uint32_t nextPoll_ = 0, until_ = 0;
   int32_t y_ = 0;
   StrokePlan stroke_ = {};
+};
+
+// A scan job's planner and the runner of its passes, together. This firmware does not fly blank
+// stretches: it crosses them at the pass's speed (ScanPlanner::neverFly).
+struct ScanJob {
+  ScanJob(const uv::JobHeader& h, uv::CellSource& cells, const uv::Machine& m) : planner(h, cells, m), run(planner) { planner.neverFly(); }
+  uv::ScanPlanner planner;
+  ScanRun run;
 };
 
 }  // namespace mega

@@ -8,11 +8,12 @@ namespace mega {
 
 namespace {
 const char kMagic[4] UV_FLASH = {'U', 'V', 'S', '1'};
+const char kScanMagic[4] UV_FLASH = {'U', 'V', 'P', '1'};  // passes
 }  // namespace
 
 bool writeStopHeader(Storage& sd, FileHandle f, const StopFileHeader& h) {
   char b[kStopHeaderBytes] = {};
-  uvMemcpyP(b, kMagic, 4);
+  uvMemcpyP(b, h.scan ? kScanMagic : kMagic, 4);
   putLe32(h.count, b + 4);
   putLe32(h.estimateS, b + 8);
   putLe32(h.originUm[0], b + 12);
@@ -26,8 +27,13 @@ bool writeStopHeader(Storage& sd, FileHandle f, const StopFileHeader& h) {
 bool readStopHeader(Storage& sd, FileHandle f, StopFileHeader& h) {
   char b[kStopHeaderBytes];
   if (!sd.seek(f, 0) || sd.read(f, b, sizeof b) != sizeof b) return false;
-  for (uint8_t i = 0; i < 4; i++)
-    if (b[i] != static_cast<char>(uvFlashByte(&kMagic[i]))) return false;
+  bool stops = true, scan = true;
+  for (uint8_t i = 0; i < 4; i++) {
+    stops = stops && b[i] == static_cast<char>(uvFlashByte(&kMagic[i]));
+    scan = scan && b[i] == static_cast<char>(uvFlashByte(&kScanMagic[i]));
+  }
+  if (!stops && !scan) return false;
+  h.scan = scan;
   h.count = getLe32(b + 4);
   h.estimateS = getLe32(b + 8);
   h.originUm[0] = getLe32(b + 12);
@@ -37,7 +43,16 @@ bool readStopHeader(Storage& sd, FileHandle f, StopFileHeader& h) {
   uint32_t t = getLe32(b + 28);
   h.thermalCoeff = static_cast<int16_t>(t & 0xffff);
   h.thermalRefDeciC = static_cast<int16_t>(t >> 16);
+  if (scan) return sd.size(f) == kStopHeaderBytes + sizeof(uv::JobHeader);
   return sd.size(f) == kStopHeaderBytes + static_cast<uint32_t>(kStopBytes) * h.count;
+}
+
+bool writeScanHeader(Storage& sd, FileHandle f, const uv::JobHeader& h) {
+  return sd.seek(f, kStopHeaderBytes) && sd.write(f, reinterpret_cast<const char*>(&h), sizeof h);
+}
+
+bool readScanHeader(Storage& sd, FileHandle f, uv::JobHeader& h) {
+  return sd.seek(f, kStopHeaderBytes) && sd.read(f, reinterpret_cast<char*>(&h), sizeof h) == static_cast<int16_t>(sizeof h);
 }
 
 bool writeStop(Storage& sd, FileHandle f, const uv::Stop& s) {

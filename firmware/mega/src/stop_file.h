@@ -1,6 +1,8 @@
 // The planned stops of a job on the SD card (name~s): a header, then 20 bytes a stop, in the order
 // they are exposed. Planning writes it once after the upload verified; running reads it front to
 // back, so a running job needs a few bytes of RAM however large it is.
+// A scan job's file (issue 19) holds its passes' count and time in the same header, then the job's
+// header as this firmware holds it: its passes are planned again, one at a time, as they run.
 #pragma once
 #include <stdint.h>
 
@@ -17,6 +19,7 @@ struct StopFileHeader {
   uint32_t pitchUm[2];
   int16_t thermalCoeff;  // the job's thermal compensation (job.md), applied at exposure time
   int16_t thermalRefDeciC;
+  bool scan;             // a scan job: `count` passes, and the job's header follows (readScanHeader)
 };
 
 constexpr uint8_t kStopHeaderBytes = 32;
@@ -26,6 +29,10 @@ constexpr uint8_t kStopBytes = 20;
 bool writeStopHeader(Storage& sd, FileHandle f, const StopFileHeader& h);
 bool readStopHeader(Storage& sd, FileHandle f, StopFileHeader& h);
 bool writeStop(Storage& sd, FileHandle f, const uv::Stop& s);
+// A scan job's header, after the file's: written by the build that reads it (a build whose
+// JobHeader differs in size finds the file's size wrong, and the job is planned again at M23).
+bool writeScanHeader(Storage& sd, FileHandle f, const uv::JobHeader& h);
+bool readScanHeader(Storage& sd, FileHandle f, uv::JobHeader& h);
 // Reads stop i (seeks there first).
 bool readStop(Storage& sd, FileHandle f, uint32_t i, uv::Stop& s);
 

@@ -21,7 +21,7 @@ constexpr uint8_t kSegmentHead = 5;
 
 StreamJob::~StreamJob() {
   if (planner_) planner_->~Planner();
-  if (scan_) scan_->~ScanParts();
+  if (scan_) scan_->~ScanJob();
 }
 
 void StreamJob::segment(uint16_t row, uint16_t col, const char* hex, uint8_t cells) {
@@ -47,10 +47,7 @@ uint8_t StreamJob::record(const char* text, uint8_t len) {
     if (verifier_.header().strategy != uv::Strategy::Scan) {
       planner_ = new (plannerMem_) uv::Planner(verifier_.header(), cells_, machine_);
     } else {
-      scan_ = new (plannerMem_) ScanParts(verifier_.header(), cells_, machine_);
-      // This firmware runs each pass at one speed from end to end: blank stretches are crossed at
-      // the pass's speed, not flown, and the events keep to that (a slower pass than the app's plan).
-      scan_->planner.neverFly();
+      scan_ = new (plannerMem_) ScanJob(verifier_.header(), cells_, machine_);
     }
   }
   if (verifier_.complete()) known_ = verifier_.header().rows;

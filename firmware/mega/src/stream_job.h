@@ -43,18 +43,12 @@ class StreamJob : public StopSource, private uv::SegmentSink {
   uv::JobVerifier verifier_;
   StreamCells cells_;
   uv::Machine machine_;
-  // A scan job's planner and the runner of its passes, in the stop planner's place.
-  struct ScanParts {
-    ScanParts(const uv::JobHeader& h, uv::CellSource& cells, const uv::Machine& m) : planner(h, cells, m), run(planner) {}
-    uv::ScanPlanner planner;
-    ScanRun run;
-  };
   void freeRows(int32_t lowest) { cells_.freeBelow(static_cast<uint16_t>(lowest)); }
   int32_t lowestRowNeeded() const { return scan_ ? scan_->planner.lowestRowNeeded() : planner_->lowestRowNeeded(); }
 
   uv::Planner* planner_ = nullptr;
-  ScanParts* scan_ = nullptr;
-  static constexpr size_t kPlannerBytes = sizeof(uv::Planner) > sizeof(ScanParts) ? sizeof(uv::Planner) : sizeof(ScanParts);
+  ScanJob* scan_ = nullptr;  // a scan job's, in the stop planner's place
+  static constexpr size_t kPlannerBytes = sizeof(uv::Planner) > sizeof(ScanJob) ? sizeof(uv::Planner) : sizeof(ScanJob);
   alignas(4) uint8_t plannerMem_[kPlannerBytes];
   uint32_t planned_ = 0;
   uint16_t known_ = 0;

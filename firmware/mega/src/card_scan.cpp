@@ -1,0 +1,68 @@
+// A scan job on the card: see card_scan.h.
+#include "card_scan.h"
+
+#include <new>
+
+#include "error_codes.h"
+#include "job_files.h"
+
+namespace mega {
+
+CardScan::~CardScan() {
+  release();
+  if (cells_ >= 0) sd_.close(cells_);
+  if (index_ >= 0) sd_.close(index_);
+}
+
+void CardScan::release() {
+  if (job_) job_->~ScanJob();
+  if (source_) source_->SdCells::~SdCells();
+  job_ = nullptr;
+  source_ = nullptr;
+}
+
+uint8_t CardScan::open(const char* name) {
+  char work[kWorkNameMax + 1];
+  workFileName(name, JobFile::Cells, work);
+  cells_ = sd_.open(work, Storage::Mode::Read);
+  workFileName(name, JobFile::Index, work);
+  index_ = sd_.open(work, Storage::Mode::Read);
+  return cells_ < 0 || index_ < 0 ? uv::kFileError : 0;
+}
+
+void CardScan::seek(uint32_t done) {
+  if (job_ && opened_ == done && skip_ == 0 && job_->run.idle()) return;  // just before it already
+  release();
+  source_ = new (sourceMem_) SdCells(sd_, cells_, index_);
+  job_ = new (jobMem_) ScanJob(header_, *source_, machine_);
+  opened_ = 0;
+  skip_ = done;
+  error_ = 0;
+}
+
+ScanRun::Step CardScan::scanStep(Motion& motion, PrintheadLink& head, uint32_t nowUs) {
+  if (!job_) seek(0);
+  if (skip_) {  // a pass done before: planned, its events walked, nothing lit
+    uv::ScanPass p;
+    if (!job_->planner.nextPass(p)) {
+      error_ = uv::kFileError;  // fewer passes than planned at M29: the files changed
+      return ScanRun::Step::Failed;
+    }
+    uint32_t t;
+    uint8_t m;
+    while (job_->planner.nextEvent(t, m)) {
+    }
+    skip_--;
+    opened_++;
+    return ScanRun::Step::Busy;
+  }
+  const ScanRun::Step s = job_->run.poll(motion, head, header_, nowUs);
+  if (s == ScanRun::Step::PassDone) opened_++;
+  if (source_->failed()) {
+    error_ = uv::kFileError;
+    return ScanRun::Step::Failed;
+  }
+  return s;
+}
+
+}  // namespace mega

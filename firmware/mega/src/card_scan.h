@@ -1,0 +1,50 @@
+// A scan job on the card (issue 19): its passes planned again from the job's working files (~c, ~i)
+// as they run, one at a time, by the scan planner that planned them at M29 (job_plan.h), and run by
+// ScanRun. A pass that must run again (after a pause, a fault or a reset) is found by planning the
+// job from its start and passing over the passes done, without light.
+#pragma once
+#include <stdint.h>
+
+#include "job_types.h"
+#include "scan_run.h"
+#include "sd_cells.h"
+#include "stop_source.h"
+#include "storage.h"
+
+namespace mega {
+
+class CardScan : public StopSource {
+ public:
+  CardScan(Storage& sd, const uv::JobHeader& h, const uv::Machine& m, uint32_t passes) : sd_(sd), header_(h), machine_(m), passes_(passes) {}
+  ~CardScan();
+
+  // Opens the job's working files; 0 or 22 (file_error).
+  uint8_t open(const char* name);
+  // The next pass to run is pass `done` (0-based): if the planner is not just before it, it plans
+  // the job again from its start and passes over the first `done`, a pass each scanStep().
+  void seek(uint32_t done);
+
+  NextStop next(uint32_t, uv::Stop&) override { return NextStop::Scan; }
+  uint32_t count() const override { return passes_; }
+  bool complete() const override { return true; }
+  ScanRun::Step scanStep(Motion& motion, PrintheadLink& head, uint32_t nowUs) override;
+  uint8_t scanError() const override { return error_ ? error_ : job_ ? job_->run.error() : 0; }
+
+ private:
+  void release();
+
+  Storage& sd_;
+  uv::JobHeader header_;
+  uv::Machine machine_;
+  uint32_t passes_;
+  FileHandle cells_ = -1, index_ = -1;
+  SdCells* source_ = nullptr;
+  ScanJob* job_ = nullptr;
+  uint32_t opened_ = 0;  // passes the planner has finished (run or passed over)
+  uint32_t skip_ = 0;    // passes still to pass over before the next runs
+  uint8_t error_ = 0;
+  alignas(4) uint8_t sourceMem_[sizeof(SdCells)];
+  alignas(4) uint8_t jobMem_[sizeof(ScanJob)];
+};
+
+}  // namespace mega

@@ -1,0 +1,161 @@
+// A scan job uploaded to the card (M28/M29, M23, M24): its passes counted and timed at M29, planned
+// again pass by pass as they run, each checkpointed, and resumed after a reset with the pass it cut
+// exposed again. Every cell's dose measured from the light and the head's steps (scan_dose.h).
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "machine_job_fixture.h"
+#include "scan_dose.h"
+
+using namespace mega;
+using namespace jobs;
+
+namespace {
+
+Grid scanPattern(uint16_t cols, uint16_t rows) {
+  Grid g(rows, std::vector<uint8_t>(cols, 0));
+  for (uint16_t r = 0; r < rows; r++)
+    for (uint16_t c = 0; c < cols; c++) {
+      if (r % 3 == 0) g[r][c] = (c % 2) ? 255 : 0;
+      else if (r % 3 == 1) g[r][c] = (c / 4) % 2 ? 255 : 0;
+      else g[r][c] = static_cast<uint8_t>((c * 41 + r * 13) % 256);
+    }
+  return g;
+}
+
+struct ScanCardTest : JobTest {
+  uv::JobHeader h;
+  Grid g;
+  // Steps of the rig a reset replaced, from the origin: the rig has no switches, so each homing
+  // sets the origin where its seek ends, and the track starts again at it after the next.
+  std::vector<StepEvent> before;
+
+  void job(uint16_t cols, uint16_t rows, uint32_t fullUs) {
+    h = header(cols, rows, uv::Strategy::Scan);
+    h.fullUs = fullUs;
+    for (int k = 0; k < 4; k++) h.gainPermille[k] = 1000;
+    g = scanPattern(cols, rows);
+  }
+  // The head's physical track over every rig the test ran, and the light.
+  scandose::Figures measure(uint32_t windowUs) {
+    scandose::Track track;
+    int32_t x = 0, y = 0;
+    track.add(0, 0, 0);
+    for (const std::vector<StepEvent>* steps : {&before, &m.rig.steps}) {
+      x = y = 0;
+      for (const StepEvent& e : *steps) {
+        if (e.axes & 1) x += (e.dirNeg & 1) ? -1 : 1;
+        if (e.axes & 2) y += (e.dirNeg & 2) ? -1 : 1;
+        track.add(e.us2 / 2.0, x, y);
+      }
+    }
+    std::vector<scandose::Light> lights;
+    for (const ScanLight& l : m.nano.scanLight) lights.push_back({l.led, static_cast<double>(l.onUs), static_cast<double>(l.offUs)});
+    const double spm[2] = {80, 80};
+    return scandose::measure(h, g, lights, track, spm, windowUs);
+  }
+};
+
+}  // namespace
+
+TEST_F(ScanCardTest, AScanJobOnTheCardRunsPassByPassEveryCellItsDose) {
+  job(40, 10, 2000);  // 2 ms a 100 µm cell: 50 mm/s, blank stretches crossed at it
+  Lines got = upload("SCAN.UVJ", encode(h, g));
+  ASSERT_TRUE(has(got, "echo:Done saving file.")) << ::testing::PrintToString(got);
+  EXPECT_TRUE(m.sd.exists("SCAN.UVJ~s"));
+  m.cmd("M23 SCAN.UVJ");
+  m.cmd("G28");
+  m.rig.steps.clear();  // the track starts at the origin
+  m.cmd("M24");
+  const std::string end = runUntilJob({"done", "paused", "failed", "aborted"}, 60000000);
+  ASSERT_NE(end.find("JOB:done"), std::string::npos) << end;
+  EXPECT_NE(end.find("stop=3/3"), std::string::npos) << end;
+  EXPECT_TRUE(m.nano.exposures.empty());
+  EXPECT_EQ(payload("M1000 S"), (Lines{"JOB:idle"}));  // the checkpoint is gone with the job done
+  const scandose::Figures f = measure(2000);
+  std::printf("[scan card] %d cells, 3 passes from the card: worst dose error %.2f %% of full, worst edge %.2f um\n", f.cells, f.worstDosePct,
+              f.worstEdgeUm);
+  EXPECT_EQ(f.stray, 0);
+  EXPECT_LE(f.worstDosePct, 2.0);
+  EXPECT_LE(f.worstEdgeUm, 100 / 4.0);
+}
+
+TEST_F(ScanCardTest, AResetMidPassResumesWithThatPassExposedAgainAndTheOthersOnce) {
+  job(40, 10, 2000);
+  ASSERT_TRUE(has(upload("R.UVJ", encode(h, g)), "echo:Done saving file."));
+  m.cmd("M23 R.UVJ");
+  m.cmd("G28");
+  m.rig.steps.clear();  // the track starts at the origin; the re-homing after the reset is in it
+  m.cmd("M24");
+  // Into the second pass, the LEDs on.
+  for (int t = 0; t < 400000; t++) {
+    m.run(100);
+    if (has(m.usbLines, "JOB:running file=R.UVJ stop=1/3") && m.nano.lit()) break;
+  }
+  ASSERT_NE(m.nano.lit(), 0);
+  before = m.rig.steps;
+  m.reset(200000);  // the Nano stays powered: the silent Mega cuts its chain after 50 ms
+  EXPECT_EQ(m.nano.lit(), 0);
+  ASSERT_EQ(payload("M1000 S")[0].rfind("JOB:interrupted file=R.UVJ stop=1/3", 0), 0u);
+  m.cmd("G28");
+  m.rig.steps.clear();
+  m.cmd("M1000");
+  const std::string end = runUntilJob({"done", "paused", "failed"}, 60000000);
+  ASSERT_NE(end.find("JOB:done"), std::string::npos) << end;
+  EXPECT_TRUE(has(m.usbLines, "echo:resume: stop 1 was cut short, and is exposed again"));
+  // The first and third passes' cells got their dose once; the second's at least once, more
+  // where the cut chain had lit them before the reset.
+  const scandose::Figures f = measure(2000);
+  const uv::Durations dose(h);
+  const double full = dose.us(0, 255);
+  int over = 0;
+  for (uint16_t r = 0; r < h.rows; r++)
+    for (uint16_t c = 0; c < h.cols; c++) {
+      const double want = dose.us(0, g[r][c]), got = f.dose[r][c];
+      ASSERT_GE(got, want - 0.02 * full) << "cell " << r << "," << c;
+      const bool secondPass = r >= 4 && r < 8;
+      if (!secondPass) {
+        ASSERT_LE(got, want + 0.02 * full) << "cell " << r << "," << c << " exposed twice";
+      } else if (got > want + 0.02 * full) {
+        over++;
+      }
+    }
+  std::printf("[scan card] a reset in pass 2 of 3: %d of its cells lit before the cut got more than their dose; all others once\n", over);
+}
+
+TEST_F(ScanCardTest, APassCutForHeatPausesAndContinueExposesItAgain) {
+  job(40, 10, 2000);
+  ASSERT_TRUE(has(upload("H.UVJ", encode(h, g)), "echo:Done saving file."));
+  m.cmd("M23 H.UVJ");
+  m.cmd("G28");
+  m.rig.steps.clear();
+  m.cmd("M24");
+  for (int t = 0; t < 400000; t++) {
+    m.run(100);
+    if (has(m.usbLines, "JOB:running file=H.UVJ stop=1/3") && m.nano.lit()) break;
+  }
+  ASSERT_NE(m.nano.lit(), 0);
+  m.nano.setTemps(900);  // the Nano's own guard cuts the chain
+  const std::string paused = runUntilJob({"paused", "done", "failed"}, 5000000);
+  ASSERT_NE(paused.find("JOB:paused"), std::string::npos) << paused;
+  EXPECT_NE(paused.find("stop=1/3"), std::string::npos) << paused;  // the cut pass is not counted
+  EXPECT_EQ(m.nano.lit(), 0);
+  m.nano.setTemps(250);
+  m.run(2000000);  // cool, and the fault reported
+  m.cmd("M24");
+  const std::string end = runUntilJob({"done", "paused", "failed"}, 60000000);
+  ASSERT_NE(end.find("JOB:done"), std::string::npos) << end;
+  EXPECT_NE(end.find("stop=3/3"), std::string::npos) << end;
+  const scandose::Figures f = measure(2000);
+  const uv::Durations dose(h);
+  const double full = dose.us(0, 255);
+  for (uint16_t r = 0; r < h.rows; r++)
+    for (uint16_t c = 0; c < h.cols; c++) {
+      const double want = dose.us(0, g[r][c]);
+      ASSERT_GE(f.dose[r][c], want - 0.02 * full) << "cell " << r << "," << c;
+      if (r < 4 || r >= 8) {
+        ASSERT_LE(f.dose[r][c], want + 0.02 * full) << "cell " << r << "," << c << " exposed twice";
+      }
+    }
+}
