@@ -22,7 +22,7 @@ export const ERRORS = {
   no_job: { code: 26, message: 'no job selected' },
   no_resume: { code: 27, message: 'no interrupted job to resume' },
   stream_overflow: { code: 28, message: 'stream buffer too small for this job' },
-  scan_unsupported: { code: 29, message: 'scan jobs need newer Mega firmware' },
+  scan_unsupported: { code: 29, message: 'scan job not supported by this machine' },
   nano_timeout: { code: 30, message: 'printhead not responding' },
   over_temperature: { code: 31, message: 'over-temperature' },
   sensor_fault: { code: 32, message: 'temperature sensor fault' },

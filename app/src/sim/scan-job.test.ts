@@ -148,7 +148,7 @@ describe('simulated printer: scan jobs (exposure on the move)', () => {
     const out = [...h.cmd('M828')];
     for (const r of encodeJob(boardJob()).trimEnd().split('\n')) out.push(...h.cmd(r));
     out.push(...h.cmd('M29'));
-    expect(out.some((l) => l.startsWith('echo:E29 scan jobs need newer Mega firmware'))).toBe(true);
+    expect(out.some((l) => l.startsWith('echo:E29 scan job not supported by this machine'))).toBe(true);
     expect(h.sim.nano.onUs).toEqual([0, 0, 0, 0]);
     expect(h.sim.mega.job.scanExposures).toHaveLength(0);
   });
