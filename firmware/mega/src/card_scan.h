@@ -43,8 +43,8 @@ class CardScan : public StopSource {
   uint32_t opened_ = 0;  // passes the planner has finished (run or passed over)
   uint32_t skip_ = 0;    // passes still to pass over before the next runs
   uint8_t error_ = 0;
-  alignas(4) uint8_t sourceMem_[sizeof(SdCells)];
-  alignas(4) uint8_t jobMem_[sizeof(ScanJob)];
+  alignas(alignof(SdCells)) uint8_t sourceMem_[sizeof(SdCells)];
+  alignas(alignof(ScanJob)) uint8_t jobMem_[sizeof(ScanJob)];
 };
 
 }  // namespace mega

@@ -46,9 +46,9 @@ class JobPlan {
   uint8_t error_ = 0;
   bool done_ = false;
   // The planner and its cursors live here, only while planning.
-  alignas(4) uint8_t sourceMem_[sizeof(SdCells)];
+  alignas(alignof(SdCells)) uint8_t sourceMem_[sizeof(SdCells)];
   static_assert(sizeof(uv::ScanPlanner) <= sizeof(uv::Planner), "the scan planner takes the stop planner's place");
-  alignas(4) uint8_t plannerMem_[sizeof(uv::Planner)];
+  alignas(alignof(uv::Planner)) uint8_t plannerMem_[sizeof(uv::Planner)];
 };
 
 }  // namespace mega

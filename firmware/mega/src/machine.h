@@ -270,11 +270,12 @@ class Machine {
   // it plans (job_plan.h).
   // A job on the card runs with its runner at the arena's start and, for a scan job, the planner
   // of its passes after it (JobRunner::setScanMemory).
-  static constexpr uint16_t kRunnerBytes = (sizeof(JobRunner) + 3) & ~3u;
+  static constexpr uint16_t kArenaAlign = alignof(CardScan) > 4 ? alignof(CardScan) : 4;
+  static constexpr uint16_t kRunnerBytes = (sizeof(JobRunner) + kArenaAlign - 1) & ~(kArenaAlign - 1u);
   static constexpr uint16_t kArenaBytes =
       larger(larger(larger(sizeof(JobSpool), sizeof(JobPlan)), larger(kRunnerBytes + sizeof(CardScan), sizeof(StreamArena))), sizeof(GcodeFile));
   JobRunner* newRunner();
-  alignas(4) uint8_t arenaMem_[kArenaBytes];
+  alignas(kArenaAlign) uint8_t arenaMem_[kArenaBytes];
   Arena arena_ = Arena::Empty;
   const HostLink* jobPort_ = nullptr;  // the port whose records an upload or a stream takes
   uv::JobState jobState_ = uv::JobState::Idle;  // when no run is live

@@ -49,7 +49,7 @@ class StreamJob : public StopSource, private uv::SegmentSink {
   uv::Planner* planner_ = nullptr;
   ScanJob* scan_ = nullptr;  // a scan job's, in the stop planner's place
   static constexpr size_t kPlannerBytes = sizeof(uv::Planner) > sizeof(ScanJob) ? sizeof(uv::Planner) : sizeof(ScanJob);
-  alignas(4) uint8_t plannerMem_[kPlannerBytes];
+  alignas(alignof(uv::Planner) > alignof(ScanJob) ? alignof(uv::Planner) : alignof(ScanJob)) uint8_t plannerMem_[kPlannerBytes];
   uint32_t planned_ = 0;
   uint16_t known_ = 0;
   bool done_ = false;
