@@ -10,6 +10,8 @@ import { boardMask, fillMask, photoMask, sparseMask, textMask, type Mask } from 
 export interface P10Row {
   mask: string;
   scan: ScanPlan;
+  /** The scan's estimate crossing every blank stretch at the pass's speed (planScan's neverFly). */
+  crossingUs: number;
   /** The better of serpentine and shortest stop-and-fire. */
   stops: number;
   /** Σ dose ÷ 4: four LEDs lit all the time. */
@@ -38,11 +40,12 @@ export function p10(): P10Row[] {
     const h = header(mask, 'serpentine', map);
     const stops = Math.min(...(['serpentine', 'shortest'] as StrategyName[]).map((s) => planJob({ header: header(mask, s, map), cells }, BENCH_MACHINE).estimateUs));
     const scan = planScan({ header: h, cells }, BENCH_MACHINE);
+    const crossing = planScan({ header: h, cells }, BENCH_MACHINE, { neverFly: true });
     const table = durationTables(h)[0];
     let dose = 0;
     for (const row of cells) for (let c = 0; c < row.length; c++) dose += table[row[c]];
     const travelLimit = scan.passes.reduce((t, p) => t + ((p.last - p.first + 1) * h.pitchUm[0] * 1e6) / BENCH_MACHINE.vmaxUmS[0], 0);
-    return { mask: mask.name, scan, stops, lightLimit: dose / 4, travelLimit };
+    return { mask: mask.name, scan, crossingUs: crossing.estimateUs, stops, lightLimit: dose / 4, travelLimit };
   });
 }
 
@@ -55,7 +58,7 @@ export function printP10(rows: P10Row[]): void {
     console.log(
       `P10 ${r.mask.padEnd(7)} scan ${s(r.scan.estimateUs).padStart(8)}  stop-and-fire ${s(r.stops).padStart(8)}  light ${s(r.lightLimit).padStart(7)}  travel ${s(r.travelLimit).padStart(7)}` +
         `  speed-up ${(r.stops / r.scan.estimateUs).toFixed(2)}x  /limit ${(r.scan.estimateUs / limit).toFixed(2)}x` +
-        `  (window ${r.scan.windowUs} us, ${r.scan.passes.length} passes)`,
+        `  (window ${r.scan.windowUs} us, ${r.scan.passes.length} passes; without flying, as the Mega firmware runs it: ${s(r.crossingUs)}, speed-up ${(r.stops / r.crossingUs).toFixed(2)}x)`,
     );
   }
 }

@@ -157,6 +157,21 @@ describe('scan planner', () => {
     expect(p.passes[0].jumps.map((j) => j.slice(0, 2))).toEqual([[3, 25]]);
   });
 
+  it('never flies for a machine that cannot: the same light, every window W after the last, a longer estimate', () => {
+    const j = job(200, 4, [[3, 0, 200], [4, 0, 200], [60, 0, 200], [150, 0, 200], [199, 0, 200]]);
+    const flying = plan(j);
+    const crossing = planScan({ header: headerOf(j), cells: j.gridData }, MACHINE, { neverFly: true });
+    expect(flying.passes[0].jumps.length).toBeGreaterThan(0);
+    expect(crossing.passes[0].jumps).toEqual([]);
+    expect(doses(j, crossing)).toEqual(doses(j, flying));
+    const W = crossing.windowUs, on = durationTables(headerOf(j))[0][200];
+    for (const [t0, t1] of crossing.passes[0].leds[0]) {
+      expect(t0 % W).toBe(Math.floor((W - on) / 2)); // each in its column's window, j·W from the mark
+      expect(t1 - t0).toBe(on);
+    }
+    expect(crossing.estimateUs).toBeGreaterThan(flying.estimateUs);
+  });
+
   it('caps the speed at the axis maximum: longer windows, same on-times, no merging', () => {
     const slow = { ...MACHINE, vmaxUmS: [10000, 100000] as [number, number] };
     const p = plan(job(10, 4, [[2, 0, 255], [3, 0, 255], [4, 0, 128]]), slow);

@@ -57,7 +57,11 @@ export function fitsTimer(h: JobHeader, windowUs: number): boolean {
   return (h.cols + Math.max(...dx) - Math.min(...dx)) * windowUs < 2 ** 32;
 }
 
-export function planScan(job: PlannerJob, machine: Machine): ScanPlan {
+/**
+ * `neverFly`: a machine that cannot fly blank stretches crosses them at the pass's speed, so S(j) = j·W
+ * throughout and the estimate is that of crossing (planner.md "Blank stretches"; the Mega firmware, for now).
+ */
+export function planScan(job: PlannerJob, machine: Machine, opts: { neverFly?: boolean } = {}): ScanPlan {
   const h = job.header;
   const tables = durationTables(h);
   const motion = scanMotion(h, machine, tables);
@@ -70,7 +74,7 @@ export function planScan(job: PlannerJob, machine: Machine): ScanPlan {
   const Y = (hy: number) => h.originUm[1] + hy * h.pitchUm[1];
   const moves = new MoveTimes(machine);
   // A blank stretch of g windows is flown in F(g) when that beats crossing it at the speed.
-  const flies = W > Math.ceil((p * 1_000_000) / machine.vmaxUmS[0]);
+  const flies = !opts.neverFly && W > Math.ceil((p * 1_000_000) / machine.vmaxUmS[0]);
   const fly = (g: number) => {
     if (!flies) return 0;
     const f = Math.max(1, moves.axis(0, g * p + 2 * motion.overscanUm) - 2 * motion.accelUs);
