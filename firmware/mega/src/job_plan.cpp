@@ -5,6 +5,7 @@
 
 #include "error_codes.h"
 #include "job_files.h"
+#include "scan_program.h"
 
 namespace mega {
 
@@ -89,13 +90,39 @@ bool JobPlan::finish(uint64_t estimateUs) {
   return true;
 }
 
-// One pass: opened, and its events walked to its end, for the count and the time.
+bool JobPlan::passEvent(void* ctx, uint32_t& t, uint8_t& m) {
+  JobPlan* plan = static_cast<JobPlan*>(ctx);
+  if (!plan->scan_->nextEvent(t, m)) return false;
+  plan->passUs_ = t;
+  return true;
+}
+
+// One pass: opened, and its events written as the Nano's program lines, for the count and the
+// time, and to check the printhead link can carry them: the lines after the two programs loaded
+// before the pass starts must cross it (115200 baud, 10 bits a byte) while the pass plays, with a
+// fifth to spare for the Q polls. A pass that would outrun it is refused here, before any light.
 bool JobPlan::stepScan() {
   uv::ScanPass p;
   if (!scan_->nextPass(p)) return finish(scan_->estimateUs());
-  uint32_t t;
-  uint8_t m;
-  while (scan_->nextEvent(t, m)) {
+  uv::ProgramLines lines(passEvent, this);
+  char line[uv::kNanoMaxLine + 2];
+  uint32_t bytes = 0, ahead = 0;
+  uint16_t sealed = 0;
+  passUs_ = 0;
+  for (uint8_t n; (n = lines.next(line)) != 0;) {
+    bytes += n;
+    if (line[0] == 'K' && ++sealed == 2) ahead = bytes;
+  }
+  if (lines.failed()) {  // events 2²⁸ µs apart or more
+    error_ = uv::kScanUnsupported;
+    close();
+    return true;
+  }
+  const uint64_t linkUs = static_cast<uint64_t>(sealed > 2 ? bytes - ahead : 0) * 10 * 1000000 / 115200;
+  if (linkUs * 5 > static_cast<uint64_t>(passUs_) * 4) {
+    error_ = uv::kScanUnsupported;
+    close();
+    return true;
   }
   count_++;
   return false;

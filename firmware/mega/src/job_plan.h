@@ -33,6 +33,7 @@ class JobPlan {
   void close();
   bool finish(uint64_t estimateUs);
   bool stepScan();
+  static bool passEvent(void* ctx, uint32_t& t, uint8_t& m);
 
   Storage& sd_;
   uv::JobHeader header_;
@@ -43,6 +44,7 @@ class JobPlan {
   uv::ScanPlanner* scan_ = nullptr;  // a scan job's, in the stop planner's place
   uv::PlanClock clock_;
   uint32_t count_ = 0;
+  uint32_t passUs_ = 0;  // a scan pass's last event, µs after its start mark
   uint8_t error_ = 0;
   bool done_ = false;
   // The planner and its cursors live here, only while planning.

@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "error_codes.h"
+#include "job_files.h"
 #include "machine.h"
 #include "machine_budget.h"
 #include "progmem.h"
@@ -44,6 +45,9 @@ void Machine::runLong() {
       if (plan()->error()) {
         uint8_t err = plan()->error();
         clearArena();
+        // Nothing half-planned stays to be started: the job's text does, to be selected again.
+        removeWorkFiles(sd_, selected_);
+        selected_[0] = 0;
         jobState_ = uv::JobState::Failed;
         return finishLong(err);
       }

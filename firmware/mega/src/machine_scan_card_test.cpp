@@ -159,3 +159,17 @@ TEST_F(ScanCardTest, APassCutForHeatPausesAndContinueExposesItAgain) {
       }
     }
 }
+
+TEST_F(ScanCardTest, AJobWhosePassesOutrunThePrintheadLinkIsRefusedAtM29BeforeAnyLight) {
+  // A photo: every cell a different gray, so each LED switches twice a window, 2 ms each: some
+  // 30 kB/s of program lines for a link that carries 11.5.
+  job(200, 8, 2000);
+  for (uint16_t r = 0; r < h.rows; r++)
+    for (uint16_t c = 0; c < h.cols; c++) g[r][c] = static_cast<uint8_t>(1 + (c * 97 + r * 31) % 253);
+  Lines got = upload("PHOTO.UVJ", encode(h, g));
+  EXPECT_TRUE(has(got, "echo:E29 scan job not supported by this machine")) << ::testing::PrintToString(got);
+  m.cmd("G28");
+  EXPECT_EQ(payload("M24"), (Lines{"echo:E26 no job selected"}));
+  m.run(1000000);
+  EXPECT_TRUE(m.nano.scanLight.empty());
+}
