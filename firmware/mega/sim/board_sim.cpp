@@ -208,28 +208,28 @@ void BoardSim::onHostOut(avr_irq_t*, uint32_t value, void* param) {
   }
 }
 
+namespace {
+// A byte of a line-based link: the line it ends, or the partial line it extends.
+void collect(char c, std::string& partial, std::vector<std::string>& lines) {
+  if (c == '\n') {
+    lines.push_back(partial);
+    partial.clear();
+  } else {
+    partial += c;
+  }
+}
+}  // namespace
+
 void BoardSim::onMegaToNano(avr_irq_t*, uint32_t value, void* param) {
   auto* s = static_cast<BoardSim*>(param);
-  char c = static_cast<char>(value);
-  s->toNano_.pending.push_back(c);
-  if (c == '\n') {
-    s->nanoLines.push_back(s->nanoPartial_);
-    s->nanoPartial_.clear();
-  } else {
-    s->nanoPartial_ += c;
-  }
+  s->toNano_.pending.push_back(static_cast<char>(value));
+  collect(static_cast<char>(value), s->nanoPartial_, s->nanoLines);
 }
 
 void BoardSim::onNanoToMega(avr_irq_t*, uint32_t value, void* param) {
   auto* s = static_cast<BoardSim*>(param);
-  char c = static_cast<char>(value);
-  s->toMega_.pending.push_back(c);
-  if (c == '\n') {
-    s->nanoReplies.push_back(s->replyPartial_);
-    s->replyPartial_.clear();
-  } else {
-    s->replyPartial_ += c;
-  }
+  s->toMega_.pending.push_back(static_cast<char>(value));
+  collect(static_cast<char>(value), s->replyPartial_, s->nanoReplies);
 }
 
 void BoardSim::onRxTaken(avr_irq_t*, uint32_t value, void* param) {

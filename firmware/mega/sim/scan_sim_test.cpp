@@ -18,13 +18,7 @@ TEST_F(BoardTest, AScanJobOnTheRealImagesGivesEveryCellItsDoseInPlace) {
   // 1-cell lines, runs of full cells and gray steps, at 100 µm and 1 ms a cell: 100 mm/s, the
   // axis's top speed, so no blank stretch is flown.
   const uint16_t cols = 40, rows = 10;
-  Grid g(rows, std::vector<uint8_t>(cols, 0));
-  for (uint16_t r = 0; r < rows; r++)
-    for (uint16_t c = 0; c < cols; c++) {
-      if (r % 3 == 0) g[r][c] = (c % 2) ? 255 : 0;
-      else if (r % 3 == 1) g[r][c] = (c / 4) % 2 ? 255 : 0;
-      else g[r][c] = static_cast<uint8_t>((c * 41 + r * 13) % 256);
-    }
+  const Grid g = scandose::testPattern(cols, rows);
   uv::JobHeader h = header(cols, rows, uv::Strategy::Scan);
   h.fullUs = 1000;
   for (int k = 0; k < 4; k++) h.gainPermille[k] = 1000;

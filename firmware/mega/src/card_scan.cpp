@@ -22,12 +22,7 @@ void CardScan::release() {
 }
 
 uint8_t CardScan::open(const char* name) {
-  char work[kWorkNameMax + 1];
-  workFileName(name, JobFile::Cells, work);
-  cells_ = sd_.open(work, Storage::Mode::Read);
-  workFileName(name, JobFile::Index, work);
-  index_ = sd_.open(work, Storage::Mode::Read);
-  return cells_ < 0 || index_ < 0 ? uv::kFileError : 0;
+  return openCellFiles(sd_, name, cells_, index_) ? 0 : uv::kFileError;
 }
 
 void CardScan::seek(uint32_t done) {

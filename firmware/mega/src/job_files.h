@@ -37,6 +37,16 @@ inline bool isWorkFile(const char* name) {
   return k == 'c' || k == 'i' || k == 's' || k == 'u';
 }
 
+// Opens a job's cells and index files to read; false unless both opened.
+inline bool openCellFiles(Storage& sd, const char* job, FileHandle& cells, FileHandle& index) {
+  char work[kWorkNameMax + 1];
+  workFileName(job, JobFile::Cells, work);
+  cells = sd.open(work, Storage::Mode::Read);
+  workFileName(job, JobFile::Index, work);
+  index = sd.open(work, Storage::Mode::Read);
+  return cells >= 0 && index >= 0;
+}
+
 constexpr JobFile kWorkFiles[] = {JobFile::Cells, JobFile::Index, JobFile::Stops};
 
 // Removes what the Mega built from a job.

@@ -41,11 +41,8 @@ void JobPlan::close() {
 }
 
 uint8_t JobPlan::begin(const char* name) {
+  openCellFiles(sd_, name, cells_, index_);  // checked with the stop file's below
   char work[kWorkNameMax + 1];
-  workFileName(name, JobFile::Cells, work);
-  cells_ = sd_.open(work, Storage::Mode::Read);
-  workFileName(name, JobFile::Index, work);
-  index_ = sd_.open(work, Storage::Mode::Read);
   workFileName(name, JobFile::Stops, work);
   stops_ = sd_.open(work, Storage::Mode::Create);
   StopFileHeader placeholder = {};

@@ -5,58 +5,13 @@
 
 #include <cstdio>
 
-#include "machine_job_fixture.h"
-#include "scan_dose.h"
+#include "machine_scan_fixture.h"
 
 using namespace mega;
 using namespace jobs;
 
 namespace {
-
-Grid scanPattern(uint16_t cols, uint16_t rows) {
-  Grid g(rows, std::vector<uint8_t>(cols, 0));
-  for (uint16_t r = 0; r < rows; r++)
-    for (uint16_t c = 0; c < cols; c++) {
-      if (r % 3 == 0) g[r][c] = (c % 2) ? 255 : 0;
-      else if (r % 3 == 1) g[r][c] = (c / 4) % 2 ? 255 : 0;
-      else g[r][c] = static_cast<uint8_t>((c * 41 + r * 13) % 256);
-    }
-  return g;
-}
-
-struct ScanCardTest : JobTest {
-  uv::JobHeader h;
-  Grid g;
-  // Steps of the rig a reset replaced, from the origin: the rig has no switches, so each homing
-  // sets the origin where its seek ends, and the track starts again at it after the next.
-  std::vector<StepEvent> before;
-
-  void job(uint16_t cols, uint16_t rows, uint32_t fullUs) {
-    h = header(cols, rows, uv::Strategy::Scan);
-    h.fullUs = fullUs;
-    for (int k = 0; k < 4; k++) h.gainPermille[k] = 1000;
-    g = scanPattern(cols, rows);
-  }
-  // The head's physical track over every rig the test ran, and the light.
-  scandose::Figures measure(uint32_t windowUs) {
-    scandose::Track track;
-    int32_t x = 0, y = 0;
-    track.add(0, 0, 0);
-    for (const std::vector<StepEvent>* steps : {&before, &m.rig.steps}) {
-      x = y = 0;
-      for (const StepEvent& e : *steps) {
-        if (e.axes & 1) x += (e.dirNeg & 1) ? -1 : 1;
-        if (e.axes & 2) y += (e.dirNeg & 2) ? -1 : 1;
-        track.add(e.us2 / 2.0, x, y);
-      }
-    }
-    std::vector<scandose::Light> lights;
-    for (const ScanLight& l : m.nano.scanLight) lights.push_back({l.led, static_cast<double>(l.onUs), static_cast<double>(l.offUs)});
-    const double spm[2] = {80, 80};
-    return scandose::measure(h, g, lights, track, spm, windowUs);
-  }
-};
-
+using ScanCardTest = ScanMachineTest;
 }  // namespace
 
 TEST_F(ScanCardTest, AScanJobOnTheCardRunsPassByPassEveryCellItsDose) {
@@ -88,12 +43,8 @@ TEST_F(ScanCardTest, AResetMidPassResumesWithThatPassExposedAgainAndTheOthersOnc
   m.cmd("G28");
   m.rig.steps.clear();  // the track starts at the origin; the re-homing after the reset is in it
   m.cmd("M24");
-  // Into the second pass, the LEDs on.
-  for (int t = 0; t < 400000; t++) {
-    m.run(100);
-    if (has(m.usbLines, "JOB:running file=R.UVJ stop=1/3") && m.nano.lit()) break;
-  }
-  ASSERT_NE(m.nano.lit(), 0);
+  ASSERT_NE(runUntilJob({"running file=R.UVJ stop=1/3"}, 20000000), "(none)");  // into the second pass
+  ASSERT_TRUE(lightOn());
   before = m.rig.steps;
   m.reset(200000);  // the Nano stays powered: the silent Mega cuts its chain after 50 ms
   EXPECT_EQ(m.nano.lit(), 0);
@@ -131,11 +82,8 @@ TEST_F(ScanCardTest, APassCutForHeatPausesAndContinueExposesItAgain) {
   m.cmd("G28");
   m.rig.steps.clear();
   m.cmd("M24");
-  for (int t = 0; t < 400000; t++) {
-    m.run(100);
-    if (has(m.usbLines, "JOB:running file=H.UVJ stop=1/3") && m.nano.lit()) break;
-  }
-  ASSERT_NE(m.nano.lit(), 0);
+  ASSERT_NE(runUntilJob({"running file=H.UVJ stop=1/3"}, 20000000), "(none)");
+  ASSERT_TRUE(lightOn());
   m.nano.setTemps(900);  // the Nano's own guard cuts the chain
   const std::string paused = runUntilJob({"paused", "done", "failed"}, 5000000);
   ASSERT_NE(paused.find("JOB:paused"), std::string::npos) << paused;

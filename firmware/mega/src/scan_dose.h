@@ -12,6 +12,19 @@
 
 namespace scandose {
 
+// The scan tests' job: 1-cell lines (rows 0, 3, …), runs of four full cells (rows 1, 4, …) and a
+// different gray in every cell (rows 2, 5, …).
+inline std::vector<std::vector<uint8_t>> testPattern(uint16_t cols, uint16_t rows) {
+  std::vector<std::vector<uint8_t>> g(rows, std::vector<uint8_t>(cols, 0));
+  for (uint16_t r = 0; r < rows; r++)
+    for (uint16_t c = 0; c < cols; c++) {
+      if (r % 3 == 0) g[r][c] = (c % 2) ? 255 : 0;
+      else if (r % 3 == 1) g[r][c] = (c / 4) % 2 ? 255 : 0;
+      else g[r][c] = static_cast<uint8_t>((c * 41 + r * 13) % 256);
+    }
+  return g;
+}
+
 struct Light {
   uint8_t led;
   double onUs, offUs;

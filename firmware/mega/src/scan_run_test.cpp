@@ -8,6 +8,7 @@
 
 #include "fake_nano.h"
 #include "grid_cells.h"
+#include "job_fixture.h"
 #include "motion_rig.h"
 #include "printhead_link.h"
 #include "scan_dose.h"
@@ -27,19 +28,16 @@ struct ScanRunTest : ::testing::Test {
   PrintheadLink link{nano};
   uint64_t gAt = 0;
 
+  // The machine tests' job at 50 µm, every LED at the same gain, the LEDs spread in X too.
   uv::JobHeader job(uint16_t cols, uint16_t rows, uint32_t fullUs) {
-    uv::JobHeader h{};
-    h.cols = cols;
-    h.rows = rows;
+    uv::JobHeader h = jobs::header(cols, rows, uv::Strategy::Scan);
     h.pitchUm[0] = h.pitchUm[1] = 50;
     h.originUm[0] = 10000;
     h.originUm[1] = 5000;
-    h.map = uv::DoseMap::Linear;
     h.fullUs = fullUs;
     for (int k = 0; k < 4; k++) {
       h.gainPermille[k] = 1000;
       h.offsets[k][0] = static_cast<int16_t>(k % 2 ? 1 : -2);
-      h.offsets[k][1] = static_cast<int16_t>(k);
     }
     return h;
   }
@@ -86,6 +84,17 @@ struct ScanRunTest : ::testing::Test {
     }
     return st;
   }
+  // A job of `cols` × `rows` cells at `fullUs` a full cell, planned and ready to run.
+  struct Planned {
+    Planned(ScanRunTest& t, uint16_t cols, uint16_t rows, uint32_t fullUs)
+        : grid(scandose::testPattern(cols, rows)), h(t.job(cols, rows, fullUs)), cells(grid), m(t.machine()), planner(h, cells, m), scan(planner) {}
+    std::vector<std::vector<uint8_t>> grid;
+    uv::JobHeader h;
+    uvtest::GridCells cells;
+    uv::Machine m;
+    uv::ScanPlanner planner;
+    ScanRun scan;
+  };
   scandose::Figures measure(const uv::JobHeader& h, const std::vector<std::vector<uint8_t>>& grid, uint32_t windowUs) {
     scandose::Track track;
     int32_t x = 0, y = 0;
@@ -102,35 +111,20 @@ struct ScanRunTest : ::testing::Test {
   }
 };
 
-// 1-cell features and gray levels: every other cell, runs of full cells, steps of gray.
-std::vector<std::vector<uint8_t>> pattern(uint16_t cols, uint16_t rows) {
-  std::vector<std::vector<uint8_t>> g(rows, std::vector<uint8_t>(cols, 0));
-  for (uint16_t r = 0; r < rows; r++)
-    for (uint16_t c = 0; c < cols; c++) {
-      if (r % 3 == 0) g[r][c] = (c % 2) ? 255 : 0;                      // 1-cell lines
-      else if (r % 3 == 1) g[r][c] = (c / 5) % 2 ? 255 : 0;             // runs
-      else g[r][c] = static_cast<uint8_t>((c * 37 + r * 11) % 256);    // gray
-    }
-  return g;
-}
-
 }  // namespace
 
 TEST_F(ScanRunTest, ExposesEveryCellItsDoseInPlaceOnTheMove) {
-  const uint16_t cols = 60, rows = 11;
-  const auto grid = pattern(cols, rows);
-  uv::JobHeader h = job(cols, rows, 500);  // 500 µs at 50 µm: 100 mm/s, the axis's maximum
-  uvtest::GridCells cells(grid);
-  const uv::Machine m = machine();
-  uv::ScanPlanner planner(h, cells, m);
-  ASSERT_FALSE(planner.mayFly());
-  ScanRun scan(planner);
+  Planned p(*this, 60, 11, 500);  // 500 µs at 50 µm: 100 mm/s, the axis's maximum
+  ASSERT_FALSE(p.planner.mayFly());
+  ScanRun& scan = p.scan;
+  const uv::JobHeader& h = p.h;
+  const uv::ScanPlanner& planner = p.planner;
   ASSERT_EQ(run(scan, h), ScanRun::Step::End) << "error " << int(scan.error());
   EXPECT_EQ(scan.passes(), planner.passes());
   EXPECT_GE(scan.passes(), 3);
   EXPECT_EQ(nano.lit(), 0);
   EXPECT_EQ(rig.engine.marksMissed(), 0);
-  const scandose::Figures f = measure(h, grid, planner.motion().windowUs);
+  const scandose::Figures f = measure(h, p.grid, planner.motion().windowUs);
   std::printf("[scan host] %d cells (%d lit), %u passes: worst dose error %.2f %% of full, worst centroid %.2f um, worst edge %.2f um (cell 50 um)\n",
               f.cells, f.lit, scan.passes(), f.worstDosePct, f.worstCentreUm, f.worstEdgeUm);
   EXPECT_EQ(f.stray, 0);
@@ -140,13 +134,9 @@ TEST_F(ScanRunTest, ExposesEveryCellItsDoseInPlaceOnTheMove) {
 }
 
 TEST_F(ScanRunTest, APassTheNanoCutsForHeatFailsTheRunDark) {
-  const uint16_t cols = 400, rows = 4;  // one long pass: 0.2 s of windows
-  const auto grid = pattern(cols, rows);
-  uv::JobHeader h = job(cols, rows, 500);
-  uvtest::GridCells cells(grid);
-  const uv::Machine m = machine();
-  uv::ScanPlanner planner(h, cells, m);
-  ScanRun scan(planner);
+  Planned p(*this, 400, 4, 500);  // one long pass: 0.2 s of windows
+  ScanRun& scan = p.scan;
+  const uv::JobHeader& h = p.h;
   ScanRun::Step st = ScanRun::Step::Busy;
   bool heated = false;
   while (us() < 10000000) {
@@ -166,13 +156,9 @@ TEST_F(ScanRunTest, APassTheNanoCutsForHeatFailsTheRunDark) {
 }
 
 TEST_F(ScanRunTest, AGTheUartCannotSendOnItsStepFailsThePass) {
-  const uint16_t cols = 30, rows = 4;
-  const auto grid = pattern(cols, rows);
-  uv::JobHeader h = job(cols, rows, 500);
-  uvtest::GridCells cells(grid);
-  const uv::Machine m = machine();
-  uv::ScanPlanner planner(h, cells, m);
-  ScanRun scan(planner);
+  Planned p(*this, 30, 4, 500);
+  ScanRun& scan = p.scan;
+  const uv::JobHeader& h = p.h;
   rig.onMark = [](uint64_t) { return false; };  // as if a byte were still going out: no G
   EXPECT_EQ(run(scan, h), ScanRun::Step::Failed);
   EXPECT_EQ(scan.error(), 33);

@@ -1,0 +1,57 @@
+// The machine tests' scan jobs (machine_scan_card_test.cpp, machine_scan_stream_test.cpp): a job of
+// scandose::testPattern, every LED at the same gain, and each cell's dose measured from the light
+// and the head's steps.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "machine_job_fixture.h"
+#include "scan_dose.h"
+
+namespace mega {
+
+struct ScanMachineTest : JobTest {
+  uv::JobHeader h;
+  jobs::Grid g;
+  // Steps of the rig a reset replaced, from the origin: the rig has no switches, so each homing
+  // sets the origin where its seek ends, and the track starts again at it after the next.
+  std::vector<StepEvent> before;
+
+  void job(uint16_t cols, uint16_t rows, uint32_t fullUs) {
+    h = jobs::header(cols, rows, uv::Strategy::Scan);
+    h.fullUs = fullUs;
+    for (int k = 0; k < 4; k++) h.gainPermille[k] = 1000;
+    g = scandose::testPattern(cols, rows);
+  }
+  // Homes, then streams the job (M828 … M29); the track starts at the origin.
+  void stream() {
+    ASSERT_TRUE(jobs::has(m.cmd("G28"), "ok"));
+    m.rig.steps.clear();
+    m.cmd("M828");
+    for (const std::string& r : jobs::encode(h, g)) m.cmd(r);
+    m.cmd("M29");
+  }
+  // Runs until an LED is lit.
+  bool lightOn() {
+    for (int i = 0; i < 400000 && m.nano.lit() == 0; i++) m.run(100);
+    return m.nano.lit() != 0;
+  }
+  scandose::Figures measure(uint32_t windowUs) {
+    scandose::Track track;
+    track.add(0, 0, 0);
+    for (const std::vector<StepEvent>* steps : {&before, &m.rig.steps}) {
+      int32_t x = 0, y = 0;
+      for (const StepEvent& e : *steps) {
+        if (e.axes & 1) x += (e.dirNeg & 1) ? -1 : 1;
+        if (e.axes & 2) y += (e.dirNeg & 2) ? -1 : 1;
+        track.add(e.us2 / 2.0, x, y);
+      }
+    }
+    std::vector<scandose::Light> lights;
+    for (const ScanLight& l : m.nano.scanLight) lights.push_back({l.led, static_cast<double>(l.onUs), static_cast<double>(l.offUs)});
+    const double spm[2] = {80, 80};
+    return scandose::measure(h, g, lights, track, spm, windowUs);
+  }
+};
+
+}  // namespace mega
