@@ -15,6 +15,7 @@ namespace {
 struct ScanBudget {
   double edgeErrorUs = 0, startErrorUs = 0, interruptsOffUs = 0, sealReplyUs = 0, silenceCutMs = 0;
   int edges = 0, starts = 0;
+  std::vector<std::pair<uint32_t, double>> closeLate;  // two events this many µs apart: the second's lateness
   ~ScanBudget() {
     std::printf("[nano budget] scan program: time 0 off the G's newline + 1000 us, worst of %d starts: %.3f us (budget 20 us)\n",
                 starts, startErrorUs);
@@ -23,6 +24,11 @@ struct ScanBudget {
     std::printf("[nano budget] scan program: longest interrupts-off window while a chain runs: %.1f us\n", interruptsOffUs);
     std::printf("[nano budget] scan program: K answered, worst: %.1f us after its newline (budget 2000 us)\n", sealReplyUs);
     std::printf("[nano budget] scan program: a chain cut %.1f ms after the Mega's last line (rule: 50 ms)\n", silenceCutMs);
+    if (!closeLate.empty()) {
+      std::printf("[nano budget] scan program: the second of two events close together comes late by");
+      for (auto& c : closeLate) std::printf(" %.1f us (%u us apart)", c.second, c.first);
+      std::printf("\n");
+    }
   }
 } budget;
 
@@ -268,4 +274,31 @@ TEST(NanoScanSim, AChainWhoseMegaFallsSilentIsCut) {
   }
   EXPECT_EQ(reply(*rig, "Q"), "Q:2,0,7");
   EXPECT_EQ(reply(*rig, "C").substr(1), ":0,1,0");
+}
+
+// Two events closer than the Nano needs from one edge to the next (it reads the next event from the
+// store between them): the second comes late by the difference, never early, and nothing else moves.
+TEST(NanoScanSim, EventsCloserThanTheNanoTakesBetweenEdgesComeLateNeverEarly) {
+  for (uint32_t gap : {4u, 8u, 14u, 20u, 30u, 60u}) {
+    auto rig = bootedRig();
+    // LED 0 on at 500 µs, LED 1 on `gap` µs later, both off 1000 µs later, LED 2 on for 50 µs after.
+    Events ev = {{500, 1}, {500 + gap, 3}, {1500, 0}, {2000, 4}, {2050, 0}};
+    auto chain = programs(ev);
+    ASSERT_EQ(chain.size(), 1u);
+    ASSERT_EQ(load(*rig, chain[0]), "K:0");
+    rig->clearEdges();
+    const uint64_t g = start(*rig);
+    rig->runUs(uv::kProgramStartLeadUs + 3000);
+    const double time0 = us(g) + uv::kProgramStartLeadUs;
+    auto e0 = rig->edges('B', 2), e1 = rig->edges('B', 3), e2 = rig->edges('B', 4);
+    ASSERT_EQ(e0.size(), 2u);
+    ASSERT_EQ(e1.size(), 2u);
+    ASSERT_EQ(e2.size(), 2u);
+    const double base = us(e0[0].cycle) - (time0 + 500);  // time 0's own offset, from the first edge
+    const double late = us(e1[0].cycle) - (time0 + 500 + gap) - base;
+    EXPECT_GE(late, -1.0) << gap << " us apart: early";
+    EXPECT_LE(late, 25.0) << gap << " us apart";
+    EXPECT_NEAR(us(e2[0].cycle) - (time0 + 2000) - base, 0, 1.0) << "an event after them moved";
+    budget.closeLate.push_back({gap, late});
+  }
 }
