@@ -39,18 +39,10 @@ struct ScanMachineTest : JobTest {
   scandose::Figures measure(uint32_t windowUs) {
     scandose::Track track;
     track.add(0, 0, 0);
-    for (const std::vector<StepEvent>* steps : {&before, &m.rig.steps}) {
-      int32_t x = 0, y = 0;
-      for (const StepEvent& e : *steps) {
-        if (e.axes & 1) x += (e.dirNeg & 1) ? -1 : 1;
-        if (e.axes & 2) y += (e.dirNeg & 2) ? -1 : 1;
-        track.add(e.us2 / 2.0, x, y);
-      }
-    }
-    std::vector<scandose::Light> lights;
-    for (const ScanLight& l : m.nano.scanLight) lights.push_back({l.led, static_cast<double>(l.onUs), static_cast<double>(l.offUs)});
+    scandose::addSteps(track, before);
+    scandose::addSteps(track, m.rig.steps);
     const double spm[2] = {80, 80};
-    return scandose::measure(h, g, lights, track, spm, windowUs);
+    return scandose::measure(h, g, scandose::lightsOf(m.nano.scanLight), track, spm, windowUs);
   }
 };
 

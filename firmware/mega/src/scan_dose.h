@@ -53,6 +53,26 @@ struct Track {
   }
 };
 
+// Adds a step log to the track, from (0, 0): any log with each step's time in half-µs ticks
+// (`us2`), the axes it stepped (`axes`, bit 0 X, bit 1 Y) and their directions (`dirNeg`).
+template <class Steps>
+void addSteps(Track& track, const Steps& steps) {
+  int32_t x = 0, y = 0;
+  for (const auto& e : steps) {
+    if (e.axes & 1) x += (e.dirNeg & 1) ? -1 : 1;
+    if (e.axes & 2) y += (e.dirNeg & 2) ? -1 : 1;
+    track.add(e.us2 / 2.0, x, y);
+  }
+}
+
+// The light from a log of on/off intervals with `led`, `onUs` and `offUs`.
+template <class Log>
+std::vector<Light> lightsOf(const Log& log) {
+  std::vector<Light> out;
+  for (const auto& l : log) out.push_back({l.led, static_cast<double>(l.onUs), static_cast<double>(l.offUs)});
+  return out;
+}
+
 struct Figures {
   double worstDosePct = 0;   // of the full dose (the longest on-time), over every cell
   double worstCentreUm = 0;  // a cell's light's centroid from the cell's centre

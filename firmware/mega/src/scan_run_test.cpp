@@ -97,17 +97,10 @@ struct ScanRunTest : ::testing::Test {
   };
   scandose::Figures measure(const uv::JobHeader& h, const std::vector<std::vector<uint8_t>>& grid, uint32_t windowUs) {
     scandose::Track track;
-    int32_t x = 0, y = 0;
     track.add(0, 0, 0);
-    for (const StepEvent& e : rig.steps) {
-      if (e.axes & 1) x += (e.dirNeg & 1) ? -1 : 1;
-      if (e.axes & 2) y += (e.dirNeg & 2) ? -1 : 1;
-      track.add(e.us2 / 2.0, x, y);
-    }
-    std::vector<scandose::Light> lights;
-    for (const ScanLight& l : nano.scanLight) lights.push_back({l.led, static_cast<double>(l.onUs), static_cast<double>(l.offUs)});
+    scandose::addSteps(track, rig.steps);
     const double spm[2] = {config.milli(Key::StepsX) / 1000.0, config.milli(Key::StepsY) / 1000.0};
-    return scandose::measure(h, grid, lights, track, spm, windowUs);
+    return scandose::measure(h, grid, scandose::lightsOf(nano.scanLight), track, spm, windowUs);
   }
 };
 
