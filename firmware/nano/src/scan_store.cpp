@@ -132,42 +132,35 @@ void ScanStore::start() {
   const uint8_t oldest = oldestArmed();
   if (oldest == kNone) return;
   buf_[oldest].state = Running;
-  pos_ = 0;
-  run_ = oldest;
+  runFrom(oldest);
   pass_ = uv::PassState::Running;
 }
 
 void ScanStore::discard(uv::PassState why) {
   if (run_ != kNone) pass_ = why;
   run_ = kNone;
+  left_ = 0;
   loading_ = kNone;
   newest_ = kNone;
   buf_[0].state = Free;
   buf_[1].state = Free;
 }
 
-ScanStore::Step ScanStore::next(uint32_t& d, uint8_t& m) {
+ScanStore::Step ScanStore::nextProgram(uint32_t& d, uint8_t& m) {
   uint8_t r = run_;
   if (r == kNone) return Step::End;
   Buffer& b = buf_[r];
-  if (pos_ == b.count) {
-    Buffer& o = buf_[r ^ 1];
-    bool more = b.flags & uv::kSealMore;
-    b.state = Free;
-    if (!more || o.state != Armed || !(o.flags & uv::kSealContinuation)) {
-      run_ = kNone;
-      pass_ = more ? uv::PassState::Underrun : uv::PassState::Whole;
-      return more ? Step::Underrun : Step::End;
-    }
-    o.state = Running;
-    run_ = static_cast<uint8_t>(r ^ 1);
-    pos_ = 0;
-    return next(d, m);
+  Buffer& o = buf_[r ^ 1];
+  bool more = b.flags & uv::kSealMore;
+  b.state = Free;
+  if (!more || o.state != Armed || !(o.flags & uv::kSealContinuation)) {
+    run_ = kNone;
+    pass_ = more ? uv::PassState::Underrun : uv::PassState::Whole;
+    return more ? Step::Underrun : Step::End;
   }
-  uint32_t w = b.words[pos_++];
-  d = delay(w);
-  m = state(w);
-  return Step::Event;
+  o.state = Running;
+  runFrom(static_cast<uint8_t>(r ^ 1));
+  return next(d, m);
 }
 
 }  // namespace nano

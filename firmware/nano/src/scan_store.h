@@ -32,15 +32,36 @@ class ScanStore {
 
   // Timer interrupt: the running chain's next event, d in µs since the one before (or time 0).
   enum class Step : uint8_t { Event, End, Underrun };
-  Step next(uint32_t& d, uint8_t& m);
+  Step next(uint32_t& d, uint8_t& m) {
+    uint32_t w;
+    if (!take(w)) return nextProgram(d, m);
+    d = delay(w);
+    m = state(w);
+    return Step::Event;
+  }
+  // The hot path of next(), for the timer between two close edges: the running program's next
+  // event as stored (pack(d, m)), or false at the program's end, where next() takes over. A
+  // cursor rather than an index: reaching buffer r's word i costs a 260-byte multiply. With the
+  // store read inline the timer's step from one edge to the next fell from 20 µs to 9 µs
+  // (nano_sim_tests, "Closer").
+  bool take(uint32_t& w) {
+    if (!left_) return false;
+    left_--;
+    w = *cur_++;
+    return true;
+  }
+  // A stored word as Timer1 ticks (16 a µs) and as the LED state.
+  static uint32_t ticks(uint32_t w) { return w & ~static_cast<uint32_t>(0x0F); }
+  static uint8_t lights(uint32_t w) { return state(w); }
 
  private:
   static constexpr uint8_t kNone = 0xFF;
   enum State : uint8_t { Free, Loading, Armed, Running };
-  // An event as stored: the LED state in the top 4 bits above d, so neither needs a 32-bit shift.
-  static uint32_t pack(uint32_t d, uint8_t m) { return d | static_cast<uint32_t>(static_cast<uint8_t>(m << 4)) << 24; }
-  static uint32_t delay(uint32_t w) { return w & uv::kProgramMaxDelta; }
-  static uint8_t state(uint32_t w) { return static_cast<uint8_t>(w >> 24) >> 4; }
+  // An event as stored: d above the LED state's 4 bits, so the timer gets d in ticks (16 a µs) and
+  // the state by masking, with no shift between two edges (the main loop shifts when it loads).
+  static uint32_t pack(uint32_t d, uint8_t m) { return d << 4 | m; }
+  static uint32_t delay(uint32_t w) { return w >> 4; }
+  static uint8_t state(uint32_t w) { return static_cast<uint8_t>(w) & 0x0F; }
   struct Buffer {
     uint32_t words[uv::kProgramEvents];  // pack(d, m)
     volatile uint8_t state;
@@ -48,6 +69,13 @@ class ScanStore {
   };
   void spoil(uv::SealCode why);
   uint8_t oldestArmed() const;  // the armed program sealed first, or kNone
+  // The chain's next program, or its end: next() once the running program's events are taken.
+  __attribute__((noinline)) Step nextProgram(uint32_t& d, uint8_t& m);
+  void runFrom(uint8_t i) {
+    run_ = i;
+    cur_ = buf_[i].words;
+    left_ = buf_[i].count;
+  }
   bool live(uint8_t i) const { return i != kNone && (buf_[i].state == Armed || buf_[i].state == Running); }
 
   uint32_t capUs_;
@@ -64,7 +92,8 @@ class ScanStore {
   uint8_t order_ = 0;
   // Running.
   volatile uint8_t run_ = kNone;
-  uint8_t pos_ = 0;
+  const uint32_t* cur_ = nullptr;  // the running program's next event, and how many are left
+  uint8_t left_ = 0;
   volatile uv::PassState pass_ = uv::PassState::None;
 };
 
