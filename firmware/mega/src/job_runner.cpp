@@ -126,6 +126,12 @@ uint8_t JobRunner::tooHot() const {
   return 0;
 }
 
+uint8_t JobRunner::exposureBlocked() const {
+  if (tooHot() || head_.activeFaults()) return uv::kOverTemperature;
+  if (!head_.online()) return uv::kNanoTimeout;
+  return 0;
+}
+
 bool JobRunner::paceWaits(bool cooling) const {
   const int16_t* t = head_.deciC();
   for (uint8_t i = 0; i < uv::kSensorCount; i++) {
@@ -244,9 +250,7 @@ void JobRunner::poll(uint32_t nowUs) {
       return;
     case Phase::Settle: {
       if (!due(nowUs, settleUntil_)) return;
-      uint8_t hot = tooHot();
-      if (hot || head_.activeFaults()) return fail(uv::kOverTemperature);
-      if (!head_.online()) return fail(uv::kNanoTimeout);
+      if (uint8_t why = exposureBlocked()) return fail(why);
       if (paced_ && paceWaits(false)) {
         phase_ = Phase::Cool;  // LEDs off, the head still, until the readings show it cool
         changed_ = true;

@@ -88,6 +88,8 @@ class JobRunner {
   void halt(RunState s, uint8_t reason);
   uint32_t compensate(uint8_t led, uint32_t us) const;
   uint8_t tooHot() const;
+  // What stops an exposure from starting now (too hot, a printhead fault, the Nano gone): its error code, or 0.
+  uint8_t exposureBlocked() const;
   bool paceWaits(bool cooling) const;
   // A scan job's passes (job_runner_scan.cpp).
   void pollScan(uint32_t nowUs);

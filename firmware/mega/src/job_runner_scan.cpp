@@ -16,8 +16,7 @@ void JobRunner::pollScan(uint32_t nowUs) {
       phase_ = Phase::Load;  // on continue, the stream says Scan again and the next pass opens
       return halt(RunState::Paused, pauseReason_);
     }
-    if (tooHot() || head_.activeFaults()) return fail(uv::kOverTemperature);
-    if (!head_.online()) return fail(uv::kNanoTimeout);
+    if (uint8_t why = exposureBlocked()) return fail(why);
     stopInHand_ = true;
   }
   StopSource& passes = card_ ? *static_cast<StopSource*>(card_) : *source_;

@@ -138,8 +138,6 @@ class Machine {
   Pace paceParam(HostLink& port, const uv::Command& c);
   Result startOrContinue(HostLink& port, const uv::Command& c);
   Result resumeInterrupted(HostLink& port, const uv::Command& c);
-  // The planner's machine (planner.md "Time model") from the settings, starting at (x, y).
-  uv::Machine plannerMachine(int32_t x, int32_t y) const;
   uint8_t startPlanning(const uv::JobHeader& header);
   void planRefused(HostLink& port, uint8_t err);
   void runJob();

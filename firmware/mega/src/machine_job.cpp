@@ -57,8 +57,6 @@ Machine::Result Machine::uploadRecord(HostLink& port, const LineSlot& line) {
   return Result::Done;
 }
 
-uv::Machine Machine::plannerMachine(int32_t x, int32_t y) const { return mega::plannerMachine(config_, x, y); }
-
 JobRunner* Machine::newRunner() {
   JobRunner* r = new (arenaMem_) JobRunner(sd_, motion_, head_, config_, leveling_ ? &mesh_ : nullptr);
   r->setScanMemory(arenaMem_ + kRunnerBytes, static_cast<uint16_t>(kArenaBytes - kRunnerBytes));
@@ -67,7 +65,7 @@ JobRunner* Machine::newRunner() {
 }
 
 uint8_t Machine::startPlanning(const uv::JobHeader& header) {
-  uv::Machine m = plannerMachine(0, 0);  // plans start from the origin: the same plan whenever it runs
+  uv::Machine m = mega::plannerMachine(config_, 0, 0);  // plans start from the origin: the same plan whenever it runs
   char name[kFileNameMax + 1];
   strcpy(name, selected_);
   clearArena();

@@ -90,12 +90,12 @@ NextStop StreamJob::next(uint32_t, uv::Stop& out) {
   if (planner_->next(out)) {
     starved_ = false;
     planned_++;
-    cells_.freeBelow(static_cast<uint16_t>(planner_->lowestRowNeeded()));
+    freeRows(lowestRowNeeded());
     return NextStop::Stop;
   }
   if (planner_->starved()) {
     starved_ = true;
-    cells_.freeBelow(static_cast<uint16_t>(planner_->lowestRowNeeded()));
+    freeRows(lowestRowNeeded());
     return NextStop::Wait;
   }
   done_ = true;

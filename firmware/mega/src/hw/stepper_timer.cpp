@@ -19,6 +19,10 @@ volatile bool running = false;
 volatile uint8_t invertBits = 0;
 volatile uint16_t worst = 0;
 uint8_t pinsDir = 0;  // what the direction pins show now
+// How long after its compare match the last step came (ticks), and how much later than the step
+// before it a scan pass's G went out with its step, still to be added to the intervals that follow.
+uint16_t lastStepped = 0;
+uint16_t markLate = 0;
 }  // namespace
 
 void stepperBegin() {
@@ -77,11 +81,33 @@ void stepInterrupt() {
   if (t.step & 1) STEP_XY_PORT |= STEP_X_BIT;
   if (t.step & 2) STEP_XY_PORT |= STEP_Y_BIT;
   if (t.step & 4) STEP_Z_PORT |= STEP_Z_BIT;
-  if (t.mark) stepEngine.markSent(nanoUartSendMark());  // with its step: the head's place is known
+  const uint16_t stepped = TCNT1;  // how long after its compare match this step came
+  if (t.mark) {  // with its step: the head's place is known
+    bool sent = nanoUartSendMark();
+    stepEngine.markSent(sent);
+    if (sent && stepped > lastStepped) markLate = static_cast<uint16_t>(stepped - lastStepped);
+  }
+  lastStepped = stepped;
   uint16_t took = TCNT1;  // ticks since this compare match (the timer restarted from 0 then)
   // In CTC mode the period is OCR1A + 1 ticks (the count runs 0 to OCR1A inclusive). Never set a
   // compare the counter has already passed: it would wait a whole 32 ms wrap.
-  const uint16_t top = static_cast<uint16_t>(t.interval - 1);
+  uint16_t top = static_cast<uint16_t>(t.interval - 1);
+  // The Nano's time 0 follows the G, which goes out with its step, so both are as late as this
+  // interrupt ran after its compare match. Steps in a run are late by about the same, the time this
+  // interrupt takes to raise the pins, and the head follows the steps. But when other interrupts
+  // held up the marked step, or its segment took longer to start, the whole pass's light came that
+  // much later against the head (7 to 16 µs a pass in scan_sim_test, moving with unrelated changes
+  // to this image; after this, 7 to 10 µs, the Nano's own part). So the head is held back by how
+  // much later the marked step came than the one before it: the next steps each wait up to a
+  // quarter interval longer, all before the pass's start mark, at least 1170 µs after the G.
+  if (markLate) {
+    uint16_t piece = t.interval >> 2;
+    if (piece > markLate) piece = markLate;
+    if (top <= 0xFFFF - piece) {
+      top = static_cast<uint16_t>(top + piece);
+      markLate = static_cast<uint16_t>(markLate - piece);
+    }
+  }
   OCR1A = top > took + 4 ? top : took + 4;
   if (took > worst) worst = took;
 }
