@@ -18,6 +18,13 @@ export interface P10Row {
   lightLimit: number;
   /** The passes' lengths at the X axis's maximum speed. */
   travelLimit: number;
+  /**
+   * What no scan of these passes can beat on this machine: every lit window at the pass's speed,
+   * every blank stretch at the axis's maximum speed with no time to speed up or slow down, and each
+   * pass's speeding up from rest and slowing down to it (X reverses between passes), with no move,
+   * settle or overhead.
+   */
+  floor: number;
 }
 
 function header(mask: Mask, strategy: StrategyName, map: 'linear' | 'threshold'): JobHeader {
@@ -45,19 +52,33 @@ export function p10(): P10Row[] {
     let dose = 0;
     for (const row of cells) for (let c = 0; c < row.length; c++) dose += table[row[c]];
     const travelLimit = scan.passes.reduce((t, p) => t + ((p.last - p.first + 1) * h.pitchUm[0] * 1e6) / BENCH_MACHINE.vmaxUmS[0], 0);
-    return { mask: mask.name, scan, crossingUs: crossing.estimateUs, stops, lightLimit: dose / 4, travelLimit };
+    return { mask: mask.name, scan, crossingUs: crossing.estimateUs, stops, lightLimit: dose / 4, travelLimit, floor: floorUs(crossing, h.pitchUm[0]) };
   });
+}
+
+/** P10's floor of a plan made without flying (so window j of a pass starts at j × W). */
+function floorUs(plan: ScanPlan, pitchUm: number): number {
+  const W = plan.windowUs, blankUs = Math.min(W, (pitchUm * 1e6) / BENCH_MACHINE.vmaxUmS[0]);
+  let us = 0;
+  for (const p of plan.passes) {
+    const lit = new Set<number>();
+    for (const led of p.leds) for (const [on, off] of led) for (let j = Math.floor(on / W); j * W < off; j++) lit.add(j);
+    const windows = p.last - p.first + 1;
+    us += 2 * plan.accelUs + lit.size * W + (windows - lit.size) * blankUs;
+  }
+  return us;
 }
 
 export function printP10(rows: P10Row[]): void {
   console.log('\nP10 scan (exposure on the move) vs stop-and-fire (goal: pcb >= 5x) and vs the larger limit (goal: pcb <= 1.3x)');
   console.log('  adjacent rows; scan, stop-and-fire, light limit (dose/4), travel limit (passes at vmax); window, passes');
+  console.log('  floor: every lit window at the pass speed, every blank one at vmax with no ramp, and each pass speeding up from rest and back; no scan of these passes beats it');
   const s = (us: number) => `${(us / 1e6).toFixed(1)} s`;
   for (const r of rows) {
     const limit = Math.max(r.lightLimit, r.travelLimit);
     console.log(
       `P10 ${r.mask.padEnd(7)} scan ${s(r.scan.estimateUs).padStart(8)}  stop-and-fire ${s(r.stops).padStart(8)}  light ${s(r.lightLimit).padStart(7)}  travel ${s(r.travelLimit).padStart(7)}` +
-        `  speed-up ${(r.stops / r.scan.estimateUs).toFixed(2)}x  /limit ${(r.scan.estimateUs / limit).toFixed(2)}x` +
+        `  speed-up ${(r.stops / r.scan.estimateUs).toFixed(2)}x  /limit ${(r.scan.estimateUs / limit).toFixed(2)}x  (floor ${s(r.floor)}, ${(r.floor / limit).toFixed(2)}x the limit)` +
         `  (window ${r.scan.windowUs} us, ${r.scan.passes.length} passes; without flying, as the Mega firmware runs it: ${s(r.crossingUs)}, speed-up ${(r.stops / r.crossingUs).toFixed(2)}x)`,
     );
   }
