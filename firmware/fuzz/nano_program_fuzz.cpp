@@ -27,6 +27,7 @@ struct Board : nano::PrintheadIo {
     chain = nullptr;
   }
   uint8_t litMask() const override { return lit; }
+  uint32_t clockLineUs() override { return 0; }
   bool startProgram(nano::ScanStore& s) override {
     chain = &s;
     for (uint32_t& t : on) t = 0;

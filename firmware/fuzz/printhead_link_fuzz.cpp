@@ -24,6 +24,14 @@ struct Uart : mega::ByteStream {
     tx.append(data, n);
     return true;
   }
+  bool writeNow(char op, uint32_t& atUs) override {
+    if (!tx.empty()) return false;  // the transmitter is busy
+    tx.push_back(op);
+    tx.push_back('\n');
+    atUs = ++clockUs;
+    return true;
+  }
+  uint32_t clockUs = 0;
 };
 
 }  // namespace

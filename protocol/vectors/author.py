@@ -64,6 +64,7 @@ nano_commands = [
     {"line": "C\n", "command": {"op": "C"}, "flash": "dim_white"},
     {"line": "G\n", "command": {"op": "G"}, "flash": "purple"},
     {"line": "Q\n", "command": {"op": "Q"}, "flash": "dim_white"},
+    {"line": "W\n", "command": {"op": "W"}, "flash": "dim_white"},
 ]
 nano_parse_only = [
     {"line": "S\r\n", "command": {"op": "S"}},
@@ -74,6 +75,7 @@ nano_malformed = [
     {"line": "s\n", "why": "lower case"},
     {"line": "Z\n", "why": "unknown command"},
     {"line": "G1\n", "why": "trailing characters after G"},
+    {"line": "W:1\n", "why": "W takes nothing"},
     {"line": "S1\n", "why": "trailing characters"},
     {"line": "S \n", "why": "trailing space"},
     {"line": "F:16,1,1,1,1\n", "why": "mask over 15"},
@@ -111,6 +113,9 @@ nano_replies = [
     {"line": "Q:0,2,6\n", "reply": {"op": "Q", "free": 0, "armed": 2, "pass": 6}},
     {"line": "Q:1,0,1\n", "reply": {"op": "Q", "free": 1, "armed": 0, "pass": 1}},
     {"line": "Q:2,0,7\n", "reply": {"op": "Q", "free": 2, "armed": 0, "pass": 7}},
+    {"line": "W:0\n", "reply": {"op": "W", "us": 0}},
+    {"line": "W:1024000\n", "reply": {"op": "W", "us": 1024000}},
+    {"line": "W:4294967295\n", "reply": {"op": "W", "us": 4294967295}},
 ]
 nano_bad_replies = [
     {"line": "S:16\n"}, {"line": "S:\n"}, {"line": "S15\n"}, {"line": "P:2\n"},
@@ -120,6 +125,7 @@ nano_bad_replies = [
     {"line": "Z:1\n"}, {"line": "S:1"},
     {"line": "K:8\n"}, {"line": "K:\n"}, {"line": "K:12\n"}, {"line": "Q:3,0,0\n"}, {"line": "Q:0,3,0\n"},
     {"line": "Q:0,0,8\n"}, {"line": "Q:0,0\n"}, {"line": "Q:0,0,0,0\n"},
+    {"line": "W:4294967296\n"}, {"line": "W:\n"}, {"line": "W:-1\n"}, {"line": "W:12345678901\n"}, {"line": "W:1,2\n"},
     {"line": "C:65536,0,1\n"}, {"line": "C:1,4294967296,1\n"}, {"line": "C:1,2,3\n"}, {"line": "C:1,2\n"}, {"line": "C:1,2,1,0\n"},
 ]
 nano_streams = [

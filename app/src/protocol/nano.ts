@@ -8,7 +8,7 @@ export const LED_COUNT = 4;
 export const SENSOR_COUNT = 6;
 
 export type NanoCommand =
-  | { op: 'S' | 'D' | 'U' | 'X' | 'P' | 'T' | 'R' | 'E' | 'V' | 'C' | 'G' | 'Q' }
+  | { op: 'S' | 'D' | 'U' | 'X' | 'P' | 'T' | 'R' | 'E' | 'V' | 'C' | 'G' | 'Q' | 'W' }
   | { op: 'F'; mask: number; durations: [number, number, number, number] };
 
 export type NanoReply =
@@ -22,7 +22,9 @@ export type NanoReply =
   /** A scan program's seal: 0 armed, else why it was refused (protocol/nano.md "Scan programs"). */
   | { op: 'K'; code: number }
   /** Buffers free to load, programs armed, and what became of the last chain started. */
-  | { op: 'Q'; free: number; armed: number; pass: number };
+  | { op: 'Q'; free: number; armed: number; pass: number }
+  /** The Nano's micros() when the W's newline arrived: the Mega measures the Nano's clock by it. */
+  | { op: 'W'; us: number };
 
 export type Colour = 'green' | 'dim_white' | 'purple' | 'cyan' | 'orange' | 'red';
 
@@ -49,7 +51,7 @@ export const FAULT = {
 const FLASH: Record<NanoCommand['op'], Colour> = {
   S: 'dim_white', T: 'dim_white', E: 'dim_white', V: 'dim_white', C: 'dim_white',
   F: 'purple', D: 'cyan', U: 'cyan', X: 'cyan', P: 'cyan', R: 'orange',
-  G: 'purple', Q: 'dim_white',
+  G: 'purple', Q: 'dim_white', W: 'dim_white',
 };
 
 export function flashColour(op: NanoCommand['op']): Colour {
@@ -72,7 +74,7 @@ export function nanoLineUsable(line: SplitLine): boolean {
 
 /** Parses one line (without terminator). null = malformed: the Nano drops it. */
 export function parseNanoCommand(line: string): NanoCommand | null {
-  if (line.length === 1 && 'SDUXPTREVCGQ'.includes(line)) {
+  if (line.length === 1 && 'SDUXPTREVCGQW'.includes(line)) {
     return { op: line as 'S' };
   }
   if (!line.startsWith('F:')) return null;
@@ -119,6 +121,7 @@ export function formatNanoReply(r: NanoReply): string {
     case 'C': return `C:${r.boot},${r.fires},${r.whole ? 1 : 0}\n`;
     case 'K': return `K:${r.code}\n`;
     case 'Q': return `Q:${r.free},${r.armed},${r.pass}\n`;
+    case 'W': return `W:${r.us}\n`;
   }
 }
 
@@ -126,7 +129,7 @@ export function formatNanoReply(r: NanoReply): string {
 export function parseNanoReply(raw: string): NanoReply | null {
   if (!raw.endsWith('\n')) return null;
   const line = raw.slice(0, -1);
-  const m = /^([SPTEVCKQ]):(.*)$/.exec(line);
+  const m = /^([SPTEVCKQW]):(.*)$/.exec(line);
   if (!m) return null;
   const body = m[2];
   switch (m[1]) {
@@ -160,6 +163,10 @@ export function parseNanoReply(raw: string): NanoReply | null {
     case 'Q': {
       const v = /^([0-2]),([0-2]),([0-7])$/.exec(body);
       return v ? { op: 'Q', free: Number(v[1]), armed: Number(v[2]), pass: Number(v[3]) } : null;
+    }
+    case 'W': {
+      const us = parseU32(body);
+      return us === null ? null : { op: 'W', us };
     }
   }
   return null;

@@ -132,6 +132,7 @@ export class NanoModel {
         return reply({ op: 'C', boot: this.boot, fires: this.#fires, whole });
       }
       case 'Q': return reply({ op: 'Q', free: this.programs.free, armed: this.programs.armed, pass: this.programs.pass });
+      case 'W': return reply({ op: 'W', us: Math.floor(this.clock.now) >>> 0 }); // one clock with the Mega's here
       case 'G': this.#start(); return null;
       case 'R':
         if (this.lit || this.programs.running) this.#whole = false; // an exposure cut short

@@ -189,7 +189,7 @@ void BoardSim::onLed(avr_irq_t*, uint32_t value, void* param) {
   const bool on = value != 0;
   if (on == s->ledOn_[ref->axis]) return;  // a write that left the pin as it was
   s->ledOn_[ref->axis] = on;
-  if (s->logging) s->ledEdges.push_back({s->nano_->cycle, ref->axis, on});
+  if (s->logging) s->ledEdges.push_back({static_cast<uint64_t>(static_cast<double>(s->nano_->cycle) / s->nanoClock), ref->axis, on});
 }
 
 void BoardSim::onDir(avr_irq_t*, uint32_t value, void* param) {
@@ -241,8 +241,8 @@ void BoardSim::step() {
   host_.push();
   toMega_.push();
   toNano_.push();
-  // Both chips run at 16 MHz: keep them within an instruction of each other.
-  avr_t* next = mega_->cycle <= nano_->cycle ? mega_ : nano_;
+  // Keep the two chips within an instruction of each other, the Nano at `nanoClock` of the Mega's rate.
+  avr_t* next = static_cast<double>(mega_->cycle) * nanoClock <= static_cast<double>(nano_->cycle) ? mega_ : nano_;
   uint64_t before = next->cycle;
   bool wasInPanel = inPanel_;
   int wasVector = next == mega_ ? runningVector(mega_) : 0;

@@ -57,8 +57,11 @@ class BoardSim {
   // Sets the Nano's sensor input `ch` (TMP36: 500 mV + 10 mV/°C).
   void setNanoMv(int ch, uint32_t mv);
 
+  // The Nano's clock against the Mega's: 1 + its error. Each board's 16 MHz comes from its own
+  // crystal or resonator (±50 ppm and ±0.5 %), and a scan's light runs on the Nano's.
+  double nanoClock = 1.0;
   // While `logging`: every X or Y step with the head's place after it, and every edge of the Nano's
-  // four LED pins (D10-D13), each with its time in cycles (both chips run at 16 MHz in step).
+  // four LED pins (D10-D13), each with its time in the Mega's cycles.
   bool logging = false;
   struct HeadStep {
     uint64_t cycle;

@@ -11,6 +11,10 @@ class ByteStream {
   virtual int16_t read() = 0;
   // Writes all n bytes if the transmit buffer has room for them, else nothing; never waits.
   virtual bool write(const char* data, uint8_t n) = 0;
+  // Sends `op` and a newline at once, when nothing else is going out (the transmitter idle), and
+  // gives the micros() at which `op` went into the transmitter; false, sending nothing, when busy.
+  // The printhead link times its `W` by it (nano_clock.h).
+  virtual bool writeNow(char op, uint32_t& atUs) = 0;
 };
 
 }  // namespace mega

@@ -43,13 +43,14 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
   }
   bool write(const char* data, uint8_t n) override {
     if (uartFull) return false;
-    for (uint8_t i = 0; i < n; i++) {
-      if (!splitter_.push(data[i])) continue;
-      std::string l(splitter_.text(), splitter_.length());
-      lines.push_back(l);
-      if (silent) continue;
-      head_.line(splitter_.text(), splitter_.length(), splitter_.overflow(), nowUs / 1000);
-    }
+    take(data, n);
+    return true;
+  }
+  bool writeNow(char op, uint32_t& atUs) override {
+    if (uartFull) return false;
+    const char line[2] = {op, '\n'};
+    atUs = nowUs;
+    take(line, 2);
     return true;
   }
 
@@ -80,6 +81,8 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
     toMega_.clear();
   }
 
+  // The Nano's clock runs this many parts per million fast: what its W answers say.
+  int32_t clockPpm = 0;
   bool silent = false;   // hears nothing, answers nothing
   bool stuck = false;    // LEDs ignore their off time (a failed timer), only R turns them off
   bool uartFull = false;
@@ -91,6 +94,18 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
   bool probe = false;
 
  private:
+  void take(const char* data, uint8_t n) {
+    for (uint8_t i = 0; i < n; i++) {
+      if (!splitter_.push(data[i])) continue;
+      std::string l(splitter_.text(), splitter_.length());
+      lines.push_back(l);
+      if (silent) continue;
+      head_.line(splitter_.text(), splitter_.length(), splitter_.overflow(), nowUs / 1000);
+    }
+  }
+  uint32_t clockLineUs() override {
+    return static_cast<uint32_t>(nowUs + static_cast<int64_t>(nowUs) * clockPpm / 1000000);
+  }
   void fire(const nano::FirePlan& p) override {
     Exposure e{nowUs, p.onMask, {}, {}};
     for (uint8_t k = 0; k < p.count; k++) {
@@ -117,10 +132,12 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
     for (uint8_t i = 0; i < 4; i++)
       if (lit_ & (1 << i)) off(i, nowUs);
   }
-  // A scan chain runs in simulated time: advance() takes its events as they fall due.
+  // A scan chain runs in simulated time, on this Nano's clock (clockPpm): advance() takes its
+  // events as they fall due.
   bool startProgram(nano::ScanStore& store) override {
     program_ = &store;
-    eventAt_ = nowUs + uv::kProgramStartLeadUs;
+    chainAt_ = nowUs;
+    chainUs_ = uv::kProgramStartLeadUs;
     return takeEvent();
   }
   bool takeEvent() {
@@ -131,7 +148,8 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
       setLit(0, eventAt_);
       return false;
     }
-    eventAt_ += d;
+    chainUs_ += d;  // the Nano's µs since the G, and the same moment on the test's clock:
+    eventAt_ = chainAt_ + static_cast<uint32_t>(static_cast<int64_t>(chainUs_) * 1000000 / (1000000 + clockPpm));
     nextMask_ = m;
     return true;
   }
@@ -171,6 +189,7 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
   uint32_t startAt_ = 0;
   nano::ScanStore* program_ = nullptr;
   uint32_t eventAt_ = 0;
+  uint32_t chainAt_ = 0, chainUs_ = 0;  // when the chain's G came, and its time so far in the Nano's µs
   uint8_t nextMask_ = 0;
   uint16_t boot_ = 7;
   int16_t temps_ = 250;

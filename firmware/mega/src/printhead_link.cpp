@@ -30,6 +30,8 @@ bool PrintheadLink::ask(char op, uint32_t nowUs) {
 void PrintheadLink::begin(uint32_t nowUs) {
   allOff();
   identityWanted_ = true;
+  clock_.forget();
+  nextClock_ = nowUs;
   nextThermal_ = nowUs;
   nextFault_ = nowUs + kFaultPollUs / 2;
 }
@@ -95,7 +97,10 @@ bool PrintheadLink::servo(char op) {
 void PrintheadLink::flagsSeen(uint8_t flags) {
   uint8_t newlyActive = static_cast<uint8_t>(flags & uv::fault::kActive & ~flags_);
   if (newlyActive || (flags & uv::fault::kCutoff)) events_ |= kFault;
-  if (flags & uv::fault::kWatchdog) events_ |= kNanoReset;
+  if (flags & uv::fault::kWatchdog) {
+    events_ |= kNanoReset;
+    clock_.forget();  // its micros() began again
+  }
   flags_ = flags;
 }
 
@@ -104,6 +109,7 @@ void PrintheadLink::missed(uint32_t nowUs) {
   if (misses_ < 255) misses_++;
   if (misses_ < kNanoMissesOffline) return;
   online_ = false;
+  clock_.forget();
   if (!reportedOffline_) {
     reportedOffline_ = true;
     events_ |= kWentOffline;
@@ -172,6 +178,9 @@ void PrintheadLink::handle(const uv::NanoReply& r, uint32_t nowUs) {
       passState_ = r.pass;
       passAnswered_ = true;
       break;
+    case 'W':
+      clock_.sample(clockSentUs_, r.us);
+      break;
     case 'V':
       memcpy(firmware_, r.firmware, sizeof firmware_ - 1);
       firmware_[sizeof firmware_ - 1] = 0;
@@ -232,6 +241,14 @@ void PrintheadLink::poll(uint32_t nowUs) {
   if (identityWanted_ && due(nowUs, nextThermal_)) {
     ask('V', nowUs);
     nextThermal_ = nowUs + kThermalPollUs / 10;
+    return;
+  }
+  // The clock's W must find the transmitter idle; when it does not, the next pass tries again.
+  if (fire_ != FireState::Firing && due(nowUs, nextClock_) && io_.writeNow('W', clockSentUs_)) {
+    sent_++;
+    inFlight_ = 'W';
+    askedAt_ = nowUs;
+    nextClock_ = nowUs + (clock_.known() ? kClockRepollUs : kClockPollUs);
     return;
   }
   // No background E while an exposure runs: its latched bits belong to the exposure's own check.

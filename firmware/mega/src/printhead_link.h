@@ -6,6 +6,7 @@
 
 #include "byte_stream.h"
 #include "line_splitter.h"
+#include "nano_clock.h"
 #include "nano_codec.h"
 
 namespace mega {
@@ -17,6 +18,8 @@ constexpr uint32_t kFaultPollUs = 500000;
 constexpr uint32_t kFireGraceUs = 100000;  // LEDs still on this long after the longest duration: R
 constexpr uint32_t kFireRepollUs = 1000;
 constexpr uint32_t kFireFirstCheckUs = 2000;
+constexpr uint32_t kClockPollUs = 250000;    // W until the Nano's clock is known
+constexpr uint32_t kClockRepollUs = 5000000;  // then now and then, to follow its drift
 
 enum class FireState : uint8_t { Idle, Firing, Done, Failed };
 
@@ -89,6 +92,9 @@ class PrintheadLink {
   uint8_t passArmed() const { return passArmed_; }
   uint8_t passState() const { return passState_; }
 
+  // The Nano's clock against this one's (nano_clock.h), measured by W in the background; forgotten
+  // when the Nano restarts or falls silent.
+  const NanoClock& nanoClock() const { return clock_; }
   bool online() const { return online_; }
   bool tempsKnown() const { return tempsKnown_; }
   const int16_t* deciC() const { return deciC_; }
@@ -140,6 +146,8 @@ class PrintheadLink {
   uint32_t sent_ = 0;
   bool sealAnswered_ = false, passWanted_ = false, passAnswered_ = false, held_ = false;
   uint8_t sealCode_ = 0, passFree_ = 0, passArmed_ = 0, passState_ = 0;
+  NanoClock clock_;
+  uint32_t nextClock_ = 0, clockSentUs_ = 0;  // the next W; this clock's micros() as the last went out
 };
 
 }  // namespace mega

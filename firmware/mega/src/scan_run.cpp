@@ -13,6 +13,9 @@ bool ScanRun::source(void* ctx, uint32_t& t, uint8_t& m) {
   ScanRun* s = static_cast<ScanRun*>(ctx);
   if (!s->planner_.nextEvent(t, m)) return false;
   t += s->stroke_.shiftUs;  // the plan's time 0 falls this long after the Nano's
+  // As the Nano's clock counts it. Its time 0 is kProgramStartLeadUs of its own µs after the G's
+  // newline, where this plan put it that many of the Mega's: so the lead is scaled with the times.
+  t = NanoClock::toNano(t + uv::kProgramStartLeadUs, s->clockPpm_) - uv::kProgramStartLeadUs;
   return true;
 }
 
@@ -79,6 +82,10 @@ ScanRun::Step ScanRun::poll(Motion& motion, PrintheadLink& head, const uv::JobHe
   if (error_) return Step::Failed;
   switch (phase_) {
     case Phase::Open:
+      // The Nano's clock must be known before a pass: its light runs on it (nano_clock.h).
+      if (!head.online()) return fail(head, uv::kNanoTimeout);
+      if (!head.nanoClock().known()) return Step::Busy;
+      clockPpm_ = head.nanoClock().ppm();
       if (!open(motion, h)) return planner_.starved() ? Step::Starved : Step::End;
       if (error_) return fail(head, error_);
       phase_ = Phase::Load;

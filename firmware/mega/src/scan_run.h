@@ -25,8 +25,9 @@ class ScanRun {
   enum class Step : uint8_t { Busy, Starved, PassDone, End, Failed };
   // `h`: the job (its origin and pitch place each pass on the bed).
   Step poll(Motion& motion, PrintheadLink& head, const uv::JobHeader& h, uint32_t nowUs);
-  // Why it failed: an error code (29 the speed is out of the step engine's range, 31 the Nano cut
-  // the chain for a fault, 33 the Nano refused or cut it otherwise).
+  // Why it failed: an error code (29 the speed is out of the step engine's range, 30 the Nano went
+  // silent before a pass, 31 the Nano cut the chain for a fault, 33 the Nano refused or cut it
+  // otherwise).
   uint8_t error() const { return error_; }
   // Between passes, and not failed: the next poll opens the next pass.
   bool idle() const { return phase_ == Phase::Open && !error_; }
@@ -58,6 +59,7 @@ class ScanRun {
   uint16_t passes_ = 0;
   uint32_t nextPoll_ = 0, until_ = 0;
   int32_t y_ = 0;
+  int32_t clockPpm_ = 0;  // the Nano's clock when the pass opened (nano_clock.h)
   StrokePlan stroke_ = {};
 };
 

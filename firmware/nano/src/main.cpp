@@ -56,6 +56,7 @@ class Board : public nano::PrintheadIo {
     SREG = sreg;
     return inTime;
   }
+  uint32_t clockLineUs() override { return nano::uart::clockLineUs(); }
   uint8_t litMask() const override { return nano::led_timer::lit(); }
   void servoPulse(uint16_t us) override { nano::servo_pulse::set(us); }
   bool probeTriggered() override { return nano::probe_input::takeTriggered(); }

@@ -75,6 +75,9 @@ void Printhead::handle(const uv::NanoCommand& c, uint32_t) {
       return fire(c);
     case 'G':
       return start();
+    case 'W':
+      r.us = io_.clockLineUs();
+      return send(r);
     case 'Q':
       r.free = store_.freeBuffers();
       r.armed = store_.armed();

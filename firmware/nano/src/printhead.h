@@ -27,6 +27,9 @@ class PrintheadIo {
   // Runs the store's armed chain from the `G` just received; false when the G's time 0 has gone
   // by (the Nano took it too late) and nothing runs.
   virtual bool startProgram(ScanStore& store) = 0;
+  // The Nano's micros() when the `\n` of the latest `W` arrived (its receive interrupt notes it),
+  // by which the Mega measures this clock against its own.
+  virtual uint32_t clockLineUs() = 0;
   virtual uint8_t litMask() const = 0;
   virtual void servoPulse(uint16_t us) = 0;     // 50 Hz train of this width from now on
   virtual bool probeTriggered() = 0;            // level now, or a latched pulse since the last call

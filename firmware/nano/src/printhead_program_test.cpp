@@ -26,6 +26,7 @@ struct Board : PrintheadIo {
     chain = nullptr;
   }
   uint8_t litMask() const override { return lit; }
+  uint32_t clockLineUs() override { return 0; }
   bool startProgram(ScanStore& s) override {
     chain = &s;
     return true;

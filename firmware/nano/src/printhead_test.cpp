@@ -26,6 +26,8 @@ struct FakeIo : PrintheadIo {
     lit = 0;
   }
   uint8_t litMask() const override { return lit; }
+  uint32_t lineUs = 0;  // when the latest W arrived, by this board's micros()
+  uint32_t clockLineUs() override { return lineUs; }
   bool late = false;  // the G's time 0 has gone by when the Nano takes it
   ScanStore* running = nullptr;
   bool startProgram(ScanStore& s) override {
@@ -68,6 +70,9 @@ TEST(Printhead, AnswersTheTable) {
   EXPECT_EQ(h.take(), "V:1,0.2.0\n");
   h.send("E");
   EXPECT_EQ(h.take(), "E:0\n");
+  h.io.lineUs = 4294967295u;  // the clock the Mega measures: micros() as the W arrived, wrapped or not
+  h.send("W");
+  EXPECT_EQ(h.take(), "W:4294967295\n");
   for (const char* silent : {"F:1,100,0,0,0", "R", "D", "U", "X"}) {
     h.send(silent);
     EXPECT_EQ(h.take(), "") << silent;

@@ -21,7 +21,7 @@ struct Ring {
 static_assert((kRing & (kRing - 1)) == 0, "free-running 8-bit indices: the ring must divide 256");
 
 Ring rx, tx;
-// Where the receiver is in a line that is just `G` or `R`, as the line splitter reads it: 1 at a
+// Where the receiver is in a line that is just `G`, `R` or `W`, as the line splitter reads it: 1 at a
 // line start, the letter after it, the letter in lower case after its one `\r`, 0 elsewhere.
 uint8_t shortLine = 1;
 volatile bool started = false;
@@ -69,6 +69,14 @@ bool takeResetCut() {
   return cut;
 }
 
+uint32_t clockLineUs() {
+  uint8_t sreg = SREG;
+  cli();
+  uint32_t us = startUs;
+  SREG = sreg;
+  return us;
+}
+
 bool takeStart(uint16_t& tick, uint32_t& us) {
   uint8_t sreg = SREG;
   cli();
@@ -104,14 +112,16 @@ ISR(USART_RX_vect) {
       startTick = tick;
       startUs = micros();
       started = true;
+    } else if (shortLine == 'W' || shortLine == 'w') {
+      startUs = micros();  // the Mega never sends a G while a W's answer is due: one place for both
     } else if (shortLine == 'R' || shortLine == 'r') {
       if (nano::led_timer::allOff()) resetCut = true;  // the main loop's R handler does the rest
     }
     shortLine = 1;
-  } else if (shortLine == 1 && (c == 'G' || c == 'R')) {
+  } else if (shortLine == 1 && (c == 'G' || c == 'R' || c == 'W')) {
     shortLine = static_cast<uint8_t>(c);
-  } else if ((shortLine == 'G' || shortLine == 'R') && c == '\r') {
-    shortLine = static_cast<uint8_t>(shortLine | 0x20);  // its one carriage return: g or r
+  } else if ((shortLine == 'G' || shortLine == 'R' || shortLine == 'W') && c == '\r') {
+    shortLine = static_cast<uint8_t>(shortLine | 0x20);  // its one carriage return: g, r or w
   } else {
     shortLine = 0;
   }

@@ -1,5 +1,5 @@
 // The Nano's UART (USART0, 115200 8N1) driven from its interrupts, with the arrival time of a `G`
-// and every LED off the moment an `R` line ends.
+// or a `W`, and every LED off the moment an `R` line ends.
 // Arduino's HardwareSerial cannot say when a byte arrived; a scan pass's time 0 is fixed by the
 // moment the `\n` of `G` arrives (protocol/nano.md "Scan programs"), so the receive interrupt
 // notes it. The two 64-byte rings are HardwareSerial's; its 157 bytes of RAM become 136 here.
@@ -19,6 +19,8 @@ bool write(const char* data, uint8_t n);
 // The Timer1 count and micros() when the receive interrupt took the `\n` of the latest line that
 // was just `G` (or `G\r`); false when none arrived since the last call.
 bool takeStart(uint16_t& tick, uint32_t& us);
+// micros() when the receive interrupt took the `\n` of the latest line that was just `W` (or `W\r`).
+uint32_t clockLineUs();
 // Whether the receive interrupt switched everything off for an R line (`R` or `R\r`) that found an
 // LED lit or an event pending; cleared by the call.
 bool takeResetCut();

@@ -25,7 +25,7 @@ Colour flashColour(char op) {
     case 'F': case 'G': return Colour::Purple;
     case 'D': case 'U': case 'X': case 'P': return Colour::Cyan;
     case 'R': return Colour::Orange;
-    default: return Colour::DimWhite;  // S T E V C A K Q
+    default: return Colour::DimWhite;  // S T E V C A K Q W
   }
 }
 
@@ -34,9 +34,15 @@ bool nanoLineUsable(const char* text, uint8_t len, bool overflow) {
 }
 
 bool parseNanoCommand(const char* line, uint8_t len, NanoCommand& out) {
-  if (len == 1 && strchr("SDUXPTREVCGQ", line[0]) && line[0] != '\0') {
-    out.op = line[0];
-    return true;
+  if (len == 1) {
+    switch (line[0]) {  // a switch, not strchr over a string: on the AVR that string would sit in RAM
+      case 'S': case 'D': case 'U': case 'X': case 'P': case 'T': case 'R':
+      case 'E': case 'V': case 'C': case 'G': case 'Q': case 'W':
+        out.op = line[0];
+        return true;
+      default:
+        return false;
+    }
   }
   if (len < 2 || line[0] != 'F' || line[1] != ':') return false;
   const char* p = line + 2;
@@ -125,6 +131,7 @@ size_t formatNanoReply(const NanoReply& r, char* out, size_t size) {
       }
       break;
     case 'K': n += putUnsigned(r.code, out + n); break;
+    case 'W': n += putUnsigned(r.us, out + n); break;
     case 'Q':
       n += putUnsigned(r.free, out + n);
       out[n++] = ',';
@@ -173,6 +180,9 @@ bool parseNanoReply(const char* line, size_t len, NanoReply& r) {
     case 'K':
       p = scanUnsigned(p, end, 1, 7, v);
       r.code = static_cast<uint8_t>(v);
+      return p == end;
+    case 'W':
+      p = scanUnsigned(p, end, 10, 0xFFFFFFFFu, r.us);
       return p == end;
     case 'Q': {
       uint32_t q[3];  // free, armed, pass

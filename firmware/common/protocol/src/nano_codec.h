@@ -10,13 +10,13 @@ constexpr uint8_t kLedCount = 4;
 constexpr uint8_t kSensorCount = 6;
 
 struct NanoCommand {
-  char op;  // one of S F D U X P T R E V C G Q (A and K lines: scan_program.h)
+  char op;  // one of S F D U X P T R E V C G Q W (A and K lines: scan_program.h)
   uint8_t mask;
   uint32_t durations[kLedCount];
 };
 
 struct NanoReply {
-  char op;  // one of S P T E V C K Q
+  char op;  // one of S P T E V C K Q W
   uint8_t mask;
   bool triggered;
   int16_t deciC[kSensorCount];
@@ -28,6 +28,7 @@ struct NanoReply {
   bool whole;      // C: the last exposure ran its full time (not cut by R or a fault)
   uint8_t code;    // K: the seal's SealCode
   uint8_t free, armed, pass;  // Q: buffers free to load, programs armed, the last chain's PassState
+  uint32_t us;     // W: the Nano's micros() when the W's newline arrived
 };
 
 enum class Colour : uint8_t { Green, DimWhite, Purple, Cyan, Orange, Red };

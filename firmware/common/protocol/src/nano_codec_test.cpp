@@ -73,6 +73,7 @@ json replyJson(const NanoReply& r) {
     case 'C': j["boot"] = r.boot; j["fires"] = r.fires; j["whole"] = r.whole; break;
     case 'K': j["code"] = r.code; break;
     case 'Q': j["free"] = r.free; j["armed"] = r.armed; j["pass"] = r.pass; break;
+    case 'W': j["us"] = r.us; break;
   }
   return j;
 }
@@ -93,6 +94,7 @@ NanoReply replyFrom(const json& j) {
   if (j.contains("free")) r.free = j["free"];
   if (j.contains("armed")) r.armed = j["armed"];
   if (j.contains("pass")) r.pass = j["pass"];
+  if (j.contains("us")) r.us = j["us"];
   if (j.contains("firmware")) snprintf(r.firmware, sizeof r.firmware, "%s", j["firmware"].get<std::string>().c_str());
   return r;
 }

@@ -2,6 +2,7 @@
 // other. One writer and one reader per ring, 8-bit free-running indices: no interrupts turned off.
 #include "hw/nano_uart.h"
 
+#include <Arduino.h>
 #include <avr/interrupt.h>
 #include <avr/io.h>
 
@@ -17,16 +18,35 @@ struct Ring {
 static_assert((NanoUart::kRing & (NanoUart::kRing - 1)) == 0, "free-running 8-bit indices: the ring must divide 256");
 
 Ring rx, tx;
-volatile bool markNewline = false;  // the G's newline goes out next, before the ring
+volatile bool markNewline = false;  // the newline of a G or W goes out next, before the ring
 
-}  // namespace
+// Every write to UDR1 clears TXC1 (by writing it 1, U2X1 kept), so TXC1 set means the transmitter
+// has been idle since its last byte's stop bit. With interrupts off.
+inline void transmit(char c) {
+  UDR1 = static_cast<uint8_t>(c);
+  UCSR1A = (1 << U2X1) | (1 << TXC1);
+}
 
-bool nanoUartSendMark() {
-  if (tx.used() || markNewline || !(UCSR1A & (1 << UDRE1))) return false;
-  UDR1 = 'G';
+// "op\n" now if the transmitter is idle (TXC1: not even a byte still shifting out); interrupts off.
+bool sendNow(char op) {
+  if (tx.used() || markNewline || !(UCSR1A & (1 << TXC1))) return false;
+  transmit(op);
   markNewline = true;
   UCSR1B |= 1 << UDRIE1;
   return true;
+}
+
+}  // namespace
+
+bool nanoUartSendMark() { return sendNow('G'); }
+
+bool NanoUart::writeNow(char op, uint32_t& atUs) {
+  uint8_t sreg = SREG;
+  cli();
+  bool sent = sendNow(op);
+  if (sent) atUs = micros();  // Arduino's micros() is right with interrupts off
+  SREG = sreg;
+  return sent;
 }
 
 void NanoUart::begin(uint32_t baud) {
@@ -55,6 +75,7 @@ bool NanoUart::write(const char* data, uint8_t n) {
 }  // namespace mega
 
 using mega::markNewline;
+using mega::transmit;
 using mega::rx;
 using mega::tx;
 using mega::NanoUart;
@@ -69,7 +90,7 @@ ISR(USART1_RX_vect) {
 
 ISR(USART1_UDRE_vect) {
   if (markNewline) {
-    UDR1 = '\n';
+    transmit('\n');
     markNewline = false;
     return;
   }
@@ -77,6 +98,6 @@ ISR(USART1_UDRE_vect) {
     UCSR1B &= static_cast<uint8_t>(~(1 << UDRIE1));
     return;
   }
-  UDR1 = static_cast<uint8_t>(tx.buf[tx.out % NanoUart::kRing]);
+  transmit(tx.buf[tx.out % NanoUart::kRing]);
   tx.out = static_cast<uint8_t>(tx.out + 1);
 }

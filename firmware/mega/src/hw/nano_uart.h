@@ -17,12 +17,13 @@ class NanoUart : public ByteStream {
   void begin(uint32_t baud);
   int16_t read() override;
   bool write(const char* data, uint8_t n) override;
+  bool writeNow(char op, uint32_t& atUs) override;
 };
 
 // For the step interrupt only: a scan pass's G (protocol/nano.md "Scan programs"), "G\n" now, when
-// nothing is waiting to go out, so its newline reaches the Nano two byte-times from now. The 'G'
-// goes straight into UDR1 and the newline follows from the transmit interrupt ahead of the ring,
-// so a line the main loop is writing meanwhile cannot split it. False when the line is busy.
+// the transmitter is idle, so its newline reaches the Nano two byte-times from now. The 'G' goes
+// straight into UDR1 and the newline follows from the transmit interrupt ahead of the ring, so a
+// line the main loop is writing meanwhile cannot split it. False when the line is busy.
 bool nanoUartSendMark();
 
 }  // namespace mega

@@ -1,0 +1,58 @@
+#include "nano_clock.h"
+
+#include <gtest/gtest.h>
+
+using namespace mega;
+
+TEST(NanoClock, OneExchangeSaysNothingAndTwoOverASecondGiveTheRate) {
+  NanoClock c;
+  c.sample(5000000, 123);
+  EXPECT_FALSE(c.known());
+  c.sample(5900000, 123 + 900450);  // under the baseline: not trusted yet
+  EXPECT_FALSE(c.known());
+  c.sample(7000000, 123 + 2001000);  // 2 s by the Mega, 2.001 s by the Nano
+  ASSERT_TRUE(c.known());
+  EXPECT_EQ(c.ppm(), 500);
+}
+
+TEST(NanoClock, ASlowNanoAndClocksThatWrap) {
+  NanoClock c;
+  c.sample(4294000000u, 4294900000u);
+  c.sample(4294000000u + 3000000, 4294900000u + 2985000);  // both past 2³² µs
+  ASSERT_TRUE(c.known());
+  EXPECT_EQ(c.ppm(), -5000);
+}
+
+TEST(NanoClock, ARateNoCrystalGivesStartsOverAndForgetDropsTheRate) {
+  NanoClock c;
+  c.sample(0, 0);
+  c.sample(2000000, 2000100);
+  ASSERT_TRUE(c.known());
+  c.sample(4000000, 1500);  // the Nano restarted: its micros() began again
+  EXPECT_FALSE(c.known());
+  c.sample(6000000, 1500 + 2000000);  // measured again from the restart
+  ASSERT_TRUE(c.known());
+  EXPECT_EQ(c.ppm(), 0);
+  c.forget();
+  EXPECT_FALSE(c.known());
+  c.sample(7000000, 9);
+  EXPECT_FALSE(c.known());
+}
+
+TEST(NanoClock, TheRateFollowsADriftingClockOnceTheFirstExchangeIsOld) {
+  NanoClock c;
+  c.sample(0, 0);
+  c.sample(kClockRebaseUs + 1000000, kClockRebaseUs + 1000000 + 301);  // 1 ppm: the anchor moves here
+  EXPECT_EQ(c.ppm(), 1);
+  c.sample(kClockRebaseUs + 3000000, kClockRebaseUs + 1000000 + 301 + 2000040);  // 20 ppm since then
+  EXPECT_EQ(c.ppm(), 20);
+}
+
+TEST(NanoClock, MegaTimeAsTheNanoCountsItRoundsAndNeverWraps) {
+  EXPECT_EQ(NanoClock::toNano(1600000, 0), 1600000u);
+  EXPECT_EQ(NanoClock::toNano(1600000, 5000), 1608000u);
+  EXPECT_EQ(NanoClock::toNano(1600000, -5000), 1592000u);
+  EXPECT_EQ(NanoClock::toNano(999, 500), 999u);    // 999.4995
+  EXPECT_EQ(NanoClock::toNano(1001, 500), 1002u);  // 1001.5005
+  EXPECT_EQ(NanoClock::toNano(4000000000u, -20000), 3920000000u);
+}
