@@ -179,6 +179,27 @@ describe('scan planner', () => {
     expect(p.passes[0].leds[0]).toEqual([[1500, 3500], [6500, 8500], [10000 + 1998, 10000 + 1998 + 1004]]);
   });
 
+  it('plans a stream while its rows arrive: every pass whose rows have all come, a prefix of the whole plan', () => {
+    for (const [name, geometry] of Object.entries(GEOMETRIES)) {
+      for (let seed = 1; seed <= 6; seed++) {
+        const j = randomJob(seed * 31 + name.length, geometry, 'serpentine', undefined, 0.3);
+        const h = headerOf(j), whole = plan(j);
+        const dyMax = Math.max(...h.offsets.map((o) => o[1]));
+        let before = 0;
+        for (let known = 0; known <= h.rows; known++) {
+          // Rows still to come read as 0, as in the Mega's buffer.
+          const cells = j.gridData.map((row, r) => (r < known ? row : new Array<number>(row.length).fill(0)));
+          const part = planScan({ header: h, cells, knownRows: known }, MACHINE);
+          expect(part.passes, `${name} #${seed} at ${known} rows`).toEqual(whole.passes.slice(0, part.passes.length));
+          for (const p of part.passes) expect(known === h.rows || p.hy + dyMax < known).toBe(true);
+          expect(part.passes.length).toBeGreaterThanOrEqual(before);
+          before = part.passes.length;
+        }
+        expect(before).toBe(whole.passes.length);
+      }
+    }
+  });
+
   it('plans nothing for a job with no lit cell', () => {
     const p = plan(job(6, 4, [[1, 1, 50]], { dose: { map: 'threshold', level: 100, fullUs: 2000 } }));
     expect([p.passes.length, p.estimateUs]).toEqual([0, 0]);

@@ -81,8 +81,13 @@ export function planScan(job: PlannerJob, machine: Machine, opts: { neverFly?: b
     return f < g * W ? f : 0;
   };
   let curX = machine.startUm[0], curY = machine.startUm[1];
+  // Rows still to arrive (a stream): the plan is every pass up to the first that reads one of them
+  // (planner.md "Planning while rows arrive"), a prefix of the whole job's.
+  const known = job.knownRows ?? h.rows;
+  const dyMax = Math.max(...h.offsets.map((o) => o[1]));
 
   for (const { hy, ledRows } of passRows(h, job.cells)) {
+    if (known < h.rows && hy + dyMax >= known) break;
     let first = Infinity, last = -Infinity;
     ledRows.forEach((r, k) => {
       if (r < 0) return;

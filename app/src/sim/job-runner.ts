@@ -120,10 +120,11 @@ export class JobRunner {
     this.start(0);
   }
 
-  /** A longer prefix of the streamed job's plan (protocol/planner.md "Planning while rows arrive"). */
-  extend(header: JobHeader, plan: Plan, complete: boolean): void {
+  /** A longer prefix of the streamed job's plan (protocol/planner.md "Planning while rows arrive"), and its passes for a scan job. */
+  extend(header: JobHeader, plan: Plan, complete: boolean, scan: ScanPlan | null = null): void {
     this.header = header;
     this.plan = plan;
+    this.scan = scan;
     this.#planComplete = complete;
     if (this.#starved && this.state === 'running' && (plan.count > this.done || complete)) {
       this.#starved = false;

@@ -2,7 +2,7 @@
 // held in a bounded buffer and exposed as soon as no later row can change the stops that read them.
 // A record that does not fit waits for its `ok`, which holds back the host through its window.
 
-import { planJob } from '../planner/planner';
+import { planAnyJob } from '../planner/job-plan';
 import type { Machine } from '../planner/time-model';
 import type { JobHeader } from '../protocol/job-types';
 import { JobVerifier, type JobError } from '../protocol/job-verify';
@@ -11,8 +11,8 @@ import type { JobRunner } from './job-runner';
 /** Cells of arrived rows the Mega holds until every stop that reads them has been exposed. */
 export const STREAM_BUFFER_CELLS = 4096;
 
-/** A record's error (E23-E25), or E28 when the buffer cannot hold the rows the next stops need. */
-export type StreamError = Omit<JobError, 'code'> & { code: JobError['code'] | 28 | 29 };
+/** A record's error (E23-E25), or E28 when the buffer cannot hold the rows the next stops (or pass) need. */
+export type StreamError = Omit<JobError, 'code'> & { code: JobError['code'] | 28 };
 
 export class JobStream {
   readonly verifier: JobVerifier;
@@ -60,11 +60,6 @@ export class JobStream {
       return done();
     }
     const h = this.verifier.header;
-    if (h?.strategy === 'scan') {
-      // A pass is planned from its whole rows and runs without a stop: a scan job goes to the card (M28), as on the Mega.
-      this.#fail({ code: 29, line: 0, message: 'a scan job is not streamed: upload it to the card' });
-      return done();
-    }
     if (h && !this.#header) {
       this.#header = h;
       this.#cells = Array.from({ length: h.rows }, () => new Uint8Array(h.cols));
@@ -82,8 +77,9 @@ export class JobStream {
     const h = this.#header;
     if (h && this.#known > this.#planned && (this.job.starved || this.#held > STREAM_BUFFER_CELLS || this.#known === h.rows)) {
       this.#planned = this.#known;
-      const plan = planJob({ header: h, cells: this.#cells, knownRows: this.#known }, this.machine);
-      this.job.extend(h, plan, this.#known === h.rows);
+      // A scan job's passes too (the Mega's ScanPlanner::setKnownRows): each once all its rows are here.
+      const { plan, scan } = planAnyJob({ header: h, cells: this.#cells, knownRows: this.#known }, this.machine);
+      this.job.extend(h, plan, this.#known === h.rows, scan);
     }
     if (this.#held > STREAM_BUFFER_CELLS) this.#release();
     if (this.#held <= STREAM_BUFFER_CELLS) return this.#answer();
