@@ -31,7 +31,7 @@ void PrintheadLink::begin(uint32_t nowUs) {
   allOff();
   identityWanted_ = true;
   clock_.forget();
-  nextClock_ = nowUs;
+  nextClock_ = nowUs;  // the first W right away
   nextThermal_ = nowUs;
   nextFault_ = nowUs + kFaultPollUs / 2;
 }
@@ -94,22 +94,26 @@ bool PrintheadLink::servo(char op) {
   return send(c);
 }
 
-void PrintheadLink::flagsSeen(uint8_t flags) {
+void PrintheadLink::forgetClock(uint32_t nowUs) {
+  clock_.forget();
+  nextClock_ = nowUs + kClockPollUs;
+}
+
+void PrintheadLink::flagsSeen(uint8_t flags, uint32_t nowUs) {
   uint8_t newlyActive = static_cast<uint8_t>(flags & uv::fault::kActive & ~flags_);
   if (newlyActive || (flags & uv::fault::kCutoff)) events_ |= kFault;
   if (flags & uv::fault::kWatchdog) {
     events_ |= kNanoReset;
-    clock_.forget();  // its micros() began again
+    forgetClock(nowUs);  // its micros() began again
   }
   flags_ = flags;
 }
 
 void PrintheadLink::missed(uint32_t nowUs) {
-  (void)nowUs;
   if (misses_ < 255) misses_++;
   if (misses_ < kNanoMissesOffline) return;
   online_ = false;
-  clock_.forget();
+  forgetClock(nowUs);
   if (!reportedOffline_) {
     reportedOffline_ = true;
     events_ |= kWentOffline;
@@ -135,7 +139,7 @@ void PrintheadLink::handle(const uv::NanoReply& r, uint32_t nowUs) {
       tempsKnown_ = true;
       break;
     case 'E':
-      flagsSeen(r.flags);
+      flagsSeen(r.flags, nowUs);
       if (fire_ == FireState::Firing && fireCheckWanted_) {
         fireCheckWanted_ = false;
         if (r.flags & kRefusals) {

@@ -115,7 +115,9 @@ class PrintheadLink {
   void handle(const uv::NanoReply& r, uint32_t nowUs);
   void missed(uint32_t nowUs);
   void fireFailed(uint8_t code);
-  void flagsSeen(uint8_t flags);
+  void flagsSeen(uint8_t flags, uint32_t nowUs);
+  // A Nano that restarted or fell silent: its clock is measured again, from soon.
+  void forgetClock(uint32_t nowUs);
 
   ByteStream& io_;
   // The longest reply, T:, is 41 bytes at the sensors' widest (-40.0 to 125.0); a longer line is noise.

@@ -118,6 +118,30 @@ TEST_F(Link, ASilentNanoIsReportedOnceAfterThreeMissedRepliesAndWelcomedBack) {
   EXPECT_EQ(link.takeEvents(), PrintheadLink::kCameBack);
 }
 
+// W: the Nano's clock against this one (nano_clock.h), asked in the background, never while held
+// for a scan pass's G, and measured again once a silent Nano comes back.
+TEST_F(Link, MeasuresTheNanosClockByWAndMeasuresItAgainAfterTheNanoWasGone) {
+  nano.clockPpm = 3000;
+  run(1000000);
+  ASSERT_TRUE(link.nanoClock().known());
+  EXPECT_NEAR(link.nanoClock().ppm(), 3000, 2);
+  const int w = count("W");
+  link.hold(true);
+  run(20000000);
+  EXPECT_EQ(count("W"), w);  // nothing while a pass waits for its G
+  link.hold(false);
+  run(6000000);
+  EXPECT_GT(count("W"), w);  // then every 5 s
+  nano.silent = true;
+  run(1000000);
+  EXPECT_FALSE(link.nanoClock().known());
+  nano.silent = false;
+  nano.clockPpm = -200;  // another Nano
+  run(2000000);
+  ASSERT_TRUE(link.nanoClock().known());
+  EXPECT_NEAR(link.nanoClock().ppm(), -200, 2);
+}
+
 TEST_F(Link, TheNanoGoingSilentMidExposureFailsItWithE30AndSendsR) {
   uint32_t long1[4] = {300000, 0, 0, 0};
   ASSERT_TRUE(link.fire(1, long1, now));

@@ -19,9 +19,9 @@ volatile bool running = false;
 volatile uint8_t invertBits = 0;
 volatile uint16_t worst = 0;
 uint8_t pinsDir = 0;  // what the direction pins show now
-// How long after its compare match the last step came (ticks), and how much later than the step
-// before it a scan pass's G went out with its step, still to be added to the intervals that follow.
-uint16_t lastStepped = 0;
+// How long after its compare match a step usually comes (ticks), and how much later than that a
+// scan pass's G went out with its step, still to be added to the intervals that follow.
+uint16_t usualStepped = 0;
 uint16_t markLate = 0;
 }  // namespace
 
@@ -85,9 +85,12 @@ void stepInterrupt() {
   if (t.mark) {  // with its step: the head's place is known
     bool sent = nanoUartSendMark();
     stepEngine.markSent(sent);
-    if (sent && stepped > lastStepped) markLate = static_cast<uint16_t>(stepped - lastStepped);
+    if (sent && stepped > usualStepped) markLate = static_cast<uint16_t>(stepped - usualStepped);
   }
-  lastStepped = stepped;
+  // A minimum that leaks upwards a tick a step: what the steps around take when nothing holds them
+  // up, which one held-up step does not move.
+  if (stepped <= usualStepped) usualStepped = stepped;
+  else usualStepped++;
   uint16_t took = TCNT1;  // ticks since this compare match (the timer restarted from 0 then)
   // In CTC mode the period is OCR1A + 1 ticks (the count runs 0 to OCR1A inclusive). Never set a
   // compare the counter has already passed: it would wait a whole 32 ms wrap.
@@ -96,10 +99,10 @@ void stepInterrupt() {
   // interrupt ran after its compare match. Steps in a run are late by about the same, the time this
   // interrupt takes to raise the pins, and the head follows the steps. But when other interrupts
   // held up the marked step, or its segment took longer to start, the whole pass's light came that
-  // much later against the head (7 to 16 µs a pass in scan_sim_test, moving with unrelated changes
-  // to this image; after this, 7 to 10 µs, the Nano's own part). So the head is held back by how
-  // much later the marked step came than the one before it: the next steps each wait up to a
-  // quarter interval longer, all before the pass's start mark, at least 1170 µs after the G.
+  // much later against the head (7 to 22 µs a pass in scan_sim_test, moving with unrelated changes
+  // to this image). So the head is held back by how much later the marked step came than steps
+  // usually do: the next steps each wait up to a quarter interval longer, all before the pass's
+  // start mark, at least 1170 µs after the G.
   if (markLate) {
     uint16_t piece = t.interval >> 2;
     if (piece > markLate) piece = markLate;
