@@ -8,8 +8,9 @@
 
 namespace mega {
 
-// Spans shorter than this are not trusted: both timestamps are good to about 10 µs.
-constexpr uint32_t kClockBaselineUs = 1000000;
+// Spans shorter than this are not trusted: both timestamps are good to about 10 µs (both micros()
+// tick 4 µs), so 2 s give the rate to 5 ppm, 8 µs over a 1.6 s pass; it only improves after.
+constexpr uint32_t kClockBaselineUs = 2000000;
 // A measured rate further off than this is no crystal or resonator: the Nano restarted between two
 // exchanges (its micros() began again), or an answer was lost. The exchanges start over.
 constexpr int32_t kClockMaxPpm = 20000;

@@ -4,11 +4,11 @@
 
 using namespace mega;
 
-TEST(NanoClock, OneExchangeSaysNothingAndTwoOverASecondGiveTheRate) {
+TEST(NanoClock, OneExchangeSaysNothingAndTwoOverTwoSecondsGiveTheRate) {
   NanoClock c;
   c.sample(5000000, 123);
   EXPECT_FALSE(c.known());
-  c.sample(5900000, 123 + 900450);  // under the baseline: not trusted yet
+  c.sample(6900000, 123 + 1900950);  // under the baseline: not trusted yet
   EXPECT_FALSE(c.known());
   c.sample(7000000, 123 + 2001000);  // 2 s by the Mega, 2.001 s by the Nano
   ASSERT_TRUE(c.known());
@@ -44,7 +44,7 @@ TEST(NanoClock, TheRateFollowsADriftingClockOnceTheFirstExchangeIsOld) {
   c.sample(0, 0);
   c.sample(kClockRebaseUs + 1000000, kClockRebaseUs + 1000000 + 301);  // 1 ppm: the anchor moves here
   EXPECT_EQ(c.ppm(), 1);
-  c.sample(kClockRebaseUs + 3000000, kClockRebaseUs + 1000000 + 301 + 2000040);  // 20 ppm since then
+  c.sample(kClockRebaseUs + 3000000, kClockRebaseUs + 1000000 + 301 + 2000040);  // 20 ppm over the 2 s since then
   EXPECT_EQ(c.ppm(), 20);
 }
 

@@ -122,7 +122,7 @@ TEST_F(Link, ASilentNanoIsReportedOnceAfterThreeMissedRepliesAndWelcomedBack) {
 // for a scan pass's G, and measured again once a silent Nano comes back.
 TEST_F(Link, MeasuresTheNanosClockByWAndMeasuresItAgainAfterTheNanoWasGone) {
   nano.clockPpm = 3000;
-  run(1000000);
+  run(2000000);
   ASSERT_TRUE(link.nanoClock().known());
   EXPECT_NEAR(link.nanoClock().ppm(), 3000, 2);
   const int w = count("W");
@@ -137,7 +137,7 @@ TEST_F(Link, MeasuresTheNanosClockByWAndMeasuresItAgainAfterTheNanoWasGone) {
   EXPECT_FALSE(link.nanoClock().known());
   nano.silent = false;
   nano.clockPpm = -200;  // another Nano
-  run(2000000);
+  run(3000000);
   ASSERT_TRUE(link.nanoClock().known());
   EXPECT_NEAR(link.nanoClock().ppm(), -200, 2);
 }
