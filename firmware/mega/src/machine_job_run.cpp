@@ -221,7 +221,9 @@ void Machine::runJob() {
   } else {
     lastHeardUs_ = now_;
   }
-  if (j.state() == RunState::Paused && before == RunState::Running && j.reason() && j.reason() != kReasonLostHost) {
+  // A fault that paused the job, or ended a stream (which cannot pause: its rows are gone).
+  const bool stopped = j.state() == RunState::Paused || j.state() == RunState::Failed;
+  if (stopped && before == RunState::Running && j.reason() && j.reason() != kReasonLostHost) {
     lastFault_ = j.reason();
     faultToShow_ = true;
   }

@@ -73,6 +73,19 @@ void ScanStreamTest::exposeWithTheNanosClockOff(int32_t ppm) {
 TEST_F(ScanStreamTest, ANanoClockFastByAResonatorsToleranceStillGivesEveryCellItsDose) { exposeWithTheNanosClockOff(5000); }
 TEST_F(ScanStreamTest, ANanoClockSlowByAResonatorsToleranceStillGivesEveryCellItsDose) { exposeWithTheNanosClockOff(-5000); }
 
+// A Nano whose firmware predates W: its clock cannot be measured, so no pass runs. The job ends
+// with E29 after the wait, with no light, rather than waiting for ever.
+TEST_F(ScanStreamTest, ANanoThatNeverAnswersWEndsTheScanJobWithE29AndNoLight) {
+  m.nano.noClock = true;
+  job(40, 10, 1000);
+  stream();
+  const std::string end = runUntilJob({"done", "failed", "paused", "aborted"}, 30000000);
+  EXPECT_EQ(end.rfind("JOB:failed", 0), 0u) << end;
+  EXPECT_TRUE(has(m.usbLines, "FAULT:E29 scan job not supported by this machine at stop 0")) << ::testing::PrintToString(m.usbLines);
+  EXPECT_TRUE(m.nano.scanLight.empty());
+  EXPECT_TRUE(m.head.online());  // the polls it does answer keep it online
+}
+
 TEST_F(ScanStreamTest, M524MidPassSwitchesTheLedsOffAndStopsTheHead) {
   job(90, 4, 1000);  // one pass of 90 ms (the 512-byte stream buffer holds its 4 rows)
   stream();

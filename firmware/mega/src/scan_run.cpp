@@ -84,7 +84,14 @@ ScanRun::Step ScanRun::poll(Motion& motion, PrintheadLink& head, const uv::JobHe
     case Phase::Open:
       // The Nano's clock must be known before a pass: its light runs on it (nano_clock.h).
       if (!head.online()) return fail(head, uv::kNanoTimeout);
-      if (!head.nanoClock().known()) return Step::Busy;
+      if (!head.nanoClock().known()) {
+        if (!clockWaiting_) {
+          clockWaiting_ = true;
+          clockWaitFrom_ = nowUs;
+        }
+        return due(nowUs, clockWaitFrom_ + kScanClockWaitUs) ? fail(head, uv::kScanUnsupported) : Step::Busy;
+      }
+      clockWaiting_ = false;
       clockPpm_ = head.nanoClock().ppm();
       if (!open(motion, h)) return planner_.starved() ? Step::Starved : Step::End;
       if (error_) return fail(head, error_);

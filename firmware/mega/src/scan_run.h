@@ -17,6 +17,9 @@ namespace mega {
 
 constexpr uint32_t kScanPollUs = 10000;      // Q while a chain runs: well inside the Nano's 50 ms
 constexpr uint32_t kScanSettleUs = 50000;    // after the stroke, the chain must have ended by then
+// A pass waits this long at most for the Nano's clock (known 2 s after the Nano answers W): a Nano
+// that never answers W (older firmware) cannot run a scan job, which ends with E29 and no light.
+constexpr uint32_t kScanClockWaitUs = 10000000;
 
 class ScanRun {
  public:
@@ -25,7 +28,8 @@ class ScanRun {
   enum class Step : uint8_t { Busy, Starved, PassDone, End, Failed };
   // `h`: the job (its origin and pitch place each pass on the bed).
   Step poll(Motion& motion, PrintheadLink& head, const uv::JobHeader& h, uint32_t nowUs);
-  // Why it failed: an error code (29 the speed is out of the step engine's range, 30 the Nano went
+  // Why it failed: an error code (29 the speed is out of the step engine's range or the Nano's clock
+  // could not be measured, 30 the Nano went
   // silent before a pass, 31 the Nano cut the chain for a fault, 33 the Nano refused or cut it
   // otherwise).
   uint8_t error() const { return error_; }
@@ -60,6 +64,8 @@ class ScanRun {
   uint32_t nextPoll_ = 0, until_ = 0;
   int32_t y_ = 0;
   int32_t clockPpm_ = 0;  // the Nano's clock when the pass opened (nano_clock.h)
+  bool clockWaiting_ = false;
+  uint32_t clockWaitFrom_ = 0;  // when this pass began to wait for it
   StrokePlan stroke_ = {};
 };
 
