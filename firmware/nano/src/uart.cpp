@@ -27,6 +27,7 @@ uint8_t shortLine = 1;
 volatile bool started = false;
 volatile uint16_t startTick;
 volatile uint32_t startUs;
+volatile uint32_t clockUs;  // the latest W's, apart from the G's: a G may follow a W before it is answered
 volatile bool resetCut = false;
 
 }  // namespace
@@ -72,7 +73,7 @@ bool takeResetCut() {
 uint32_t clockLineUs() {
   uint8_t sreg = SREG;
   cli();
-  uint32_t us = startUs;
+  uint32_t us = clockUs;
   SREG = sreg;
   return us;
 }
@@ -113,7 +114,7 @@ ISR(USART_RX_vect) {
       startUs = micros();
       started = true;
     } else if (shortLine == 'W' || shortLine == 'w') {
-      startUs = micros();  // the Mega never sends a G while a W's answer is due: one place for both
+      clockUs = micros();
     } else if (shortLine == 'R' || shortLine == 'r') {
       if (nano::led_timer::allOff()) resetCut = true;  // the main loop's R handler does the rest
     }
