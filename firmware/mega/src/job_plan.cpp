@@ -5,6 +5,7 @@
 
 #include "error_codes.h"
 #include "job_files.h"
+#include "nano_codec.h"
 #include "scan_program.h"
 
 namespace mega {
@@ -110,13 +111,8 @@ bool JobPlan::stepScan() {
     bytes += n;
     if (line[0] == 'K' && ++sealed == 2) ahead = bytes;
   }
-  if (lines.failed()) {  // events 2²⁸ µs apart or more
-    error_ = uv::kScanUnsupported;
-    close();
-    return true;
-  }
-  const uint64_t linkUs = static_cast<uint64_t>(sealed > 2 ? bytes - ahead : 0) * 10 * 1000000 / 115200;
-  if (linkUs * 5 > static_cast<uint64_t>(passUs_) * 4) {
+  const uint64_t linkUs = static_cast<uint64_t>(sealed > 2 ? bytes - ahead : 0) * 10 * 1000000 / uv::kNanoBaud;
+  if (lines.failed() || linkUs * 5 > static_cast<uint64_t>(passUs_) * 4) {  // (failed: events 2²⁸ µs apart or more)
     error_ = uv::kScanUnsupported;
     close();
     return true;

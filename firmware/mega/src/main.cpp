@@ -45,7 +45,7 @@ uint32_t lastPass = 0;
 void setup() {
   board.begin();
   stepperBegin();
-  nanoSerial.begin(115200);
+  nanoSerial.begin(uv::kNanoBaud);
   sd.begin(PIN_SD_CS);
   store.load();  // for esp.port and invert.*, before anything talks
   usbUart.begin(usb, 115200);

@@ -22,9 +22,13 @@ bool PrintheadLink::ask(char op, uint32_t nowUs) {
   uv::NanoCommand c{};
   c.op = op;
   if (!send(c)) return false;
+  awaitReply(op, nowUs);
+  return true;
+}
+
+void PrintheadLink::awaitReply(char op, uint32_t nowUs) {
   inFlight_ = op;
   askedAt_ = nowUs;
-  return true;
 }
 
 void PrintheadLink::begin(uint32_t nowUs) {
@@ -75,8 +79,7 @@ bool PrintheadLink::programLine(const char* line, uint8_t len, uint32_t nowUs) {
   if ((seal && inFlight_) || offPending_ || !io_.write(line, len)) return false;
   sent_++;
   if (seal) {
-    inFlight_ = 'K';
-    askedAt_ = nowUs;
+    awaitReply('K', nowUs);
     sealAnswered_ = false;
   }
   return true;
@@ -250,8 +253,7 @@ void PrintheadLink::poll(uint32_t nowUs) {
   // The clock's W must find the transmitter idle; when it does not, the next pass tries again.
   if (fire_ != FireState::Firing && due(nowUs, nextClock_) && io_.writeNow('W', clockSentUs_)) {
     sent_++;
-    inFlight_ = 'W';
-    askedAt_ = nowUs;
+    awaitReply('W', nowUs);
     nextClock_ = nowUs + (clock_.known() ? kClockRepollUs : kClockPollUs);
     return;
   }

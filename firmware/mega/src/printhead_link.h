@@ -112,6 +112,8 @@ class PrintheadLink {
  private:
   bool send(const uv::NanoCommand& c);
   bool ask(char op, uint32_t nowUs);
+  // A line that asks `op` went out: its reply is awaited, up to kNanoReplyTimeoutUs from now.
+  void awaitReply(char op, uint32_t nowUs);
   void handle(const uv::NanoReply& r, uint32_t nowUs);
   void missed(uint32_t nowUs);
   void fireFailed(uint8_t code);

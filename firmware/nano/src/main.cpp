@@ -107,7 +107,7 @@ void setup() {
   uint16_t boot = static_cast<uint16_t>(eeprom_read_word(bootCount) + 1);
   eeprom_update_word(bootCount, boot);  // about 7 ms, before the watchdog and the UART start
   head.setBoot(boot);
-  nano::uart::begin(115200);
+  nano::uart::begin(uv::kNanoBaud);
   wdt_enable(WDTO_250MS);
 }
 

@@ -6,6 +6,7 @@
 namespace uv {
 
 constexpr uint8_t kNanoMaxLine = 63;
+constexpr uint32_t kNanoBaud = 115200;  // 8N1: ten bits a byte
 constexpr uint8_t kLedCount = 4;
 constexpr uint8_t kSensorCount = 6;
 
