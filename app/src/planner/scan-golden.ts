@@ -38,5 +38,16 @@ export function scanGoldenCases(): ScanCase[] {
     j.leds.gainPermille = [1000, 1000, 1000, 1000];
     out.push(scanCase(`ts scan ${g} runs`, j, MACHINE));
   }
+  // More blank stretches a pass than it flies (MAX_JUMPS): the longest are kept, the lower column
+  // first among equals. Random gaps, then equal ones, each in both directions (two passes).
+  for (const [g, offsets] of Object.entries(GEOMETRIES)) {
+    const j = randomJob(seed++, offsets, 'serpentine', [400, 8], 0.02);
+    j.dose = { map: 'threshold', level: 100, fullUs: 2000 };
+    out.push(scanCase(`ts scan ${g} many stretches`, j, MACHINE));
+  }
+  const even = randomJob(seed++, GEOMETRIES.adjacent, 'serpentine', [241, 8], 0);
+  even.dose = { map: 'threshold', level: 100, fullUs: 2000 };
+  for (const y of [0, 5]) for (let x = 3; x < 241; x += 20) (even.gridData[y] as number[])[x] = 255;
+  out.push(scanCase('ts scan equal stretches', even, MACHINE));
   return out;
 }

@@ -6,7 +6,7 @@ import { GEOMETRIES, MACHINE, randomJob } from './golden';
 import { headerOf } from './job-header';
 import { passRows, planJob } from './planner';
 import { scanGoldenCases, type ScanCase } from './scan-golden';
-import { planScan, type ScanPlan } from './scan';
+import { MAX_JUMPS, planScan, type ScanPlan } from './scan';
 import { moveTimeUs, type Machine } from './time-model';
 
 /** The fly of g blank windows on MACHINE at 50 µm, 2000 µs windows (planner.md "Blank stretches"). */
@@ -122,16 +122,17 @@ describe('scan planner', () => {
   });
 
   it('reverses the second pass: windows count from the last column, times mirror', () => {
-    const p = plan(job(12, 8, [[2, 0, 255], [7, 0, 51], [3, 4, 51], [9, 4, 255], [9, 5, 102]]));
+    const p = plan(job(12, 8, [[2, 0, 255], [9, 0, 51], [3, 4, 51], [10, 4, 255], [10, 5, 102]]));
     const [a, b] = p.passes;
-    expect([a.descending, a.first, a.last]).toEqual([false, 2, 7]);
-    expect(a.jumps).toEqual([[1, 4, F(4)]]);
-    expect(a.leds[0]).toEqual([[0, 2000], [2000 + F(4) + 800, 2000 + F(4) + 1200]]);
-    expect([b.hy, b.descending, b.first, b.last]).toEqual([4, true, 3, 9]);
-    expect(b.jumps).toEqual([[1, 5, F(5)]]);
-    expect(b.leds[0]).toEqual([[0, 2000], [2000 + F(5) + 800, 2000 + F(5) + 1200]]);
+    expect([a.descending, a.first, a.last]).toEqual([false, 2, 9]);
+    expect(F(6)).toBeLessThanOrEqual(5 * 2000); // six blank windows: the fly saves at least a window
+    expect(a.jumps).toEqual([[1, 6, F(6)]]);
+    expect(a.leds[0]).toEqual([[0, 2000], [2000 + F(6) + 800, 2000 + F(6) + 1200]]);
+    expect([b.hy, b.descending, b.first, b.last]).toEqual([4, true, 3, 10]);
+    expect(b.jumps).toEqual([[1, 6, F(6)]]);
+    expect(b.leds[0]).toEqual([[0, 2000], [2000 + F(6) + 800, 2000 + F(6) + 1200]]);
     expect(b.leds[1]).toEqual([[600, 1400]]); // t(102) = 800
-    expect([b.runUpUm, b.runOutUm]).toEqual([1000 + 9 * 50 + 25 + 105, 1000 + 3 * 50 - 25 - 105]);
+    expect([b.runUpUm, b.runOutUm]).toEqual([1000 + 10 * 50 + 25 + 105, 1000 + 3 * 50 - 25 - 105]);
   });
 
   it('places each LED by its own column offset, negative ones too', () => {
@@ -140,21 +141,44 @@ describe('scan planner', () => {
     const [pass] = p.passes;
     // Head columns 5, 8, 1, 6: the pass runs from 1 to 8, lit in windows 0, 4, 5 and 7.
     expect([pass.first, pass.last]).toEqual([1, 8]);
-    expect([F(1), F(3)]).toEqual([1950, 5240]); // each beats crossing at the speed: 2000, 6000 µs
-    expect(pass.jumps).toEqual([[1, 3, F(3)], [6, 1, F(1)]]);
-    const S4 = 2000 + F(3), S5 = S4 + 2000, S7 = S5 + 2000 + F(1);
+    // Each fly beats crossing at the speed (2000, 6000 µs), but by less than a window: neither is flown.
+    expect([F(1), F(3)]).toEqual([1950, 5240]);
+    expect(pass.jumps).toEqual([]);
+    const S4 = 8000, S5 = 10000, S7 = 14000;
     expect(pass.leds).toEqual([[[S4, S4 + 2000]], [[S7, S7 + 2000]], [[0, 2000]], [[S5, S5 + 2000]]]);
     const move = Math.max(moveTimeUs(1000 + 50 - 25 - 105, 150000, 3000000), moveTimeUs(2000, 100000, 2000000));
     expect(p.estimateUs).toBe(move + 2000 + 1500 + 2 * 8334 + S7 + 2000);
   });
 
-  it('flies no blank stretch when the speed is capped, and one only when it beats the speed', () => {
+  it('flies no blank stretch when the speed is capped, and one only when it saves a window', () => {
     const slow = { ...MACHINE, vmaxUmS: [10000, 100000] as [number, number] };
     expect(plan(job(40, 4, [[2, 0, 255], [30, 0, 255]]), slow).passes[0].jumps).toEqual([]);
     // A slow axis: a fly of one window would take longer than the window.
     const lazy = { ...MACHINE, accelUmS2: [300000, 2000000] as [number, number] };
     const p = plan(job(40, 4, [[2, 0, 255], [4, 0, 255], [30, 0, 255]]), lazy);
     expect(p.passes[0].jumps.map((j) => j.slice(0, 2))).toEqual([[3, 25]]);
+  });
+
+  it('flies only the MAX_JUMPS longest stretches of a pass, the lower column first among equals, both ways', () => {
+    const gaps = [10, 20, 12, 30, 12, 40, 9, 50, 12, 15, 12];
+    const lit: [number, number, number][] = [[2, 0, 255], [2, 4, 255]];
+    const lows: number[] = [];
+    let c = 2;
+    for (const g of gaps) {
+      lows.push(c + 1);
+      c += g + 1;
+      lit.push([c, 0, 255], [c, 4, 255]);
+    }
+    const kept = [1, 2, 3, 4, 5, 7, 8, 9].map((i) => `${lows[i]}+${gaps[i]}`).sort();
+    const p = plan(job(240, 8, lit));
+    expect(p.passes.map((q) => q.descending)).toEqual([false, true]);
+    for (const q of p.passes) {
+      expect(q.jumps.length).toBe(MAX_JUMPS);
+      const flown = q.jumps.map(([w, g]) => `${q.descending ? q.last - w - g + 1 : q.first + w}+${g}`).sort();
+      expect(flown).toEqual(kept);
+      const saved = q.jumps.reduce((t, [, g, f]) => t + g * 2000 - f, 0);
+      expect(q.leds[0].at(-1)?.[1]).toBe((q.last - q.first + 1) * 2000 - saved);
+    }
   });
 
   it('never flies for a machine that cannot: the same light, every window W after the last, a longer estimate', () => {

@@ -73,12 +73,12 @@ export function planScan(job: PlannerJob, machine: Machine, opts: { neverFly?: b
   const X = (hx: number) => h.originUm[0] + hx * p;
   const Y = (hy: number) => h.originUm[1] + hy * h.pitchUm[1];
   const moves = new MoveTimes(machine);
-  // A blank stretch of g windows is flown in F(g) when that beats crossing it at the speed.
+  // A blank stretch of g windows may be flown in F(g) when that saves at least a window.
   const flies = !opts.neverFly && W > Math.ceil((p * 1_000_000) / machine.vmaxUmS[0]);
   const fly = (g: number) => {
     if (!flies) return 0;
     const f = Math.max(1, moves.axis(0, g * p + 2 * motion.overscanUm) - 2 * motion.accelUs);
-    return f < g * W ? f : 0;
+    return f <= (g - 1) * W ? f : 0;
   };
   let curX = machine.startUm[0], curY = machine.startUm[1];
   // Rows still to arrive (a stream): the plan is every pass up to the first that reads one of them
@@ -107,13 +107,16 @@ export function planScan(job: PlannerJob, machine: Machine, opts: { neverFly?: b
       const row = job.cells[r];
       for (let c = 0; c < row.length; c++) if (tables[k][row[c]] > 0) litAt[c - h.offsets[k][0] - first] = 1;
     });
+    // The flown stretches: by head column, the window after each lit one starts a stretch.
+    const flown = new Map<number, number>(); // first blank window in the pass's direction → g
+    for (const [col, g] of flownStretches(litAt, fly)) flown.set(descending ? n - col - g : col, g);
     const start = new Array<number>(n); // S(j)
     const jumps: [number, number, number][] = [];
     for (let j = 0, t = 0, prev = -1; j < n; j++, t += W) {
       if (litAt[descending ? n - 1 - j : j]) {
         const g = j - prev - 1;
-        const f = prev >= 0 && g > 0 ? fly(g) : 0;
-        if (f) {
+        if (prev >= 0 && g > 0 && flown.get(prev + 1) === g) {
+          const f = fly(g);
           t = start[prev] + W + f;
           jumps.push([prev + 1, g, f]);
         }
@@ -132,6 +135,24 @@ export function planScan(job: PlannerJob, machine: Machine, opts: { neverFly?: b
     plan.passes.push({ hy, descending, first, last, runUpUm, runOutUm, leds, jumps, events: mergeLight(leds) });
   }
   return plan;
+}
+
+/** A pass flies at most this many of its blank stretches (planner.md "Blank stretches"). */
+export const MAX_JUMPS = 8;
+
+/**
+ * The stretches a pass flies, as [lowest head column − first, g]: of the blank stretches between
+ * lit windows that may be flown (fly(g) > 0), the MAX_JUMPS longest, the lower column first on a tie.
+ */
+function flownStretches(litAt: Uint8Array, fly: (g: number) => number): [number, number][] {
+  const all: [number, number][] = [];
+  for (let c = 0, prev = -1; c < litAt.length; c++) {
+    if (!litAt[c]) continue;
+    const g = c - prev - 1;
+    if (prev >= 0 && g > 0 && fly(g) > 0) all.push([prev + 1, g]);
+    prev = c;
+  }
+  return all.sort((a, b) => b[1] - a[1] || a[0] - b[0]).slice(0, MAX_JUMPS);
 }
 
 /** One LED's [on, off] list for its row: each lit cell centred in its window, touching intervals merged. */

@@ -88,7 +88,8 @@ bool ScanPlanner::nextPass(ScanPass& out) {
       cells_.open(k, static_cast<uint16_t>(row_[k]), false);
       peek(k);
     }
-    uint64_t span = 0;  // S(n − 1) + W
+    // The lit windows, ascending: the extent, and the stretches that may be flown.
+    jumpCount_ = jumpNext_ = 0;
     for (;;) {
       bool any = false;
       int32_t best = 0;
@@ -100,17 +101,27 @@ bool ScanPlanner::nextPass(ScanPass& out) {
       if (!any) break;
       if (first > last) {
         first = best;
-        span = motion_.windowUs;
-      } else {
-        const uint32_t g = static_cast<uint32_t>(best - last - 1);
-        const uint32_t f = g ? fly(g) : 0;
-        span += f ? f + motion_.windowUs : static_cast<uint64_t>(g + 1) * motion_.windowUs;
+      } else if (best - last > 1 && best - last - 1 <= 0xffff) {
+        first_ = first;
+        consider(last + 1, static_cast<uint16_t>(best - last - 1));
       }
       last = best;
       for (uint8_t k = 0; k < 4; k++)
         if (live_[k] && hx_[k] == best) peek(k);
     }
     if (first > last) continue;  // no lit cell: the pass is dropped
+    first_ = first;
+    // S(n − 1) + W: every window, less what each flown stretch saves.
+    uint64_t span = static_cast<uint64_t>(last - first + 1) * motion_.windowUs;
+    for (uint8_t i = 0; i < jumpCount_; i++) span -= static_cast<uint64_t>(jumpG_[i]) * motion_.windowUs - fly(jumpG_[i]);
+    for (uint8_t i = 1; i < jumpCount_; i++)  // by column, ascending
+      for (uint8_t k = i; k > 0 && jumpCol_[k - 1] > jumpCol_[k]; k--) {
+        const uint16_t c = jumpCol_[k], g = jumpG_[k];
+        jumpCol_[k] = jumpCol_[k - 1];
+        jumpG_[k] = jumpG_[k - 1];
+        jumpCol_[k - 1] = c;
+        jumpG_[k - 1] = g;
+      }
     uncover(scan_);
     scan_++;
 
@@ -149,13 +160,38 @@ bool ScanPlanner::nextPass(ScanPass& out) {
   return false;
 }
 
-// F(g) when flying g blank windows beats crossing them at the speed, else 0.
+// F(g) when flying g blank windows saves at least a window, F(g) ≤ (g − 1)·W, else 0.
 uint32_t ScanPlanner::fly(uint32_t g) {
   if (!flies_) return 0;
   const int64_t move = moveTimeUs(g * h_.pitchUm[0] + 2 * motion_.overscanUm, m_.vmaxUmS[0], m_.accelUmS2[0]);
   int64_t f = move - 2 * static_cast<int64_t>(motion_.accelUs);
   if (f < 1) f = 1;
-  return static_cast<uint64_t>(f) < static_cast<uint64_t>(g) * motion_.windowUs ? static_cast<uint32_t>(f) : 0;
+  return static_cast<uint64_t>(f) <= static_cast<uint64_t>(g - 1) * motion_.windowUs ? static_cast<uint32_t>(f) : 0;
+}
+
+// A blank stretch of g windows from head column `col` up, met in the ascending walk: it joins the
+// flown ones if it may be flown and is among the kMaxJumps longest (the lower column first on a tie,
+// so a later one of equal length never displaces one kept).
+void ScanPlanner::consider(int32_t col, uint16_t g) {
+  if (!fly(g)) return;
+  uint8_t slot = jumpCount_;
+  if (jumpCount_ == kMaxJumps) {
+    slot = 0;  // the shortest kept, the highest column among equals
+    for (uint8_t i = 1; i < kMaxJumps; i++)
+      if (jumpG_[i] < jumpG_[slot] || (jumpG_[i] == jumpG_[slot] && jumpCol_[i] > jumpCol_[slot])) slot = i;
+    if (g <= jumpG_[slot]) return;
+  } else {
+    jumpCount_++;
+  }
+  jumpCol_[slot] = static_cast<uint16_t>(col - first_);
+  jumpG_[slot] = g;
+}
+
+void ScanPlanner::jump(uint8_t i, uint32_t& window, uint32_t& windows, uint32_t& flyUs) {
+  const uint8_t k = descending_ ? static_cast<uint8_t>(jumpCount_ - 1 - i) : i;
+  windows = jumpG_[k];
+  window = descending_ ? static_cast<uint32_t>(start_ - first_ - jumpCol_[k] - jumpG_[k] + 1) : jumpCol_[k];
+  flyUs = fly(jumpG_[k]);
 }
 
 // Takes the pass's next lit window in its direction: its start S(j), a jump before it if flown, and
@@ -173,14 +209,18 @@ bool ScanPlanner::nextLitWindow(uint32_t& j) {
   j = static_cast<uint32_t>(descending_ ? start_ - best : best - start_);
   uint32_t s = j * w;
   if (started_) {
-    const uint32_t g = j - lastJ_ - 1;
-    const uint32_t f = g ? fly(g) : 0;
-    s = f ? lastS_ + w + f : lastS_ + (j - lastJ_) * w;
-    if (f) {
-      jumpReady_ = true;
-      jumpWindow_ = lastJ_ + 1;
-      jumpWindows_ = g;
-      jumpUs_ = f;
+    s = lastS_ + (j - lastJ_) * w;
+    if (jumpNext_ < jumpCount_) {
+      uint32_t window, windows, f;
+      jump(jumpNext_, window, windows, f);
+      if (window == lastJ_ + 1 && windows == j - lastJ_ - 1) {  // this stretch is flown
+        jumpNext_++;
+        s = lastS_ + w + f;
+        jumpReady_ = true;
+        jumpWindow_ = window;
+        jumpWindows_ = windows;
+        jumpUs_ = f;
+      }
     }
   }
   started_ = true;

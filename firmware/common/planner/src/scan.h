@@ -36,6 +36,10 @@ struct ScanEvent {
   uint32_t flyUs;
 };
 
+// A pass flies at most this many of its blank stretches (planner.md "Blank stretches"): the Mega
+// holds them while the pass runs, for the head's moves.
+constexpr uint8_t kMaxJumps = 8;
+
 class ScanPlanner {
  public:
   ScanPlanner(const JobHeader& h, CellSource& cells, const Machine& m);
@@ -49,6 +53,10 @@ class ScanPlanner {
   // event per moment an LED switches, in time order: t µs after the start mark, and the state of
   // the four LEDs from then on. false at the pass's end (its last event leaves every LED off).
   bool nextEvent(uint32_t& t, uint8_t& m);
+  // The open pass's flown stretches, in its direction: jump i's first blank window, its windows and
+  // its µs (the ScanEvent jump's fields), as next() hands them out.
+  uint8_t jumps() const { return jumpCount_; }
+  void jump(uint8_t i, uint32_t& window, uint32_t& windows, uint32_t& flyUs);
   uint64_t estimateUs() const { return estimate_; }
   uint16_t passes() const { return passes_; }
   // As Planner::supported(): the LEDs' rows span less than kCoveredWindowRows. And every switch
@@ -71,6 +79,7 @@ class ScanPlanner {
   void peek(uint8_t led) { live_[led] = readLit(led, hx_[led], us_[led]); }
   bool nextLitWindow(uint32_t& j);
   uint32_t fly(uint32_t g);
+  void consider(int32_t col, uint16_t g);
   void flush(uint8_t led, ScanEvent& out);
   bool covered(int32_t row) const { return covered_[(row & (kCoveredWindowRows - 1)) >> 3] & (1 << (row & 7)); }
   void cover(int32_t row) { covered_[(row & (kCoveredWindowRows - 1)) >> 3] |= static_cast<uint8_t>(1 << (row & 7)); }
@@ -108,6 +117,11 @@ class ScanPlanner {
   uint32_t pendOn_[4] = {}, pendOff_[4] = {};
   uint8_t ready_ = 0;  // bit k: LED k's closed interval waits in readyOn_/readyOff_
   uint32_t readyOn_[4] = {}, readyOff_[4] = {};
+  // The flown stretches, by head column ascending: each one's lowest column less `first_`, and
+  // its windows. jumpNext_: the next one the pass's direction reaches.
+  int32_t first_ = 0;
+  uint16_t jumpCol_[kMaxJumps] = {}, jumpG_[kMaxJumps] = {};
+  uint8_t jumpCount_ = 0, jumpNext_ = 0;
   bool jumpReady_ = false;
   uint32_t jumpWindow_ = 0, jumpWindows_ = 0, jumpUs_ = 0;
   // Events: each LED's on-time in the window nextLitWindow() last took (0: none); that window's

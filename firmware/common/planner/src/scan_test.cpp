@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <set>
 #include <vector>
 
 #include "grid_cells.h"
@@ -94,7 +95,7 @@ TEST(ScanPlanner, CentresGrayCellsMergesFullRunsAndReversesTheSecondPass) {
   rows[0][2] = rows[0][3] = rows[0][5] = 255;
   rows[0][4] = 128;  // t = 1004 µs, 498 µs into its window
   rows[4][3] = 51;   // t = 400 µs
-  rows[4][9] = 255;
+  rows[4][10] = 255;
   GridCells cells(rows);
   ScanPlanner planner(h, cells, kMachine);
   EXPECT_EQ(planner.motion().windowUs, 2000u);
@@ -114,12 +115,13 @@ TEST(ScanPlanner, CentresGrayCellsMergesFullRunsAndReversesTheSecondPass) {
   EXPECT_TRUE(p.descending);
   EXPECT_EQ(p.hy, 4);
   EXPECT_EQ(p.first, 3);
-  EXPECT_EQ(p.last, 9);
-  EXPECT_EQ(p.runUpUm, 1000 + 450 + 25 + 105);
-  // Five blank windows flown in F(5) = 2 × isqrt(460e12 / 3e6) − 2 × 8334 = 8096 µs, not 10000.
+  EXPECT_EQ(p.last, 10);
+  EXPECT_EQ(p.runUpUm, 1000 + 500 + 25 + 105);
+  // Six blank windows flown in F(6) = 2 × isqrt(510e12 / 3e6) − 2 × 8334 = 9408 µs, not 12000: it
+  // saves more than a window.
   PassEvents b = eventsOf(planner);
-  EXPECT_EQ(b.jumps, (Lists{{1, 5, 8096}}));
-  EXPECT_EQ(b.leds[0], (Lists{{0, 2000}, {2000 + 8096 + 800, 2000 + 8096 + 1200}}));
+  EXPECT_EQ(b.jumps, (Lists{{1, 6, 9408}}));
+  EXPECT_EQ(b.leds[0], (Lists{{0, 2000}, {2000 + 9408 + 800, 2000 + 9408 + 1200}}));
   EXPECT_FALSE(planner.nextPass(p));
 }
 
@@ -135,10 +137,11 @@ TEST(ScanPlanner, NegativeOffsetsAndTheSpeedCap) {
   ASSERT_TRUE(planner.nextPass(p));
   EXPECT_EQ(p.first, 1);
   EXPECT_EQ(p.last, 8);
-  // Lit in windows 0, 4, 5 and 7: F(3) = 5240 and F(1) = 1950 µs beat 6000 and 2000.
+  // Lit in windows 0, 4, 5 and 7: F(3) = 5240 and F(1) = 1950 µs beat 6000 and 2000, but by less
+  // than a window, so neither stretch is flown.
   PassEvents e = eventsOf(planner);
-  EXPECT_EQ(e.jumps, (Lists{{1, 3, 5240}, {6, 1, 1950}}));
-  const uint32_t on[4] = {7240, 13190, 0, 9240};
+  EXPECT_EQ(e.jumps, Lists{});
+  const uint32_t on[4] = {8000, 14000, 0, 10000};
   for (uint8_t k = 0; k < 4; k++) EXPECT_EQ(e.leds[k], (Lists{{on[k], on[k] + 2000}})) << "LED " << int(k);
 
   Machine slow = kMachine;
@@ -152,6 +155,54 @@ TEST(ScanPlanner, NegativeOffsetsAndTheSpeedCap) {
   EXPECT_EQ(capped.motion().speedUmS, 10000u);
   ASSERT_TRUE(capped.nextPass(p));
   EXPECT_EQ(eventsOf(capped).leds[0], (Lists{{1500, 3500}, {6500, 8500}}));
+}
+
+// More stretches than a pass flies: the kMaxJumps longest, the lower column first among equals, in
+// both directions; jump() lists them as next() hands them out, and the estimate counts only them.
+TEST(ScanPlanner, FliesOnlyTheLongestStretches) {
+  const uint16_t gaps[11] = {10, 20, 12, 30, 12, 40, 9, 50, 12, 15, 12};
+  JobHeader h = smallJob(240, 8);
+  std::vector<std::vector<uint8_t>> rows(8, std::vector<uint8_t>(240, 0));
+  std::vector<uint32_t> lows;  // each stretch's lowest column
+  uint32_t c = 2;
+  rows[0][c] = rows[4][c] = 255;
+  for (uint16_t g : gaps) {
+    lows.push_back(c + 1);
+    c += g + 1u;
+    rows[0][c] = rows[4][c] = 255;
+  }
+  // Kept: 50, 40, 30, 20, 15 and the three 12s of lower columns; not the last 12, nor 10 or 9.
+  std::set<std::pair<uint32_t, uint32_t>> kept;
+  for (uint8_t i : {1, 2, 3, 4, 5, 7, 8, 9}) kept.insert({lows[i], gaps[i]});
+  GridCells cells(rows);
+  ScanPlanner planner(h, cells, kMachine);
+  ScanPass p;
+  for (int pass = 0; pass < 2; pass++) {
+    const uint64_t before = planner.estimateUs();
+    ASSERT_TRUE(planner.nextPass(p));
+    EXPECT_EQ(p.descending, pass == 1);
+    ASSERT_EQ(planner.jumps(), kMaxJumps);
+    std::vector<std::vector<uint32_t>> listed;
+    for (uint8_t i = 0; i < planner.jumps(); i++) {
+      uint32_t window, windows, us;
+      planner.jump(i, window, windows, us);
+      listed.push_back({window, windows, us});
+    }
+    PassEvents e = eventsOf(planner);
+    EXPECT_EQ(e.jumps, listed);
+    std::set<std::pair<uint32_t, uint32_t>> flown;
+    uint64_t saved = 0;
+    for (const auto& j : e.jumps) {
+      const uint32_t low = p.descending ? static_cast<uint32_t>(p.last) - j[0] - j[1] + 1 : static_cast<uint32_t>(p.first) + j[0];
+      flown.insert({low, j[1]});
+      saved += j[1] * 2000ull - j[2];
+    }
+    EXPECT_EQ(flown, kept) << "pass " << pass;
+    // Full cells: the last one ends with its window, S(n − 1) + W, which the estimate adds.
+    const uint64_t span = static_cast<uint64_t>(p.last - p.first + 1) * 2000 - saved;
+    EXPECT_EQ(e.leds[0].back()[1], span);
+    EXPECT_GT(planner.estimateUs() - before, span + 2 * planner.motion().accelUs);
+  }
 }
 
 TEST(ScanPlanner, PlansAPassAtATimeWithoutTheHeap) {
