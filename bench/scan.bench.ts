@@ -79,7 +79,7 @@ export function printP10(rows: P10Row[]): void {
     console.log(
       `P10 ${r.mask.padEnd(7)} scan ${s(r.scan.estimateUs).padStart(8)}  stop-and-fire ${s(r.stops).padStart(8)}  light ${s(r.lightLimit).padStart(7)}  travel ${s(r.travelLimit).padStart(7)}` +
         `  speed-up ${(r.stops / r.scan.estimateUs).toFixed(2)}x  /limit ${(r.scan.estimateUs / limit).toFixed(2)}x  (floor ${s(r.floor)}, ${(r.floor / limit).toFixed(2)}x the limit)` +
-        `  (window ${r.scan.windowUs} us, ${r.scan.passes.length} passes; without flying, as the Mega firmware runs it: ${s(r.crossingUs)}, speed-up ${(r.stops / r.crossingUs).toFixed(2)}x)`,
+        `  (window ${r.scan.windowUs} us, ${r.scan.passes.length} passes; crossing blank stretches at the pass's speed instead: ${s(r.crossingUs)}, speed-up ${(r.stops / r.crossingUs).toFixed(2)}x)`,
     );
   }
 }

@@ -59,7 +59,7 @@ export function fitsTimer(h: JobHeader, windowUs: number): boolean {
 
 /**
  * `neverFly`: a machine that cannot fly blank stretches crosses them at the pass's speed, so S(j) = j·W
- * throughout and the estimate is that of crossing (planner.md "Blank stretches"; the Mega firmware, for now).
+ * throughout and the estimate is that of crossing (planner.md "Blank stretches"; bench P10's figure without flying).
  */
 export function planScan(job: PlannerJob, machine: Machine, opts: { neverFly?: boolean } = {}): ScanPlan {
   const h = job.header;

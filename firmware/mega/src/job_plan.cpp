@@ -56,7 +56,6 @@ uint8_t JobPlan::begin(const char* name) {
   bool supported;
   if (header_.strategy == uv::Strategy::Scan) {
     scan_ = new (plannerMem_) uv::ScanPlanner(header_, *source_, machine_);
-    scan_->neverFly();  // as the passes will run (scan_run.h ScanJob)
     supported = scan_->supported();
   } else {
     planner_ = new (plannerMem_) uv::Planner(header_, *source_, machine_);

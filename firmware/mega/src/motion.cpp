@@ -125,6 +125,13 @@ bool Motion::stroke(const Stroke& k) {
   strokeInterval_ = k.interval;
   strokeFrac_ = k.frac;
   strokeMark_ = k.markStep;
+  midTicks_ = savedTicks_ = 0;
+  fracAcc_ = 0;
+  jumps_ = k.jumps;
+  jumpCtx_ = k.ctx;
+  jumpNext_ = 0;
+  flying_ = false;
+  nextJump();
   target_[0] += k.steps;
   feed();
   return true;
@@ -149,10 +156,7 @@ void Motion::feed() {
       const uint32_t cuts[3] = {up, down, strokeMark_ ? strokeMark_ - 1 : 0};
       for (uint32_t c : cuts)
         if (c > planDone_ && c < planDone_ + s.steps) s.steps = static_cast<uint16_t>(c - planDone_);
-      if (planDone_ >= up && planDone_ + s.steps <= down) {
-        s.interval = strokeInterval_;
-        frac = strokeFrac_;
-      }
+      if (planDone_ >= up && planDone_ + s.steps <= down) strokeSegment(s.steps, s.steps, s.interval, frac);
       mark = strokeMark_ && planDone_ == strokeMark_ - 1;
     }
     bool last = planDone_ + s.steps >= p.total;
@@ -164,6 +168,63 @@ void Motion::feed() {
     planDone_ += s.steps;
     if (last) planSlot_ = -1;
   }
+}
+
+void Motion::nextJump() {
+  jumpHeld_ = jumps_ && jumps_(jumpCtx_, jumpNext_, jump_);
+  if (jumpHeld_) jumpNext_++;
+}
+
+void Motion::strokeSegment(uint16_t most, uint16_t& steps, uint16_t& interval, uint16_t& frac) {
+  const uint32_t exact = (static_cast<uint32_t>(strokeInterval_) << 16) | strokeFrac_;  // 16.16 ticks a step
+  const uint32_t up = profiles_[planSlot_].rampSteps;
+  // In 16.16 ticks from the middle's first step, when the step after the held stretch is due: where
+  // the speed puts it, less what the stretches up to it save, as the plan counts (its windows) and
+  // the Nano times its light.
+  const bool near = flying_ || (jumpHeld_ && planDone_ == jump_.from);
+  const uint64_t due = near ? (static_cast<uint64_t>(jump_.from) + jump_.steps - up) * exact - (static_cast<uint64_t>(savedTicks_ + (flying_ ? 0 : jump_.savedTicks)) << 16) : 0;
+  if (near && !flying_) {
+    savedTicks_ += jump_.savedTicks;
+    const float rate = 65536.0f / static_cast<float>(exact);
+    const float accel = static_cast<float>(profiles_[planSlot_].accel) / (static_cast<float>(kTickHz) * kTickHz);
+    path_.plan(jump_.steps, static_cast<uint32_t>(due >> 16) - midTicks_, rate, accel);
+    flying_ = true;
+  }
+  uint32_t ticks;  // what this segment's steps take, as the step interrupt counts them
+  if (flying_) {
+    // The next piece of the stretch: about a segment's time at its speed here, ending on the tick at
+    // which the path reaches its last step.
+    const uint32_t x = planDone_ - jump_.from, left = jump_.steps - x;
+    const float dt = path_.at(x + 1) - path_.at(x);
+    uint32_t k = static_cast<uint32_t>(static_cast<float>(2 * kSegmentUs) / (dt > 1 ? dt : 1));
+    if (k < 1) k = 1;
+    if (k > left) k = left;  // a stretch ends inside the middle: only its own end cuts it
+    if (k > 0xffff) k = 0xffff;
+    const uint32_t start = static_cast<uint32_t>(due >> 16) - path_.ticks();  // midTicks_ when it began
+    const uint32_t end = x + k == jump_.steps ? path_.ticks() : static_cast<uint32_t>(path_.at(x + k) + 0.5f);
+    ticks = start + end - midTicks_;
+    // 16.16 ticks a step such that k steps, carrying from fracAcc_, take exactly `ticks`; the last
+    // piece also leaves the carried fraction where the speed's would be, so the steps after the
+    // stretch fall as if never interrupted (within a tick below the exact time, as everywhere).
+    uint32_t phase = 0;
+    if (x + k == jump_.steps) phase = static_cast<uint16_t>(due) < 0x10000 - k ? static_cast<uint16_t>(due) : 0x10000 - k;
+    const uint32_t each = static_cast<uint32_t>(((static_cast<uint64_t>(ticks) << 16) + phase - fracAcc_ + k - 1) / k);
+    steps = static_cast<uint16_t>(k);
+    interval = static_cast<uint16_t>(each >> 16);
+    frac = static_cast<uint16_t>(each);
+    if (x + k == jump_.steps) {
+      flying_ = false;
+      nextJump();
+    }
+  } else {
+    steps = most;
+    if (jumpHeld_ && jump_.from > planDone_ && jump_.from < planDone_ + steps) steps = static_cast<uint16_t>(jump_.from - planDone_);
+    interval = strokeInterval_;
+    frac = strokeFrac_;
+    ticks = static_cast<uint32_t>(steps) * interval + ((static_cast<uint32_t>(steps) * frac + fracAcc_) >> 16);
+  }
+  midTicks_ += ticks;
+  fracAcc_ = static_cast<uint16_t>(fracAcc_ + static_cast<uint32_t>(steps) * frac);
 }
 
 void Motion::poll() {
@@ -178,12 +239,19 @@ void Motion::stop() {
   StepEngine::Cut c = e_.cutAfterCurrent();
   e_.dropBlocksAfter(c.running ? c.slot : 0xff);
   strokeSlot_ = -1;  // a stroke cut short slows down as any move
+  flying_ = jumpHeld_ = false;
+  jumps_ = nullptr;
   nextPlan_ = e_.blockHead();
   planSlot_ = -1;
   stopping_ = true;
   if (!c.running) return;
   Profile& p = profiles_[c.slot];
   uint32_t rate = kTickHz / c.interval;
+  if (rate > p.rate) {  // faster than the move's cruise (a stroke's flown stretch): slow down from there
+    p.rate = rate;
+    const uint32_t ramp = stoppingSteps(p, rate);
+    p.rampSteps = ramp < c.done ? ramp : c.done;
+  }
   uint32_t end = c.done + stoppingSteps(p, rate);
   if (end >= p.total) {
     // It would not stop sooner than it ends: keep cutting it as it was.
@@ -203,6 +271,8 @@ void Motion::stop() {
 void Motion::halt() {
   e_.halt();
   strokeSlot_ = -1;
+  flying_ = jumpHeld_ = false;
+  jumps_ = nullptr;
   nextPlan_ = e_.blockHead();
   planSlot_ = -1;
   stopping_ = false;

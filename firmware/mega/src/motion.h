@@ -4,6 +4,7 @@
 #include <stdint.h>
 
 #include "config.h"
+#include "jump_path.h"
 #include "step_engine.h"
 #include "step_profile.h"
 
@@ -26,10 +27,20 @@ class Motion {
   // the ramps at either end, runs at exactly `interval` + frac/65536 ticks a step, the fraction
   // carried from step to step. Step `markStep` (1-based, in that middle; 0 for none) goes out with
   // the pass's G (StepTick::mark). The ramps are the X axis's acceleration. One stroke at a time.
+  // `jumps`, if set, gives the stroke's flown stretches in order (jump i, false past the last),
+  // asked for as the middle is cut into segments.
+  struct StrokeJump {
+    uint32_t from;        // steps into the stroke where the stretch begins (at the speed)
+    uint32_t steps;       // it ends `steps` later, back at the speed,
+    uint32_t savedTicks;  // this much sooner than at the speed (jump_path.h)
+  };
+  typedef bool (*JumpSource)(void* ctx, uint8_t i, StrokeJump& out);
   struct Stroke {
     int32_t steps;
     uint16_t interval, frac;
     uint32_t markStep;
+    JumpSource jumps;
+    void* ctx;
   };
   bool stroke(const Stroke& s);
   // Steps the stroke's ramp takes at either end (the middle begins after them).
@@ -66,6 +77,10 @@ class Motion {
   bool push(const int32_t delta[3], const AxisLimits lim[3], int8_t seekAxis);
   void feed();
   Profile strokeProfile(uint32_t steps, uint16_t interval, uint16_t frac) const;
+  // A segment of the stroke's middle from planDone_: at the speed (at most `most` steps) up to the
+  // next stretch flown, or the flown stretch's next piece.
+  void strokeSegment(uint16_t most, uint16_t& steps, uint16_t& interval, uint16_t& frac);
+  void nextJump();
 
   StepEngine& e_;
   const Config& c_;
@@ -79,6 +94,17 @@ class Motion {
   int8_t strokeSlot_ = -1;
   uint16_t strokeInterval_ = 0, strokeFrac_ = 0;
   uint32_t strokeMark_ = 0;
+  // The middle's timing: ticks its queued steps take (as the step interrupt carries the fraction,
+  // mirrored in fracAcc_), and what the flown stretches queued so far saved.
+  uint32_t midTicks_ = 0, savedTicks_ = 0;
+  uint16_t fracAcc_ = 0;
+  // The stroke's next flown stretch (held) and whether its segments are being cut (flying).
+  JumpSource jumps_ = nullptr;
+  void* jumpCtx_ = nullptr;
+  uint8_t jumpNext_ = 0;
+  bool jumpHeld_ = false, flying_ = false;
+  StrokeJump jump_ = {};
+  JumpPath path_;
 };
 
 }  // namespace mega

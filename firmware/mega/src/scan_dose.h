@@ -25,6 +25,20 @@ inline std::vector<std::vector<uint8_t>> testPattern(uint16_t cols, uint16_t row
   return g;
 }
 
+// A job with blank stretches a pass flies: in every row, islands of lit cells (full, gray and
+// 1-cell features) far apart, at columns that shift from one four rows to the next.
+inline std::vector<std::vector<uint8_t>> gapPattern(uint16_t cols, uint16_t rows) {
+  std::vector<std::vector<uint8_t>> g(rows, std::vector<uint8_t>(cols, 0));
+  for (uint16_t r = 0; r < rows; r++)
+    for (uint16_t c = 0; c < cols; c++) {
+      const uint16_t island = static_cast<uint16_t>((c + 13 * (r / 4)) % 60);
+      if (island < 4) g[r][c] = 255;
+      else if (island < 6) g[r][c] = static_cast<uint8_t>(60 + (c * 37 + r * 11) % 190);
+      else if (island == 20 && r % 2 == 0) g[r][c] = 255;
+    }
+  return g;
+}
+
 struct Light {
   uint8_t led;
   double onUs, offUs;

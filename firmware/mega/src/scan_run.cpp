@@ -19,6 +19,15 @@ bool ScanRun::source(void* ctx, uint32_t& t, uint8_t& m) {
   return true;
 }
 
+bool ScanRun::jumpAt(void* ctx, uint8_t i, Motion::StrokeJump& out) {
+  ScanRun* s = static_cast<ScanRun*>(ctx);
+  if (i >= s->planner_.jumps()) return false;
+  uint32_t window, windows, flyUs;
+  s->planner_.jump(i, window, windows, flyUs);
+  strokeJump(s->stroke_, s->planner_.motion().windowUs, window, windows, flyUs, out.from, out.steps, out.savedTicks);
+  return true;
+}
+
 ScanRun::Step ScanRun::fail(PrintheadLink& head, uint8_t code) {
   head.hold(false);
   error_ = code;
@@ -123,7 +132,7 @@ ScanRun::Step ScanRun::poll(Motion& motion, PrintheadLink& head, const uv::JobHe
       head.hold(true);  // from here until the G is out, nothing else goes to the Nano
       marks_ = motion.engine().marks();
       missed_ = motion.engine().marksMissed();
-      if (!motion.stroke({stroke_.steps, stroke_.interval, stroke_.frac, stroke_.markStep})) return fail(head, uv::kExposureRefused);
+      if (!motion.stroke({stroke_.steps, stroke_.interval, stroke_.frac, stroke_.markStep, &ScanRun::jumpAt, this})) return fail(head, uv::kExposureRefused);
       phase_ = Phase::Run;
       return Step::Busy;
     case Phase::Run:

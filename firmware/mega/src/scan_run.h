@@ -42,6 +42,7 @@ class ScanRun {
  private:
   enum class Phase : uint8_t { Open, Load, Arm, Run, Finish };
   static bool source(void* ctx, uint32_t& t, uint8_t& m);
+  static bool jumpAt(void* ctx, uint8_t i, Motion::StrokeJump& out);
   bool open(Motion& motion, const uv::JobHeader& h);
   // Sends the chain's lines up to the end of one program; true once its K is answered 0.
   bool sendProgram(PrintheadLink& head, uint32_t nowUs);
@@ -69,10 +70,10 @@ class ScanRun {
   StrokePlan stroke_ = {};
 };
 
-// A scan job's planner and the runner of its passes, together. This firmware does not fly blank
-// stretches: it crosses them at the pass's speed (ScanPlanner::neverFly).
+// A scan job's planner and the runner of its passes, together. The stroke flies the stretches the
+// planner flies (Motion::StrokeJump).
 struct ScanJob {
-  ScanJob(const uv::JobHeader& h, uv::CellSource& cells, const uv::Machine& m) : planner(h, cells, m), run(planner) { planner.neverFly(); }
+  ScanJob(const uv::JobHeader& h, uv::CellSource& cells, const uv::Machine& m) : planner(h, cells, m), run(planner) {}
   uv::ScanPlanner planner;
   ScanRun run;
 };

@@ -4,6 +4,8 @@
 // measured from the light's times and the head's steps (scan_dose.h).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <climits>
 #include <cstdio>
 
 #include "fake_nano.h"
@@ -86,8 +88,8 @@ struct ScanRunTest : ::testing::Test {
   }
   // A job of `cols` × `rows` cells at `fullUs` a full cell, planned and ready to run.
   struct Planned {
-    Planned(ScanRunTest& t, uint16_t cols, uint16_t rows, uint32_t fullUs)
-        : grid(scandose::testPattern(cols, rows)), h(t.job(cols, rows, fullUs)), cells(grid), m(t.machine()), planner(h, cells, m), scan(planner) {}
+    Planned(ScanRunTest& t, uint16_t cols, uint16_t rows, uint32_t fullUs, bool gaps = false)
+        : grid(gaps ? scandose::gapPattern(cols, rows) : scandose::testPattern(cols, rows)), h(t.job(cols, rows, fullUs)), cells(grid), m(t.machine()), planner(h, cells, m), scan(planner) {}
     std::vector<std::vector<uint8_t>> grid;
     uv::JobHeader h;
     uvtest::GridCells cells;
@@ -124,6 +126,53 @@ TEST_F(ScanRunTest, ExposesEveryCellItsDoseInPlaceOnTheMove) {
   EXPECT_LE(f.worstDosePct, 2.0);
   EXPECT_LE(f.worstEdgeUm, 50 / 4.0);
   EXPECT_LE(f.worstCentreUm, 50 / 4.0);
+}
+
+// At 25 mm/s, under the axis's 100: the stretches between islands are flown, each back at the speed
+// on the step and the tick the Nano's program expects.
+TEST_F(ScanRunTest, FliesBlankStretchesAndKeepsEveryCellInPlace) {
+  Planned p(*this, 200, 8, 2000, true);
+  ASSERT_TRUE(p.planner.mayFly());
+  while (!link.nanoClock().known() && us() < 10000000) loop();  // its passes wait for the Nano's clock
+  const uint32_t startUs = us();
+  uint32_t firstJumps = 0;
+  for (int i = 0; i < 100 && !p.scan.passes() && !firstJumps; i++) {  // the first pass opens
+    p.scan.poll(rig.motion, link, p.h, us());
+    firstJumps = p.planner.jumps();
+    loop();
+  }
+  EXPECT_GE(firstJumps, 3u);
+  ASSERT_EQ(run(p.scan, p.h), ScanRun::Step::End) << "error " << int(p.scan.error());
+  const uint32_t tookUs = us() - startUs;
+  EXPECT_EQ(p.scan.passes(), p.planner.passes());
+  EXPECT_EQ(nano.lit(), 0);
+  EXPECT_EQ(rig.engine.marksMissed(), 0);
+  EXPECT_EQ(rig.engine.underruns(), 0);
+  // The head went faster than the pass's speed (2000 steps/s at 80 steps/mm): it flew.
+  uint32_t shortest = UINT32_MAX;
+  for (size_t i = 1; i < rig.steps.size(); i++)
+    if (rig.steps[i].axes & 1) shortest = std::min<uint32_t>(shortest, static_cast<uint32_t>(rig.steps[i].us2 - rig.steps[i - 1].us2));
+  EXPECT_LT(shortest, 2 * 500 * 3 / 4) << "no step faster than the pass's speed";
+  const scandose::Figures f = measure(p.h, p.grid, p.planner.motion().windowUs);
+  std::printf("[scan host, flying] %d cells (%d lit), %u passes in %.2f s (planned %.2f s): worst dose error %.2f %% of full, worst centroid %.2f um, worst edge %.2f um\n",
+              f.cells, f.lit, p.scan.passes(), tookUs / 1e6, p.planner.estimateUs() / 1e6, f.worstDosePct, f.worstCentreUm, f.worstEdgeUm);
+  EXPECT_EQ(f.stray, 0);
+  EXPECT_LE(f.worstDosePct, 2.0);
+  EXPECT_LE(f.worstEdgeUm, 50 / 4.0);
+  EXPECT_LE(f.worstCentreUm, 50 / 4.0);
+  // In simulated time, the job took what the planner said (its moves are the time model's) within 1 %,
+  // and 15 ms a pass for loading it and the Q that confirms it (this machine's overheadUs is 0); and
+  // less than crossing every stretch at the speed would.
+  EXPECT_NEAR(tookUs, static_cast<double>(p.planner.estimateUs()), 0.01 * p.planner.estimateUs() + 15000.0 * p.scan.passes());
+  uvtest::GridCells cells(p.grid);
+  uv::ScanPlanner crossing(p.h, cells, p.m);
+  crossing.neverFly();
+  uv::ScanPass pass;
+  while (crossing.nextPass(pass)) {
+  }
+  std::printf("[scan host, flying] %u stretches flown in the first pass; crossing them would take %.2f s\n", firstJumps,
+              crossing.estimateUs() / 1e6);
+  EXPECT_LT(p.planner.estimateUs() + 200000, crossing.estimateUs());
 }
 
 TEST_F(ScanRunTest, APassTheNanoCutsForHeatFailsTheRunDark) {

@@ -45,4 +45,17 @@ bool planStroke(const StrokeInput& in, StrokePlan& out) {
   return true;
 }
 
+void strokeJump(const StrokePlan& k, uint32_t windowUs, uint32_t window, uint32_t windows, uint32_t flyUs, uint32_t& from,
+                uint32_t& steps, uint32_t& savedTicks) {
+  // Step markStep − 1 + n comes n × i16 / 65536 ticks after the G's step, were nothing flown, and the
+  // plan's time 0 is kMarkLeadUs + shiftUs after it: window w starts 2 × (that + w × W) ticks after.
+  const uint64_t i16 = (static_cast<uint64_t>(k.interval) << 16) | k.frac;
+  const uint64_t lead = kMarkLeadUs + k.shiftUs;
+  const uint64_t t0 = 2 * (lead + static_cast<uint64_t>(window) * windowUs) << 16;
+  const uint64_t t1 = 2 * (lead + static_cast<uint64_t>(window + windows) * windowUs) << 16;
+  from = k.markStep - 1 + static_cast<uint32_t>(t0 / i16);
+  steps = k.markStep - 1 + static_cast<uint32_t>((t1 + i16 - 1) / i16) - from;
+  savedTicks = 2 * (windows * windowUs - flyUs);
+}
+
 }  // namespace mega

@@ -39,4 +39,11 @@ bool strokeInterval(uint32_t windowUs, uint32_t pitchUm, uint32_t stepsMilli, ui
 // False when the speed is out of range.
 bool planStroke(const StrokeInput& in, StrokePlan& out);
 
+// A stretch the pass flies (the planner's jump: its first blank window, its windows, its µs) in the
+// stroke's steps, as Motion::StrokeJump takes it: it leaves the speed `from` steps into the stroke,
+// the last step at or before the stretch's start, and is back at it `steps` later, the first step at
+// or after its end, having saved 2 × (windows × W − µs) ticks.
+void strokeJump(const StrokePlan& k, uint32_t windowUs, uint32_t window, uint32_t windows, uint32_t flyUs, uint32_t& from,
+                uint32_t& steps, uint32_t& savedTicks);
+
 }  // namespace mega

@@ -65,7 +65,7 @@ class ScanPlanner {
   // The speed is below the X axis's maximum, so a blank stretch may be flown (planner.md "Blank stretches").
   bool mayFly() const { return flies_; }
   // A machine that cannot fly crosses every blank stretch at the pass's speed: no jumps, S(j) = j·W,
-  // and the estimate to match. Before the first nextPass(). (The Mega's firmware, for now.)
+  // and the estimate to match. Before the first nextPass(). (P10's figure without flying.)
   void neverFly() { flies_ = false; }
   // Stream mode, as Planner's: rows below `known` have arrived. nextPass() opens a pass only once
   // every row it reads has arrived; until then it says false with starved() true.
