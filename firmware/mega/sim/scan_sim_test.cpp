@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <regex>
 
 #include "board_fixture.h"
 #include "job_fixture.h"
@@ -27,7 +28,12 @@ class ScanOnBoard : public BoardTest {
     for (const std::string& r : encode(h, g)) EXPECT_TRUE(said(numbered(r), "ok")) << r;
     EXPECT_TRUE(said(numbered("M29"), "ok"));
     std::string end;
+    bool reset = passes < 2;
     EXPECT_TRUE(sim.runUntil([&] {
+      if (!reset && std::count(sim.nanoLines.begin(), sim.nanoLines.end(), "G") == 2) {
+        sim.send("M821 R\n");  // the main loop's longest pass, from the second pass's G on
+        reset = true;
+      }
       for (std::string& l : sim.takeLines()) {
         seen.push_back(l);
         if (l.rfind("JOB:done", 0) == 0 || l.rfind("JOB:failed", 0) == 0 || l.rfind("JOB:paused", 0) == 0) end = l;
@@ -62,6 +68,17 @@ class ScanOnBoard : public BoardTest {
     EXPECT_FALSE(lights.empty());
     const double spm[2] = {80, 80};
     return scandose::measure(h, g, lights, track, spm, h.fullUs);
+  }
+  // M821's longest main-loop pass (µs) since the second pass's G (the pass that follows flying, and
+  // not the opening of the next, 18 ms at rest), and the step underruns.
+  void diagnostics(unsigned& loopMaxUs, unsigned& underruns) {
+    std::string line;
+    for (const std::string& l : cmd("M821"))
+      if (l.rfind("echo:DIAG", 0) == 0) line = l;
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(line, m, std::regex(R"(loop_max_us=(\d+) step_isr_max_us=\d+ underruns=(\d+))"))) << line;
+    loopMaxUs = std::stoul(m[1]);
+    underruns = std::stoul(m[2]);
   }
   // The head's fastest X step, in steps/s.
   double fastestX() const {
@@ -133,10 +150,15 @@ TEST_F(ScanFlyingBoardTest, FlownStretchesKeepEveryCellItsDoseInPlace) {
   for (int k = 0; k < 4; k++) h.gainPermille[k] = 1000;
   const scandose::Figures f = expose(h, g, 2);
   const double fastest = fastestX();
+  unsigned loopMaxUs = 0, underruns = 1;
+  diagnostics(loopMaxUs, underruns);
   std::printf("[scan simavr, flying] real Mega + Nano images, the Nano's clock +0.3 %%, %d cells (%d lit) in 2 passes, the head up to %.0f mm/s "
-              "(the passes' speed 25): worst dose error %.2f %% of the full dose, worst LED edge %.2f um from its place, worst cell centroid %.2f um\n",
-              f.cells, f.lit, fastest / 80, f.worstDosePct, f.worstEdgeUm, f.worstCentreUm);
+              "(the passes' speed 25): worst dose error %.2f %% of the full dose, worst LED edge %.2f um from its place, worst cell centroid %.2f um; "
+              "longest main-loop pass while the last pass ran %u us (the queued segments cover 40000 us)\n",
+              f.cells, f.lit, fastest / 80, f.worstDosePct, f.worstEdgeUm, f.worstCentreUm, loopMaxUs);
   EXPECT_GT(fastest / 80, 50.0);  // it flew
+  EXPECT_EQ(underruns, 0u);  // cutting the stretches into segments kept ahead of the step interrupt
+  EXPECT_LT(loopMaxUs, 20000u);  // half of what the queue covers
   EXPECT_EQ(f.stray, 0);
   EXPECT_LE(f.worstDosePct, 2.0);
   EXPECT_LE(f.worstEdgeUm, 100 / 4.0);

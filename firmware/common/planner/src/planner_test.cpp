@@ -251,6 +251,24 @@ TEST(TimeModel, TrapezoidAndTriangle) {
   EXPECT_EQ(isqrt64(99), 9u);
   EXPECT_EQ(isqrt64(100), 10u);
   EXPECT_EQ(isqrt64(1000000000000000000ull), 1000000000u);
+  // Every size of n, on and either side of squares, and at the top of the range.
+  auto check = [](uint64_t n) {
+    const unsigned __int128 r = isqrt64(n);
+    ASSERT_LE(r * r, n) << n;
+    ASSERT_GT((r + 1) * (r + 1), n) << n;
+  };
+  uint64_t seed = 12345;
+  for (int bits = 1; bits <= 64; bits++)
+    for (int i = 0; i < 200; i++) {
+      seed ^= seed << 13, seed ^= seed >> 7, seed ^= seed << 17;
+      const uint64_t n = bits == 64 ? seed : seed & ((1ull << bits) - 1);
+      check(n);
+      const uint64_t r = isqrt64(n);
+      check(r * r);
+      if (r) check(r * r - 1);
+    }
+  check(UINT64_MAX);
+  check(0xfffffffe00000001ull);  // (2³² − 1)²
 }
 
 TEST(MeshVectors, BilinearZ) {

@@ -187,11 +187,15 @@ void ScanPlanner::consider(int32_t col, uint16_t g) {
   jumpG_[slot] = g;
 }
 
-void ScanPlanner::jump(uint8_t i, uint32_t& window, uint32_t& windows, uint32_t& flyUs) {
+void ScanPlanner::stretch(uint8_t i, uint32_t& window, uint32_t& windows) const {
   const uint8_t k = descending_ ? static_cast<uint8_t>(jumpCount_ - 1 - i) : i;
   windows = jumpG_[k];
   window = descending_ ? static_cast<uint32_t>(start_ - first_ - jumpCol_[k] - jumpG_[k] + 1) : jumpCol_[k];
-  flyUs = fly(jumpG_[k]);
+}
+
+void ScanPlanner::jump(uint8_t i, uint32_t& window, uint32_t& windows, uint32_t& flyUs) {
+  stretch(i, window, windows);
+  flyUs = fly(windows);
 }
 
 // Takes the pass's next lit window in its direction: its start S(j), a jump before it if flown, and
@@ -211,10 +215,11 @@ bool ScanPlanner::nextLitWindow(uint32_t& j) {
   if (started_) {
     s = lastS_ + (j - lastJ_) * w;
     if (jumpNext_ < jumpCount_) {
-      uint32_t window, windows, f;
-      jump(jumpNext_, window, windows, f);
+      uint32_t window, windows;
+      stretch(jumpNext_, window, windows);
       if (window == lastJ_ + 1 && windows == j - lastJ_ - 1) {  // this stretch is flown
         jumpNext_++;
+        const uint32_t f = fly(windows);
         s = lastS_ + w + f;
         jumpReady_ = true;
         jumpWindow_ = window;

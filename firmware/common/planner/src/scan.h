@@ -80,6 +80,7 @@ class ScanPlanner {
   bool nextLitWindow(uint32_t& j);
   uint32_t fly(uint32_t g);
   void consider(int32_t col, uint16_t g);
+  void stretch(uint8_t i, uint32_t& window, uint32_t& windows) const;  // jump() without its time
   void flush(uint8_t led, ScanEvent& out);
   bool covered(int32_t row) const { return covered_[(row & (kCoveredWindowRows - 1)) >> 3] & (1 << (row & 7)); }
   void cover(int32_t row) { covered_[(row & (kCoveredWindowRows - 1)) >> 3] |= static_cast<uint8_t>(1 << (row & 7)); }

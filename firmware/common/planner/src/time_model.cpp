@@ -13,8 +13,12 @@ uint32_t absDiff(int32_t a, int32_t b) { return static_cast<uint32_t>(a > b ? a 
 
 uint64_t isqrt64(uint64_t n) {
   if (n < 2) return n;
-  uint64_t x = n, y = (x + 1) / 2;
-  while (y < x) {  // Newton's method from above
+  // Newton's method from above, from the power of two at or above the root: a handful of 64-bit
+  // divisions rather than one for every bit of n (each is about 0.2 ms on the Mega).
+  uint8_t bits = 0;
+  for (uint64_t m = n; m; m >>= 1) bits++;
+  uint64_t x = 1ull << ((bits + 1) / 2), y = (x + n / x) / 2;
+  while (y < x) {
     x = y;
     y = (x + n / x) / 2;
   }
