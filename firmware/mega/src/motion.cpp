@@ -178,15 +178,21 @@ void Motion::nextJump() {
 void Motion::strokeSegment(uint16_t most, uint16_t& steps, uint16_t& interval, uint16_t& frac) {
   const uint32_t exact = (static_cast<uint32_t>(strokeInterval_) << 16) | strokeFrac_;  // 16.16 ticks a step
   const uint32_t up = profiles_[planSlot_].rampSteps;
+  while (!flying_ && jumpHeld_ && jump_.from < planDone_) nextJump();  // out of order, or behind: skipped
   // In 16.16 ticks from the middle's first step, when the step after the held stretch is due: where
   // the speed puts it, less what the stretches up to it save, as the plan counts (its windows) and
   // the Nano times its light.
   const bool near = flying_ || (jumpHeld_ && planDone_ == jump_.from);
   const uint64_t due = near ? (static_cast<uint64_t>(jump_.from) + jump_.steps - up) * exact - (static_cast<uint64_t>(savedTicks_ + (flying_ ? 0 : jump_.savedTicks)) << 16) : 0;
   if (near && !flying_) {
+    const Profile& p = profiles_[planSlot_];
+    if (jump_.steps == 0 || jump_.from + jump_.steps > p.total - up || jump_.savedTicks >= (static_cast<uint64_t>(jump_.steps) * exact >> 16)) {
+      nextJump();  // not a stretch inside the middle that can be flown: crossed at the speed
+      return strokeSegment(most, steps, interval, frac);
+    }
     savedTicks_ += jump_.savedTicks;
     const float rate = 65536.0f / static_cast<float>(exact);
-    const float accel = static_cast<float>(profiles_[planSlot_].accel) / (static_cast<float>(kTickHz) * kTickHz);
+    const float accel = static_cast<float>(p.accel) / (static_cast<float>(kTickHz) * kTickHz);
     path_.plan(jump_.steps, static_cast<uint32_t>(due >> 16) - midTicks_, rate, accel);
     flying_ = true;
   }

@@ -130,3 +130,16 @@ TEST_F(StrokeJumpTest, AStopInAStretchSlowsDownFromTheSpeedTheHeadHas) {
   }
   EXPECT_TRUE(rig.motion.stroke({-100, 1000, 0, 0}));  // nothing of it is left
 }
+
+TEST_F(StrokeJumpTest, StretchesThatCannotBeFlownAreCrossedAtTheSpeed) {
+  const uint32_t ramp = rig.motion.strokeRampSteps(1000, 0), total = 2 * ramp + 3000;
+  Flown f;
+  f.jumps.push_back({ramp + 100, 0, 1000});              // no steps
+  f.jumps.push_back({ramp + 1000, 200, 200 * 1000});     // would save all its time
+  f.jumps.push_back({ramp + 500, 100, 1000});            // behind the one before it
+  f.jumps.push_back({total - ramp - 50, 100, 1000});     // past the middle's end
+  ASSERT_TRUE(rig.motion.stroke({static_cast<int32_t>(total), 1000, 0, 0, &Flown::at, &f}));
+  ASSERT_TRUE(rig.runIdle());
+  ASSERT_EQ(rig.steps.size(), total);
+  for (uint32_t i = ramp + 1; i < total - ramp; i++) ASSERT_EQ(rig.steps[i].us2 - rig.steps[i - 1].us2, 1000u) << "step " << i;
+}
