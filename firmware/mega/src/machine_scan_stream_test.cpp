@@ -3,6 +3,8 @@
 // measured against the job (scan_dose.h).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdint>
 #include <cstdio>
 
 #include "machine_scan_fixture.h"
@@ -16,7 +18,7 @@ struct ScanStreamTest : ScanMachineTest {
 };
 }  // namespace
 
-TEST_F(ScanStreamTest, AScanJobSlowerThanTheTopSpeedCrossesItsBlankStretchesAtItsSpeed) {
+TEST_F(ScanStreamTest, AScanJobSlowerThanTheTopSpeedFliesItsBlankStretches) {
   job(60, 8, 2000);  // 2 ms a 100 µm cell: 50 mm/s, half the top speed
   for (auto& row : g) {
     row.assign(60, 0);
@@ -27,8 +29,13 @@ TEST_F(ScanStreamTest, AScanJobSlowerThanTheTopSpeedCrossesItsBlankStretchesAtIt
   const scandose::Figures f = measure(2000);
   ASSERT_NE(end.find("JOB:done"), std::string::npos) << end;
   EXPECT_NE(end.find("stop=2/2"), std::string::npos) << end;
-  std::printf("[scan machine] blank stretches crossed at 50 mm/s: worst dose error %.2f %% of full, worst edge %.2f um (cell 100 um)\n",
-              f.worstDosePct, f.worstEdgeUm);
+  // The stretches between the pads are flown: some X steps come faster than 50 mm/s allows.
+  uint64_t shortest = UINT64_MAX;
+  for (size_t i = 1; i < m.rig.steps.size(); i++)
+    if (m.rig.steps[i].axes == 1 && m.rig.steps[i - 1].axes == 1) shortest = std::min(shortest, m.rig.steps[i].us2 - m.rig.steps[i - 1].us2);
+  std::printf("[scan machine] blank stretches flown, at up to %.0f mm/s in 50 mm/s passes: worst dose error %.2f %% of full, worst edge %.2f um (cell 100 um)\n",
+              2e6 / shortest / 80, f.worstDosePct, f.worstEdgeUm);
+  EXPECT_LT(shortest, 2000000u / 4000 * 3 / 4);  // 4000 steps/s is 50 mm/s at 80 steps/mm
   EXPECT_EQ(f.stray, 0);
   EXPECT_LE(f.worstDosePct, 2.0);
   EXPECT_LE(f.worstEdgeUm, 100 / 4.0);
