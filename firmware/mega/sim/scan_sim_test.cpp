@@ -20,6 +20,13 @@ namespace {
 // gave against the head's steps. `passes`: how many the job has.
 class ScanOnBoard : public BoardTest {
  protected:
+  // A scan job of the grid's size at `fullUs` a full cell, every LED at the same gain.
+  static uv::JobHeader scanJob(const Grid& g, uint32_t fullUs) {
+    uv::JobHeader h = header(static_cast<uint16_t>(g[0].size()), static_cast<uint16_t>(g.size()), uv::Strategy::Scan);
+    h.fullUs = fullUs;
+    for (int k = 0; k < 4; k++) h.gainPermille[k] = 1000;
+    return h;
+  }
   scandose::Figures expose(const uv::JobHeader& h, const Grid& g, int passes) {
     EXPECT_TRUE(said(cmd("G28", 8e6), "ok"));
     const int32_t home[2] = {sim.pos[0], sim.pos[1]};  // the Mega's 0 in the rig's count
@@ -117,11 +124,8 @@ INSTANTIATE_TEST_SUITE_P(NanoClocks, ScanBoardTest, ::testing::Values(1.0, 1.005
 TEST_P(ScanBoardTest, AScanJobOnTheRealImagesGivesEveryCellItsDoseInPlace) {
   // 1-cell lines, runs of full cells and gray steps, at 100 µm and 1 ms a cell: 100 mm/s, the
   // axis's top speed, so no blank stretch is flown.
-  const uint16_t cols = 40, rows = 10;
-  const Grid g = scandose::testPattern(cols, rows);
-  uv::JobHeader h = header(cols, rows, uv::Strategy::Scan);
-  h.fullUs = 1000;
-  for (int k = 0; k < 4; k++) h.gainPermille[k] = 1000;
+  const Grid g = scandose::testPattern(40, 10);
+  const uv::JobHeader h = scanJob(g, 1000);
   const scandose::Figures f = expose(h, g, 3);  // 10 rows, 4 LEDs a row apart: 3 passes
   std::printf("[scan simavr] real Mega + Nano images, the Nano's clock %+.1f %%, %d cells (%d lit) in 3 passes: worst dose error %.2f %% of the full dose, "
               "worst LED edge %.2f um from its place, worst cell centroid %.2f um (cell 100 um; goals 2 %% and 25 um)\n",
@@ -143,11 +147,8 @@ TEST_P(ScanBoardTest, AScanJobOnTheRealImagesGivesEveryCellItsDoseInPlace) {
 // between them (Motion::StrokeJump), up to the axis's 100 mm/s, and is back at the pass's speed on
 // the step and the tick the Nano's program expects.
 TEST_F(ScanFlyingBoardTest, FlownStretchesKeepEveryCellItsDoseInPlace) {
-  const uint16_t cols = 150, rows = 8;
-  const Grid g = scandose::gapPattern(cols, rows);
-  uv::JobHeader h = header(cols, rows, uv::Strategy::Scan);
-  h.fullUs = 4000;
-  for (int k = 0; k < 4; k++) h.gainPermille[k] = 1000;
+  const Grid g = scandose::gapPattern(150, 8);
+  const uv::JobHeader h = scanJob(g, 4000);
   const scandose::Figures f = expose(h, g, 2);
   const double fastest = fastestX();
   unsigned loopMaxUs = 0, underruns = 1;
