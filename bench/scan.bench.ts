@@ -3,6 +3,7 @@ import type { JobHeader, StrategyName } from '../app/src/protocol/job-types';
 import { durationTables } from '../app/src/planner/dose';
 import { planJob } from '../app/src/planner/planner';
 import { planScan, type ScanPlan } from '../app/src/planner/scan';
+import { moveTimeUs } from '../app/src/planner/time-model';
 import { programLines } from '../app/src/protocol/scan-program';
 import { BENCH_MACHINE, GEOMETRY } from './planner.bench';
 import { boardMask, fillMask, photoMask, sparseMask, textMask, type Mask } from './masks';
@@ -25,6 +26,8 @@ export interface P10Row {
    * settle or overhead.
    */
   floor: number;
+  /** The same with each blank stretch crossed as fast as the X axis's acceleration allows. */
+  accel: number;
   /**
    * What the lit windows alone take with any passes at all, the planner's or others that overlap
    * and share out a row's cells: in each column, the cheapest way to cover its lit cells with runs
@@ -59,21 +62,34 @@ export function p10(): P10Row[] {
     let dose = 0;
     for (const row of cells) for (let c = 0; c < row.length; c++) dose += table[row[c]];
     const travelLimit = scan.passes.reduce((t, p) => t + ((p.last - p.first + 1) * h.pitchUm[0] * 1e6) / BENCH_MACHINE.vmaxUmS[0], 0);
-    return { mask: mask.name, scan, crossingUs: crossing.estimateUs, stops, lightLimit: dose / 4, travelLimit, floor: floorUs(crossing, h.pitchUm[0]), anyPasses: anyPassesUs(cells, table, h) };
+    return { mask: mask.name, scan, crossingUs: crossing.estimateUs, stops, lightLimit: dose / 4, travelLimit, ...floorsUs(crossing, h.pitchUm[0]), anyPasses: anyPassesUs(cells, table, h) };
   });
 }
 
-/** P10's floor of a plan made without flying (so window j of a pass starts at j × W). */
-function floorUs(plan: ScanPlan, pitchUm: number): number {
+/**
+ * P10's floors of a plan made without flying (so window j of a pass starts at j × W): each blank
+ * stretch at vmax with no time to speed up (`floor`), or in the least time the X axis's
+ * acceleration allows, min(g × W, F(g)) of planner.md "Blank stretches" with no threshold or cap
+ * (`accel`).
+ */
+function floorsUs(plan: ScanPlan, pitchUm: number): { floor: number; accel: number } {
   const W = plan.windowUs, blankUs = Math.min(W, (pitchUm * 1e6) / BENCH_MACHINE.vmaxUmS[0]);
-  let us = 0;
+  const fly = (g: number) => Math.max(1, moveTimeUs(g * pitchUm + 2 * plan.overscanUm, BENCH_MACHINE.vmaxUmS[0], BENCH_MACHINE.accelUmS2[0]) - 2 * plan.accelUs);
+  let floor = 0, accel = 0;
   for (const p of plan.passes) {
     const lit = new Set<number>();
     for (const led of p.leds) for (const [on, off] of led) for (let j = Math.floor(on / W); j * W < off; j++) lit.add(j);
     const windows = p.last - p.first + 1;
-    us += 2 * plan.accelUs + lit.size * W + (windows - lit.size) * blankUs;
+    floor += 2 * plan.accelUs + lit.size * W + (windows - lit.size) * blankUs;
+    accel += 2 * plan.accelUs + lit.size * W;
+    for (let j = 0, prev = -1; j < windows; j++) {
+      if (!lit.has(j)) continue;
+      const g = j - prev - 1;
+      if (prev >= 0 && g > 0) accel += Math.min(g * W, fly(g));
+      prev = j;
+    }
   }
-  return us;
+  return { floor, accel };
 }
 
 /** P10's bound on the lit windows of any passes, for the adjacent-rows head (the LEDs on rows hy … hy + 3). */
@@ -106,13 +122,14 @@ export function printP10(rows: P10Row[]): void {
   console.log('\nP10 scan (exposure on the move) vs stop-and-fire (goal: pcb >= 5x) and vs the larger limit (goal: pcb <= 1.3x)');
   console.log('  adjacent rows; scan, stop-and-fire, light limit (dose/4), travel limit (passes at vmax); window, passes');
   console.log('  floor: every lit window at the pass speed, every blank one at vmax with no ramp, and each pass speeding up from rest and back; no scan of these passes beats it');
+  console.log('  at the axis\'s acceleration: the floor with each blank stretch crossed as fast as the X axis can speed up and slow down');
   console.log('  any passes: the lit windows alone of any passes at all (runs of four rows covering each column\'s lit cells at their longest on-time)');
   const s = (us: number) => `${(us / 1e6).toFixed(1)} s`;
   for (const r of rows) {
     const limit = Math.max(r.lightLimit, r.travelLimit);
     console.log(
       `P10 ${r.mask.padEnd(7)} scan ${s(r.scan.estimateUs).padStart(8)}  stop-and-fire ${s(r.stops).padStart(8)}  light ${s(r.lightLimit).padStart(7)}  travel ${s(r.travelLimit).padStart(7)}` +
-        `  speed-up ${(r.stops / r.scan.estimateUs).toFixed(2)}x  /limit ${(r.scan.estimateUs / limit).toFixed(2)}x  (floor ${s(r.floor)}, ${(r.floor / limit).toFixed(2)}x the limit; any passes ${s(r.anyPasses)}, ${(r.anyPasses / limit).toFixed(2)}x)` +
+        `  speed-up ${(r.stops / r.scan.estimateUs).toFixed(2)}x  /limit ${(r.scan.estimateUs / limit).toFixed(2)}x  (floor ${s(r.floor)}, ${(r.floor / limit).toFixed(2)}x the limit; at the axis's acceleration ${s(r.accel)}, ${(r.accel / limit).toFixed(2)}x; any passes ${s(r.anyPasses)}, ${(r.anyPasses / limit).toFixed(2)}x)` +
         `  (window ${r.scan.windowUs} us, ${r.scan.passes.length} passes; crossing blank stretches at the pass's speed instead: ${s(r.crossingUs)}, speed-up ${(r.stops / r.crossingUs).toFixed(2)}x)`,
     );
   }
