@@ -173,16 +173,15 @@ uint32_t ScanPlanner::fly(uint32_t g) {
 // flown ones if it may be flown and is among the kMaxJumps longest (the lower column first on a tie,
 // so a later one of equal length never displaces one kept).
 void ScanPlanner::consider(int32_t col, uint16_t g) {
-  if (!fly(g)) return;
   uint8_t slot = jumpCount_;
   if (jumpCount_ == kMaxJumps) {
     slot = 0;  // the shortest kept, the highest column among equals
     for (uint8_t i = 1; i < kMaxJumps; i++)
       if (jumpG_[i] < jumpG_[slot] || (jumpG_[i] == jumpG_[slot] && jumpCol_[i] > jumpCol_[slot])) slot = i;
-    if (g <= jumpG_[slot]) return;
-  } else {
-    jumpCount_++;
+    if (g <= jumpG_[slot]) return;  // before timing its fly: on the Mega that is the costly part
   }
+  if (!fly(g)) return;
+  if (slot == jumpCount_) jumpCount_++;
   jumpCol_[slot] = static_cast<uint16_t>(col - first_);
   jumpG_[slot] = g;
 }
