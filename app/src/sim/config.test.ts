@@ -1,6 +1,6 @@
 import { readFileSync } from 'node:fs';
 import { expect, it } from 'vitest';
-import { CONFIG_DEFAULTS, CONFIG_RANGES, validConfig } from './config';
+import { CONFIG_DEFAULTS, CONFIG_RANGES, MAX_STEP_RATE, motionOf, topSpeedUmS, validConfig } from './config';
 import { SimHost } from './sim-host.fixture';
 
 it('firmware/mega/CONFIG.md lists exactly the keys and defaults of the simulated Mega, in order', () => {
@@ -56,4 +56,13 @@ it('keeps an EEPROM copy for a printer without a card, through a power cycle', (
   expect(h.cmd('M850 bed.x')[0]).toBe('M850 bed.x 200');
   h.cmd('M501');
   expect(h.cmd('M850 bed.x')[0]).toBe('M850 bed.x 300');
+});
+
+it('plans no axis faster than the Mega steps it: the setting, or 16000 steps/s at its steps/mm', () => {
+  expect(motionOf(CONFIG_DEFAULTS).vmaxUmS).toEqual([100_000, 100_000]); // 80 steps/mm: 8000 steps/s
+  // A leadscrew at 1/16 microstepping on X: 100 mm/s would be 40000 steps/s; the Mega runs 40 mm/s.
+  const screw = { ...CONFIG_DEFAULTS, 'steps_per_mm.x': '400' };
+  expect(motionOf(screw).vmaxUmS).toEqual([40_000, 100_000]);
+  expect(topSpeedUmS(screw, 0)).toBe((MAX_STEP_RATE * 1_000_000) / 400_000);
+  expect(topSpeedUmS({ ...CONFIG_DEFAULTS, 'steps_per_mm.z': '2000' }, 2)).toBe(8_000); // speed.z 10 mm/s, capped at 8
 });

@@ -106,11 +106,23 @@ export function num(config: Record<string, string>, key: string): number {
   return Number(config[key] ?? CONFIG_DEFAULTS[key]);
 }
 
+/** The Mega's step engine steps an axis no faster than this (`kMaxStepRate`, firmware/mega/src/step_profile.h). */
+export const MAX_STEP_RATE = 16000;
+
+/**
+ * An axis's top speed in µm/s: its setting (`speed.travel`, or `speed.z`), or what the step engine
+ * runs at the axis's steps/mm if that is less, as the Mega holds every move to it.
+ */
+export function topSpeedUmS(config: Record<string, string>, axis: number): number {
+  const setting = Math.round(num(config, axis === 2 ? 'speed.z' : 'speed.travel') * 1000);
+  const stepsMilli = Math.round(num(config, ['steps_per_mm.x', 'steps_per_mm.y', 'steps_per_mm.z'][axis]) * 1000);
+  return Math.min(setting, Math.floor((MAX_STEP_RATE * 1_000_000) / stepsMilli));
+}
+
 /** The motion the planner's time model prices (protocol/planner.md), from the settings, starting at `startUm`. */
 export function motionOf(config: Record<string, string>, startUm: [number, number] = [0, 0]): Machine {
-  const v = num(config, 'speed.travel') * 1000;
   return {
-    vmaxUmS: [v, v],
+    vmaxUmS: [topSpeedUmS(config, 0), topSpeedUmS(config, 1)],
     accelUmS2: [num(config, 'accel.x') * 1000, num(config, 'accel.y') * 1000],
     settleUs: num(config, 'settle_ms') * 1000,
     overheadUs: num(config, 'stop_overhead_us'),

@@ -2,7 +2,7 @@
 
 import { moveTimeUs } from '../planner/time-model';
 import type { Clock } from './clock';
-import { num } from './config';
+import { num, topSpeedUmS } from './config';
 
 export type Xyz = [number, number, number];
 
@@ -53,8 +53,7 @@ export class Motion {
   duration(from: Xyz, to: Xyz, feed: number): number {
     let t = 0;
     for (let i = 0; i < 3; i++) {
-      const vmax = num(this.config, i === 2 ? 'speed.z' : 'speed.travel');
-      const v = Math.round(Math.min(feed, vmax) * 1000);
+      const v = Math.min(Math.round(feed * 1000), topSpeedUmS(this.config, i));
       const a = num(this.config, ['accel.x', 'accel.y', 'accel.z'][i]) * 1000;
       t = Math.max(t, moveTimeUs(Math.abs(to[i] - from[i]), v, a));
     }

@@ -7,12 +7,20 @@
 #include "job_files.h"
 #include "nano_codec.h"
 #include "scan_program.h"
+#include "step_profile.h"
 
 namespace mega {
 
 uv::Machine plannerMachine(const Config& config, int32_t x, int32_t y) {
   uv::Machine m{};
-  m.vmaxUmS[0] = m.vmaxUmS[1] = static_cast<uint32_t>(config.milli(Key::SpeedTravel));
+  for (uint8_t a = 0; a < 2; a++) {
+    // speed.travel, or what the step engine runs on this axis if that is less (Motion::rateFor
+    // holds every move to it): a plan that assumed more would fly a scan pass's blank stretches
+    // faster than the head can step.
+    const uint32_t engine = static_cast<uint32_t>(static_cast<uint64_t>(kMaxStepRate) * 1000000u / static_cast<uint32_t>(config.milli(a ? Key::StepsY : Key::StepsX)));
+    const uint32_t travel = static_cast<uint32_t>(config.milli(Key::SpeedTravel));
+    m.vmaxUmS[a] = travel < engine ? travel : engine;
+  }
   m.accelUmS2[0] = static_cast<uint32_t>(config.milli(Key::AccelX));
   m.accelUmS2[1] = static_cast<uint32_t>(config.milli(Key::AccelY));
   m.settleUs = static_cast<uint32_t>(config.whole(Key::SettleMs)) * 1000;

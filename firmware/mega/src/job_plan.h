@@ -14,7 +14,8 @@
 namespace mega {
 
 // The machine the planners see, from the settings, with the head starting at (x, y) µm. Jobs on
-// the card are planned from the origin, so they plan the same whenever they run.
+// the card are planned from the origin, so they plan the same whenever they run. X and Y go no
+// faster than speed.travel, nor than kMaxStepRate steps/s.
 uv::Machine plannerMachine(const Config& config, int32_t x, int32_t y);
 
 class JobPlan {
