@@ -7,6 +7,7 @@
 #include "job_files.h"
 #include "nano_codec.h"
 #include "scan_program.h"
+#include "scan_stroke.h"
 #include "step_profile.h"
 
 namespace mega {
@@ -119,7 +120,8 @@ bool JobPlan::stepScan() {
     if (line[0] == 'K' && ++sealed == 2) ahead = bytes;
   }
   const uint64_t linkUs = static_cast<uint64_t>(sealed > 2 ? bytes - ahead : 0) * 10 * 1000000 / uv::kNanoBaud;
-  if (lines.failed() || linkUs * 5 > static_cast<uint64_t>(passUs_) * 4) {  // (failed: events 2²⁸ µs apart or more)
+  // Failed: events 2²⁸ µs apart or more. And a pass too long for its stroke's tick count.
+  if (lines.failed() || linkUs * 5 > static_cast<uint64_t>(passUs_) * 4 || passUs_ >= kScanLongestPassUs) {
     error_ = uv::kScanUnsupported;
     close();
     return true;

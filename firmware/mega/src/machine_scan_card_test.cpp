@@ -115,6 +115,20 @@ TEST_F(ScanCardTest, APassCutForHeatPausesAndContinueExposesItAgain) {
     }
 }
 
+TEST_F(ScanCardTest, AJobWhosePassWouldOutlastTheStrokesTickCountIsRefusedAtM29BeforeAnyLight) {
+  // 5 mm cells at 10 s each, every other one lit: a pass of 240 windows takes 2400 s, over the
+  // 2100 s a stroke can count in 0.5 µs ticks (kScanLongestPassUs).
+  job(240, 4, 10000000);
+  h.pitchUm[0] = h.pitchUm[1] = 5000;
+  for (auto& row : g)
+    for (uint16_t c = 0; c < h.cols; c++) row[c] = c % 2 ? 255 : 0;
+  Lines got = upload("LONG.UVJ", encode(h, g));
+  EXPECT_TRUE(has(got, "echo:E29 scan job not supported by this machine")) << ::testing::PrintToString(got);
+  m.cmd("G28");
+  EXPECT_EQ(payload("M24"), (Lines{"echo:E26 no job selected"}));
+  EXPECT_TRUE(m.nano.scanLight.empty());
+}
+
 TEST_F(ScanCardTest, AJobWhosePassesOutrunThePrintheadLinkIsRefusedAtM29BeforeAnyLight) {
   // A photo: every cell a different gray, so each LED switches twice a window, 2 ms each: some
   // 30 kB/s of program lines for a link that carries 11.5.

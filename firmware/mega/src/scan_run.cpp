@@ -55,7 +55,10 @@ bool ScanRun::open(Motion& motion, const uv::JobHeader& h) {
     return true;
   }
   in.rampSteps = motion.strokeRampSteps(interval, frac);
-  planStroke(in, stroke_);
+  if (!planStroke(in, stroke_)) {  // a pass of 35 minutes or more (M29 refuses such a job first)
+    error_ = uv::kScanUnsupported;
+    return true;
+  }
   y_ = static_cast<int32_t>(h.originUm[1]) + p.hy * static_cast<int32_t>(h.pitchUm[1]);
   lines_ = uv::ProgramLines(source, this);
   held_ = 0;

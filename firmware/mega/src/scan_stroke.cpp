@@ -42,7 +42,9 @@ bool planStroke(const StrokeInput& in, StrokePlan& out) {
   out.shiftUs = static_cast<uint32_t>(((ticks16 - leadTicks16) / 2 + 32768) >> 16);
   out.startSteps = static_cast<int32_t>(sign * start);
   out.steps = static_cast<int32_t>(sign * (stop - start));
-  return true;
+  // The middle: every step but the ramps', at the exact interval.
+  const uint64_t middle = static_cast<uint64_t>(stop - start) - 2 * in.rampSteps;
+  return middle * i16 < (1ull << 48);
 }
 
 void strokeJump(const StrokePlan& k, uint32_t windowUs, uint32_t window, uint32_t windows, uint32_t flyUs, uint32_t& from,

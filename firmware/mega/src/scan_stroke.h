@@ -36,8 +36,13 @@ struct StrokeInput {
 // The interval of a step at the pass's speed, as 16.16 ticks; false if outside what the step engine
 // runs (kMaxStepRate, 16-bit intervals).
 bool strokeInterval(uint32_t windowUs, uint32_t pitchUm, uint32_t stepsMilli, uint16_t& interval, uint16_t& frac);
-// False when the speed is out of range.
+// False when the speed is out of range, or when the stroke's middle would take 2³² ticks (0.5 µs)
+// or more: Motion counts them in 32 bits (about 35 minutes).
 bool planStroke(const StrokeInput& in, StrokePlan& out);
+
+// A pass whose last event comes this late after its start mark is refused before any light (M29):
+// its stroke's middle, lead and ramps included, would not fit planStroke's 32-bit count of ticks.
+constexpr uint32_t kScanLongestPassUs = 2100000000;
 
 // A stretch the pass flies (the planner's jump: its first blank window, its windows, its µs) in the
 // stroke's steps, as Motion::StrokeJump takes it: it leaves the speed `from` steps into the stroke,

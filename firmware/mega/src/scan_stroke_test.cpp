@@ -83,3 +83,19 @@ TEST(ScanStroke, RefusesSpeedsTheStepEngineCannotRun) {
   EXPECT_EQ(iv, 1000);
   EXPECT_EQ(fr, 0);
 }
+
+TEST(ScanStroke, RefusesAStrokeWhoseMiddleOutrunsA32BitCountOfTicks) {
+  // 1000 µs windows of 50 µm at 80 steps/mm: 500 ticks a step. 2³² ticks are 8589934 steps.
+  StrokeInput in{};
+  in.windowUs = 1000;
+  in.pitchUm = 50;
+  in.stepsMilli = 80000;
+  in.rampSteps = 100;
+  in.markX2Um = 0;
+  StrokePlan s;
+  in.endX2Um = 2 * 100000000;  // 100 m: 8000000 steps, 2000 s
+  EXPECT_TRUE(planStroke(in, s));
+  in.endX2Um = 2 * 110000000;  // 110 m: 8800000 steps, 2200 s
+  EXPECT_FALSE(planStroke(in, s));
+  EXPECT_LT(kScanLongestPassUs, (1ull << 31) - 1000000);  // M29's limit, with a second in hand
+}
