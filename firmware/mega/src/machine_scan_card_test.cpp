@@ -3,8 +3,6 @@
 // exposed again. Every cell's dose measured from the light and the head's steps (scan_dose.h).
 #include <gtest/gtest.h>
 
-#include <algorithm>
-#include <cstdint>
 #include <cstdio>
 
 #include "machine_scan_fixture.h"
@@ -75,10 +73,7 @@ TEST_F(ScanCardTest, AResetMidPassResumesWithThatPassExposedAgainAndTheOthersOnc
         over++;
       }
     }
-  uint64_t shortest = UINT64_MAX;
-  for (size_t i = 1; i < m.rig.steps.size(); i++)
-    if (m.rig.steps[i].axes == 1 && m.rig.steps[i - 1].axes == 1) shortest = std::min(shortest, m.rig.steps[i].us2 - m.rig.steps[i - 1].us2);
-  EXPECT_LT(shortest, 2000000u / 4000 * 3 / 4);  // the resumed passes flew (4000 steps/s is their 50 mm/s)
+  EXPECT_LT(shortestXStep(m.rig.steps), 2000000u / 4000 * 3 / 4);  // the resumed passes flew (4000 steps/s is their 50 mm/s)
   std::printf("[scan card] a reset in pass 2 of 3: %d of its cells lit before the cut got more than their dose; all others once\n", over);
 }
 

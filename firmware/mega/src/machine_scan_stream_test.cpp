@@ -3,8 +3,6 @@
 // measured against the job (scan_dose.h).
 #include <gtest/gtest.h>
 
-#include <algorithm>
-#include <cstdint>
 #include <cstdio>
 
 #include "machine_scan_fixture.h"
@@ -30,9 +28,7 @@ TEST_F(ScanStreamTest, AScanJobSlowerThanTheTopSpeedFliesItsBlankStretches) {
   ASSERT_NE(end.find("JOB:done"), std::string::npos) << end;
   EXPECT_NE(end.find("stop=2/2"), std::string::npos) << end;
   // The stretches between the pads are flown: some X steps come faster than 50 mm/s allows.
-  uint64_t shortest = UINT64_MAX;
-  for (size_t i = 1; i < m.rig.steps.size(); i++)
-    if (m.rig.steps[i].axes == 1 && m.rig.steps[i - 1].axes == 1) shortest = std::min(shortest, m.rig.steps[i].us2 - m.rig.steps[i - 1].us2);
+  const uint64_t shortest = shortestXStep(m.rig.steps);
   std::printf("[scan machine] blank stretches flown, at up to %.0f mm/s in 50 mm/s passes: worst dose error %.2f %% of full, worst edge %.2f um (cell 100 um)\n",
               2e6 / shortest / 80, f.worstDosePct, f.worstEdgeUm);
   EXPECT_LT(shortest, 2000000u / 4000 * 3 / 4);  // 4000 steps/s is 50 mm/s at 80 steps/mm

@@ -170,6 +170,12 @@ void Motion::feed() {
   }
 }
 
+void Motion::forgetStroke() {
+  strokeSlot_ = -1;
+  flying_ = jumpHeld_ = false;
+  jumps_ = nullptr;
+}
+
 void Motion::nextJump() {
   jumpHeld_ = jumps_ && jumps_(jumpCtx_, jumpNext_, jump_);
   if (jumpHeld_) jumpNext_++;
@@ -244,9 +250,7 @@ void Motion::poll() {
 void Motion::stop() {
   StepEngine::Cut c = e_.cutAfterCurrent();
   e_.dropBlocksAfter(c.running ? c.slot : 0xff);
-  strokeSlot_ = -1;  // a stroke cut short slows down as any move
-  flying_ = jumpHeld_ = false;
-  jumps_ = nullptr;
+  forgetStroke();  // a stroke cut short slows down as any move
   nextPlan_ = e_.blockHead();
   planSlot_ = -1;
   stopping_ = true;
@@ -276,9 +280,7 @@ void Motion::stop() {
 
 void Motion::halt() {
   e_.halt();
-  strokeSlot_ = -1;
-  flying_ = jumpHeld_ = false;
-  jumps_ = nullptr;
+  forgetStroke();
   nextPlan_ = e_.blockHead();
   planSlot_ = -1;
   stopping_ = false;

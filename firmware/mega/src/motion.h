@@ -81,6 +81,8 @@ class Motion {
   // next stretch flown, or the flown stretch's next piece.
   void strokeSegment(uint16_t most, uint16_t& steps, uint16_t& interval, uint16_t& frac);
   void nextJump();
+  // A stop or a halt: no stroke is cut any more, nor its stretches flown.
+  void forgetStroke();
 
   StepEngine& e_;
   const Config& c_;

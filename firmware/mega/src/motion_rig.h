@@ -18,6 +18,14 @@ struct StepEvent {
   uint8_t dirNeg;
 };
 
+// The shortest time from one X-only step to the next (ticks): how fast the head went along X.
+inline uint64_t shortestXStep(const std::vector<StepEvent>& steps) {
+  uint64_t shortest = UINT64_MAX;
+  for (size_t i = 1; i < steps.size(); i++)
+    if (steps[i].axes == 1 && steps[i - 1].axes == 1 && steps[i].us2 - steps[i - 1].us2 < shortest) shortest = steps[i].us2 - steps[i - 1].us2;
+  return shortest;
+}
+
 class MotionRig {
  public:
   explicit MotionRig(const Config& c) : motion(engine, c) {}

@@ -4,8 +4,6 @@
 // measured from the light's times and the head's steps (scan_dose.h).
 #include <gtest/gtest.h>
 
-#include <algorithm>
-#include <climits>
 #include <cstdio>
 
 #include "fake_nano.h"
@@ -149,10 +147,7 @@ TEST_F(ScanRunTest, FliesBlankStretchesAndKeepsEveryCellInPlace) {
   EXPECT_EQ(rig.engine.marksMissed(), 0);
   EXPECT_EQ(rig.engine.underruns(), 0);
   // The head went faster than the pass's speed (2000 steps/s at 80 steps/mm): it flew.
-  uint32_t shortest = UINT32_MAX;
-  for (size_t i = 1; i < rig.steps.size(); i++)
-    if (rig.steps[i].axes & 1) shortest = std::min<uint32_t>(shortest, static_cast<uint32_t>(rig.steps[i].us2 - rig.steps[i - 1].us2));
-  EXPECT_LT(shortest, 2 * 500 * 3 / 4) << "no step faster than the pass's speed";
+  EXPECT_LT(shortestXStep(rig.steps), 2 * 500 * 3 / 4) << "no step faster than the pass's speed";
   const scandose::Figures f = measure(p.h, p.grid, p.planner.motion().windowUs);
   std::printf("[scan host, flying] %d cells (%d lit), %u passes in %.2f s (planned %.2f s): worst dose error %.2f %% of full, worst centroid %.2f um, worst edge %.2f um\n",
               f.cells, f.lit, p.scan.passes(), tookUs / 1e6, p.planner.estimateUs() / 1e6, f.worstDosePct, f.worstCentreUm, f.worstEdgeUm);

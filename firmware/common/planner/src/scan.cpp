@@ -100,9 +100,8 @@ bool ScanPlanner::nextPass(ScanPass& out) {
         }
       if (!any) break;
       if (first > last) {
-        first = best;
+        first = first_ = best;  // consider() keeps columns from it
       } else if (best - last > 1 && best - last - 1 <= 0xffff) {
-        first_ = first;
         consider(last + 1, static_cast<uint16_t>(best - last - 1));
       }
       last = best;
@@ -110,7 +109,6 @@ bool ScanPlanner::nextPass(ScanPass& out) {
         if (live_[k] && hx_[k] == best) peek(k);
     }
     if (first > last) continue;  // no lit cell: the pass is dropped
-    first_ = first;
     // S(n − 1) + W: every window, less what each flown stretch saves.
     uint64_t span = static_cast<uint64_t>(last - first + 1) * motion_.windowUs;
     for (uint8_t i = 0; i < jumpCount_; i++) span -= static_cast<uint64_t>(jumpG_[i]) * motion_.windowUs - fly(jumpG_[i]);
