@@ -20,7 +20,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   FuzzedDataProvider in(data, size);
   Wire wire;
   uint8_t movesFree = 8;
-  mega::HostLink link(wire, movesFree);
+  mega::LineSlot slots[mega::kUsbWindow];
+  mega::HostLink link(wire, movesFree, mega::lineWindow(slots));
   std::string carried;
   while (in.remaining_bytes()) {
     switch (in.ConsumeIntegralInRange<uint8_t>(0, 3)) {

@@ -55,7 +55,7 @@ TEST(MegaSender, UploadsAJobThroughTheWindowIntoTheMegasCardBitExact) {
   Bench b;
   b.mega.begin();
   ASSERT_TRUE(b.sendAll({"M115"}, 1));
-  EXPECT_EQ(b.sender.window(), 4);  // learned from Cap:RX_WINDOW
+  EXPECT_EQ(b.sender.window(), mega::kEspWindow);  // learned from Cap:RX_WINDOW on the Mega's ESP port
   mega::jobs::Lines records = mega::jobs::encode(mega::jobs::header(20, 10, uv::Strategy::Raster), mega::jobs::pattern(20, 10, 3));
   std::vector<std::string> upload = {"M28 ESP.UVJ"};
   upload.insert(upload.end(), records.begin(), records.end());

@@ -21,8 +21,9 @@ class TxPort {
 
 class HostLink : public uv::ReplySink, private uv::FlowCounters {
  public:
-  // movesFree: the motion queue's free slots, for the P field of every ok.
-  HostLink(TxPort& tx, const uint8_t& movesFree) : tx_(tx), moves_(movesFree), receiver_(*this) {}
+  // movesFree: the motion queue's free slots, for the P field of every ok. window: this port's
+  // line slots (kUsbWindow, kEspWindow).
+  HostLink(TxPort& tx, const uint8_t& movesFree, LineWindow window) : tx_(tx), moves_(movesFree), receiver_(*this), ring_(window) {}
 
   // --- interrupts ---
   void received(char c) { ring_.received(c); }
@@ -41,6 +42,8 @@ class HostLink : public uv::ReplySink, private uv::FlowCounters {
   // The oldest accepted line not yet answered, or nullptr.
   const LineSlot* front() { return ring_.front(); }
   uint8_t queued() const { return ring_.queued(); }
+  // Lines the host may have unanswered on this port (Cap:RX_WINDOW).
+  uint8_t window() const { return ring_.window(); }
   // Ends the front line's reply block with its ok and frees its slot.
   void ok();
   void error(uint8_t code, const char* detail = nullptr) {

@@ -40,7 +40,8 @@ void expectWholeLines(const std::vector<std::string>& lines) {
 TEST(HostLink, ALineThatDoesNotFitIsNotSentAtAllAndIsCounted) {
   NoKick tx;
   uint8_t moves = 8;
-  HostLink link(tx, moves);
+  LineSlot slots[kUsbWindow];
+  HostLink link(tx, moves, lineWindow(slots));
   std::string forty(39, 'x');
   int sent = 0;
   while (link.report(forty.c_str())) sent++;

@@ -8,7 +8,13 @@
 
 namespace mega {
 
-constexpr uint8_t kWindow = 4;  // Cap:RX_WINDOW
+// Each port's receive window (Cap:RX_WINDOW, mega.md §3): the lines a host may have unanswered. A window
+// must cover the link's round trip. USB carries the app over Web Serial and desktop hosts, a few ms
+// each way (npm run bench P1: 4 lines keep 99 % of the line busy at 4 ms one-way, 3 lines 94 %). The
+// ESP's sender sits on a wire and reads the Mega's replies every pass of its loop: 2 lines keep it
+// 97 % busy at 1 ms, and each line less is 104 bytes of the Mega's RAM.
+constexpr uint8_t kUsbWindow = 4;
+constexpr uint8_t kEspWindow = 2;
 
 struct LineSlot {
   char text[uv::kDialectMaxLine + 1];  // NUL-terminated once complete
@@ -18,10 +24,22 @@ struct LineSlot {
   int32_t n;      // its line number once accepted, -1 for a plain line
 };
 
-class LineRing {
-  static_assert((kWindow & (kWindow - 1)) == 0, "free-running 8-bit indices: the window must divide 256");
+// A port's line slots, held by whoever owns the port (main.cpp: static).
+struct LineWindow {
+  LineSlot* slots;
+  uint8_t size;
+};
+template <uint8_t N>
+LineWindow lineWindow(LineSlot (&slots)[N]) {
+  static_assert(N && (N & (N - 1)) == 0, "free-running 8-bit indices: the window must divide 256");
+  return {slots, N};
+}
 
+class LineRing {
  public:
+  explicit LineRing(LineWindow w) : slots_(w.slots), mask_(static_cast<uint8_t>(w.size - 1)) {}
+  uint8_t window() const { return static_cast<uint8_t>(mask_ + 1); }
+
   // --- receive interrupt ---
   void received(char c);
   // Bytes dropped because every slot was taken (a host that ignored the window).
@@ -29,7 +47,7 @@ class LineRing {
 
   // --- main loop ---
   // The oldest complete line not yet accepted, or nullptr.
-  LineSlot* arrived() { return accept_ != fill_ ? &slots_[accept_ % kWindow] : nullptr; }
+  LineSlot* arrived() { return accept_ != fill_ ? &slots_[accept_ & mask_] : nullptr; }
   // Moves it into the run queue (dead: it needs no run, only its turn to be freed).
   void accepted(bool dead);
   // The oldest accepted line still to run, or nullptr; dead ones are freed on the way.
@@ -37,11 +55,12 @@ class LineRing {
   void pop() { head_ = static_cast<uint8_t>(head_ + 1); }
   uint8_t queued() const { return static_cast<uint8_t>(accept_ - head_); }
   // Slots neither holding a complete line nor queued: what the B field reports.
-  uint8_t free() const { return static_cast<uint8_t>(kWindow - static_cast<uint8_t>(fill_ - head_)); }
+  uint8_t free() const { return static_cast<uint8_t>(window() - static_cast<uint8_t>(fill_ - head_)); }
 
  private:
-  LineSlot slots_[kWindow];
-  volatile uint8_t head_ = 0, accept_ = 0, fill_ = 0;  // free-running; slot = index % kWindow
+  LineSlot* const slots_;
+  const uint8_t mask_;  // the window less one: slot = index & mask_
+  volatile uint8_t head_ = 0, accept_ = 0, fill_ = 0;  // free-running
   uint8_t len_ = 0;
   bool overflow_ = false;
   bool noSlot_ = false;  // the line being received has nowhere to go

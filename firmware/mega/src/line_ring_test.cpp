@@ -10,13 +10,20 @@
 using namespace mega;
 
 namespace {
+constexpr int kWindow = kUsbWindow;
+// A ring with the USB port's window, its slots beside it as main.cpp keeps them.
+struct UsbRing {
+  LineSlot slots[kUsbWindow];
+  LineRing ring{lineWindow(slots)};
+};
 void feed(LineRing& r, const std::string& bytes) {
   for (char c : bytes) r.received(c);
 }
 }  // namespace
 
 TEST(LineRing, HoldsAWholeWindowOfLongLinesUntilTheMainLoopComes) {
-  LineRing r;
+  UsbRing usb;
+  LineRing& r = usb.ring;
   std::string line(96, 'x');
   for (int i = 0; i < kWindow; i++) feed(r, line + "\r\n");
   EXPECT_EQ(r.free(), 0);
@@ -36,7 +43,8 @@ TEST(LineRing, HoldsAWholeWindowOfLongLinesUntilTheMainLoopComes) {
 }
 
 TEST(LineRing, FlagsAnOverlongLineAndKeepsItsStart) {
-  LineRing r;
+  UsbRing usb;
+  LineRing& r = usb.ring;
   feed(r, std::string(97, 'a') + "\n" + std::string(96, 'b') + "\rc\nok\n");
   LineSlot* s = r.arrived();
   EXPECT_TRUE(s->overflow);
@@ -51,7 +59,8 @@ TEST(LineRing, FlagsAnOverlongLineAndKeepsItsStart) {
 }
 
 TEST(LineRing, EmptyLinesTakeNoSlot) {
-  LineRing r;
+  UsbRing usb;
+  LineRing& r = usb.ring;
   feed(r, "\n\r\n\nM105\n");
   ASSERT_NE(r.arrived(), nullptr);
   EXPECT_STREQ(r.arrived()->text, "M105");
@@ -59,7 +68,8 @@ TEST(LineRing, EmptyLinesTakeNoSlot) {
 }
 
 TEST(LineRing, DeadSlotsAreFreedInTheirTurn) {
-  LineRing r;
+  UsbRing usb;
+  LineRing& r = usb.ring;
   feed(r, "G28\nN1 bad\nM105\n");
   r.accepted(false);
   r.accepted(true);  // answered at once (a checksum error)
@@ -73,7 +83,8 @@ TEST(LineRing, DeadSlotsAreFreedInTheirTurn) {
 }
 
 TEST(LineRing, ALineBeyondTheWindowIsDroppedWholeAndTheNextOneArrives) {
-  LineRing r;
+  UsbRing usb;
+  LineRing& r = usb.ring;
   for (int i = 0; i < kWindow; i++) feed(r, "M105\n");
   feed(r, "M114\n");  // a host that did not wait
   EXPECT_EQ(r.dropped(), 5u);
@@ -84,4 +95,22 @@ TEST(LineRing, ALineBeyondTheWindowIsDroppedWholeAndTheNextOneArrives) {
   for (int i = 0; i < kWindow - 1; i++) r.pop();
   ASSERT_NE(r.arrived(), nullptr);
   EXPECT_STREQ(r.arrived()->text, "M115");
+}
+
+TEST(LineRing, TheEspPortsWindowIsTwoLinesAndAThirdIsDroppedWhole) {
+  LineSlot slots[kEspWindow];
+  LineRing r(lineWindow(slots));
+  EXPECT_EQ(r.window(), 2);
+  feed(r, std::string(96, 'a') + "\n" + std::string(96, 'b') + "\n" + "M105\n");
+  EXPECT_EQ(r.dropped(), 5u);  // the host overran its window: its own extra line, and only that, is lost
+  for (char c : {'a', 'b'}) {
+    LineSlot* s = r.arrived();
+    ASSERT_NE(s, nullptr);
+    EXPECT_EQ(std::string(s->text, s->len), std::string(96, c));
+    r.accepted(false);
+  }
+  EXPECT_EQ(r.arrived(), nullptr);
+  r.front();
+  r.pop();
+  EXPECT_EQ(r.free(), 1);
 }

@@ -30,7 +30,7 @@ bool Machine::emitNext() {
         r.value = 1;
       } else if (long_.index <= 5) {
         uint8_t i = static_cast<uint8_t>(long_.index - 1);
-        const uint32_t values[] = {kWindow, 1, 1, sd_.present() ? 1u : 0u, sd_.present() ? 1u : 0u};
+        const uint32_t values[] = {long_.port->window(), 1u, 1u, sd_.present() ? 1u : 0u, sd_.present() ? 1u : 0u};
         r.kind = uv::ReplyKind::Cap;
         strcpy_flash(cap, uvFlashPtr(kCaps[i]));
         r.text = cap;

@@ -35,6 +35,10 @@ TEST_F(MachineTest, StartsOnBothPortsAndM115ListsTheCapabilities) {
                       "Cap:RX_WINDOW:4", "Cap:AUTOREPORT_TEMP:1", "Cap:AUTOREPORT_POS:1", "Cap:SDCARD:1", "Cap:RESUME:1"}));
   Lines block = m.cmd("M115");
   EXPECT_EQ(block.back().rfind("ok N2 P8 B4*", 0), 0u);
+  // The ESP's port has a window of its own, smaller: its sender is on a wire (line_ring.h).
+  Lines esp = payload("M115", true);
+  EXPECT_NE(std::find(esp.begin(), esp.end(), "Cap:RX_WINDOW:2"), esp.end());
+  EXPECT_EQ(m.cmd("M115", true).back().rfind("ok N2 P8 B2*", 0), 0u);
 }
 
 TEST_F(MachineTest, UnknownCommandsAndBadParametersAreRefusedWithTheirCodes) {

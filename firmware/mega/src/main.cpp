@@ -33,8 +33,10 @@ HostUart usbUart(0);
 HostUart espUart(2);  // or 3: esp.port, read at start-up
 uint8_t movesFree = StepEngine::kBlocks;
 LoopStats stats = {};
-HostLink usb(usbUart, movesFree);
-HostLink esp(espUart, movesFree);
+LineSlot usbSlots[kUsbWindow];
+LineSlot espSlots[kEspWindow];
+HostLink usb(usbUart, movesFree, lineWindow(usbSlots));
+HostLink esp(espUart, movesFree, lineWindow(espSlots));
 Board board;
 Oled oled;
 Machine machine(MachineParts{{&usb, &esp}, motion, head, config, store, sd, board, eeprom, oled, kFirmwareName, movesFree, stats});

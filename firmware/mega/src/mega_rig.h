@@ -111,7 +111,8 @@ class MegaRig {
   HostPipe usb, esp;
   uint8_t movesFree = StepEngine::kBlocks;
   LoopStats stats = {};
-  HostLink usbLink{usb, movesFree}, espLink{esp, movesFree};
+  LineSlot usbSlots[kUsbWindow], espSlots[kEspWindow];
+  HostLink usbLink{usb, movesFree, lineWindow(usbSlots)}, espLink{esp, movesFree, lineWindow(espSlots)};
   Machine machine{MachineParts{{&usbLink, &espLink}, rig.motion, head, config, store, sd, io, eeprom, display, "UVExposure 0.1.0 (Mega)", movesFree, stats}};
   uint64_t nowUs = 0;
   std::vector<std::string> usbLines, espLines;  // everything each host has read
@@ -159,8 +160,8 @@ class MegaRig {
     new (&io) FakeIo(rig);
     movesFree = StepEngine::kBlocks;
     stats = {};
-    new (&usbLink) HostLink(usb, movesFree);
-    new (&espLink) HostLink(esp, movesFree);
+    new (&usbLink) HostLink(usb, movesFree, lineWindow(usbSlots));
+    new (&espLink) HostLink(esp, movesFree, lineWindow(espSlots));
     new (&machine) Machine(MachineParts{{&usbLink, &espLink}, rig.motion, head, config, store, sd, io, eeprom, display, "UVExposure 0.1.0 (Mega)", movesFree, stats});
     usb = HostPipe();
     esp = HostPipe();
