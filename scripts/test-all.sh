@@ -25,22 +25,10 @@ stage() {
   fi
 }
 
-host_tests() {
-  # ctest runs the quick suites; the ones whose measurements belong in the log run here, their
-  # figures printed (a failure still fails the stage: pipefail).
-  cmake -S firmware -B build/host -DCMAKE_BUILD_TYPE=Debug >/dev/null &&
-    cmake --build build/host -j"$(nproc)" >/dev/null &&
-    (cd build/host && ctest --output-on-failure -E '^(nano_sim_tests|mega_sim_tests|mega_tests)$') &&
-    build/host/nano_sim_tests --gtest_brief=1 | grep '^\[nano budget\]' &&
-    build/host/mega_sim_tests --gtest_brief=1 | grep -E '^\[mega budget\]|FAILED|Failure' &&
-    build/host/mega_tests --gtest_brief=1 | grep -E '^\[mega |FAILED|Failure' &&
-    { build/host/protocol_tests --gtest_brief=1 && build/host/esp_tests --gtest_brief=1; } | grep -E '^\[(vectors|esp )\]|^\[esp |FAILED|Failure'
-}
-
 stage "TypeScript unit tests (Vitest)" npm run --silent test:unit
 stage "Type check (svelte-check)" npm run --silent check
-stage "AVR firmware images and budgets" bash scripts/build-avr.sh
-stage "C++ host and simavr tests (CMake, GoogleTest)" host_tests
+stage "AVR firmware images and budgets" bash scripts/test-firmware.sh images
+stage "C++ host and simavr tests (CMake, GoogleTest)" bash scripts/test-firmware.sh host
 stage "C++ tests under ASan and UBSan (clang)" bash scripts/fuzz.sh --tests
 stage "Fuzzers, 20 s each on their kept corpus (libFuzzer, ASan, UBSan)" bash scripts/fuzz.sh 20
 stage "The app for the ESP's flash (gzipped, within its budget)" npm run --silent build:esp

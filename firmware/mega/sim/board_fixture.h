@@ -9,6 +9,19 @@
 #include "board_sim.h"
 #include "dialect_frame.h"
 
+// The stack's deepest point over every board this binary ran, and the test that reached it
+// (stack_sim_test.cpp reports it at the end).
+struct StackMark {
+  uint16_t deepest = 0xffff;
+  uint16_t bytes = 0;
+  uint16_t staticEnd = 0;
+  std::string test;
+};
+inline StackMark& stackMark() {
+  static StackMark mark;
+  return mark;
+}
+
 class BoardTest : public ::testing::Test {
  protected:
   BoardSim sim{MEGA_ELF, NANO_ELF};
@@ -49,6 +62,15 @@ class BoardTest : public ::testing::Test {
     for (const std::string& l : lines)
       if (l.rfind(prefix, 0) == 0) return true;
     return false;
+  }
+  void TearDown() override {
+    StackMark& mark = stackMark();
+    if (sim.stackDeepest() < mark.deepest) {
+      mark.deepest = sim.stackDeepest();
+      mark.bytes = sim.stackBytes();
+      mark.staticEnd = sim.staticEnd();
+      mark.test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    }
   }
   void SetUp() override {
     sim.switchAt[0] = -160;  // 2 mm from where the head starts

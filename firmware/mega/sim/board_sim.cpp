@@ -17,12 +17,16 @@
 
 namespace {
 // Receive-complete vectors: the rig counts a byte as taken when its interrupt is raised.
-constexpr int kMegaUsart0Rx = 25, kMegaUsart1Rx = 36, kNanoUsartRx = 18;
+constexpr int kMegaUsart0Rx = 25, kMegaUsart1Rx = 36, kMegaUsart2Rx = 51, kNanoUsartRx = 18;
+// The ATmega2560's last RAM address, and what the rig paints the free RAM with at power-up.
+constexpr uint16_t kMegaRamEnd = 0x21ff;
+constexpr uint8_t kPaint = 0xa5;
 constexpr int kMegaTwiVector = 39;
 void noSleep(avr_t*, avr_cycle_count_t) {}
 
-// The address of the first function whose symbol starts with `prefix` (LTO may add a suffix), or 0.
-uint32_t functionAddress(const std::string& elfPath, const std::string& prefix) {
+// The address of the first symbol whose name starts with `prefix` (LTO may add a suffix), or 0:
+// a function's, or with `anyType` any symbol's (the linker's `_end`, in the data space at 0x800000).
+uint32_t symbolAddress(const std::string& elfPath, const std::string& prefix, bool anyType = false) {
   uint32_t found = 0;
   elf_version(EV_CURRENT);
   int fd = open(elfPath.c_str(), O_RDONLY);
@@ -36,7 +40,7 @@ uint32_t functionAddress(const std::string& elfPath, const std::string& prefix) 
       GElf_Sym sym;
       gelf_getsym(data, static_cast<int>(i), &sym);
       const char* name = elf_strptr(e, sh.sh_link, sym.st_name);
-      if (name && GELF_ST_TYPE(sym.st_info) == STT_FUNC && std::string(name).rfind(prefix, 0) == 0) {
+      if (name && (anyType || GELF_ST_TYPE(sym.st_info) == STT_FUNC) && std::string(name).rfind(prefix, 0) == 0) {
         found = static_cast<uint32_t>(sym.st_value);
         break;
       }
@@ -89,6 +93,9 @@ BoardSim::BoardSim(const std::string& megaElf, const std::string& nanoElf) {
   quiet(nano_, '0');
 
   host_ = {mega_, avr_io_getirq(mega_, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_INPUT), {}, 0};
+  esp_ = {mega_, avr_io_getirq(mega_, AVR_IOCTL_UART_GETIRQ('2'), UART_IRQ_INPUT), {}, 0};
+  avr_irq_register_notify(avr_io_getirq(mega_, AVR_IOCTL_UART_GETIRQ('2'), UART_IRQ_OUTPUT), onEspOut, this);
+  avr_irq_register_notify(avr_get_interrupt_irq(mega_, kMegaUsart2Rx) + AVR_INT_IRQ_PENDING, onRxTaken, &esp_);
   toMega_ = {mega_, avr_io_getirq(mega_, AVR_IOCTL_UART_GETIRQ('1'), UART_IRQ_INPUT), {}, 0};
   toNano_ = {nano_, avr_io_getirq(nano_, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_INPUT), {}, 0};
   avr_irq_register_notify(avr_io_getirq(mega_, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_OUTPUT), onHostOut, this);
@@ -118,8 +125,23 @@ BoardSim::BoardSim(const std::string& megaElf, const std::string& nanoElf) {
   // The SSD1306 on D20/D21: the model answers each byte with its acknowledge at once.
   twiIn_ = avr_io_getirq(mega_, AVR_IOCTL_TWI_GETIRQ(0), TWI_IRQ_INPUT);
   avr_irq_register_notify(avr_io_getirq(mega_, AVR_IOCTL_TWI_GETIRQ(0), TWI_IRQ_OUTPUT), onTwi, this);
-  panelEntry_ = functionAddress(megaElf, "_ZN4mega7Machine5panelEv");
+  panelEntry_ = symbolAddress(megaElf, "_ZN4mega7Machine5panelEv");
+
+  // The stack's high-water mark: every byte between the end of static RAM (the linker's _end; the
+  // firmware has no heap) and the top of RAM is painted before the firmware runs, and the lowest
+  // byte the stack ever wrote is found by the paint it left (stackDeepest()).
+  staticEnd_ = static_cast<uint16_t>(symbolAddress(megaElf, "_end", true) & 0xffff);
+  if (!staticEnd_) throw std::runtime_error("no _end symbol in " + megaElf);
+  for (uint32_t a = staticEnd_; a <= kMegaRamEnd; a++) mega_->data[a] = kPaint;
 }
+
+uint16_t BoardSim::stackDeepest() const {
+  uint16_t a = staticEnd_;
+  while (a <= kMegaRamEnd && mega_->data[a] == kPaint) a++;
+  return a;
+}
+
+uint16_t BoardSim::stackBytes() const { return static_cast<uint16_t>(kMegaRamEnd + 1 - stackDeepest()); }
 
 void BoardSim::setNanoMv(int ch, uint32_t mv) {
   avr_raise_irq(avr_io_getirq(nano_, AVR_IOCTL_ADC_GETIRQ, ADC_IRQ_ADC0 + ch), mv);
@@ -197,6 +219,17 @@ void BoardSim::onDir(avr_irq_t*, uint32_t value, void* param) {
   ref->sim->dirHigh[ref->axis] = value != 0;
 }
 
+void BoardSim::onEspOut(avr_irq_t*, uint32_t value, void* param) {
+  auto* s = static_cast<BoardSim*>(param);
+  char c = static_cast<char>(value);
+  if (c == '\n') {
+    s->espLines_.push_back(s->espPartial_);
+    s->espPartial_.clear();
+  } else {
+    s->espPartial_ += c;
+  }
+}
+
 void BoardSim::onHostOut(avr_irq_t*, uint32_t value, void* param) {
   auto* s = static_cast<BoardSim*>(param);
   char c = static_cast<char>(value);
@@ -239,6 +272,7 @@ void BoardSim::onRxTaken(avr_irq_t*, uint32_t value, void* param) {
 
 void BoardSim::step() {
   host_.push();
+  esp_.push();
   toMega_.push();
   toNano_.push();
   // Keep the two chips within an instruction of each other, the Nano at `nanoClock` of the Mega's rate.
@@ -269,6 +303,14 @@ void BoardSim::runUs(double us) {
 }
 
 void BoardSim::send(const std::string& bytes) { host_.pending.insert(host_.pending.end(), bytes.begin(), bytes.end()); }
+
+void BoardSim::sendEsp(const std::string& bytes) { esp_.pending.insert(esp_.pending.end(), bytes.begin(), bytes.end()); }
+
+std::vector<std::string> BoardSim::takeEspLines() {
+  std::vector<std::string> out(espLines_.begin(), espLines_.end());
+  espLines_.clear();
+  return out;
+}
 
 std::vector<std::string> BoardSim::takeLines() {
   std::vector<std::string> out(hostLines_.begin(), hostLines_.end());

@@ -36,6 +36,14 @@ class BoardSim {
   void send(const std::string& bytes);
   // Lines the Mega sent the host since the last call.
   std::vector<std::string> takeLines();
+  // Host side of the Mega's ESP UART (Serial2, esp.port's default).
+  void sendEsp(const std::string& bytes);
+  std::vector<std::string> takeEspLines();
+  // The stack's high-water mark: the lowest RAM address it has written since power-up, and its
+  // depth in bytes from the top of RAM. The free RAM above static RAM starts at staticEnd().
+  uint16_t stackDeepest() const;
+  uint16_t stackBytes() const;
+  uint16_t staticEnd() const { return staticEnd_; }
   // Every line the Mega sent the Nano, and every line the Nano answered.
   std::vector<std::string> nanoLines, nanoReplies;
 
@@ -95,6 +103,7 @@ class BoardSim {
   static void onDir(avr_irq_t* irq, uint32_t value, void* param);
   static void onLed(avr_irq_t* irq, uint32_t value, void* param);
   static void onHostOut(avr_irq_t* irq, uint32_t value, void* param);
+  static void onEspOut(avr_irq_t* irq, uint32_t value, void* param);
   static void onMegaToNano(avr_irq_t* irq, uint32_t value, void* param);
   static void onNanoToMega(avr_irq_t* irq, uint32_t value, void* param);
   static void onRxTaken(avr_irq_t* irq, uint32_t value, void* param);
@@ -103,13 +112,15 @@ class BoardSim {
 
   avr_t* mega_ = nullptr;
   avr_t* nano_ = nullptr;
-  Feed host_{}, toNano_{}, toMega_{};
+  Feed host_{}, esp_{}, toNano_{}, toMega_{};
   struct AxisRef {
     BoardSim* sim;
     int axis;
   } axisRefs_[3], ledRefs_[4];
   std::string hostPartial_, nanoPartial_, replyPartial_;
-  std::deque<std::string> hostLines_;
+  std::deque<std::string> hostLines_, espLines_;
+  std::string espPartial_;
+  uint16_t staticEnd_ = 0;
   avr_irq_t* switchIrq_[3] = {};
   bool switchClosed_[3] = {false, false, false};
   bool ledOn_[4] = {false, false, false, false};

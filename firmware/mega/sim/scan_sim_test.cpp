@@ -27,6 +27,9 @@ class ScanOnBoard : public BoardTest {
     for (int k = 0; k < 4; k++) h.gainPermille[k] = 1000;
     return h;
   }
+  // Both host ports poll the temperatures and the job while it runs (the stack's heaviest run).
+  bool pollBothHosts = false;
+  int espHeard = 0;  // the ESP port's temperature reports
   scandose::Figures expose(const uv::JobHeader& h, const Grid& g, int passes) {
     EXPECT_TRUE(said(cmd("G28", 8e6), "ok"));
     const int32_t home[2] = {sim.pos[0], sim.pos[1]};  // the Mega's 0 in the rig's count
@@ -36,7 +39,15 @@ class ScanOnBoard : public BoardTest {
     EXPECT_TRUE(said(numbered("M29"), "ok"));
     std::string end;
     bool reset = passes < 2;
+    uint64_t nextPoll = sim.megaCycle();
     EXPECT_TRUE(sim.runUntil([&] {
+      if (pollBothHosts && sim.megaCycle() >= nextPoll) {
+        // Both hosts ask what a dashboard asks, every 100 ms, each within its window (mega.md §3).
+        sim.send("M105\nM114\nM27\n");
+        sim.sendEsp("M105\nM27\n");
+        nextPoll = sim.megaCycle() + static_cast<uint64_t>(100e3 * BoardSim::kCyclesPerUs);
+      }
+      for (std::string& l : sim.takeEspLines()) espHeard += l.rfind("T:", 0) == 0;
       if (!reset && std::count(sim.nanoLines.begin(), sim.nanoLines.end(), "G") == 2) {
         sim.send("M821 R\n");  // the main loop's longest pass, from the second pass's G on
         reset = true;
@@ -149,7 +160,9 @@ TEST_P(ScanBoardTest, AScanJobOnTheRealImagesGivesEveryCellItsDoseInPlace) {
 TEST_F(ScanFlyingBoardTest, FlownStretchesKeepEveryCellItsDoseInPlace) {
   const Grid g = scandose::gapPattern(150, 8);
   const uv::JobHeader h = scanJob(g, 4000);
+  pollBothHosts = true;  // and the panel redraws: the heaviest run these images can have (no card here)
   const scandose::Figures f = expose(h, g, 2);
+  EXPECT_GT(espHeard, 3);
   const double fastest = fastestX();
   unsigned loopMaxUs = 0, underruns = 1;
   diagnostics(loopMaxUs, underruns);
