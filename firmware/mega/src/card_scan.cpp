@@ -16,7 +16,7 @@ CardScan::~CardScan() {
 
 void CardScan::release() {
   if (job_) job_->~ScanJob();
-  if (source_) source_->SdCells::~SdCells();
+  if (source_) source_->~SdCellsWith();
   job_ = nullptr;
   source_ = nullptr;
 }
@@ -28,7 +28,7 @@ uint8_t CardScan::open(const char* name) {
 void CardScan::seek(uint32_t done) {
   if (job_ && opened_ == done && skip_ == 0 && job_->run.idle()) return;  // just before it already
   release();
-  source_ = new (sourceMem_) SdCells(sd_, cells_, index_);
+  source_ = new (sourceMem_) SdCellsWith<uv::kScanCursors>(sd_, cells_, index_);
   job_ = new (jobMem_) ScanJob(header_, *source_, machine_);
   opened_ = 0;
   skip_ = done;

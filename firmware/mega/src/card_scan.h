@@ -38,12 +38,12 @@ class CardScan : public StopSource {
   uv::Machine machine_;
   uint32_t passes_;
   FileHandle cells_ = -1, index_ = -1;
-  SdCells* source_ = nullptr;
+  SdCellsWith<uv::kScanCursors>* source_ = nullptr;
   ScanJob* job_ = nullptr;
   uint32_t opened_ = 0;  // passes the planner has finished (run or passed over)
   uint32_t skip_ = 0;    // passes still to pass over before the next runs
   uint8_t error_ = 0;
-  alignas(alignof(SdCells)) uint8_t sourceMem_[sizeof(SdCells)];
+  alignas(alignof(SdCellsWith<uv::kScanCursors>)) uint8_t sourceMem_[sizeof(SdCellsWith<uv::kScanCursors>)];
   alignas(alignof(ScanJob)) uint8_t jobMem_[sizeof(ScanJob)];
 };
 

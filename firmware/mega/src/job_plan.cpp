@@ -40,7 +40,7 @@ void JobPlan::close() {
   if (planner_) planner_->~Planner();
   if (scan_) scan_->~ScanPlanner();
   scan_ = nullptr;
-  if (source_) source_->SdCells::~SdCells();  // placed in the arena as exactly an SdCells
+  if (source_) source_->~SdCellsWith();  // placed in the arena as exactly an SdCells
   planner_ = nullptr;
   source_ = nullptr;
   FileHandle* files[] = {&cells_, &index_, &stops_};
@@ -61,7 +61,7 @@ uint8_t JobPlan::begin(const char* name) {
     close();
     return error_;
   }
-  source_ = new (sourceMem_) SdCells(sd_, cells_, index_);
+  source_ = new (sourceMem_) SdCellsWith<uv::kPlannerCursors>(sd_, cells_, index_);
   bool supported;
   if (header_.strategy == uv::Strategy::Scan) {
     scan_ = new (plannerMem_) uv::ScanPlanner(header_, *source_, machine_);

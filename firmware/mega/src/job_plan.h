@@ -40,7 +40,7 @@ class JobPlan {
   uv::JobHeader header_;
   uv::Machine machine_;
   FileHandle cells_ = -1, index_ = -1, stops_ = -1;
-  SdCells* source_ = nullptr;
+  SdCellsWith<uv::kPlannerCursors>* source_ = nullptr;
   uv::Planner* planner_ = nullptr;
   uv::ScanPlanner* scan_ = nullptr;  // a scan job's, in the stop planner's place
   uv::PlanClock clock_;
@@ -49,7 +49,7 @@ class JobPlan {
   uint8_t error_ = 0;
   bool done_ = false;
   // The planner and its cursors live here, only while planning.
-  alignas(alignof(SdCells)) uint8_t sourceMem_[sizeof(SdCells)];
+  alignas(alignof(SdCellsWith<uv::kPlannerCursors>)) uint8_t sourceMem_[sizeof(SdCellsWith<uv::kPlannerCursors>)];
   static_assert(sizeof(uv::ScanPlanner) <= sizeof(uv::Planner), "the scan planner takes the stop planner's place");
   alignas(alignof(uv::Planner)) uint8_t plannerMem_[sizeof(uv::Planner)];
 };

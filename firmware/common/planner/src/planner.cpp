@@ -74,9 +74,9 @@ Planner::Open Planner::openPass(PassInfo& p) {
     int32_t top = static_cast<int32_t>(r) - dyMin_ + dyMax_;
     if (top > h_.rows - 1) top = h_.rows - 1;
     if (known_ < h_.rows && top >= known_) return Open::NeedRows;
-    p.hy = static_cast<int32_t>(r) - dyMin_;
-    p.first = INT32_MAX;
-    p.last = INT32_MIN;
+    p.hy = static_cast<Head>(r - dyMin_);
+    p.first = INT16_MAX;
+    p.last = INT16_MIN;
     p.cells = false;
     p.lit = true;
     for (uint8_t k = 0; k < 4; k++) {
@@ -88,8 +88,8 @@ Planner::Open Planner::openPass(PassInfo& p) {
       if (!cells_.rowExtent(static_cast<uint16_t>(rk), lo, hi)) continue;  // an empty row: the LED idles
       p.row[k] = static_cast<int16_t>(rk);
       int32_t dx = h_.offsets[k][0];
-      if (lo - dx < p.first) p.first = lo - dx;
-      if (hi - dx > p.last) p.last = hi - dx;
+      if (lo - dx < p.first) p.first = static_cast<Head>(lo - dx);
+      if (hi - dx > p.last) p.last = static_cast<Head>(hi - dx);
       p.cells = true;
     }
     uncoverBelow(scan_);
@@ -123,7 +123,7 @@ void Planner::openCursors(uint8_t q, bool descending) {
 void Planner::advance(uint8_t c) { live_[c] = cells_.next(c, col_[c], val_[c]); }
 
 // The pass's next stop in its direction that has light: its LEDs' cursors merged by head column.
-bool Planner::passNext(uint8_t q, bool descending, int32_t& hx, uint8_t value[4]) {
+bool Planner::passNext(uint8_t q, bool descending, Head& hx, uint8_t value[4]) {
   for (;;) {
     bool any = false;
     int32_t best = 0;
@@ -146,7 +146,7 @@ bool Planner::passNext(uint8_t q, bool descending, int32_t& hx, uint8_t value[4]
       }
     }
     if (lit) {
-      hx = best;
+      hx = static_cast<Head>(best);
       return true;
     }
   }
@@ -165,7 +165,7 @@ uint64_t Planner::priceRows() {
     if (!p.cells) continue;
     bool desc = descendingFor(p, x);
     openCursors(q, desc);
-    int32_t hx;
+    Head hx;
     uint8_t v[4];
     while (passNext(q, desc, hx, v)) {
       total += stopCostUs(m_, x, y, X(hx), Y(p.hy), dose_.longest(v));
@@ -328,7 +328,7 @@ bool Planner::next(Stop& out) {
       return true;
     }
     bool got = false;
-    int32_t hx = 0;
+    Head hx = 0;
     uint8_t value[4];
     if (h_.strategy == Strategy::Random) {
       if (blockPos_ == blockLen_) {

@@ -50,15 +50,20 @@ class Planner {
   uint16_t passes() const { return passes_; }
 
  private:
+  // A head row or column: job.md bounds the grid to kJobMaxSide cells a side and the LEDs' offsets
+  // to as many again, so every one fits 16 bits. Held that narrow: a band holds kShortestBand passes
+  // and a random block kRandomBlock stops, in the Mega's planning arena.
+  using Head = int16_t;
+  static_assert(2 * static_cast<int32_t>(kJobMaxSide) < INT16_MAX, "head coordinates must fit a Head");
   struct PassInfo {
-    int32_t hy;
-    int16_t row[4];       // the row each LED exposes in this pass, or -1
-    int32_t first, last;  // extent of the pass's non-zero cells in head columns
-    bool cells;           // it has non-zero cells
-    bool lit;             // it has a stop (known after pricing; assumed for single passes)
+    Head hy;
+    int16_t row[4];     // the row each LED exposes in this pass, or -1
+    Head first, last;   // extent of the pass's non-zero cells in head columns
+    bool cells;         // it has non-zero cells
+    bool lit;           // it has a stop (known after pricing; assumed for single passes)
   };
   struct Compact {
-    int32_t hx;
+    Head hx;
     uint8_t value[4];
   };
   enum class Order : uint8_t { Rows, Columns };
@@ -67,7 +72,7 @@ class Planner {
   Open openPass(PassInfo& p);
   bool startBand();
   void openCursors(uint8_t q, bool descending);
-  bool passNext(uint8_t q, bool descending, int32_t& hx, uint8_t value[4]);
+  bool passNext(uint8_t q, bool descending, Head& hx, uint8_t value[4]);
   void advance(uint8_t cursor);
   bool startRowPass();
   void openColumns();

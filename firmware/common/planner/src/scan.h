@@ -40,6 +40,9 @@ struct ScanEvent {
 // holds them while the pass runs, for the head's moves.
 constexpr uint8_t kMaxJumps = 8;
 
+// CellSource cursors the scan planner opens: one an LED, numbered as the LEDs.
+constexpr uint8_t kScanCursors = 4;
+
 class ScanPlanner {
  public:
   ScanPlanner(const JobHeader& h, CellSource& cells, const Machine& m);
