@@ -41,11 +41,13 @@ export async function p1(): Promise<void> {
     strategy: { name: 'serpentine' }, gridData: mask.cells,
   };
   console.log('\nP1 upload wire utilisation at 115200 baud (goal: windowed >= 90 % of the line rate)');
-  console.log('  one-way latency   window 8 (windowed)       window 1 (one line per ok)   ratio');
+  console.log("  one-way latency   windowed (USB's 3 lines)  window 1 (one line per ok)   ratio");
   for (const latencyUs of [1000, 4000, 16000]) {
     const w = await utilisation(8, latencyUs, job);
     const one = await utilisation(1, latencyUs, job);
     console.log(`  ${String(latencyUs / 1000).padStart(5)} ms         ${(w.share * 100).toFixed(1).padStart(5)} % (${w.seconds.toFixed(1)} s)        ${(one.share * 100).toFixed(1).padStart(5)} % (${one.seconds.toFixed(1)} s)           ${(w.share / one.share).toFixed(2)}x`);
   }
+  const esp = await utilisation(2, 1000, job);
+  console.log(`  the ESP's port, 2 lines (mega.md §3) at 1 ms one way: ${(esp.share * 100).toFixed(1)} % (${esp.seconds.toFixed(1)} s)`);
   console.log(`  (${Math.round(job.gridData.length * job.grid.cols)} cells; the wire bytes include line numbers and checks)`);
 }

@@ -43,7 +43,7 @@ describe('dialect client over a simulated 115200-baud wire', () => {
     const [pos] = await settle(r.wire, r.dl.command('M114'));
     if (pos.kind !== 'position') console.log(r.lines.slice(-30));
     expect(pos).toMatchObject({ kind: 'position', um: [0, 0, 0] });
-    expect(r.lines).toContain('Cap:RX_WINDOW:4');
+    expect(r.lines).toContain('Cap:RX_WINDOW:3');
   });
 
   it('uploads a job bit-exact through 1 % byte corruption with drops', async () => {

@@ -66,7 +66,7 @@ export function infoCommands(m: MegaModel): Record<string, Handler> {
   return {
     M115: (_c, done) => {
       m.line(formatReply({ kind: 'firmware', name: m.o.firmwareName, protocol: 1 }));
-      const caps = [['RX_WINDOW', 4], ['AUTOREPORT_TEMP', 1], ['AUTOREPORT_POS', 1], ['SDCARD', m.sd.present ? 1 : 0], ['RESUME', 1]] as const;
+      const caps = [['RX_WINDOW', 3 /* mega.ts WINDOW: the USB port's */], ['AUTOREPORT_TEMP', 1], ['AUTOREPORT_POS', 1], ['SDCARD', m.sd.present ? 1 : 0], ['RESUME', 1]] as const;
       for (const [k, v] of caps) m.line(`Cap:${k}:${v}`);
       done();
     },

@@ -24,7 +24,7 @@ import type { NanoModel } from './nano-model';
 import { overSoftLimit } from './pacing';
 import type { SdCard } from './sd-card';
 
-const WINDOW = 4;
+const WINDOW = 3;
 const POLL_US = 500_000;
 /** Commands still obeyed between the records of a stream (M828), so a running stream can be watched and paused. */
 const STREAM_COMMANDS = /^(M24|M25|M524|M27|M105|M114|M115|M155|M154)\b/i;

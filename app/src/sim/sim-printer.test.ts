@@ -27,8 +27,8 @@ describe('simulated printer: link and identity', () => {
     const h = new SimHost();
     const block = h.cmd('M115');
     expect(parseReply(block[0])).toEqual({ kind: 'firmware', name: 'UVExposure 0.1.0 (Simulated Mega)', protocol: 1 });
-    expect(block).toContain('Cap:RX_WINDOW:4');
-    expect(block.at(-1)).toBe(formatOk(1, 8, 4));
+    expect(block).toContain('Cap:RX_WINDOW:3');
+    expect(block.at(-1)).toBe(formatOk(1, 8, 3));
   });
 
   it('answers every line exactly once, errors included', () => {

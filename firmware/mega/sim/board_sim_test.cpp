@@ -12,7 +12,7 @@
 TEST_F(BoardTest, IdentifiesItselfAndReadsTheRealNanosTemperatures) {
   std::vector<std::string> info = cmd("M115");
   EXPECT_TRUE(said(info, "FIRMWARE_NAME:UVExposure 0.1.0 (Mega) PROTOCOL_VERSION:1"));
-  EXPECT_TRUE(said(info, "Cap:RX_WINDOW:4"));
+  EXPECT_TRUE(said(info, "Cap:RX_WINDOW:3"));
   EXPECT_TRUE(said(info, "Cap:SDCARD:0"));  // this build has no SdFat: no card
   sim.runUs(600000);
   std::vector<std::string> t = cmd("M105");

@@ -4,7 +4,7 @@
 namespace mega {
 
 void LineRing::received(char c) {
-  bool full = static_cast<uint8_t>(fill_ - head_) > mask_;
+  bool full = between(head_, fill_) >= window_;
   if (c == '\n') {
     if (noSlot_ || full) {
       noSlot_ = false;
@@ -13,7 +13,7 @@ void LineRing::received(char c) {
       overflow_ = false;
       return;
     }
-    LineSlot& s = slots_[fill_ & mask_];
+    LineSlot& s = slot(fill_);
     if (len_ && s.text[len_ - 1] == '\r') len_--;
     if (len_ == 0 && !overflow_) return;  // an empty line gets no reply at all
     s.text[len_] = 0;
@@ -22,7 +22,7 @@ void LineRing::received(char c) {
     s.dead = false;
     len_ = 0;
     overflow_ = false;
-    fill_ = static_cast<uint8_t>(fill_ + 1);
+    fill_ = after(fill_);
     return;
   }
   if (full && len_ == 0) noSlot_ = true;
@@ -31,7 +31,7 @@ void LineRing::received(char c) {
     return;
   }
   if (overflow_) return;  // the rest of an overlong line: only its '\n' matters
-  char* text = slots_[fill_ & mask_].text;
+  char* text = slot(fill_).text;
   if (len_ < uv::kDialectMaxLine) {
     text[len_++] = c;
   } else if (len_ == uv::kDialectMaxLine && c == '\r') {
@@ -43,13 +43,13 @@ void LineRing::received(char c) {
 }
 
 void LineRing::accepted(bool dead) {
-  slots_[accept_ & mask_].dead = dead;
-  accept_ = static_cast<uint8_t>(accept_ + 1);
+  slot(accept_).dead = dead;
+  accept_ = after(accept_);
 }
 
 LineSlot* LineRing::front() {
   while (head_ != accept_) {
-    LineSlot& s = slots_[head_ & mask_];
+    LineSlot& s = slot(head_);
     if (!s.dead) return &s;
     pop();
   }

@@ -32,9 +32,9 @@ TEST_F(MachineTest, StartsOnBothPortsAndM115ListsTheCapabilities) {
   EXPECT_EQ(m.espLines.front(), "start");
   Lines p = payload("M115");
   EXPECT_EQ(p, (Lines{"FIRMWARE_NAME:UVExposure 0.1.0 (Mega) PROTOCOL_VERSION:1 MACHINE_TYPE:UV-LED exposure printer LEDS:4 SENSORS:6",
-                      "Cap:RX_WINDOW:4", "Cap:AUTOREPORT_TEMP:1", "Cap:AUTOREPORT_POS:1", "Cap:SDCARD:1", "Cap:RESUME:1"}));
+                      "Cap:RX_WINDOW:3", "Cap:AUTOREPORT_TEMP:1", "Cap:AUTOREPORT_POS:1", "Cap:SDCARD:1", "Cap:RESUME:1"}));
   Lines block = m.cmd("M115");
-  EXPECT_EQ(block.back().rfind("ok N2 P8 B4*", 0), 0u);
+  EXPECT_EQ(block.back().rfind("ok N2 P8 B3*", 0), 0u);
   // The ESP's port has a window of its own, smaller: its sender is on a wire (line_ring.h).
   Lines esp = payload("M115", true);
   EXPECT_NE(std::find(esp.begin(), esp.end(), "Cap:RX_WINDOW:2"), esp.end());
