@@ -69,7 +69,7 @@ uint8_t JobRunner::resume(const Progress& checkpoint, uint32_t nowUs) {
   if (err) return err;
   if (checkpoint.count != header_.count) return uv::kFileError;  // replanned since: not the same stops
   resuming_ = true;
-  checkpointed_ = checkpoint;
+  checkpointed_ = {checkpoint.done, checkpoint.boot, checkpoint.fires};
   return 0;
 }
 
@@ -172,7 +172,7 @@ void JobRunner::poll(uint32_t nowUs) {
         resuming_ = false;
         // The checkpoint holds the count before stop `done` was sent. One more, in the same start
         // of the Nano, means it was sent and carried out; `whole` says if it ran its full time.
-        const Progress& cp = checkpointed_;
+        const Checkpointed& cp = checkpointed_;
         if (progress_.boot != cp.boot) resumed_ = Resumed::PrintheadRestarted;
         else if (progress_.fires == cp.fires) resumed_ = Resumed::NotSent;
         else if (progress_.fires == cp.fires + 1 && head_.lastWhole()) resumed_ = Resumed::Exposed;

@@ -122,7 +122,13 @@ class JobRunner {
   bool changed_ = false;
   bool resuming_ = false;
   Resumed resumed_ = Resumed::NotYet;
-  Progress checkpointed_ = {};
+  // What resume() read off the checkpoint that the resume verdict compares with the Nano's counters,
+  // not the whole record (its file name is progress_'s).
+  struct Checkpointed {
+    uint32_t done;
+    uint16_t boot;
+    uint32_t fires;
+  } checkpointed_ = {};
   uint32_t done_ = 0;
   // Time run: whole seconds, and the µs since the last whole second, folded in at every poll.
   void count(uint32_t nowUs);
