@@ -49,7 +49,9 @@ report mega 253952 8192 60
 # PlatformIO's build (firmware/mega/platformio.ini) adds it, and `pio run` checks its real figure
 # (firmware/mega/ram_budget.py). Here the full build is the Debian image plus what the card was
 # measured to add, plus a margin for what that measurement may miss (firmware/mega/card_ram.txt says
-# how it was measured). The goal is 55 %: a few bytes of compiler drift must never fail a user's build.
+# how it was measured). This check holds it to 55 %, though `pio run` fails only over 60 %
+# (platformio.ini): the 5 % between them is the room that compiler drift and an estimate's error
+# must never use up in a user's build.
 card_value() { sed -n "s/^$1=\([0-9]*\)\$/\1/p" firmware/mega/card_ram.txt; }
 card=$(card_value CARD_RAM_BYTES); margin=$(card_value ESTIMATE_MARGIN_BYTES)
 if [[ -z $card || -z $margin ]]; then
@@ -59,12 +61,9 @@ fi
 mega_static=$(( $(section build/avr/mega.elf .data) + $(section build/avr/mega.elf .bss) ))
 with=$((mega_static + card + margin))
 pct=$((with * 1000 / 8192))
-printf 'mega  full build (with the card, as PlatformIO builds it): static RAM at most %5d / %5d B (%2d.%d %%; goal 55 %%, budget 60 %%) = this image %d + the card %d + margin %d\n' \
+printf 'mega  full build (with the card, as PlatformIO builds it): static RAM at most %5d / %5d B (%2d.%d %%, budget 55 %%; pio run fails over 60 %%) = this image %d + the card %d + margin %d\n' \
   "$with" 8192 $((pct / 10)) $((pct % 10)) "$mega_static" "$card" "$margin"
-if (( with * 100 > 8192 * 60 )); then
-  echo "FAIL: mega with SdFat would be over its 60 % static-RAM budget" >&2
-  exit 1
-fi
 if (( with * 100 > 8192 * 55 )); then
-  echo "mega  full build: $((with - 8192 * 55 / 100)) B above the 55 % goal"
+  echo "FAIL: mega with SdFat would be over its 55 % static-RAM budget, by $((with - 8192 * 55 / 100)) B" >&2
+  exit 1
 fi

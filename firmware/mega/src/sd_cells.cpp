@@ -47,7 +47,7 @@ void SdCells::open(uint8_t cursor, uint16_t row, bool descending) {
   }
   c.base = r.offset - r.first;
   c.bound = descending ? r.first : r.last;
-  c.pos = static_cast<int16_t>(descending ? r.last : r.first);
+  c.pos = static_cast<int16_t>(descending ? r.last : r.first);  // the index's ends are non-zero cells
 }
 
 bool SdCells::fill(uint8_t cursor) {
@@ -73,23 +73,31 @@ bool SdCells::fill(uint8_t cursor) {
   return true;
 }
 
-bool SdCells::next(uint8_t cursor, uint16_t& col, uint8_t& value) {
+bool SdCells::at(uint8_t cursor, uint16_t& col, uint8_t& value) {
+  Cursor& c = cursors_[cursor];
+  const int32_t bound = c.bound;  // int is 16 bits on the AVR: compare as int32, not unsigned
+  if ((c.flags & kDescending) ? c.pos < bound : c.pos > bound) return false;
+  if (!(c.flags & kChunkHeld) && !fill(cursor)) return false;
+  col = static_cast<uint16_t>(c.pos);
+  value = c.chunk[c.pos & (kChunk - 1)];
+  return true;
+}
+
+void SdCells::step(uint8_t cursor) {
   Cursor& c = cursors_[cursor];
   const bool down = c.flags & kDescending;
-  const int32_t bound = c.bound;  // int is 16 bits on the AVR: compare as int32, not unsigned
+  const int32_t bound = c.bound;
   while (down ? c.pos >= bound : c.pos <= bound) {
     int16_t p = c.pos;
-    if (!(c.flags & kChunkHeld) && !fill(cursor)) return false;
     c.pos = static_cast<int16_t>(p + (down ? -1 : 1));
     if ((c.pos & ~(kChunk - 1)) != (p & ~(kChunk - 1))) c.flags &= static_cast<uint8_t>(~kChunkHeld);  // left the chunk
-    uint8_t v = c.chunk[p & (kChunk - 1)];
-    if (v) {
-      col = static_cast<uint16_t>(p);
-      value = v;
-      return true;
+    if (down ? c.pos < bound : c.pos > bound) return;  // walked past the row's last non-zero cell
+    if (!(c.flags & kChunkHeld) && !fill(cursor)) {
+      c.pos = static_cast<int16_t>(down ? bound - 1 : bound + 1);  // a failed read ends the walk (failed())
+      return;
     }
+    if (c.chunk[c.pos & (kChunk - 1)]) return;
   }
-  return false;
 }
 
 }  // namespace mega

@@ -21,7 +21,7 @@ class SdCells : public uv::CellSource {
   struct Cursor {
     uint32_t base;      // the cells file's offset of column 0 (mod 2^32: the row's first cell, less its column)
     uint16_t bound;     // the row's last column walking up, its first walking down
-    int16_t pos;        // the next column to look at
+    int16_t pos;        // the non-zero cell it stands on, or one past its bound once walked
     uint8_t flags;      // kDescending, kChunkHeld
     uint8_t chunk[kChunk];
   };
@@ -31,7 +31,8 @@ class SdCells : public uv::CellSource {
   bool rowNonEmpty(uint16_t row) override;
   bool rowExtent(uint16_t row, uint16_t& first, uint16_t& last) override;
   void open(uint8_t cursor, uint16_t row, bool descending) override;
-  bool next(uint8_t cursor, uint16_t& col, uint8_t& value) override;
+  bool at(uint8_t cursor, uint16_t& col, uint8_t& value) override;
+  void step(uint8_t cursor) override;
   // A read from the card failed at some point: the plan is not to be trusted.
   bool failed() const { return failed_; }
 

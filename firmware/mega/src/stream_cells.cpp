@@ -85,21 +85,30 @@ void StreamCells::open(uint8_t cursor, uint16_t row, bool descending) {
   }
   c.seg = at;
   c.pos = descending ? static_cast<uint8_t>(segLen(at) - 1) : 0;
+  settle(c);
 }
 
-bool StreamCells::next(uint8_t cursor, uint16_t& col, uint8_t& value) {
+bool StreamCells::at(uint8_t cursor, uint16_t& col, uint8_t& value) {
+  const Cursor& c = cursors_[cursor];
+  if (c.seg == 0xffff) return false;
+  col = static_cast<uint16_t>(segCol(c.seg) + c.pos);
+  value = buf_[c.seg + kHead + c.pos];
+  return true;
+}
+
+void StreamCells::step(uint8_t cursor) {
   Cursor& c = cursors_[cursor];
+  if (c.seg == 0xffff) return;
+  c.pos = c.descending ? static_cast<uint8_t>(c.pos - 1) : static_cast<uint8_t>(c.pos + 1);
+  settle(c);
+}
+
+void StreamCells::settle(Cursor& c) const {
   while (c.seg != 0xffff) {
     uint8_t n = segLen(c.seg);
     if (c.pos < n) {  // pos wraps to 255 past the front when descending
-      uint8_t i = c.pos;
-      uint8_t v = buf_[c.seg + kHead + i];
-      c.pos = c.descending ? static_cast<uint8_t>(i - 1) : static_cast<uint8_t>(i + 1);
-      if (v) {
-        col = static_cast<uint16_t>(segCol(c.seg) + i);
-        value = v;
-        return true;
-      }
+      if (buf_[c.seg + kHead + c.pos]) return;
+      c.pos = c.descending ? static_cast<uint8_t>(c.pos - 1) : static_cast<uint8_t>(c.pos + 1);
       continue;
     }
     if (c.descending) {
@@ -111,7 +120,6 @@ bool StreamCells::next(uint8_t cursor, uint16_t& col, uint8_t& value) {
       c.pos = 0;
     }
   }
-  return false;
 }
 
 }  // namespace mega

@@ -25,7 +25,8 @@ class StreamCells : public uv::CellSource {
   bool rowNonEmpty(uint16_t row) override;
   bool rowExtent(uint16_t row, uint16_t& first, uint16_t& last) override;
   void open(uint8_t cursor, uint16_t row, bool descending) override;
-  bool next(uint8_t cursor, uint16_t& col, uint8_t& value) override;
+  bool at(uint8_t cursor, uint16_t& col, uint8_t& value) override;
+  void step(uint8_t cursor) override;
 
  private:
   static constexpr uint8_t kHead = 5;
@@ -40,9 +41,11 @@ class StreamCells : public uv::CellSource {
   struct Cursor {
     uint16_t row;
     uint16_t seg;    // offset of the segment being read, 0xffff when done
-    uint8_t pos;     // the next cell in it
+    uint8_t pos;     // the non-zero cell it stands on
     bool descending;
   };
+  // Walks a cursor on from its cell to the first non-zero one (or to done).
+  void settle(Cursor& c) const;
 
   uint8_t* buf_;
   uint16_t size_;

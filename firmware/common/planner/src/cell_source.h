@@ -1,18 +1,31 @@
-// Where the planner reads a job's cells: a row at a time through one cursor per LED, never the whole grid.
+// Where the planner reads a job's cells: a row at a time through cursors, never the whole grid.
 #pragma once
 #include <stdint.h>
 
 namespace uv {
 
+// A cursor stands on one non-zero cell of its row at a time. The planners look at that cell several
+// times before they move on (the stop planner merges a band's 32 cursors by head column), so the
+// cursor itself is where it is kept: there is no second copy of each cursor's cell in the planner.
 class CellSource {
  public:
   // Any cell of the row above 0.
   virtual bool rowNonEmpty(uint16_t row) = 0;
   // First and last column with a value above 0; false for an empty row.
   virtual bool rowExtent(uint16_t row, uint16_t& first, uint16_t& last) = 0;
-  // Points cursor 0-3 at a row; next() then yields its non-zero cells ascending, or descending.
+  // Puts a cursor on a row's first non-zero cell, walking up, or its last, walking down.
   virtual void open(uint8_t cursor, uint16_t row, bool descending) = 0;
-  virtual bool next(uint8_t cursor, uint16_t& col, uint8_t& value) = 0;
+  // The cell the cursor stands on; false once it has walked past the row's last non-zero cell.
+  virtual bool at(uint8_t cursor, uint16_t& col, uint8_t& value) = 0;
+  // Moves the cursor on to the next non-zero cell of its row in its direction.
+  virtual void step(uint8_t cursor) = 0;
+
+  // The cell the cursor stands on, and the cursor moved on past it.
+  bool next(uint8_t cursor, uint16_t& col, uint8_t& value) {
+    if (!at(cursor, col, value)) return false;
+    step(cursor);
+    return true;
+  }
 };
 
 }  // namespace uv

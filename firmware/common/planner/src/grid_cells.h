@@ -36,21 +36,21 @@ class GridCells : public uv::CellSource {
     c.row = row;
     c.descending = descending;
     c.pos = descending ? static_cast<int>(rows_[row].size()) - 1 : 0;
+    settle(c);
     rowsOpened++;
   }
-  bool next(uint8_t cursor, uint16_t& col, uint8_t& value) override {
+  bool at(uint8_t cursor, uint16_t& col, uint8_t& value) override {
+    const Cursor& c = cursors_[cursor];
+    if (!inside(c)) return false;
+    col = static_cast<uint16_t>(c.pos);
+    value = rows_[c.row][c.pos];
+    return true;
+  }
+  void step(uint8_t cursor) override {
     Cursor& c = cursors_[cursor];
-    const auto& r = rows_[c.row];
-    while (c.pos >= 0 && c.pos < static_cast<int>(r.size())) {
-      int p = c.pos;
-      c.pos += c.descending ? -1 : 1;
-      if (r[p]) {
-        col = static_cast<uint16_t>(p);
-        value = r[p];
-        return true;
-      }
-    }
-    return false;
+    if (!inside(c)) return;
+    c.pos += c.descending ? -1 : 1;
+    settle(c);
   }
 
   int rowsOpened = 0;
@@ -58,9 +58,14 @@ class GridCells : public uv::CellSource {
  private:
   struct Cursor {
     uint16_t row = 0;
-    int pos = 0;
+    int pos = 0;  // the non-zero cell it stands on, or past the row's end
     bool descending = false;
   };
+  bool inside(const Cursor& c) const { return c.pos >= 0 && c.pos < static_cast<int>(rows_[c.row].size()); }
+  // Walks on from pos to the first non-zero cell.
+  void settle(Cursor& c) {
+    while (inside(c) && !rows_[c.row][c.pos]) c.pos += c.descending ? -1 : 1;
+  }
   const std::vector<std::vector<uint8_t>>& rows_;
   Cursor cursors_[uv::kPlannerCursors];
 };

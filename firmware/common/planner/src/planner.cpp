@@ -111,26 +111,21 @@ int32_t Planner::lowestRowNeeded() const {
 }
 
 void Planner::openCursors(uint8_t q, bool descending) {
-  for (uint8_t k = 0; k < 4; k++) {
-    uint8_t c = static_cast<uint8_t>(q * 4 + k);
-    live_[c] = band_[q].row[k] >= 0;
-    if (!live_[c]) continue;
-    cells_.open(c, static_cast<uint16_t>(band_[q].row[k]), descending);
-    advance(c);
-  }
+  for (uint8_t k = 0; k < 4; k++)
+    if (band_[q].row[k] >= 0) cells_.open(static_cast<uint8_t>(q * 4 + k), static_cast<uint16_t>(band_[q].row[k]), descending);
 }
 
-void Planner::advance(uint8_t c) { live_[c] = cells_.next(c, col_[c], val_[c]); }
-
 // The pass's next stop in its direction that has light: its LEDs' cursors merged by head column.
+// A cursor of an LED with no row in the pass was not opened: its cell is not looked at.
 bool Planner::passNext(uint8_t q, bool descending, Head& hx, uint8_t value[4]) {
   for (;;) {
     bool any = false;
     int32_t best = 0;
     for (uint8_t k = 0; k < 4; k++) {
-      uint8_t c = static_cast<uint8_t>(q * 4 + k);
-      if (!live_[c]) continue;
-      int32_t h = static_cast<int32_t>(col_[c]) - h_.offsets[k][0];
+      uint16_t col;
+      uint8_t v;
+      if (band_[q].row[k] < 0 || !cells_.at(static_cast<uint8_t>(q * 4 + k), col, v)) continue;
+      int32_t h = static_cast<int32_t>(col) - h_.offsets[k][0];
       if (!any || (descending ? h > best : h < best)) best = h;
       any = true;
     }
@@ -138,11 +133,13 @@ bool Planner::passNext(uint8_t q, bool descending, Head& hx, uint8_t value[4]) {
     bool lit = false;
     for (uint8_t k = 0; k < 4; k++) {
       uint8_t c = static_cast<uint8_t>(q * 4 + k);
+      uint16_t col;
+      uint8_t v;
       value[k] = 0;
-      if (live_[c] && static_cast<int32_t>(col_[c]) - h_.offsets[k][0] == best) {
-        value[k] = val_[c];
-        if (dose_.us(k, val_[c]) > 0) lit = true;
-        advance(c);
+      if (band_[q].row[k] >= 0 && cells_.at(c, col, v) && static_cast<int32_t>(col) - h_.offsets[k][0] == best) {
+        value[k] = v;
+        if (dose_.us(k, v) > 0) lit = true;
+        cells_.step(c);
       }
     }
     if (lit) {

@@ -73,7 +73,6 @@ class Planner {
   bool startBand();
   void openCursors(uint8_t q, bool descending);
   bool passNext(uint8_t q, bool descending, Head& hx, uint8_t value[4]);
-  void advance(uint8_t cursor);
   bool startRowPass();
   void openColumns();
   bool nextColumn();
@@ -113,9 +112,6 @@ class Planner {
   uint8_t columnLen_ = 0, columnPos_ = 0;
   bool passUsed_[kShortestBand] = {};
 
-  bool live_[kPlannerCursors] = {};
-  uint16_t col_[kPlannerCursors] = {};
-  uint8_t val_[kPlannerCursors] = {};
   uint8_t blockLen_ = 0, blockPos_ = 0;
   // Only `shortest` reads columns and only `random` shuffles blocks: they share memory.
   union {
