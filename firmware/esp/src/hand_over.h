@@ -48,7 +48,8 @@ struct HubNote {
 
 struct HandOver {
   static constexpr uint8_t kWaiting = 8;  // requests waiting for loop() (protocol/esp.md "overloaded")
-  // Each waiting request puts one entry, and a check its Left: 16 always has room for both.
+  // The kWaiting requests and a check's Left, with room to spare for the entries of requests whose
+  // clients left before loop() took them; full all the same, a request is answered 503.
   SpscRing<Work, 16> work;
   // Two: a DELETE during a check answers both at once. More would only cost RAM: loop() keeps a
   // request whose answer has no room in `work` until the network task has sent the earlier ones.
