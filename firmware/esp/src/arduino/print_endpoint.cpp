@@ -85,8 +85,8 @@ void handOver(AsyncWebServerRequest* r, Ask ask, bool failed = false) {
   uint16_t ticket = desk.hand(r->pause(), ask, failed);
   if (!ticket) return sendError(r, 503, "overloaded", "too many requests are waiting for the ESP; try again");
   r->onDisconnect([ticket] { desk.left(ticket); });
-  // Its connection's poll (every 500 ms, on the network task, on both chips) sends the answer once
-  // loop() has given it. It stands in for the request's own poll, which only pushes the rest of a
+  // Its connection's poll (on the network task on both chips; every 500 ms with AsyncTCP) sends the
+  // answer once loop() has given it. It stands in for the request's own poll, which only pushes the rest of a
   // response too large for the connection's send buffer: ours (at most 2 KB) are written whole by
   // send(), and the rest of a larger one would still follow the client's acks.
   r->client()->onPoll([](void*, AsyncClient*) { pump(); }, nullptr);
