@@ -6,7 +6,7 @@ PACKAGES=(
   chromium                                  # Playwright's browser (its own download is not used)
   gcc-avr avr-libc arduino-core-avr         # AVR images of the Nano and Mega firmware
   cmake g++ libgtest-dev nlohmann-json3-dev # C++ host tests
-  clang                                     # the sanitizer build and libFuzzer (scripts/fuzz.sh)
+  clang                                     # the sanitizer builds and libFuzzer (scripts/fuzz.sh, tsan.sh)
   libboost-dev                              # the ESP hub on the host: HTTP and WebSocket (Boost.Beast)
   simavr libsimavr-dev libelf-dev           # running the AVR images in simulation
   python3 python3-venv                      # vector authoring, the vector-binding check, printcore's venv

@@ -200,12 +200,17 @@ void Bridge::console(uint8_t client, const char* text, bool hasId, int64_t id) {
 
 // --- HTTP ---
 
-Admission Bridge::admitPrint(uint32_t nowMs) {
+Admission Bridge::printAdmission(uint32_t nowMs) const {
   if (reserved_ || upload_.active()) return Admission::Busy;
   if (!status_.online(nowMs)) return Admission::MegaOffline;  // what it last said of its job may be stale
   if (status_.jobActive()) return Admission::Busy;
-  reserved_ = true;
   return Admission::Accepted;
+}
+
+Admission Bridge::admitPrint(uint32_t nowMs) {
+  Admission a = printAdmission(nowMs);
+  if (a == Admission::Accepted) reserved_ = true;
+  return a;
 }
 
 void Bridge::startUpload(uint32_t id, JobText& text, uint32_t bytesTotal, bool paced) {

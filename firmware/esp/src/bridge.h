@@ -48,6 +48,9 @@ class Bridge : public MegaListener {
   // Whether a POST /print may go ahead; Accepted holds the Mega for it until startUpload() or
   // release() (its body converts in between).
   Admission admitPrint(uint32_t nowMs);
+  // What admitPrint would say now, holding nothing: what the ESP's network task judges a POST's
+  // headers by (network_desk.h), before loop() admits it for real.
+  Admission printAdmission(uint32_t nowMs) const;
   void release() { reserved_ = false; }
   // The job's id names its file on the Mega's card (JOB<id>.UVJ): the glue keeps a counter that
   // survives restarts, so an interrupted job's file is never overwritten by the next upload.

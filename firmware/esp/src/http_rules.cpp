@@ -8,7 +8,7 @@
 namespace uv {
 namespace esp {
 
-HttpError admitPrintRequest(const char* contentType, bool hasLength, uint32_t contentLength, Bridge& bridge, uint32_t nowMs) {
+HttpError printHeaderError(const char* contentType, bool hasLength, uint32_t contentLength) {
   size_t n = strlen("application/json");
   if (!contentType || strncasecmp(contentType, "application/json", n) != 0 || (contentType[n] && contentType[n] != ';' && contentType[n] != ' ')) {
     return {415, "unsupported_media_type", "send the job as application/json"};
@@ -16,11 +16,20 @@ HttpError admitPrintRequest(const char* contentType, bool hasLength, uint32_t co
   if (!hasLength) return {411, "length_required", "send a Content-Length"};
   RequestError e{};
   if (bodyTooLarge(contentLength, e)) return {413, "too_large", "the body is over 1200000 bytes; send larger jobs over USB"};
-  switch (bridge.admitPrint(nowMs)) {
+  return {0, "", ""};
+}
+
+HttpError admissionError(Admission a) {
+  switch (a) {
     case Admission::Busy: return {409, "busy", "a job is uploading or running"};
     case Admission::MegaOffline: return {503, "mega_offline", "the Mega does not answer"};
     default: return {0, "", ""};
   }
+}
+
+HttpError admitPrintRequest(const char* contentType, bool hasLength, uint32_t contentLength, Bridge& bridge, uint32_t nowMs) {
+  HttpError e = printHeaderError(contentType, hasLength, contentLength);
+  return e.status ? e : admissionError(bridge.admitPrint(nowMs));
 }
 
 HttpError methodNotAllowed(const char* path, Method m) {

@@ -24,6 +24,10 @@ struct HttpError {
 // POST /print, from its headers alone: 415, 413 (from Content-Length, before a byte is read),
 // 409, 503; or go ahead (then the Mega is held for this job until it starts or is refused).
 HttpError admitPrintRequest(const char* contentType, bool hasLength, uint32_t contentLength, Bridge& bridge, uint32_t nowMs);
+// Its two halves, for the ESP, where the bridge is another task's: what the headers alone say
+// (415, 411, 413), and what an admission of the Mega means for the request (409, 503).
+HttpError printHeaderError(const char* contentType, bool hasLength, uint32_t contentLength);
+HttpError admissionError(Admission a);
 
 // A method the path does not take.
 HttpError methodNotAllowed(const char* path, Method m);

@@ -6,7 +6,6 @@
 #include <LittleFS.h>
 
 #include "arduino/app_files.h"
-#include "arduino/hub_lock.h"
 #include "arduino/live_socket.h"
 #include "arduino/network.h"
 #include "arduino/print_endpoint.h"
@@ -87,13 +86,10 @@ void setup() {
 }
 
 void loop() {
-  {
-    // The bridge and the intake are loop()'s; the network task waits for the end of this pass to
-    // admit a POST (arduino/hub_lock.h, arduino/print_endpoint.cpp).
-    uv::esp::HubGuard pass;
-    service();
-    uv::esp::pollPrintEndpoint();
-  }
+  // The bridge and the print intake are loop()'s alone; the network task's requests reach them
+  // only as messages (hand_over.h, arduino/print_endpoint.cpp), so neither task waits for the other.
+  service();
+  uv::esp::pollPrintEndpoint();
   uv::esp::pollNetwork();
   if (millis() - cleanupMs > 1000) {
     cleanupMs = millis();

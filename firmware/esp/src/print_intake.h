@@ -71,6 +71,10 @@ class PrintIntake {
     refuse(e);
   }
 
+  // The upload is over (or never began): the spool's file is let go of, so that the ESP's network
+  // task may write the next body into it (loop_desk.h).
+  void closeBody() { body_.close(); }
+
   uint16_t status() const { return status_; }
   const char* response() const { return response_; }
 

@@ -1,40 +1,33 @@
-// POST /print's body spooled to LittleFS, checked in loop() steps by PrintIntake, answered, then
-// uploaded; DELETE /print and GET /status. Requests that need the bridge are paused and handed to
-// loop(), which answers them through the library's request continuation.
-//
-// Who owns what (hub_lock.h says how each chip keeps the tasks apart):
-// - the network task: the body being received (`receiving`, `spool`, `spoolFailed`), and a
-//   request until it is paused and handed over;
-// - loop(): the bridge, the intake, the request whose answer the intake is working out
-//   (`waiting`), the job-id file;
-// - between them: `handed`, the queue loop() empties each pass; and the bridge's admission of a
-//   POST (admitPrint, release), which the network task makes under HubLock.
-// A paused request is only ever reached through its AsyncWebServerRequestPtr, a weak pointer the
-// library empties when the client goes: nothing is answered twice, and nothing dangles.
+// POST /print, DELETE /print and GET /status on ESPAsyncWebServer (protocol/esp.md), split
+// between the two tasks by the hand-over (hand_over.h), with nothing locked:
+// - the network task (AsyncTCP's own FreeRTOS task on the ESP32; on the ESP8266 the SDK's
+//   callbacks, which run only between loop()'s passes) owns every request: it judges a POST's
+//   headers, stores its body on the spool, pauses the requests loop() must answer and hands them
+//   over by ticket, and sends loop()'s answers from its own callbacks (NetworkDesk::pump);
+// - loop() owns the bridge, the intake and the spool it was handed: it takes the work, checks a
+//   body a step a pass and answers by ticket (LoopDesk).
+// A request is only ever reached on the network task, through the AsyncWebServerRequestPtr that
+// pause() gave, a weak pointer the library empties when the client goes.
 #include "print_endpoint.h"
 
 #include <ArduinoJson.h>
 #include <LittleFS.h>
 
 #include "file_body.h"
-#include "hand_over.h"
 #include "http_rules.h"
-#include "hub_lock.h"
 #include "json_view.h"
+#include "loop_desk.h"
+#include "network_desk.h"
 #include "print_intake.h"
 
 namespace uv {
 namespace esp {
 
-HubLock hubLock;
-
 namespace {
 
 const char kSpool[] = "/job.json";  // the body: the upload is made from it again on a retry
 const char kJobIdFile[] = "/jobid";
-constexpr uint8_t kHanded = 8;  // requests waiting for loop(); more are answered 503 at once
 
-Bridge* bridge = nullptr;
 void (*service)() = nullptr;
 void serviceHook() {
   if (service) service();
@@ -42,7 +35,8 @@ void serviceHook() {
 FileBody body(LittleFS, kSpool, serviceHook);
 
 // The header: the whole body through ArduinoJson with gridData's contents filtered out, which
-// also checks the body's syntax, in at most 8 KB of heap.
+// also checks the body's syntax, in at most 8 KB of heap. It runs in loop() and holds nothing the
+// network task waits for: the spool is loop()'s until it says otherwise.
 struct HeaderParse {
   template <class F>
   int operator()(FileBody& b, F use) const {
@@ -60,52 +54,45 @@ struct HeaderParse {
   }
 };
 
-// --- handed from the network task to loop() ---
-enum class Ask : uint8_t { None, Status, Cancel, CheckBody };
-struct Handed {
-  Ask ask = Ask::None;
-  AsyncWebServerRequestPtr request;
-  bool spoolFailed = false;  // CheckBody: the body could not be stored whole
-};
-HandOver<Handed, kHanded, EntryLock> handed;
+using BodyCheck = PrintIntake<FileBody, HeaderParse>;
+
+HandOver rings;  // the only thing both tasks touch
 
 // --- the network task's ---
+NetworkDesk<AsyncWebServerRequestPtr> desk(rings);
 AsyncWebServerRequest* receiving = nullptr;  // the POST whose body is arriving (identity only)
 fs::File spool;
 bool spoolFailed = false;
-char netReply[kErrorJsonBytes];  // answers written on the network task (off its small stack)
+char netReply[kErrorJsonBytes];  // answers the network task makes itself (off its small stack)
 
 // --- loop()'s ---
-PrintIntake<FileBody, HeaderParse>* intake = nullptr;
-AsyncWebServerRequestPtr waiting;  // the POST whose answer the intake is working out
-char loopReply[kErrorJsonBytes > 2048 ? kErrorJsonBytes : 2048];  // a status, or any error
+LoopDesk<Bridge, BodyCheck>* loopDesk = nullptr;
 
-void sendJson(AsyncWebServerRequest* r, uint16_t status, const JsonWriter& w) {
-  if (w.ok()) r->send(status, "application/json", w.text());
-  else r->send(500, "text/plain", "the answer did not fit");  // whole or nothing: never cut-off JSON
+// Network task.
+void sendError(AsyncWebServerRequest* r, uint16_t status, const char* code, const char* message) {
+  JsonWriter w(netReply, sizeof netReply);
+  writeError(w, code, message);  // kErrorJsonBytes holds any error whole
+  r->send(status, "application/json", w.text());
 }
 
-void sendError(AsyncWebServerRequest* r, char* buf, uint16_t size, uint16_t status, const char* code, const char* message) {
-  JsonWriter w(buf, size);
-  writeError(w, code, message);
-  sendJson(r, status, w);
+// Network task: loop()'s answers go out, each to its request if the client is still there.
+void pump() {
+  desk.pump([](AsyncWebServerRequest& r, const Answer& a) { r.send(a.status, a.plainText ? "text/plain" : "application/json", a.body); });
 }
 
-// Network task: hands a request to loop(), paused so the library sends nothing meanwhile; with
-// no room it is answered at once.
+// Network task: a paused request handed to loop(); with no room it is answered 503 at once.
 void handOver(AsyncWebServerRequest* r, Ask ask, bool failed = false) {
-  Handed h;
-  h.ask = ask;
-  h.request = r->pause();
-  h.spoolFailed = failed;
-  if (handed.put(std::move(h))) return;
-  if (ask == Ask::CheckBody) {
-    HubGuard g;
-    bridge->release();
-  }
-  sendError(r, netReply, sizeof netReply, 503, "overloaded", "too many requests are waiting for the ESP; try again");
+  uint16_t ticket = desk.hand(r->pause(), ask, failed);
+  if (!ticket) return sendError(r, 503, "overloaded", "too many requests are waiting for the ESP; try again");
+  r->onDisconnect([ticket] { desk.left(ticket); });
+  // Its connection's poll (on the network task on both chips; every 500 ms with AsyncTCP) sends the
+  // answer once loop() has given it. It stands in for the request's own poll, which only pushes the rest of a
+  // response too large for the connection's send buffer: ours (at most 2 KB) are written whole by
+  // send(), and the rest of a larger one would still follow the client's acks.
+  r->client()->onPoll([](void*, AsyncClient*) { pump(); }, nullptr);
 }
 
+// loop(): the job's id, kept on flash across restarts.
 uint32_t nextJobId() {
   uint32_t id = 0;
   fs::File f = LittleFS.open(kJobIdFile, "r");
@@ -122,16 +109,15 @@ uint32_t nextJobId() {
   return id;
 }
 
-// Network task: the POST's headers are judged before a byte of its body is kept.
+// Network task: the POST's headers are judged before a byte of its body is kept, by what loop()
+// last said of the Mega and the spool (loop() admits the Mega for real once the body is whole).
 void onBody(AsyncWebServerRequest* r, uint8_t* data, size_t len, size_t index, size_t total) {
   if (index == 0) {
+    pump();  // loop()'s latest notes first
     // A chunked body has no length to judge it by before it is read: 411.
     bool hasLength = !r->hasHeader("Transfer-Encoding");
-    HttpError e;
-    {
-      HubGuard g;
-      e = admitPrintRequest(r->contentType().c_str(), hasLength, static_cast<uint32_t>(total), *bridge, millis());
-    }
+    HttpError e = printHeaderError(r->contentType().c_str(), hasLength, static_cast<uint32_t>(total));
+    if (!e.status) e = admissionError(desk.admitBody());
     if (e.status) {  // answered once the body has gone by; none of it is kept
       r->_tempObject = malloc(sizeof(HttpError));  // the library frees it with the request
       if (r->_tempObject) memcpy(r->_tempObject, &e, sizeof e);
@@ -141,13 +127,11 @@ void onBody(AsyncWebServerRequest* r, uint8_t* data, size_t len, size_t index, s
     spoolFailed = !spool;
     receiving = r;
     r->onDisconnect([r] {
-      // A client gone before its body was whole: what came is dropped and the Mega is free again.
-      // (Gone later, loop() finds its request pointer empty and cancels the check.)
+      // A client gone before its body was whole: what came is dropped, the spool is free again.
       if (r != receiving) return;
       receiving = nullptr;
       spool.close();
-      HubGuard g;
-      bridge->release();
+      desk.bodyAbandoned();
     });
   }
   if (r != receiving) return;
@@ -156,97 +140,51 @@ void onBody(AsyncWebServerRequest* r, uint8_t* data, size_t len, size_t index, s
 
 // Network task: the whole request is in.
 void onPost(AsyncWebServerRequest* r) {
+  pump();
   if (r->_tempObject) {
     const HttpError* e = static_cast<const HttpError*>(r->_tempObject);
-    return sendError(r, netReply, sizeof netReply, e->status, e->code, e->message);
+    return sendError(r, e->status, e->code, e->message);
   }
-  if (r != receiving) {  // no body at all
-    HttpError e;
-    {
-      HubGuard g;
-      e = admitPrintRequest(r->contentType().c_str(), true, 0, *bridge, millis());
-      if (!e.status) bridge->release();
-    }
-    if (e.status) return sendError(r, netReply, sizeof netReply, e.status, e.code, e.message);
-    return sendError(r, netReply, sizeof netReply, 400, "bad_json", "the body is empty");
+  if (r != receiving) {  // no body at all: what the headers say, or 400
+    HttpError e = printHeaderError(r->contentType().c_str(), true, 0);
+    if (!e.status) e = admissionError(desk.admission());
+    if (e.status) return sendError(r, e.status, e.code, e.message);
+    return sendError(r, 400, "bad_json", "the body is empty");
   }
   receiving = nullptr;
   spool.close();
-  handOver(r, Ask::CheckBody, spoolFailed);  // loop() checks it and answers
+  handOver(r, Ask::CheckBody, spoolFailed);  // the spool goes with it; loop() checks it and answers
 }
 
-void onDelete(AsyncWebServerRequest* r) { handOver(r, Ask::Cancel); }
-
-void onStatus(AsyncWebServerRequest* r) { handOver(r, Ask::Status); }
-
-// --- loop() ---
-
-void answer(const AsyncWebServerRequestPtr& to, uint16_t status, const char* json) {
-  if (auto r = to.lock()) r->send(status, "application/json", json);  // gone: nobody to tell
+void onDelete(AsyncWebServerRequest* r) {
+  pump();
+  handOver(r, Ask::Cancel);
 }
 
-void serve(Handed& h) {
-  JsonWriter w(loopReply, sizeof loopReply);
-  switch (h.ask) {
-    case Ask::Status:
-      bridge->writeStatus(w, millis());
-      if (auto r = h.request.lock()) sendJson(r.get(), 200, w);
-      return;
-    case Ask::Cancel:
-      w.beginObject().key("job").beginObject().key("state").string("aborted").endObject().endObject();
-      if (intake->busy()) {
-        intake->cancel();
-        answer(waiting, intake->status(), intake->response());
-        waiting.reset();
-      } else if (!bridge->cancel()) {
-        w = JsonWriter(loopReply, sizeof loopReply);
-        writeError(w, "busy", "nothing to cancel");
-        if (auto r = h.request.lock()) sendJson(r.get(), 409, w);
-        return;
-      }
-      if (auto r = h.request.lock()) sendJson(r.get(), 200, w);
-      return;
-    case Ask::CheckBody:
-      if (h.request.expired()) {  // its client left: a job nobody was told about does not start
-        bridge->release();
-        return;
-      }
-      if (h.spoolFailed) {
-        bridge->release();
-        writeError(w, "spool_failed", "the ESP could not store the job; its flash may be full");
-        if (auto r = h.request.lock()) sendJson(r.get(), 503, w);
-        return;
-      }
-      intake->begin();
-      waiting = h.request;
-      return;
-    case Ask::None: return;
-  }
+void onStatus(AsyncWebServerRequest* r) {
+  pump();
+  handOver(r, Ask::Status);
 }
 
 }  // namespace
 
-void beginPrintEndpoint(AsyncWebServer& server, Bridge& b, void (*serviceFn)()) {
-  hubLock.begin();
-  bridge = &b;
+void beginPrintEndpoint(AsyncWebServer& server, Bridge& bridge, void (*serviceFn)()) {
   service = serviceFn;
-  static PrintIntake<FileBody, HeaderParse> theIntake(body, b, HeaderParse{});
-  intake = &theIntake;
+  static BodyCheck check(body, bridge, HeaderParse{});
+  static LoopDesk<Bridge, BodyCheck> theDesk(rings, bridge, check);
+  loopDesk = &theDesk;
   server.on("/print", HTTP_POST, onPost, nullptr, onBody);
   server.on("/print", HTTP_DELETE, onDelete);
   server.on("/status", HTTP_GET, onStatus);
 }
 
 void pollPrintEndpoint() {
-  for (Handed h; handed.take(h);) serve(h);
-  if (!intake->busy()) return;
-  if (waiting.expired()) {  // its client left: a job nobody was told about does not start
-    intake->cancel();
-    return;
-  }
-  if (intake->step(nextJobId) == Intake::Working) return;
-  answer(waiting, intake->status(), intake->response());
-  waiting.reset();
+  loopDesk->poll(millis(), nextJobId);
+#if defined(ESP8266)
+  // The ESP8266's network callbacks run only between loop()'s passes, never beside it: the
+  // answers may go out here at once, instead of at their connection's next poll.
+  pump();
+#endif
 }
 
 }  // namespace esp

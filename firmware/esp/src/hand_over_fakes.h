@@ -1,0 +1,118 @@
+// Stand-ins for the hand-over's tests (hand_over_test.cpp, hand_over_race_test.cpp): a request as
+// the library holds it (a shared_ptr that its client's leaving ends), the spool both tasks touch
+// in turn, the bridge's admission and upload, and a print intake that checks the spool in steps.
+// None of them locks anything: whatever the two test threads share must be handed over, or the
+// ThreadSanitizer build reports the race.
+#pragma once
+#include <stdint.h>
+
+#include <memory>
+#include <string>
+#include <thread>
+
+#include "loop_desk.h"
+#include "network_desk.h"
+
+namespace handover {
+
+using uv::esp::Admission;
+using uv::esp::Answer;
+using uv::esp::Ask;
+using uv::esp::Intake;
+using uv::esp::JsonWriter;
+
+// An HTTP request on the network task: answered at most once, and only there.
+struct Request {
+  std::thread::id owner = std::this_thread::get_id();
+  int sends = 0;
+  uint16_t status = 0;
+  std::string body;
+};
+using Handle = std::weak_ptr<Request>;
+
+// The spooled body: written by the network task while it arrives, read by loop() while it checks.
+struct Spool {
+  std::string text;
+};
+
+struct Hub {
+  const Spool& spool;  // the upload makes the job's records from the body as it sends them
+  Admission mega = Admission::Accepted;  // online and idle, or offline, or running a job
+  bool reserved = false;
+  int uploadPasses = 0;  // passes the running upload still takes
+  int uploadsStarted = 0;
+  size_t bytesSent = 0;
+  Admission printAdmission(uint32_t) const {
+    if (reserved || uploadPasses) return Admission::Busy;
+    return mega;
+  }
+  Admission admitPrint(uint32_t nowMs) {
+    Admission a = printAdmission(nowMs);
+    reserved = a == Admission::Accepted;
+    return a;
+  }
+  bool cancel() {
+    bool any = uploadPasses > 0;
+    uploadPasses = 0;
+    return any;
+  }
+  bool uploading() const { return uploadPasses > 0; }
+  void writeStatus(JsonWriter& w, uint32_t nowMs) const {
+    w.beginObject().key("mega").string(mega == Admission::MegaOffline ? "offline" : "online").key("ms").number(nowMs).endObject();
+  }
+  void poll() {
+    if (!uploadPasses) return;
+    bytesSent += spool.text.size();
+    uploadPasses--;
+  }
+};
+
+// The print intake: `steps` passes to read the spool, then 202 (the upload starts) or 400 for a
+// body that says "bad".
+struct Check {
+  Hub& hub;
+  Spool& spool;
+  int steps = 3;
+  int left = 0;
+  bool busy_ = false, bodyOpen = false;
+  uint16_t status_ = 0;
+  std::string response_;
+  size_t bytesRead = 0;
+
+  void begin() {
+    busy_ = bodyOpen = true;
+    left = steps;
+  }
+  bool busy() const { return busy_; }
+  template <class NextId>
+  Intake step(NextId nextId) {
+    bytesRead += spool.text.size();  // loop() reads the body here: the network task must not write it
+    if (--left > 0) return Intake::Working;
+    busy_ = false;
+    hub.reserved = false;
+    if (spool.text.find("bad") != std::string::npos) return verdict(400, R"({"error":{"code":"bad_json"}})", Intake::Refused);
+    hub.uploadPasses = 5;
+    hub.uploadsStarted++;
+    return verdict(202, R"({"job":{"id":)" + std::to_string(nextId()) + "}}", Intake::Accepted);
+  }
+  void cancel() {
+    busy_ = false;
+    hub.reserved = false;
+    verdict(409, R"({"error":{"code":"cancelled"}})", Intake::Refused);
+  }
+  void closeBody() { bodyOpen = false; }
+  uint16_t status() const { return status_; }
+  const char* response() const { return response_.c_str(); }
+
+ private:
+  Intake verdict(uint16_t status, const std::string& text, Intake r) {
+    status_ = status;
+    response_ = text;
+    return r;
+  }
+};
+
+using Network = uv::esp::NetworkDesk<Handle>;
+using Loop = uv::esp::LoopDesk<Hub, Check>;
+
+}  // namespace handover
