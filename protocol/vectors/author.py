@@ -153,7 +153,7 @@ frames = [
     {"line": numbered(1, "G28", strong=False), "frame": {"n": 1, "body": "G28"}, "canonical": False},
     {"line": numbered(9, "M105", strong=False), "frame": {"n": 9, "body": "M105"}, "canonical": False},
     {"line": numbered(0, "M110"), "frame": {"n": 0, "body": "M110"}, "canonical": True},
-    {"line": numbered(2147483647, "M105"), "frame": {"n": 2147483647, "body": "M105"}, "canonical": True},
+    {"line": numbered(2147483646, "M105"), "frame": {"n": 2147483646, "body": "M105"}, "canonical": True},
     {"line": numbered(12, "r 3 0 00ff10"), "frame": {"n": 12, "body": "r 3 0 00ff10"}, "canonical": True},
     {"line": numbered(7, "G1 X10.5 Y-2 ; move"), "frame": {"n": 7, "body": "G1 X10.5 Y-2"}, "canonical": False},
     {"line": "N3   M105*" + str(cs("N3   M105")), "frame": {"n": 3, "body": "M105"}, "canonical": False},
@@ -176,6 +176,8 @@ frame_errors = [
     {"line": "G28*18", "error": 4},
     {"line": "N1 G\u00ff28*" + str(cs("N1 G\u00ff28")), "error": 1, "n": 1},
     {"line": "M105\u0007", "error": 1},
+    # The last number is 2147483646, so that `Resend: <last + 1>` always names a number (mega.md §2).
+    {"line": numbered(2147483647, "M105"), "error": 2},
     {"line": "N2147483648 M105*" + str(cs("N2147483648 M105")), "error": 2},
     {"line": "N-2 M105*" + str(cs("N-2 M105")), "error": 2},
     {"line": "N1G28*" + str(cs("N1G28")), "error": 2},
@@ -212,6 +214,10 @@ commands = [
     {"body": "M23", "error": 11},
     {"body": "M850 bed.x 200", "command": {"word": "M850", "text": "bed.x 200"}},
     {"body": "M850 led.offset.1", "command": {"word": "M850", "text": "led.offset.1"}},
+    {"body": "M850", "error": 11},
+    # M117 alone clears the panel's message, as Marlin's does.
+    {"body": "M117", "command": {"word": "M117", "text": ""}},
+    {"body": "M117 UV-PRINTER 192.168.4.1", "command": {"word": "M117", "text": "UV-PRINTER 192.168.4.1"}},
     {"body": "M1000 S", "command": {"word": "M1000", "params": {"S": None}}},
     {"body": "M420", "command": {"word": "M420", "params": {}}},
     {"body": "G1 X1 X2", "error": 11},
@@ -276,9 +282,12 @@ sessions = [
         {"rx": numbered(3, "M105"), "execute": "M105"},
     ]},
     {"name": "line numbers do not wrap: after the last one only M110 starts again", "steps": [
-        {"rx": numbered(2147483647, "M110"), "reply": [ok(2147483647)]},
+        {"rx": numbered(2147483646, "M110"), "reply": [ok(2147483646)]},
         {"rx": numbered(0, "M105"), "reply": [ok(0)]},  # a duplicate, as every number up to the last is
-        {"rx": numbered(2147483647, "M105"), "reply": [ok(2147483647)]},
+        {"rx": numbered(2147483646, "M105"), "reply": [ok(2147483646)]},
+        # A damaged line asks for the next number, which no line can carry: the sender must M110.
+        {"rx": "N5 M105*0", "reply": err(2, "checksum mismatch", 2147483646)},
+        {"rx": numbered(2147483647, "M105"), "reply": err(2, "checksum mismatch", 2147483646)},
         {"rx": "M110 N0", "reply": [ok(0)]},
         {"rx": numbered(1, "M105"), "execute": "M105"},
     ]},

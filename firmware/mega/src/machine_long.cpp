@@ -81,7 +81,8 @@ void Machine::runLong() {
       return;
     }
     case Op::Release:
-      if (!motion_.idle()) return;
+      if (!motion_.idle()) return;  // drain: the moves queued before M18/M84 end where they were sent
+      long_.drain = false;
       io_.motorsEnabled(false);
       homed_ = 0;
       return finishLong();
