@@ -330,9 +330,10 @@ replies = [
     {"line": "Error:Printer halted. kill() called!", "reply": {"kind": "error", "code": 0, "message": "Printer halted. kill() called!"}, "canonical": False},
     {"line": "Resend: 5", "reply": {"kind": "resend", "n": 5}, "canonical": True},
     {"line": "rs 5", "reply": {"kind": "resend", "n": 5}, "canonical": False},
-    # T: is the hottest sensor with no target (nothing heats); the sensors are S0-S5, each with its limit.
-    {"line": "T:31.2 /0.0 S0:24.0 /60.0 S1:31.2 /60.0 S2:23.9 /60.0 S3:24.1 /60.0 S4:22.0 /55.0 S5:-3.5 /55.0",
-     "reply": {"kind": "temps", "deciC": [240, 312, 239, 241, 220, -35], "limitDeciC": [600, 600, 600, 600, 550, 550]}, "canonical": True},
+    # T: is the hottest sensor; the sensors are S0-S5. Nothing heats: every target is 0.0, and the soft
+    # limits are config (M850 thermal.limit.<i>), never a target a host would show (issue 26).
+    {"line": "T:31.2 /0.0 S0:24.0 /0.0 S1:31.2 /0.0 S2:23.9 /0.0 S3:24.1 /0.0 S4:22.0 /0.0 S5:-3.5 /0.0",
+     "reply": {"kind": "temps", "deciC": [240, 312, 239, 241, 220, -35]}, "canonical": True},
     {"line": "X:10.000 Y:20.500 Z:-0.125 E:0.000 Count X:800 Y:1640 Z:-50",
      "reply": {"kind": "position", "um": [10000, 20500, -125], "steps": [800, 1640, -50]}, "canonical": True},
     {"line": "JOB:running file=PCB.UVJ stop=120/4000 elapsed=12 remaining=345 leds=5",
@@ -353,7 +354,9 @@ replies = [
     {"line": "MESH:row 0 0.010 -0.020 0.000", "reply": {"kind": "other", "text": "MESH:row 0 0.010 -0.020 0.000"}, "canonical": False},
 ]
 bad_reports = [
-    {"line": "T:31.2 /0.0 S0:24.0 /60.0", "why": "fewer than six sensors"},
+    {"line": "T:31.2 /0.0 S0:24.0 /0.0", "why": "fewer than six sensors"},
+    {"line": "T:31.2 /0.0 S0:24.0 /60.0 S1:31.2 /60.0 S2:23.9 /60.0 S3:24.1 /60.0 S4:22.0 /55.0 S5:-3.5 /55.0",
+     "why": "the soft limits as the sensors' targets (before issue 26)"},
     {"line": "T:31.2 /60.0 T0:24.0 /60.0 T1:31.2 /60.0 T2:23.9 /60.0 T3:24.1 /60.0 T4:22.0 /55.0 T5:-3.5 /55.0", "why": "sensors as hotends with their limits as targets (before issue 16)"},
     {"line": "X:10.000 Y:20.500", "why": "no Z"},
     {"line": "Resend: x", "why": "not a number"},

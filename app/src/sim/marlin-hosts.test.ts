@@ -145,12 +145,14 @@ describe('Marlin hosts: link commands', () => {
     expect(h.cmd('M113 S61')[0]).toMatch(/^echo:E11/);
   });
 
-  it('reports temperatures as one T: without a target and the sensors as S0-S5 with their limits', () => {
+  it('reports temperatures as one T: and the sensors as S0-S5, none with a target: no host shows a limit as one', () => {
     const h = new SimHost({ drift: false });
     const line = h.cmd('M105')[0];
-    expect(line).toMatch(/^T:\d+\.\d \/0\.0 S0:\d+\.\d \/\d+\.\d( S[1-5]:\d+\.\d \/\d+\.\d){5}$/);
+    expect(line).toMatch(/^T:\d+\.\d \/0\.0( S[0-5]:\d+\.\d \/0\.0){6}$/);
     const r = parseReply(line);
-    expect(r?.kind === 'temps' && r.limitDeciC.length).toBe(6);
+    expect(r?.kind === 'temps' && r.deciC.length).toBe(6);
+    // The soft limits are where a host that wants them reads them: the config.
+    expect(h.cmd('M503')).toEqual(expect.arrayContaining(['M850 thermal.limit.0 55', 'M850 thermal.limit.5 50']));
   });
 
   it('M108 is accepted: nothing heats, so there is no wait to break', () => {
