@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Drives the simulated printer with OctoPrint's own serial layer (octoprint.util.comm.MachineCom, OctoPrint
 1.11 from PyPI, default settings) over the pty of `npm run sim -- --pty`, as a user of OctoPrint would: connect,
-temperatures, jogs refused before homing and past the bed's edge, home, stream a file, pause, resume, cancel,
-upload to the card, list it, print it from the card, M112 and reconnect. Each step prints PASS or FAIL; a step
+temperatures, jogs refused before homing and past the bed's edge, home, a file whose F holds for the moves after
+it, M84 after a move, stream a file, pause, resume, cancel, upload to the card, list it, print it from the card,
+M112 and reconnect. Each step prints PASS or FAIL; a step
 fails too if OctoPrint disconnected where a Marlin printer would have kept it connected. Prints
 `N passed, N failed`."""
 import logging
@@ -163,7 +164,8 @@ def run_local(path):
 
 
 # Its own process group: npx starts node, and both must go when the test ends.
-sim = subprocess.Popen(["npx", "tsx", "scripts/sim.ts", "--pty", "--speed", "4"], cwd=ROOT,
+SPEED = 4  # the printer's seconds per wall-clock second
+sim = subprocess.Popen(["npx", "tsx", "scripts/sim.ts", "--pty", "--speed", str(SPEED)], cwd=ROOT,
                        stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, start_new_session=True)
 pty = None
 for out in sim.stdout:
@@ -180,8 +182,9 @@ try:
     check("the card is ready (M21: SD card ok)", wait(lambda: host.com.isSdReady(), 10))
     host.com.sendCommand("M105")
     ok = wait(lambda: host.temps and host.custom and len([k for k in host.custom if re.match(r"S[0-5]$", k)]) == 6, 15)
-    check("temperatures: one tool without a target, the six sensors as custom sensors",
-          ok and list(host.temps.keys()) == [0] and host.temps[0][1] == 0.0, f"tools {host.temps} custom {host.custom}")
+    check("temperatures: one tool and the six sensors as custom sensors, none with a target (no limit shown as one)",
+          ok and list(host.temps.keys()) == [0] and host.temps[0][1] == 0.0
+          and all(target in (None, 0.0) for _, target in host.custom.values()), f"tools {host.temps} custom {host.custom}")
 
     lines = jog("X", 10)
     check("a jog before homing is refused with echo:, and OctoPrint stays connected",
@@ -192,7 +195,24 @@ try:
     check("a jog past the bed's edge is refused with echo:, the head stays",
           any(l.startswith("echo:E15") for l in lines) and position().startswith("X:0.000"), lines)
 
+    # Marlin keeps a move's F for every later G0/G1. Set once, it holds for the 120 mm after it: 12 s at 10 mm/s,
+    # where the travel speed (100 mm/s) would take 1.2 s. OctoPrint's own time only adds to what is measured.
+    host.events.clear()
+    start = time.time()
+    started = run_local(gcode_file("feed.gcode", ["G90", "G1 X10 Y10 F600", "G1 X130 Y10", "M400"]))
+    done = wait(lambda: "done" in host.events, 60)
+    took = (time.time() - start) * SPEED
+    check(f"a file's F holds for the moves after it: 10 mm then 120 mm at 10 mm/s took {took:.1f} s of the printer's time",
+          started and done and took >= 12.0, f"started {started}, done {done}")
+
+    run("G1 X150 Y150 F6000", "M84")
+    at_release = position()
+    check("M84 right after a move lets it end first: the head is where the move ended",
+          at_release.startswith("X:150.000 Y:150.000"), f"M114 after M84 and M400: {at_release}")
+    run("G28")
+
     path = gcode_file("stream.gcode", ["G90", "G1 X10 Y10 F6000", "G1 X150 Y120 F3000", "M400"])
+    host.events.clear()
     started = run_local(path)
     done = wait(lambda: "done" in host.events, 60)
     at_done = position(settle=False) if done else ""  # no M400 of ours: the file's own must have waited

@@ -153,7 +153,7 @@ frames = [
     {"line": numbered(1, "G28", strong=False), "frame": {"n": 1, "body": "G28"}, "canonical": False},
     {"line": numbered(9, "M105", strong=False), "frame": {"n": 9, "body": "M105"}, "canonical": False},
     {"line": numbered(0, "M110"), "frame": {"n": 0, "body": "M110"}, "canonical": True},
-    {"line": numbered(2147483647, "M105"), "frame": {"n": 2147483647, "body": "M105"}, "canonical": True},
+    {"line": numbered(2147483646, "M105"), "frame": {"n": 2147483646, "body": "M105"}, "canonical": True},
     {"line": numbered(12, "r 3 0 00ff10"), "frame": {"n": 12, "body": "r 3 0 00ff10"}, "canonical": True},
     {"line": numbered(7, "G1 X10.5 Y-2 ; move"), "frame": {"n": 7, "body": "G1 X10.5 Y-2"}, "canonical": False},
     {"line": "N3   M105*" + str(cs("N3   M105")), "frame": {"n": 3, "body": "M105"}, "canonical": False},
@@ -176,6 +176,8 @@ frame_errors = [
     {"line": "G28*18", "error": 4},
     {"line": "N1 G\u00ff28*" + str(cs("N1 G\u00ff28")), "error": 1, "n": 1},
     {"line": "M105\u0007", "error": 1},
+    # The last number is 2147483646, so that `Resend: <last + 1>` always names a number (mega.md §2).
+    {"line": numbered(2147483647, "M105"), "error": 2},
     {"line": "N2147483648 M105*" + str(cs("N2147483648 M105")), "error": 2},
     {"line": "N-2 M105*" + str(cs("N-2 M105")), "error": 2},
     {"line": "N1G28*" + str(cs("N1G28")), "error": 2},
@@ -212,6 +214,10 @@ commands = [
     {"body": "M23", "error": 11},
     {"body": "M850 bed.x 200", "command": {"word": "M850", "text": "bed.x 200"}},
     {"body": "M850 led.offset.1", "command": {"word": "M850", "text": "led.offset.1"}},
+    {"body": "M850", "error": 11},
+    # M117 alone clears the panel's message, as Marlin's does.
+    {"body": "M117", "command": {"word": "M117", "text": ""}},
+    {"body": "M117 UV-PRINTER 192.168.4.1", "command": {"word": "M117", "text": "UV-PRINTER 192.168.4.1"}},
     {"body": "M1000 S", "command": {"word": "M1000", "params": {"S": None}}},
     {"body": "M420", "command": {"word": "M420", "params": {}}},
     {"body": "G1 X1 X2", "error": 11},
@@ -276,9 +282,12 @@ sessions = [
         {"rx": numbered(3, "M105"), "execute": "M105"},
     ]},
     {"name": "line numbers do not wrap: after the last one only M110 starts again", "steps": [
-        {"rx": numbered(2147483647, "M110"), "reply": [ok(2147483647)]},
+        {"rx": numbered(2147483646, "M110"), "reply": [ok(2147483646)]},
         {"rx": numbered(0, "M105"), "reply": [ok(0)]},  # a duplicate, as every number up to the last is
-        {"rx": numbered(2147483647, "M105"), "reply": [ok(2147483647)]},
+        {"rx": numbered(2147483646, "M105"), "reply": [ok(2147483646)]},
+        # A damaged line asks for the next number, which no line can carry: the sender must M110.
+        {"rx": "N5 M105*0", "reply": err(2, "checksum mismatch", 2147483646)},
+        {"rx": numbered(2147483647, "M105"), "reply": err(2, "checksum mismatch", 2147483646)},
         {"rx": "M110 N0", "reply": [ok(0)]},
         {"rx": numbered(1, "M105"), "execute": "M105"},
     ]},
@@ -321,9 +330,10 @@ replies = [
     {"line": "Error:Printer halted. kill() called!", "reply": {"kind": "error", "code": 0, "message": "Printer halted. kill() called!"}, "canonical": False},
     {"line": "Resend: 5", "reply": {"kind": "resend", "n": 5}, "canonical": True},
     {"line": "rs 5", "reply": {"kind": "resend", "n": 5}, "canonical": False},
-    # T: is the hottest sensor with no target (nothing heats); the sensors are S0-S5, each with its limit.
-    {"line": "T:31.2 /0.0 S0:24.0 /60.0 S1:31.2 /60.0 S2:23.9 /60.0 S3:24.1 /60.0 S4:22.0 /55.0 S5:-3.5 /55.0",
-     "reply": {"kind": "temps", "deciC": [240, 312, 239, 241, 220, -35], "limitDeciC": [600, 600, 600, 600, 550, 550]}, "canonical": True},
+    # T: is the hottest sensor; the sensors are S0-S5. Nothing heats: every target is 0.0, and the soft
+    # limits are config (M850 thermal.limit.<i>), never a target a host would show (issue 26).
+    {"line": "T:31.2 /0.0 S0:24.0 /0.0 S1:31.2 /0.0 S2:23.9 /0.0 S3:24.1 /0.0 S4:22.0 /0.0 S5:-3.5 /0.0",
+     "reply": {"kind": "temps", "deciC": [240, 312, 239, 241, 220, -35]}, "canonical": True},
     {"line": "X:10.000 Y:20.500 Z:-0.125 E:0.000 Count X:800 Y:1640 Z:-50",
      "reply": {"kind": "position", "um": [10000, 20500, -125], "steps": [800, 1640, -50]}, "canonical": True},
     {"line": "JOB:running file=PCB.UVJ stop=120/4000 elapsed=12 remaining=345 leds=5",
@@ -344,7 +354,9 @@ replies = [
     {"line": "MESH:row 0 0.010 -0.020 0.000", "reply": {"kind": "other", "text": "MESH:row 0 0.010 -0.020 0.000"}, "canonical": False},
 ]
 bad_reports = [
-    {"line": "T:31.2 /0.0 S0:24.0 /60.0", "why": "fewer than six sensors"},
+    {"line": "T:31.2 /0.0 S0:24.0 /0.0", "why": "fewer than six sensors"},
+    {"line": "T:31.2 /0.0 S0:24.0 /60.0 S1:31.2 /60.0 S2:23.9 /60.0 S3:24.1 /60.0 S4:22.0 /55.0 S5:-3.5 /55.0",
+     "why": "the soft limits as the sensors' targets (before issue 26)"},
     {"line": "T:31.2 /60.0 T0:24.0 /60.0 T1:31.2 /60.0 T2:23.9 /60.0 T3:24.1 /60.0 T4:22.0 /55.0 T5:-3.5 /55.0", "why": "sensors as hotends with their limits as targets (before issue 16)"},
     {"line": "X:10.000 Y:20.500", "why": "no Z"},
     {"line": "Resend: x", "why": "not a number"},

@@ -8,7 +8,7 @@ describe('console log', () => {
     expect(levelOf('echo:Done saving file.')).toBe('info');
     expect(levelOf('FAULT:E31 over-temperature T3 71.2')).toBe('error');
     expect(levelOf('Resend: 5')).toBe('warning');
-    expect(levelOf('T:31.2 /0.0 S0:24.0 /60.0')).toBe('report');
+    expect(levelOf('T:31.2 /0.0 S0:24.0 /0.0')).toBe('report');
     expect(levelOf('JOB:running file=A.UVJ stop=1/9')).toBe('report');
     expect(levelOf('ok N4 P8 B3*1a2b')).toBe('link');
     expect(levelOf('FIRMWARE_NAME:UVExposure 0.1.0 (Mega) PROTOCOL_VERSION:1')).toBe('info');

@@ -28,8 +28,8 @@ export interface DeviceState {
   window: number;
   /** Head position in µm. */
   position: [number, number, number] | null;
+  /** The sensors, °C × 10. Their soft limits are settings (`thermal.limit.<i>`, Printer.config), not reports. */
   deciC: number[] | null;
-  limitDeciC: number[] | null;
   probe: ProbeState | null;
   lastProbeZUm: number | null;
   /** LEDs lit, from the job reports. */
@@ -43,7 +43,7 @@ export interface DeviceState {
 
 export function emptyState(): DeviceState {
   return {
-    firmware: null, window: 1, position: null, deciC: null, limitDeciC: null, probe: null, lastProbeZUm: null,
+    firmware: null, window: 1, position: null, deciC: null, probe: null, lastProbeZUm: null,
     leds: 0, job: null, faults: [], selfTest: null, mesh: [],
   };
 }
@@ -55,7 +55,7 @@ export function applyReport(s: DeviceState, r: Reply, nowMs: number): boolean {
   switch (r.kind) {
     case 'firmware': s.firmware = r.name; return true;
     case 'cap': if (r.name === 'RX_WINDOW') s.window = r.value; return true;
-    case 'temps': s.deciC = r.deciC; s.limitDeciC = r.limitDeciC; return true;
+    case 'temps': s.deciC = r.deciC; return true;
     case 'position': s.position = r.um; return true;
     case 'probe': s.probe = r.state; return true;
     case 'probePoint': s.lastProbeZUm = r.um[2]; s.position = r.um; return true;

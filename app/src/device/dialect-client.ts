@@ -23,7 +23,7 @@ export interface LinkHealth {
 }
 
 /** Commands that take longer than a round trip on the Mega (mega.md §5, "Long"). */
-const LONG_COMMANDS = /^(G28|G29|G30|G4|M400|M822)(\s|$)/i;
+const LONG_COMMANDS = /^(G28|G29|G30|G4|M400|M18|M84|M822)(\s|$)/i;
 
 interface Item {
   body: string;

@@ -42,7 +42,8 @@ export function parseCommand(body: string): CommandResult {
     return name ? { ok: true, command: { word, text: name[1] } } : { ok: false, error: 11 };
   }
   if (TEXT_COMMANDS.has(word)) {
-    return rest.trim() ? { ok: true, command: { word, text: rest.trim() } } : { ok: false, error: 11 };
+    // M117 alone clears the panel's message, as Marlin's does; M850 needs its key.
+    return rest.trim() || word === 'M117' ? { ok: true, command: { word, text: rest.trim() } } : { ok: false, error: 11 };
   }
   const params: Record<string, number | null> = {};
   for (const token of rest.split(' ').filter(Boolean)) {

@@ -5,7 +5,8 @@ import { crc16Hex } from './crc16';
 import type { SplitLine } from './line-splitter';
 
 export const DIALECT_MAX_LINE = 96;
-export const MAX_LINE_NUMBER = 2147483647;
+/** The last line number: one short of int32's end, as the Mega's, so `Resend: <last + 1>` always names a number (mega.md §1). */
+export const MAX_LINE_NUMBER = 2147483646;
 
 export type Frame =
   | { ok: true; n?: number; body: string }

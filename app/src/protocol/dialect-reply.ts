@@ -13,7 +13,7 @@ export type Reply =
   | { kind: 'ok'; n?: number; p?: number; b?: number }
   | { kind: 'error'; code: number; message: string }
   | { kind: 'resend'; n: number }
-  | { kind: 'temps'; deciC: number[]; limitDeciC: number[] }
+  | { kind: 'temps'; deciC: number[] }
   | { kind: 'position'; um: Xyz; steps: Xyz }
   | { kind: 'job'; state: JobState; fields: Record<string, string> }
   | { kind: 'probe'; state: ProbeState }
@@ -33,7 +33,7 @@ const MM = '(-?[0-9]{1,7}\\.[0-9]{3})';
 const POSITION = new RegExp(`^X:${MM} Y:${MM} Z:${MM} E:${MM} Count X:(-?[0-9]{1,10}) Y:(-?[0-9]{1,10}) Z:(-?[0-9]{1,10})$`);
 const BED = new RegExp(`^Bed X: ${MM} Y: ${MM} Z: ${MM}$`);
 const DECI = '(-?[0-9]{1,3}\\.[0-9])';
-const TEMP_PAIR = new RegExp(`^S([0-5]):${DECI} /${DECI}$`);
+const TEMP_PAIR = new RegExp(`^S([0-5]):${DECI} /0\\.0$`);
 
 /** The end of a reply block: `n` is the line it answers, undefined when it accepts none (mega.md §2). */
 export function formatOk(n: number | undefined, p: number, b: number): string {
@@ -58,17 +58,15 @@ function formatFields(fields: Record<string, string>): string {
 
 function parseTemps(line: string): Reply | null {
   const words = line.split(' ');
-  // `T:<hottest> /0.0` (nothing heats: no target) then six `S<i>:<v> /<limit>` pairs (mega.md §4)
+  // `T:<hottest> /0.0` then six `S<i>:<v> /0.0` pairs: nothing heats, so no target (mega.md §4)
   if (words.length !== 2 + SENSOR_COUNT * 2 || !/^T:-?[0-9]{1,3}\.[0-9]$/.test(words[0]) || words[1] !== '/0.0') return null;
   const deciC: number[] = [];
-  const limitDeciC: number[] = [];
   for (let i = 0; i < SENSOR_COUNT; i++) {
     const m = TEMP_PAIR.exec(`${words[2 + i * 2]} ${words[3 + i * 2]}`);
     if (!m || Number(m[1]) !== i) return null;
     deciC.push(parseDeciC(m[2])!);
-    limitDeciC.push(parseDeciC(m[3])!);
   }
-  return { kind: 'temps', deciC, limitDeciC };
+  return { kind: 'temps', deciC };
 }
 
 function milli3(ms: string[]): Xyz {
@@ -150,9 +148,10 @@ export function formatReply(r: Reply, info: FirmwareInfo = { machine: 'UV-LED ex
     case 'error': return `${errorClass(r.code) === 'refusal' ? 'echo:' : 'Error:'}E${r.code} ${r.message}`;
     case 'resend': return `Resend: ${r.n}`;
     case 'temps': {
-      // Hosts read `T:` as a hotend and `Tn:` as more of them, and the `/` value as a heater's target:
-      // one `T:` with no target, and the sensors as `S0`-`S5`, which OctoPrint keeps as custom sensors.
-      const pairs = r.deciC.map((v, i) => ` S${i}:${formatDeciC(v)} /${formatDeciC(r.limitDeciC[i])}`).join('');
+      // Hosts read `T:` as a hotend and `Tn:` as more of them, and every `/` value as a heater's target:
+      // one `T:` and the sensors as `S0`-`S5` (OctoPrint keeps them as custom sensors), all with target
+      // 0.0. The soft limits are config (`M850 thermal.limit.<i>`), never a target a host would show.
+      const pairs = r.deciC.map((v, i) => ` S${i}:${formatDeciC(v)} /0.0`).join('');
       return `T:${formatDeciC(Math.max(...r.deciC))} /0.0${pairs}`;
     }
     case 'position': {

@@ -1,5 +1,6 @@
 // The simulated Mega as Marlin hosts (OctoPrint, Pronterface) see it: refusals, waiting for the queue,
-// the busy interval, temperatures, and a reset when a host opens the port.
+// moves at a modal feed rate, M84 after the moves, M117 alone, the busy interval, temperatures, and a
+// reset when a host opens the port.
 import { describe, expect, it } from 'vitest';
 import { parseReply } from '../protocol/dialect-reply';
 import { SimHost } from './sim-host.fixture';
@@ -58,6 +59,75 @@ describe('Marlin hosts: waiting for the motion queue', () => {
   });
 });
 
+describe('Marlin hosts: moves as Marlin makes them', () => {
+  /** Virtual µs from the command's send to its ok. */
+  const timed = (h: SimHost, body: string) => {
+    const start = h.sim.clock.now;
+    h.cmd(body);
+    return h.sim.clock.now - start;
+  };
+
+  it('keeps the feed rate for every later G0/G1 until the next F, even an F alone on its line', () => {
+    const h = new SimHost();
+    h.cmd('G28');
+    h.cmd('G1 X40 Y30 F600'); // 10 mm/s: X's 40 mm set the time
+    expect(timed(h, 'M400')).toBeGreaterThan(3_900_000);
+    h.cmd('G1 X70 Y30'); // no F: still 10 mm/s, 3 s (at travel speed about 0.4 s)
+    const kept = timed(h, 'M400');
+    expect(kept).toBeGreaterThan(2_900_000);
+    expect(kept).toBeLessThan(3_200_000);
+    h.cmd('G0 X40'); // G0 shares G1's feed rate, as in Marlin
+    expect(timed(h, 'M400')).toBeGreaterThan(2_900_000);
+    h.cmd('G1 F6000'); // F alone is kept too: 100 mm/s
+    h.cmd('G1 X70');
+    expect(timed(h, 'M400')).toBeLessThan(1_000_000);
+    expect(h.cmd('M114')[0]).toMatch(/^X:70\.000 Y:30\.000 /);
+  });
+
+  it('keeps the feed rate it had when a move is refused', () => {
+    const h = new SimHost();
+    h.cmd('G28');
+    h.cmd('G1 X10 F600');
+    expect(h.cmd('G1 X9999 F6000')[0]).toBe('echo:E15 target outside soft limits: X');
+    expect(h.cmd('G1 X20 F0')[0]).toBe('echo:E11 bad or missing parameter: F');
+    h.cmd('M400');
+    h.cmd('G1 X40');
+    expect(timed(h, 'M400')).toBeGreaterThan(2_900_000);
+  });
+
+  it('forgets the feed rate at M112, as a reset of Marlin does: the configured speed again', () => {
+    const h = new SimHost();
+    h.cmd('G28');
+    h.cmd('G1 X10 F60');
+    h.cmd('M112');
+    h.cmd('M999');
+    h.cmd('G28');
+    h.cmd('G1 X50');
+    expect(timed(h, 'M400')).toBeLessThan(1_500_000);
+  });
+
+  it('M84 and M18 finish the queued moves before releasing the motors', () => {
+    for (const release of ['M84', 'M18']) {
+      const h = new SimHost();
+      h.cmd('G28');
+      h.cmd('G1 X150 Y150 F6000');
+      h.cmd(release);
+      h.cmd('M400');
+      expect(h.cmd('M114')[0], release).toMatch(/^X:150\.000 Y:150\.000 /);
+      expect(h.cmd('G1 X10')[0], release).toBe('echo:E14 axis not homed: X');
+    }
+  });
+
+  it('M117 alone clears the message', () => {
+    const h = new SimHost();
+    h.cmd('M117 UVP-1A2B');
+    expect(h.sim.mega.message).toBe('UVP-1A2B');
+    expect(h.cmd('M117')).toHaveLength(1); // just its ok
+    expect(h.sim.mega.message).toBe('');
+    expect(h.cmd('M850')[0]).toBe('echo:E11 bad or missing parameter'); // M850 still needs its key
+  });
+});
+
 describe('Marlin hosts: link commands', () => {
   it('M113 sets the busy: interval, 0 turns it off', () => {
     const h = new SimHost();
@@ -75,12 +145,14 @@ describe('Marlin hosts: link commands', () => {
     expect(h.cmd('M113 S61')[0]).toMatch(/^echo:E11/);
   });
 
-  it('reports temperatures as one T: without a target and the sensors as S0-S5 with their limits', () => {
+  it('reports temperatures as one T: and the sensors as S0-S5, none with a target: no host shows a limit as one', () => {
     const h = new SimHost({ drift: false });
     const line = h.cmd('M105')[0];
-    expect(line).toMatch(/^T:\d+\.\d \/0\.0 S0:\d+\.\d \/\d+\.\d( S[1-5]:\d+\.\d \/\d+\.\d){5}$/);
+    expect(line).toMatch(/^T:\d+\.\d \/0\.0( S[0-5]:\d+\.\d \/0\.0){6}$/);
     const r = parseReply(line);
-    expect(r?.kind === 'temps' && r.limitDeciC.length).toBe(6);
+    expect(r?.kind === 'temps' && r.deciC.length).toBe(6);
+    // The soft limits are where a host that wants them reads them: the config.
+    expect(h.cmd('M503')).toEqual(expect.arrayContaining(['M850 thermal.limit.0 55', 'M850 thermal.limit.5 50']));
   });
 
   it('M108 is accepted: nothing heats, so there is no wait to break', () => {

@@ -10,8 +10,7 @@ const p = (c: Parameters<Handler>[0]) => ('params' in c ? c.params : {});
 const text = (c: Parameters<Handler>[0]) => ('text' in c ? c.text : '');
 
 export function temperatureLine(m: MegaModel): string {
-  const limits = [0, 1, 2, 3, 4, 5].map((i) => num(m.config, `thermal.limit.${i}`) * 10);
-  return formatReply({ kind: 'temps', deciC: m.nano.deciC(), limitDeciC: limits });
+  return formatReply({ kind: 'temps', deciC: m.nano.deciC() });
 }
 
 export function positionLine(m: MegaModel): string {

@@ -1,5 +1,5 @@
-// The simulated Mega's motion commands (protocol/mega.md §5 "Motion"): moves, dwell, waiting for the queue,
-// homing, jogging and the kinematic self-test.
+// The simulated Mega's motion commands (protocol/mega.md §5 "Motion"): moves at a modal feed rate, dwell,
+// waiting for the queue, homing, releasing the motors, jogging and the kinematic self-test.
 
 import type { Command } from '../protocol/dialect-command';
 import { num } from './config';
@@ -31,7 +31,10 @@ function move(m: MegaModel, c: Command, done: () => void): void {
     if (p[a] === undefined) target[i] = base[i];
     if (target[i] < 0 || target[i] > m.motion.max(i)) return m.error(15, done, a);
   }
-  const feed = typeof p.F === 'number' ? p.F / 1000 / 60 : num(m.config, 'speed.travel');
+  if (typeof p.F === 'number' && p.F <= 0) return m.error(11, done, 'F');
+  // Kept only once the move is accepted: a refused line leaves the machine as it was.
+  if (typeof p.F === 'number') m.feedMmS = Math.max(1, Math.floor(p.F / 60)) / 1000; // whole µm/s, as the Mega's
+  const feed = m.feedMmS ?? num(m.config, 'speed.travel');
   const go = () => {
     m.motion.enqueue(target, feed);
     lastTarget.set(m, target);
@@ -70,6 +73,11 @@ function dwell(m: MegaModel, c: Command, done: () => void): void {
   const us = typeof p.P === 'number' ? p.P : typeof p.S === 'number' ? p.S * 1000 : 0; // P ms, S s, both in thousandths
   if (us > 4_294_967_000) return m.error(11, done, 'S'); // mega.md: at most 4294967 ms
   m.long(done, (finish) => m.motion.whenIdle(() => m.clock.after(us, finish)));
+}
+
+/** M18/M84: the queued moves end first, as Marlin's, so the head stops where they were sent; then the motors let go. */
+function release(m: MegaModel, done: () => void): void {
+  m.long(done, (finish) => m.motion.whenIdle(() => (m.motion.release(), finish())));
 }
 
 function jog(m: MegaModel, c: Command, done: () => void): void {
@@ -111,8 +119,8 @@ export function motionCommands(m: MegaModel): Record<string, Handler> {
     G91: (_c, done) => ((m.absolute = false), done()),
     M400: (_c, done) => m.long(done, (finish) => m.motion.whenIdle(finish)),
     M17: (_c, done) => ((m.motion.enabled = true), done()),
-    M18: (_c, done) => (m.motion.release(), done()),
-    M84: (_c, done) => (m.motion.release(), done()),
+    M18: (_c, done) => release(m, done),
+    M84: (_c, done) => release(m, done),
     M410: (_c, done) => (m.motion.stop(), done()),
     // Marlin's "stop waiting for heaters": nothing here heats, so there is never a wait to break.
     M108: (_c, done) => done(),

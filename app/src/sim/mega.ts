@@ -55,6 +55,8 @@ export class MegaModel {
   message = '';
   halted = false;
   absolute = true;
+  /** G0/G1's feed rate, mm/s: modal as Marlin's, until the next F; null until one is given (the configured travel speed). */
+  feedMmS: number | null = null;
   /** The `busy:` interval (M113), µs; 0 sends none. */
   keepaliveUs = 2_000_000;
   /** A job upload (M28 of a job file) or a G-code upload (M28 of a .gco). */
@@ -310,6 +312,7 @@ export class MegaModel {
 
   #emergency(): void {
     this.halted = true;
+    this.feedMmS = null; // Marlin's M112 ends in a reset, which forgets the F
     this.nano.command('R\n');
     this.nano.allOff();
     this.motion.stop();

@@ -22,9 +22,10 @@ void Bridge::begin(uint32_t nowMs, const char* panel) {
   initMega();
 }
 
-// The Mega says who it is (its window), reports every second, and shows the Wi-Fi on its OLED.
+// The Mega says who it is (its window), reports every second, lists its config (the sensors' soft
+// limits, for /status), and shows the Wi-Fi on its OLED.
 void Bridge::initMega() {
-  static const char* const kInit[] = {"M115", "M155 S1", "M154 S1", "M27 S1"};
+  static const char* const kInit[] = {"M115", "M155 S1", "M154 S1", "M27 S1", "M503"};
   for (const char* l : kInit) sender_.send(l, kTagInit);
   if (panel_[0]) sender_.send(panel_, kTagInit);
 }

@@ -5,6 +5,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "dialect_command.h"
+
 namespace uv {
 namespace esp {
 
@@ -46,8 +48,8 @@ void StatusFold::line(const char* text, uint8_t len, uint32_t nowMs) {
     case ReplyKind::Temps:
       hasTemps_ = true;
       memcpy(deciC_, r.deciC, sizeof deciC_);
-      memcpy(limitDeciC_, r.limitDeciC, sizeof limitDeciC_);
       break;
+    case ReplyKind::Other: limit(r.text, r.textLen); break;
     case ReplyKind::Probe:
       hasProbe_ = true;
       probe_ = static_cast<ProbeState>(r.state);
@@ -89,6 +91,19 @@ void StatusFold::job(const Reply& r) {
   if (job_ != before) changes_++;
 }
 
+void StatusFold::limit(const char* text, uint8_t len) {
+  // The T: line carries no limits (a host would show them as targets): they are config.
+  static const char kKey[] = "M850 thermal.limit.";
+  const uint8_t k = sizeof kKey - 1;
+  if (len < k + 3 || memcmp(text, kKey, k) != 0 || text[k] < '0' || text[k] >= '0' + kSensorCount || text[k + 1] != ' ') return;
+  int32_t milli = 0;
+  if (!parseMilli(text + k + 2, static_cast<uint8_t>(len - k - 2), milli)) return;
+  uint8_t i = static_cast<uint8_t>(text[k] - '0');
+  limitDeciC_[i] = static_cast<int16_t>(milli / 100);
+  limitsKnown_ = static_cast<uint8_t>(limitsKnown_ | (1 << i));
+  changes_++;
+}
+
 void StatusFold::write(JsonWriter& w, const UploadProgress* upload, uint8_t clients, uint32_t nowMs) const {
   w.beginObject();
   w.key("mega").string(online(nowMs) ? "online" : "offline");
@@ -106,11 +121,16 @@ void StatusFold::write(JsonWriter& w, const UploadProgress* upload, uint8_t clie
     w.beginArray();
     for (int16_t t : deciC_) w.fixed(t, 1);
     w.endArray();
-    w.key("limits").beginArray();
+  } else {
+    w.null();
+  }
+  w.key("limits");
+  if (limitsKnown_ == (1 << kSensorCount) - 1) {
+    w.beginArray();
     for (int16_t t : limitDeciC_) w.fixed(t, 1);
     w.endArray();
   } else {
-    w.null().key("limits").null();
+    w.null();
   }
   w.key("job");
   if (hasJob_ || upload) {

@@ -32,11 +32,14 @@ class StatusFold {
 
  private:
   void job(const Reply& r);
+  // `M850 thermal.limit.<i> <°C>`, from M503's listing or an M850 query: a sensor's soft limit.
+  void limit(const char* text, uint8_t len);
 
   bool heard_ = false;
   uint32_t lastHeardMs_ = 0;
   char firmware_[48] = "";
   bool hasPosition_ = false, hasTemps_ = false, hasProbe_ = false, hasJob_ = false;
+  uint8_t limitsKnown_ = 0;  // a bit per sensor whose soft limit the Mega has listed
   int32_t um_[3] = {};
   int16_t deciC_[kSensorCount] = {}, limitDeciC_[kSensorCount] = {};
   ProbeState probe_ = ProbeState::Open;

@@ -17,7 +17,7 @@ TEST_F(BoardTest, IdentifiesItselfAndReadsTheRealNanosTemperatures) {
   sim.runUs(600000);
   std::vector<std::string> t = cmd("M105");
   // 750 mV on every sensor: 25.0 °C, or 24.7 through simavr's ADC, which scales by 1023 (nano_sim_test).
-  EXPECT_TRUE(said(t, "T:24.7 /0.0 S0:24.7 /55.0 S1:24.7 /55.0 S2:24.7 /55.0 S3:24.7 /55.0 S4:24.7 /50.0 S5:24.7 /50.0"))
+  EXPECT_TRUE(said(t, "T:24.7 /0.0 S0:24.7 /0.0 S1:24.7 /0.0 S2:24.7 /0.0 S3:24.7 /0.0 S4:24.7 /0.0 S5:24.7 /0.0"))
       << (t.empty() ? "" : t[0]);
   ASSERT_GE(sim.nanoLines.size(), 2u);
   EXPECT_EQ(sim.nanoLines[0], "R");  // the LEDs are off before anything else is said

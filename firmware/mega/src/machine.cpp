@@ -82,6 +82,7 @@ void Machine::emergency() {
   if (arena_ != Arena::Run) clearArena();
   io_.motorsEnabled(false);
   homed_ = 0;  // steps may have been lost: home again after M999
+  feedUmS_ = 0;  // Marlin's M112 ends in a reset, which forgets the F: the configured speed again
   halted_ = true;
   if (long_.op != Op::None) finishLong(uv::kHalted);
 }

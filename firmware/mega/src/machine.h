@@ -231,6 +231,9 @@ class Machine {
   const char* firmwareName_;
 
   uint32_t now_ = 0;
+  // G0/G1's feed rate, µm/s: modal, as Marlin's, shared by G0 and G1 and by both ports, until the next F.
+  // 0 until one is given (start-up, M112): the configured travel speed.
+  uint32_t feedUmS_ = 0;
   uint8_t& movesFree_;
   LoopStats& stats_;
   uint8_t next_ = 0;  // the port whose line runs next (round robin)
@@ -251,7 +254,7 @@ class Machine {
     uint16_t fileIndex;
     uint8_t meshK;  // G29: the point being probed, in serpentine order
     bool moving;    // G29: on the way to that point
-    bool drain;     // G4, M400, G28: the queued moves end before the command's own work starts (Marlin)
+    bool drain;     // G4, M400, G28, M18/M84: the queued moves end before the command's own work starts (Marlin)
     bool fromCard;  // a line of a G-code file: it has no ok to send
     char servoOp;
     union {  // one command's state at a time: the two share their bytes

@@ -81,7 +81,10 @@ void Machine::runLong() {
       return;
     }
     case Op::Release:
-      if (!motion_.idle()) return;
+      if (long_.drain) {  // the moves queued before M18/M84 end first, where they were sent (Marlin)
+        if (!motion_.idle()) return;
+        long_.drain = false;
+      }
       io_.motorsEnabled(false);
       homed_ = 0;
       return finishLong();

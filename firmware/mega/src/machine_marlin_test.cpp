@@ -1,5 +1,6 @@
 // The command core as Marlin hosts (OctoPrint, Pronterface) see it: refusals as echo:, faults as Error:,
-// G4, M400 and G28 after the queued moves, the busy: interval (M113), M108 and M21 (protocol/mega.md §5a).
+// G4, M400, G28 and M18/M84 after the queued moves, the modal feed rate, M117 alone, the busy: interval
+// (M113), M108 and M21 (protocol/mega.md §5a).
 #include "machine.h"
 
 #include <gtest/gtest.h>
@@ -98,4 +99,62 @@ TEST_F(MarlinHostTest, M113SetsThisPortsBusyIntervalAndZeroSendsNone) {
 TEST_F(MarlinHostTest, M108IsAcceptedAndM21SaysWhetherTheCardIsThere) {
   EXPECT_EQ(payload("M108"), Lines{});
   EXPECT_EQ(payload("M21"), (Lines{"echo:SD card ok"}));
+}
+
+TEST_F(MarlinHostTest, TheFeedRateIsModalUntilTheNextF) {
+  m.cmd("G28");
+  m.cmd("G1 X40 Y30 F600");  // 10 mm/s: 50 mm along the diagonal, X's 40 mm set the time
+  EXPECT_GT(timed("M400"), 3900000u);
+  m.cmd("G1 X70 Y30");  // no F: still 10 mm/s, 3 s (at travel speed it would be about 0.4 s)
+  uint64_t kept = timed("M400");
+  EXPECT_GT(kept, 2900000u);
+  EXPECT_LT(kept, 3200000u);
+  m.cmd("G0 X40");  // G0 shares G1's feed rate, as in Marlin
+  EXPECT_GT(timed("M400"), 2900000u);
+  m.cmd("G1 F6000");  // F alone on its line is kept too: 100 mm/s
+  m.cmd("G1 X70");
+  EXPECT_LT(timed("M400"), 1000000u);
+  EXPECT_EQ(payload("M114"), (Lines{"X:70.000 Y:30.000 Z:0.000 E:0.000 Count X:5600 Y:2400 Z:0"}));
+}
+
+TEST_F(MarlinHostTest, ARefusedMoveKeepsTheFeedRateItHad) {
+  m.cmd("G28");
+  m.cmd("G1 X10 F600");
+  EXPECT_EQ(payload("G1 X9999 F6000"), (Lines{"echo:E15 target outside soft limits: X"}));
+  EXPECT_EQ(payload("G1 X20 F0"), (Lines{"echo:E11 bad or missing parameter: F"}));
+  m.cmd("M400");
+  m.cmd("G1 X40");  // still 10 mm/s
+  EXPECT_GT(timed("M400"), 2900000u);
+}
+
+TEST_F(MarlinHostTest, AfterM112AndM999TheFeedRateIsTheConfiguredSpeedAgain) {
+  m.cmd("G28");
+  m.cmd("G1 X10 F60");  // 1 mm/s
+  m.send("M112");
+  m.run(100000);
+  m.cmd("M999");
+  m.cmd("G28");
+  m.cmd("G1 X50");  // at travel speed (100 mm/s), as after Marlin's reset
+  EXPECT_LT(timed("M400"), 1500000u);
+}
+
+TEST_F(MarlinHostTest, M84FinishesTheQueuedMovesBeforeItReleasesTheMotors) {
+  for (const char* release : {"M84", "M18"}) {
+    m.cmd("G28");
+    m.cmd("G1 X150 Y150 F6000");
+    m.cmd(release);
+    m.cmd("M400");
+    EXPECT_EQ(payload("M114"), (Lines{"X:150.000 Y:150.000 Z:0.000 E:0.000 Count X:12000 Y:12000 Z:0"})) << release;
+    EXPECT_EQ(payload("G1 X10"), (Lines{"echo:E14 axis not homed: X"})) << release;
+  }
+}
+
+TEST_F(MarlinHostTest, M117AloneClearsTheMessage) {
+  EXPECT_EQ(payload("M117 UVP-1A2B"), Lines{});
+  m.run(300000);
+  EXPECT_EQ(m.display.rows[7], "UVP-1A2B        ");
+  EXPECT_EQ(payload("M117"), Lines{});
+  m.run(300000);
+  EXPECT_EQ(m.display.rows[7], "                ");
+  EXPECT_EQ(payload("M850"), (Lines{"echo:E11 bad or missing parameter"}));  // M850 still needs its key
 }

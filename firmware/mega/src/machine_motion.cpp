@@ -1,4 +1,5 @@
-// Motion commands of the command core: G0/G1 with soft limits, G4 and M400, G28, M18, M820 jog, M822, M113.
+// Motion commands of the command core: G0/G1 with soft limits and a modal feed rate, G4 and M400, G28, M18,
+// M820 jog, M822, M113.
 #include "error_codes.h"
 #include "machine.h"
 #include "progmem.h"
@@ -35,15 +36,16 @@ Machine::Result Machine::move(HostLink& port, const uv::Command& c) {
       return Result::Done;
     }
   }
-  uint32_t feed = 0;
   if (c.hasValue('F')) {
     if (c.value('F') <= 0) {
       port.errorLineP(uv::kBadParameter, UV_P("F"));
       return Result::Done;
     }
-    feed = static_cast<uint32_t>(c.value('F') / 60);  // mm/min in thousandths → µm/s
-    if (!feed) feed = 1;
+    // Kept only once the move is accepted: a refused line leaves the machine as it was.
+    feedUmS_ = static_cast<uint32_t>(c.value('F') / 60);  // mm/min in thousandths → µm/s
+    if (!feedUmS_) feedUmS_ = 1;
   }
+  uint32_t feed = feedUmS_;
   io_.motorsEnabled(true);
   if (motion_.moveTo(to, feed)) return Result::Done;  // a move answers once it is queued
   long_.op = Op::MoveRoom;
@@ -110,8 +112,8 @@ Machine::Result Machine::home(const uv::Command& c) {
 }
 
 Machine::Result Machine::release() {
-  motion_.stop();
   long_.op = Op::Release;
+  long_.drain = true;  // the queued moves end first, as Marlin's M18/M84: the head stops where they end
   return Result::Long;
 }
 

@@ -169,10 +169,7 @@ void Machine::sayHeadFaults() {
 uint8_t Machine::formatTemps(char* out) const {
   uv::Reply r{};
   r.kind = uv::ReplyKind::Temps;
-  for (uint8_t i = 0; i < uv::kSensorCount; i++) {
-    r.deciC[i] = head_.deciC()[i];
-    r.limitDeciC[i] = static_cast<int16_t>(config_.milli(Key::ThermalLimit0 + i) / 100);
-  }
+  for (uint8_t i = 0; i < uv::kSensorCount; i++) r.deciC[i] = head_.deciC()[i];
   return static_cast<uint8_t>(uv::formatReply(r, out, 112));
 }
 

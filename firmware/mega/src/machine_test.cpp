@@ -47,12 +47,14 @@ TEST_F(MachineTest, UnknownCommandsAndBadParametersAreRefusedWithTheirCodes) {
   EXPECT_EQ(payload("M155 S61"), (Lines{"echo:E11 bad or missing parameter"}));
 }
 
-TEST_F(MachineTest, M105ReportsEverySensorWithItsSoftLimitAndM155RepeatsIt) {
+TEST_F(MachineTest, M105ReportsEverySensorWithoutATargetAndM155RepeatsIt) {
   m.run(600000);
   Lines p = payload("M105");
   ASSERT_EQ(p.size(), 0u);  // T: lines are filtered as reports: look at the raw block
   Lines block = m.cmd("M105");
-  EXPECT_EQ(block[0], "T:25.0 /0.0 S0:25.0 /55.0 S1:25.0 /55.0 S2:25.0 /55.0 S3:25.0 /55.0 S4:25.0 /50.0 S5:25.0 /50.0");
+  EXPECT_EQ(block[0], "T:25.0 /0.0 S0:25.0 /0.0 S1:25.0 /0.0 S2:25.0 /0.0 S3:25.0 /0.0 S4:25.0 /0.0 S5:25.0 /0.0");
+  // No host may show a soft limit as a heater's target: a host that wants them reads the config.
+  EXPECT_EQ(payload("M850 thermal.limit.4"), (Lines{"M850 thermal.limit.4 50"}));
   m.cmd("M155 S1");
   size_t before = m.espLines.size();
   m.run(3100000);  // the third report needs its 8 ms on the wire

@@ -91,7 +91,8 @@ uint8_t parseCommand(const char* body, uint8_t len, Command& out) {
     uint8_t n = static_cast<uint8_t>(end - p);
     if (kind == ArgKind::Text)
       while (n > 0 && p[n - 1] == ' ') n--;
-    if (n == 0) return kBadParameter;
+    // M117 alone clears the panel's message, as Marlin's does; every other text or name is required.
+    if (n == 0 && !(out.letter == 'M' && out.code == 117)) return kBadParameter;
     if (kind == ArgKind::FileName) {
       // A leading `/` names the card's root, its only folder (OctoPrint writes it).
       if (n > 0 && *p == '/') {

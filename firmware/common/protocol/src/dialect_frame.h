@@ -6,7 +6,9 @@
 namespace uv {
 
 constexpr uint8_t kDialectMaxLine = 96;
-constexpr uint32_t kMaxLineNumber = 2147483647u;
+// The last line number: one short of int32's end, so that `Resend: <last + 1>` always names a number
+// (protocol/mega.md §1). A larger N makes the line corrupt (E2).
+constexpr uint32_t kMaxLineNumber = 2147483646u;
 
 struct Frame {
   uint8_t error;      // 0 = good frame, else an ErrorCode 1-6

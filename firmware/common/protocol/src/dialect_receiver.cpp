@@ -100,8 +100,10 @@ Acceptance LineReceiver::accept(const char* text, uint8_t len, bool overflow, Re
     ok(sink);
     return Acceptance::Replied;
   }
-  // Numbers do not wrap: after the largest there is no next line, only M110 (protocol/mega.md §2).
-  if (last_ < static_cast<int32_t>(kMaxLineNumber) && f.n == last_ + 1) {
+  // Numbers do not wrap: after the largest there is no next line, only M110 (protocol/mega.md §2). As
+  // last_ never passes kMaxLineNumber, last_ + 1 (here and in askResend) always fits.
+  static_assert(kMaxLineNumber < 2147483647u, "last_ + 1 must fit an int32_t");
+  if (f.n == last_ + 1) {
     last_ = f.n;
     resyncing_ = false;
     if (f.bodyLen) return Acceptance::Execute;

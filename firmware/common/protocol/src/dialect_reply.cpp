@@ -80,7 +80,7 @@ const char* expect(const char* p, const char* end, const char* literal) {
   return (p && startsWith(p, end, literal)) ? p + strlen(literal) : nullptr;
 }
 
-// `T:<hottest> /0.0` (nothing heats: no target), then `S<i>:<v> /<limit>` for each sensor (mega.md §4).
+// `T:<hottest> /0.0`, then `S<i>:<v> /0.0` for each sensor: nothing heats, so no target (mega.md §4).
 bool parseTemps(const char* p, const char* end, Reply& r) {
   int16_t hot = 0;
   p = scanDeci(p + 2, end, 3, hot);
@@ -89,8 +89,7 @@ bool parseTemps(const char* p, const char* end, Reply& r) {
     char tag[5] = {' ', 'S', static_cast<char>('0' + i), ':', '\0'};
     p = expect(p, end, tag);
     if (p) p = scanDeci(p, end, 3, r.deciC[i]);
-    p = expect(p, end, " /");
-    if (p) p = scanDeci(p, end, 3, r.limitDeciC[i]);
+    p = expect(p, end, " /0.0");
   }
   return p == end;
 }
@@ -357,8 +356,9 @@ size_t formatReply(const Reply& r, char* buf, size_t size) {
       o.num(static_cast<int32_t>(r.n));
       break;
     case ReplyKind::Temps: {
-      // Hosts read `T:` as a hotend and `Tn:` as more of them, with the `/` value as a heater's target:
-      // one `T:` with no target, and the sensors as `S0`-`S5` (OctoPrint keeps them as custom sensors).
+      // Hosts read `T:` as a hotend and `Tn:` as more of them, and every `/` value as a heater's target:
+      // one `T:` and the sensors as `S0`-`S5` (OctoPrint keeps them as custom sensors), all with target
+      // 0.0. The soft limits are config (`M850 thermal.limit.<i>`), never a target a host would show.
       uint8_t hot = 0;
       for (uint8_t i = 1; i < kSensorCount; i++)
         if (r.deciC[i] > r.deciC[hot]) hot = i;
@@ -369,8 +369,7 @@ size_t formatReply(const Reply& r, char* buf, size_t size) {
         char tag[5] = {' ', 'S', static_cast<char>('0' + i), ':', '\0'};
         o.put(tag);
         o.deci(r.deciC[i]);
-        o.putP(UV_P(" /"));
-        o.deci(r.limitDeciC[i]);
+        o.putP(UV_P(" /0.0"));
       }
       break;
     }

@@ -28,7 +28,6 @@ struct Reply {
   uint32_t value;        // cap value, firmware protocol version
   uint8_t state;         // JobState, ProbeState, or test mode (0 quick, 1 full)
   int16_t deciC[kSensorCount];
-  int16_t limitDeciC[kSensorCount];
   int32_t um[3];
   int32_t steps[3];
   const char* text;      // into the line: message, echo text, ` k=v` fields, firmware name, cap name, other

@@ -83,9 +83,7 @@ json replyJson(const Reply& r) {
     case ReplyKind::Fault: return {{"kind", "fault"}, {"code", r.code}, {"message", text}};
     case ReplyKind::Resend: return {{"kind", "resend"}, {"n", r.n}};
     case ReplyKind::Temps:
-      return {{"kind", "temps"},
-              {"deciC", std::vector<int>(r.deciC, r.deciC + kSensorCount)},
-              {"limitDeciC", std::vector<int>(r.limitDeciC, r.limitDeciC + kSensorCount)}};
+      return {{"kind", "temps"}, {"deciC", std::vector<int>(r.deciC, r.deciC + kSensorCount)}};
     case ReplyKind::Position:
       return {{"kind", "position"}, {"um", {r.um[0], r.um[1], r.um[2]}}, {"steps", {r.steps[0], r.steps[1], r.steps[2]}}};
     case ReplyKind::ProbePoint: return {{"kind", "probePoint"}, {"um", {r.um[0], r.um[1], r.um[2]}}};
