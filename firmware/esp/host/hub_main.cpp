@@ -1,5 +1,7 @@
 // The ESP's hub run on the host: the same core (bridge, print intake, live channel, HTTP rules,
-// Wi-Fi settings) behind a real HTTP and WebSocket server (Boost.Beast), in front of the whole
+// Wi-Fi settings, and the hand-over between the network's side and loop()'s, as the ESP8266 runs
+// it: one thread, the network's turn between loop()'s passes) behind a real HTTP and WebSocket
+// server (Boost.Beast), in front of the whole
 // simulated Mega of the Mega's host tests (its command core with the real Nano logic). The
 // end-to-end tests drive the app against it in Chromium, with the app served the way the ESP
 // serves it: gzipped files from the flash image (`npm run build:esp`), with ETags.
@@ -24,16 +26,20 @@
 #include "http_rules.h"
 #include "http_sessions.h"
 #include "live_sessions.h"
+#include "loop_desk.h"
 #include "mega_rig.h"
+#include "network_desk.h"
 #include "print_intake.h"
 #include "wifi_settings.h"
 
 namespace net = boost::asio;
 using tcp = net::ip::tcp;
 using namespace uv::esp;
-using hub::Answer;
 
 namespace {
+
+// The hub's HTTP answer; uv::esp::Answer is loop()'s, in the hand-over's rings.
+using Answer = hub::Answer;
 
 mega::MegaRig* rigPtr = nullptr;
 uint32_t virtualMs() { return static_cast<uint32_t>(rigPtr->nowUs / 1000); }
@@ -72,6 +78,16 @@ Method methodOf(hub::http::verb v) {
   }
 }
 
+// A request waiting for loop(): the session's way to answer it. The desk's handle on it; on the
+// host it is held, not weak, since a Beast session that waits reads nothing and so never learns
+// that its client left (a POST whose body is cut short is still seen: Routes::lost).
+using Later = std::function<void(Answer)>;
+struct LaterHandle {
+  std::shared_ptr<Later> later;
+  std::shared_ptr<Later> lock() const { return later; }
+  bool expired() const { return !later; }
+};
+
 class Hub : public hub::Routes {
  public:
   Hub(net::io_context& io, std::filesystem::path www, std::filesystem::path state)
@@ -96,27 +112,26 @@ class Hub : public hub::Routes {
       for (; fed_ < rig_.espLines.size(); fed_++)
         for (char c : rig_.espLines[fed_] + "\n") bridge_.received(c, virtualMs());
       bridge_.poll(virtualMs());
+      loopDesk_.poll(virtualMs(), [this] { return ++jobs_; });
+      pump();     // as the ESP8266's loop() ends: its answers go out at once
       io_.poll();  // the network gets its turn every millisecond of the hub's time, as in the ESP's loop
-      if (intake_.busy()) {
-        Intake r = intake_.step([this] { return ++jobs_; });
-        if (r != Intake::Working && waiting_) {
-          waiting_(Answer{intake_.status(), "application/json", intake_.response(), {}});
-          waiting_ = nullptr;
-        }
-      }
     }
   }
 
+  // The network's side, as onBody on the ESP: a POST's headers are judged before a byte of its
+  // body is kept, by what loop() last said of the Mega and the spool.
   bool beforeBody(const hub::http::request_parser<hub::http::string_body>& parser, Answer& now) override {
     const auto& req = parser.get();
     std::string path(req.target());
     if (path != "/print" || req.method() != hub::http::verb::post) return false;
+    pump();
     auto ct = req.find(hub::http::field::content_type);
     std::string contentType = ct == req.end() ? "" : std::string(ct->value());
     bool hasLength = parser.content_length().has_value();
     uint32_t length = hasLength ? static_cast<uint32_t>(std::min<uint64_t>(*parser.content_length(), 0xffffffffu)) : 0;
-    HttpError e = admitPrintRequest(contentType.empty() ? nullptr : contentType.c_str(), hasLength, length, bridge_, virtualMs());
-    if (!e.status) return false;  // admitted: the Mega is held for this body
+    HttpError e = printHeaderError(contentType.empty() ? nullptr : contentType.c_str(), hasLength, length);
+    if (!e.status) e = admissionError(desk_.admitBody());
+    if (!e.status) return false;  // the body is arriving: the spool is this request's
     now = error(e.status, e.code, e.message);
     return true;
   }
@@ -130,41 +145,20 @@ class Hub : public hub::Routes {
     }
     HttpError m = methodNotAllowed(path.c_str(), methodOf(req.method()));
     if (m.status) return now = error(m.status, m.code, m.message), true;
-    if (path == "/status") {
-      char buf[2048];
-      JsonWriter w(buf, sizeof buf);
-      bridge_.writeStatus(w, virtualMs());
-      now = {200, "application/json", w.text(), {}};
-      return true;
-    }
+    if (path == "/status") return handOver(Ask::Status, now, std::move(later));
     if (path == "/print" && req.method() == hub::http::verb::post) {
-      std::ofstream(body_.path(), std::ios::binary) << req.body();
-      intake_.begin();
-      waiting_ = std::move(later);
-      return false;
+      std::ofstream(body_.path(), std::ios::binary) << req.body();  // the whole body: onBody's writes
+      return handOver(Ask::CheckBody, now, std::move(later));
     }
-    if (path == "/print") {  // DELETE
-      char buf[128];
-      JsonWriter w(buf, sizeof buf);
-      w.beginObject().key("job").beginObject().key("state").string("aborted").endObject().endObject();
-      if (intake_.busy()) {
-        intake_.cancel();
-        if (waiting_) waiting_(Answer{intake_.status(), "application/json", intake_.response(), {}});
-        waiting_ = nullptr;
-      } else if (!bridge_.cancel()) {
-        return now = error(409, "busy", "nothing to cancel"), true;
-      }
-      now = {200, "application/json", w.text(), {}};
-      return true;
-    }
+    if (path == "/print") return handOver(Ask::Cancel, now, std::move(later));  // DELETE
     if (path == "/wifi") return now = wifi(req), true;
     now = appFile(req, path);
     return true;
   }
 
-  // As the ESP's onDisconnect: a POST /print body cut short frees the Mega it held.
+  // As the ESP's onDisconnect: a POST /print body cut short frees the spool.
   void lost(const hub::http::request_parser<hub::http::string_body>& parser) override {
-    if (parser.get().target() == "/print" && parser.get().method() == hub::http::verb::post) bridge_.release();
+    if (parser.get().target() == "/print" && parser.get().method() == hub::http::verb::post) desk_.bodyAbandoned();
   }
 
   void upgrade(boost::beast::tcp_stream&& stream, hub::http::request<hub::http::string_body> req) override {
@@ -173,6 +167,20 @@ class Hub : public hub::Routes {
   }
 
  private:
+  // A request handed to loop(), answered later; with no room, 503 now (true).
+  bool handOver(Ask ask, Answer& now, Later later) {
+    pump();
+    if (desk_.hand(LaterHandle{std::make_shared<Later>(std::move(later))}, ask)) return false;
+    now = error(503, "overloaded", "too many requests are waiting for the ESP; try again");
+    return true;
+  }
+  // loop()'s answers, each to its request.
+  void pump() {
+    desk_.pump([](Later& later, const uv::esp::Answer& a) {
+      later(Answer{a.status, a.plainText ? "text/plain" : "application/json", a.body, {}});
+    });
+  }
+
   Answer wifi(const hub::http::request<hub::http::string_body>& req) {
     char buf[256];
     JsonWriter w(buf, sizeof buf);
@@ -209,8 +217,11 @@ class Hub : public hub::Routes {
   LiveChannel live_{sessions_};
   Bridge bridge_{wire_, live_};
   uvtest::HostBody body_;
-  PrintIntake<uvtest::HostBody, uvtest::HostHeaderParse> intake_{body_, bridge_, uvtest::HostHeaderParse{}};
-  std::function<void(Answer)> waiting_;
+  using BodyCheck = PrintIntake<uvtest::HostBody, uvtest::HostHeaderParse>;
+  BodyCheck intake_{body_, bridge_, uvtest::HostHeaderParse{}};
+  HandOver rings_;
+  NetworkDesk<LaterHandle> desk_{rings_};
+  LoopDesk<Bridge, BodyCheck> loopDesk_{rings_, bridge_, intake_};
   WifiSettings wifi_{};
   uint32_t jobs_ = 0;
   size_t fed_ = 0;
