@@ -7,6 +7,7 @@ PACKAGES=(
   gcc-avr avr-libc arduino-core-avr         # AVR images of the Nano and Mega firmware
   cmake g++ libgtest-dev nlohmann-json3-dev # C++ host tests
   clang                                     # the sanitizer builds and libFuzzer (scripts/fuzz.sh, tsan.sh)
+  lld wasi-libc libc++-dev-wasm32 libclang-rt-dev-wasm32  # the firmware's cores as WebAssembly (scripts/build-wasm.sh)
   libboost-dev                              # the ESP hub on the host: HTTP and WebSocket (Boost.Beast)
   simavr libsimavr-dev libelf-dev           # running the AVR images in simulation
   python3 python3-venv                      # vector authoring, the vector-binding check, printcore's venv

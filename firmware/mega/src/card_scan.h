@@ -13,7 +13,7 @@
 
 namespace mega {
 
-class CardScan : public StopSource {
+class CardScan final : public StopSource {
  public:
   CardScan(Storage& sd, const uv::JobHeader& h, const uv::Machine& m, uint32_t passes) : sd_(sd), header_(h), machine_(m), passes_(passes) {}
   ~CardScan();

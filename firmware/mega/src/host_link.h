@@ -19,7 +19,7 @@ class TxPort {
   virtual void kick() = 0;
 };
 
-class HostLink : public uv::ReplySink, private uv::FlowCounters {
+class HostLink final : public uv::ReplySink, private uv::FlowCounters {
  public:
   // movesFree: the motion queue's free slots, for the P field of every ok. window: this port's
   // line slots (kUsbWindow, kEspWindow).

@@ -54,7 +54,7 @@ class HostPipe : public TxPort {
   uint64_t credit_ = 0;
 };
 
-class FakeIo : public MachineIo {
+class FakeIo final : public MachineIo {
  public:
   explicit FakeIo(MotionRig& rig) : rig_(rig) {}
   uint8_t endstops() override { return rig_.endstops(); }

@@ -57,7 +57,7 @@ class SdCells : public uv::CellSource {
 // An SdCells with its cursors beside it: the stop planner opens kPlannerCursors (32) of them, the
 // scan planner one an LED, so a scan job on the card does not carry 28 it never opens (308 bytes).
 template <uint8_t N>
-class SdCellsWith : public SdCells {
+class SdCellsWith final : public SdCells {
  public:
   SdCellsWith(Storage& sd, FileHandle cells, FileHandle index) : SdCells(sd, cells, index, store_) {}
 

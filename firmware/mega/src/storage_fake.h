@@ -1,12 +1,13 @@
-// Host tests' SD card: real files in a temporary directory. What is written stays in memory until
-// sync() or close(), as in SdFat's block cache, so powerCut() loses exactly what a real card would.
+// Host tests' and the simulated printer's SD card, in memory: what the card durably holds, by name
+// in the order a directory lists it, and each open file's own copy. What is written stays in that
+// copy until sync() or close(), as in SdFat's block cache, so powerCut() loses exactly what a real
+// card would. No file system: it builds for WebAssembly too.
 #pragma once
 #include <stdio.h>
 #include <string.h>
 
-#include <filesystem>
-#include <fstream>
 #include <iterator>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -18,12 +19,6 @@ class FakeStorage : public Storage {
  public:
   static constexpr uint8_t kHandles = 4;
 
-  FakeStorage() {
-    char tmpl[] = "/tmp/uv-sd-XXXXXX";
-    dir_ = mkdtemp(tmpl);
-  }
-  ~FakeStorage() { std::filesystem::remove_all(dir_); }
-
   bool inserted = true;
   long failWritesAfter = -1;  // bytes the card still takes before every write fails; -1 = never
 
@@ -34,14 +29,13 @@ class FakeStorage : public Storage {
     for (FileHandle h = 0; h < kHandles; h++) {
       File& f = files_[h];
       if (f.open) continue;
-      std::string path = dir_ + "/" + name;
-      bool there = std::filesystem::exists(path);
-      if (mode == Mode::Read && !there) return -1;
+      auto there = card_.find(name);
+      if (mode == Mode::Read && there == card_.end()) return -1;
       f = File{};
       f.open = true;
       f.name = name;
       f.writable = mode != Mode::Read;
-      if (mode != Mode::Create && there) f.data = slurp(path);
+      if (mode != Mode::Create && there != card_.end()) f.data.assign(there->second.begin(), there->second.end());
       f.dirty = mode == Mode::Create;
       return h;
     }
@@ -88,7 +82,7 @@ class FakeStorage : public Storage {
     File* f = file(h);
     if (!f) return false;
     if (f->dirty) {
-      std::ofstream(dir_ + "/" + f->name, std::ios::binary).write(f->data.data(), static_cast<std::streamsize>(f->data.size()));
+      card_[f->name].assign(f->data.data(), f->data.size());
       f->dirty = false;
       syncs++;
     }
@@ -99,20 +93,20 @@ class FakeStorage : public Storage {
     sync(h);
     files_[h].open = false;
   }
-  bool exists(const char* name) override { return inserted && std::filesystem::exists(dir_ + "/" + name); }
-  bool remove(const char* name) override { return inserted && std::filesystem::remove(dir_ + "/" + name); }
+  bool exists(const char* name) override { return inserted && card_.count(name); }
+  bool remove(const char* name) override { return inserted && card_.erase(name); }
   bool rename(const char* from, const char* to) override {
     if (!inserted || !exists(from) || exists(to)) return false;
-    std::filesystem::rename(dir_ + "/" + from, dir_ + "/" + to);
+    card_[to] = std::move(card_[from]);
+    card_.erase(from);
     return true;
   }
   bool entry(uint16_t index, char* name, uint32_t& size) override {
-    if (!inserted) return false;
-    std::vector<std::filesystem::directory_entry> all(std::filesystem::directory_iterator(dir_), {});
-    std::sort(all.begin(), all.end());
-    if (index >= all.size()) return false;
-    snprintf(name, kFileNameMax + 1, "%s", all[index].path().filename().c_str());
-    size = static_cast<uint32_t>(all[index].file_size());
+    if (!inserted || index >= card_.size()) return false;
+    auto it = card_.begin();
+    std::advance(it, index);
+    snprintf(name, kFileNameMax + 1, "%s", it->first.c_str());
+    size = static_cast<uint32_t>(it->second.size());
     return true;
   }
 
@@ -128,10 +122,11 @@ class FakeStorage : public Storage {
     return n;
   }
   // What the card durably holds.
-  std::string contents(const std::string& name) const { return slurpString(dir_ + "/" + name); }
-  void put(const std::string& name, const std::string& text) const {
-    std::ofstream(dir_ + "/" + name, std::ios::binary) << text;
+  std::string contents(const std::string& name) const {
+    auto f = card_.find(name);
+    return f == card_.end() ? std::string() : f->second;
   }
+  void put(const std::string& name, const std::string& text) { card_[name] = text; }
   long bytesWritten = 0;
   long syncs = 0;
 
@@ -143,16 +138,7 @@ class FakeStorage : public Storage {
     size_t pos = 0;
   };
   File* file(FileHandle h) { return h >= 0 && h < kHandles && files_[h].open && inserted ? &files_[h] : nullptr; }
-  static std::vector<char> slurp(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    return std::vector<char>(std::istreambuf_iterator<char>(in), {});
-  }
-  static std::string slurpString(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    return std::string(std::istreambuf_iterator<char>(in), {});
-  }
-
-  std::string dir_;
+  std::map<std::string, std::string> card_;  // what the card durably holds, by name
   File files_[kHandles];
   uint8_t scratch_[kScratchBytes];
 };
