@@ -7,6 +7,9 @@ cd "$(dirname "$0")/.."
 
 out=build/wasm
 mkdir -p "$out/obj"
+# One build at a time: the Vitest files that load the module each ask for it, in parallel workers.
+exec 9>"$out/.lock"
+flock 9
 srcs=(firmware/common/protocol/src/*.cpp firmware/common/planner/src/*.cpp firmware/mega/src/*.cpp
   firmware/nano/src/fire_plan.cpp firmware/nano/src/thermal_guard.cpp firmware/nano/src/printhead.cpp
   firmware/nano/src/scan_store.cpp firmware/wasm/printer_module.cpp)

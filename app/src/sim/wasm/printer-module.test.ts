@@ -5,12 +5,12 @@ import { readFileSync } from 'node:fs';
 import { beforeAll, describe, expect, it } from 'vitest';
 import { type HostPort, PrinterModule } from './printer-module';
 
-let bytes: Buffer;
+let bytes: Uint8Array<ArrayBuffer>;
 
 beforeAll(() => {
   // From the firmware's sources, rebuilt where they changed (npm test installs clang's wasm32 parts).
   execFileSync('bash', ['scripts/build-wasm.sh'], { stdio: 'pipe' });
-  bytes = readFileSync('build/wasm/printer.wasm');
+  bytes = new Uint8Array(readFileSync('build/wasm/printer.wasm'));
 }, 600_000);
 
 async function powerUp(): Promise<PrinterModule> {

@@ -1,0 +1,76 @@
+// The Mega's two M29 refusals of a scan job, made by its own C++ (as WebAssembly) and met through
+// the app's device layer: the drift that the TypeScript printer shows, where it runs both jobs.
+import { execFileSync } from 'node:child_process';
+import { readFileSync } from 'node:fs';
+import { beforeAll, describe, expect, it } from 'vitest';
+import { CommandError } from '../../device/dialect-client';
+import { DialectLink } from '../../device/dialect-link';
+import type { PrintJob } from '../../protocol/job-types';
+import { PrinterModule } from './printer-module';
+import { WasmWire } from './wasm-wire';
+
+let bytes: Uint8Array<ArrayBuffer>;
+
+beforeAll(() => {
+  execFileSync('bash', ['scripts/build-wasm.sh'], { stdio: 'pipe' });
+  bytes = new Uint8Array(readFileSync('build/wasm/printer.wasm'));
+}, 600_000);
+
+/** Runs the machine until `p` settles (at most `maxUs` of its time); its outcome. */
+async function settle<T>(wire: WasmWire, p: Promise<T>, maxUs = 120_000_000): Promise<T> {
+  let done = false;
+  p.then(() => (done = true), () => (done = true));
+  for (let t = 0; !done && t < maxUs; t += 5000) {
+    wire.advance(5000);
+    for (let i = 0; i < 10; i++) await Promise.resolve();
+  }
+  return p;
+}
+
+async function connected(): Promise<{ wire: WasmWire; link: DialectLink }> {
+  const wire = new WasmWire(await PrinterModule.load(bytes));
+  const link = new DialectLink(wire.host, wire.clientOptions);
+  await settle(wire, link.open(() => {}, () => {}));
+  return { wire, link };
+}
+
+function scanJob(cols: number, rows: number, fullUs: number, cell: (x: number, y: number) => number, pitchUm = 100): PrintJob {
+  return {
+    name: 'scan',
+    grid: { cols, rows },
+    pitchUm: { x: pitchUm, y: pitchUm },
+    originUm: { x: 5000, y: 4000 },
+    dose: { map: 'linear', fullUs },
+    leds: { offsets: [[0, 0], [0, 1], [0, 2], [0, 3]] },
+    strategy: { name: 'scan' },
+    gridData: Array.from({ length: rows }, (_, y) => Array.from({ length: cols }, (_, x) => cell(x, y))),
+  };
+}
+
+/** The job's upload, and the error the Mega answered it with. */
+async function refusal(job: PrintJob): Promise<CommandError> {
+  const { wire, link } = await connected();
+  const e = await settle(wire, link.startJob(job, () => {}).then(() => null, (err: unknown) => err));
+  expect(e).toBeInstanceOf(CommandError);
+  return e as CommandError;
+}
+
+describe('the Mega refuses at M29, before any light (the firmware as WebAssembly)', () => {
+  it('a scan job with a pass of 2100 s or more: its stroke counts 0.5 µs ticks in 32 bits', async () => {
+    // 5 mm cells at 10 s each, every other one lit: a pass of 240 windows takes 2400 s.
+    const e = await refusal(scanJob(240, 4, 10_000_000, (x) => (x % 2 ? 255 : 0), 5000));
+    expect(e.code).toBe(29);
+  });
+
+  it("a photo whose passes' programs outrun the 115200-baud printhead link", async () => {
+    // Every cell another gray: each LED switches twice a 2 ms window, some 30 kB/s of program lines.
+    const e = await refusal(scanJob(200, 8, 2000, (x, y) => 1 + ((x * 97 + y * 31) % 253)));
+    expect(e.code).toBe(29);
+  });
+
+  it('and takes a scan job that fits both', async () => {
+    const { wire, link } = await connected();
+    await settle(wire, link.command('G28'));
+    await settle(wire, link.startJob(scanJob(40, 8, 2000, (x, y) => ((x + y) % 5 ? 0 : 255)), () => {}));
+  });
+});
