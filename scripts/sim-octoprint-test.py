@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Drives the simulated printer with OctoPrint's own serial layer (octoprint.util.comm.MachineCom, OctoPrint
-1.11 from PyPI, default settings) over the pty of `npm run sim -- --pty`, as a user of OctoPrint would: connect,
+1.11 from PyPI, default settings) over the pty of `npm run sim -- --pty` (its further arguments passed on: npm test gives `--firmware`, the firmware's
+own C++ as WebAssembly), as a user of OctoPrint would: connect,
 temperatures, jogs refused before homing and past the bed's edge, home, a file whose F holds for the moves after
 it, M84 after a move, stream a file, pause, resume, cancel, upload to the card, list it, print it from the card,
 M112 and reconnect. Each step prints PASS or FAIL; a step
@@ -165,7 +166,7 @@ def run_local(path):
 
 # Its own process group: npx starts node, and both must go when the test ends.
 SPEED = 4  # the printer's seconds per wall-clock second
-sim = subprocess.Popen(["npx", "tsx", "scripts/sim.ts", "--pty", "--speed", str(SPEED)], cwd=ROOT,
+sim = subprocess.Popen(["npx", "tsx", "scripts/sim.ts", "--pty", "--speed", str(SPEED)] + sys.argv[1:], cwd=ROOT,
                        stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, start_new_session=True)
 pty = None
 for out in sim.stdout:

@@ -32,7 +32,7 @@ def wait(pred, seconds):
 
 
 # Its own process group: npx starts node, and both must go when the test ends.
-sim = subprocess.Popen(["npx", "tsx", "scripts/sim.ts", "--pty", "--speed", "20"], cwd=ROOT,
+sim = subprocess.Popen(["npx", "tsx", "scripts/sim.ts", "--pty", "--speed", "20"] + sys.argv[1:], cwd=ROOT,
                        stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, start_new_session=True)
 pty = None
 for line in sim.stdout:

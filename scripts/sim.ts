@@ -1,8 +1,13 @@
-// npm run sim -- [--tcp PORT] [--pty] [--speed N]: the simulated printer as a serial device for desktop hosts
-// (printrun, Pronterface, OctoPrint). TCP listens on 127.0.0.1; --pty bridges a pseudo-terminal with socat.
-import { spawn, type ChildProcess } from 'node:child_process';
+// npm run sim -- [--tcp PORT] [--pty] [--speed N] [--firmware]: the simulated printer as a serial device for
+// desktop hosts (printrun, Pronterface, OctoPrint). TCP listens on 127.0.0.1; --pty bridges a pseudo-terminal
+// with socat. --firmware runs the firmware's own C++ as WebAssembly (scripts/build-wasm.sh) instead of the
+// TypeScript printer.
+import { execFileSync, spawn, type ChildProcess } from 'node:child_process';
+import { readFileSync } from 'node:fs';
 import net from 'node:net';
 import { SimPrinter } from '../app/src/sim/sim-printer';
+import { FirmwareSerial } from '../app/src/sim/wasm/firmware-serial';
+import { PrinterModule } from '../app/src/sim/wasm/printer-module';
 
 function arg(name: string): string | undefined {
   const i = process.argv.indexOf(name);
@@ -15,7 +20,12 @@ const speed = Number(arg('--speed') ?? 1);
 let socket: net.Socket | null = null;
 let booted = false;
 
-const printer = new SimPrinter((bytes) => socket?.write(Buffer.from(bytes, 'latin1')));
+const toHost = (bytes: string) => socket?.write(Buffer.from(bytes, 'latin1'));
+async function firmware(): Promise<FirmwareSerial> {
+  execFileSync('bash', ['scripts/build-wasm.sh'], { stdio: ['ignore', 'ignore', 'inherit'] });
+  return new FirmwareSerial(await PrinterModule.load(new Uint8Array(readFileSync('build/wasm/printer.wasm'))), toHost);
+}
+const printer = process.argv.includes('--firmware') ? await firmware() : new SimPrinter(toHost);
 const start = Date.now();
 setInterval(() => printer.tick((Date.now() - start) * speed), 10).unref?.();
 
@@ -83,7 +93,8 @@ function serveThePty(link: string, tcpPort: number): void {
 
 server.listen(port, '127.0.0.1', () => {
   const actual = (server.address() as net.AddressInfo).port;
-  console.log(`simulated printer on tcp 127.0.0.1:${actual} (115200-baud Mega dialect, ${speed}x time)`);
+  const which = printer instanceof FirmwareSerial ? "the firmware's C++ as WebAssembly" : 'the TypeScript printer';
+  console.log(`simulated printer on tcp 127.0.0.1:${actual} (115200-baud Mega dialect, ${speed}x time; ${which})`);
   if (!pty) return;
   const link = `/tmp/uvsim-${process.pid}`;
   serveThePty(link, actual);

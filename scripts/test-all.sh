@@ -38,7 +38,8 @@ printcore_test() {
   [[ -x build/venv/bin/python ]] || python3 -m venv build/venv || return 1
   build/venv/bin/python -c 'import printrun' 2>/dev/null ||
     build/venv/bin/pip install -q --no-deps Printrun pyserial appdirs || return 1
-  build/venv/bin/python scripts/sim-printcore-test.py 2>&1 | grep -v '^WARNING'
+  # The firmware's own C++ (as WebAssembly) behind the pty: what a host meets on the machine.
+  build/venv/bin/python scripts/sim-printcore-test.py --firmware 2>&1 | grep -v '^WARNING'
   return "${PIPESTATUS[0]}"
 }
 
@@ -49,11 +50,11 @@ octoprint_test() {
   [[ -x build/octoprint-venv/bin/python ]] || "$python" -m venv build/octoprint-venv || return 1
   build/octoprint-venv/bin/python -c 'import octoprint' 2>/dev/null ||
     build/octoprint-venv/bin/pip install -q OctoPrint==1.11.8 || return 1
-  build/octoprint-venv/bin/python scripts/sim-octoprint-test.py
+  build/octoprint-venv/bin/python scripts/sim-octoprint-test.py --firmware
 }
 
-stage "Desktop host: printcore over the simulated printer's pty" printcore_test
-stage "Desktop host: OctoPrint 1.11 (MachineCom, default settings) over the simulated printer's pty" octoprint_test
+stage "Desktop host: printcore over the firmware's C++ (WebAssembly) on a pty" printcore_test
+stage "Desktop host: OctoPrint 1.11 (MachineCom, default settings) over the firmware's C++ (WebAssembly) on a pty" octoprint_test
 stage "End-to-end in Chromium (Playwright)" npx playwright test
 
 echo

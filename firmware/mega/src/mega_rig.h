@@ -135,14 +135,15 @@ class MegaRig {
   // The Mega restarts (its watchdog, a brown-out, a host opening the USB port): everything on the
   // chip is lost, what was not synced to the card too. The Nano keeps running through the
   // `bootUs` the Mega takes to start again, unless `powerLost` takes it down as well. The head
-  // stays where it physically is, so the switches move relative to the new count.
+  // stays where it physically is, and the switches where they are; the Mega's count starts at 0.
   void reset(uint64_t bootUs, bool powerLost = false) {
     sd.powerCut();
     if (powerLost) nano.powerCycle();
-    int32_t at[3];
-    rig.motion.positionSteps(at);
-    int32_t switches[3];
-    for (int a = 0; a < 3; a++) switches[a] = rig.switchAt[a] == INT32_MIN ? INT32_MIN : rig.switchAt[a] - at[a];
+    int32_t where[3], switches[3];
+    for (int a = 0; a < 3; a++) {
+      where[a] = rig.head[a];
+      switches[a] = rig.switchAt[a];
+    }
     machine.~Machine();
     usbLink.~HostLink();
     espLink.~HostLink();
@@ -156,7 +157,10 @@ class MegaRig {
     new (&store) ConfigStore(config, sd, eeprom);
     new (&head) PrintheadLink(nano);
     new (&rig) MotionRig(config);
-    for (int a = 0; a < 3; a++) rig.switchAt[a] = switches[a];
+    for (int a = 0; a < 3; a++) {
+      rig.switchAt[a] = switches[a];
+      rig.head[a] = where[a];
+    }
     new (&io) FakeIo(rig);
     movesFree = StepEngine::kBlocks;
     stats = {};

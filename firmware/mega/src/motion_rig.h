@@ -43,12 +43,15 @@ class MotionRig {
   bool timerOn = false;   // the step timer runs (kept between runs, like the hardware)
   uint64_t nextTick = 0;
 
+  // Where the head physically is, in steps from where it stood at power-up: the pulses counted as
+  // the pins see them. The firmware's own count (pos()) is reset by homing; the head stays put, and
+  // its switch closed under it.
+  int32_t head[3] = {0, 0, 0};
+
   uint8_t endstops() const {
-    int32_t p[3];
-    engine.position(p);
     uint8_t bits = 0;
     for (uint8_t a = 0; a < 3; a++)
-      if (p[a] <= switchAt[a]) bits |= static_cast<uint8_t>(1 << a);
+      if (head[a] <= switchAt[a]) bits |= static_cast<uint8_t>(1 << a);
     return endstopOverride ? endstopOverride(bits) : bits;
   }
   std::function<uint8_t(uint8_t)> endstopOverride;  // what the interrupt reads instead
@@ -84,6 +87,8 @@ class MotionRig {
         timerOn = false;
         break;
       }
+      for (uint8_t a = 0; a < 3; a++)
+        if (t.step & (1 << a)) head[a] += t.dirNeg & (1 << a) ? -1 : 1;
       if (t.step && record) steps.push_back(StepEvent{now, t.interval, t.step, t.dirNeg});
       if (t.mark) {
         marks.push_back(now);

@@ -211,6 +211,7 @@ TEST_F(MotionTest, AHaltStopsAtOnce) {
 TEST_F(MotionTest, ASeekEndsExactlyWhereTheSwitchClosesAndIgnoresABounce) {
   int32_t start[3] = {4000, 0, 0};
   rig.motion.setPositionSteps(start);
+  rig.head[0] = 4000;  // and the head is physically there: 4000 steps above its switch
   rig.switchAt[0] = 0;
   ASSERT_TRUE(rig.motion.seek(0, -5000, 800));
   ASSERT_TRUE(rig.runIdle());
@@ -220,6 +221,7 @@ TEST_F(MotionTest, ASeekEndsExactlyWhereTheSwitchClosesAndIgnoresABounce) {
   // A single closed reading (a bounce, noise on the wire) does not end a seek.
   int32_t again[3] = {4000, 0, 0};
   rig.motion.setPositionSteps(again);
+  rig.head[0] = 4000;
   rig.switchAt[0] = INT32_MIN;
   int readings = 0;
   rig.endstopOverride = [&](uint8_t bits) { return ++readings == 100 ? static_cast<uint8_t>(bits | 1) : bits; };

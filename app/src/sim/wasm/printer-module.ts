@@ -9,6 +9,7 @@ interface Exports {
   memory: WebAssembly.Memory;
   _initialize(): void;
   printer_start(): void;
+  printer_reset(): void;
   printer_inbox(n: number): number;
   printer_receive(port: number, n: number): void;
   printer_run(us: number): void;
@@ -61,6 +62,11 @@ export class PrinterModule {
   /** Power-up: a new machine with a blank card and EEPROM; it says `start` on both ports. */
   start(): void {
     this.#x.printer_start();
+  }
+
+  /** The Mega restarts (a host opened its USB port): the card and the EEPROM are kept. */
+  reset(): void {
+    this.#x.printer_reset();
   }
 
   /** Bytes on the wire to the Mega's port, at 115200 baud from now on. */
