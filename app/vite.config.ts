@@ -7,6 +7,12 @@ import { serviceWorker } from './pwa.ts';
 /** What loads only when a panel is first opened: grouped into one chunk. */
 const ON_DEMAND_PANELS = /\/(PositionDashboard|ProbeDashboard|MeshDashboard|LinkDashboard|mesh-image|Settings|setting-groups|setting-docs|Lamp|PreviewPanel|exposure-preview|plan-client|preview-colours|MaterialTest|material-test|ObjectPanel|BoardPanel|board-object|fonts|Panel|ImportFile|import-artwork|artwork|svg-artwork|svg-size|density|picture|decode|clipping|dry-run|planner|job-header|time-model|adjust|gray|dither|ConfirmDialog|hms|thermal-forecast|pacing)\.(svelte|ts)|\/CONFIG\.md\?raw$/; // CONFIG.md: the settings' words (setting-docs.ts)
 
+/** What saving, opening or running something needs: the project file, the job's encoding, the test pattern, framing. */
+const ON_DEMAND_FILES = /\/(project-file|cells-codec|halftones|job-types|job-encode|crc32|test-pattern|framing)\.ts$/;
+
+/** The Wi-Fi hub's link and the USB transport, loaded when that device is chosen. */
+const ON_DEMAND_LINKS = /\/(esp-link|serial-transport)\.ts$/;
+
 /**
  * The Gerber parser and plotter are Node transform streams that app/src/pcb/tracespace.ts drives by
  * hand: small stand-ins for readable-stream and string_decoder keep Node's stream polyfills (half the
@@ -43,7 +49,7 @@ export default defineConfig(({ mode }) => ({
     // Few files: the ESP's LittleFS gives each file whole 4 KB blocks. One stylesheet, and the
     // panels that load on demand in one chunk; uPlot's chart and the serial polyfill stay apart.
     cssCodeSplit: false,
-    rolldownOptions: { output: { codeSplitting: { includeDependenciesRecursively: false, groups: [{ name: 'panels', test: ON_DEMAND_PANELS }] } } },
+    rolldownOptions: { output: { codeSplitting: { includeDependenciesRecursively: false, groups: [{ name: 'panels', test: ON_DEMAND_PANELS }, { name: 'files', test: ON_DEMAND_FILES }, { name: 'links', test: ON_DEMAND_LINKS }] } } },
   },
   worker: { format: 'es' },
   server: { port: 5173 },

@@ -1,0 +1,20 @@
+// The link to each kind of printer. The simulated printer's, which the app opens on start, is in the
+// first load; the Wi-Fi hub's and USB's load when first chosen (a failed load is a failed connect).
+
+import { DialectLink } from './dialect-link';
+import type { PrinterLink } from './link';
+import { SimTransport, switchOffSimulatedPrinter } from './sim-transport';
+import type { TransportKind } from './transport';
+
+export async function linkFor(kind: TransportKind): Promise<PrinterLink> {
+  if (kind !== 'sim') switchOffSimulatedPrinter();
+  if (kind === 'esp') {
+    const { EspLink } = await import('./esp-link');
+    return new EspLink(location.origin);
+  }
+  if (kind === 'serial') {
+    const { SerialTransport } = await import('./serial-transport');
+    return new DialectLink(new SerialTransport());
+  }
+  return new DialectLink(new SimTransport());
+}
