@@ -8,13 +8,7 @@ import type { TransportKind } from './transport';
 
 export async function linkFor(kind: TransportKind): Promise<PrinterLink> {
   if (kind !== 'sim') switchOffSimulatedPrinter();
-  if (kind === 'esp') {
-    const { EspLink } = await import('./esp-link');
-    return new EspLink(location.origin);
-  }
-  if (kind === 'serial') {
-    const { SerialTransport } = await import('./serial-transport');
-    return new DialectLink(new SerialTransport());
-  }
+  if (kind === 'esp') return (await import('./chosen-links')).espLink();
+  if (kind === 'serial') return (await import('./chosen-links')).serialLink();
   return new DialectLink(new SimTransport());
 }
