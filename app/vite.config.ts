@@ -7,6 +7,18 @@ import { serviceWorker } from './pwa.ts';
 /** What loads only when a panel is first opened: grouped into one chunk. */
 const ON_DEMAND_PANELS = /\/(PositionDashboard|ProbeDashboard|MeshDashboard|LinkDashboard|mesh-image|Settings|setting-groups|setting-docs|Lamp|PreviewPanel|exposure-preview|plan-client|preview-colours|MaterialTest|material-test|ObjectPanel|BoardPanel|board-object|fonts|Panel|ImportFile|import-artwork|artwork|svg-artwork|svg-size|density|picture|decode|clipping|dry-run|planner|job-header|time-model|adjust|gray|dither|ConfirmDialog|hms|thermal-forecast|pacing)\.(svelte|ts)|\/CONFIG\.md\?raw$/; // CONFIG.md: the settings' words (setting-docs.ts)
 
+/** The Wi-Fi hub's link and USB's (with the Latin-1 bytes only USB uses), loaded when that device is first chosen (device/chosen-links.ts). */
+const ON_DEMAND_LINKS = /\/(chosen-links|esp-link|serial-transport|bytes)\.ts$/;
+
+/**
+ * Views that load on demand bring their styles in their own chunk (Svelte injects them when first
+ * shown), so the one stylesheet holds only the first screen's and no further file goes to the flash.
+ */
+const LAZY_VIEW = new RegExp(`${ON_DEMAND_PANELS.source}|/SimulatorPanel\\.svelte$`);
+
+/** What saving, opening or running something needs: the project file, the job's encoding, the test pattern, framing. */
+const ON_DEMAND_FILES = /\/(project-file|cells-codec|halftones|job-types|job-encode|crc32|test-pattern|framing)\.ts$/;
+
 /**
  * The Gerber parser and plotter are Node transform streams that app/src/pcb/tracespace.ts drives by
  * hand: small stand-ins for readable-stream and string_decoder keep Node's stream polyfills (half the
@@ -36,14 +48,16 @@ function printSize(): Plugin {
 
 export default defineConfig(({ mode }) => ({
   root: fileURLToPath(new URL('.', import.meta.url)),
-  plugins: [svelte({ configFile: false }), serviceWorker(fileURLToPath(new URL('service-worker.js', import.meta.url))), printSize()],
+  plugins: [svelte({ configFile: false, dynamicCompileOptions: ({ filename }) => (LAZY_VIEW.test(filename) ? { css: 'injected' } : undefined) }), serviceWorker(fileURLToPath(new URL('service-worker.js', import.meta.url))), printSize()],
   build: {
     outDir,
     emptyOutDir: true,
-    // Few files: the ESP's LittleFS gives each file whole 4 KB blocks. One stylesheet, and the
-    // panels that load on demand in one chunk; uPlot's chart and the serial polyfill stay apart.
+    // Few files: the ESP's LittleFS gives each file whole 4 KB blocks. One stylesheet (the lazy views'
+    // styles ride in their chunks: LAZY_VIEW), the panels that load on demand in one chunk, what saving
+    // and running need in another, the chosen links in a third; uPlot's chart and the serial polyfill
+    // stay apart. Without a group, a chunk loaded on demand can split the first load into several files.
     cssCodeSplit: false,
-    rolldownOptions: { output: { codeSplitting: { includeDependenciesRecursively: false, groups: [{ name: 'panels', test: ON_DEMAND_PANELS }] } } },
+    rolldownOptions: { output: { codeSplitting: { includeDependenciesRecursively: false, groups: [{ name: 'panels', test: ON_DEMAND_PANELS }, { name: 'files', test: ON_DEMAND_FILES }, { name: 'links', test: ON_DEMAND_LINKS }] } } },
   },
   worker: { format: 'es' },
   server: { port: 5173 },

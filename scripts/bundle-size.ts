@@ -1,8 +1,10 @@
 // The app's size, gzipped as the ESP serves it: what the first load fetches (index.html and what it
 // names), what loads on demand (the thermal chart with uPlot, the Web Serial polyfill), and the
-// simulated printer's worker, which only the simulated device loads. Printed by the build and the bench.
+// simulated printer's worker, which only the simulated device loads. Printed by the build and the bench
+// (B2), or alone after a build: npx tsx scripts/bundle-size.ts [dist/app].
 import { readdirSync, readFileSync } from 'node:fs';
 import { join } from 'node:path';
+import { pathToFileURL } from 'node:url';
 import { gzipSync } from 'node:zlib';
 
 export const FIRST_LOAD_BUDGET = 60 * 1024;
@@ -37,12 +39,21 @@ export function bundleSize(dist: string): BundleSize {
   return { first, onDemand, simulator, firstLoad: sum(first), onDemandTotal: sum(onDemand), simulatorTotal: sum(simulator), total: sum(files) + sum(root) };
 }
 
+const kb = (n: number) => `${(n / 1024).toFixed(1)} KB`;
+
+/** The first load against its budget, and what is left of it: "(budget 60 KB, 4.2 KB left)". */
+export function headroom(firstLoad: number): string {
+  const left = FIRST_LOAD_BUDGET - firstLoad;
+  return `(budget ${FIRST_LOAD_BUDGET / 1024} KB, ${left >= 0 ? `${kb(left)} left` : `${kb(-left)} OVER BUDGET`})`;
+}
+
 export function formatBundleSize(s: BundleSize): string {
-  const kb = (n: number) => `${(n / 1024).toFixed(1)} KB`;
   return [
-    `first load   ${kb(s.firstLoad).padStart(8)}  (budget ${kb(FIRST_LOAD_BUDGET)})${s.firstLoad > FIRST_LOAD_BUDGET ? '  OVER BUDGET' : ''}`,
+    `first load   ${kb(s.firstLoad).padStart(8)}  ${headroom(s.firstLoad)}`,
     `on demand    ${kb(s.onDemandTotal).padStart(8)}  ${s.onDemand.map((f) => `${f.file.replace(/^assets\//, '').replace(/-[\w-]{8}\./, '.')} ${kb(f.gzip)}`).join(', ')}`,
     `simulator    ${kb(s.simulatorTotal).padStart(8)}  (the built-in simulated printer's worker)`,
     `whole app    ${kb(s.total).padStart(8)}`,
   ].join('\n');
 }
+
+if (process.argv[1] && import.meta.url === pathToFileURL(process.argv[1]).href) console.log(formatBundleSize(bundleSize(process.argv[2] ?? 'dist/app')));

@@ -2,7 +2,7 @@
 // sensors' history and each distinct soft limit as a dashed line in the colour of its sensors.
 
 import uPlot from 'uplot';
-import 'uplot/dist/uPlot.min.css';
+import uPlotCss from 'uplot/dist/uPlot.min.css?inline';
 import { agoLabel, minutesAgo } from './chart-time';
 import { SENSOR_COLOURS } from './sensor-colours';
 
@@ -13,7 +13,15 @@ export interface ThermalChart {
   destroy(): void;
 }
 
+/** uPlot's styles come with this chunk, not in the first load's stylesheet: added once, when the first chart is made. */
+function addStyles(): void {
+  if (document.getElementById('uplot-styles')) return;
+  const style = Object.assign(document.createElement('style'), { id: 'uplot-styles', textContent: uPlotCss });
+  document.head.append(style);
+}
+
 export function thermalChart(el: HTMLElement, names: string[], width: number): ThermalChart {
+  addStyles();
   let limits: number[] | null = null;
   // The legend reads like a dashboard: each sensor's latest value, or its value under the cursor.
   const celsius = (u: uPlot, v: number | null, sidx: number, idx: number | null) => {

@@ -6,17 +6,15 @@ import { formatReply } from '../protocol/dialect-reply';
 import type { Reply } from '../protocol/dialect-reply';
 import type { PrintJob } from '../protocol/job-types';
 import { CommandError, type LinkHealth } from './dialect-client';
-import { DialectLink } from './dialect-link';
 import { applyReport, emptyState, type DeviceState, type JobProgress } from './device-state';
-import { EspLink } from './esp-link';
 import type { PrinterLink, StartOptions, UploadProgress } from './link';
 import { configOf, interruptedOf, levelingOf, type InterruptedJob } from './printer-replies';
 import { parseMesh } from './mesh-report';
 import { ThermalHistory } from './thermal-history';
 import { DeviceClock } from './device-clock';
 import type { Mesh } from '../planner/mesh';
-import { PickerDismissed, SerialTransport } from './serial-transport';
-import { SimTransport, switchOffSimulatedPrinter } from './sim-transport';
+import { linkFor } from './links';
+import { PickerDismissed } from './serial-support';
 export { SIMULATOR_BUILT_IN, loadSimulatorPanel, tellSimulator } from './sim-transport';
 import type { TransportKind } from './transport';
 
@@ -70,6 +68,8 @@ export class Printer {
   /** Printer seconds per wall second of the open link (the simulated printer at ?simSpeed=N runs N×). */
   timeScale = $state(1);
   #link: PrinterLink | null = null;
+  /** Bumped by every connect and disconnect: a connect whose link loaded after a newer one gives way. */
+  #attempt = 0;
   /** The printer's time, which the thermal history is kept in: its rates are per the printer's second. */
   readonly #clock = new DeviceClock();
   /** Error codes an app-made query expects as an answer (no mesh yet): not errors the user must read. */
@@ -77,7 +77,7 @@ export class Printer {
   /** Each reply's console line, so the lines answering what the user typed can be shown as replies. */
   #logged = new WeakMap<Reply, Entry>();
 
-  constructor(private readonly makeLink: (kind: TransportKind) => PrinterLink = defaultLink) {}
+  constructor(private readonly makeLink: (kind: TransportKind) => PrinterLink | Promise<PrinterLink> = linkFor) {}
 
   get firmware(): string | null {
     return this.device.firmware;
@@ -93,7 +93,15 @@ export class Printer {
   async connect(kind: TransportKind): Promise<void> {
     await this.disconnect();
     this.connection = { state: 'connecting', kind };
-    const link = this.makeLink(kind);
+    const attempt = ++this.#attempt;
+    let link: PrinterLink;
+    try {
+      link = await this.makeLink(kind); // the link's code may load now
+    } catch (e) {
+      if (attempt === this.#attempt) this.connection = { state: 'error', kind, error: `its code could not be loaded (${describe(e)})` };
+      return;
+    }
+    if (attempt !== this.#attempt) return; // disconnected or connected elsewhere meanwhile
     this.#link = link;
     this.timeScale = link.timeScale;
     this.homed = kind === 'esp' ? null : false;
@@ -126,6 +134,7 @@ export class Printer {
   }
 
   async disconnect(): Promise<void> {
+    this.#attempt++;
     const link = this.#link;
     const c = this.connection;
     const job = link ? this.device.job : c.state === 'lost' || c.state === 'idle' ? (c.job ?? null) : null;
@@ -278,12 +287,6 @@ export class Printer {
     if (r.kind === 'other' && r.text.startsWith('MESH:row')) this.mesh = parseMesh(this.device.mesh) ?? this.mesh; // whole with its last row
     if (this.#link) this.health = { ...this.#link.health };
   }
-}
-
-function defaultLink(kind: TransportKind): PrinterLink {
-  if (kind !== 'sim') switchOffSimulatedPrinter();
-  if (kind === 'esp') return new EspLink(location.origin);
-  return new DialectLink(kind === 'serial' ? new SerialTransport() : new SimTransport());
 }
 
 /** The ESP serves the app and answers GET /status with its snapshot; anything else means no ESP here. */

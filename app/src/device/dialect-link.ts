@@ -2,7 +2,6 @@
 // job upload of protocol/mega.md (M28 … M29, then M23 and M24).
 
 import type { Reply } from '../protocol/dialect-reply';
-import { encodeJob } from '../protocol/job-encode';
 import type { PrintJob } from '../protocol/job-types';
 import { CommandError, DialectClient, type ClientOptions, type LinkHealth } from './dialect-client';
 import type { PrinterLink, StartOptions, UploadProgress } from './link';
@@ -43,6 +42,7 @@ export class DialectLink implements PrinterLink {
 
   async startJob(job: PrintJob, onProgress: (p: UploadProgress) => void, opts: StartOptions = {}): Promise<void> {
     const pace = opts.paced ? ' P1' : '';
+    const { encodeJob } = await import('../protocol/job-encode'); // loaded with the first job
     const text = encodeJob(job);
     const records = text.trimEnd().split('\n');
     const total = records.reduce((n, r) => n + r.length + 1, 0);

@@ -1,22 +1,19 @@
 // Transport over Web Serial (Chromium's navigator.serial): USB straight to the Mega.
 
 import { bytesToLatin1, latin1ToBytes } from '../protocol/bytes';
+import { PickerDismissed } from './serial-support';
 import type { Transport } from './transport';
+
+export { PickerDismissed };
 
 export const BAUD_RATE = 115200;
 /** The port's receive buffer; a job upload's replies and reports must never overflow it. */
 export const READ_BUFFER = 4096;
 
-/** The user closed the port picker without choosing: not an error to show. */
-export class PickerDismissed extends Error {}
 
 /** What the transport needs of navigator.serial (and of web-serial-polyfill's stand-in). */
 export interface SerialApi {
   requestPort(): Promise<SerialPort>;
-}
-
-export function serialSupported(): boolean {
-  return typeof navigator !== 'undefined' && ('serial' in navigator || 'usb' in navigator);
 }
 
 /** Chromium's Web Serial, or web-serial-polyfill over WebUSB where it is missing (Android Chrome). */

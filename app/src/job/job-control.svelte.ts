@@ -1,7 +1,7 @@
 // The job the studio's drawing becomes, and what happens before and while it runs: the exposure
 // settings (the full dose as a time, or in mJ/cm² through the LEDs' calibration), the dry run that
 // must pass before any LED fires (loaded with the planner when first needed), framing with the
-// LEDs off, and the run.
+// LEDs off, and the run. What only one click needs (the test pattern, framing's moves) loads with it.
 
 import type { Printer } from '../device/connection.svelte';
 import type { PrintJob, StrategyName } from '../protocol/job-types';
@@ -11,8 +11,6 @@ import type { Cut } from '../studio/objects/clipping';
 import type { GridEditor } from '../studio/editor.svelte';
 import { jobFromGrid } from '../studio/grid-job';
 import { DEFAULT_CONFIG, ledsOf, type MachineConfig } from '../studio/machine-config';
-import { framingMoves } from './framing';
-import { testPattern } from '../device/test-pattern';
 import { JobNotice } from './job-notice.svelte';
 import { calibrationOf, doseOf, msFor, type Calibration } from './dose-units';
 
@@ -97,7 +95,10 @@ export class JobControl {
 
   /** The test pattern at the full dose set here, checked and asked about like a drawing. */
   exposeTestPattern = () =>
-    this.#act(() => this.#ask('test pattern', { ...testPattern(1), dose: doseOf(this.fullMs, this.doseMJcm2, this.calibration), strategy: { name: this.strategy } }));
+    this.#act(async () => {
+      const { testPattern } = await import('../device/test-pattern');
+      await this.#ask('test pattern', { ...testPattern(1), dose: doseOf(this.fullMs, this.doseMJcm2, this.calibration), strategy: { name: this.strategy } });
+    });
 
   /** The user accepts that the cut objects' parts off the bed are not exposed. */
   acceptCuts = async () => {
@@ -144,7 +145,10 @@ export class JobControl {
       this.error = 'nothing is drawn';
       return;
     }
-    this.move('Frame', () => this.printer.moves(framingMoves(job, num(this.config, 'speed.travel'))));
+    this.move('Frame', async () => {
+      const { framingMoves } = await import('./framing');
+      await this.printer.moves(framingMoves(job, num(this.config, 'speed.travel')));
+    });
   };
 
   act = (f: () => Promise<unknown>) => this.#act(f);

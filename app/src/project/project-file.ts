@@ -12,13 +12,14 @@ import { BOARD_LAYER_KINDS, DRILL_CLEARS, type BoardLayerKind, type DrillClear, 
 import type { Polarity } from '../studio/objects/raster';
 import { STRATEGY_NAMES, type StrategyName } from '../protocol/job-types';
 import { packCells, unpackCells } from './cells-codec';
+import { MAX_PROJECT_BYTES, ProjectError } from './project-error';
+
+export { MAX_PROJECT_BYTES, ProjectError };
 
 export const PROJECT_FORMAT = 'uv-exposure-project';
 export const PROJECT_VERSION = 2;
 /** How a board's files are embedded (app/src/pcb/board-artwork.ts's BOARD_SRC_PREFIX, which loads on demand). */
 const BOARD_SRC = 'data:application/vnd.uv-exposure.board+json;base64,';
-/** Larger files are refused before they are read. */
-export const MAX_PROJECT_BYTES = 200 * 1024 * 1024;
 const STRATEGIES = STRATEGY_NAMES;
 
 export interface Project {
@@ -31,8 +32,6 @@ export interface Project {
   paint: { cols: number; rows: number; cells: Uint8Array };
   objects: StudioObject[];
 }
-
-export class ProjectError extends Error {}
 
 export async function encodeProject(p: Project, savedAt = new Date()): Promise<string> {
   let empty = true;

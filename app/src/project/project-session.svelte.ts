@@ -6,11 +6,16 @@ import type { JobControl } from '../job/job-control.svelte';
 import { GridEditor } from '../studio/editor.svelte';
 import { DoseGrid } from '../studio/grid/grid';
 import { isArtwork } from '../studio/objects/objects';
-import { decodeProject, encodeProject, MAX_PROJECT_BYTES, ProjectError, type Project } from './project-file';
+import { MAX_PROJECT_BYTES, ProjectError } from './project-error';
+import type { Project } from './project-file';
 import { loadAutosave, recentProjects, recentText, remember, saveAutosave } from './project-store';
 import type { RecentEntry } from './recent-list';
 
 const AUTOSAVE_DELAY_MS = 1000;
+
+// The file format loads when a project is first kept, opened or restored: it is not in the first load.
+const encodeProject = async (p: Project) => (await import('./project-file')).encodeProject(p);
+const decodeProject = async (text: string) => (await import('./project-file')).decodeProject(text);
 
 /** A file name from a project name: what a file system takes. */
 export function fileNameFor(name: string): string {

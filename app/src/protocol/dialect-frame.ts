@@ -1,6 +1,6 @@
 // Line framing of the Mega dialect: `N<n> <body>*<cs>` or a plain body (protocol/mega.md §1).
 
-import { isPrintable } from './bytes';
+import { isPrintable } from './printable';
 import { crc16Hex } from './crc16';
 import type { SplitLine } from './line-splitter';
 

@@ -1,6 +1,6 @@
 // Codec for the Mega <-> Nano printhead link (protocol/nano.md).
 
-import { isPrintable } from './bytes';
+import { isPrintable } from './printable';
 import type { SplitLine } from './line-splitter';
 
 export const NANO_MAX_LINE = 63;
