@@ -38,8 +38,8 @@ export interface DeviceState {
   /** Every fault reported since the link opened (the log), newest last. */
   faults: Fault[];
   /**
-   * The faults the machine still has, one per code: an over-temperature (E31) until its job continues
-   * or ends, a silent printhead (E30) until it answers again (Printer clears it on an M105 answer).
+   * The faults the machine still has, one per code: an over-temperature (E31) until a job runs or
+   * ends, a silent printhead (E30) until it answers again (Printer clears it on an M105 answer).
    */
   activeFaults: Fault[];
   /** The latest `TEST:` result. */
@@ -80,8 +80,9 @@ export function applyReport(s: DeviceState, r: Reply, nowMs: number): boolean {
     case 'job': {
       const f = r.fields;
       const before = s.job?.state;
-      // A job that continues after a pause, or ends, leaves its over-temperature behind.
-      if ((before === 'paused' && r.state === 'running') || (before !== undefined && before !== r.state && ENDED.has(r.state))) {
+      // A job that runs (the Mega started or continued it: no sensor over its limit), or ends, leaves
+      // its over-temperature behind.
+      if ((before !== 'running' && r.state === 'running') || (before !== undefined && before !== r.state && ENDED.has(r.state))) {
         s.activeFaults = s.activeFaults.filter((a) => a.code !== OVERTEMP);
       }
       const [stop, stops] = (f.stop ?? '').split('/').map(Number);
