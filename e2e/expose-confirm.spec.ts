@@ -39,7 +39,7 @@ test('"Expose drawing" asks with the estimate, the drawing\'s place on the bed a
   const dialog = page.getByRole('dialog', { name: 'Expose the drawing?' });
   await expect(dialog).toContainText(/About \d:\d\d:\d\d of exposing, at a full dose of 4 ms\./);
   await expect(dialog).toContainText(/It lands at X [\d.]+–[\d.]+ mm, Y [\d.]+–[\d.]+ mm on the bed/);
-  await expect(dialog.locator('li[data-level="ok"]')).toHaveCount(5); // envelope, clipping, mesh, dose, thermal
+  await expect(dialog.locator('li[data-level="ok"]')).toHaveCount(6); // machine, envelope, clipping, mesh, dose, thermal
   await page.screenshot({ path: info.outputPath('drawing-question.png') });
   await dialog.getByRole('button', { name: 'Cancel' }).click();
   await expect(page.getByTestId('job-state')).toHaveAttribute('data-state', 'idle');
