@@ -45,7 +45,7 @@ export async function expectControls(page: Page, info: TestInfo, state: string, 
       const scope = tab ? page.getByRole('tabpanel') : control === 'Expose drawing' ? page : page.getByRole('region', { name: 'Job' });
       const button = scope.getByRole('button', { name: CONTROLS[control].name, exact: true });
       if (want === true) await expect(button, `${state}: ${control} open`).toBeEnabled();
-      else {
+      else if (want) {
         await expect(button, `${state}: ${control} closed`).toBeDisabled();
         await expect(button, `${state}: ${control} says why`).toHaveAttribute('title', want);
       }
