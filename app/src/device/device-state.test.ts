@@ -34,6 +34,19 @@ describe('activeFaults', () => {
     });
   }
 
+  it('keeps events (a probe alarm, a failed homing) in the log only', () => {
+    const s = fold(emptyState(), 'FAULT:E40 probe alarm', 'FAULT:E44 endstop not found while homing');
+    expect(codes(s)).toEqual([]);
+    expect(s.faults.map((f) => f.code)).toEqual([40, 44]);
+  });
+
+  it('drops a sensor fault or a refused exposure when a job runs', () => {
+    const s = fold(emptyState(), 'FAULT:E32 temperature sensor fault T2', 'FAULT:E33 printhead refused an exposure');
+    expect(codes(s)).toEqual([32, 33]);
+    fold(s, 'JOB:running file=A.UVJ stop=0/10');
+    expect(codes(s)).toEqual([]);
+  });
+
   it('keeps a silent printhead through the job, until it is cleared', () => {
     const s = fold(emptyState(), 'JOB:running file=A.UVJ stop=3/10', 'FAULT:E30 printhead not responding', 'JOB:paused file=A.UVJ stop=3/10 reason=printhead', 'JOB:aborted file=A.UVJ stop=3/10');
     expect(codes(s)).toEqual([30]);

@@ -38,8 +38,10 @@ export interface DeviceState {
   /** Every fault reported since the link opened (the log), newest last. */
   faults: Fault[];
   /**
-   * The faults the machine still has, one per code: an over-temperature (E31) until a job runs or
-   * ends, a silent printhead (E30) until it answers again (Printer clears it on an M105 answer).
+   * The faults that are a state of the machine, one per code: a silent printhead (E30) until it
+   * answers again (Printer clears it on an M105 answer); an over-temperature, a sensor fault or a
+   * refused exposure (E31-E33) until a job runs or ends. The others (a probe alarm, a failed homing)
+   * are events: they are in `faults` only.
    */
   activeFaults: Fault[];
   /** The latest `TEST:` result. */
@@ -55,9 +57,11 @@ export function emptyState(): DeviceState {
 }
 
 const MAX_FAULTS = 50;
-/** E31 over-temperature, E30 printhead not responding (protocol/errors.csv). */
-export const OVERTEMP = 31;
+/** E30 printhead not responding, E31 over-temperature (protocol/errors.csv). */
 export const PRINTHEAD_SILENT = 30;
+export const OVERTEMP = 31;
+/** The printhead's faults that pause a job, and that a job which runs (or ends) leaves behind. */
+const JOB_FAULTS = new Set([OVERTEMP, 32, 33]);
 const ENDED = new Set(['done', 'aborted', 'failed', 'idle']);
 
 /** Drops a fault the machine no longer has (`code`), e.g. E30 once the printhead answers again. */
@@ -80,10 +84,10 @@ export function applyReport(s: DeviceState, r: Reply, nowMs: number): boolean {
     case 'job': {
       const f = r.fields;
       const before = s.job?.state;
-      // A job that runs (the Mega started or continued it: no sensor over its limit), or ends, leaves
-      // its over-temperature behind.
+      // A job that runs (the Mega started or continued it: nothing over its limit), or ends, leaves
+      // the faults that paused it behind.
       if ((before !== 'running' && r.state === 'running') || (before !== undefined && before !== r.state && ENDED.has(r.state))) {
-        s.activeFaults = s.activeFaults.filter((a) => a.code !== OVERTEMP);
+        s.activeFaults = s.activeFaults.filter((a) => !JOB_FAULTS.has(a.code));
       }
       const [stop, stops] = (f.stop ?? '').split('/').map(Number);
       s.job = {
@@ -105,7 +109,7 @@ export function applyReport(s: DeviceState, r: Reply, nowMs: number): boolean {
     case 'fault': {
       const fault = { code: r.code, message: r.message, atMs: nowMs };
       s.faults = [...s.faults, fault].slice(-MAX_FAULTS);
-      s.activeFaults = [...s.activeFaults.filter((a) => a.code !== r.code), fault];
+      if (r.code === PRINTHEAD_SILENT || JOB_FAULTS.has(r.code)) s.activeFaults = [...s.activeFaults.filter((a) => a.code !== r.code), fault];
       return true;
     }
     case 'other':

@@ -73,6 +73,7 @@ describe('actionsFor', () => {
     expect(actionsFor({ ...hot, hot: ['T3 56.0 °C (limit 55)', 'T4 51.0 °C (limit 50)'] }).continuePaced.why).toMatch(/, T4 .* are still too hot$/);
     expect(actionsFor(hot).continue.open).toBe(true); // E31 stands until the job continues; the readings decide
     expect(actionsFor({ ...hot, faults: [E30] }).continue.why).toBe('the printhead is still faulted: E30 printhead not responding');
+    expect(actionsFor({ ...hot, faults: [{ code: 33, message: 'printhead refused an exposure', atMs: 0 }] }).continue.open).toBe(true); // the Mega judges it
   });
 
   it('counts a running job before a homing, and a job that ended as none', () => {

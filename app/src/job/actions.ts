@@ -99,11 +99,10 @@ export function actionsFor(v: MachineView): Actions {
   const printhead = v.faults.find((f) => f.code === 30);
   const probe = busy ? free : printhead ? closed(`the printhead does not answer (${faultWords([printhead])})`) : OPEN;
   const idleish = phase === 'idle' || phase === 'faulted' || phase === 'homing';
-  // A paused job continues only once nothing that paused it stands, as the Mega refuses otherwise:
-  // an over-temperature by the sensors' readings, any other fault until it clears.
-  const standing = v.faults.filter((f) => f.code !== 31);
+  // A paused job continues once the head is below its limits (the readings say when) and the
+  // printhead answers (the app asks again until it does), as the Mega refuses it otherwise.
   const goOn = phase === 'paused'
-    ? v.hot.length ? closed(stillTooHot(v.hot)) : standing.length ? closed(`the printhead is still faulted: ${faultWords(standing)}`) : OPEN
+    ? v.hot.length ? closed(stillTooHot(v.hot)) : printhead ? closed(`the printhead is still faulted: ${faultWords([printhead])}`) : OPEN
     : closed(jobOn ? 'the job is running' : idleish ? 'no job is paused' : busy!);
   const noJob = closed(idleish ? 'no job is running' : busy!);
   const offer = !v.interrupted ? closed('no interrupted job') : busy ? closed(busy) : OPEN;

@@ -95,6 +95,11 @@ describe("the machine's faults in the dry run", () => {
     expect(machineFinding({ ...well, faults: [E31] }).level).toBe('ok');
   });
 
+  it('warns of a sensor fault it cannot see clear', () => {
+    const E32 = { code: 32, message: 'temperature sensor fault T2', atMs: 0 };
+    expect(machineFinding({ ...well, faults: [E32] })).toEqual({ check: 'machine', level: 'warning', message: 'the printer reported E32 temperature sensor fault T2: it refuses the job while that stands' });
+  });
+
   it('is a green line for a machine without faults, and absent when not asked', () => {
     expect(levels(dryRun(job(), DEFAULT_CONFIG, { machine: well }))).toEqual({ machine: 'ok', envelope: 'ok', dose: 'ok', thermal: 'ok' });
     expect(levels(dryRun(job(), DEFAULT_CONFIG)).machine).toBeUndefined();

@@ -136,16 +136,18 @@ export function dryRun(
 }
 
 /**
- * The machine's faults (E30, a printhead that does not answer), and its sensors over their soft
- * limits: the printer would refuse the job or stop it at once, so each is an error. An E31 itself
- * is judged by the readings: a head that has cooled takes the job.
+ * The machine's faults: a printhead that does not answer (E30, asked just now) and sensors over
+ * their soft limits (read just now) are errors, as the printer would refuse the job. An E31 itself
+ * is judged by the readings; a sensor fault or a refused exposure (E32, E33) the app cannot see
+ * clear, so it is a warning.
  */
 export function machineFinding(m: MachineCheck): Finding {
-  const silent = !m.printheadAnswers && !m.faults.some((f) => f.code === 30) ? ['E30 printhead not responding'] : [];
-  const problems = [...silent, ...m.faults.filter((f) => f.code !== 31).map((f) => `E${f.code} ${f.message}`), ...(m.hot.length ? [stillTooHot(m.hot)] : [])];
-  return problems.length
-    ? { check: 'machine', level: 'error', message: `${problems.join('; ')}. The printer would refuse the job: clear the fault first` }
-    : { check: 'machine', level: 'ok', message: 'the printhead answers, and the machine reports no fault' };
+  const silent = m.printheadAnswers ? [] : ['E30 printhead not responding'];
+  const errors = [...silent, ...(m.hot.length ? [stillTooHot(m.hot)] : [])];
+  if (errors.length) return { check: 'machine', level: 'error', message: `${errors.join('; ')}. The printer would refuse the job: clear the fault first` };
+  const others = m.faults.filter((f) => f.code !== 30 && f.code !== 31);
+  if (others.length) return { check: 'machine', level: 'warning', message: `the printer reported ${others.map((f) => `E${f.code} ${f.message}`).join('; ')}: it refuses the job while that stands` };
+  return { check: 'machine', level: 'ok', message: 'the printhead answers, and the machine reports no fault' };
 }
 
 /** What a scan job is: its passes, their speed and the cell window. */
