@@ -15,7 +15,7 @@ test('"Expose test pattern" asks first: its time at the full dose set, where it 
   await expect(dialog).toBeVisible();
   await expect(dialog).toContainText(/About \d:\d\d:\d\d of exposing, at a full dose of 8 ms\./);
   await expect(dialog).toContainText('It lands at X 20–24.8 mm, Y 20–23.2 mm on the bed (4.8 × 3.2 mm). The head homes first.');
-  await expect(dialog.getByRole('listitem')).toHaveCount(4);
+  await expect(dialog.getByRole('listitem')).toHaveCount(5); // machine, envelope, mesh, dose, thermal
   await expect(dialog.getByText(/^dose: the longest exposure is 8\.0 ms$/)).toBeVisible(); // the field, not a fixed 4 ms
   await dialog.screenshot({ path: info.outputPath('test-pattern-question.png') });
   // Nothing has fired or moved while the question is open.
@@ -39,7 +39,7 @@ test('"Expose drawing" asks with the estimate, the drawing\'s place on the bed a
   const dialog = page.getByRole('dialog', { name: 'Expose the drawing?' });
   await expect(dialog).toContainText(/About \d:\d\d:\d\d of exposing, at a full dose of 4 ms\./);
   await expect(dialog).toContainText(/It lands at X [\d.]+–[\d.]+ mm, Y [\d.]+–[\d.]+ mm on the bed/);
-  await expect(dialog.locator('li[data-level="ok"]')).toHaveCount(5); // envelope, clipping, mesh, dose, thermal
+  await expect(dialog.locator('li[data-level="ok"]')).toHaveCount(6); // machine, envelope, clipping, mesh, dose, thermal
   await page.screenshot({ path: info.outputPath('drawing-question.png') });
   await dialog.getByRole('button', { name: 'Cancel' }).click();
   await expect(page.getByTestId('job-state')).toHaveAttribute('data-state', 'idle');

@@ -39,10 +39,11 @@ test('draws a filled rectangle, undoes and redoes it, zooms, and exposes it', as
   await page.keyboard.press('0'); // fit again
 
   await page.getByTestId('expose-drawing').click();
-  // The dry run comes first, in the question before any LED fires: on the bed, nothing cut by its
-  // edge, leveling (off since the link restarted the Mega), within the printhead's cap and the thermal budget.
+  // The dry run comes first, in the question before any LED fires: the machine without a fault, on
+  // the bed, nothing cut by its edge, leveling (off since the link restarted the Mega), within the
+  // printhead's cap and the thermal budget.
   const checks = page.getByTestId('dry-run').locator('li');
-  await expect(checks).toHaveCount(5);
+  await expect(checks).toHaveCount(6);
   for (const level of await checks.evaluateAll((li) => li.map((l) => l.getAttribute('data-level')))) expect(level).toBe('ok');
   await page.getByRole('dialog').getByRole('button', { name: 'Expose now' }).click(); // the one confirmation (issue 17, item 4)
   await expect(page.getByTestId('job-state')).toHaveAttribute('data-state', /running|done/, { timeout: 30_000 });

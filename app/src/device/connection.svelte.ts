@@ -6,7 +6,7 @@ import { formatReply } from '../protocol/dialect-reply';
 import type { Reply } from '../protocol/dialect-reply';
 import type { PrintJob } from '../protocol/job-types';
 import { CommandError, type LinkHealth } from './dialect-client';
-import { applyReport, emptyState, type DeviceState, type JobProgress } from './device-state';
+import { applyReport, clearFault, emptyState, PRINTHEAD_SILENT, type DeviceState, type JobProgress } from './device-state';
 import type { PrinterLink, StartOptions, UploadProgress } from './link';
 import { configOf, interruptedOf, levelingOf, type InterruptedJob } from './printer-replies';
 import { parseMesh } from './mesh-report';
@@ -65,11 +65,15 @@ export class Printer {
   homed = $state<boolean | null>(null);
   /** G28 lines sent and not yet answered: a move sent now runs after them, homed. */
   homing = $state(0);
+  /** From the click on Resume until the printer runs the job on (M1000 answered): it homes meanwhile. */
+  resuming = $state(false);
   /** Printer seconds per wall second of the open link (the simulated printer at ?simSpeed=N runs N×). */
   timeScale = $state(1);
   #link: PrinterLink | null = null;
   /** Bumped by every connect and disconnect: a connect whose link loaded after a newer one gives way. */
   #attempt = 0;
+  /** Asks the silent printhead again every few seconds while E30 stands. */
+  #printheadWatch: ReturnType<typeof setInterval> | null = null;
   /** The printer's time, which the thermal history is kept in: its rates are per the printer's second. */
   readonly #clock = new DeviceClock();
   /** Error codes an app-made query expects as an answer (no mesh yet): not errors the user must read. */
@@ -144,6 +148,7 @@ export class Printer {
     this.upload = { state: 'idle' };
     this.config = null;
     this.interrupted = null;
+    this.resuming = false;
     this.mesh = this.previousMesh = null;
     if (link) await link.close().catch(() => {});
     this.connection = { state: 'idle', job };
@@ -220,10 +225,32 @@ export class Printer {
 
   /** Homes and runs the interrupted job on from its checkpoint: every cell exposed exactly once. */
   resumeInterrupted = async () => {
-    await this.send('G28');
-    await this.send('M1000');
-    this.interrupted = null;
+    this.resuming = true;
+    try {
+      await this.send('G28');
+      await this.send('M1000');
+      this.interrupted = null;
+    } finally {
+      this.resuming = false;
+    }
   };
+
+  /** Asks the printhead's temperatures (M105): true when it answers, and then E30 no longer stands. */
+  checkPrinthead = async (): Promise<boolean> => {
+    const answered = (await this.ask('M105', [PRINTHEAD_SILENT])) !== null;
+    if (answered && clearFault(this.device, PRINTHEAD_SILENT)) this.device = { ...this.device };
+    return answered;
+  };
+
+  /** The Mega says E30 once, and nothing when the printhead is back: the app asks until it answers. */
+  #watchPrinthead(): void {
+    if (this.#printheadWatch) return;
+    this.#printheadWatch = setInterval(() => {
+      if (this.#link && this.device.activeFaults.some((a) => a.code === PRINTHEAD_SILENT)) return void this.checkPrinthead().catch(() => {});
+      clearInterval(this.#printheadWatch!);
+      this.#printheadWatch = null;
+    }, 2000);
+  }
 
   discardInterrupted = async () => {
     await this.send('M1000 C');
@@ -284,6 +311,7 @@ export class Printer {
       this.thermalRevision = this.thermal.revision;
     }
     if (applyReport(this.device, r, Date.now())) this.device = { ...this.device };
+    if (r.kind === 'fault' && r.code === PRINTHEAD_SILENT) this.#watchPrinthead();
     if (r.kind === 'other' && r.text.startsWith('MESH:row')) this.mesh = parseMesh(this.device.mesh) ?? this.mesh; // whole with its last row
     if (this.#link) this.health = { ...this.#link.health };
   }

@@ -35,7 +35,15 @@ export interface DeviceState {
   /** LEDs lit, from the job reports. */
   leds: number;
   job: JobProgress | null;
+  /** Every fault reported since the link opened (the log), newest last. */
   faults: Fault[];
+  /**
+   * The faults that are a state of the machine, one per code: a silent printhead (E30) until it
+   * answers again (Printer clears it on an M105 answer); an over-temperature, a sensor fault or a
+   * refused exposure (E31-E33) until a job runs or ends. The others (a probe alarm, a failed homing)
+   * are events: they are in `faults` only.
+   */
+  activeFaults: Fault[];
   /** The latest `TEST:` result. */
   selfTest: { mode: 'quick' | 'full'; fields: Record<string, string> } | null;
   mesh: string[];
@@ -44,11 +52,24 @@ export interface DeviceState {
 export function emptyState(): DeviceState {
   return {
     firmware: null, window: 1, position: null, deciC: null, probe: null, lastProbeZUm: null,
-    leds: 0, job: null, faults: [], selfTest: null, mesh: [],
+    leds: 0, job: null, faults: [], activeFaults: [], selfTest: null, mesh: [],
   };
 }
 
 const MAX_FAULTS = 50;
+/** E30 printhead not responding, E31 over-temperature (protocol/errors.csv). */
+export const PRINTHEAD_SILENT = 30;
+export const OVERTEMP = 31;
+/** The printhead's faults that pause a job, and that a job which runs (or ends) leaves behind. */
+const JOB_FAULTS = new Set([OVERTEMP, 32, 33]);
+const ENDED = new Set(['done', 'aborted', 'failed', 'idle']);
+
+/** Drops a fault the machine no longer has (`code`), e.g. E30 once the printhead answers again. */
+export function clearFault(s: DeviceState, code: number): boolean {
+  if (!s.activeFaults.some((a) => a.code === code)) return false;
+  s.activeFaults = s.activeFaults.filter((a) => a.code !== code);
+  return true;
+}
 
 /** Applies one parsed line to the state; returns true when something changed. */
 export function applyReport(s: DeviceState, r: Reply, nowMs: number): boolean {
@@ -62,6 +83,12 @@ export function applyReport(s: DeviceState, r: Reply, nowMs: number): boolean {
     case 'test': s.selfTest = { mode: r.mode, fields: r.fields }; return true;
     case 'job': {
       const f = r.fields;
+      const before = s.job?.state;
+      // A job that runs (the Mega started or continued it: nothing over its limit), or ends, leaves
+      // the faults that paused it behind.
+      if ((before !== 'running' && r.state === 'running') || (before !== undefined && before !== r.state && ENDED.has(r.state))) {
+        s.activeFaults = s.activeFaults.filter((a) => !JOB_FAULTS.has(a.code));
+      }
       const [stop, stops] = (f.stop ?? '').split('/').map(Number);
       s.job = {
         state: r.state,
@@ -79,9 +106,12 @@ export function applyReport(s: DeviceState, r: Reply, nowMs: number): boolean {
       if (r.state !== 'running') s.leds = 0;
       return true;
     }
-    case 'fault':
-      s.faults = [...s.faults, { code: r.code, message: r.message, atMs: nowMs }].slice(-MAX_FAULTS);
+    case 'fault': {
+      const fault = { code: r.code, message: r.message, atMs: nowMs };
+      s.faults = [...s.faults, fault].slice(-MAX_FAULTS);
+      if (r.code === PRINTHEAD_SILENT || JOB_FAULTS.has(r.code)) s.activeFaults = [...s.activeFaults.filter((a) => a.code !== r.code), fault];
       return true;
+    }
     case 'other':
       if (r.text.startsWith('MESH:grid')) s.mesh = [r.text];
       else if (r.text.startsWith('MESH:row')) s.mesh = [...s.mesh, r.text];

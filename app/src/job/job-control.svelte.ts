@@ -13,6 +13,9 @@ import { jobFromGrid } from '../studio/grid-job';
 import { DEFAULT_CONFIG, ledsOf, type MachineConfig } from '../studio/machine-config';
 import { JobNotice } from './job-notice.svelte';
 import { calibrationOf, doseOf, msFor, type Calibration } from './dose-units';
+import { actionsFor, hotSensors, viewOf, type Action, type Actions } from './actions';
+import { estimateUsFor, type JobEstimate } from './job-times';
+import { limitsOf } from '../studio/machine-config';
 
 /** What waits for the user's yes before anything moves or lights: an exposure, or a homing. */
 export type Pending =
@@ -48,13 +51,25 @@ export class JobControl {
   duty = $state<number[] | null>(null);
   /** The job started here is a scan job: its progress counts passes. */
   runningScan = $state(false);
-  /** The estimate the user was shown for the job started here (its paced time when run paced), µs. */
-  runningEstimateUs = $state<number | null>(null);
+  /** The estimates the user was shown for the job started here (with its paced time when one was offered). */
+  runningEstimate = $state.raw<JobEstimate | null>(null);
+  /** The job started here runs paced: started so, or continued so after a pause to cool. */
+  runningPaced = $state(false);
 
   /** Called before every job starts (the project is kept then); set by the app. */
   beforeJob: () => Promise<void> = async () => {};
 
   constructor(private readonly printer: Printer, private readonly editor: () => GridEditor) {}
+
+  /** What may be done to the machine now, and why not (job/actions.ts): every control reads it. */
+  get actions(): Actions {
+    return actionsFor(viewOf(this.printer));
+  }
+
+  /** The estimate the running job is held to: paced when it runs paced (job-times.ts). */
+  get runningEstimateUs(): number | null {
+    return estimateUsFor(this.runningEstimate, this.runningPaced || !!this.printer.device.job?.paced);
+  }
 
   /** The connected machine's settings, else the Mega's defaults. */
   get config(): MachineConfig {
@@ -86,6 +101,7 @@ export class JobControl {
   /** The dry run, then the question: the time, where it lands, the verdict. Nothing fires before the yes. */
   exposeDrawing = () =>
     this.#act(async () => {
+      this.#gate('expose');
       const job = this.job();
       if (!job) throw new Error('nothing is drawn');
       const ed = this.editor();
@@ -96,6 +112,7 @@ export class JobControl {
   /** The test pattern at the full dose set here, checked and asked about like a drawing. */
   exposeTestPattern = () =>
     this.#act(async () => {
+      this.#gate('expose');
       const { testPattern } = await import('../device/test-pattern');
       await this.#ask('test pattern', { ...testPattern(1), dose: doseOf(this.fullMs, this.doseMJcm2, this.calibration), strategy: { name: this.strategy } });
     });
@@ -114,12 +131,15 @@ export class JobControl {
       const p = this.pending;
       this.pending = null;
       if (!p) return;
+      // The machine may have turned busy while the question was open: it is asked again here.
+      this.#gate(p.kind === 'expose' ? 'expose' : 'move');
       if (p.kind === 'home-first') {
         await this.printer.send('G28');
         await p.run();
       } else if (!p.findings.some((f) => f.level === 'error')) {
         const paced = !!opts.paced && p.pacedUs !== null;
-        this.runningEstimateUs = paced ? p.pacedUs : p.estimateUs;
+        this.runningEstimate = { estimateUs: p.estimateUs, pacedUs: p.pacedUs };
+        this.runningPaced = paced;
         await this.#run(p.job, p.duty, paced);
       }
     });
@@ -133,6 +153,8 @@ export class JobControl {
    * homed must home first, every axis to its endstop: the user is told and agrees before it moves.
    */
   move = (what: string, run: () => Promise<unknown>) => {
+    const gate = this.actions.move;
+    if (!gate.open) return void (this.error = `${what}: not now: ${gate.why}`);
     // A Home still running counts: the printer runs lines in order, so this move follows it.
     if (this.printer.homed === true || this.printer.homing > 0) this.#act(run);
     else this.pending = { kind: 'home-first', what, homed: this.printer.homed, run };
@@ -145,6 +167,8 @@ export class JobControl {
       this.error = 'nothing is drawn';
       return;
     }
+    const gate = this.actions.frame;
+    if (!gate.open) return void (this.error = `Frame: not now: ${gate.why}`);
     this.move('Frame', async () => {
       const { framingMoves } = await import('./framing');
       await this.printer.moves(framingMoves(job, num(this.config, 'speed.travel')));
@@ -153,11 +177,28 @@ export class JobControl {
 
   act = (f: () => Promise<unknown>) => this.#act(f);
 
+  /** Continues a job paused to cool, paced from here on: its times are then the paced forecast's. */
+  continuePaced = () =>
+    this.#act(async () => {
+      this.#gate('continuePaced');
+      await this.printer.resumePaced();
+      this.runningPaced = true;
+    });
+
+  /** Throws, to be shown as the action's error, when the rule keeps `action` closed: a click is never dropped silently. */
+  #gate(action: Action): void {
+    const gate = this.actions[action];
+    if (!gate.open) throw new Error(`Not now: ${gate.why}`);
+  }
+
   async #ask(what: 'drawing' | 'test pattern', job: PrintJob, cuts?: Cut[]): Promise<void> {
     const leveling = await this.printer.leveling();
-    const startC = this.printer.device.deciC?.map((d) => d / 10) ?? null;
+    const printheadAnswers = await this.printer.checkPrinthead();
+    const device = this.printer.device;
+    const startC = device.deciC?.map((d) => d / 10) ?? null;
+    const machine = { faults: device.activeFaults, printheadAnswers, hot: hotSensors(device.deciC, limitsOf(this.config)) };
     const { dryRun } = await import('../studio/dry-run');
-    const { findings, duty, plan, paced } = dryRun(job, this.config, { leveling: leveling.on, mesh: leveling.mesh, startC, cuts });
+    const { findings, duty, plan, paced } = dryRun(job, this.config, { leveling: leveling.on, mesh: leveling.mesh, startC, cuts, machine });
     this.check = { findings, job, duty };
     const mm = (um: number) => Math.round(um) / 1000;
     const areaMm = {

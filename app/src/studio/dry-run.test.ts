@@ -1,6 +1,6 @@
 import { describe, expect, it } from 'vitest';
 import type { PrintJob } from '../protocol/job-types';
-import { dryRun } from './dry-run';
+import { dryRun, machineFinding } from './dry-run';
 import { DEFAULT_CONFIG } from './machine-config';
 
 function job(over: Partial<PrintJob> = {}, cols = 20, rows = 8, value = 255): PrintJob {
@@ -76,5 +76,32 @@ describe('dry run', () => {
     expect(levels(dryRun(job(), DEFAULT_CONFIG, { leveling: true, mesh: null })).mesh).toBe('warning');
     expect(levels(dryRun(job(), DEFAULT_CONFIG, { leveling: false, mesh })).mesh).toBe('ok'); // one height: nothing to cover
     expect(levels(dryRun(job(), DEFAULT_CONFIG, { leveling: null, mesh })).mesh).toBeUndefined(); // the printer did not say
+  });
+});
+
+describe("the machine's faults in the dry run", () => {
+  const E30 = { code: 30, message: 'printhead not responding', atMs: 0 };
+  const E31 = { code: 31, message: 'over-temperature T3 56.0 (soft limit)', atMs: 0 };
+  const well = { faults: [], printheadAnswers: true, hot: [] };
+
+  it('is a red line first for a silent printhead, whether reported or found by asking', () => {
+    const r = dryRun(job(), DEFAULT_CONFIG, { machine: { ...well, faults: [E30], printheadAnswers: false } });
+    expect(r.findings[0]).toEqual({ check: 'machine', level: 'error', message: 'E30 printhead not responding. The printer would refuse the job: clear the fault first' });
+    expect(machineFinding({ ...well, printheadAnswers: false }).message).toMatch(/^E30 printhead not responding\./);
+  });
+
+  it('judges an over-temperature by the readings: still hot is an error, cooled is fine', () => {
+    expect(machineFinding({ ...well, faults: [E31], hot: ['T3 56.0 °C (limit 55)'] })).toMatchObject({ level: 'error', message: /^T3 56\.0 °C \(limit 55\) is still too hot\./ });
+    expect(machineFinding({ ...well, faults: [E31] }).level).toBe('ok');
+  });
+
+  it('warns of a sensor fault it cannot see clear', () => {
+    const E32 = { code: 32, message: 'temperature sensor fault T2', atMs: 0 };
+    expect(machineFinding({ ...well, faults: [E32] })).toEqual({ check: 'machine', level: 'warning', message: 'the printer reported E32 temperature sensor fault T2: it refuses the job while that stands' });
+  });
+
+  it('is a green line for a machine without faults, and absent when not asked', () => {
+    expect(levels(dryRun(job(), DEFAULT_CONFIG, { machine: well }))).toEqual({ machine: 'ok', envelope: 'ok', dose: 'ok', thermal: 'ok' });
+    expect(levels(dryRun(job(), DEFAULT_CONFIG)).machine).toBeUndefined();
   });
 });

@@ -1,6 +1,6 @@
 // The check before any LED fires (issue 8 "Job control"): the job is planned as the Mega will
 // plan it, and the plan is held against the bed, the mesh, the printhead's exposure cap and
-// the LEDs' thermal budget; the drawing's objects are held against the bed's edges (a cut
+// the LEDs' thermal budget, and the machine's own faults; the drawing's objects are held against the bed's edges (a cut
 // object is an error until the user accepts the cut). Errors stop the job; warnings ask the user.
 
 import { headerOf } from '../planner/job-header';
@@ -9,6 +9,8 @@ import { planAnyJob } from '../planner/job-plan';
 import type { Plan } from '../planner/planner';
 import type { ScanPlan } from '../planner/scan';
 import type { PrintJob } from '../protocol/job-types';
+import type { Fault } from '../device/device-state';
+import { stillTooHot } from '../job/actions';
 import { hms } from '../job/hms';
 import { scanWords } from '../job/scan-words';
 import { bedOf, limitsOf, motionOf, type MachineConfig } from './machine-config';
@@ -16,9 +18,17 @@ import { cutWords, type Cut } from './objects/clipping';
 import { forecastScanThermal, forecastThermal, type ThermalRun } from './thermal-forecast';
 
 export interface Finding {
-  check: 'mode' | 'envelope' | 'clipping' | 'mesh' | 'dose' | 'thermal';
+  check: 'machine' | 'mode' | 'envelope' | 'clipping' | 'mesh' | 'dose' | 'thermal';
   level: 'error' | 'warning' | 'ok';
   message: string;
+}
+
+/** What the machine says of itself just before the question: its standing faults, whether the printhead answered, its hot sensors. */
+export interface MachineCheck {
+  faults: readonly Fault[];
+  printheadAnswers: boolean;
+  /** The sensors at or over their soft limit, in words (job/actions.ts hotSensors). */
+  hot: readonly string[];
 }
 
 /** nano.md: the printhead refuses any single duration over this (NANO_MAX_EXPOSURE_US). */
@@ -54,12 +64,12 @@ export function clippingFinding(cuts: readonly Cut[], accepted: boolean): Findin
 export function dryRun(
   job: PrintJob,
   config: MachineConfig,
-  opts: { mesh?: Mesh | null; leveling?: boolean | null; startC?: number[] | null; cuts?: readonly Cut[]; acceptCuts?: boolean } = {},
+  opts: { mesh?: Mesh | null; leveling?: boolean | null; startC?: number[] | null; cuts?: readonly Cut[]; acceptCuts?: boolean; machine?: MachineCheck } = {},
 ): DryRun {
   const header = headerOf(job);
   const machine = motionOf(config);
   const { plan, scan } = planAnyJob({ header, cells: job.gridData }, machine);
-  const findings: Finding[] = [];
+  const findings: Finding[] = opts.machine ? [machineFinding(opts.machine)] : [];
   const { bedMm } = bedOf(config);
   if (scan) findings.push(scanFinding(scan));
 
@@ -123,6 +133,21 @@ export function dryRun(
   findings.push(thermalFinding(thermal, paced, plan.count, limitsC, scan ? 'pass' : 'stop'));
 
   return { plan, scan, findings, duty, thermal, paced };
+}
+
+/**
+ * The machine's faults: a printhead that does not answer (E30, asked just now) and sensors over
+ * their soft limits (read just now) are errors, as the printer would refuse the job. An E31 itself
+ * is judged by the readings; a sensor fault or a refused exposure (E32, E33) the app cannot see
+ * clear, so it is a warning.
+ */
+export function machineFinding(m: MachineCheck): Finding {
+  const silent = m.printheadAnswers ? [] : ['E30 printhead not responding'];
+  const errors = [...silent, ...(m.hot.length ? [stillTooHot(m.hot)] : [])];
+  if (errors.length) return { check: 'machine', level: 'error', message: `${errors.join('; ')}. The printer would refuse the job: clear the fault first` };
+  const others = m.faults.filter((f) => f.code !== 30 && f.code !== 31);
+  if (others.length) return { check: 'machine', level: 'warning', message: `the printer reported ${others.map((f) => `E${f.code} ${f.message}`).join('; ')}: it refuses the job while that stands` };
+  return { check: 'machine', level: 'ok', message: 'the printhead answers, and the machine reports no fault' };
 }
 
 /** What a scan job is: its passes, their speed and the cell window. */

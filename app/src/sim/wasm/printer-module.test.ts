@@ -32,7 +32,7 @@ function ask(m: PrinterModule, line: string, port: HostPort = 0, maxUs = 30_000_
   throw new Error(`no ok for ${line}: ${got.join(' | ')}`);
 }
 
-describe('the firmware as WebAssembly', () => {
+describe('the firmware as WebAssembly', { timeout: 60_000 }, () => {
   it('starts on both ports and gives each its own receive window', async () => {
     const m = await powerUp();
     expect(m.sent(0)).toContain('start');

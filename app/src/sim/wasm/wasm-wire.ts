@@ -8,6 +8,8 @@ import { VirtualClock } from '../clock';
 import type { PrinterModule } from './printer-module';
 
 const STEP_US = 1000;
+/** The machine's main loop runs every 100 µs (mega_rig.h): its time moves in whole passes. */
+const PASS_US = 100;
 
 export class WasmWire {
   readonly clock = new VirtualClock();
@@ -40,8 +42,9 @@ export class WasmWire {
   advance(us: number): void {
     const end = this.clock.now + us;
     while (this.clock.now < end) {
+      // To the client's next timer, in whole passes (a timer may fire up to a pass late).
       const to = Math.min(end, this.clock.now + STEP_US, this.clock.next);
-      const step = Math.max(1, Math.round(to - this.clock.now));
+      const step = Math.max(PASS_US, Math.ceil((to - this.clock.now) / PASS_US) * PASS_US);
       this.printer.run(step);
       const lines = this.printer.sent(0);
       if (lines.length) this.#onBytes(lines.map((l) => l + '\n').join(''));

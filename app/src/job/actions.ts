@@ -1,0 +1,146 @@
+// The one rule for what may be done to the machine now: from the job's and the machine's state, which
+// actions are open, and why the others are not. Every control that moves, fires or uploads reads it.
+
+import type { Printer } from '../device/connection.svelte';
+import type { Fault, JobProgress } from '../device/device-state';
+import { limitsOf } from '../studio/machine-config';
+
+/** What the machine is doing, as far as the app can tell: each phase closes its own actions. */
+export type MachinePhase =
+  | 'disconnected'
+  | 'idle'
+  | 'faulted'
+  | 'homing'
+  | 'resuming'
+  | 'uploading'
+  | 'running'
+  | 'cooling'
+  | 'paused';
+
+export interface MachineView {
+  connected: boolean;
+  job: JobProgress | null;
+  /** G28 lines sent and not answered yet. */
+  homing: boolean;
+  /** An interrupted job being resumed: the machine homes, then runs it on. */
+  resuming: boolean;
+  uploading: boolean;
+  /** The faults the machine still has (DeviceState.activeFaults). */
+  faults: readonly Fault[];
+  /** The sensors at or over their soft limit, in words: "T3 56.0 °C (limit 55)". */
+  hot: readonly string[];
+  /** A job a restart interrupted is offered for resuming. */
+  interrupted: boolean;
+}
+
+export const ACTIONS = [
+  'expose', // expose the drawing or the test pattern: the dry run, then the question
+  'frame', // trace the drawing's bounds, LEDs off
+  'home',
+  'move', // jog, go to
+  'release', // motors off
+  'selfTest',
+  'probe', // deploy, stow, alarm reset, a test touch
+  'mesh', // probe the bed, leveling on and off
+  'settings', // save to the card, factory defaults: an idle machine only
+  'pause',
+  'continue',
+  'continuePaced',
+  'stop',
+  'resume', // an interrupted job
+  'discard',
+] as const;
+export type Action = (typeof ACTIONS)[number];
+
+export type Gate = { open: true; why?: undefined } | { open: false; why: string };
+export type Actions = Record<Action, Gate>;
+
+const OPEN: Gate = { open: true };
+const closed = (why: string): Gate => ({ open: false, why });
+
+export function phaseOf(v: MachineView): MachinePhase {
+  if (!v.connected) return 'disconnected';
+  if (v.resuming) return 'resuming';
+  if (v.uploading) return 'uploading';
+  if (v.job?.state === 'running') return v.job.cooling ? 'cooling' : 'running';
+  if (v.job?.state === 'paused') return 'paused';
+  if (v.homing) return 'homing';
+  return v.faults.length ? 'faulted' : 'idle';
+}
+
+/** "T3 56.0 °C (limit 55) is still too hot", or "… are still too hot" for several. */
+export function stillTooHot(hot: readonly string[]): string {
+  return `${hot.join(', ')} ${hot.length > 1 ? 'are' : 'is'} still too hot`;
+}
+
+const faultWords = (faults: readonly Fault[]) => faults.map((f) => `E${f.code} ${f.message}`).join('; ');
+
+/** Why a phase keeps the machine to itself; null for the phases that leave it free. */
+function busyWhy(phase: MachinePhase): string | null {
+  switch (phase) {
+    case 'disconnected': return 'not connected';
+    case 'resuming': return 'the interrupted job is resuming: the machine homes first';
+    case 'uploading': return 'a job is uploading';
+    case 'running': return 'a job is running';
+    case 'cooling': return 'a job is running (waiting for the head to cool)';
+    case 'paused': return 'a job is paused: continue or stop it first';
+    case 'homing': return 'the machine is homing';
+    default: return null;
+  }
+}
+
+/** Every action, open or closed with its reason, for the machine as `v` shows it. */
+export function actionsFor(v: MachineView): Actions {
+  const phase = phaseOf(v);
+  const busy = busyWhy(phase);
+  const free = busy ? closed(busy) : OPEN;
+  const jobOn = phase === 'running' || phase === 'cooling';
+  // The probe sits on the printhead: a silent printhead cannot deploy it.
+  const printhead = v.faults.find((f) => f.code === 30);
+  const probe = busy ? free : printhead ? closed(`the printhead does not answer (${faultWords([printhead])})`) : OPEN;
+  const idleish = phase === 'idle' || phase === 'faulted' || phase === 'homing';
+  // A paused job continues once the head is below its limits (the readings say when) and the
+  // printhead answers (the app asks again until it does), as the Mega refuses it otherwise.
+  const goOn = phase === 'paused'
+    ? v.hot.length ? closed(stillTooHot(v.hot)) : printhead ? closed(`the printhead is still faulted: ${faultWords([printhead])}`) : OPEN
+    : closed(jobOn ? 'the job is running' : idleish ? 'no job is paused' : busy!);
+  const noJob = closed(idleish ? 'no job is running' : busy!);
+  const offer = !v.interrupted ? closed('no interrupted job') : busy ? closed(busy) : OPEN;
+  return {
+    expose: free, // a standing fault is the dry run's red line: the question says it, and offers no exposure
+    frame: free,
+    home: phase === 'homing' ? closed('the machine is homing already') : free,
+    move: free,
+    release: free,
+    selfTest: free,
+    probe,
+    mesh: probe,
+    settings: free,
+    pause: jobOn ? OPEN : phase === 'paused' ? closed('the job is paused') : noJob,
+    continue: goOn,
+    continuePaced: goOn,
+    stop: jobOn || phase === 'paused' ? OPEN : noJob,
+    resume: offer,
+    discard: offer,
+  };
+}
+
+/** The sensors at or over their soft limit (settings, °C), in words for the user. */
+export function hotSensors(deciC: readonly number[] | null, limitsC: readonly number[] | null): string[] {
+  if (!deciC || !limitsC) return [];
+  return deciC.flatMap((d, i) => (d >= limitsC[i] * 10 ? [`T${i} ${(d / 10).toFixed(1)} °C (limit ${limitsC[i]})`] : []));
+}
+
+/** The machine as the rule sees it, from the printer's state (read inside $derived, it follows it). */
+export function viewOf(printer: Printer): MachineView {
+  return {
+    connected: printer.connection.state === 'connected',
+    job: printer.device.job,
+    homing: printer.homing > 0,
+    resuming: printer.resuming,
+    uploading: printer.upload.state === 'uploading',
+    faults: printer.device.activeFaults,
+    hot: hotSensors(printer.device.deciC, printer.config ? limitsOf(printer.config) : null),
+    interrupted: printer.interrupted !== null,
+  };
+}
