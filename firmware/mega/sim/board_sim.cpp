@@ -219,31 +219,10 @@ void BoardSim::onDir(avr_irq_t*, uint32_t value, void* param) {
   ref->sim->dirHigh[ref->axis] = value != 0;
 }
 
-void BoardSim::onEspOut(avr_irq_t*, uint32_t value, void* param) {
-  auto* s = static_cast<BoardSim*>(param);
-  char c = static_cast<char>(value);
-  if (c == '\n') {
-    s->espLines_.push_back(s->espPartial_);
-    s->espPartial_.clear();
-  } else {
-    s->espPartial_ += c;
-  }
-}
-
-void BoardSim::onHostOut(avr_irq_t*, uint32_t value, void* param) {
-  auto* s = static_cast<BoardSim*>(param);
-  char c = static_cast<char>(value);
-  if (c == '\n') {
-    s->hostLines_.push_back(s->hostPartial_);
-    s->hostPartial_.clear();
-  } else {
-    s->hostPartial_ += c;
-  }
-}
-
 namespace {
 // A byte of a line-based link: the line it ends, or the partial line it extends.
-void collect(char c, std::string& partial, std::vector<std::string>& lines) {
+template <class Lines>
+void collect(char c, std::string& partial, Lines& lines) {
   if (c == '\n') {
     lines.push_back(partial);
     partial.clear();
@@ -252,6 +231,16 @@ void collect(char c, std::string& partial, std::vector<std::string>& lines) {
   }
 }
 }  // namespace
+
+void BoardSim::onEspOut(avr_irq_t*, uint32_t value, void* param) {
+  auto* s = static_cast<BoardSim*>(param);
+  collect(static_cast<char>(value), s->espPartial_, s->espLines_);
+}
+
+void BoardSim::onHostOut(avr_irq_t*, uint32_t value, void* param) {
+  auto* s = static_cast<BoardSim*>(param);
+  collect(static_cast<char>(value), s->hostPartial_, s->hostLines_);
+}
 
 void BoardSim::onMegaToNano(avr_irq_t*, uint32_t value, void* param) {
   auto* s = static_cast<BoardSim*>(param);
