@@ -1,9 +1,13 @@
 #!/usr/bin/env bash
-# Builds the machine's firmware cores as WebAssembly (firmware/wasm/printer_module.cpp) into
-# build/wasm/printer.wasm with Debian's clang, wasi-libc and libc++ for wasm32 (scripts/system-deps.sh
-# installs them): the same sources as the AVR images and the host tests, nothing forked for it.
+# Builds the machine's firmware cores as WebAssembly (firmware/wasm/printer_module.cpp) with
+# Debian's clang, wasi-libc and libc++ for wasm32 (scripts/system-deps.sh installs them): the same
+# sources as the AVR images and the host tests, nothing forked for it. The simulated printer runs
+# the committed app/src/sim/wasm/printer.wasm, so `npm start` needs no compiler:
+#   bash scripts/build-wasm.sh          rebuilds it from the sources (commit it with them);
+#   bash scripts/build-wasm.sh --check  fails if the sources no longer build those exact bytes.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+committed=app/src/sim/wasm/printer.wasm
 
 out=build/wasm
 mkdir -p "$out/obj"
@@ -35,3 +39,13 @@ for pid in "${pids[@]}"; do wait "$pid"; done  # set -e: a failed compile ends t
 clang++ --target=wasm32-wasi --sysroot=/usr -mexec-model=reactor -Wl,--strip-all -Wl,-L/usr/lib/wasm32-wasi \
   -o "$out/printer.wasm" "${objs[@]}" -lc++ -lc++abi
 echo "build/wasm/printer.wasm: $(stat -c %s "$out/printer.wasm") B, $(gzip -9c "$out/printer.wasm" | wc -c) B gzipped"
+if [[ ${1:-} == --check ]]; then
+  if ! cmp -s "$out/printer.wasm" "$committed"; then
+    echo "$committed is not what the firmware's sources build: run npm run build:wasm and commit it" >&2
+    exit 1
+  fi
+  echo "$committed: the sources build it byte for byte"
+elif ! cmp -s "$out/printer.wasm" "$committed"; then
+  cp "$out/printer.wasm" "$committed"
+  echo "$committed: updated"
+fi

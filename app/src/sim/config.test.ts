@@ -33,7 +33,7 @@ it('takes well-formed values of known keys inside their ranges only', () => {
 
 it('loads CONFIG.TXT as CONFIG.md says: good lines taken, every other line skipped', () => {
   const h = new SimHost();
-  h.sim.sd.files.set('CONFIG.TXT', ['# a comment', '', 'accel.x=2500', '  speed.z = 2.5  ', 'accel.y = fast', 'nozzle = 3', 'led.offset.1 = 1,4', 'bed.x 300'].join('\n'));
+  h.sim.module.putFile('CONFIG.TXT', ['# a comment', '', 'accel.x=2500', '  speed.z = 2.5  ', 'accel.y = fast', 'nozzle = 3', 'led.offset.1 = 1,4', 'bed.x 300'].join('\n'));
   h.cmd('M501');
   const value = (key: string) => h.cmd(`M850 ${key}`)[0];
   expect(value('accel.x')).toBe('M850 accel.x 2500');
@@ -42,14 +42,14 @@ it('loads CONFIG.TXT as CONFIG.md says: good lines taken, every other line skipp
   expect(value('led.offset.1')).toBe('M850 led.offset.1 1,4');
   expect(value('bed.x')).toBe('M850 bed.x 200');
   h.cmd('M500');
-  expect(h.sim.sd.files.get('CONFIG.TXT')!.split('\n')[0]).toBe('steps_per_mm.x = 80');
+  expect(new Map(h.sim.module.card()).get('CONFIG.TXT')!.split('\n')[0]).toBe('steps_per_mm.x = 80');
 });
 
 it('keeps an EEPROM copy for a printer without a card, through a power cycle', () => {
   const h = new SimHost({ noSd: true });
   h.cmd('M850 bed.x 300');
   expect(h.cmd('M500')[0]).toBe('echo:Settings stored in EEPROM only: no SD card');
-  h.sim.powerCycle();
+  h.sim.powerCycle(); // right after: M500 answered once the EEPROM held them
   h.reconnect();
   expect(h.cmd('M850 bed.x')[0]).toBe('M850 bed.x 300');
   h.cmd('M502');

@@ -28,11 +28,8 @@ export const HEAD_THERMAL: HeadThermalModel = {
   extraHeatingCPerS: 0,
 };
 
-function popcount(m: number): number {
-  let n = 0;
-  for (; m; m &= m - 1) n++;
-  return n;
-}
+/** Each mask of lit LEDs as the LEDs' shares of the time: 0 or 1. */
+const DUTY = Array.from({ length: 16 }, (_, lit) => [0, 1, 2, 3].map((led) => (lit >> led) & 1));
 
 /** The six sensors' temperatures, °C, advanced through time with the LEDs' states. */
 export class HeadThermal {
@@ -47,9 +44,14 @@ export class HeadThermal {
 
   /** °C/s sensor `i` gains from its heating with the LEDs of `lit` on (not counting cooling). */
   heating(i: number, lit: number): number {
+    return this.heatingAt(i, DUTY[lit & 15]);
+  }
+
+  /** °C/s sensor `i` gains with each LED lit for its share `duty[led]` (0-1) of the time. */
+  heatingAt(i: number, duty: readonly number[]): number {
     const m = this.model;
-    if (i < 4) return ((lit >> i) & 1 ? m.heatingCPerS : 0) + m.extraHeatingCPerS;
-    return i === DRIVER_SENSOR ? m.heatingCPerS * m.driverShare * popcount(lit & 15) : 0;
+    if (i < 4) return m.heatingCPerS * duty[i] + m.extraHeatingCPerS;
+    return i === DRIVER_SENSOR ? m.heatingCPerS * m.driverShare * (duty[0] + duty[1] + duty[2] + duty[3]) : 0;
   }
 
   /**
@@ -58,12 +60,17 @@ export class HeadThermal {
    * peak within a step is at one of its ends.
    */
   advance(dtUs: number, lit: number): void {
+    this.advanceDuty(dtUs, DUTY[lit & 15]);
+  }
+
+  /** Runs `dtUs` with each LED lit for its share `duty[led]` of it: the mean heating, exact as `advance` is for a steady input. */
+  advanceDuty(dtUs: number, duty: readonly number[]): void {
     if (dtUs <= 0) return;
     const dt = dtUs / 1e6;
     const k = this.model.coolingPerS;
     const decay = Math.exp(-k * dt);
     for (let i = 0; i < SENSORS; i++) {
-      const h = this.heating(i, lit);
+      const h = this.heatingAt(i, duty);
       const amb = this.model.ambientC[i];
       if (k > 0) {
         const settle = amb + h / k;

@@ -1,12 +1,12 @@
-// Decides what of the simulated printer to write to the browser's store, and when: the card when a
-// file is written or deleted, the machine record (checkpoint, EEPROM, start count, a running job)
-// when it changes, which is at the pace the Mega writes checkpoints, after each stop. Both go in one
-// write, so a checkpoint is never kept without the job file it names. One write at a time: what
-// changes meanwhile goes in the next.
+// Decides what of the simulated printer to write to the browser's store, and when: the card when
+// what it durably holds changes (a job written, a checkpoint synced, a file removed), the machine
+// record (EEPROM, start count, a running job) when it changes. Both go in one write, so a checkpoint
+// is never kept without the job file it names. One write at a time: what changes meanwhile goes in
+// the next.
 
 import type { Keeping } from './sim-messages';
 import type { SimPrinter } from './sim-printer';
-import { jobRunning, machineRecord } from './sim-snapshot';
+import { machineRecord, type RunningJob } from './sim-snapshot';
 
 export type StoreEntries = [IDBValidKey, unknown][];
 
@@ -32,15 +32,19 @@ export class SimKeeper {
   /** Writes what changed since the last write, unless a write is under way (the next call takes it). */
   keep(): Promise<void> | null {
     if (this.#writing || this.#failed) return null;
-    const p = this.printer;
+    const m = this.printer.module;
     const entries: StoreEntries = [];
-    const cardRevision = p.sd.files.revision;
-    if (cardRevision !== this.#cardRevision) entries.push(['card', [...p.sd.files]]);
-    const running = !this.#off && jobRunning(p);
-    const machineKey = JSON.stringify([p.sd.checkpoint, p.mega.eeprom, p.boots, running]);
+    const cardRevision = m.cardRevision;
+    const saved = { files: cardRevision !== this.#cardRevision ? m.card() : [], eeprom: m.eeprom(), boots: m.starts };
+    if (cardRevision !== this.#cardRevision) entries.push(['card', saved.files]);
+    const job = this.#off ? null : m.cardJob();
+    // A running job's record goes again with each checkpoint the card takes: the time it keeps is
+    // the checkpoint's, which a reload runs the job on from.
+    const machineKey = JSON.stringify([m.eepromWrites, saved.boots, job, job ? cardRevision : 0]);
     if (machineKey !== this.#machineKey) {
-      // The head's place and the time go with each checkpoint: a reload runs the job on from there.
-      entries.push(['machine', machineRecord(p, running ? { pos: p.mega.motion.now(), atMs: this.wallMs(), speed: this.speed() } : null)]);
+      // The time and the speed go with a running job: a reload runs it on from its checkpoint.
+      const running: RunningJob | null = job && { atMs: this.wallMs(), speed: this.speed(), paced: job.paced };
+      entries.push(['machine', machineRecord(saved, running)]);
     }
     if (!entries.length) return null;
     this.#writing = this.write(entries).then(

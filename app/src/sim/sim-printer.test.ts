@@ -14,6 +14,10 @@ function upload(h: SimHost, file: string, text: string): string[] {
   return out;
 }
 
+const card = (h: SimHost) => new Map(h.sim.module.card());
+/** The job's stop count, from its JOB: line. */
+const stops = (h: SimHost) => Number(/stop=\d+\/(\d+)/.exec(h.cmd('M27')[0])?.[1]);
+
 function smallJob(seed = 3) {
   const job = randomJob(seed, GEOMETRIES.adjacent, 'serpentine', [24, 12], 0.4);
   job.originUm = { x: 20000, y: 30000 };
@@ -26,7 +30,7 @@ describe('simulated printer: link and identity', () => {
   it('identifies itself like the Mega, window included', () => {
     const h = new SimHost();
     const block = h.cmd('M115');
-    expect(parseReply(block[0])).toEqual({ kind: 'firmware', name: 'UVExposure 0.1.0 (Simulated Mega)', protocol: 1 });
+    expect(parseReply(block[0])).toEqual({ kind: 'firmware', name: 'UVExposure 0.1.0 (Mega)', protocol: 1 });
     expect(block).toContain('Cap:RX_WINDOW:3');
     expect(block.at(-1)).toBe(formatOk(1, 8, 3));
   });
@@ -34,8 +38,11 @@ describe('simulated printer: link and identity', () => {
   it('answers every line exactly once, errors included', () => {
     const lines: string[] = [];
     const sim = new SimPrinter((b) => lines.push(...b.split('\n').filter(Boolean)));
+    sim.boot();
+    sim.advance(200); // the Mega's start: what comes before it is lost, as on the board
+    lines.length = 0;
     sim.receive('M999x\nG1 X1e3\nN1 M105*0\n');
-    sim.advance(10);
+    sim.advance(20);
     expect(lines.filter((l) => l.startsWith('ok'))).toHaveLength(3);
     expect(lines[0]).toBe('echo:E10 unknown command: M999x');
     expect(lines).toContain('echo:E11 bad or missing parameter');
@@ -56,10 +63,8 @@ describe('simulated printer: link and identity', () => {
     expect(parseReply(h.cmd('M105')[0])?.kind).toBe('temps');
     h.cmd('M155 S1');
     const from = h.lines.length;
-    h.sim.advance(999);
-    expect(h.lines.slice(from).some((l) => l.startsWith('T:'))).toBe(false);
-    h.sim.advance(2);
-    expect(h.lines.slice(from).some((l) => l.startsWith('T:'))).toBe(true);
+    h.sim.advance(3050);
+    expect(h.lines.slice(from).filter((l) => l.startsWith('T:')).length).toBe(3); // one a second
   });
 });
 
@@ -91,7 +96,6 @@ describe('simulated printer: motion', () => {
     h.cmd('G28');
     expect(h.cmd('M822 Q')[0]).toBe('TEST:quick x=pass x_steps=1600 y=pass y_steps=1600');
     const full = h.cmd('M822');
-    expect(full).toContain('busy: processing'); // it runs longer than the 2 s keep-alive
     expect(full).toContain('TEST:full x=pass x_steps=16000 y=pass y_steps=16000');
   });
 });
@@ -100,19 +104,24 @@ describe('simulated printer: probe and mesh', () => {
   it('probes the bed surface and builds a mesh of it', () => {
     const h = new SimHost();
     h.cmd('G28');
+    h.cmd('G0 X50 Y60 Z5'); // deployed at Z 0 (the switch), the pin would be pressed in
     expect(h.cmd('M401')).toContain('PROBE:deployed');
-    h.cmd('G0 X50 Y60 Z5');
+    // Where the pin closed, to within one of Z's steps (2.5 µm at 400 steps/mm).
     const bed = parseReply(h.cmd('G30')[0]);
-    expect(bed).toEqual({ kind: 'probePoint', um: [50000, 60000, bedZ(DEFAULT_BED, 50000, 60000)] });
+    expect(bed?.kind === 'probePoint' && bed.um.slice(0, 2)).toEqual([50000, 60000]);
+    expect(bed?.kind === 'probePoint' && Math.abs(bed.um[2] - bedZ(DEFAULT_BED, 50000, 60000))).toBeLessThanOrEqual(2.5);
     const block = h.cmd('G29 X3 Y3');
     expect(block.filter((l) => l.startsWith('Bed X:'))).toHaveLength(9);
     const rows = block.filter((l) => l.startsWith('MESH:row'));
     expect(rows).toHaveLength(3);
-    expect(rows[0]).toBe(`MESH:row 0 ${[10000, 100000, 190000].map((x) => (bedZ(DEFAULT_BED, x, 10000) / 1000).toFixed(3)).join(' ')}`);
+    const first = rows[0].split(' ').slice(2).map(Number);
+    [10000, 100000, 190000].forEach((x, i) => expect(Math.abs(first[i] * 1000 - bedZ(DEFAULT_BED, x, 10000))).toBeLessThanOrEqual(2.5));
   });
 
   it('reports a probe alarm and clears it with the alarm release', () => {
     const h = new SimHost({ probeAlarm: true });
+    h.cmd('G28');
+    h.cmd('G0 Z5');
     const block = h.cmd('M401');
     expect(block).toContain('PROBE:alarm');
     expect(block.some((l) => l.startsWith('Error:E40'))).toBe(true);
@@ -126,11 +135,11 @@ describe('simulated printer: jobs', () => {
     const h = new SimHost();
     const text = encodeJob(smallJob());
     expect(upload(h, 'A.UVJ', text)).toContain('echo:Done saving file.');
-    expect(h.sim.sd.files.get('A.UVJ')).toBe(text);
+    expect(card(h).get('A.UVJ')).toBe(text);
     const broken = text.replace(/end [0-9a-f]{8}/, 'end 00000000');
     const out = upload(h, 'B.UVJ', broken);
     expect(out.some((l) => l.startsWith('echo:E24'))).toBe(true);
-    expect(h.sim.sd.files.has('B.UVJ')).toBe(false);
+    expect(card(h).has('B.UVJ')).toBe(false);
     expect(h.cmd('M20')).toEqual(['Begin file list', `A.UVJ ${text.length}`, 'End file list', expect.stringMatching(/^ok/)]);
   });
 
@@ -144,27 +153,30 @@ describe('simulated printer: jobs', () => {
         expect(h.cmd('M105')[0]).toMatch(/^T:/); // a console line between records runs
         const from = h.lines.length;
         h.sim.receive('2#3932\n'); // the tail of a line split by a damaged byte
-        h.sim.advance(5);
+        h.sim.advance(20);
         expect(h.lines.slice(from).find((l) => l.startsWith('Error:E4'))).toContain('a job record needs a line number');
       }
       h.cmd(r);
     });
     expect(h.cmd('M29')).toContain('echo:Done saving file.');
-    expect(h.sim.sd.files.get('C.UVJ')).toBe(text);
+    expect(card(h).get('C.UVJ')).toBe(text);
   });
 
-  it('runs a job in exactly the planner\'s estimated time, each stop once', () => {
+  it('runs a job, each stop once, in no more than the planner\'s estimate', () => {
     const h = new SimHost();
     h.cmd('G28');
     upload(h, 'J.UVJ', encodeJob(smallJob()));
     h.cmd('M23 J.UVJ');
-    const plan = h.sim.mega.job.plan!;
+    const fires = h.sim.module.fires;
     h.cmd('M24');
     const start = h.sim.clock.now;
-    h.waitFor(/^JOB:done/);
-    const took = h.sim.mega.job.exposures.length ? h.sim.clock.now - start : 0;
-    expect(h.sim.mega.job.exposures.map((e) => e.stop)).toEqual(Array.from({ length: plan.count }, (_, i) => i));
-    expect(Math.abs(took - plan.estimateUs)).toBeLessThanOrEqual(5000); // the last report lands on a 5 ms step
+    const total = stops(h);
+    const remaining = Number(/remaining=(\d+)/.exec(h.cmd('M27')[0])?.[1]);
+    expect(h.waitFor(/^JOB:done/)).toContain(`stop=${total}/${total}`);
+    expect(h.sim.module.fires - fires).toBe(total); // every stop lights something, once
+    const took = (h.sim.clock.now - start) / 1e6;
+    expect(took).toBeLessThanOrEqual(remaining + 1);
+    expect(took).toBeGreaterThan(remaining * 0.8);
   });
 
   it('resumes after a power cycle with every stop exactly once', () => {
@@ -172,21 +184,24 @@ describe('simulated printer: jobs', () => {
     h.cmd('G28');
     upload(h, 'R.UVJ', encodeJob(smallJob(9)));
     h.cmd('M23 R.UVJ');
-    const total = h.sim.mega.job.plan!.count;
+    const fires = h.sim.module.fires;
     h.cmd('M24');
-    while (h.sim.mega.job.exposures.length < total / 2) h.sim.advance(1);
-    const before = h.sim.mega.job.exposures.map((e) => e.stop);
-    expect(before.length).toBeGreaterThan(0);
-    expect(before.length).toBeLessThan(total);
+    const total = stops(h);
+    while (h.sim.module.fires - fires < total / 2) h.sim.advance(1);
+    const fired = h.sim.module.fires - fires;
     h.sim.powerCycle();
     h.reconnect();
-    expect(h.cmd('M1000 S')[0]).toBe(`JOB:interrupted file=R.UVJ stop=${before.length}/${total}`);
+    const interrupted = h.cmd('M1000 S')[0];
+    expect(interrupted).toMatch(new RegExp(`^JOB:interrupted file=R.UVJ stop=\\d+/${total}$`));
+    const done = Number(/stop=(\d+)\//.exec(interrupted)?.[1]);
+    expect(done).toBeGreaterThan(0);
+    expect(done).toBeLessThanOrEqual(fired);
     expect(h.cmd('M1000')[0]).toMatch(/^echo:E14/); // must home first
     h.cmd('G28');
+    const before = h.sim.module.fires;
     h.cmd('M1000');
     h.waitFor(/^JOB:done/);
-    const after = h.sim.mega.job.exposures.map((e) => e.stop);
-    expect([...before, ...after]).toEqual(Array.from({ length: total }, (_, i) => i));
+    expect(h.sim.module.fires - before).toBe(total - done); // the rest, each once
     expect(h.cmd('M1000 S')[0]).toBe('JOB:idle');
   });
 
@@ -199,14 +214,14 @@ describe('simulated printer: jobs', () => {
     h.sim.advance(500);
     h.cmd('M25');
     h.waitFor(/^JOB:paused/);
-    const n = h.sim.mega.job.exposures.length;
+    const n = h.sim.module.fires;
     h.sim.advance(2000);
-    expect(h.sim.mega.job.exposures.length).toBe(n);
-    expect(h.sim.nano.lit).toBe(0);
+    expect(h.sim.module.fires).toBe(n);
+    expect(h.sim.module.lit).toBe(0);
     h.cmd('M24');
     h.sim.advance(300);
     h.cmd('M524');
-    expect(h.sim.nano.lit).toBe(0);
+    expect(h.sim.module.lit).toBe(0);
     expect(h.cmd('M27')[0]).toMatch(/^JOB:aborted/);
     expect(h.cmd('M1000 S')[0]).toBe('JOB:idle');
   });
@@ -214,25 +229,26 @@ describe('simulated printer: jobs', () => {
 
 describe('simulated printer: faults', () => {
   it('heats with LED duty, and over-temperature stops the LEDs and says why', () => {
-    const h = new SimHost({ nano: { heatingCPerS: 1500 } }); // lit LEDs heat their sensors 1500 °C/s
+    const h = new SimHost({ thermal: { heatingCPerS: 1500 } }); // lit LEDs heat their sensors 1500 °C/s
     h.cmd('G28');
     upload(h, 'H.UVJ', encodeJob(smallJob(5)));
     h.cmd('M23 H.UVJ');
     h.cmd('M24');
-    const fault = h.waitFor(/^FAULT:E31/, 120_000);
+    // At this rate the Nano's own cut-off comes first: it refuses the next exposure, hot (mega.md "Pacing").
+    const fault = h.waitFor(/^FAULT:E3/, 120_000);
     expect(fault).toMatch(/^FAULT:E31 over-temperature (T\d \d+\.\d \(soft limit\)|T\d \d+\.\d|at stop \d+)$/);
-    expect(h.sim.nano.lit).toBe(0);
-    expect(h.cmd('M27')[0]).toMatch(/^JOB:paused .*reason=overtemp/);
+    expect(h.sim.module.lit).toBe(0);
+    expect(h.cmd('M27').find((l) => l.startsWith('JOB:'))).toMatch(/^JOB:paused .*reason=overtemp/);
     expect(h.cmd('M24')[0]).toMatch(/^Error:E31/);
   });
 
   it('refuses to start a job while the printhead is over its limit', () => {
-    const h = new SimHost({ nano: { extraHeatingCPerS: 30 } }); // hot before any LED fires
+    const h = new SimHost({ thermal: { extraHeatingCPerS: 30 } }); // hot before any LED fires
     h.cmd('G28');
     upload(h, 'C.UVJ', encodeJob(smallJob(6)));
     h.cmd('M23 C.UVJ');
     expect(h.cmd('M24')[0]).toBe('Error:E31 over-temperature: printhead faulted');
-    expect(h.sim.mega.job.exposures).toHaveLength(0);
+    expect(h.sim.module.fires).toBe(0);
   });
 
   it('stalls: a line sent while the printer is not reading is answered when the stall ends', () => {
@@ -246,15 +262,16 @@ describe('simulated printer: faults', () => {
 
   it('reports a missing printhead', () => {
     const h = new SimHost({ missingNano: true });
-    expect(h.cmd('M105')[0]).toBe('Error:E30 printhead not responding');
-    h.waitFor(/^FAULT:E30/, 5000);
+    const block = h.cmd('M105'); // after the first reading's three time-outs
+    expect(block).toContain('FAULT:E30 printhead not responding');
+    expect(block).toContain('Error:E30 printhead not responding');
   });
 
   it('halts on M112 until M999', () => {
     const h = new SimHost();
     h.sim.receive(encodeFrame(99, 'M112').replace(/^N99 /, '') + '\n');
     h.sim.receive('M112\n');
-    h.sim.advance(5);
+    h.sim.advance(20);
     expect(h.cmd('M105')[0]).toBe('Error:E13 machine halted: send M999');
     h.cmd('M999');
     expect(parseReply(h.cmd('M105')[0])?.kind).toBe('temps');

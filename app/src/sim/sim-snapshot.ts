@@ -1,27 +1,25 @@
-// What of the simulated printer the browser keeps between page loads (issue 17, item 5): the card, the
-// job's checkpoint, the EEPROM, the start count and a running job, and how it is read back. A store
-// that a broken write, another version or a hand left behind is checked field by field: what does
-// not hold up is dropped, and the note says what.
+// What of the simulated printer the browser keeps between page loads (issue 17, item 5): the card
+// (the job's checkpoint is a file on it, as the firmware writes it), the Mega's EEPROM, the Nano's
+// start count and a running job, and how it is read back. A store that a broken write, another
+// version or a hand left behind is checked field by field: what does not hold up is dropped, and the
+// note says what.
 
-import { validConfig } from './config';
-import type { Xyz } from './motion';
-import type { Checkpoint } from './sd-card';
-import type { SavedMachine, SimPrinter } from './sim-printer';
+import { EEPROM_BYTES } from './wasm/printer-module';
+import type { SavedMachine } from './sim-printer';
 
-export const MACHINE_VERSION = 1;
+export const MACHINE_VERSION = 2;
 
-/** A job that was running when the record was kept: where the head stood, when (wall ms), at what speed. */
+/** A job from the card that was running when the record was kept: when (wall ms), at what speed, paced or not. */
 export interface RunningJob {
-  pos: Xyz;
   atMs: number;
   speed: number;
+  paced: boolean;
 }
 
-/** The small record kept at the pace of the checkpoints; the card's files are kept apart, when they change. */
+/** The small record kept when the EEPROM, the start count or the running job change; the card's files are kept apart. */
 export interface MachineRecord {
   version: typeof MACHINE_VERSION;
-  checkpoint: Checkpoint | null;
-  eeprom: Record<string, string> | null;
+  eeprom: Uint8Array;
   boots: number;
   running: RunningJob | null;
 }
@@ -33,19 +31,12 @@ export interface Kept {
   note: string | null;
 }
 
-/** A job from the card runs and has a checkpoint: a reload should find it run on. Streams have no checkpoint. */
-export function jobRunning(p: SimPrinter): boolean {
-  const { job } = p.mega;
-  return job.state === 'running' && !job.streaming && p.sd.checkpoint?.file === job.file; // not an older job's checkpoint
-}
-
-export function machineRecord(p: SimPrinter, running: RunningJob | null): MachineRecord {
-  const cp = p.sd.checkpoint;
-  return { version: MACHINE_VERSION, checkpoint: cp && { ...cp }, eeprom: p.mega.eeprom && { ...p.mega.eeprom }, boots: p.boots, running };
+export function machineRecord(saved: SavedMachine, running: RunningJob | null): MachineRecord {
+  return { version: MACHINE_VERSION, eeprom: saved.eeprom ?? new Uint8Array(EEPROM_BYTES).fill(0xff), boots: saved.boots, running };
 }
 
 const isObject = (v: unknown): v is Record<string, unknown> => typeof v === 'object' && v !== null && !Array.isArray(v);
-const count = (v: unknown): v is number => Number.isInteger(v) && (v as number) >= 0;
+const count = (v: unknown): v is number => Number.isInteger(v) && (v as number) >= 0 && (v as number) < 65535;
 
 function cardOf(v: unknown): [string, string][] | null {
   if (!Array.isArray(v)) return null;
@@ -53,33 +44,22 @@ function cardOf(v: unknown): [string, string][] | null {
   return files.length === v.length ? files : null;
 }
 
-function checkpointOf(v: unknown): Checkpoint | null | undefined {
-  if (v === null) return null;
-  if (!isObject(v) || typeof v.file !== 'string' || ![v.done, v.stops, v.boot, v.fires].every(count) || (v.done as number) > (v.stops as number)) return undefined;
-  return { file: v.file, done: v.done as number, stops: v.stops as number, boot: v.boot as number, fires: v.fires as number };
-}
-
-function eepromOf(v: unknown): Record<string, string> | null | undefined {
-  if (v === null) return null;
-  if (!isObject(v) || !Object.entries(v).every(([k, x]) => typeof x === 'string' && validConfig(k, x))) return undefined;
-  return { ...(v as Record<string, string>) };
-}
-
 function runningOf(v: unknown): RunningJob | null | undefined {
   if (v === null) return null;
-  if (!isObject(v) || !Array.isArray(v.pos) || v.pos.length !== 3 || !v.pos.every(Number.isFinite)) return undefined;
-  if (!Number.isFinite(v.atMs) || !Number.isFinite(v.speed) || (v.speed as number) < 1 || (v.speed as number) > 1000) return undefined;
-  return { pos: [...v.pos] as Xyz, atMs: v.atMs as number, speed: v.speed as number };
+  if (!isObject(v) || !Number.isFinite(v.atMs) || typeof v.paced !== 'boolean') return undefined;
+  if (!Number.isFinite(v.speed) || (v.speed as number) < 1 || (v.speed as number) > 1000) return undefined;
+  return { atMs: v.atMs as number, speed: v.speed as number, paced: v.paced };
 }
 
-/** The machine record, or undefined if any of it does not hold up. */
-function recordOf(v: unknown): MachineRecord | undefined {
-  if (!isObject(v) || v.version !== MACHINE_VERSION || !count(v.boots)) return undefined;
-  const checkpoint = checkpointOf(v.checkpoint);
-  const eeprom = eepromOf(v.eeprom);
+/** The machine record, or why it does not hold up. */
+function recordOf(v: unknown): MachineRecord | string {
+  if (isObject(v) && v.version === 1) return 'it was kept by an earlier version of the simulated printer, so it has its default settings and nothing to resume';
+  const bad = 'its settings and checkpoint could not be read, so it has its defaults and nothing to resume';
+  if (!isObject(v) || v.version !== MACHINE_VERSION || !count(v.boots)) return bad;
+  if (!(v.eeprom instanceof Uint8Array) || v.eeprom.length !== EEPROM_BYTES) return bad;
   const running = runningOf(v.running);
-  if (checkpoint === undefined || eeprom === undefined || running === undefined) return undefined;
-  return { version: MACHINE_VERSION, checkpoint, eeprom, boots: v.boots as number, running };
+  if (running === undefined) return bad;
+  return { version: MACHINE_VERSION, eeprom: v.eeprom, boots: v.boots as number, running };
 }
 
 /** Reads back what the store held under `card` and `machine` (undefined: never kept). */
@@ -92,15 +72,13 @@ export function readKept(card: unknown, machine: unknown): Kept {
     files = [];
   }
   const record = machine === undefined ? null : recordOf(machine);
-  if (record === undefined) notes.push('its settings and checkpoint could not be read, so it has its defaults and nothing to resume');
-  let checkpoint = record?.checkpoint ?? null;
-  if (checkpoint && !files.some(([name]) => name === checkpoint!.file)) {
-    notes.push(`its checkpoint names ${checkpoint.file}, which is not on its card, so there is nothing to resume`);
-    checkpoint = null;
-  }
+  if (typeof record === 'string') notes.push(record);
+  const kept = typeof record === 'string' ? null : record;
+  // A record without its checkpoint's card (or a card without the record) resumes nothing: the
+  // firmware finds no checkpoint, or says why it cannot take it, when asked.
   return {
-    saved: { files, checkpoint, eeprom: record?.eeprom ?? null, boots: record?.boots ?? 0 },
-    running: checkpoint ? (record?.running ?? null) : null,
+    saved: { files, eeprom: kept?.eeprom ?? null, boots: kept?.boots ?? 0 },
+    running: files.length ? (kept?.running ?? null) : null,
     note: notes.length ? `The simulated printer kept in this browser was damaged: ${notes.join('; ')}.` : null,
   };
 }

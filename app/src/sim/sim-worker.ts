@@ -1,15 +1,18 @@
-// Web Worker host of the simulated printer: bytes in and out by postMessage, real time as its clock
-// (times `speed`, which demos and tests may raise with ?simSpeed=N on the app's URL, and the simulated
-// printer's panel changes live), and a reset of its Mega each time the app opens its link again
-// (DTR): its memory goes, the printhead runs on.
-// Its card, checkpoint, EEPROM and start count are kept in the browser (sim-storage.ts), so a reload
-// finds the same machine: one that ran its job on while no page was there, then had its link opened.
+// Web Worker host of the simulated printer (the firmware's C++ as WebAssembly, sim-printer.ts):
+// bytes in and out by postMessage, real time as its clock (times `speed`, which demos and tests may
+// raise with ?simSpeed=N on the app's URL, and the simulated printer's panel changes live), and a
+// reset of its Mega each time the app opens its link again (DTR): its memory goes, the printhead
+// runs on.
+// Its card (with the job's checkpoint), EEPROM and start count are kept in the browser
+// (sim-storage.ts), so a reload finds the same machine: one that ran its job on while no page was
+// there, then had its link opened.
 
 import type { FromSimulator, Keeping, ToSimulator } from './sim-messages';
 import { keepingNote, SimKeeper } from './sim-keeper';
 import { SimPrinter } from './sim-printer';
 import type { Kept } from './sim-snapshot';
 import { claimStore, loadKept, writeKept } from './sim-storage';
+import { loadFirmwareModule } from './wasm/firmware-module';
 
 const say = (m: FromSimulator) => postMessage(m);
 let sending = '';
@@ -26,7 +29,7 @@ let speed = 1;
 let start = performance.now();
 let printer: SimPrinter | null = null;
 let keeper: SimKeeper | null = null;
-const early: ToSimulator[] = []; // what the app sent while the store was being read
+const early: ToSimulator[] = []; // what the app sent while the module and the store were being read
 
 onmessage = (e: MessageEvent<ToSimulator>) => (printer ? obey(printer, e.data) : early.push(e.data));
 
@@ -50,15 +53,16 @@ async function read(): Promise<{ kept: Kept; keeping: Keeping }> {
   }
 }
 
+/** The most of the machine's time one tick runs, in wall ms: a machine slower than asked falls behind rather than freeze its worker. */
+const TICK_BUDGET_MS = 40;
+
 async function boot(): Promise<void> {
-  const { kept, keeping } = await read();
+  const [{ kept, keeping }] = await Promise.all([read(), loadFirmwareModule()]);
   const p = new SimPrinter(send, { saved: kept.saved });
   p.onDisconnect = () => say({ type: 'closed' });
-  if (kept.running) {
-    // The page that ran it went away mid-job; the printer ran on meanwhile, at the speed it had.
-    p.runOn(kept.running.pos, (Date.now() - kept.running.atMs) * kept.running.speed);
-    p.resetMega(); // and this page opens its link
-  } else p.boot();
+  // The page that ran a job went away mid-job; the printer ran on meanwhile, at the speed it had.
+  if (kept.running) p.runOn((Date.now() - kept.running.atMs) * kept.running.speed, kept.running.paced);
+  p.resetMega(); // this page opens its link
   printer = p;
   if (keeping === 'kept') {
     keeper = new SimKeeper(p, writeKept, () => speed, () => say({ type: 'kept', keeping: 'failed', note: keepingNote('failed', null), faults: p.faults }));
@@ -67,7 +71,12 @@ async function boot(): Promise<void> {
   start = performance.now() - p.clock.now / 1000 / speed;
   for (const m of early.splice(0)) obey(p, m);
   setInterval(() => {
-    p.tick((performance.now() - start) * speed);
+    const began = performance.now();
+    const target = (began - start) * speed * 1000;
+    // In slices, so that a machine slower than its speed gives up the rest of the tick, and its
+    // clock starts again from where it got: the page sees a slower printer, never a frozen one.
+    while (p.clock.now < target && performance.now() - began < TICK_BUDGET_MS) p.advanceTo(Math.min(target, p.clock.now + 20_000 * speed));
+    if (p.clock.now < target) start = performance.now() - p.clock.now / 1000 / speed;
     void keeper?.keep();
   }, 20);
 }

@@ -1,12 +1,12 @@
-// A simulated serial wire between a host Transport and a SimPrinter, in the printer's virtual time:
-// each direction carries one byte per byte-time (10 bits at the baud rate) after a fixed latency.
+// A host Transport on a SimPrinter, in the printer's virtual time. The printer's module carries the
+// bytes at 115200 baud itself (the Mega's UART, mega_rig.h); this adds the one-way latency of what
+// is between (a USB frame, the ESP's bridge).
 
 import type { Transport } from '../device/transport';
 import type { ClientOptions } from '../device/dialect-client';
 import { SimPrinter, type SimOptions } from './sim-printer';
 
 export interface WireOptions {
-  baud?: number;
   /** One-way latency in µs (USB frames, the ESP bridge...). */
   latencyUs?: number;
 }
@@ -16,17 +16,13 @@ export class SimWire {
   readonly host: Transport;
   /** Client options whose clock and timers are the printer's virtual clock. */
   readonly clientOptions: ClientOptions;
-  #byteUs: number;
   #latency: number;
-  #toPrinterFree = 0;
-  #toHostFree = 0;
   #onBytes: (b: string) => void = () => {};
   #onClosed: (e?: Error) => void = () => {};
   /** Bytes carried each way. */
   carried = { toPrinter: 0, toHost: 0 };
 
   constructor(sim: SimOptions = {}, wire: WireOptions = {}) {
-    this.#byteUs = 1e7 / (wire.baud ?? 115200);
     this.#latency = wire.latencyUs ?? 1000;
     this.printer = new SimPrinter((bytes) => this.#carry(bytes, 'toHost'), sim);
     this.printer.onDisconnect = () => this.#onClosed(new Error('device lost'));
@@ -52,16 +48,8 @@ export class SimWire {
   }
 
   #carry(bytes: string, dir: 'toPrinter' | 'toHost'): void {
-    const clock = this.printer.clock;
-    for (let i = 0; i < bytes.length; i++) {
-      const free = dir === 'toPrinter' ? this.#toPrinterFree : this.#toHostFree;
-      const doneAt = Math.max(free, clock.now) + this.#byteUs;
-      if (dir === 'toPrinter') this.#toPrinterFree = doneAt;
-      else this.#toHostFree = doneAt;
-      const c = bytes[i];
-      this.carried[dir]++;
-      clock.at(doneAt + this.#latency, () => (dir === 'toPrinter' ? this.printer.receive(c) : this.#onBytes(c)));
-    }
+    this.carried[dir] += bytes.length;
+    this.printer.clock.after(this.#latency, () => (dir === 'toPrinter' ? this.printer.receive(bytes) : this.#onBytes(bytes)));
   }
 
   /** Runs virtual time until `done` or `maxMs` passes; true if done. */

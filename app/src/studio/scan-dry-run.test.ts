@@ -16,16 +16,16 @@ import { forecastScanThermal } from './thermal-forecast';
 const block = (fullMs: number, fill: number, cols = 24, rows = 16): PrintJob => blockJob(fullMs, fill, cols, rows, { seed: 11, strategy: 'scan', gray: true });
 
 function simulate(job: PrintJob) {
-  const h = new SimHost({ drift: false });
+  const h = new SimHost();
   h.cmd('G28');
   h.upload('F.UVJ', encodeJob(job));
   h.cmd('M23 F.UVJ');
-  const startC = h.sim.nano.temp.slice();
-  h.sim.nano.thermal.resetPeak();
+  const startC = h.sim.thermal.temp.slice();
+  h.sim.thermal.resetPeak();
   const from = h.sim.clock.now;
   h.cmd('M24');
   const end = h.waitFor(/^JOB:(done|paused)/, 3_600_000);
-  return { startC, end, peakC: h.sim.nano.thermal.peak.slice(), us: h.sim.clock.now - from, passes: h.sim.mega.job.scanExposures.length };
+  return { startC, end, peakC: h.sim.thermal.peak.slice(), us: h.sim.clock.now - from };
 }
 
 describe('dry run of a scan job', () => {

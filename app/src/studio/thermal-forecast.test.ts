@@ -8,7 +8,7 @@ import { planJob } from '../planner/planner';
 import { encodeJob } from '../protocol/job-encode';
 import type { PrintJob } from '../protocol/job-types';
 import { CONFIG_DEFAULTS, motionOf } from '../sim/config';
-import { SimHost } from '../sim/sim-host.fixture';
+import { cooledUs, SimHost } from '../sim/sim-host.fixture';
 import { blockJob } from './block-job.fixture';
 import { forecastThermal } from './thermal-forecast';
 import { limitsOf } from './machine-config';
@@ -17,18 +17,18 @@ import { limitsOf } from './machine-config';
 const block = (fullMs: number, fill: number, cols = 24, rows = 16): PrintJob => blockJob(fullMs, fill, cols, rows, { seed: 7, strategy: 'serpentine', gray: false });
 
 function simulate(job: PrintJob, paced: boolean) {
-  const h = new SimHost({ drift: false });
+  const h = new SimHost();
   h.cmd('G28');
   h.cmd('M28 F.UVJ');
   for (const record of encodeJob(job).trimEnd().split('\n')) h.cmd(record);
   h.cmd('M29');
   h.cmd('M23 F.UVJ');
-  const startC = h.sim.nano.temp.slice();
-  h.sim.nano.thermal.resetPeak();
+  const startC = h.sim.thermal.temp.slice();
+  h.sim.thermal.resetPeak();
   const from = h.sim.clock.now;
   h.cmd(paced ? 'M24 P1' : 'M24');
   const end = h.waitFor(/^JOB:(done|paused)/, 3_600_000);
-  return { startC, end, peakC: h.sim.nano.thermal.peak.slice(), us: h.sim.clock.now - from, cooledUs: h.sim.mega.job.cooledUs };
+  return { startC, end, peakC: h.sim.thermal.peak.slice(), us: h.sim.clock.now - from, cooledUs: cooledUs(h) };
 }
 
 function forecast(job: PrintJob, startC: number[], paced: boolean) {

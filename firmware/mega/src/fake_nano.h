@@ -64,11 +64,28 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
     }
   }
   void setTemps(int16_t deciC) {
-    temps_ = deciC;
-    uint16_t mv[6];
-    for (uint16_t& m : mv) m = static_cast<uint16_t>(500 + deciC);  // TMP36: 10 mV/°C, 500 mV at 0
+    int16_t each[uv::kSensorCount];
+    for (int16_t& t : each) t = deciC;
+    setTemps(each);
+  }
+  // Each sensor's own reading (the simulated printer's thermal model gives them).
+  void setTemps(const int16_t deciC[uv::kSensorCount]) {
+    uint16_t mv[uv::kSensorCount];
+    for (uint8_t i = 0; i < uv::kSensorCount; i++) {
+      temps_[i] = deciC[i];
+      mv[i] = static_cast<uint16_t>(500 + deciC[i]);  // TMP36: 10 mV/°C, 500 mV at 0
+    }
     head_.readings(mv);  // over a limit, the real logic switches every LED off (CUTOFF)
   }
+  // This start's number, as the Nano's EEPROM counter holds it (a machine kept from an earlier run).
+  void startCount(uint16_t boot) {
+    boot_ = boot;
+    head_.setBoot(boot);
+  }
+  uint16_t startCount() const { return boot_; }
+  // How long LED `i` has shone since this fake was made, µs, whatever switched it: the dose the
+  // simulated printer's thermal model heats the head by.
+  uint64_t onUs(uint8_t i) const { return onTotal_[i] + ((lit_ >> i & 1) ? nowUs - onSince_[i] : 0); }
   uint8_t litMask() const override { return lit_; }
   uint8_t lit() const { return lit_; }
   // Power fails and returns: LEDs dark at once, the Nano's RAM gone, its start count one more.
@@ -91,6 +108,10 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
   std::vector<Exposure> exposures;
   std::vector<ScanLight> scanLight;
   std::vector<std::string> lines;  // every line the Mega sent
+  // The logs above grow with every line and exposure, for the tests; the simulated printer, which
+  // runs for hours, keeps none.
+  bool logging = true;
+  uint32_t fired = 0;  // exposures by F, logged or not
   uint16_t servoUs = 0;
   bool probe = false;
 
@@ -99,7 +120,7 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
     for (uint8_t i = 0; i < n; i++) {
       if (!splitter_.push(data[i])) continue;
       std::string l(splitter_.text(), splitter_.length());
-      lines.push_back(l);
+      if (logging) lines.push_back(l);
       if (silent || (noClock && l == "W")) continue;
       head_.line(splitter_.text(), splitter_.length(), splitter_.overflow(), nowUs / 1000);
     }
@@ -116,13 +137,17 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
         offAt_[i] = nowUs + e.askedUs[i];
       }
     }
+    for (uint8_t i = 0; i < 4; i++)
+      if ((p.onMask >> i & 1) && !(lit_ >> i & 1)) onSince_[i] = nowUs;
     lit_ = p.onMask;
-    exposures.push_back(e);
+    fired++;
+    if (logging) exposures.push_back(e);
     startAt_ = nowUs;
   }
   void off(uint8_t i, uint32_t atUs) {
+    if (lit_ >> i & 1) onTotal_[i] += atUs - onSince_[i];
     lit_ = static_cast<uint8_t>(lit_ & ~(1 << i));
-    exposures.back().litUs[i] = atUs - startAt_;
+    if (logging && !exposures.empty()) exposures.back().litUs[i] = atUs - startAt_;
   }
   void allOff() override {
     if (program_) {
@@ -164,6 +189,9 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
   void setLit(uint8_t m, uint32_t atUs) {
     for (uint8_t i = 0; i < 4; i++) {
       bool was = lit_ >> i & 1, is = m >> i & 1;
+      if (!was && is) onSince_[i] = atUs;
+      if (was && !is) onTotal_[i] += atUs - onSince_[i];
+      if (!logging) continue;
       if (!was && is) scanLight.push_back({i, atUs, atUs});
       if (was && !is)
         for (auto it = scanLight.rbegin(); it != scanLight.rend(); ++it)
@@ -193,7 +221,9 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
   uint32_t chainAt_ = 0, chainUs_ = 0;  // when the chain's G came, and its time so far in the Nano's µs
   uint8_t nextMask_ = 0;
   uint16_t boot_ = 7;
-  int16_t temps_ = 250;
+  int16_t temps_[uv::kSensorCount] = {250, 250, 250, 250, 250, 250};
+  uint64_t onTotal_[4] = {};   // each LED's on-time up to its last switch-off, µs
+  uint32_t onSince_[4] = {};   // when each lit LED came on
 };
 
 }  // namespace mega

@@ -80,6 +80,10 @@ class Machine {
   void emergency();
 
   bool halted() const { return halted_; }
+  // A job from the card is exposing now (not paused): what a machine with no host listening runs on
+  // with, and whether it was started paced. The simulated printer keeps a page's reload by them.
+  bool cardJobRunning() const { return arena_ == Arena::Run && run()->state() == RunState::Running; }
+  bool jobPaced() const { return running() && run()->paced(); }
   bool leveling() const { return leveling_; }
   int16_t meshPoint(uint8_t i, uint8_t j) { return mesh_.z(i, j); }
   uint8_t homed() const { return homed_; }
@@ -87,7 +91,7 @@ class Machine {
  private:
   enum class Result : uint8_t { Done, Long, Wait };
   // Answer: the command has ended, and its reply waits for room on its port (finishLong).
-  enum class Op : uint8_t { None, Emit, Dwell, Home, SelfTest, Servo, ProbeRead, MoveRoom, Release, Plan, Prepare, Probe, Level, Answer };
+  enum class Op : uint8_t { None, Emit, Dwell, Home, SelfTest, Servo, ProbeRead, MoveRoom, Release, Plan, Prepare, Probe, Level, Store, Answer };
   enum class Gen : uint8_t { Firmware, Endstops, Config, Files, Mesh };
   // What the job arena holds: an upload, a planning, a preparation from a job copied onto the card, a run.
   enum class Arena : uint8_t { Empty, Spool, Plan, Run, Stream, Gcode };

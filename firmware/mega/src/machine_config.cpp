@@ -49,8 +49,8 @@ Machine::Result Machine::configCommand(HostLink& port, const uv::Command& c) {
       }
       uint8_t err = store_.save();
       if (err) port.errorLineP(err, UV_P("CONFIG.TXT"));
-      port.lineP(sd_.present() ? UV_P("echo:Settings stored") : UV_P("echo:Settings stored in EEPROM only: no SD card"));
-      return Result::Done;
+      long_.op = Op::Store;  // "stored" once the EEPROM copy is written: a power cut after it keeps them
+      return Result::Long;
     }
     case 501:
       if (jobActive()) {

@@ -80,6 +80,10 @@ void Machine::runLong() {
       long_.op = Op::Plan;
       return;
     }
+    case Op::Store:  // M500: its answer once the EEPROM holds the settings
+      if (store_.saving() || long_.port->room() < kReplyRoom) return;
+      long_.port->lineP(sd_.present() ? UV_P("echo:Settings stored") : UV_P("echo:Settings stored in EEPROM only: no SD card"));
+      return finishLong();
     case Op::Release:
       if (long_.drain) {  // the moves queued before M18/M84 end first, where they were sent (Marlin)
         if (!motion_.idle()) return;

@@ -7,6 +7,7 @@ namespace mega {
 
 
 Machine::Result Machine::temperatures(HostLink& port) {
+  if (head_.firstReadingDue()) return Result::Wait;
   if (!head_.online() || !head_.tempsKnown()) {
     port.errorLine(uv::kNanoTimeout);
     return Result::Done;

@@ -120,6 +120,7 @@ class MegaRig {
   std::vector<std::array<int32_t, 3>> firedAt;
   // The bed's surface under the probe, in µm of the head's Z (no bed: the probe never touches).
   std::function<int32_t(int32_t xUm, int32_t yUm)> bed;
+  bool probeAlarm = false;  // the probe's next deploy ends in its alarm
 
   void begin() {
     // A scan pass's G leaves on its step (the board's step interrupt writes it to the Nano's UART)
@@ -193,10 +194,16 @@ class MegaRig {
         }
         if (rig.now >= until) break;
       }
-      if (bed) {  // the CR Touch's pin, when out, closes on the bed
+      // The CR Touch: its pin, when out, closes on the bed. Armed with an alarm, its next deploy
+      // jams it, and it reads triggered until the alarm release.
+      if (nano.servoUs == nano::kServoAlarmReleaseUs) probeAlarm = probeJammed_ = false;
+      else if (nano.servoUs == nano::kServoDeployUs && probeAlarm) probeJammed_ = true;
+      if (probeJammed_) {
+        nano.probe = true;
+      } else if (bed) {
         int32_t um[3];
         rig.motion.positionUm(um);
-        nano.probe = nano.servoUs == 647 && um[2] <= bed(um[0], um[1]);
+        nano.probe = nano.servoUs == nano::kServoDeployUs && um[2] <= bed(um[0], um[1]);
       }
       usb.carry(usbLink, 100);
       esp.carry(espLink, 100);
@@ -241,6 +248,7 @@ class MegaRig {
  private:
   uint32_t usbN_ = 0, espN_ = 0;
   uint64_t gAt_ = 0;  // a scan pass's G on its way to the Nano: when it arrives (ticks)
+  bool probeJammed_ = false;
 };
 
 }  // namespace mega

@@ -147,7 +147,8 @@ void PrintheadLink::handle(const uv::NanoReply& r, uint32_t nowUs) {
         fireCheckWanted_ = false;
         if (r.flags & kRefusals) {
           fireFlags_ = static_cast<uint8_t>(r.flags & kRefusals);
-          fireFailed(33);
+          // Refused because the head is too hot: said as the over-temperature it is.
+          fireFailed((r.flags & uv::fault::kOvertemp) ? 31 : 33);
         } else if (r.flags & uv::fault::kCutoff) {
           fireFailed(31);
         } else {

@@ -97,6 +97,9 @@ class PrintheadLink {
   const NanoClock& nanoClock() const { return clock_; }
   bool online() const { return online_; }
   bool tempsKnown() const { return tempsKnown_; }
+  // Since this start no temperature has come yet, and the Nano is not yet given up: the first
+  // reading is on its way (M105 waits for it rather than answer E30 to a host that asks at once).
+  bool firstReadingDue() const { return !tempsKnown_ && misses_ < kNanoMissesOffline; }
   const int16_t* deciC() const { return deciC_; }
   // The active fault bits of the last E (OVERTEMP, SENSOR).
   uint8_t activeFaults() const { return static_cast<uint8_t>(flags_ & uv::fault::kActive); }

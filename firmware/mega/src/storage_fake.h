@@ -85,6 +85,7 @@ class FakeStorage : public Storage {
       card_[f->name].assign(f->data.data(), f->data.size());
       f->dirty = false;
       syncs++;
+      revision++;
     }
     return true;
   }
@@ -94,11 +95,16 @@ class FakeStorage : public Storage {
     files_[h].open = false;
   }
   bool exists(const char* name) override { return inserted && card_.count(name); }
-  bool remove(const char* name) override { return inserted && card_.erase(name); }
+  bool remove(const char* name) override {
+    if (!inserted || !card_.erase(name)) return false;
+    revision++;
+    return true;
+  }
   bool rename(const char* from, const char* to) override {
     if (!inserted || !exists(from) || exists(to)) return false;
     card_[to] = std::move(card_[from]);
     card_.erase(from);
+    revision++;
     return true;
   }
   bool entry(uint16_t index, char* name, uint32_t& size) override {
@@ -126,8 +132,12 @@ class FakeStorage : public Storage {
     auto f = card_.find(name);
     return f == card_.end() ? std::string() : f->second;
   }
-  void put(const std::string& name, const std::string& text) { card_[name] = text; }
+  void put(const std::string& name, const std::string& text) {
+    card_[name] = text;
+    revision++;
+  }
   long bytesWritten = 0;
+  long revision = 0;  // counts every change of what the card durably holds
   long syncs = 0;
 
  private:
