@@ -2,6 +2,7 @@
 // (baud rate and one-way latency modelled, virtual time, so the figures do not depend on this machine's load).
 import { DialectLink } from '../app/src/device/dialect-link';
 import type { PrintJob } from '../app/src/protocol/job-types';
+import '../app/src/sim/wasm/node-firmware';
 import { SimWire } from '../app/src/sim/wire';
 import { boardMask } from './masks';
 
@@ -19,7 +20,7 @@ async function settle(wire: SimWire, p: Promise<unknown>): Promise<void> {
 
 /** Wire bytes per second of the upload, as a share of what 115200 baud can carry. */
 async function utilisation(window: number, latencyUs: number, job: PrintJob): Promise<{ share: number; seconds: number; bytes: number }> {
-  const wire = new SimWire({}, { baud: BAUD, latencyUs });
+  const wire = new SimWire({}, { latencyUs });
   const link = new DialectLink(wire.host, { ...wire.clientOptions, maxWindow: window });
   await settle(wire, link.open(() => {}, () => {}));
   await settle(wire, link.command('G28'));

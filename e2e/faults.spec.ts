@@ -12,8 +12,8 @@ test('a job arrives bit-exact through 1 % byte corruption with drops', async ({ 
   await page.getByTestId('start-test').click();
   await page.getByRole('dialog').getByRole('button', { name: 'Expose now' }).click(); // the one confirmation (issue 17, item 4)
   await expect(page.getByTestId('job-state')).toHaveAttribute('data-state', /running|done/, { timeout: 90_000 });
-  const stored = Array.from(app.sim!.printer.sd.files.values());
-  expect(stored).toEqual([encodeJob(testPattern(4000))]); // the Job panel's full dose, 4 ms
+  const stored = app.sim!.printer.module.card().map(([, text]) => text);
+  expect(stored).toContain(encodeJob(testPattern(4000))); // the Job panel's full dose, 4 ms
   await page.getByTestId('tab-link').click();
   await expect(page.getByTestId('link-health')).toContainText(/[1-9]\d* resends|[1-9]\d* time-outs/);
   await page.screenshot({ path: info.outputPath('corrupted-link.png'), fullPage: true });
@@ -37,14 +37,14 @@ test('a disconnect mid-job leaves the UI truthful', async ({ page }, info) => {
 
 test('over-temperature stops the LEDs and the UI says why', async ({ page }, info) => {
   // LEDs that heat their sensors 1000 °C/s while lit: the head trips its 60 °C limit mid-job.
-  const app = await openApp(page, 'web serial', 5, { nano: { heatingCPerS: 1000 } });
+  const app = await openApp(page, 'web serial', 5, { thermal: { heatingCPerS: 1000 } });
   await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected');
   await page.getByTestId('start-test').click();
   await page.getByRole('dialog').getByRole('button', { name: 'Expose now' }).click(); // the one confirmation (issue 17, item 4)
   await expect(page.getByTestId('faults')).toContainText(/E31 over-temperature/, { timeout: 60_000 });
   await expect(page.getByTestId('job-state')).toHaveAttribute('data-state', 'paused');
   await expect(page.getByTestId('job-state')).toContainText('(overtemp)');
-  expect(app.sim!.printer.nano.lit).toBe(0);
+  expect(app.sim!.printer.module.lit).toBe(0);
   await page.screenshot({ path: info.outputPath('overtemp.png'), fullPage: true });
   app.close();
 });

@@ -4,7 +4,7 @@ import type { Page, Route, WebSocketRoute } from '@playwright/test';
 import { existsSync, readFileSync } from 'node:fs';
 import { extname, join, normalize } from 'node:path';
 import { DialectClient } from '../app/src/device/dialect-client';
-import { formatReply } from '../app/src/protocol/dialect-reply';
+import { formatReply, type Reply } from '../app/src/protocol/dialect-reply';
 import { encodeJob } from '../app/src/protocol/job-encode';
 import { validatePrintRequest } from '../app/src/protocol/print-request';
 import type { SimOptions } from '../app/src/sim/sim-printer';
@@ -20,6 +20,10 @@ export class MockEsp {
   #wifi = { apSsid: 'UVPrinter-5EED01', apPassword: 'abcdefghjkmn', staSsid: '', staPassword: '' };
   #statusTimer: ReturnType<typeof setInterval> | null = null;
   #cancelled = false;
+  /** What the hub last heard of the Mega, as the real one keeps it from the Mega's reports. */
+  #heard: { firmware: string; temps: number[]; pos: number[]; job: Extract<Reply, { kind: 'job' }> | null; probe: string | null; limits: number[] } = {
+    firmware: '', temps: [], pos: [0, 0, 0], job: null, probe: null, limits: [],
+  };
 
   constructor(options: SimOptions = {}, speed = 1) {
     this.sim = new NodeSim(options, speed);
@@ -31,9 +35,32 @@ export class MockEsp {
     };
     // As the ESP: the oks that answer an upload's records are not relayed (esp.md `line`).
     this.client = new DialectClient(transport, (r, line) => {
+      this.#hear(r);
       if (!(r.kind === 'ok' && this.#job?.state === 'uploading')) this.#broadcast({ type: 'line', line });
     });
-    this.#ready = this.client.open(() => {}).then(() => this.client.command('M115').then(() => {}));
+    // As the hub: who the Mega is, its limits, and its reports every second from then on.
+    this.#ready = this.client.open(() => {}).then(async () => {
+      for (const line of ['M115', 'M503', 'M155 S1', 'M154 S1', 'M27 S1']) (await this.client.command(line)).forEach((r) => this.#hear(r));
+    });
+  }
+
+  #hear(r: Reply): void {
+    const h = this.#heard;
+    if (r.kind === 'firmware') h.firmware = r.name;
+    else if (r.kind === 'temps') h.temps = r.deciC.map((d) => d / 10);
+    else if (r.kind === 'position') h.pos = r.um.map((u) => u / 1000);
+    else if (r.kind === 'job') h.job = r;
+    else if (r.kind === 'probe') h.probe = r.state;
+    else if (r.kind === 'other') {
+      const m = /^M850 thermal\.limit\.(\d) ([\d.]+)$/.exec(r.text);
+      if (m) h.limits[Number(m[1])] = Number(m[2]);
+    }
+  }
+
+  /** A job running or paused, as the Mega's last JOB: report says. */
+  get #running(): boolean {
+    const state = this.#heard.job?.state;
+    return state === 'running' || state === 'paused';
   }
 
   async install(page: Page): Promise<void> {
@@ -47,7 +74,7 @@ export class MockEsp {
     await page.route('**/print', async (route) => {
       const req = route.request();
       if (req.method() === 'DELETE') {
-        const running = this.sim.printer.mega.job.state === 'running' || this.sim.printer.mega.job.state === 'paused';
+        const running = this.#running;
         const uploading = this.#job?.state === 'uploading';
         if (!uploading && !running) return route.fulfill({ status: 409, contentType: 'application/json', body: JSON.stringify({ error: { code: 'busy', message: 'nothing to cancel' } }) });
         this.#cancelled = uploading;
@@ -59,8 +86,7 @@ export class MockEsp {
         return route.fulfill({ status: 415, contentType: 'application/json', body: JSON.stringify({ error: { code: 'unsupported_media_type', message: 'send application/json' } }) });
       }
       if (this.#job && (this.#job.state === 'uploading' || this.#job.state === 'started')) {
-        const running = this.sim.printer.mega.job.state === 'running' || this.sim.printer.mega.job.state === 'paused';
-        if (this.#job.state === 'uploading' || running) {
+        if (this.#job.state === 'uploading' || this.#running) {
           return route.fulfill({ status: 409, contentType: 'application/json', body: JSON.stringify({ error: { code: 'busy', message: 'a job is uploading or running' } }) });
         }
       }
@@ -175,29 +201,28 @@ export class MockEsp {
   }
 
   #status() {
-    const p = this.sim.printer;
-    const mega = p.mega;
-    const job = mega.job;
+    const h = this.#heard;
+    const job = h.job;
     const upload = this.#job;
-    const pos = mega.motion.now();
+    const stop = /^(\d+)\/(\d+)$/.exec(job?.fields.stop ?? '');
     return {
       mega: 'online',
-      firmware: 'UVExposure 0.1.0 (Simulated Mega)',
-      position: { x: pos[0] / 1000, y: pos[1] / 1000, z: pos[2] / 1000 },
-      temps: p.nano.deciC().map((d) => d / 10),
-      limits: [0, 1, 2, 3, 4, 5].map((i) => Number(mega.config[`thermal.limit.${i}`])),
+      firmware: h.firmware,
+      position: { x: h.pos[0], y: h.pos[1], z: h.pos[2] },
+      temps: h.temps,
+      limits: h.limits,
       job:
-        job.state === 'idle' && !upload
+        (!job || job.state === 'idle') && !upload
           ? null
           : {
-              state: job.state,
-              file: job.file || null,
-              stop: job.done,
-              stops: job.plan?.count ?? 0,
+              state: job?.state ?? 'idle',
+              file: job?.fields.file ?? null,
+              stop: stop ? Number(stop[1]) : 0,
+              stops: stop ? Number(stop[2]) : 0,
               id: upload?.id ?? null,
               ...(upload ? { upload: upload.state, bytesSent: upload.bytesSent, bytesVerified: upload.bytesVerified, bytesTotal: upload.bytesTotal } : {}),
             },
-      probe: p.nano.probe,
+      probe: h.probe === 'deployed' || h.probe === 'triggered',
       faults: [],
       clients: this.#sockets.size,
     };

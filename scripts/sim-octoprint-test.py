@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Drives the simulated printer with OctoPrint's own serial layer (octoprint.util.comm.MachineCom, OctoPrint
-1.11 from PyPI, default settings) over the pty of `npm run sim -- --pty` (its further arguments passed on: npm test gives `--firmware`, the firmware's
-own C++ as WebAssembly), as a user of OctoPrint would: connect,
+1.11 from PyPI, default settings) over the pty of `npm run sim -- --pty` (the firmware's own C++ as WebAssembly; its further arguments passed
+on), as a user of OctoPrint would: connect,
 temperatures, jogs refused before homing and past the bed's edge, home, a file whose F holds for the moves after
 it, M84 after a move, stream a file, pause, resume, cancel, upload to the card, list it, print it from the card,
 M112 and reconnect. Each step prints PASS or FAIL; a step

@@ -1,13 +1,10 @@
-// npm run sim -- [--tcp PORT] [--pty] [--speed N] [--firmware]: the simulated printer as a serial device for
-// desktop hosts (printrun, Pronterface, OctoPrint). TCP listens on 127.0.0.1; --pty bridges a pseudo-terminal
-// with socat. --firmware runs the firmware's own C++ as WebAssembly (scripts/build-wasm.sh) instead of the
-// TypeScript printer.
-import { execFileSync, spawn, type ChildProcess } from 'node:child_process';
-import { readFileSync } from 'node:fs';
+// npm run sim -- [--tcp PORT] [--pty] [--speed N]: the simulated printer (the firmware's own C++ as
+// WebAssembly, app/src/sim/sim-printer.ts) as a serial device for desktop hosts (printrun, Pronterface,
+// OctoPrint). TCP listens on 127.0.0.1; --pty bridges a pseudo-terminal with socat.
+import { spawn, type ChildProcess } from 'node:child_process';
 import net from 'node:net';
+import '../app/src/sim/wasm/node-firmware';
 import { SimPrinter } from '../app/src/sim/sim-printer';
-import { FirmwareSerial } from '../app/src/sim/wasm/firmware-serial';
-import { PrinterModule } from '../app/src/sim/wasm/printer-module';
 
 function arg(name: string): string | undefined {
   const i = process.argv.indexOf(name);
@@ -18,24 +15,24 @@ const pty = process.argv.includes('--pty');
 const port = Number(arg('--tcp') ?? (pty ? 0 : 23100));
 const speed = Number(arg('--speed') ?? 1);
 let socket: net.Socket | null = null;
-let booted = false;
 
 const toHost = (bytes: string) => socket?.write(Buffer.from(bytes, 'latin1'));
-async function firmware(): Promise<FirmwareSerial> {
-  execFileSync('bash', ['scripts/build-wasm.sh'], { stdio: ['ignore', 'ignore', 'inherit'] });
-  return new FirmwareSerial(await PrinterModule.load(new Uint8Array(readFileSync('build/wasm/printer.wasm'))), toHost);
-}
-const printer = process.argv.includes('--firmware') ? await firmware() : new SimPrinter(toHost);
-const start = Date.now();
-setInterval(() => printer.tick((Date.now() - start) * speed), 10).unref?.();
+const printer = new SimPrinter(toHost);
+let start = Date.now();
+// In slices of at most 40 ms of wall time: a machine slower than asked falls behind, its clock
+// starting again from where it got, rather than hold up the host's bytes.
+setInterval(() => {
+  const began = Date.now();
+  const target = (began - start) * speed;
+  while (printer.clock.now / 1000 < target && Date.now() - began < 40) printer.tick(Math.min(target, printer.clock.now / 1000 + 20 * speed));
+  if (printer.clock.now / 1000 < target) start = Date.now() - printer.clock.now / 1000 / speed;
+}, 10).unref?.();
 
 /** A host opened the port: a real Mega resets when its USB port opens (DTR), so every new host finds it started afresh. */
 function attach(s: net.Socket): void {
   socket = s;
   s.setNoDelay(true);
-  if (booted) printer.resetMega();
-  else printer.boot();
-  booted = true;
+  printer.boot(); // opening the port resets the Mega (DTR)
   s.on('data', (d) => socket === s && printer.receive(d.toString('latin1')));
   const gone = () => {
     if (socket === s) socket = null;
@@ -93,8 +90,7 @@ function serveThePty(link: string, tcpPort: number): void {
 
 server.listen(port, '127.0.0.1', () => {
   const actual = (server.address() as net.AddressInfo).port;
-  const which = printer instanceof FirmwareSerial ? "the firmware's C++ as WebAssembly" : 'the TypeScript printer';
-  console.log(`simulated printer on tcp 127.0.0.1:${actual} (115200-baud Mega dialect, ${speed}x time; ${which})`);
+  console.log(`simulated printer on tcp 127.0.0.1:${actual} (the firmware's C++ as WebAssembly, 115200 baud, ${speed}x time)`);
   if (!pty) return;
   const link = `/tmp/uvsim-${process.pid}`;
   serveThePty(link, actual);

@@ -39,7 +39,7 @@ printcore_test() {
   build/venv/bin/python -c 'import printrun' 2>/dev/null ||
     build/venv/bin/pip install -q --no-deps Printrun pyserial appdirs || return 1
   # The firmware's own C++ (as WebAssembly) behind the pty: what a host meets on the machine.
-  build/venv/bin/python scripts/sim-printcore-test.py --firmware 2>&1 | grep -v '^WARNING'
+  build/venv/bin/python scripts/sim-printcore-test.py 2>&1 | grep -v '^WARNING'
   return "${PIPESTATUS[0]}"
 }
 
@@ -50,7 +50,7 @@ octoprint_test() {
   [[ -x build/octoprint-venv/bin/python ]] || "$python" -m venv build/octoprint-venv || return 1
   build/octoprint-venv/bin/python -c 'import octoprint' 2>/dev/null ||
     build/octoprint-venv/bin/pip install -q OctoPrint==1.11.8 || return 1
-  build/octoprint-venv/bin/python scripts/sim-octoprint-test.py --firmware
+  build/octoprint-venv/bin/python scripts/sim-octoprint-test.py
 }
 
 stage "Desktop host: printcore over the firmware's C++ (WebAssembly) on a pty" printcore_test

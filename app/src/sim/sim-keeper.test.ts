@@ -4,6 +4,8 @@ import { SimHost } from './sim-host.fixture';
 import { keepingNote, SimKeeper } from './sim-keeper';
 import { FakeStore, smallJob } from './sim-store.fixture';
 
+const CHECKPOINT = 'JOB~CKP'; // the firmware's checkpoint file (job_files.h)
+
 describe('SimKeeper', () => {
   it('keeps the card when a file is written, and writes nothing when nothing changed', async () => {
     const h = new SimHost();
@@ -15,13 +17,13 @@ describe('SimKeeper', () => {
     h.upload('K.UVJ', encodeJob(smallJob(1)));
     await keeper.keep();
     expect(store.writes.at(-1)).toEqual(['card']);
-    expect(store.kept().saved?.files.map(([name]) => name)).toEqual(['K.UVJ']);
+    expect(store.kept().saved?.files.map(([name]) => name)).toContain('K.UVJ');
     h.cmd('M30 K.UVJ');
     await keeper.keep();
-    expect(store.kept().saved?.files).toEqual([]);
+    expect(store.kept().saved?.files.map(([name]) => name)).not.toContain('K.UVJ');
   });
 
-  it('keeps each checkpoint as the Mega writes it, with the head and the time of a running job', async () => {
+  it('keeps each checkpoint as the Mega writes it, with the time of a running job', async () => {
     const h = new SimHost();
     const store = new FakeStore();
     let wall = 5000;
@@ -30,20 +32,20 @@ describe('SimKeeper', () => {
     h.upload('C.UVJ', encodeJob(smallJob(2)));
     h.cmd('M23 C.UVJ');
     h.cmd('M24');
-    const seen = new Set<number>();
-    while (h.sim.mega.job.exposures.length < 10) {
+    const seen = new Set<string>();
+    while (h.sim.module.fires < 10) {
       h.sim.advance(1);
       wall += 1;
       await keeper.keep();
-      seen.add(h.sim.sd.checkpoint?.done ?? 0);
-      expect((store.values.get('machine') as { checkpoint: unknown }).checkpoint).toEqual(h.sim.sd.checkpoint);
+      const kept = new Map(store.kept().saved?.files).get(CHECKPOINT);
+      if (kept) seen.add(kept);
+      expect(kept).toBe(new Map(h.sim.module.card()).get(CHECKPOINT)); // the card as it is, after every tick
     }
-    expect(seen.size).toBeGreaterThanOrEqual(10); // a write for every checkpoint
-    const { running, saved } = store.kept();
-    expect(saved?.checkpoint?.file).toBe('C.UVJ');
+    expect(seen.size).toBeGreaterThanOrEqual(5); // a write for every checkpoint
+    const { running } = store.kept();
     expect(running?.speed).toBe(4);
     expect(running?.atMs).toBeLessThanOrEqual(wall);
-    expect(running?.pos.slice(0, 2)).toEqual(h.sim.mega.motion.now().slice(0, 2));
+    expect(running?.atMs).toBeGreaterThan(wall - 20); // the last checkpoint's time
     h.cmd('M25');
     h.waitFor(/^JOB:paused/);
     await keeper.keep();
@@ -64,7 +66,7 @@ describe('SimKeeper', () => {
     expect(keeper.keep()).toBeNull(); // under way: the next tick takes what changes meanwhile
     release();
     await writing;
-    expect(store.kept().saved?.eeprom?.['speed.travel']).toBe('120');
+    expect(store.kept().saved?.eeprom).toEqual(h.sim.module.eeprom());
     expect(store.kept().saved?.files.find(([name]) => name === 'CONFIG.TXT')?.[1]).toContain('speed.travel = 120');
   });
 
@@ -89,11 +91,11 @@ describe('SimKeeper', () => {
     h.upload('O.UVJ', encodeJob(smallJob(4)));
     h.cmd('M23 O.UVJ');
     h.cmd('M24');
-    while (h.sim.mega.job.exposures.length < 3) h.sim.advance(1);
+    while (h.sim.module.fires < 3) h.sim.advance(1);
     await keeper.keep();
     expect(store.kept().running).not.toBeNull();
     await keeper.switchOff();
     expect(store.kept().running).toBeNull();
-    expect(store.kept().saved?.checkpoint?.done).toBe(h.sim.sd.checkpoint?.done);
+    expect(new Map(store.kept().saved?.files).get(CHECKPOINT)).toBe(new Map(h.sim.module.card()).get(CHECKPOINT));
   });
 });

@@ -228,13 +228,14 @@ export class SimPrinter {
   /**
    * A page that ran this printer went away while a job from its card ran: a real printer would have
    * run on, with no host listening. The page's worker ended with it, so this machine takes the job
-   * up at its checkpoint as the firmware resumes any job (M1000, after homing, on the ESP's port
-   * where nobody listens), and runs for `ms` of its time, or until the job ends (`budgetMs` of real
+   * up at its checkpoint as the firmware resumes any job (G28 and M1000, on the ESP's port where
+   * nobody listens), and runs for `ms` of its time, or until the job ends (`budgetMs` of real
    * time at most). The page that comes back opens the link, which resets the Mega as any host's
    * does: the job waits at its checkpoint for the resume.
    */
   runOn(ms: number, paced: boolean, budgetMs = 5000): void {
     this.#disconnected = true; // nobody listens on USB while it runs on
+    this.module.command(1, 'G28'); // the resume needs the axes homed
     this.module.command(1, paced ? 'M1000 P1' : 'M1000');
     const end = this.clock.now + Math.max(0, ms) * 1000;
     const stopAt = performance.now() + budgetMs; // a runaway page must not hang its worker on a week-long job

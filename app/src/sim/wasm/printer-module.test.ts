@@ -1,20 +1,12 @@
 // The firmware's own C++ as WebAssembly answers as the Mega does: both ports start, each with its
 // own receive window, it homes, and a feed rate set once holds for the moves after it (Marlin).
-import { execFileSync } from 'node:child_process';
-import { readFileSync } from 'node:fs';
-import { beforeAll, describe, expect, it } from 'vitest';
+// Its card, EEPROM and start count go out and come back in, as a reload keeps them.
+import { describe, expect, it } from 'vitest';
+import { firmwareModule } from './firmware-module';
 import { type HostPort, PrinterModule } from './printer-module';
 
-let bytes: Uint8Array<ArrayBuffer>;
-
-beforeAll(() => {
-  // From the firmware's sources, rebuilt where they changed (npm test installs clang's wasm32 parts).
-  execFileSync('bash', ['scripts/build-wasm.sh'], { stdio: 'pipe' });
-  bytes = new Uint8Array(readFileSync('build/wasm/printer.wasm'));
-}, 600_000);
-
-async function powerUp(): Promise<PrinterModule> {
-  const m = await PrinterModule.load(bytes);
+function powerUp(): PrinterModule {
+  const m = new PrinterModule(firmwareModule());
   m.start();
   m.run(100_000);
   return m;
@@ -33,8 +25,8 @@ function ask(m: PrinterModule, line: string, port: HostPort = 0, maxUs = 30_000_
 }
 
 describe('the firmware as WebAssembly', { timeout: 60_000 }, () => {
-  it('starts on both ports and gives each its own receive window', async () => {
-    const m = await powerUp();
+  it('starts on both ports and gives each its own receive window', () => {
+    const m = powerUp();
     expect(m.sent(0)).toContain('start');
     expect(m.sent(1)).toContain('start');
     const usb = ask(m, 'M115');
@@ -43,16 +35,16 @@ describe('the firmware as WebAssembly', { timeout: 60_000 }, () => {
     expect(ask(m, 'M115', 1)).toContain('Cap:RX_WINDOW:2');
   });
 
-  it('homes, and keeps a feed rate set once for the moves after it', async () => {
-    const m = await powerUp();
+  it('homes, and keeps a feed rate set once for the moves after it', () => {
+    const m = powerUp();
     expect(ask(m, 'G28').at(-1)).toMatch(/^ok/);
     ask(m, 'G1 X10 F600');
     ask(m, 'M400');
     const from = m.position(0);
-    m.receive(0, 'G1 X20\n');  // no F: still 10 mm/s, not the 100 mm/s travel speed
+    m.receive(0, 'G1 X20\n'); // no F: still 10 mm/s, not the 100 mm/s travel speed
     m.run(300_000);
     const partway = m.position(0);
-    expect(m.sent(0).some((l) => l.startsWith('ok'))).toBe(true);  // queued at once: its ok came
+    expect(m.sent(0).some((l) => l.startsWith('ok'))).toBe(true); // queued at once: its ok came
     ask(m, 'M400');
     const to = m.position(0);
     expect(to).toBeGreaterThan(from);
@@ -61,8 +53,28 @@ describe('the firmware as WebAssembly', { timeout: 60_000 }, () => {
     expect((partway - from) / (to - from)).toBeGreaterThan(0.1);
   });
 
-  it('refuses a time that is not a whole 32-bit count of microseconds', async () => {
-    const m = await powerUp();
+  it('gives out its card, EEPROM and start count, and takes them back in a new machine', () => {
+    const m = powerUp();
+    ask(m, 'M850 bed.x 300');
+    ask(m, 'M500');
+    const card = m.card();
+    expect(card.map(([name]) => name)).toContain('CONFIG.TXT');
+    const eeprom = m.eeprom();
+    const starts = m.starts;
+    const n = powerUp();
+    for (const [name, text] of card) n.putFile(name, text);
+    n.setEeprom(eeprom);
+    n.starts = starts;
+    n.reset(true);
+    n.run(200_000);
+    expect(n.sent(0)).toContain('start');
+    expect(ask(n, 'M850 bed.x')[0]).toBe('M850 bed.x 300');
+    expect(n.starts).toBe(starts + 1);
+    expect(n.card()).toEqual(card);
+  });
+
+  it('refuses a time that is not a whole 32-bit count of microseconds', () => {
+    const m = powerUp();
     expect(() => m.run(-1)).toThrow(RangeError);
     expect(() => m.run(2 ** 32)).toThrow(RangeError);
   });
