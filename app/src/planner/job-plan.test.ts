@@ -15,7 +15,7 @@ const header = (cols: number, rows: number, name: StrategyName) => headerOf({
 });
 
 const pass = (leds: [number, number][][], jumps: [number, number, number][] = []): ScanPass =>
-  ({ hy: 0, descending: false, first: 0, last: 9, runUpUm: 0, runOutUm: 0, leds, jumps, events: mergeLight(leds) });
+  ({ hy: 0, descending: false, first: 0, last: 9, windowUs: 100, accelUs: 7, overscanUm: 1, runUpUm: 0, runOutUm: 0, leds, jumps, events: mergeLight(leds) });
 
 describe('a scan pass as the machine runs it', () => {
   it('switches the LEDs in time order, one mask per instant, an LED going off where another comes on', () => {

@@ -3,7 +3,7 @@
 
 import type { JobHeader } from '../protocol/job-types';
 import { planJob, type Plan, type PlannerJob } from './planner';
-import { planScan, type ScanPlan } from './scan';
+import { passSpanUs, planScan, type ScanPlan } from './scan';
 import type { Machine } from './time-model';
 
 export interface JobPlan {
@@ -41,12 +41,9 @@ export function scanAsPlan(scan: ScanPlan, machine: Machine, h: Pick<JobHeader, 
   };
 }
 
-/** A pass's time from its start at rest to its end at rest: accelerate, the windows and flown stretches, brake. */
-export function passDurationUs(scan: ScanPlan, pass: ScanPlan['passes'][number]): number {
-  const n = pass.last - pass.first + 1;
-  let t = n * scan.windowUs;
-  for (const [, g, f] of pass.jumps) t += f - g * scan.windowUs;
-  return 2 * scan.accelUs + t;
+/** A pass's time from its start at rest to its end at rest: accelerate, the windows and flown stretches, brake (at the pass's own window). */
+export function passDurationUs(_scan: ScanPlan, pass: ScanPlan['passes'][number]): number {
+  return passSpanUs(pass);
 }
 
 /** The LEDs' mask after each switch of a pass, in time order, µs after its start mark. */
