@@ -121,6 +121,18 @@ function anyPassesUs(cells: ArrayLike<number>[], table: Uint32Array, h: JobHeade
   return us;
 }
 
+/**
+ * P10's automatic line: the Order list's default, the fastest of every order for the job (job-plan.ts
+ * fastestOrder), against stop-and-fire. A choice per job: the per-pass mix of issue 28 §1 is not built yet.
+ */
+function printAutomatic(rows: P10Row[]): void {
+  for (const r of rows) {
+    const fast = Math.min(r.scan.estimateUs, r.stops);
+    const order = r.scan.estimateUs <= r.stops ? 'scan' : 'stop-and-fire';
+    console.log(`P10 ${r.mask.padEnd(7)} automatic (per job, not yet per pass) ${(fast / 1e6).toFixed(1).padStart(6)} s in ${order.padEnd(13)}  speed-up ${(r.stops / fast).toFixed(2)}x  (goal >= 1.00x; the better of the two pure modes, by construction)`);
+  }
+}
+
 export function printP10(rows: P10Row[]): void {
   console.log('\nP10 scan (exposure on the move) vs stop-and-fire (goal: pcb >= 5x) and vs the larger limit (goal: pcb <= 1.3x)');
   console.log('  adjacent rows; scan, stop-and-fire, light limit (dose/4), travel limit (passes at vmax); window, passes');
@@ -135,7 +147,7 @@ export function printP10(rows: P10Row[]): void {
         `  speed-up ${(r.stops / r.scan.estimateUs).toFixed(2)}x  /limit ${(r.scan.estimateUs / limit).toFixed(2)}x  (floor ${s(r.floor)}, ${(r.floor / limit).toFixed(2)}x the limit; at the axis's acceleration ${s(r.accel)}, ${(r.accel / limit).toFixed(2)}x; any passes ${s(r.anyPasses)}, ${(r.anyPasses / limit).toFixed(2)}x)` +
         `  (window ${r.scan.windowUs} us, ${r.scan.passes.length} passes; crossing blank stretches at the pass's speed instead: ${s(r.crossingUs)}, speed-up ${(r.stops / r.crossingUs).toFixed(2)}x)`,
     );
-  }
+  }  printAutomatic(rows);
 }
 
 /** Bytes a second the printhead link carries: 115200 baud, 10 bits a byte. */
