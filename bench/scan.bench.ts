@@ -11,6 +11,8 @@ import { boardMask, fillMask, photoMask, sparseMask, textMask, type Mask } from 
 export interface P10Row {
   mask: string;
   scan: ScanPlan;
+  /** The same passes all at the job's window, however their programs load the printhead link (planScan's noLinkCap): P11's figure before the cap. */
+  uncapped: ScanPlan;
   /** The scan's estimate crossing every blank stretch at the pass's speed (planScan's neverFly). */
   crossingUs: number;
   /** The better of serpentine and shortest stop-and-fire. */
@@ -58,11 +60,12 @@ export function p10(): P10Row[] {
     const stops = Math.min(...(['serpentine', 'shortest'] as StrategyName[]).map((s) => planJob({ header: header(mask, s, map), cells }, BENCH_MACHINE).estimateUs));
     const scan = planScan({ header: h, cells }, BENCH_MACHINE);
     const crossing = planScan({ header: h, cells }, BENCH_MACHINE, { neverFly: true });
+    const uncapped = planScan({ header: h, cells }, BENCH_MACHINE, { noLinkCap: true });
     const table = durationTables(h)[0];
     let dose = 0;
     for (const row of cells) for (let c = 0; c < row.length; c++) dose += table[row[c]];
     const travelLimit = scan.passes.reduce((t, p) => t + ((p.last - p.first + 1) * h.pitchUm[0] * 1e6) / BENCH_MACHINE.vmaxUmS[0], 0);
-    return { mask: mask.name, scan, crossingUs: crossing.estimateUs, stops, lightLimit: dose / 4, travelLimit, ...floorsUs(crossing, h.pitchUm[0]), anyPasses: anyPassesUs(cells, table, h) };
+    return { mask: mask.name, scan, uncapped, crossingUs: crossing.estimateUs, stops, lightLimit: dose / 4, travelLimit, ...floorsUs(crossing, h.pitchUm[0]), anyPasses: anyPassesUs(cells, table, h) };
   });
 }
 
@@ -118,6 +121,18 @@ function anyPassesUs(cells: ArrayLike<number>[], table: Uint32Array, h: JobHeade
   return us;
 }
 
+/**
+ * P10's automatic line: the Order list's default, the fastest of every order for the job (job-plan.ts
+ * fastestOrder), against stop-and-fire. A choice per job: the per-pass mix of issue 28 §1 is not built yet.
+ */
+function printAutomatic(rows: P10Row[]): void {
+  for (const r of rows) {
+    const fast = Math.min(r.scan.estimateUs, r.stops);
+    const order = r.scan.estimateUs <= r.stops ? 'scan' : 'stop-and-fire';
+    console.log(`P10 ${r.mask.padEnd(7)} automatic (per job, not yet per pass) ${(fast / 1e6).toFixed(1).padStart(6)} s in ${order.padEnd(13)}  speed-up ${(r.stops / fast).toFixed(2)}x  (goal >= 1.00x; the better of the two pure modes, by construction)`);
+  }
+}
+
 export function printP10(rows: P10Row[]): void {
   console.log('\nP10 scan (exposure on the move) vs stop-and-fire (goal: pcb >= 5x) and vs the larger limit (goal: pcb <= 1.3x)');
   console.log('  adjacent rows; scan, stop-and-fire, light limit (dose/4), travel limit (passes at vmax); window, passes');
@@ -132,42 +147,53 @@ export function printP10(rows: P10Row[]): void {
         `  speed-up ${(r.stops / r.scan.estimateUs).toFixed(2)}x  /limit ${(r.scan.estimateUs / limit).toFixed(2)}x  (floor ${s(r.floor)}, ${(r.floor / limit).toFixed(2)}x the limit; at the axis's acceleration ${s(r.accel)}, ${(r.accel / limit).toFixed(2)}x; any passes ${s(r.anyPasses)}, ${(r.anyPasses / limit).toFixed(2)}x)` +
         `  (window ${r.scan.windowUs} us, ${r.scan.passes.length} passes; crossing blank stretches at the pass's speed instead: ${s(r.crossingUs)}, speed-up ${(r.stops / r.crossingUs).toFixed(2)}x)`,
     );
-  }
+  }  printAutomatic(rows);
 }
 
 /** Bytes a second the printhead link carries: 115200 baud, 10 bits a byte. */
 const LINK_BYTES_S = 11520;
 
+/** A plan's load on the printhead link: its worst pass and the whole job, as the Mega's M29 counts them. */
+function linkLoad(plan: ScanPlan): { worst: number; whole: number; events: number; bytes: number } {
+  let worst = 0, bytes = 0, busyUs = 0, events = 0;
+  for (const p of plan.passes) {
+    if (!p.events.length) continue;
+    const lines = programLines(p.events);
+    const total = lines.reduce((n, l) => n + l.length + 1, 0);
+    // What the first two programs take is loaded during the move to the run-up.
+    let ahead = 0, programs = 0;
+    for (const l of lines) {
+      if (programs >= 2) break;
+      ahead += l.length + 1;
+      if (l.startsWith('K:')) programs++;
+    }
+    const passUs = Math.max(1, p.events[p.events.length - 1][0]);
+    worst = Math.max(worst, ((total - ahead) / LINK_BYTES_S) * 1e6 / passUs);
+    bytes += total;
+    busyUs += passUs;
+    events += p.events.length;
+  }
+  return { worst, whole: (bytes / LINK_BYTES_S) * 1e6 / Math.max(1, busyUs), events, bytes };
+}
+
 /**
  * P11: how hard each scan job works the printhead link. A pass's programs (nano.md "Scan
  * programs") must cross the 115200-baud link no slower than the pass plays them, less the two
- * loaded before it starts; above 1.00x the chain would underrun, and the Mega must cross that
- * pass slower.
+ * loaded before it starts; above 1.00x the chain would underrun. The planner slows a pass until
+ * they fit in four fifths of its time (planner.md "The printhead link"), so no pass is above 0.80x.
  */
 export function printP11(rows: P10Row[]): void {
-  console.log('\nP11 printhead link load of scan passes (program bytes against 115200 baud over the pass time; above 1.00x a chain underruns)');
+  console.log('\nP11 printhead link load of scan passes (program bytes against 115200 baud over the pass time; goal: worst pass <= 1.00x, the photo still >= 3x faster than stop and fire)');
+  const s = (us: number) => `${(us / 1e6).toFixed(1)} s`;
   for (const r of rows) {
-    let worst = 0, bytes = 0, busyUs = 0, events = 0;
-    for (const p of r.scan.passes) {
-      if (!p.events.length) continue;
-      const lines = programLines(p.events);
-      const total = lines.reduce((n, l) => n + l.length + 1, 0);
-      // What the first two programs take is loaded during the move to the run-up.
-      let ahead = 0, programs = 0;
-      for (const l of lines) {
-        if (programs >= 2) break;
-        ahead += l.length + 1;
-        if (l.startsWith('K:')) programs++;
-      }
-      const passUs = Math.max(1, p.events[p.events.length - 1][0]);
-      worst = Math.max(worst, ((total - ahead) / LINK_BYTES_S) * 1e6 / passUs);
-      bytes += total;
-      busyUs += passUs;
-      events += p.events.length;
-    }
+    const now = linkLoad(r.scan), before = linkLoad(r.uncapped);
+    const slowed = r.scan.passes.filter((p) => p.windowUs > r.scan.windowUs);
+    const widest = Math.max(r.scan.windowUs, ...r.scan.passes.map((p) => p.windowUs));
     console.log(
-      `P11 ${r.mask.padEnd(7)} worst pass ${worst.toFixed(2)}x  whole job ${((bytes / LINK_BYTES_S) * 1e6 / Math.max(1, busyUs)).toFixed(2)}x` +
-        `  (${events} events, ${(bytes / 1024).toFixed(0)} KiB of program lines)`,
+      `P11 ${r.mask.padEnd(7)} worst pass ${now.worst.toFixed(2)}x  whole job ${now.whole.toFixed(2)}x` +
+        `  (${now.events} events, ${(now.bytes / 1024).toFixed(0)} KiB of program lines; ${now.bytes && now.events ? (now.bytes / now.events).toFixed(1) : '0'} B an event)` +
+        `  ${slowed.length} of ${r.scan.passes.length} passes slowed for the link (widest window ${widest} us), scan ${s(r.scan.estimateUs)}, ${(r.stops / r.scan.estimateUs).toFixed(2)}x stop-and-fire` +
+        `  (uncapped: worst pass ${before.worst.toFixed(2)}x, ${s(r.uncapped.estimateUs)})`,
     );
   }
 }

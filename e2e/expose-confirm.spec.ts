@@ -10,6 +10,7 @@ test('"Expose test pattern" asks first: its time at the full dose set, where it 
   await page.goto('/?simSpeed=40');
   await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected');
   await page.getByLabel('Full dose').fill('8');
+  await page.getByTestId('strategy').selectOption('serpentine'); // stop and fire (the default, automatic, may scan)
   await page.getByRole('button', { name: 'Expose test pattern' }).click();
   const dialog = page.getByRole('dialog', { name: 'Expose the test pattern?' });
   await expect(dialog).toBeVisible();

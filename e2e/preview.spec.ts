@@ -17,6 +17,7 @@ test('previews a drawing: time, stops, LEDs, and the light stop by stop', async 
   await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected');
   await expect(page.getByTestId('view-preview')).toBeDisabled(); // nothing drawn
   await drawFilledRectangle(page, [0.4, 0.4], [0.43, 0.42]);
+  await page.getByTestId('strategy').selectOption('serpentine'); // stop and fire: the light stop by stop
 
   await page.getByTestId('view-preview').click();
   await expect(page.getByTestId('preview-summary')).toContainText(/^\d+ stops in \d+ passes, about 0:\d\d:\d\d, \d+ mm of travel$/);

@@ -26,7 +26,7 @@ test('saves a project as a file, starts a new one, and opens the file again with
   const path = info.outputPath('saved.uv-project.json');
   await file.saveAs(path);
   const saved = JSON.parse(readFileSync(path, 'utf8'));
-  expect(saved).toMatchObject({ format: 'uv-exposure-project', version: 2, name: 'front panel', exposure: { fullMs: 4, strategy: 'serpentine' } });
+  expect(saved).toMatchObject({ format: 'uv-exposure-project', version: 2, name: 'front panel', exposure: { fullMs: 4, strategy: 'auto' } });
   expect(saved.objects).toEqual([expect.objectContaining({ kind: 'text', text: 'rev 3' })]);
   expect(typeof saved.paint.cells).toBe('string');
 

@@ -6,6 +6,7 @@ import { bmpFile, halfBlack } from '../app/src/studio/image/picture-files.fixtur
 
 test('draws a filled rectangle, undoes and redoes it, zooms, and exposes it', async ({ page }, info) => {
   await page.goto('/?simSpeed=40');
+  await page.getByTestId('strategy').selectOption('serpentine'); // the stop-and-fire flow; the default (automatic) may scan
   await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected');
   const canvas = page.getByTestId('editor-canvas');
   const box = (await canvas.boundingBox())!;
@@ -163,7 +164,8 @@ test('text in a system font and a frame: placed, edited, planned with the drawin
   });
   expect(lit).toBeGreaterThan(0.001);
   expect(lit).toBeLessThan(0.1);
-  // The job is the painting with the objects over it: the preview plans the text.
+  // The job is the painting with the objects over it: the preview plans the text, stop by stop.
+  await page.getByTestId('strategy').selectOption('serpentine');
   await page.getByTestId('view-preview').click();
   await expect(page.getByTestId('preview-summary')).toContainText(/^[1-9]\d* stops in/, { timeout: 20_000 });
   await page.getByTestId('view-draw').click();

@@ -5,12 +5,13 @@
 
 import type { Printer } from '../device/connection.svelte';
 import type { PrintJob, StrategyName } from '../protocol/job-types';
+import type { OrderChoice } from '../planner/job-plan';
 import { num } from '../sim/config';
 import type { Finding } from '../studio/dry-run';
 import type { Cut } from '../studio/objects/clipping';
 import type { GridEditor } from '../studio/editor.svelte';
 import { jobFromGrid } from '../studio/grid-job';
-import { DEFAULT_CONFIG, ledsOf, type MachineConfig } from '../studio/machine-config';
+import { DEFAULT_CONFIG, ledsOf, motionOf, type MachineConfig } from '../studio/machine-config';
 import { JobNotice } from './job-notice.svelte';
 import { calibrationOf, doseOf, msFor, type Calibration } from './dose-units';
 import { actionsFor, hotSensors, viewOf, type Action, type Actions } from './actions';
@@ -41,7 +42,15 @@ export class JobControl {
   fullMs = $state(4);
   /** The full dose as energy, mJ/cm², or null when it is set as a time. */
   doseMJcm2 = $state<number | null>(null);
-  strategy = $state<StrategyName>('serpentine');
+  /** The Order list's choice: `auto`, the default, is the fastest order for the drawing (issue 28). */
+  strategy = $state<OrderChoice>('auto');
+  /** Every order's estimate for the drawing as the preview last planned it, µs, and the fastest of them. */
+  orderEstimates = $state.raw<Record<StrategyName, number> | null>(null);
+  fastest = $state<StrategyName>('scan');
+  /** The order a job made now runs in: the choice, or for `auto` the fastest the preview found (checked again before it runs). */
+  get order(): StrategyName {
+    return this.strategy === 'auto' ? this.fastest : this.strategy;
+  }
   /** The last dry run's findings, and the job they were found for. */
   check = $state.raw<{ findings: Finding[]; job: PrintJob; duty: number[] } | null>(null);
   /** The question the user has not answered yet; nothing moves or lights until they do. */
@@ -93,7 +102,7 @@ export class JobControl {
     const ed = this.editor();
     return jobFromGrid(ed.composed(), ed.machine, {
       dose: doseOf(this.fullMs, this.doseMJcm2, this.calibration),
-      strategy: { name: this.strategy },
+      strategy: { name: this.order },
       leds: ledsOf(this.config),
     });
   }
@@ -114,7 +123,7 @@ export class JobControl {
     this.#act(async () => {
       this.#gate('expose');
       const { testPattern } = await import('../device/test-pattern');
-      await this.#ask('test pattern', { ...testPattern(1), dose: doseOf(this.fullMs, this.doseMJcm2, this.calibration), strategy: { name: this.strategy } });
+      await this.#ask('test pattern', { ...testPattern(1), dose: doseOf(this.fullMs, this.doseMJcm2, this.calibration), strategy: { name: this.order } });
     });
 
   /** The user accepts that the cut objects' parts off the bed are not exposed. */
@@ -191,7 +200,15 @@ export class JobControl {
     if (!gate.open) throw new Error(`Not now: ${gate.why}`);
   }
 
-  async #ask(what: 'drawing' | 'test pattern', job: PrintJob, cuts?: Cut[]): Promise<void> {
+  async #ask(what: 'drawing' | 'test pattern', asked: PrintJob, cuts?: Cut[]): Promise<void> {
+    let job = asked;
+    if (this.strategy === 'auto') {
+      // The fastest order for exactly this job, whatever the preview last saw.
+      const { fastestOrder, orderEstimates } = await import('../planner/job-plan');
+      const { headerOf } = await import('../planner/job-header');
+      const orders = orderEstimates({ header: headerOf(job), cells: job.gridData }, motionOf(this.config));
+      job = { ...job, strategy: { name: fastestOrder(orders) } };
+    }
     const leveling = await this.printer.leveling();
     const printheadAnswers = await this.printer.checkPrinthead();
     const device = this.printer.device;

@@ -1,6 +1,6 @@
 import { mergeLight } from '../protocol/scan-program';
 import { describe, expect, it } from 'vitest';
-import { passDurationUs, passSwitches, planAnyJob } from './job-plan';
+import { fastestOrder, ORDERS, orderEstimates, passDurationUs, passSwitches, planAnyJob } from './job-plan';
 import { planJob } from './planner';
 import type { ScanPass, ScanPlan } from './scan';
 import { headerOf } from './job-header';
@@ -15,7 +15,7 @@ const header = (cols: number, rows: number, name: StrategyName) => headerOf({
 });
 
 const pass = (leds: [number, number][][], jumps: [number, number, number][] = []): ScanPass =>
-  ({ hy: 0, descending: false, first: 0, last: 9, runUpUm: 0, runOutUm: 0, leds, jumps, events: mergeLight(leds) });
+  ({ hy: 0, descending: false, first: 0, last: 9, windowUs: 100, accelUs: 7, overscanUm: 1, runUpUm: 0, runOutUm: 0, leds, jumps, events: mergeLight(leds) });
 
 describe('a scan pass as the machine runs it', () => {
   it('switches the LEDs in time order, one mask per instant, an LED going off where another comes on', () => {
@@ -46,5 +46,32 @@ describe('planning by strategy', () => {
     expect(scan.plan.count).toBe(scan.scan!.passes.length);
     expect(scan.plan.estimateUs).toBe(scan.scan!.estimateUs);
     expect(Array.from(scan.plan.hy)).toEqual(scan.scan!.passes.map((p) => p.hy));
+  });
+});
+
+describe('the automatic order', () => {
+  const job = (cols: number, rows: number, lit: (x: number, y: number) => boolean, fullUs: number) => ({
+    header: { ...header(cols, rows, 'serpentine'), fullUs, map: 'threshold' as const, level: 128 },
+    cells: Array.from({ length: rows }, (_, y) => Array.from({ length: cols }, (_, x) => (lit(x, y) ? 255 : 0))),
+  });
+
+  it('gives every order its estimate, the one its plan counts, and picks the fastest', () => {
+    const j = job(60, 24, (x, y) => (x * 7 + y * 3) % 5 !== 0, 4000);
+    const est = orderEstimates(j, MACHINE);
+    for (const name of ORDERS) expect(est[name]).toBe(planAnyJob({ ...j, header: { ...j.header, strategy: name } }, MACHINE).plan.estimateUs);
+    expect(fastestOrder(est)).toBe('scan');
+    expect(est.scan).toBeLessThan(est.serpentine / 3);
+  });
+
+  it('takes stops for a few dots far apart, where a pass on the move crosses the whole bed for each', () => {
+    const j = job(400, 40, (x, y) => (x === 3 || x === 396) && y % 9 === 0, 2000);
+    const est = orderEstimates(j, MACHINE);
+    expect(est.scan).toBeGreaterThan(Math.min(est.serpentine, est.shortest));
+    expect(['serpentine', 'shortest']).toContain(fastestOrder(est));
+  });
+
+  it('prefers scan on a tie, and never an order that cannot plan a job with light', () => {
+    expect(fastestOrder({ scan: 5, serpentine: 5, shortest: 5, raster: 5, random: 5 })).toBe('scan');
+    expect(fastestOrder({ scan: Infinity, serpentine: 9, shortest: 7, raster: 8, random: 9 })).toBe('shortest');
   });
 });

@@ -1,9 +1,9 @@
 // Plans a job by its strategy: stop and fire (planner.ts), or exposure on the move (scan.ts) seen
 // through the same Plan, one "stop" per pass, so progress, estimates and checkpoints count passes.
 
-import type { JobHeader } from '../protocol/job-types';
+import type { JobHeader, StrategyName } from '../protocol/job-types';
 import { planJob, type Plan, type PlannerJob } from './planner';
-import { planScan, type ScanPlan } from './scan';
+import { passSpanUs, planScan, type ScanPlan } from './scan';
 import type { Machine } from './time-model';
 
 export interface JobPlan {
@@ -41,15 +41,39 @@ export function scanAsPlan(scan: ScanPlan, machine: Machine, h: Pick<JobHeader, 
   };
 }
 
-/** A pass's time from its start at rest to its end at rest: accelerate, the windows and flown stretches, brake. */
-export function passDurationUs(scan: ScanPlan, pass: ScanPlan['passes'][number]): number {
-  const n = pass.last - pass.first + 1;
-  let t = n * scan.windowUs;
-  for (const [, g, f] of pass.jumps) t += f - g * scan.windowUs;
-  return 2 * scan.accelUs + t;
+/** A pass's time from its start at rest to its end at rest: accelerate, the windows and flown stretches, brake (at the pass's own window). */
+export function passDurationUs(_scan: ScanPlan, pass: ScanPlan['passes'][number]): number {
+  return passSpanUs(pass);
 }
 
 /** The LEDs' mask after each switch of a pass, in time order, µs after its start mark. */
 export function passSwitches(pass: ScanPlan['passes'][number]): { atUs: number; mask: number }[] {
   return pass.events.map(([atUs, mask]) => ({ atUs, mask }));
+}
+
+/** The studio's Order list: a strategy, or the fastest of them for the job at hand. */
+export type OrderChoice = StrategyName | 'auto';
+
+/** The orders the automatic choice weighs, in the order it prefers them on a tie. */
+export const ORDERS: StrategyName[] = ['scan', 'serpentine', 'shortest', 'raster', 'random'];
+
+/**
+ * Each order's estimate for the job, µs: what the Mega's planner will count for it. An order that
+ * cannot plan a job that has light (a scan pass over the 32-bit limit) is Infinity.
+ */
+export function orderEstimates(job: PlannerJob, machine: Machine): Record<StrategyName, number> {
+  const out = {} as Record<StrategyName, number>;
+  let lit = false;
+  for (const name of ORDERS) {
+    const { plan } = planAnyJob({ ...job, header: { ...job.header, strategy: name } }, machine);
+    out[name] = plan.count || !lit ? plan.estimateUs : Infinity;
+    if (name !== 'scan' && plan.count) lit = true;
+  }
+  if (lit && out.scan === 0) out.scan = Infinity;
+  return out;
+}
+
+/** The fastest order of `estimates`; on a tie, the first in ORDERS. */
+export function fastestOrder(estimates: Record<StrategyName, number>): StrategyName {
+  return ORDERS.reduce((best, name) => (estimates[name] < estimates[best] ? name : best), ORDERS[0]);
 }

@@ -49,5 +49,12 @@ export function scanGoldenCases(): ScanCase[] {
   even.dose = { map: 'threshold', level: 100, fullUs: 2000 };
   for (const y of [0, 5]) for (let x = 3; x < 241; x += 20) (even.gridData[y] as number[])[x] = 255;
   out.push(scanCase('ts scan equal stretches', even, MACHINE));
+  // Photos in many gray levels at a speed whose program lines would outrun the printhead link: the
+  // link cap lays their passes out again at longer windows (planner.md "The printhead link").
+  for (const [g, offsets] of Object.entries(GEOMETRIES)) {
+    const j = randomJob(seed++, offsets, 'serpentine', [40 + (seed % 40), 4 + (seed % 6)], 0.9);
+    j.dose = { map: 'linear', fullUs: 1000 + (seed % 17) * 113 };
+    out.push(scanCase(`ts scan ${g} photo, link-capped`, j, MACHINE));
+  }
   return out;
 }

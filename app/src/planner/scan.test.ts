@@ -28,8 +28,8 @@ function job(cols: number, rows: number, lit: [number, number, number][], over: 
 /** Each cell's on-time, read back from the switch lists: the part of each interval inside each window. */
 function doses(j: PrintJob, p: ScanPlan): Map<string, [number, number]> {
   const out = new Map<string, [number, number]>();
-  const W = p.windowUs;
   for (const pass of p.passes) {
+    const W = pass.windowUs;
     // Window starts: W apart, but a jump [first blank window, g, µs] takes its µs for its g windows.
     const S: number[] = [];
     for (let w = 0, t = 0; w <= pass.last - pass.first; w++) {
@@ -107,7 +107,7 @@ describe('scan planner', () => {
     expect([p.windowUs, p.speedUmS]).toEqual([2000, 25000]);
     // tA = ceil(50e12 / (3e6 × 2000)) = 8334 µs; o = ceil(50 × 8334 / 4000) = 105 µm.
     expect([p.accelUs, p.overscanUm]).toEqual([8334, 105]);
-    expect(p.passes).toEqual([{ hy: 0, descending: false, first: 3, last: 3, runUpUm: 1000 + 150 - 25 - 105, runOutUm: 1000 + 150 + 25 + 105, leds: [[[0, 2000]], [], [], []], jumps: [], events: [[0, 1], [2000, 0]] }]);
+    expect(p.passes).toEqual([{ hy: 0, descending: false, first: 3, last: 3, windowUs: 2000, accelUs: 8334, overscanUm: 105, runUpUm: 1000 + 150 - 25 - 105, runOutUm: 1000 + 150 + 25 + 105, leds: [[[0, 2000]], [], [], []], jumps: [], events: [[0, 1], [2000, 0]] }]);
     const move = Math.max(moveTimeUs(1020, 150000, 3000000), moveTimeUs(2000, 100000, 2000000));
     expect(p.estimateUs).toBe(move + 2000 + 1500 + 2 * 8334 + 2000);
   });

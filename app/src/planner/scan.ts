@@ -4,7 +4,7 @@ import type { JobHeader } from '../protocol/job-types';
 import { durationTables } from './dose';
 import { passRows, type PlannerJob } from './planner';
 import { MoveTimes, type Machine } from './time-model';
-import { mergeLight, type ScanEvent } from '../protocol/scan-program';
+import { mergeLight, programLines, type ScanEvent } from '../protocol/scan-program';
 
 export interface ScanPass {
   /** Head row. */
@@ -14,6 +14,10 @@ export interface ScanPass {
   /** Smallest and largest head column with a lit cell; the pass has last − first + 1 windows. */
   first: number;
   last: number;
+  /** The pass's window, µs: the job's, or longer where the link caps the pass (planner.md "The printhead link"); its time to speed and overscan. */
+  windowUs: number;
+  accelUs: number;
+  overscanUm: number;
   /** Bed X (µm) where the pass starts and ends at rest. */
   runUpUm: number;
   runOutUm: number;
@@ -26,11 +30,11 @@ export interface ScanPass {
 }
 
 export interface ScanPlan {
-  /** The cell window in µs (every window of every pass). */
+  /** The job's cell window in µs (a pass's own may be longer: ScanPass.windowUs). */
   windowUs: number;
   /** round(pitch × 10⁶ / window), for display; the exact speed is pitch / window µm/µs. */
   speedUmS: number;
-  /** Time to reach the speed from rest, and the distance it takes (µm). */
+  /** Time to reach the speed from rest, and the distance it takes (µm), at the job's window. */
   accelUs: number;
   overscanUm: number;
   passes: ScanPass[];
@@ -40,15 +44,27 @@ export interface ScanPlan {
 const ceilDiv = (n: bigint, d: bigint) => (n + d - 1n) / d;
 const roundDiv = (n: bigint, d: bigint) => (2n * n + d) / (2n * d);
 
+/** The motion of a window W µs: its speed, the time to reach it from rest and the distance that takes (planner.md "Overscan"). */
+export function passMotion(h: Pick<JobHeader, 'pitchUm'>, machine: Machine, windowUs: number): ScanMotion {
+  const p = BigInt(h.pitchUm[0]), W = BigInt(windowUs);
+  const tA = ceilDiv(p * 1_000_000_000_000n, BigInt(machine.accelUmS2[0]) * W);
+  const o = ceilDiv(p * tA, 2n * W);
+  return { windowUs, speedUmS: Number(roundDiv(p * 1_000_000n, W)), accelUs: Number(tA), overscanUm: Number(o) };
+}
+
+export interface ScanMotion {
+  windowUs: number;
+  speedUmS: number;
+  accelUs: number;
+  overscanUm: number;
+}
+
 /** The window, speed and overscan of a job's passes; windowUs 0 when nothing is lit. */
-export function scanMotion(h: JobHeader, machine: Machine, tables = durationTables(h)) {
+export function scanMotion(h: JobHeader, machine: Machine, tables = durationTables(h)): ScanMotion {
   const T = Math.max(...tables.map((t) => t[255]));
   if (T === 0) return { windowUs: 0, speedUmS: 0, accelUs: 0, overscanUm: 0 };
   const p = BigInt(h.pitchUm[0]);
-  const W = BigInt(Math.max(T, Number(ceilDiv(p * 1_000_000n, BigInt(machine.vmaxUmS[0])))));
-  const tA = ceilDiv(p * 1_000_000_000_000n, BigInt(machine.accelUmS2[0]) * W);
-  const o = ceilDiv(p * tA, 2n * W);
-  return { windowUs: Number(W), speedUmS: Number(roundDiv(p * 1_000_000n, W)), accelUs: Number(tA), overscanUm: Number(o) };
+  return passMotion(h, machine, Math.max(T, Number(ceilDiv(p * 1_000_000n, BigInt(machine.vmaxUmS[0])))));
 }
 
 /** Every switch time of every pass fits 32 bits: (cols + the LEDs' spread in X) × W < 2³² µs. */
@@ -57,29 +73,46 @@ export function fitsTimer(h: JobHeader, windowUs: number): boolean {
   return (h.cols + Math.max(...dx) - Math.min(...dx)) * windowUs < 2 ** 32;
 }
 
+/** Bytes a second the printhead link carries: 115200 baud, ten bits a byte (nano.md). */
+export const LINK_BAUD = 115200;
+
+/**
+ * How far a pass's program lines outrun the printhead link (planner.md "The printhead link"): the
+ * µs its lines after the first two programs take at 115200 baud, L, against the pass's last event
+ * P; 0 when 5 × L ≤ 4 × P, else [5 × L, 4 × P].
+ */
+export function linkShortfall(events: ScanEvent[]): [bigint, bigint] | null {
+  if (!events.length) return null;
+  let bytes = 0, ahead = 0, sealed = 0;
+  for (const line of programLines(events)) {
+    bytes += line.length + 1;
+    if (line.startsWith('K:') && ++sealed === 2) ahead = bytes;
+  }
+  const linkUs = sealed > 2 ? (BigInt(bytes - ahead) * 10_000_000n) / BigInt(LINK_BAUD) : 0n;
+  const passUs = BigInt(events[events.length - 1][0]);
+  return 5n * linkUs > 4n * passUs ? [5n * linkUs, 4n * passUs] : null;
+}
+
+/** The next window to try for a pass that outran the link at W: W stretched by need/have, and at least W + 1. */
+export function linkWindow(W: number, [need, have]: [bigint, bigint]): number {
+  const w = have > 0n ? Number(ceilDiv(BigInt(W) * need, have)) : 2 * W;
+  return Math.max(W + 1, w);
+}
+
 /**
  * `neverFly`: a machine that cannot fly blank stretches crosses them at the pass's speed, so S(j) = j·W
  * throughout and the estimate is that of crossing (planner.md "Blank stretches"; bench P10's figure without flying).
+ * `noLinkCap`: every pass at the job's window, however its programs load the link (bench P11's figure before the cap).
  */
-export function planScan(job: PlannerJob, machine: Machine, opts: { neverFly?: boolean } = {}): ScanPlan {
+export function planScan(job: PlannerJob, machine: Machine, opts: { neverFly?: boolean; noLinkCap?: boolean } = {}): ScanPlan {
   const h = job.header;
   const tables = durationTables(h);
   const motion = scanMotion(h, machine, tables);
   const plan: ScanPlan = { ...motion, passes: [], estimateUs: 0 };
   const W = motion.windowUs;
   if (W === 0 || !fitsTimer(h, W)) return plan;
-  const p = h.pitchUm[0];
-  const reach = Math.ceil(p / 2) + motion.overscanUm; // from a column's centre to the run-up
-  const X = (hx: number) => h.originUm[0] + hx * p;
   const Y = (hy: number) => h.originUm[1] + hy * h.pitchUm[1];
   const moves = new MoveTimes(machine);
-  // A blank stretch of g windows may be flown in F(g) when that saves at least a window.
-  const flies = !opts.neverFly && W > Math.ceil((p * 1_000_000) / machine.vmaxUmS[0]);
-  const fly = (g: number) => {
-    if (!flies) return 0;
-    const f = Math.max(1, moves.axis(0, g * p + 2 * motion.overscanUm) - 2 * motion.accelUs);
-    return f <= (g - 1) * W ? f : 0;
-  };
   let curX = machine.startUm[0], curY = machine.startUm[1];
   // Rows still to arrive (a stream): the plan is every pass up to the first that reads one of them
   // (planner.md "Planning while rows arrive"), a prefix of the whole job's.
@@ -88,53 +121,84 @@ export function planScan(job: PlannerJob, machine: Machine, opts: { neverFly?: b
 
   for (const { hy, ledRows } of passRows(h, job.cells)) {
     if (known < h.rows && hy + dyMax >= known) break;
-    let first = Infinity, last = -Infinity;
-    ledRows.forEach((r, k) => {
-      if (r < 0) return;
-      const row = job.cells[r];
-      for (let c = 0; c < row.length; c++) {
-        if (tables[k][row[c]] === 0) continue;
-        first = Math.min(first, c - h.offsets[k][0]);
-        last = Math.max(last, c - h.offsets[k][0]);
-      }
-    });
-    if (first > last) continue;
     const descending = plan.passes.length % 2 === 1;
-    const n = last - first + 1;
-    const litAt = new Uint8Array(n); // by head column − first
-    ledRows.forEach((r, k) => {
-      if (r < 0) return;
-      const row = job.cells[r];
-      for (let c = 0; c < row.length; c++) if (tables[k][row[c]] > 0) litAt[c - h.offsets[k][0] - first] = 1;
-    });
-    // The flown stretches: by head column, the window after each lit one starts a stretch.
-    const flown = new Map<number, number>(); // first blank window in the pass's direction → g
-    for (const [col, g] of flownStretches(litAt, fly)) flown.set(descending ? n - col - g : col, g);
-    const start = new Array<number>(n); // S(j)
-    const jumps: [number, number, number][] = [];
-    for (let j = 0, t = 0, prev = -1; j < n; j++, t += W) {
-      if (litAt[descending ? n - 1 - j : j]) {
-        const g = j - prev - 1;
-        if (prev >= 0 && g > 0 && flown.get(prev + 1) === g) {
-          const f = fly(g);
-          t = start[prev] + W + f;
-          jumps.push([prev + 1, g, f]);
-        }
-        prev = j;
-      }
-      start[j] = t;
+    let pass = layoutPass(job, tables, ledRows, hy, descending, motion, machine, moves, !!opts.neverFly);
+    if (!pass) continue;
+    // The link cap: a pass whose program lines would outrun the link is laid out again at a longer window.
+    for (let short = opts.noLinkCap ? null : linkShortfall(pass.events); short; short = linkShortfall(pass.events)) {
+      const w = linkWindow(pass.windowUs, short);
+      if (!fitsTimer(h, w)) return { ...motion, passes: [], estimateUs: 0 };
+      pass = layoutPass(job, tables, ledRows, hy, descending, passMotion(h, machine, w), machine, moves, !!opts.neverFly)!;
     }
-    const leds = ledRows.map((r, k) => (r < 0 ? [] : switchTimes(job.cells[r], tables[k], h.offsets[k][0], descending ? last : first, descending, W, start)));
-    const runUpUm = descending ? X(last) + reach : X(first) - reach;
-    const runOutUm = descending ? X(first) - reach : X(last) + reach;
     const y = Y(hy);
-    const move = Math.max(moves.axis(0, Math.abs(runUpUm - curX)), moves.axis(1, Math.abs(y - curY)));
-    plan.estimateUs += move + (move > 0 ? machine.settleUs : 0) + machine.overheadUs + 2 * motion.accelUs + start[n - 1] + W;
-    curX = runOutUm;
+    const move = Math.max(moves.axis(0, Math.abs(pass.runUpUm - curX)), moves.axis(1, Math.abs(y - curY)));
+    plan.estimateUs += move + (move > 0 ? machine.settleUs : 0) + machine.overheadUs + passSpanUs(pass);
+    curX = pass.runOutUm;
     curY = y;
-    plan.passes.push({ hy, descending, first, last, runUpUm, runOutUm, leds, jumps, events: mergeLight(leds) });
+    plan.passes.push(pass);
   }
   return plan;
+}
+
+/** A pass's time from its start at rest to its end at rest: accelerate, S(n − 1) + W, brake. */
+export function passSpanUs(pass: ScanPass): number {
+  let t = (pass.last - pass.first + 1) * pass.windowUs;
+  for (const [, g, f] of pass.jumps) t += f - g * pass.windowUs;
+  return 2 * pass.accelUs + t;
+}
+
+/** One pass laid out at the motion `m`: its extent, flown stretches, switch times and events; null when nothing is lit. */
+export function layoutPass(job: PlannerJob, tables: Uint32Array[], ledRows: number[], hy: number, descending: boolean, m: ScanMotion, machine: Machine, moves: MoveTimes, neverFly: boolean): ScanPass | null {
+  const h = job.header;
+  const p = h.pitchUm[0], W = m.windowUs;
+  const X = (hx: number) => h.originUm[0] + hx * p;
+  // A blank stretch of g windows may be flown in F(g) when that saves at least a window.
+  const flies = !neverFly && W > Math.ceil((p * 1_000_000) / machine.vmaxUmS[0]);
+  const fly = (g: number) => {
+    if (!flies) return 0;
+    const f = Math.max(1, moves.axis(0, g * p + 2 * m.overscanUm) - 2 * m.accelUs);
+    return f <= (g - 1) * W ? f : 0;
+  };
+  let first = Infinity, last = -Infinity;
+  ledRows.forEach((r, k) => {
+    if (r < 0) return;
+    const row = job.cells[r];
+    for (let c = 0; c < row.length; c++) {
+      if (tables[k][row[c]] === 0) continue;
+      first = Math.min(first, c - h.offsets[k][0]);
+      last = Math.max(last, c - h.offsets[k][0]);
+    }
+  });
+  if (first > last) return null;
+  const n = last - first + 1;
+  const litAt = new Uint8Array(n); // by head column − first
+  ledRows.forEach((r, k) => {
+    if (r < 0) return;
+    const row = job.cells[r];
+    for (let c = 0; c < row.length; c++) if (tables[k][row[c]] > 0) litAt[c - h.offsets[k][0] - first] = 1;
+  });
+  // The flown stretches: by head column, the window after each lit one starts a stretch.
+  const flown = new Map<number, number>(); // first blank window in the pass's direction → g
+  for (const [col, g] of flownStretches(litAt, fly)) flown.set(descending ? n - col - g : col, g);
+  const start = new Array<number>(n); // S(j)
+  const jumps: [number, number, number][] = [];
+  for (let j = 0, t = 0, prev = -1; j < n; j++, t += W) {
+    if (litAt[descending ? n - 1 - j : j]) {
+      const g = j - prev - 1;
+      if (prev >= 0 && g > 0 && flown.get(prev + 1) === g) {
+        const f = fly(g);
+        t = start[prev] + W + f;
+        jumps.push([prev + 1, g, f]);
+      }
+      prev = j;
+    }
+    start[j] = t;
+  }
+  const leds = ledRows.map((r, k) => (r < 0 ? [] : switchTimes(job.cells[r], tables[k], h.offsets[k][0], descending ? last : first, descending, W, start)));
+  const reach = Math.ceil(p / 2) + m.overscanUm; // from a column's centre to the run-up
+  const runUpUm = descending ? X(last) + reach : X(first) - reach;
+  const runOutUm = descending ? X(first) - reach : X(last) + reach;
+  return { hy, descending, first, last, windowUs: W, accelUs: m.accelUs, overscanUm: m.overscanUm, runUpUm, runOutUm, leds, jumps, events: mergeLight(leds) };
 }
 
 /** A pass flies at most this many of its blank stretches (planner.md "Blank stretches"). */

@@ -4,7 +4,7 @@
 
 import type { Plan } from '../planner/planner';
 import type { Machine } from '../planner/time-model';
-import type { PrintJob } from '../protocol/job-types';
+import type { PrintJob, StrategyName } from '../protocol/job-types';
 import type { ScanPreview } from './scan-preview';
 
 export interface Planned {
@@ -15,9 +15,13 @@ export interface Planned {
   coverage: number[];
   /** A scan job's passes and light from its switch times (the plan then counts passes); null for stops. */
   scan: ScanPreview | null;
+  /** Every order's estimate for the drawing, µs (job-plan.ts orderEstimates), and the order planned. */
+  orders: Record<StrategyName, number>;
+  order: StrategyName;
 }
 
-export type PlanRequest = { id: number; job: PrintJob; machine: Machine };
+/** `auto`: plan the job in its fastest order, whatever its strategy says. */
+export type PlanRequest = { id: number; job: PrintJob; machine: Machine; auto?: boolean };
 export type PlanReply = { id: number; planned: Planned } | { id: number; error: string };
 
 /** What the client needs of a Worker (a test hands it a fake one). */
@@ -35,7 +39,7 @@ export class PlanClient {
     port.onmessage = (e) => this.#settle(e.data);
   }
 
-  plan(job: PrintJob, machine: Machine): Promise<Planned> {
+  plan(job: PrintJob, machine: Machine, auto = false): Promise<Planned> {
     const id = this.#next++;
     return new Promise((resolve, reject) => {
       const timer = setTimeout(() => {
@@ -43,7 +47,7 @@ export class PlanClient {
         reject(new Error(`planning took over ${this.timeoutMs / 1000} s`));
       }, this.timeoutMs);
       this.#pending.set(id, { resolve, reject, timer });
-      this.port.postMessage({ id, job, machine });
+      this.port.postMessage({ id, job, machine, auto });
     });
   }
 

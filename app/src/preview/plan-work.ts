@@ -2,19 +2,22 @@
 // each LED's share. Apart from the worker's message plumbing, so it is tested in Node.
 
 import { headerOf } from '../planner/job-header';
-import { planAnyJob } from '../planner/job-plan';
+import { fastestOrder, orderEstimates, planAnyJob } from '../planner/job-plan';
 import { ledCoverage, timeline } from './exposure-preview';
 import type { PlanReply, PlanRequest } from './plan-client';
 import { scanCoverage, scanPreview, scanTimeline } from './scan-preview';
 
-export function planReply({ id, job, machine }: PlanRequest): PlanReply {
+export function planReply({ id, job: asked, machine, auto }: PlanRequest): PlanReply {
   try {
+    const orders = orderEstimates({ header: headerOf(asked), cells: asked.gridData }, machine);
+    const order = auto ? fastestOrder(orders) : asked.strategy.name;
+    const job = { ...asked, strategy: { ...asked.strategy, name: order } };
     const { plan, scan } = planAnyJob({ header: headerOf(job), cells: job.gridData }, machine);
     if (scan) {
       const preview = scanPreview(job, scan);
-      return { id, planned: { plan, clock: scanTimeline(job, scan, machine), coverage: scanCoverage(preview.doses), scan: preview } };
+      return { id, planned: { plan, clock: scanTimeline(job, scan, machine), coverage: scanCoverage(preview.doses), scan: preview, orders, order } };
     }
-    return { id, planned: { plan, clock: timeline(job, plan, machine), coverage: ledCoverage(plan), scan: null } };
+    return { id, planned: { plan, clock: timeline(job, plan, machine), coverage: ledCoverage(plan), scan: null, orders, order } };
   } catch (e) {
     return { id, error: (e as Error).message };
   }

@@ -58,8 +58,8 @@ export function scanDoses(job: PrintJob, scan: ScanPlan): ScanDoses {
   const { cols, rows } = job.grid;
   const cell: number[] = [], led: number[] = [], us: number[] = [];
   const from = new Uint32Array(scan.passes.length + 1);
-  const W = scan.windowUs;
   scan.passes.forEach((pass, p) => {
+    const W = pass.windowUs;
     from[p] = cell.length;
     const start = windowStarts(pass, W);
     const n = start.length;

@@ -26,7 +26,8 @@ export interface Project {
   name: string;
   machine: { bedMm: { x: number; y: number }; pitchUm: { x: number; y: number } };
   /** `mJcm2`: the full dose was set as energy; `fullMs` is then its time for LED 0, used where the LEDs' calibration is not known. */
-  exposure: { fullMs: number; strategy: StrategyName; mJcm2?: number };
+  /** `auto`: the fastest order for the drawing (job-plan.ts); older apps refuse it by name. */
+  exposure: { fullMs: number; strategy: StrategyName | 'auto'; mJcm2?: number };
   polarity: Polarity;
   /** The painted cells, cols × rows, row 0 first. */
   paint: { cols: number; rows: number; cells: Uint8Array };
@@ -151,8 +152,8 @@ export async function decodeProject(text: string): Promise<Project> {
   const m = obj(f.machine, 'machine');
   const machine = { bedMm: xy(m.bedMm, 'machine.bedMm', 1, 10_000), pitchUm: xy(m.pitchUm, 'machine.pitchUm', 1, 10_000) };
   const e = obj(f.exposure, 'exposure');
-  const strategy = e.strategy as StrategyName;
-  if (!STRATEGIES.includes(strategy)) fail('exposure.strategy', `must be one of ${STRATEGIES.join(', ')}`);
+  const strategy = e.strategy as StrategyName | 'auto';
+  if (strategy !== 'auto' && !STRATEGIES.includes(strategy)) fail('exposure.strategy', `must be one of ${STRATEGIES.join(', ')}, auto`);
   const exposure = {
     fullMs: numIn(e.fullMs, 'exposure.fullMs', 0.001, 60_000),
     strategy,

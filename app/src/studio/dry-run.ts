@@ -113,7 +113,7 @@ export function dryRun(
   // intervals merge only when a cell fills its window), so a cell's exposure is at most the window.
   for (const pass of scan?.passes ?? []) {
     pass.leds.forEach((list, k) => list.forEach(([on, off]) => {
-      longest = Math.max(longest, Math.min(off - on, scan!.windowUs));
+      longest = Math.max(longest, Math.min(off - on, pass.windowUs));
       lit[k] += off - on;
     }));
   }

@@ -119,13 +119,13 @@ export function forecastScanThermal(scan: ScanPlan, place: PlanPlace, machine: M
     const move = Math.max(moves.axis(0, Math.abs(pass.runUpUm - x)), moves.axis(1, Math.abs(ny - y)));
     if (!hold(move + (move > 0 ? machine.settleUs : 0) + machine.overheadUs, 0)) break;
     if (!paceWait()) break;
-    let at = -scan.accelUs, lit = 0; // µs after the pass's start mark
+    let at = -pass.accelUs, lit = 0; // µs after the pass's start mark
     for (const sw of passSwitches(pass)) {
       if (!hold(sw.atUs - at, lit)) break run;
       at = sw.atUs;
       lit = sw.mask;
     }
-    if (!hold(passDurationUs(scan, pass) - scan.accelUs - at, lit)) break;
+    if (!hold(passDurationUs(scan, pass) - pass.accelUs - at, lit)) break;
     x = pass.runOutUm, y = ny;
   }
   return result();

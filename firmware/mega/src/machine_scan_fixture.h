@@ -36,13 +36,14 @@ struct ScanMachineTest : JobTest {
     for (int i = 0; i < 400000 && m.nano.lit() == 0; i++) m.run(100);
     return m.nano.lit() != 0;
   }
-  scandose::Figures measure(uint32_t windowUs) {
+  scandose::Figures measure(uint32_t windowUs) { return measure(std::vector<double>(h.rows, windowUs)); }
+  scandose::Figures measure(const std::vector<double>& windowOfRow) {
     scandose::Track track;
     track.add(0, 0, 0);
     scandose::addSteps(track, before);
     scandose::addSteps(track, m.rig.steps);
     const double spm[2] = {80, 80};
-    return scandose::measure(h, g, scandose::lightsOf(m.nano.scanLight), track, spm, windowUs);
+    return scandose::measure(h, g, scandose::lightsOf(m.nano.scanLight), track, spm, windowOfRow);
   }
 };
 

@@ -7,10 +7,27 @@
 #include <cstdint>
 #include <vector>
 
+#include "grid_cells.h"
 #include "job_types.h"
 #include "planner.h"
+#include "scan.h"
 
 namespace scandose {
+
+// The cell window of the pass that exposes each row, as the scan planner lays the job out on `m`
+// (each pass at the job's window, or slower where the printhead link caps it).
+inline std::vector<double> passWindows(const uv::JobHeader& h, const std::vector<std::vector<uint8_t>>& grid, const uv::Machine& m) {
+  std::vector<double> out(h.rows, 0);
+  uvtest::GridCells cells(grid);
+  uv::ScanPlanner plan(h, cells, m);
+  uv::ScanPass p;
+  while (plan.nextPass(p))
+    for (uint8_t k = 0; k < 4; k++) {
+      const int32_t r = p.hy + h.offsets[k][1];
+      if (r >= 0 && r < h.rows && out[r] == 0) out[r] = plan.passMotion().windowUs;
+    }
+  return out;
+}
 
 // The scan tests' job: 1-cell lines (rows 0, 3, …), runs of four full cells (rows 1, 4, …) and a
 // different gray in every cell (rows 2, 5, …).
@@ -96,10 +113,11 @@ struct Figures {
   std::vector<std::vector<double>> dose;  // µs each of the job's cells received, [row][col]
 };
 
-// `stepsPerMm`: X and Y; `windowUs`: the pass's cell window. Every sample of light falls on the cell
+// `stepsPerMm`: X and Y; `windowOfRow`: the cell window of the pass that exposes each row (the link
+// cap may slow a pass, planner.md "The printhead link"). Every sample of light falls on the cell
 // under its LED at that moment. The jobs measured give every LED the same gain.
 inline Figures measure(const uv::JobHeader& h, const std::vector<std::vector<uint8_t>>& grid, const std::vector<Light>& lights,
-                       const Track& track, const double stepsPerMm[2], double windowUs, double sampleUs = 0.25) {
+                       const Track& track, const double stepsPerMm[2], const std::vector<double>& windowOfRow, double sampleUs = 0.25) {
   const uv::Durations dose(h);
   double full = 0;
   for (uint8_t k = 0; k < 4; k++) full = std::max(full, static_cast<double>(dose.us(k, 255)));
@@ -133,7 +151,7 @@ inline Figures measure(const uv::JobHeader& h, const std::vector<std::vector<uin
     const double half = std::min(std::fabs(off - on), 1.0) / 2;
     const int c0 = static_cast<int>(std::floor(on + dir * half + 0.5)), c1 = static_cast<int>(std::floor(off - dir * half + 0.5));
     if (row >= 0 && row < h.rows && c0 >= 0 && c0 < h.cols && c1 >= 0 && c1 < h.cols) {
-      const double t0 = dose.us(l.led, grid[row][c0]), t1 = dose.us(l.led, grid[row][c1]);
+      const double t0 = dose.us(l.led, grid[row][c0]), t1 = dose.us(l.led, grid[row][c1]), windowUs = windowOfRow[row];
       // Centred in its window: half its on-time either side of the centre, one pitch a window.
       f.worstEdgeUm = std::max(f.worstEdgeUm, std::fabs((on - (c0 - dir * t0 / (2 * windowUs))) * px));
       f.worstEdgeUm = std::max(f.worstEdgeUm, std::fabs((off - (c1 + dir * t1 / (2 * windowUs))) * px));
@@ -153,6 +171,12 @@ inline Figures measure(const uv::JobHeader& h, const std::vector<std::vector<uin
       if (g > 0) f.worstCentreUm = std::max(f.worstCentreUm, std::fabs(xsum[r + kMargin][c + kMargin] / g));
     }
   return f;
+}
+
+// Every pass at the one window `windowUs`.
+inline Figures measure(const uv::JobHeader& h, const std::vector<std::vector<uint8_t>>& grid, const std::vector<Light>& lights,
+                       const Track& track, const double stepsPerMm[2], double windowUs, double sampleUs = 0.25) {
+  return measure(h, grid, lights, track, stepsPerMm, std::vector<double>(h.rows, windowUs), sampleUs);
 }
 
 }  // namespace scandose

@@ -24,7 +24,7 @@ bool ScanRun::jumpAt(void* ctx, uint8_t i, Motion::StrokeJump& out) {
   if (i >= s->planner_.jumps()) return false;
   uint32_t window, windows, flyUs;
   s->planner_.jump(i, window, windows, flyUs);
-  strokeJump(s->stroke_, s->planner_.motion().windowUs, window, windows, flyUs, out.from, out.steps, out.savedTicks);
+  strokeJump(s->stroke_, s->planner_.passMotion().windowUs, window, windows, flyUs, out.from, out.steps, out.savedTicks);
   return true;
 }
 
@@ -46,7 +46,7 @@ bool ScanRun::open(Motion& motion, const uv::JobHeader& h) {
   in.markX2Um = 2 * firstX - dir * pitch;
   in.endX2Um = 2 * lastX + dir * pitch;
   in.descending = p.descending;
-  in.windowUs = planner_.motion().windowUs;
+  in.windowUs = planner_.passMotion().windowUs;  // the pass's own: the link cap may slow it
   in.pitchUm = h.pitchUm[0];
   in.stepsMilli = motion.stepsMilli(0);
   uint16_t interval = 0, frac = 0;

@@ -95,7 +95,7 @@ struct ScanRunTest : ::testing::Test {
     uv::ScanPlanner planner;
     ScanRun scan;
   };
-  scandose::Figures measure(const uv::JobHeader& h, const std::vector<std::vector<uint8_t>>& grid, uint32_t windowUs) {
+  scandose::Figures measure(const uv::JobHeader& h, const std::vector<std::vector<uint8_t>>& grid, const std::vector<double>& windowUs) {
     scandose::Track track;
     track.add(0, 0, 0);
     scandose::addSteps(track, rig.steps);
@@ -117,7 +117,7 @@ TEST_F(ScanRunTest, ExposesEveryCellItsDoseInPlaceOnTheMove) {
   EXPECT_GE(scan.passes(), 3);
   EXPECT_EQ(nano.lit(), 0);
   EXPECT_EQ(rig.engine.marksMissed(), 0);
-  const scandose::Figures f = measure(h, p.grid, planner.motion().windowUs);
+  const scandose::Figures f = measure(h, p.grid, scandose::passWindows(h, p.grid, p.m));
   std::printf("[scan host] %d cells (%d lit), %u passes: worst dose error %.2f %% of full, worst centroid %.2f um, worst edge %.2f um (cell 50 um)\n",
               f.cells, f.lit, scan.passes(), f.worstDosePct, f.worstCentreUm, f.worstEdgeUm);
   EXPECT_EQ(f.stray, 0);
@@ -148,7 +148,7 @@ TEST_F(ScanRunTest, FliesBlankStretchesAndKeepsEveryCellInPlace) {
   EXPECT_EQ(rig.engine.underruns(), 0);
   // The head went faster than the pass's speed (2000 steps/s at 80 steps/mm): it flew.
   EXPECT_LT(shortestXStep(rig.steps), 2 * 500 * 3 / 4) << "no step faster than the pass's speed";
-  const scandose::Figures f = measure(p.h, p.grid, p.planner.motion().windowUs);
+  const scandose::Figures f = measure(p.h, p.grid, scandose::passWindows(p.h, p.grid, p.m));
   std::printf("[scan host, flying] %d cells (%d lit), %u passes in %.2f s (planned %.2f s): worst dose error %.2f %% of full, worst centroid %.2f um, worst edge %.2f um\n",
               f.cells, f.lit, p.scan.passes(), tookUs / 1e6, p.planner.estimateUs() / 1e6, f.worstDosePct, f.worstCentreUm, f.worstEdgeUm);
   EXPECT_EQ(f.stray, 0);

@@ -82,6 +82,29 @@ void writeScans(const char* path, const std::vector<std::pair<const char*, std::
                        {"scan", uvtest::scanPlanJson(h, rows, capped ? slow : fast)}});
     }
   }
+  // Photos in many gray levels at a speed whose program lines would outrun the printhead link: the
+  // link cap lays their passes out again at longer windows (planner.md "The printhead link").
+  for (const auto& [gname, offsets] : geometries) {
+    json job = makeJob(r, offsets, "serpentine");
+    const int cols = 40 + r.below(40), rows = 4 + r.below(6);
+    json grid = json::array();
+    for (int y = 0; y < rows; y++) {
+      json row = json::array();
+      for (int x = 0; x < cols; x++) row.push_back(r.below(100) < 90 ? 1 + r.below(255) : 0);
+      grid.push_back(row);
+    }
+    job["grid"] = {{"cols", cols}, {"rows", rows}};
+    job["gridData"] = grid;
+    job["dose"] = {{"map", "linear"}, {"fullUs", 1000 + r.below(2000)}};
+    job["pitchUm"]["x"] = 40 + r.below(40);
+    uv::JobHeader h = uvtest::headerFrom(job);
+    std::vector<std::vector<uint8_t>> cells;
+    for (const auto& row : job["gridData"]) cells.emplace_back(row.begin(), row.end());
+    cases.push_back({{"name", std::string("c++ scan ") + gname + " photo, link-capped"},
+                     {"job", job},
+                     {"machine", fastJson},
+                     {"scan", uvtest::scanPlanJson(h, cells, fast)}});
+  }
   std::ofstream(path) << json({{"version", 1}, {"madeBy", "c++"}, {"cases", cases}}).dump() << "\n";
   std::printf("wrote %zu scan cases\n", cases.size());
 }

@@ -1,6 +1,8 @@
 // The scan planner (protocol/planner.md "Scan mode"): passes exposed on the move, one pass at a time from a CellSource.
 #include "scan.h"
 
+#include "scan_program.h"
+
 namespace uv {
 
 namespace {
@@ -15,11 +17,16 @@ ScanMotion scanMotion(const JobHeader& h, const Durations& dose, const Machine& 
   for (uint8_t k = 0; k < 4; k++)
     if (dose.us(k, 255) > longest) longest = dose.us(k, 255);
   if (longest == 0) return out;
-  const uint64_t p = h.pitchUm[0];
-  uint64_t w = ceilDiv(p * 1000000u, m.vmaxUmS[0]);
+  uint64_t w = ceilDiv(static_cast<uint64_t>(h.pitchUm[0]) * 1000000u, m.vmaxUmS[0]);
   if (w < longest) w = longest;
+  return passMotion(h, m, static_cast<uint32_t>(w));
+}
+
+ScanMotion passMotion(const JobHeader& h, const Machine& m, uint32_t windowUs) {
+  const uint64_t p = h.pitchUm[0], w = windowUs;
   const uint64_t tA = ceilDiv(p * 1000000000000ull, static_cast<uint64_t>(m.accelUmS2[0]) * w);
-  out.windowUs = static_cast<uint32_t>(w);
+  ScanMotion out;
+  out.windowUs = windowUs;
   out.speedUmS = static_cast<uint32_t>(roundDiv(p * 1000000u, w));
   out.accelUs = static_cast<uint32_t>(tA);
   out.overscanUm = static_cast<uint32_t>(ceilDiv(p * tA, 2 * w));
@@ -27,8 +34,8 @@ ScanMotion scanMotion(const JobHeader& h, const Durations& dose, const Machine& 
 }
 
 ScanPlanner::ScanPlanner(const JobHeader& h, CellSource& cells, const Machine& m)
-    : h_(h), cells_(cells), m_(m), dose_(h), motion_(scanMotion(h, dose_, m)), known_(h.rows), curX_(m.startUm[0]), curY_(m.startUm[1]),
-      flies_(motion_.windowUs > ceilDiv(static_cast<uint64_t>(h.pitchUm[0]) * 1000000u, m.vmaxUmS[0])) {
+    : h_(h), cells_(cells), m_(m), dose_(h), known_(h.rows), curX_(m.startUm[0]), curY_(m.startUm[1]),
+      flies_(false), pass_(scanMotion(h, dose_, m)) {
   dyMin_ = dyMax_ = h.offsets[0][1];
   for (uint8_t k = 1; k < 4; k++) {
     if (h.offsets[k][1] < dyMin_) dyMin_ = h.offsets[k][1];
@@ -49,6 +56,10 @@ bool ScanPlanner::readLit(uint8_t led, int32_t& hx, uint32_t& us) {
   return false;
 }
 
+bool ScanPlanner::mayFly() const {
+  return !neverFly_ && pass_.windowUs > ceilDiv(static_cast<uint64_t>(h_.pitchUm[0]) * 1000000u, m_.vmaxUmS[0]);
+}
+
 bool ScanPlanner::supported() const {
   int32_t dxMin = h_.offsets[0][0], dxMax = dxMin;
   for (uint8_t k = 1; k < 4; k++) {
@@ -56,12 +67,12 @@ bool ScanPlanner::supported() const {
     if (h_.offsets[k][0] > dxMax) dxMax = h_.offsets[k][0];
   }
   const uint64_t span = static_cast<uint64_t>(h_.cols + dxMax - dxMin);
-  return dyMax_ - dyMin_ < static_cast<int16_t>(kCoveredWindowRows) && span * motion_.windowUs < (1ull << 32);
+  return !tooLong_ && dyMax_ - dyMin_ < static_cast<int16_t>(kCoveredWindowRows) && span * motion().windowUs < (1ull << 32);
 }
 
 bool ScanPlanner::nextPass(ScanPass& out) {
   starved_ = false;
-  if (!supported() || motion_.windowUs == 0) return false;
+  if (!supported() || motion().windowUs == 0) return false;
   for (; scan_ < h_.rows; uncover(scan_), scan_++) {
     const uint16_t r = scan_;
     low_ = r;
@@ -73,7 +84,6 @@ bool ScanPlanner::nextPass(ScanPass& out) {
     if (covered(r) || !cells_.rowNonEmpty(r)) continue;
     // The rows of this pass, as planner.md "Passes" gives them (the same as the stop planner's).
     const int32_t hy = static_cast<int32_t>(r) - dyMin_;
-    int32_t first = INT32_MAX, last = INT32_MIN;
     for (uint8_t k = 0; k < 4; k++) {
       row_[k] = -1;
       const int32_t rk = hy + h_.offsets[k][1];
@@ -81,75 +91,45 @@ bool ScanPlanner::nextPass(ScanPass& out) {
       cover(rk);
       row_[k] = static_cast<int16_t>(rk);
     }
-    // The lit windows, ascending: the extent, and the pass's time with its flown stretches.
-    for (uint8_t k = 0; k < 4; k++) {
-      live_[k] = false;
-      if (row_[k] < 0) continue;
-      cells_.open(k, static_cast<uint16_t>(row_[k]), false);
-      peek(k);
-    }
-    // The lit windows, ascending: the extent, and the stretches that may be flown.
-    jumpCount_ = jumpNext_ = 0;
-    for (;;) {
-      bool any = false;
-      int32_t best = 0;
-      for (uint8_t k = 0; k < 4; k++)
-        if (live_[k] && (!any || hx_[k] < best)) {
-          best = hx_[k];
-          any = true;
-        }
-      if (!any) break;
-      if (first > last) {
-        first = first_ = best;  // consider() keeps columns from it
-      } else if (best - last > 1 && best - last - 1 <= 0xffff) {
-        consider(last + 1, static_cast<uint16_t>(best - last - 1));
-      }
-      last = best;
-      for (uint8_t k = 0; k < 4; k++)
-        if (live_[k] && hx_[k] == best) peek(k);
-    }
-    if (first > last) continue;  // no lit cell: the pass is dropped
-    // S(n − 1) + W: every window, less what each flown stretch saves.
-    uint64_t span = static_cast<uint64_t>(last - first + 1) * motion_.windowUs;
-    for (uint8_t i = 0; i < jumpCount_; i++) span -= static_cast<uint64_t>(jumpG_[i]) * motion_.windowUs - fly(jumpG_[i]);
-    for (uint8_t i = 1; i < jumpCount_; i++)  // by column, ascending
-      for (uint8_t k = i; k > 0 && jumpCol_[k - 1] > jumpCol_[k]; k--) {
-        const uint16_t c = jumpCol_[k], g = jumpG_[k];
-        jumpCol_[k] = jumpCol_[k - 1];
-        jumpG_[k] = jumpG_[k - 1];
-        jumpCol_[k - 1] = c;
-        jumpG_[k - 1] = g;
-      }
+    pass_ = motion();  // the job's window first
+    int32_t first, last;
+    uint64_t span;
+    if (!layout(first, last, span)) continue;  // no lit cell: the pass is dropped
     uncover(scan_);
     scan_++;
-
     descending_ = passes_ % 2 == 1;
     start_ = descending_ ? last : first;
-    for (uint8_t k = 0; k < 4; k++) {
-      live_[k] = false;
-      if (row_[k] < 0) continue;
-      cells_.open(k, static_cast<uint16_t>(row_[k]), descending_);
-      peek(k);
-      pending_[k] = false;
+    openPass();
+    // The link cap (planner.md "The printhead link"): a pass whose program lines would outrun the
+    // link is laid out again at a longer window, until they fit.
+    for (uint64_t need, have; outrunsLink(need, have);) {
+      uint64_t w = have ? ceilDiv(static_cast<uint64_t>(pass_.windowUs) * need, have) : 2ull * pass_.windowUs;
+      if (w <= pass_.windowUs) w = pass_.windowUs + 1ull;
+      int32_t dxMin = h_.offsets[0][0], dxMax = dxMin;
+      for (uint8_t k = 1; k < 4; k++) {
+        if (h_.offsets[k][0] < dxMin) dxMin = h_.offsets[k][0];
+        if (h_.offsets[k][0] > dxMax) dxMax = h_.offsets[k][0];
+      }
+      if (static_cast<uint64_t>(h_.cols + dxMax - dxMin) * w >= (1ull << 32)) {
+        tooLong_ = true;
+        return false;
+      }
+      pass_ = uv::passMotion(h_, m_, static_cast<uint32_t>(w));
+      layout(first, last, span);
+      openPass();
     }
-    started_ = false;
-    ready_ = 0;
-    jumpReady_ = false;
-    edgeCount_ = edgeNext_ = 0;
-    held_ = false;
-    state_ = emitted_ = 0;
-    const int32_t reach = static_cast<int32_t>((h_.pitchUm[0] + 1) / 2 + motion_.overscanUm);
+    const int32_t reach = static_cast<int32_t>((h_.pitchUm[0] + 1) / 2 + pass_.overscanUm);
     out.hy = hy;
     out.descending = descending_;
     out.first = first;
     out.last = last;
     out.runUpUm = descending_ ? X(last) + reach : X(first) - reach;
     out.runOutUm = descending_ ? X(first) - reach : X(last) + reach;
-    const int32_t y = Y(hy);
+    const int32_t y = Y(out.hy);
     const uint32_t tx = moveTimeUs(absDiff(out.runUpUm, curX_), m_.vmaxUmS[0], m_.accelUmS2[0]);
     const uint32_t ty = moveTimeUs(absDiff(y, curY_), m_.vmaxUmS[1], m_.accelUmS2[1]);
     const uint32_t move = tx > ty ? tx : ty;
-    estimate_ += move + (move ? m_.settleUs : 0) + m_.overheadUs + 2ull * motion_.accelUs + span;
+    estimate_ += move + (move ? m_.settleUs : 0) + m_.overheadUs + 2ull * pass_.accelUs + span;
     curX_ = out.runOutUm;
     curY_ = y;
     passes_++;
@@ -158,13 +138,98 @@ bool ScanPlanner::nextPass(ScanPass& out) {
   return false;
 }
 
+// The open pass's lit windows at the window pass_, ascending: its extent, the stretches it flies,
+// and S(n − 1) + W. False when it has no lit cell.
+bool ScanPlanner::layout(int32_t& first, int32_t& last, uint64_t& span) {
+  flies_ = mayFly();
+  first = INT32_MAX;
+  last = INT32_MIN;
+  for (uint8_t k = 0; k < 4; k++) {
+    live_[k] = false;
+    if (row_[k] < 0) continue;
+    cells_.open(k, static_cast<uint16_t>(row_[k]), false);
+    peek(k);
+  }
+  jumpCount_ = jumpNext_ = 0;
+  for (;;) {
+    bool any = false;
+    int32_t best = 0;
+    for (uint8_t k = 0; k < 4; k++)
+      if (live_[k] && (!any || hx_[k] < best)) {
+        best = hx_[k];
+        any = true;
+      }
+    if (!any) break;
+    if (first > last) {
+      first = first_ = best;  // consider() keeps columns from it
+    } else if (best - last > 1 && best - last - 1 <= 0xffff) {
+      consider(last + 1, static_cast<uint16_t>(best - last - 1));
+    }
+    last = best;
+    for (uint8_t k = 0; k < 4; k++)
+      if (live_[k] && hx_[k] == best) peek(k);
+  }
+  if (first > last) return false;
+  // S(n − 1) + W: every window, less what each flown stretch saves.
+  span = static_cast<uint64_t>(last - first + 1) * pass_.windowUs;
+  for (uint8_t i = 0; i < jumpCount_; i++) span -= static_cast<uint64_t>(jumpG_[i]) * pass_.windowUs - fly(jumpG_[i]);
+  for (uint8_t i = 1; i < jumpCount_; i++)  // by column, ascending
+    for (uint8_t k = i; k > 0 && jumpCol_[k - 1] > jumpCol_[k]; k--) {
+      const uint16_t c = jumpCol_[k], g = jumpG_[k];
+      jumpCol_[k] = jumpCol_[k - 1];
+      jumpG_[k] = jumpG_[k - 1];
+      jumpCol_[k - 1] = c;
+      jumpG_[k - 1] = g;
+    }
+  return true;
+}
+
+// Opens the pass's cursors in its direction and clears what next() and nextEvent() hand out.
+void ScanPlanner::openPass() {
+  for (uint8_t k = 0; k < 4; k++) {
+    live_[k] = false;
+    if (row_[k] < 0) continue;
+    cells_.open(k, static_cast<uint16_t>(row_[k]), descending_);
+    peek(k);
+    pending_[k] = false;
+  }
+  started_ = false;
+  ready_ = 0;
+  jumpNext_ = 0;
+  jumpReady_ = false;
+  edgeCount_ = edgeNext_ = 0;
+  held_ = false;
+  state_ = emitted_ = 0;
+}
+
+// Plays the open pass's events through the program writer and reopens it: true when its lines
+// after the first two programs need more than four fifths of its time at 115200 baud (5 × link µs
+// = need > have = 4 × its last event's µs), as the Mega checks at M29.
+bool ScanPlanner::outrunsLink(uint64_t& need, uint64_t& have) {
+  ProgramLines lines(passEvent, this);
+  char line[kNanoMaxLine + 2];
+  uint32_t bytes = 0, ahead = 0;
+  uint16_t sealed = 0;
+  for (uint8_t n; (n = lines.next(line)) != 0;) {
+    bytes += n;
+    if (line[0] == 'K' && ++sealed == 2) ahead = bytes;
+  }
+  // The pass's last event (every LED off) is the last moment nextEvent() gathered.
+  const uint32_t lastUs = heldT_;
+  openPass();
+  if (lines.failed()) return false;  // a gap of 2²⁸ µs: the Mega refuses the pass, whatever its speed
+  need = 5 * (static_cast<uint64_t>(sealed > 2 ? bytes - ahead : 0) * 10 * 1000000 / kNanoBaud);
+  have = 4 * static_cast<uint64_t>(lastUs);
+  return need > have;
+}
+
 // F(g) when flying g blank windows saves at least a window, F(g) ≤ (g − 1)·W, else 0.
 uint32_t ScanPlanner::fly(uint32_t g) {
   if (!flies_) return 0;
-  const int64_t move = moveTimeUs(g * h_.pitchUm[0] + 2 * motion_.overscanUm, m_.vmaxUmS[0], m_.accelUmS2[0]);
-  int64_t f = move - 2 * static_cast<int64_t>(motion_.accelUs);
+  const int64_t move = moveTimeUs(g * h_.pitchUm[0] + 2 * pass_.overscanUm, m_.vmaxUmS[0], m_.accelUmS2[0]);
+  int64_t f = move - 2 * static_cast<int64_t>(pass_.accelUs);
   if (f < 1) f = 1;
-  return static_cast<uint64_t>(f) <= static_cast<uint64_t>(g - 1) * motion_.windowUs ? static_cast<uint32_t>(f) : 0;
+  return static_cast<uint64_t>(f) <= static_cast<uint64_t>(g - 1) * pass_.windowUs ? static_cast<uint32_t>(f) : 0;
 }
 
 // A blank stretch of g windows from head column `col` up, met in the ascending walk: it joins the
@@ -206,7 +271,7 @@ bool ScanPlanner::nextLitWindow(uint32_t& j) {
       any = true;
     }
   if (!any) return false;
-  const uint32_t w = motion_.windowUs;
+  const uint32_t w = pass_.windowUs;
   j = static_cast<uint32_t>(descending_ ? start_ - best : best - start_);
   uint32_t s = j * w;
   if (started_) {
@@ -280,7 +345,7 @@ bool ScanPlanner::fillEdges() {
   uint32_t j;
   if (!nextLitWindow(j)) return false;
   edgeCount_ = edgeNext_ = 0;
-  const uint32_t w = motion_.windowUs;
+  const uint32_t w = pass_.windowUs;
   for (uint8_t k = 0; k < 4; k++) {
     if (!winUs_[k]) continue;
     const uint32_t on = lastS_ + (w - winUs_[k]) / 2;

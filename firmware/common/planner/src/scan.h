@@ -18,6 +18,8 @@ struct ScanMotion {
 };
 
 ScanMotion scanMotion(const JobHeader& h, const Durations& dose, const Machine& m);
+// The motion of a window of `windowUs`: its speed, time to reach it and the distance that takes.
+ScanMotion passMotion(const JobHeader& h, const Machine& m, uint32_t windowUs);
 
 struct ScanPass {
   int32_t hy;
@@ -47,7 +49,11 @@ class ScanPlanner {
  public:
   ScanPlanner(const JobHeader& h, CellSource& cells, const Machine& m);
 
-  const ScanMotion& motion() const { return motion_; }
+  // The job's motion; a pass's own window may be longer (the link cap: planner.md "The printhead
+  // link"), and passMotion() is the open pass's.
+  // (Worked out when asked: on the Mega, RAM is dearer than the divisions.)
+  ScanMotion motion() const { return scanMotion(h_, dose_, m_); }
+  const ScanMotion& passMotion() const { return pass_; }
   // Opens the next pass with a lit cell and adds its time to the estimate; false when done.
   bool nextPass(ScanPass& out);
   // The current pass's next event; false at its end.
@@ -66,10 +72,13 @@ class ScanPlanner {
   // time fits 32 bits: (cols + the LEDs' spread in X) × window < 2³² µs.
   bool supported() const;
   // The speed is below the X axis's maximum, so a blank stretch may be flown (planner.md "Blank stretches").
-  bool mayFly() const { return flies_; }
+  bool mayFly() const;
   // A machine that cannot fly crosses every blank stretch at the pass's speed: no jumps, S(j) = j·W,
   // and the estimate to match. Before the first nextPass(). (P10's figure without flying.)
-  void neverFly() { flies_ = false; }
+  void neverFly() {
+    neverFly_ = true;
+    flies_ = false;
+  }
   // Stream mode, as Planner's: rows below `known` have arrived. nextPass() opens a pass only once
   // every row it reads has arrived; until then it says false with starved() true.
   void setKnownRows(uint16_t known) { known_ = known; }
@@ -95,7 +104,6 @@ class ScanPlanner {
   CellSource& cells_;
   const Machine& m_;
   Durations dose_;
-  ScanMotion motion_;
   uint8_t covered_[kCoveredWindowRows / 8] = {};
   uint16_t scan_ = 0;  // next row that may open a pass
   uint16_t known_;     // rows that have arrived (all, unless streaming)
@@ -105,7 +113,15 @@ class ScanPlanner {
   int32_t curX_, curY_;  // where the last pass ended, µm
   uint64_t estimate_ = 0;
   uint16_t passes_ = 0;
-  bool flies_;  // the speed is below the maximum: blank stretches may be flown
+  bool flies_;  // the open pass's speed is below the maximum: blank stretches may be flown
+  bool neverFly_ = false;
+  bool tooLong_ = false;  // a pass the link cap slowed until its switch times outgrew 32 bits
+  ScanMotion pass_;       // the open pass's motion
+  bool layout(int32_t& first, int32_t& last, uint64_t& span);
+  void openPass();
+  bool outrunsLink(uint64_t& need, uint64_t& have);
+  static bool passEvent(void* ctx, uint32_t& t, uint8_t& m) { return static_cast<ScanPlanner*>(ctx)->nextEvent(t, m); }
+
   // The current pass and each LED's next lit cell in its direction.
   int16_t row_[4] = {-1, -1, -1, -1};
   bool descending_ = false;

@@ -27,7 +27,9 @@ inline nlohmann::json scanPlanJson(const uv::JobHeader& h, const std::vector<std
     uint32_t t;
     uint8_t state;
     while (eventPlanner.nextEvent(t, state)) events.push_back({t, state});
+    const uv::ScanMotion& own = planner.passMotion();
     passes.push_back({{"hy", p.hy}, {"descending", p.descending}, {"first", p.first}, {"last", p.last},
+                      {"windowUs", own.windowUs}, {"accelUs", own.accelUs}, {"overscanUm", own.overscanUm},
                       {"runUpUm", p.runUpUm}, {"runOutUm", p.runOutUm}, {"leds", leds}, {"jumps", jumps},
                       {"events", events}});
   }
