@@ -46,20 +46,22 @@ async function refusal(job: PrintJob): Promise<CommandError> {
   return e as CommandError;
 }
 
-describe('the Mega refuses at M29, before any light (the firmware as WebAssembly)', { timeout: 60_000 }, () => {
+describe('the Mega at M29, before any light (the firmware as WebAssembly)', { timeout: 60_000 }, () => {
   it('a scan job with a pass of 2100 s or more: its stroke counts 0.5 µs ticks in 32 bits', async () => {
     // 5 mm cells at 10 s each, every other one lit: a pass of 240 windows takes 2400 s.
     const e = await refusal(scanJob(240, 4, 10_000_000, (x) => (x % 2 ? 255 : 0), 5000));
     expect(e.code).toBe(29);
   });
 
-  it("a photo whose passes' programs outrun the 115200-baud printhead link", async () => {
-    // Every cell another gray: each LED switches twice a 2 ms window, some 30 kB/s of program lines.
-    const e = await refusal(scanJob(200, 8, 2000, (x, y) => 1 + ((x * 97 + y * 31) % 253)));
-    expect(e.code).toBe(29);
+  it("takes a photo whose programs would outrun the 115200-baud printhead link, its passes slowed to fit (planner.md)", async () => {
+    // Every cell another gray: each LED switches twice a 2 ms window. The planner widens the
+    // windows until each pass's program fits the link, so the Mega's M29 guard finds nothing to refuse.
+    const { wire, link } = await connected();
+    await settle(wire, link.command('G28'));
+    await settle(wire, link.startJob(scanJob(200, 8, 2000, (x, y) => 1 + ((x * 97 + y * 31) % 253)), () => {}));
   });
 
-  it('and takes a scan job that fits both', async () => {
+  it('takes a scan job that fits both', async () => {
     const { wire, link } = await connected();
     await settle(wire, link.command('G28'));
     await settle(wire, link.startJob(scanJob(40, 8, 2000, (x, y) => ((x + y) % 5 ? 0 : 255)), () => {}));
