@@ -30,6 +30,7 @@ async function setLimits(page: Page, limits: Record<number, number>) {
 
 async function startTestPattern(page: Page, doseMs: string) {
   await page.getByLabel('Full dose').fill(doseMs);
+  await page.getByTestId('strategy').selectOption('serpentine'); // stop and fire, stop by stop (the default, automatic, may scan)
   await page.getByRole('button', { name: 'Expose test pattern' }).click();
   await page.getByRole('dialog').getByRole('button', { name: /Expose (now|anyway)/ }).click();
   await expect(page.getByTestId('job-state')).toContainText(/running: stop [1-9]\d* of/, { timeout: 30_000 });
@@ -44,6 +45,7 @@ test('item 3: the dry run shows a silent printhead as a red line, and offers no 
   await missing.check();
   await expect(page.getByTestId('faults')).toContainText('E30 printhead not responding', { timeout: 15_000 });
 
+  await page.getByTestId('strategy').selectOption('serpentine'); // stop and fire, stop by stop (the default, automatic, may scan)
   await page.getByRole('button', { name: 'Expose test pattern' }).click();
   const dialog = page.getByRole('dialog', { name: 'Expose the test pattern?' });
   await expect(dialog.locator('li[data-level="error"]')).toHaveText('machine: E30 printhead not responding. The printer would refuse the job: clear the fault first');
@@ -55,6 +57,7 @@ test('item 3: the dry run shows a silent printhead as a red line, and offers no 
   // The printhead back: the app finds it answering, and the dry run is green again.
   await missing.uncheck();
   await expect(page.getByTestId('faults')).toHaveCount(0, { timeout: 15_000 });
+  await page.getByTestId('strategy').selectOption('serpentine'); // stop and fire, stop by stop (the default, automatic, may scan)
   await page.getByRole('button', { name: 'Expose test pattern' }).click();
   await expect(dialog.locator('li[data-level="ok"]').first()).toHaveText('machine: the printhead answers, and the machine reports no fault');
   await expect(dialog.getByRole('button', { name: 'Expose now' })).toBeVisible();

@@ -14,6 +14,7 @@ async function open(page: Page, speed: number) {
 
 async function startTestPattern(page: Page, doseMs: string) {
   await page.getByLabel('Full dose').fill(doseMs);
+  await page.getByTestId('strategy').selectOption('serpentine'); // stop and fire, stop by stop (the default, automatic, may scan)
   await page.getByRole('button', { name: 'Expose test pattern' }).click();
   await page.getByRole('dialog').getByRole('button', { name: /Expose (now|anyway)/ }).click();
   await expect(page.getByTestId('job-state')).toContainText(/running: stop [1-9]\d* of/, { timeout: 30_000 });

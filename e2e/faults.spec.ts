@@ -9,6 +9,7 @@ test('a job arrives bit-exact through 1 % byte corruption with drops', async ({ 
   // The printer runs at 4x: this is about the link, and faster reports would only crowd the page.
   const app = await openApp(page, 'web serial', 4, { link: { corruptPercent: 1, dropPercent: 0.3, seed: 4242 } });
   await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected', { timeout: 60_000 });
+  await page.getByTestId('strategy').selectOption('serpentine'); // stop and fire, stop by stop (the default, automatic, may scan)
   await page.getByTestId('start-test').click();
   await page.getByRole('dialog').getByRole('button', { name: 'Expose now' }).click(); // the one confirmation (issue 17, item 4)
   await expect(page.getByTestId('job-state')).toHaveAttribute('data-state', /running|done/, { timeout: 90_000 });
@@ -23,6 +24,7 @@ test('a job arrives bit-exact through 1 % byte corruption with drops', async ({ 
 test('a disconnect mid-job leaves the UI truthful', async ({ page }, info) => {
   const app = await openApp(page, 'web serial', 2);
   await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected');
+  await page.getByTestId('strategy').selectOption('serpentine'); // stop and fire, stop by stop (the default, automatic, may scan)
   await page.getByTestId('start-test').click();
   await page.getByRole('dialog').getByRole('button', { name: 'Expose now' }).click(); // the one confirmation (issue 17, item 4)
   await expect(page.getByTestId('job-state')).toHaveAttribute('data-state', 'running', { timeout: 30_000 });
@@ -39,6 +41,7 @@ test('over-temperature stops the LEDs and the UI says why', async ({ page }, inf
   // LEDs that heat their sensors 1000 °C/s while lit: the head trips its 60 °C limit mid-job.
   const app = await openApp(page, 'web serial', 5, { thermal: { heatingCPerS: 1000 } });
   await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected');
+  await page.getByTestId('strategy').selectOption('serpentine'); // stop and fire, stop by stop (the default, automatic, may scan)
   await page.getByTestId('start-test').click();
   await page.getByRole('dialog').getByRole('button', { name: 'Expose now' }).click(); // the one confirmation (issue 17, item 4)
   await expect(page.getByTestId('faults')).toContainText(/E31 over-temperature/, { timeout: 60_000 });

@@ -22,9 +22,10 @@ for (const transport of TRANSPORTS) {
       await expect(page.getByTestId('job-state')).toHaveAttribute('data-state', /running|done/, { timeout: 30_000 });
       await page.screenshot({ path: info.outputPath('running.png'), fullPage: true });
       await expect(page.getByTestId('job-state')).toHaveAttribute('data-state', 'done', { timeout: 60_000 });
-      await expect(page.getByTestId('job-state')).toContainText(/done: stop (\d+) of \1/);
-      const stops = Number(/stop (\d+) of/.exec((await page.getByTestId('job-state').textContent()) ?? '')?.[1]);
-      if (app.sim) expect(app.sim.printer.module.fires).toBe(stops); // each stop fired once
+      // The automatic order: the pattern's few lit cells may run as passes on the move, or as stops.
+      await expect(page.getByTestId('job-state')).toContainText(/done: (stop|pass) (\d+) of \2/);
+      const [, unit, count] = /(stop|pass) (\d+) of/.exec((await page.getByTestId('job-state').textContent()) ?? '') ?? [];
+      if (app.sim && unit === 'stop') expect(app.sim.printer.module.fires).toBe(Number(count)); // each stop fired once
       await page.screenshot({ path: info.outputPath('done.png'), fullPage: true });
       app.close();
     });

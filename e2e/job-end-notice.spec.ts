@@ -30,6 +30,7 @@ test('a finished job says so in a desktop notification and in the title', async 
   await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected');
   await expect(page).toHaveTitle('UV Exposure');
   await page.getByLabel('Full dose').fill('20');
+  await page.getByTestId('strategy').selectOption('serpentine'); // stop and fire, stop by stop (the default, automatic, may scan)
   await page.getByRole('button', { name: 'Expose test pattern' }).click();
   await page.getByRole('button', { name: 'Expose now' }).click(); // item 4's confirmation (it loads on demand: wait for it)
   await expect(page).toHaveTitle(/% exposing · UV Exposure$/, { timeout: 30_000 });

@@ -18,6 +18,7 @@ test('a job interrupted by a restart is offered for resume on connect, and runs 
   await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected');
   await expect(page.getByTestId('resume-offer')).toHaveCount(0);
   await page.getByTestId('full-ms').fill(LONG_DOSE_MS);
+  await page.getByTestId('strategy').selectOption('serpentine'); // stop and fire, stop by stop (the default, automatic, may scan)
   await page.getByTestId('start-test').click();
   await page.getByRole('dialog').getByRole('button', { name: 'Expose now' }).click(); // the one confirmation (issue 17, item 4)
   await expect(page.getByTestId('job-state')).toContainText(/running: stop ([1-9]\d*) of/, { timeout: 30_000 });
@@ -44,6 +45,7 @@ test('a discarded interrupted job is not offered again', async ({ page }) => {
   await page.goto('/?simSpeed=4');
   await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected');
   await page.getByTestId('full-ms').fill(LONG_DOSE_MS);
+  await page.getByTestId('strategy').selectOption('serpentine'); // stop and fire, stop by stop (the default, automatic, may scan)
   await page.getByTestId('start-test').click();
   await page.getByRole('dialog').getByRole('button', { name: 'Expose now' }).click(); // the one confirmation (issue 17, item 4)
   await expect(page.getByTestId('job-state')).toContainText(/running: stop [1-9]/, { timeout: 30_000 });

@@ -36,6 +36,7 @@ test('the speed changes while a job runs, and the address keeps it for a reload'
   test.setTimeout(120_000);
   await openPanel(page, 1);
   await page.getByLabel('Full dose').fill('100'); // about 20 s of exposing at real time
+  await page.getByTestId('strategy').selectOption('serpentine'); // stop and fire, stop by stop (the default, automatic, may scan)
   await page.getByRole('button', { name: 'Expose test pattern' }).click();
   await page.getByRole('dialog').getByRole('button', { name: /Expose (now|anyway)/ }).click();
   await expect(page.getByTestId('job-state')).toContainText(/running: stop [1-9]\d* of/, { timeout: 60_000 });
@@ -58,6 +59,7 @@ test('a missing printhead and an overheating one are reported as faults', async 
   await page.getByRole('checkbox', { name: 'Printhead missing (no Nano answers)' }).uncheck();
 
   await page.getByLabel('Full dose').fill('40');
+  await page.getByTestId('strategy').selectOption('serpentine'); // stop and fire, stop by stop (the default, automatic, may scan)
   await page.getByRole('button', { name: 'Expose test pattern' }).click();
   await page.getByRole('dialog').getByRole('button', { name: 'Expose now' }).click();
   await expect(page.getByTestId('job-state')).toContainText(/running: stop [1-9]\d* of/, { timeout: 30_000 });
@@ -100,6 +102,7 @@ test('corrupted and dropped bytes and stalls show in the link health', async ({ 
 test('pulling the USB cable mid-job loses the link; the printer runs on, and connecting again offers the job', async ({ page }, info) => {
   await openPanel(page, 2);
   await page.getByLabel('Full dose').fill('40');
+  await page.getByTestId('strategy').selectOption('serpentine'); // stop and fire, stop by stop (the default, automatic, may scan)
   await page.getByRole('button', { name: 'Expose test pattern' }).click();
   await page.getByRole('dialog').getByRole('button', { name: 'Expose now' }).click();
   await expect(page.getByTestId('job-state')).toContainText(/running: stop [1-9]\d* of/, { timeout: 30_000 });

@@ -10,6 +10,7 @@ import { expect, test, type Page } from '@playwright/test';
  */
 async function startTestPattern(page: Page) {
   await page.getByLabel('Full dose').fill('40');
+  await page.getByTestId('strategy').selectOption('serpentine'); // stop and fire, stop by stop (the default, automatic, may scan)
   await page.getByRole('button', { name: 'Expose test pattern' }).click();
   await page.getByRole('dialog').getByRole('button', { name: 'Expose now' }).click();
 }

@@ -6,6 +6,7 @@ test('streams the test pattern to a Mega without an SD card, each stop once', as
   test.setTimeout(90_000);
   const app = await openApp(page, 'web serial', 40, { noSd: true });
   await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected');
+  await page.getByTestId('strategy').selectOption('serpentine'); // stop and fire, stop by stop (the default, automatic, may scan)
   await page.getByTestId('start-test').click();
   await page.getByRole('dialog').getByRole('button', { name: 'Expose now' }).click(); // the one confirmation (issue 17, item 4)
   await expect(page.getByTestId('job-state')).toHaveAttribute('data-state', /running|done/, { timeout: 30_000 });
