@@ -115,3 +115,14 @@ test('pulling the USB cable mid-job loses the link; the printer runs on, and con
   await expect(page.getByTestId('connection')).toContainText('Connected to the simulated printer');
   await expect(page.getByTestId('resume-offer')).toContainText(/test-pattern-1\.uvj: \d+ of \d+ stops are done/);
 });
+
+test("the panel shows the Mega's display as its firmware draws it, and a message sent to it", async ({ page }, info) => {
+  await openPanel(page, 20);
+  const oled = page.getByTestId('oled');
+  await expect(oled).toContainText('UV ready'); // the firmware's own status line (firmware/mega/src/screen.cpp)
+  await typeLine(page, 'M117 HELLO BOARD');
+  await expect(oled).toContainText('HELLO BOARD');
+  await typeLine(page, 'G28');
+  await expect(oled).toContainText(/X\s*0\.0/, { timeout: 30_000 });
+  await page.locator('figure.oled').screenshot({ path: info.outputPath('oled.png') });
+});

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "mega_rig.h"
+#include "panel_font.h"
 
 #define UV_EXPORT(name) __attribute__((export_name(name)))
 
@@ -45,6 +46,9 @@ extern "C" {
 UV_EXPORT("printer_start") void printerStart() {
   delete machine;
   machine = new mega::MegaRig();
+  // The head rests 10 mm above Z's switch (400 steps/mm), its probe's pin clear of the bed, which it
+  // touches 2 mm above the switch (app/src/sim/bed.ts).
+  machine->rig.switchAt[2] = -4000;
   quiet();
   machine->begin();
 }
@@ -184,6 +188,20 @@ UV_EXPORT("printer_command") void printerCommand(uint32_t port) {
 // Row `r` of the Mega's OLED as the firmware last wrote it; printer_display_draws counts the writes.
 UV_EXPORT("printer_display_row") const char* printerDisplayRow(uint32_t r, uint32_t* n) {
   return give(machine && r < mega::kScreenRows ? machine->display.rows[r] : std::string(), n);
+}
+// The OLED's memory as the firmware's rows put it there: 8 pages of 128 columns, bit 0 the top
+// pixel of each (the SSD1306's own layout), each character its 8 columns of the panel's font.
+UV_EXPORT("printer_display_frame") const uint8_t* printerDisplayFrame() {
+  static uint8_t frame[mega::kScreenRows * mega::kScreenCols * mega::kGlyphWidth];
+  for (uint8_t r = 0; r < mega::kScreenRows; r++) {
+    const std::string text = machine ? machine->display.rows[r] : std::string();
+    for (uint8_t i = 0; i < mega::kScreenCols; i++) {
+      char c = i < text.size() ? text[i] : ' ';
+      for (uint8_t col = 0; col < mega::kGlyphWidth; col++)
+        frame[(r * mega::kScreenCols + i) * mega::kGlyphWidth + col] = mega::glyphColumn(c, col);
+    }
+  }
+  return frame;
 }
 UV_EXPORT("printer_display_draws") uint32_t printerDisplayDraws() {
   return machine ? static_cast<uint32_t>(machine->display.draws) : 0;

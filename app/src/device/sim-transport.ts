@@ -27,7 +27,8 @@ function hear(m: FromSimulator): void {
     const lost = onLost;
     listener = onLost = null;
     lost?.(new Error("the simulated printer's USB cable was pulled"));
-  } else Object.assign(simulator, { keeping: m.keeping, note: m.note, faults: m.faults });
+  } else if (m.type === 'panel') simulator.panel = { frame: m.frame, rows: m.rows };
+  else Object.assign(simulator, { keeping: m.keeping, note: m.note, faults: m.faults });
 }
 
 export class SimTransport implements Transport {

@@ -4,9 +4,11 @@
 import type { Keeping } from '../sim/sim-messages';
 import { NO_FAULTS, type SimFaults } from '../sim/sim-faults';
 
-export const simulator = $state<{ keeping: Keeping | null; note: string | null; faults: SimFaults; speed: number }>({
+export const simulator = $state<{ keeping: Keeping | null; note: string | null; faults: SimFaults; speed: number; panel: { frame: Uint8Array; rows: string[] } | null }>({
   keeping: null,
   note: null,
   faults: { ...NO_FAULTS },
   speed: 1,
+  /** The Mega's OLED, as its firmware last drew it (sim-messages.ts `panel`). */
+  panel: null,
 });

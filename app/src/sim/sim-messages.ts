@@ -24,4 +24,6 @@ export type FromSimulator =
   /** The link dropped (the cable came out). */
   | { type: 'closed' }
   /** How the printer is kept, and what the store's reading found wrong, if anything. */
-  | { type: 'kept'; keeping: Keeping; note: string | null; faults: SimFaults };
+  | { type: 'kept'; keeping: Keeping; note: string | null; faults: SimFaults }
+  /** The Mega's OLED as its firmware last drew it: the SSD1306's 1024 bytes (8 pages × 128 columns). */
+  | { type: 'panel'; frame: Uint8Array; rows: string[] };

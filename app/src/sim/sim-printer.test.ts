@@ -243,7 +243,7 @@ describe('simulated printer: faults', () => {
   });
 
   it('refuses to start a job while the printhead is over its limit', () => {
-    const h = new SimHost({ thermal: { extraHeatingCPerS: 30 } }); // hot before any LED fires
+    const h = new SimHost({ thermal: { extraHeatingCPerS: 10 } }); // hot before any LED fires (and below the TMP36's 125 °C)
     h.cmd('G28');
     upload(h, 'C.UVJ', encodeJob(smallJob(6)));
     h.cmd('M23 C.UVJ');

@@ -16,7 +16,9 @@ async function pageWithJob(fires: number, speed: number, clock: { wall: number }
   const store = new FakeStore();
   const keeper = new SimKeeper(h.sim, store.write, () => speed, undefined, () => clock.wall);
   h.cmd('G28');
-  h.upload('R.UVJ', encodeJob(smallJob(9)));
+  const job = smallJob(9);
+  job.dose.fullUs = 200_000; // some 10 s of exposing: still under way when the page comes back
+  h.upload('R.UVJ', encodeJob(job));
   h.cmd('M23 R.UVJ');
   h.cmd('M24');
   while (h.sim.module.fires < fires) {
@@ -38,7 +40,7 @@ describe('simulated printer: a page reload', () => {
     kept.boot();
     const atCheckpoint = Number(interrupted(kept)?.[1]);
 
-    clock.wall += 2000; // 2 s away at 2x: 4 s of the printer's time, homing included
+    clock.wall += 3000; // 3 s away at 2x: 6 s of the printer's time, homing included
     const next = new SimHost({ saved }, false);
     next.sim.runOn((clock.wall - running!.atMs) * running!.speed, running!.paced);
     expect(next.lines).toEqual([]); // nobody listened

@@ -53,6 +53,7 @@ async function read(): Promise<{ kept: Kept; keeping: Keeping }> {
   }
 }
 
+let drawn = -1; // the OLED's draws the page has seen
 /** The most of the machine's time one tick runs, in wall ms: a machine slower than asked falls behind rather than freeze its worker. */
 const TICK_BUDGET_MS = 40;
 
@@ -78,6 +79,10 @@ async function boot(): Promise<void> {
     while (p.clock.now < target && performance.now() - began < TICK_BUDGET_MS) p.advanceTo(Math.min(target, p.clock.now + 20_000 * speed));
     if (p.clock.now < target) start = performance.now() - p.clock.now / 1000 / speed;
     void keeper?.keep();
+    if (p.module.displayDraws !== drawn) {
+      drawn = p.module.displayDraws;
+      say({ type: 'panel', frame: p.module.displayFrame(), rows: p.module.display() });
+    }
   }, 20);
 }
 

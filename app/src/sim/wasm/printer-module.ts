@@ -37,6 +37,7 @@ interface Exports {
   printer_command(port: number): void;
   printer_display_row(r: number, n: number): number;
   printer_display_draws(): number;
+  printer_display_frame(): number;
   printer_buttons(held: number): void;
 }
 
@@ -47,6 +48,8 @@ export interface ModuleWorld {
 
 export const EEPROM_BYTES = 4096;
 export const SCREEN_ROWS = 8;
+/** The SSD1306's memory: 128 columns × 8 pages of 8 pixels. */
+export const DISPLAY_FRAME_BYTES = 1024;
 
 /** The few WASI calls the C library links (stdio it never uses but for an abort's message): a
  *  message to stderr is kept for the error the trap raises, anything else is refused. */
@@ -248,6 +251,11 @@ export class PrinterModule {
   /** The Mega's OLED, row by row, as the firmware last wrote it. */
   display(): string[] {
     return Array.from({ length: SCREEN_ROWS }, (_, r) => this.#text((l) => this.#x.printer_display_row(r, l)));
+  }
+
+  /** The OLED's 128 × 64 pixels as the SSD1306 holds them: 8 pages of 128 columns, bit 0 the top. */
+  displayFrame(): Uint8Array {
+    return new Uint8Array(this.#x.memory.buffer, this.#x.printer_display_frame(), DISPLAY_FRAME_BYTES).slice();
   }
 
   get displayDraws(): number {
