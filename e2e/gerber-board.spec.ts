@@ -59,7 +59,7 @@ test('a two-sided board: layers chosen, drill dots, positive resist, the bottom 
     await expect(layer(page, file).getByTestId('board-layer-expose')).toBeChecked({ checked: kind === 'copper-top' });
   }
   await expect(page.getByTestId('board-drill')).toHaveValue('unexposed-dot');
-  await expect(page.getByTestId('object-halftone')).toHaveValue('threshold');
+  await expect(page.getByTestId('object-threshold')).toHaveValue('50'); // vector artwork: a coverage threshold, no halftone
   // The square pad at (5, 5) is exposed (dry film: copper is exposed); bare board is not.
   await expect.poll(() => dosedAt(page, box, 5.6, 5)).toBe(true);
   expect(await dosedAt(page, box, 27, 2)).toBe(false);

@@ -4,6 +4,7 @@
 import { EMPTY_BOX, isEmptyBox, unionBox, type BoxMm, type Paint } from './artwork';
 import type { LayerKind } from './layer-kind';
 import { rasteriseBoard, boardBounds, type DrillClear } from './rasterise';
+import { BoardUnreadable, problemsByFile } from './problem-words';
 import { readBoard, type BoardFile, type BoardLayer, type BoardSet } from './read-board';
 
 export const BOARD_SRC_PREFIX = 'data:application/vnd.uv-exposure.board+json;base64,';
@@ -42,7 +43,7 @@ export function markLayer(marks: BoardLook['marks'], window: BoxMm): BoardLayer 
     const box = { x0: cx - R, y0: cy - R, x1: cx + R, y1: cy + R };
     return { shape: { kind: 'stack', parts: [{ shape: { kind: 'circle', cx, cy, r: R }, clear: false }, { shape: { kind: 'circle', cx, cy, r }, clear: true }] }, clear: false, box };
   });
-  return { file: MARKS_FILE, kind: 'other', format: 'gerber', units: 'mm', boundsMm: paints.reduce((b, p) => unionBox(b, p.box), EMPTY_BOX), paints, holes: [], notes: [] };
+  return { file: MARKS_FILE, kind: 'other', kindFrom: 'none', format: 'gerber', units: 'mm', boundsMm: paints.reduce((b, p) => unionBox(b, p.box), EMPTY_BOX), paints, holes: [], notes: [] };
 }
 
 export interface BoardArtwork {
@@ -60,7 +61,7 @@ export function boardArtwork(src: string): BoardArtwork {
   const files = boardFiles(src);
   const set = readBoard(files);
   const windowMm = boardBounds(set);
-  if (isEmptyBox(windowMm)) throw new Error(set.problems.map((p) => `${p.file}: ${p.message}`).join('; ') || 'the board draws nothing');
+  if (isEmptyBox(windowMm)) throw new BoardUnreadable(problemsByFile(set.problems));
   const kept = new Map<string, Uint8Array>();
   const names = files.map((f) => f.name);
   return {

@@ -1,14 +1,12 @@
 // Our cells against gerbv's raster of the same real exports (Debian's gerbv examples), cell for cell at 50 µm.
-import { existsSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { existsSync, mkdtempSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { gunzipSync } from 'node:zlib';
 import { afterAll, describe, expect, it } from 'vitest';
-import { agreement, gerbvCells, hasGerbv } from './gerbv-reference';
+import { agreement, EXAMPLES, gerbvCells, gerbvExample as example, hasGerbv } from './gerbv-reference';
 import { rasteriseBoard } from './rasterise';
 import { readBoard } from './read-board';
 
-const EXAMPLES = '/usr/share/doc/gerbv/examples';
 const PITCH_UM = 50;
 const MISSING = 'gerbv and its examples are missing: `bash scripts/system-deps.sh` installs them (Debian package gerbv)';
 
@@ -27,17 +25,6 @@ const CASES: { file: string; from: string }[] = [
 ];
 
 const results: string[] = [];
-
-/** The file's text, and a path gerbv can read (Debian may have gzipped an example). */
-function example(file: string, dir: string): { text: string; path: string } | null {
-  const path = join(EXAMPLES, file);
-  if (existsSync(path)) return { text: readFileSync(path, 'latin1'), path };
-  if (!existsSync(`${path}.gz`)) return null;
-  const text = gunzipSync(readFileSync(`${path}.gz`)).toString('latin1');
-  const plain = join(dir, file.replace(/\//g, '_'));
-  writeFileSync(plain, text, 'latin1');
-  return { text, path: plain };
-}
 
 describe('agreement with gerbv on real exports', () => {
   const dir = mkdtempSync(join(tmpdir(), 'gerbv-examples-'));

@@ -1,9 +1,33 @@
-// Test support: gerbv's own raster of a file on a given cell grid, and how far ours agrees with it (Node only).
+// Test support: gerbv's own raster of a file on a given cell grid, its holes, and how far ours agree with them (Node only).
 import { execFileSync } from 'node:child_process';
-import { mkdtempSync, readFileSync, rmSync } from 'node:fs';
+import { existsSync, mkdtempSync, readdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { inflateSync } from 'node:zlib';
+import { gunzipSync, inflateSync } from 'node:zlib';
+import type { Hole } from './plot-to-artwork';
+
+/** Debian's copy of gerbv's example boards (package gerbv). */
+export const EXAMPLES = '/usr/share/doc/gerbv/examples';
+
+/** An example's text, and a path gerbv can read (Debian may have gzipped it: then a plain copy in `dir`). */
+export function gerbvExample(file: string, dir: string): { text: string; path: string } | null {
+  const path = join(EXAMPLES, file);
+  if (existsSync(path)) return { text: readFileSync(path, 'latin1'), path };
+  if (!existsSync(`${path}.gz`)) return null;
+  const text = gunzipSync(readFileSync(`${path}.gz`)).toString('latin1');
+  const plain = join(dir, file.replace(/\//g, '_'));
+  writeFileSync(plain, text, 'latin1');
+  return { text, path: plain };
+}
+
+/** Every example file, as "folder/name" (a gzipped one without its .gz). */
+export function gerbvExampleFiles(): string[] {
+  if (!existsSync(EXAMPLES)) return [];
+  return readdirSync(EXAMPLES, { withFileTypes: true })
+    .filter((d) => d.isDirectory())
+    .flatMap((d) => readdirSync(join(EXAMPLES, d.name)).map((f) => `${d.name}/${f.replace(/\.gz$/, '')}`))
+    .sort();
+}
 
 export interface Grid {
   cols: number;
@@ -66,6 +90,72 @@ function gerbvTile(path: string, g: Grid): Uint8Array {
   } finally {
     rmSync(dir, { recursive: true, force: true });
   }
+}
+
+/**
+ * The holes gerbv reads from a drill file, from its Excellon export: inches with four decimals, zeros kept
+ * ("INCH,TZ", X015945Y002469), each tool's diameter in its header. Millimetres here, as ours.
+ */
+export function gerbvHoles(path: string): Hole[] {
+  const dir = mkdtempSync(join(tmpdir(), 'gerbv-'));
+  try {
+    const out = join(dir, 'holes.drl');
+    try {
+      execFileSync('gerbv', ['-x', 'drill', '-o', out, path], { stdio: 'pipe', timeout: 120_000 });
+    } catch (e) {
+      if (!existsPng(out)) throw e;
+    }
+    return readGerbvDrill(readFileSync(out, 'latin1'));
+  } finally {
+    rmSync(dir, { recursive: true, force: true });
+  }
+}
+
+/** gerbv's Excellon export read back (exported for its unit test). */
+export function readGerbvDrill(text: string): Hole[] {
+  if (!/^INCH,TZ\s*$/m.test(text)) throw new Error('gerbv wrote its drill file in a format this reader does not know');
+  const tools = new Map<string, number>();
+  const holes: Hole[] = [];
+  let tool = '';
+  const inch = (v: string) => (v.includes('.') ? Number(v) : Number(v) / 1e4) * 25.4;
+  for (const line of text.split(/\r?\n/)) {
+    let m: RegExpExecArray | null;
+    if ((m = /^T(\d+)C([\d.]+)/.exec(line))) tools.set(m[1], Number(m[2]) * 25.4);
+    else if ((m = /^T(\d+)$/.exec(line))) tool = m[1];
+    else if ((m = /^X([-+]?[\d.]+)Y([-+]?[\d.]+)$/.exec(line))) holes.push({ x: inch(m[1]), y: inch(m[2]), diameterMm: tools.get(tool) ?? 0 });
+  }
+  return holes;
+}
+
+export interface HoleMatch {
+  /** gerbv's holes with one of ours within the tolerance (each of ours matched once). */
+  matched: number;
+  /** The furthest any of gerbv's holes lies from the nearest of ours, mm. */
+  worstMm: number;
+  /** Our diameters, mm to 4 decimals, of matched holes whose size differs from gerbv's by more than the diameter tolerance. */
+  diametersDiffering: number[];
+}
+
+/** Pairs each of gerbv's holes with the nearest unpaired one of ours. */
+export function matchHoles(ours: readonly Hole[], theirs: readonly Hole[], toleranceMm: number, diameterToleranceMm: number): HoleMatch {
+  const used = new Uint8Array(ours.length);
+  let matched = 0, worstMm = 0;
+  const differing = new Set<number>();
+  for (const h of theirs) {
+    let best = -1, bestD = Infinity;
+    for (let i = 0; i < ours.length; i++) {
+      if (used[i]) continue;
+      const d = Math.hypot(ours[i].x - h.x, ours[i].y - h.y);
+      if (d < bestD) (bestD = d), (best = i);
+    }
+    worstMm = Math.max(worstMm, bestD);
+    if (best >= 0 && bestD <= toleranceMm) {
+      used[best] = 1;
+      matched++;
+      if (Math.abs(ours[best].diameterMm - h.diameterMm) > diameterToleranceMm) differing.add(+ours[best].diameterMm.toFixed(4));
+    }
+  }
+  return { matched, worstMm, diametersDiffering: [...differing].sort((a, b) => a - b) };
 }
 
 function existsPng(path: string): boolean {

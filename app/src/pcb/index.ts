@@ -1,5 +1,7 @@
 // Gerber and Excellon import: the studio loads this module with import() only, so the parser stays out of the first load.
 export { guessLayerKind, guessLayerKinds, isCopper, LAYER_KINDS, type LayerKind } from './layer-kind';
+export { problemsByFile, BoardUnreadable, type FileProblems } from './problem-words';
+export { type KindSource } from './layer-content';
 export { readBoard, type BoardFile, type BoardLayer, type BoardProblem, type BoardSet } from './read-board';
 export {
   boardBounds,

@@ -42,6 +42,31 @@ describe('a board of several files', () => {
   });
 });
 
+describe('a board whose files say nothing of copper', () => {
+  // 12 pads and tracks in two widths between them: copper's mix. A mask: the same pads, nothing drawn.
+  const pads = Array.from({ length: 12 }, (_, i) => `${at(i * 2, 0)}D03*`).join('\n');
+  const tracks = Array.from({ length: 6 }, (_, i) => `${at(i * 2, 0)}D02*\n${at(i * 2 + 2, 0)}D01*`).join('\n');
+  const copper = gerber(`%ADD10C,1*%\n%ADD11C,0.2*%\n%ADD12C,0.3*%\nD10*\n${pads}\nD11*\n${tracks}\nD12*\n${at(0, 0)}D02*\n${at(0, 5)}D01*`);
+  const mask = gerber(`%ADD10C,1.2*%\nD10*\n${pads}`);
+
+  it('takes the first that draws as copper does for the top copper, saying it was from what it draws', () => {
+    const set = readBoard([{ name: 'artwork_2.grb', text: mask }, { name: 'artwork_1.grb', text: copper }]);
+    expect(set.layers.map((l) => [l.file, l.kind, l.kindFrom])).toEqual([
+      ['artwork_2.grb', 'other', 'none'],
+      ['artwork_1.grb', 'copper-top', 'content'],
+    ]);
+  });
+
+  it('leaves them alone when another file says it is copper, or none draws as copper does', () => {
+    expect(readBoard([{ name: 'a.GBL', text: mask }, { name: 'artwork_1.grb', text: copper }]).layers.map((l) => l.kind)).toEqual(['copper-bottom', 'other']);
+    expect(readBoard([{ name: 'artwork_2.grb', text: mask }]).layers.map((l) => l.kind)).toEqual(['other']);
+  });
+
+  it('never takes a file named as something else, a drawing or a legend, for copper', () => {
+    expect(readBoard([{ name: 'AssemblyTop.gdo', text: copper }, { name: 'sieb0.grb', text: copper }]).layers.map((l) => l.kind)).toEqual(['other', 'other']);
+  });
+});
+
 describe('a file as KiCad 7 writes it', () => {
   // X2 attributes, KiCad's RoundRect macro, a trace and a region, in KiCad's negative Y.
   const KICAD = `%TF.GenerationSoftware,KiCad,Pcbnew,7.0.10*%
@@ -179,10 +204,21 @@ describe('Excellon formats, read by the library', () => {
     ['inch, trailing zeros kept (2.4)', 'M48\nINCH,TZ\nT01C0.020\n%\nT01\nX3070Y2010\nM30\n', [{ x: 7.7978, y: 5.1054, d: 0.508 }]],
     ['inch, leading zeros kept (2.4)', 'M48\nINCH,LZ\nT01C0.020\n%\nT01\nX00307Y002\nM30\n', [{ x: 7.7978, y: 5.08, d: 0.508 }]],
     ['inch, Altium’s FILE_FORMAT=2:5', 'M48\n;FILE_FORMAT=2:5\nINCH,LZ\nT1F00S00C0.0354\n%\nT01\nX0120000Y0045\nM30\n', [{ x: 30.48, y: 11.43, d: 0.89916 }]],
+    // Veribest's .ncd: units only after the header (M71), no zero suppression stated, the origin set with G93.
+    ['Veribest: M71 after the header, a zero set that drills nothing', 'M48\nT01C.864\nT06C1.956\nR,H\n/\n%\nG90\nM71\nG93X000000Y000000\nG05\nT01\nX40500Y6270\nY3730\nT06\nX65539Y73500\nT00\nM30\n', [{ x: 40.5, y: 6.27, d: 0.864 }, { x: 40.5, y: 3.73, d: 0.864 }, { x: 65.539, y: 73.5, d: 1.956 }]],
+    ['a zero set written short', 'M48\nMETRIC,TZ\nT1C0.8\n%\nG93X0Y0\nT1\nX12500Y5000\nM30\n', [{ x: 12.5, y: 5, d: 0.8 }]],
     ['metric with decimal points, KiCad putting the tool away with T0', 'M48\nFMAT,2\nMETRIC\nT1C0.400\n%\nG90\nG05\nT1\nX130.81Y-85.09\nT0\nM30\n', [{ x: 130.81, y: -85.09, d: 0.4 }]],
   ])('%s', (_, text, holes) => {
     expect(holesOf(text)).toEqual(holes);
     expect(one(text, 'board.drl').problems).toEqual([]);
+  });
+});
+
+describe('an Excellon zero set that moves the origin', () => {
+  it('is not applied, and says so', () => {
+    const set = one('M48\nMETRIC,TZ\nT1C0.8\n%\nG93X1000Y0\nT1\nX12500Y5000\nM30\n', 'board.drl');
+    expect(set.layers[0].holes).toEqual([{ x: 12.5, y: 5, diameterMm: 0.8 }]);
+    expect(set.problems.map((p) => p.message)).toEqual([expect.stringMatching(/zero set \(G93\).*not applied/)]);
   });
 });
 

@@ -1,13 +1,16 @@
 // Reads a board's Gerber and Excellon files into one set of layers, each with a guessed kind, and says plainly what went wrong.
 import { isEmptyBox, type BoxMm, type Paint } from './artwork';
-import { guessLayerKinds, type LayerKind } from './layer-kind';
+import { drawingMix, guessKinds, looksLikeCopper, type KindGuess, type KindSource } from './layer-content';
+import { isCopper, type LayerKind } from './layer-kind';
 import { plotToArtwork, type Hole } from './plot-to-artwork';
-import { fileType, plotFile, type LibraryWarning, type Units } from './tracespace';
+import { fileType, plotFile, zeroSetOffset, type LibraryWarning, type Units } from './tracespace';
 
 export interface BoardLayer {
   file: string;
-  /** Guessed from the file's name (an Excellon file is always 'drill'); the user may change it. */
+  /** Guessed from the file's attributes, name or comments (an Excellon file is always 'drill'); the user may change it. */
   kind: LayerKind;
+  /** How the kind was found: 'content' when no file said it was copper and this one draws as copper does. */
+  kindFrom: KindSource;
   format: 'gerber' | 'excellon';
   /** The units the file is written in; everything here is in millimetres whatever they are. */
   units: Units;
@@ -56,23 +59,23 @@ const NOT_APPLIED: [RegExp, string][] = [
 
 /** Reads every file; a file that cannot be used is left out with a problem saying why. Never throws. */
 export function readBoard(files: readonly BoardFile[]): BoardSet {
-  let kinds: LayerKind[];
-  try {
-    kinds = guessLayerKinds(files.map((f) => f.name));
-  } catch {
-    kinds = files.map(() => 'other'); // a name the guesser chokes on says nothing about the file
-  }
-  const layers: BoardLayer[] = [];
+  const kinds = guessKinds(files);
+  const read: { layer: BoardLayer; copperLike: boolean }[] = [];
   const problems: BoardProblem[] = [];
   files.forEach((f, i) => {
     const said = (message: string) => problems.push({ file: f.name, message });
     const layer = readLayer(f, kinds[i], said);
-    if (layer) layers.push(layer);
+    if (layer) read.push(layer);
   });
-  return { layers, problems };
+  // No file says it is copper: the first that draws as copper does is taken for the top copper.
+  if (!read.some((r) => isCopper(r.layer.kind))) {
+    const copper = read.find((r) => r.copperLike && r.layer.kindFrom === 'none');
+    if (copper) Object.assign(copper.layer, { kind: 'copper-top', kindFrom: 'content' });
+  }
+  return { layers: read.map((r) => r.layer), problems };
 }
 
-function readLayer(f: BoardFile, kind: LayerKind, problem: (message: string) => void): BoardLayer | null {
+function readLayer(f: BoardFile, guess: KindGuess, problem: (message: string) => void): { layer: BoardLayer; copperLike: boolean } | null {
   if (f.text.trim() === '') return problem('the file is empty'), null;
   if (/[\0-\x08\x0e-\x1f]/.test(f.text.slice(0, 4096))) return problem('not a Gerber or Excellon drill file: it is not text'), null;
   const type = fileType(f.text);
@@ -97,9 +100,11 @@ function readLayer(f: BoardFile, kind: LayerKind, problem: (message: string) => 
     }
     for (const message of lost) problem(message);
     if (format === 'gerber') for (const [pattern, message] of NOT_APPLIED) if (pattern.test(f.text)) problem(message);
-    return {
+    if (format === 'excellon' && zeroSetOffset(f.text)) problem('a zero set (G93) that moves the origin is not applied: the holes are drawn from the file’s own origin');
+    const layer: BoardLayer = {
       file: f.name,
-      kind: format === 'excellon' ? 'drill' : kind,
+      kind: format === 'excellon' ? 'drill' : guess.kind,
+      kindFrom: format === 'excellon' ? 'content' : guess.from,
       format,
       units: plot.units,
       boundsMm: art.boundsMm,
@@ -107,6 +112,7 @@ function readLayer(f: BoardFile, kind: LayerKind, problem: (message: string) => 
       holes: art.holes,
       notes,
     };
+    return { layer, copperLike: format === 'gerber' && looksLikeCopper(drawingMix(plot.objects)) };
   } catch (e) {
     return problem(`could not be read: ${e instanceof Error ? e.message : String(e)}`), null;
   }

@@ -88,6 +88,18 @@ export function splitModeCodes(text: string): string {
   return text.replace(/(^|\*)(\s*G0*(?:70|71|74|75|90|91))(?=\s*[GXYIJD])/gm, '$1$2*');
 }
 
+/**
+ * Excellon's zero set, "G93X0Y0" (Veribest and Mentor write it before the first hole): the parser reads its
+ * coordinates as a hole at the origin, drilled with whatever tool is current. It says where the origin is,
+ * and drills nothing, so it leaves the text; an offset other than zero is reported by the caller (zeroSetOffset).
+ */
+export function dropZeroSet(text: string): string {
+  return text.replace(/^[ \t]*G93(?!\d)[^\r\n]*/gm, '');
+}
+
+/** A zero set that moves the origin: not applied, so the holes would lie off the copper by that much. */
+export const zeroSetOffset = (text: string): boolean => /^[ \t]*G93(?!\d)[^\r\n]*[XY][-+]?[0.]*[1-9]/m.test(text);
+
 /** Parses and plots one file of the given type. May throw whatever the library throws; the caller makes that a problem. */
 export function plotFile(text: string, filetype: 'gerber' | 'drill'): Plot {
   const warnings: LibraryWarning[] = [];
@@ -95,7 +107,7 @@ export function plotFile(text: string, filetype: 'gerber' | 'drill'): Plot {
   parser.on('warning', (w) => warnings.push(w));
   parser.format.filetype = filetype;
   parser._syncResult = [];
-  parser._process(filetype === 'gerber' ? splitModeCodes(text) : text, filetype);
+  parser._process(filetype === 'gerber' ? splitModeCodes(text) : dropZeroSet(text), filetype);
   parser._flush();
   const commands = parser._syncResult;
 

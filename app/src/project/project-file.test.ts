@@ -24,7 +24,7 @@ function project(): Project {
       { kind: 'frame', id: 5, x: 0, y: 0, w: 300, h: 200, line: 0, dose: 255 },
       {
         kind: 'board', id: 6, x: 20, y: 20, w: 200, h: 100, mirror: true, name: 'demo', src: BOARD, halftone: 'threshold', threshold: 50, tone: { ...NEUTRAL_TONE },
-        layers: [{ file: 'a-F_Cu.gbr', kind: 'copper-top', expose: false }, { file: 'a-B_Cu.gbr', kind: 'copper-bottom', expose: true }], drillClear: 'exposed-dot', marks: [{ x: 2, y: 3.5 }], leftOut: true,
+        layers: [{ file: 'a-F_Cu.gbr', kind: 'copper-top', expose: false }, { file: 'a-B_Cu.gbr', kind: 'copper-bottom', expose: true }], drillClear: 'exposed-dot', marks: [{ x: 2, y: 3.5 }], leftOut: true, copperGuessed: 'a-F_Cu.gbr',
       },
     ],
   };
@@ -86,6 +86,7 @@ describe('project files', () => {
     expect(await reject((f) => (f.objects[4].src = SVG))).toMatch(/^objects\[4\]\.src must be a board's files embedded/);
     expect(await reject((f) => (f.objects[4].layers[1].kind = 'copper-inner'))).toMatch(/^objects\[4\]\.layers\[1\]\.kind must be one of copper-top/);
     expect(await reject((f) => (f.objects[4].leftOut = 'yes'))).toMatch(/^objects\[4\]\.leftOut must be true or false/);
+    expect(await reject((f) => (f.objects[4].copperGuessed = 3))).toMatch(/^objects\[4\]\.copperGuessed must be/);
     expect(await reject((f) => (f.objects[4].drillClear = 'drill'))).toMatch(/^objects\[4\]\.drillClear must be one of none/);
     expect(await reject((f) => (f.objects[4].marks = [{ x: 1 }]))).toMatch(/^objects\[4\]\.marks\[0\]\.y must be a number/);
     expect(await reject((f) => (f.polarity = 'both'))).toMatch(/^polarity must be negative or positive/);

@@ -127,7 +127,8 @@ function object(v: unknown, path: string, cols: number, rows: number, version: n
       if (!Array.isArray(o.marks)) fail(`${path}.marks`, 'must be a list');
       const marks = o.marks.map((m, i) => xy(m, `${path}.marks[${i}]`, -10_000, 10_000));
       const leftOut = o.leftOut !== undefined && { leftOut: bool(o.leftOut, `${path}.leftOut`) };
-      return { kind: 'board', ...box, name: str(o.name, `${path}.name`, 255), src, ...artworkLook(o, path, version), layers, drillClear, marks, ...leftOut };
+      const copperGuessed = o.copperGuessed !== undefined && { copperGuessed: str(o.copperGuessed, `${path}.copperGuessed`, 255) };
+      return { kind: 'board', ...box, name: str(o.name, `${path}.name`, 255), src, ...artworkLook(o, path, version), layers, drillClear, marks, ...leftOut, ...copperGuessed };
     }
     case 'text':
       return { kind: 'text', ...box, text: str(o.text, `${path}.text`, 10_000), font: str(o.font, `${path}.font`, 200), bold: bool(o.bold, `${path}.bold`), dose: dose() };

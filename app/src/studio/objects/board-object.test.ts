@@ -1,7 +1,7 @@
 // The double-sided workflow's arithmetic: the bottom side, marks on the bed, the job origin at the head.
 import { describe, expect, it } from 'vitest';
-import { bottomSide, markOnBed, newBoardFields, originAtHead } from './board-object';
-import { exposes, type BoardObject } from './objects';
+import { bottomSide, hasCopper, markOnBed, newBoardFields, originAtHead } from './board-object';
+import { exposes, type BoardLayerKind, type BoardObject } from './objects';
 
 const KINDS = (['copper-top', 'copper-bottom', 'outline', 'drill'] as const).map((kind) => ({ file: `demo-${kind}.gbr`, kind }));
 const board = (more: Partial<BoardObject> = {}): BoardObject => ({
@@ -15,6 +15,22 @@ describe('a new board', () => {
     expect(newBoardFields(KINDS)).toMatchObject({ layers: [{ kind: 'copper-top', expose: true }, { kind: 'copper-bottom', expose: false }, { kind: 'outline', expose: false }, { kind: 'drill', expose: false }], drillClear: 'unexposed-dot', marks: [] });
     expect(newBoardFields(KINDS.slice(1, 3)).layers.map((l) => l.expose)).toEqual([true, false]);
     expect(newBoardFields(KINDS.slice(1, 3)).drillClear).toBe('none');
+  });
+
+  it('with no copper, exposes the first file read that is artwork, not a drill, an outline or an unreadable file', () => {
+    const f = (file: string, kind: BoardLayerKind, from = 'name') => ({ file, kind, from });
+    const noCopper = [f('notes.gbr', 'other', 'unread'), f('holes.ncd', 'drill', 'content'), f('edge.gbr', 'outline'), f('Assembly.gdo', 'other'), f('art.grb', 'other', 'none')];
+    expect(newBoardFields(noCopper).layers.map((l) => l.expose)).toEqual([false, false, false, true, false]);
+    expect(newBoardFields(noCopper.slice(0, 3)).layers.map((l) => l.expose)).toEqual([false, false, true]);
+    expect(newBoardFields(noCopper.slice(0, 2)).layers.map((l) => l.expose)).toEqual([false, false]);
+    expect(newBoardFields(noCopper).copperGuessed).toBeUndefined();
+    expect(hasCopper(newBoardFields(noCopper))).toBe(false);
+  });
+
+  it('remembers a copper layer taken from what the file draws, to say so', () => {
+    const b = newBoardFields([{ file: 'artwork_1.grb', kind: 'copper-top', from: 'content' }, { file: 'holes.ncd', kind: 'drill', from: 'content' }]);
+    expect(b).toMatchObject({ layers: [{ expose: true }, { expose: false }], copperGuessed: 'artwork_1.grb', drillClear: 'unexposed-dot' });
+    expect(hasCopper(b)).toBe(true);
   });
 });
 

@@ -9,13 +9,29 @@ export type FlipAxis = 'left-right' | 'top-bottom';
 /** Where that line lies: the board's middle (it turns over in place) or one of its edges. */
 export type FlipAt = 'centre' | 'start' | 'end';
 
-/** A new board's choices: the top copper exposed (else the first copper), drill dots left unexposed where there are holes. */
-export function newBoardFields(files: readonly { file: string; kind: BoardLayerKind }[]): Pick<BoardObject, 'layers' | 'drillClear' | 'marks'> {
+/** The choices a new board starts with (copperGuessed: when the top copper was taken from what it draws). */
+export type NewBoardFields = Pick<BoardObject, 'layers' | 'drillClear' | 'marks' | 'copperGuessed'>;
+
+/**
+ * A new board's choices: the top copper exposed (else the bottom copper; with no copper at all, the first
+ * file read that is neither drill nor outline, else the first read that is not drill, so something is on the
+ * bed to expose), drill dots left unexposed where there are holes. `from`: how the kind was found ('content':
+ * from what the file draws, not from what it says; 'unread': the file could not be read).
+ */
+export function newBoardFields(files: readonly { file: string; kind: BoardLayerKind; from?: string }[]): NewBoardFields {
   const kinds = files.map((f) => f.kind);
-  const exposed = kinds.includes('copper-top') ? 'copper-top' : kinds.find((k) => k === 'copper-bottom');
+  const copper = kinds.includes('copper-top') ? 'copper-top' : kinds.includes('copper-bottom') ? 'copper-bottom' : null;
+  const drawn = (i: number) => files[i].from !== 'unread' && kinds[i] !== 'drill';
+  const artwork = kinds.findIndex((k, i) => drawn(i) && k !== 'outline');
+  const first = copper ? -1 : artwork >= 0 ? artwork : kinds.findIndex((_, i) => drawn(i));
+  const exposed = (i: number) => (copper ? kinds[i] === copper : i === first);
   const drillClear: DrillClear = kinds.includes('drill') ? 'unexposed-dot' : 'none';
-  return { layers: files.map(({ file, kind }) => ({ file, kind, expose: kind === exposed })), drillClear, marks: [] };
+  const guessed = files.find((f) => f.from === 'content' && (f.kind === 'copper-top' || f.kind === 'copper-bottom'));
+  return { layers: files.map(({ file, kind }, i) => ({ file, kind, expose: exposed(i) })), drillClear, marks: [], ...(guessed && { copperGuessed: guessed.file }) };
 }
+
+/** Whether any file of the board is taken for copper: if not, the board says so. */
+export const hasCopper = (o: Pick<BoardObject, 'layers'>): boolean => o.layers.some((l) => l.kind === 'copper-top' || l.kind === 'copper-bottom');
 
 /**
  * The bottom side of the board lying as the board will once turned over about the axis: mirrored

@@ -9,9 +9,10 @@ import { densityOf, type Density } from '../image/density';
 import { isLineArt } from '../image/gray';
 import { svgSize } from '../image/svg-size';
 import { bitmapArtwork, boardReader, ready } from './artwork';
-import { newBoardFields } from './board-object';
+import { newBoardFields, type NewBoardFields } from './board-object';
 import type { NewObject } from './object-layer.svelte';
-import type { ArtworkObject, BoardObject, Rect } from './objects';
+import type { FileProblems } from '../../pcb/problem-words';
+import type { ArtworkObject, Rect } from './objects';
 import { checkSize, dataUrl, readPicture } from './picture';
 import type { ReadyArtwork } from './raster';
 
@@ -26,9 +27,9 @@ export interface ImportedArtwork {
   dpi: Density | null;
   lineArt: boolean;
   /** A board's layers, drill dots and marks as first chosen. */
-  board?: Pick<BoardObject, 'layers' | 'drillClear' | 'marks'>;
-  /** Files of a board that could not be read, and why: the rest is placed. */
-  problems?: string[];
+  board?: NewBoardFields;
+  /** A board's files that could not be read, or not wholly, and why, one entry a file: the rest is placed. */
+  problems?: FileProblems[];
 }
 
 const INCH_MM = 25.4;
@@ -41,17 +42,20 @@ const PICTURE = /\.(svg|png|jpe?g|bmp|gif|webp)$/i;
 /** Several files at once, or one that is no picture or drawing (a .gbr, .gtl, .drl…): a board's files. */
 export const isBoardPick = (files: readonly File[]): boolean => files.length > 1 || (files.length === 1 && !files[0].type.startsWith('image/') && !PICTURE.test(files[0].name));
 
-/** A board's files as one object at the size of its window, each file's kind guessed from its name. */
+/** A board's files as one object at the size of its window, each file's kind guessed from what it says and draws. */
 export async function importBoard(files: readonly File[]): Promise<ImportedArtwork> {
   for (const f of files) checkSize(f);
   const texts = await Promise.all(files.map(async (f) => ({ name: f.name, text: await f.text() })));
   const pcb = await import('../../pcb');
   const src = pcb.boardSrc(texts);
   const board = pcb.boardArtwork(src); // throws when nothing in the files draws
-  const kinds = texts.map((t) => ({ file: t.name, kind: board.set.layers.find((l) => l.file === t.name)?.kind ?? 'other' }));
+  const kinds = texts.map((t) => {
+    const layer = board.set.layers.find((l) => l.file === t.name);
+    return { file: t.name, kind: layer?.kind ?? 'other', from: layer?.kindFrom ?? 'unread' };
+  });
   const art = boardReader(board);
   const mm = { x: art.pixels.width / 1000, y: art.pixels.height / 1000 };
-  return { kind: 'board', name: boardName(texts.map((t) => t.name)), src, artwork: ready(art), sizeMm: mm, dpi: null, lineArt: true, board: newBoardFields(kinds), problems: board.set.problems.map((p) => `${p.file}: ${p.message}`) };
+  return { kind: 'board', name: boardName(texts.map((t) => t.name)), src, artwork: ready(art), sizeMm: mm, dpi: null, lineArt: true, board: newBoardFields(kinds), problems: pcb.problemsByFile(board.set.problems) };
 }
 
 /** What the files' names share (KiCad's "board-F_Cu.gbr", "board-PTH.drl": "board"), else the first name. */

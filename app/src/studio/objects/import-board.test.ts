@@ -30,7 +30,7 @@ describe('a board imported', () => {
     expect(a.name).toBe('demo');
     expect(a.sizeMm!.x).toBeCloseTo(30.1, 6);
     expect(a.sizeMm!.y).toBeCloseTo(20.1, 6);
-    expect(a.problems).toEqual([expect.stringMatching(/^demo-notes\.gbr: /)]);
+    expect(a.problems).toEqual([{ file: 'demo-notes.gbr', messages: [expect.stringMatching(/^not a Gerber or Excellon drill file/)] }]);
     expect(a.board!.layers.map((l) => [l.file, l.kind, l.expose])).toEqual([
       ['demo-B_Cu.gbr', 'copper-bottom', false],
       ['demo-Edge_Cuts.gbr', 'outline', false],
@@ -42,7 +42,21 @@ describe('a board imported', () => {
     expect(artworkObject(a, { x: 1, y: 2, w: 602, h: 402 })).toMatchObject({ kind: 'board', name: 'demo', halftone: 'threshold', threshold: 50, drillClear: 'unexposed-dot', marks: [] });
   });
 
-  it('that draws nothing is refused, saying why', async () => {
+  it('that draws nothing is refused, saying why, one entry a file', async () => {
     await expect(importBoard([new File(['hello'], 'notes.txt')])).rejects.toThrow(/notes\.txt/);
+    const e = await importBoard([new File(['hello'], 'notes.txt'), new File([''], 'empty.gbr')]).catch((e: unknown) => e);
+    expect((e as { problems: unknown }).problems).toEqual([
+      { file: 'notes.txt', messages: [expect.stringMatching(/^not a Gerber/)] },
+      { file: 'empty.gbr', messages: ['the file is empty'] },
+    ]);
+  });
+
+  it('whose files say nothing of copper: the one that draws as copper does is taken for it, exposed, and remembered', async () => {
+    const copper = readFileSync(join(DIR, 'demo-F_Cu.gbr'), 'utf8').replace(/%TF\.FileFunction[^\n]*\n/, '');
+    const a = await importBoard([new File([readFileSync(join(DIR, 'demo-Edge_Cuts.gbr'), 'utf8')], 'edge.gbr'), new File([copper], 'artwork_1.grb')]);
+    expect(a.board!.layers.map((l) => [l.file, l.kind, l.expose])).toEqual([
+      ['edge.gbr', 'outline', false],
+      ['artwork_1.grb', expect.any(String), true],
+    ]);
   });
 });

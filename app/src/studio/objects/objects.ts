@@ -77,6 +77,8 @@ export interface BoardObject extends Placed, ArtworkFields {
   marks: { x: number; y: number }[];
   /** Left out of the job while the board's other side is exposed: drawn by its outline only. */
   leftOut?: boolean;
+  /** The file taken for the top copper from what it draws, as no file said it was copper; said on the board until the user sets a layer. */
+  copperGuessed?: string;
 }
 
 export type ArtworkObject = ImageObject | SvgObject | BoardObject;

@@ -1,0 +1,175 @@
+// What a board file is, from what it says about itself: its X2 file function, the words of its name and of
+// the comments old CAD tools write (gEDA's title, Veribest's layer name), and, failing those, whether it
+// draws as copper does (pads flashed and tracks drawn between them).
+import { guessLayerKinds, type LayerKind } from './layer-kind';
+import type { PlotObject } from './tracespace';
+
+/** How a kind was found, strongest first. 'content': from what the file is (Excellon) or draws (copper's pads and tracks). */
+export type KindSource = 'attribute' | 'name' | 'comment' | 'content' | 'none';
+
+export interface KindGuess {
+  kind: LayerKind;
+  from: KindSource;
+}
+
+/** Only the head of a file carries its attributes and the CAD tool's comments. */
+const HEAD_CHARS = 4096;
+
+/**
+ * Gerber X2's file function, as an extended command (%TF.FileFunction,Copper,L1,Top*%) or as KiCad and others
+ * write it into a comment for older readers (G04 #@! TF.FileFunction,Copper,L1,Top*).
+ */
+export function kindFromAttributes(text: string): LayerKind | null {
+  const m = /(?:%|G04 #@! )TF\.FileFunction,([^*%\r\n]*)/.exec(text.slice(0, HEAD_CHARS));
+  if (!m) return null;
+  const [what, ...rest] = m[1].split(',').map((v) => v.trim().toLowerCase());
+  const side = rest.includes('top') ? 'top' : rest.includes('bot') ? 'bottom' : null;
+  switch (what) {
+    case 'copper':
+      return side ? `copper-${side}` : 'other'; // Inr: an inner layer has no kind of its own
+    case 'soldermask':
+      return side ? `mask-${side}` : 'other';
+    case 'legend':
+      return side ? `silk-${side}` : 'other';
+    case 'paste':
+      return side ? `paste-${side}` : 'other';
+    case 'profile':
+      return 'outline';
+    case 'plated':
+    case 'nonplated':
+      return 'drill';
+    default:
+      return 'other'; // drawings, drill maps, keep-outs, glue…: said outright, and none of them is exposed
+  }
+}
+
+/** Words that name a drawing for people, never artwork to expose (wins over a side named with it: AssemblyTop). */
+const DRAWING = /\b(?:assembl\w*|assy|fab|fabrication|drawing|drill ?map|courtyard|doc\w*|notes?|drd)\b/;
+// Not gEDA's "group N": a group of layers may be an outer one.
+const INNER = /\b(?:inner|in \d+|inr|gnd|ground|power|pwr|plane|vcc)\b/;
+const TOP = /\b(?:component|comp|cmp|top|front)\b/;
+const BOTTOM = /\b(?:solder|sol|bottom|bot|back)\b/;
+
+/** Lower-case words: camelCase, run-together gEDA names ("componentmask") and numbers split apart. */
+function wordsOf(text: string): string {
+  return text
+    .replace(/([a-z0-9])([A-Z])/g, '$1 $2')
+    .toLowerCase()
+    .replace(/(mask|silk|paste)/g, ' $1 ')
+    .replace(/[^a-z0-9]+/g, ' ')
+    .replace(/([a-z])(\d)/g, '$1 $2')
+    .trim();
+}
+
+/** A drawing for people, by its name or extension (OrCAD's .drd is its drill drawing). */
+export const isDrawingName = (name: string): boolean => DRAWING.test(wordsOf(name));
+
+/** The side a name gives: "component side" before a bare "solder" (gEDA's "solder mask component side"). */
+function sideOf(words: string): 'top' | 'bottom' | null {
+  const said = /\b(component|comp|top|front|solder|bottom|back) side\b/.exec(words);
+  if (said) return /^(?:component|comp|top|front)$/.test(said[1]) ? 'top' : 'bottom';
+  if (TOP.test(words)) return 'top';
+  if (BOTTOM.test(words)) return 'bottom';
+  return null;
+}
+
+/**
+ * The kind the words of a name or comment give, in the conventions of tools whats-that-gerber does not know:
+ * gEDA PCB (front, back, frontmask, componentsilk, solder, group1), Eagle (top-cop), Veribest (EtchLayer2Bottom).
+ */
+export function kindFromWords(text: string): LayerKind | null {
+  const words = wordsOf(text);
+  if (DRAWING.test(words)) return 'other';
+  const side = sideOf(words);
+  // Without a side these are still not copper: 'other', so no guess from what they draw takes them for it.
+  if (/\b(?:mask|stop|resist)\b/.test(words)) return side ? `mask-${side}` : 'other';
+  if (/\b(?:silk|legend|overlay|sieb)\b/.test(words)) return side ? `silk-${side}` : 'other';
+  if (/\b(?:paste|cream|stencil)\b/.test(words)) return side ? `paste-${side}` : 'other';
+  if (/\b(?:outline|profile|edge|edges|contour|dimension)\b/.test(words)) return 'outline';
+  if (INNER.test(words)) return 'other';
+  if (/\b(?:copper|cop|cu|etch|signal|conductor)\b/.test(words)) return side ? `copper-${side}` : null;
+  // gEDA names its outer copper by the side alone ("board.front.gbr", "%LNBACK*%", "Title: …, component").
+  return side ? `copper-${side}` : null;
+}
+
+/** What old CAD tools say of the layer in the file's head: gEDA's title and layer name, Veribest's layer. */
+export function kindFromComments(text: string): LayerKind | null {
+  const head = text.slice(0, HEAD_CHARS);
+  const said = [
+    /^G04 Title: [^,\r\n]*, ([^*\r\n]*)\*/m, // gEDA PCB: "G04 Title: (unknown), component *"
+    /^G04 Layer\s*: ([^*\r\n]*)\*/m, // Veribest: "G04 Layer : EtchLayer2Bottom.gdo*"
+    /%LN([^*%]*)\*%/, // the image's layer name: gEDA's "%LNFRONT*%"
+  ];
+  for (const re of said) {
+    const m = re.exec(head);
+    const kind = m ? kindFromWords(m[1].replace(/\.\w+$/, '')) : null;
+    if (kind) return kind;
+  }
+  return null;
+}
+
+/** A name without its extension, whose letters would read as words ("x.sol" is not "solder"). */
+const stem = (name: string) => name.replace(/\.[^.]*$/, '');
+
+/**
+ * Every file's kind and how it was found: its X2 attribute; a drawing named as such; whats-that-gerber's
+ * reading of the whole set's names (KiCad, Protel, Altium, Eagle, OrCAD extensions); the name's words; the
+ * CAD tool's comments.
+ */
+export function guessKinds(files: readonly { name: string; text: string }[]): KindGuess[] {
+  let byName: LayerKind[];
+  try {
+    byName = guessLayerKinds(files.map((f) => f.name));
+  } catch {
+    byName = files.map(() => 'other'); // a name whats-that-gerber chokes on says nothing about the file
+  }
+  return files.map((f, i) => {
+    const attribute = kindFromAttributes(f.text);
+    if (attribute) return { kind: attribute, from: 'attribute' };
+    if (isDrawingName(f.name)) return { kind: 'other', from: 'name' };
+    if (byName[i] !== 'other') return { kind: byName[i], from: 'name' };
+    const words = kindFromWords(stem(f.name));
+    if (words) return { kind: words, from: 'name' };
+    const comment = kindFromComments(f.text);
+    if (comment) return { kind: comment, from: 'comment' };
+    return { kind: 'other', from: 'none' };
+  });
+}
+
+/** What a layer draws, counted: the mix that tells copper from a mask, a legend or an outline. */
+export interface DrawingMix {
+  /** Apertures flashed: pads. */
+  flashes: number;
+  /** Straight and curved pieces drawn with an aperture: tracks, or a legend's letters. */
+  segments: number;
+  /** Different widths those are drawn with. */
+  widths: number;
+  /** Regions filled: pours. */
+  regions: number;
+}
+
+export function drawingMix(objects: readonly PlotObject[]): DrawingMix {
+  const mix = { flashes: 0, segments: 0, widths: 0, regions: 0 };
+  const widths = new Set<number>();
+  for (const o of objects) {
+    if (o.type === 'pad') mix.flashes++;
+    else if (o.type === 'fill') mix.regions++;
+    else if (o.type === 'stroke') {
+      mix.segments += o.path.length;
+      widths.add(o.width);
+    }
+  }
+  mix.widths = widths.size;
+  return mix;
+}
+
+/**
+ * Pads with tracks between them, or with poured regions: copper. A mask flashes pads and draws little; a legend
+ * or an outline draws but flashes little; tracks come in more than one width (a mask's few strokes in one).
+ */
+export function looksLikeCopper(m: DrawingMix): boolean {
+  if (m.flashes < 10) return false;
+  const tracks = m.segments >= m.flashes / 4 && m.widths >= 2;
+  const pours = m.regions >= 10;
+  return tracks || pours;
+}

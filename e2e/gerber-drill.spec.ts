@@ -1,0 +1,61 @@
+// Issue 29 item 9: Veribest's .ncd drill file put a hole at the origin (its zero set, G93X000000Y000000,
+// read as a hole), so the board came out larger than its copper; and the import's problems were a
+// run-together wall of red text. The board is now its copper's size, and the problems are one entry a file.
+import { expect, test } from '@playwright/test';
+import { exposeOf, importBoard, kindOf, openStudio, selected, sizeShown } from './boards';
+import { bedPoint } from './canvas';
+
+/** The assembly drawing's frame, 0.05 to 1.75 in by 0.05 to 1.05 in, drawn 0.005 in wide: all the rest lies inside. */
+const BOARD_MM = { w: 1.705 * 25.4, h: 1.005 * 25.4 };
+
+test('a Veribest board: the drill file adds no hole at the origin, so the board is its copper’s size; its problems one entry a file', async ({ page }, info) => {
+  test.setTimeout(90_000);
+  await openStudio(page);
+
+  await importBoard(page, 'veribest', ['AssemblyTop.gdo', 'EtchLayer2Bottom.gdo', 'ThruHolePlated.ncd']);
+  await expect(selected(page)).toContainText('Board ', { timeout: 20_000 });
+
+  // The problems: one entry for the one file that had them, its message said once with the lines.
+  const problems = page.getByRole('status', { name: 'Import problems' });
+  await expect(problems.getByRole('listitem')).toHaveCount(1);
+  await expect(problems.getByRole('listitem')).toHaveText('EtchLayer2Bottom.gdo: skipping impossible arc (lines 35, 41, 47)');
+  await problems.screenshot({ path: info.outputPath('import-problems-one-per-file.png') });
+  await problems.getByRole('button', { name: 'OK' }).click();
+
+  // 43.3 × 25.5 mm, as gerbv reads it: with a hole at the origin it was 45.5 × 27.7.
+  const size = await sizeShown(page);
+  expect(Math.abs(size.w - BOARD_MM.w), `width ${size.w} mm`).toBeLessThanOrEqual(0.1);
+  expect(Math.abs(size.h - BOARD_MM.h), `height ${size.h} mm`).toBeLessThanOrEqual(0.1);
+  await expect(kindOf(page, 'EtchLayer2Bottom.gdo')).toHaveValue('copper-bottom');
+  await expect(kindOf(page, 'AssemblyTop.gdo')).toHaveValue('other'); // a drawing, though its name says "Top"
+  await expect(kindOf(page, 'ThruHolePlated.ncd')).toHaveValue('drill');
+  await expect(exposeOf(page, 'EtchLayer2Bottom.gdo')).toBeChecked();
+
+  // The holes on their pads: a dot left unexposed at each, seen close up.
+  const x = Number(await selected(page).getByRole('spinbutton', { name: /^X\b/ }).inputValue());
+  const y = Number(await selected(page).getByRole('spinbutton', { name: /^Y\b/ }).inputValue());
+  const p = await bedPoint(page, x + size.w / 2, y + size.h / 2);
+  const canvas = (await page.getByTestId('editor-canvas').boundingBox())!;
+  await page.mouse.move(canvas.x + p.x, canvas.y + p.y);
+  for (let i = 0; i < 6; i++) await page.mouse.wheel(0, -240);
+  await page.getByRole('region', { name: 'Drawing' }).screenshot({ path: info.outputPath('veribest-holes-on-pads.png') });
+});
+
+test('a board none of whose files draws: one entry a file says why, readable', async ({ page }, info) => {
+  await openStudio(page);
+  await page.getByLabel(/^Import artwork/).setInputFiles([
+    { name: 'notes.gbr', mimeType: 'application/octet-stream', buffer: Buffer.from('ordered from the fab on Monday') },
+    { name: 'empty.gdo', mimeType: 'application/octet-stream', buffer: Buffer.from('') },
+    { name: 'holes.ncd', mimeType: 'application/octet-stream', buffer: Buffer.from('M48\nMETRIC\nT1C0.8\n%\nT1\nM30\n') },
+  ]);
+  const error = page.getByRole('alert').filter({ hasText: 'Nothing to place' });
+  await expect(error).toBeVisible({ timeout: 20_000 });
+  await expect(error.getByRole('listitem')).toHaveText([
+    /^notes\.gbr: not a Gerber or Excellon drill file/,
+    'empty.gdo: the file is empty',
+    'holes.ncd: the drill file has no holes',
+  ]);
+  await error.screenshot({ path: info.outputPath('import-refused-one-per-file.png') });
+  await error.getByRole('button', { name: 'OK' }).click();
+  await expect(error).toHaveCount(0);
+});
