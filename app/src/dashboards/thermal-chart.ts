@@ -26,6 +26,8 @@ export function thermalChart(el: HTMLElement, names: string[], width: number): T
   // The time axis is set here, not left to uPlot: its own ticks on a few seconds of samples read
   // "-2 s, -2 s, -1 s" and, on none, "20 min … 100 min" (issue 29, item 12).
   let axis: TimeAxis = timeAxis(0);
+  const caption = 'time before now';
+  el.dataset.timeCaption = caption; // the canvas draws it: for a test to read
   // The legend reads like a dashboard: each sensor's latest value, or its value under the cursor.
   const celsius = (u: uPlot, v: number | null, sidx: number, idx: number | null) => {
     const shown = idx == null ? (u.data[sidx]?.at(-1) as number | null | undefined) : v;
@@ -45,7 +47,7 @@ export function thermalChart(el: HTMLElement, names: string[], width: number): T
       ],
       axes: [
         {
-          label: 'time before now',
+          label: caption,
           splits: () => axis.ticks,
           values: (_u, ticks) => {
             const words = ticks.map(agoLabel);
