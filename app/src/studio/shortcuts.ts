@@ -16,6 +16,8 @@ export interface Focus {
   tagName: string;
   type?: string;
   isContentEditable?: boolean;
+  /** In an open dialog (the question before an exposure): the drawing behind it is not what the keys act on. */
+  inDialog?: boolean;
 }
 
 const NOT_TEXT = new Set(['checkbox', 'radio', 'range', 'button', 'submit', 'reset', 'color', 'file', 'image']);
@@ -33,7 +35,7 @@ export function takesKeys(focus: Focus | null): boolean {
  * Ctrl+Shift+Z or Ctrl+Y redo, a tool's letter (`tools`, lower case; Shift+R is `shiftR`).
  */
 export function shortcutOf<T extends string>(k: Keypress, focus: Focus | null, tools: Record<string, T>, shiftR: T): Shortcut<T> {
-  if (takesKeys(focus) || k.alt) return null;
+  if (takesKeys(focus) || focus?.inDialog || k.alt) return null;
   const key = k.key.toLowerCase();
   if (k.mod) {
     if (key === 'z') return { kind: k.shift ? 'redo' : 'undo' };
