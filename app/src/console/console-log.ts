@@ -1,5 +1,5 @@
-// The console's log: each line from or to the printer with its time and a level, kept to a bound,
-// and the filter the console shows it through.
+// The console's log: each line from or to the printer with its time and a level, kept to a bound
+// per level, and the filter the console shows it through.
 
 /** `reply`: a line answering what the user typed, shown whatever its kind (M105's T:, M114's X:). */
 export type Level = 'error' | 'warning' | 'info' | 'report' | 'reply' | 'sent' | 'link';
@@ -19,15 +19,55 @@ export function levelOf(line: string): Level {
   return 'info';
 }
 
+/**
+ * How many of the newest lines of each level are kept. The auto-reports and the link's oks come
+ * several a second for hours: under one bound for all, they pushed out what the user typed, its
+ * replies and the faults (issue 29, item 11). Each level has its own bound instead.
+ */
+export const KEPT: Readonly<Record<Level, number>> = {
+  error: 2000,
+  warning: 2000,
+  sent: 2000,
+  reply: 2000,
+  info: 2000,
+  report: 600,
+  link: 600,
+};
+
 export class ConsoleLog {
   readonly entries: Entry[] = [];
-  constructor(readonly max = 2000) {}
+  /** Every line ever added, kept or not. */
+  added = 0;
+  readonly #kept: Readonly<Record<Level, number>>;
+  /** Lines of each level, as added (a reply marked later still counts as what it came as, until a trim). */
+  #count: Record<Level, number> = { error: 0, warning: 0, info: 0, report: 0, reply: 0, sent: 0, link: 0 };
+
+  constructor(kept: Partial<Record<Level, number>> = {}) {
+    this.#kept = { ...KEPT, ...kept };
+  }
 
   add(text: string, level: Level = levelOf(text), atMs = Date.now()): Entry {
     const entry = { atMs, level, text };
     this.entries.push(entry);
-    if (this.entries.length > this.max) this.entries.splice(0, this.entries.length - this.max);
+    this.added++;
+    // Trimming walks the whole log: it waits until a level is a quarter past its bound.
+    if (++this.#count[level] > this.#kept[level] * 1.25) this.trim();
     return entry;
+  }
+
+  /** Drops the lines past each level's bound, oldest first; the others keep their order. */
+  trim(): void {
+    const left = { ...this.#kept };
+    const count = { error: 0, warning: 0, info: 0, report: 0, reply: 0, sent: 0, link: 0 };
+    const keep: boolean[] = new Array(this.entries.length);
+    for (let i = this.entries.length - 1; i >= 0; i--) {
+      const level = this.entries[i].level;
+      if ((keep[i] = left[level]-- > 0)) count[level]++;
+    }
+    let n = 0;
+    for (let i = 0; i < this.entries.length; i++) if (keep[i]) this.entries[n++] = this.entries[i];
+    this.entries.length = n;
+    this.#count = count;
   }
 
   /**

@@ -3,11 +3,11 @@
 
 import uPlot from 'uplot';
 import uPlotCss from 'uplot/dist/uPlot.min.css?inline';
-import { agoLabel, minutesAgo } from './chart-time';
+import { agoLabel, secondsAgo, timeAxis, type TimeAxis } from './chart-time';
 import { SENSOR_COLOURS } from './sensor-colours';
 
 export interface ThermalChart {
-  /** `data[0]` is the printer's time in seconds; the chart shows it as minutes before the newest sample. */
+  /** `data[0]` is the printer's time in seconds; the chart shows it as time before the newest sample. */
   update(data: [number[], ...number[][]], limitsC: number[] | null): void;
   resize(width: number): void;
   destroy(): void;
@@ -23,6 +23,11 @@ function addStyles(): void {
 export function thermalChart(el: HTMLElement, names: string[], width: number): ThermalChart {
   addStyles();
   let limits: number[] | null = null;
+  // The time axis is set here, not left to uPlot: its own ticks on a few seconds of samples read
+  // "-2 s, -2 s, -1 s" and, on none, "20 min … 100 min" (issue 29, item 12).
+  let axis: TimeAxis = timeAxis(0);
+  const caption = 'time before now';
+  el.dataset.timeCaption = caption; // the canvas draws it: for a test to read
   // The legend reads like a dashboard: each sensor's latest value, or its value under the cursor.
   const celsius = (u: uPlot, v: number | null, sidx: number, idx: number | null) => {
     const shown = idx == null ? (u.data[sidx]?.at(-1) as number | null | undefined) : v;
@@ -33,7 +38,7 @@ export function thermalChart(el: HTMLElement, names: string[], width: number): T
       width,
       height: 220,
       scales: {
-        x: { time: false },
+        x: { time: false, range: () => [-axis.spanS, 0] },
         y: { range: (_u, lo, hi) => [Math.floor(Math.min(lo, 20)), Math.ceil(Math.max(hi, ...(limits ?? [])) + 2)] },
       },
       series: [
@@ -41,7 +46,15 @@ export function thermalChart(el: HTMLElement, names: string[], width: number): T
         ...names.map((label, i) => ({ label, stroke: SENSOR_COLOURS[i], width: 1.5, value: celsius })),
       ],
       axes: [
-        { label: 'minutes before now', values: (_u, ticks) => ticks.map(agoLabel) },
+        {
+          label: caption,
+          splits: () => axis.ticks,
+          values: (_u, ticks) => {
+            const words = ticks.map(agoLabel);
+            el.dataset.timeTicks = words.join(', '); // what the canvas shows, for a test to read
+            return words;
+          },
+        },
         { label: '°C', size: 44 },
       ],
       legend: { live: true },
@@ -76,7 +89,8 @@ export function thermalChart(el: HTMLElement, names: string[], width: number): T
     update(data, limitsC) {
       limits = limitsC;
       const [times, ...sensors] = data;
-      plot.setData([minutesAgo(times), ...sensors]);
+      axis = timeAxis(times.length ? times[times.length - 1] - times[0] : 0);
+      plot.setData([secondsAgo(times), ...sensors]);
       plot.setLegend({ idx: plot.cursor.idx ?? undefined }); // the latest values while the cursor is away
     },
     resize: (w) => plot.setSize({ width: w, height: 220 }),

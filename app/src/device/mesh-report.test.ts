@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { meshDifference, meshStats, parseMesh } from './mesh-report';
+import { compareWhy, meshDifference, meshStats, parseMesh } from './mesh-report';
 
 const lines = [
   'MESH:grid 3 2 x0=10.000 y0=10.000 dx=90.000 dy=180.000',
@@ -31,5 +31,17 @@ describe('meshStats and meshDifference', () => {
     const b = { ...a, z: a.z.map((r) => r.map((v) => v + 5)) };
     expect(meshDifference(b, a)!.z).toEqual([[5, 5, 5], [5, 5, 5]]);
     expect(meshDifference({ ...b, nx: 2, z: b.z.map((r) => r.slice(0, 2)) }, a)).toBeNull();
+  });
+});
+
+describe('comparing with the previous mesh (issue 29, item 14)', () => {
+  const mesh = parseMesh(lines)!;
+  it('says why it cannot, in words, and nothing when it can', () => {
+    expect(compareWhy(null, null)).toMatch(/^no mesh yet: probe the bed/);
+    expect(compareWhy(mesh, null)).toMatch(/^one mesh so far: probe the bed again/);
+    const finer = { ...mesh, nx: 4, z: mesh.z.map((r) => [...r, 0]) };
+    expect(compareWhy(finer, mesh)).toBe('the previous mesh has 3 × 2 points and this one 4 × 2: probe with the same points to compare');
+    expect(compareWhy({ ...mesh, x0: 20_000 }, mesh)).toMatch(/probed other places on the bed/);
+    expect(compareWhy({ ...mesh, z: mesh.z.map((r) => r.map((v) => v + 5)) }, mesh)).toBeNull();
   });
 });

@@ -64,6 +64,8 @@ export class JobControl {
   runningEstimate = $state.raw<JobEstimate | null>(null);
   /** The job started here runs paced: started so, or continued so after a pause to cool. */
   runningPaced = $state(false);
+  /** The movement that waits for the homing under way ("Jog X"), said with the homing's sign. */
+  afterHoming = $state<string | null>(null);
 
   /** Called before every job starts (the project is kept then); set by the app. */
   beforeJob: () => Promise<void> = async () => {};
@@ -143,7 +145,12 @@ export class JobControl {
       // The machine may have turned busy while the question was open: it is asked again here.
       this.#gate(p.kind === 'expose' ? 'expose' : 'move');
       if (p.kind === 'home-first') {
-        await this.printer.send('G28');
+        this.afterHoming = p.what;
+        try {
+          await this.printer.send('G28');
+        } finally {
+          this.afterHoming = null;
+        }
         await p.run();
       } else if (!p.findings.some((f) => f.level === 'error')) {
         const paced = !!opts.paced && p.pacedUs !== null;

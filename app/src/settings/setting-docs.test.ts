@@ -1,7 +1,7 @@
 import { readFileSync } from 'node:fs';
 import { describe, expect, it } from 'vitest';
 import { CONFIG_DEFAULTS, validConfig } from '../sim/config';
-import { nameOf, parseConfigTable, SETTING_DOCS, settingProblem } from './setting-docs';
+import { inWords, isToggle, nameOf, parseConfigTable, SETTING_DOCS, settingProblem } from './setting-docs';
 
 const md = readFileSync(new URL('../../../firmware/mega/CONFIG.md', import.meta.url), 'utf8');
 
@@ -17,6 +17,19 @@ describe('settings, as CONFIG.md describes them', () => {
     expect(SETTING_DOCS.get('pitch.x')).toMatchObject({ name: 'X cell pitch', unit: 'µm', range: '1 to 100000 whole', description: 'default cell pitch along X for jobs made on the printer' });
     expect(SETTING_DOCS.get('thermal.limit.3')?.description).toBe('the Mega\'s soft limit for sensor A3: no job starts or continues above it');
     expect(SETTING_DOCS.get('led.gain.2')?.description).toBe('calibration gain of LED 2');
+  });
+  it('says in words what CONFIG.md leaves to other documents: no description names a file (issue 29, item 14)', () => {
+    for (const d of SETTING_DOCS.values()) expect(d.description, d.key).not.toMatch(/\.md\b/);
+    expect(SETTING_DOCS.get('led.offset.2')?.description).toBe('LED 2 offset dx,dy from the head origin, in cells: with the head over a cell, LED 2 exposes the cell dx across and dy down from it');
+    expect(SETTING_DOCS.get('led.irradiance.0')?.description).toMatch(/^measured irradiance of LED 0, for dose targets: a dose asked in µJ\/cm² becomes an exposure time/);
+    expect(SETTING_DOCS.get('thermal.coeff')?.description).toMatch(/^thermal compensation c: each exposure is lengthened by c × 0\.01 % for every °C/);
+    expect(inWords('bed.x', 'X travel (see motion.md)')).toBe('X travel (see motion.md)'); // not a bare reference: left as it is
+    expect(inWords('speed.z', 'Z moves (motion.md)')).toBe('Z moves');
+  });
+  it('shows the 0-or-1 settings as toggles, and only those', () => {
+    const toggles = [...SETTING_DOCS.values()].filter(isToggle).map((d) => d.key);
+    expect(toggles).toEqual(['invert.x', 'invert.y', 'invert.z']);
+    for (const key of toggles) for (const v of ['0', '1']) expect(settingProblem(key, v)).toBeNull(); // what a toggle writes
   });
   it('says what is wrong with a value, and agrees with what the printer takes', () => {
     expect(settingProblem('pitch.x', 'abc')).toBe('not a number');

@@ -52,6 +52,22 @@ export function nameOf(key: string): string | null {
   return (NAMES[key] ?? NAMES[family])?.(key) ?? null;
 }
 
+/**
+ * What CONFIG.md leaves to another document ("(planner.md)"), said in words: a user does not know
+ * those files (issue 29, item 14). By the key's family; the LED's number follows the key.
+ */
+const REFERRED: Record<string, (n: string) => string> = {
+  'led.offset': (n) => `, in cells: with the head over a cell, LED ${n} exposes the cell dx across and dy down from it`,
+  'led.irradiance': () => ': a dose asked in µJ/cm² becomes an exposure time from it (dose ÷ irradiance)',
+  'thermal.coeff': () => ": each exposure is lengthened by c × 0.01 % for every °C its LED's sensor is above the job's reference temperature, and shortened below it; 0 is off",
+};
+
+/** A description (its markdown links already plain) with its "(job.md)" said in words instead. */
+export function inWords(key: string, description: string): string {
+  const bare = description.replace(/\s*\([\w./-]+\.md\)/g, '');
+  return bare === description ? description : bare + (REFERRED[key.replace(/\.\d+$/, '')]?.(INDEX(key)) ?? '');
+}
+
 const strip = (cell: string) => cell.trim().replace(/`/g, '').replace(/\[([^\]]+)\]\([^)]*\)/g, '$1').replace(/\s*\(\)\s*$/, '');
 
 /** The rows of CONFIG.md's "Keys" table. */
@@ -59,7 +75,8 @@ export function parseConfigTable(md: string): SettingDoc[] {
   const rows = md.slice(md.indexOf('## Keys')).split('\n').filter((l) => /^\| `/.test(l));
   const docs: SettingDoc[] = [];
   for (const row of rows) {
-    const [key, unit, , range, what] = row.split('|').slice(1, -1).map(strip);
+    const [key, unit, , range, cited] = row.split('|').slice(1, -1).map(strip);
+    const what = inWords(key, cited);
     const m = /^(-?[\d.]+) to (-?[\d.]+)(?: (whole|each))?$/.exec(range);
     if (!m) throw new Error(`CONFIG.md: cannot read the range of ${key}: ${range}`);
     docs.push({ key, name: nameOf(key) ?? key, unit, lo: Number(m[1]), hi: Number(m[2]), kind: m[3] === 'whole' ? 'whole' : m[3] === 'each' ? 'pair' : 'decimal', range, description: what });
@@ -76,6 +93,11 @@ export function parseConfigTable(md: string): SettingDoc[] {
 }
 
 export const SETTING_DOCS: ReadonlyMap<string, SettingDoc> = new Map(parseConfigTable(configMd).map((d) => [d.key, d]));
+
+/** A setting that is on (1) or off (0), shown as a checkbox: the Reverse X/Y/Z pins. */
+export function isToggle(doc: SettingDoc | undefined): boolean {
+  return !!doc && doc.kind === 'whole' && doc.lo === 0 && doc.hi === 1;
+}
 
 /** What is wrong with `value` for `key`, in words, or null if the printer will take it (CONFIG.md "Values"). */
 export function settingProblem(key: string, value: string, doc = SETTING_DOCS.get(key)): string | null {

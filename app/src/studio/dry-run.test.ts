@@ -63,6 +63,15 @@ describe('dry run', () => {
     expect(warm.thermal.pause).not.toBeNull();
   });
 
+  it('counts stops from 1: a head already at its limit pauses "at stop 1", never "stop 0" (issue 29, item 14)', () => {
+    const long = job({ dose: { map: 'linear', fullUs: 2_000_000 } }, 24, 16);
+    const hot = dryRun(long, DEFAULT_CONFIG, { startC: [54.8, 54.8, 54.8, 54.8, 49.8, 30] });
+    expect(hot.thermal.pause?.stop).toBe(0);
+    const message = hot.findings.find((f) => f.check === 'thermal')!.message;
+    expect(message).toMatch(/at stop 1 of \d+:/);
+    expect(message).not.toMatch(/stop 0 of/);
+  });
+
   it('says when pacing cannot help: one stop alone heats past the limit', () => {
     const r = dryRun(job({ dose: { map: 'linear', fullUs: 9_000_000 } }, 4, 4), DEFAULT_CONFIG, { startC: [45, 45, 45, 45, 40, 25] });
     expect(r.paced?.pause).not.toBeNull();

@@ -161,7 +161,7 @@ function thermalFinding(run: ThermalRun, paced: ThermalRun | null, stops: number
   const peak = (r: ThermalRun, i: number) => `T${i} ${r.peakC[i].toFixed(0)} °C (limit ${limitsC[i]})`;
   if (!run.pause) return { check: 'thermal', level: 'ok', message: `the hottest sensor stays below its soft limit: ${peak(run, hottest)}` };
   const p = run.pause;
-  const where = `T${p.sensor} would reach its ${limitsC[p.sensor]} °C soft limit ${hms(p.atUs)} in, at ${unit} ${p.stop} of ${stops}: the job would pause there to cool`;
+  const where = `T${p.sensor} would reach its ${limitsC[p.sensor]} °C soft limit ${hms(p.atUs)} in, at ${unit} ${p.stop + 1} of ${stops}: the job would pause there to cool`; // p.stop counts from 0, people from 1
   if (!paced || paced.pause) return { check: 'thermal', level: 'warning', message: `${where}, and pacing cannot prevent it (a single ${unit} heats too much): lower the dose` };
   const top = paced.peakC.reduce((best, c, i) => (c - limitsC[i] > paced.peakC[best] - limitsC[best] ? i : best), 0);
   return { check: 'thermal', level: 'warning', message: `${where}. Paced, it waits ${hms(paced.waitUs)} in all to cool, takes about ${hms(paced.totalUs)}, and stays below its limits (${peak(paced, top)})` };

@@ -7,11 +7,12 @@ import { floodFill, line, rectangle, stamp } from './grid/tools';
 import { fit, panBy, RULER, toCell, toScreen, zoomAt, type View } from './canvas/viewport';
 import { bedOf, DEFAULT_CONFIG } from './machine-config';
 import { ObjectLayer } from './objects/object-layer.svelte';
-import { CORNERS, cornerOf, exposes, type Corner, type StudioObject } from './objects/objects';
+import { exposes, type Corner, type StudioObject } from './objects/objects';
 import { textWidth } from './objects/text-raster';
 import { boxSize, frameSize } from './objects/orientation';
 import { typeKey } from './objects/typing';
 import { freePlace } from './objects/placement';
+import { handleAt } from './canvas/handles';
 import type { Rect } from './objects/objects';
 
 /** The Text tool's words until the user gives others: the first key typed replaces them. */
@@ -95,13 +96,19 @@ export class GridEditor {
   }
 
   /**
-   * A place for a w × h object the pointer did not place (an import): in view and free of the other
-   * objects, never exactly on the one before (freePlace).
+   * A place for a w × h object the pointer did not place (an import): free of every other object,
+   * in view if there is room there (freePlace). The view follows one placed outside it.
    */
   freeBox(w: number, h: number): Rect {
     const a = toCell(this.view, RULER, RULER), b = toCell(this.view, this.screen.width, this.screen.height);
     const visible = { x: Math.ceil(a.x), y: Math.ceil(a.y), w: Math.floor(b.x - a.x), h: Math.floor(b.y - a.y) };
-    return freePlace(this.layer.objects, w, h, visible, this.grid.cols, this.grid.rows);
+    const box = freePlace(this.layer.objects, w, h, visible, this.grid.cols, this.grid.rows);
+    const shown = box.x >= visible.x && box.y >= visible.y && box.x + box.w <= visible.x + visible.w && box.y + box.h <= visible.y + visible.h;
+    if (!shown) {
+      const at = toScreen(this.view, box.x + box.w / 2, box.y + box.h / 2);
+      this.pan((RULER + this.screen.width) / 2 - at.x, (RULER + this.screen.height) / 2 - at.y);
+    }
+    return box;
   }
 
   zoom(factor: number, sx: number, sy: number): void {
@@ -258,12 +265,7 @@ export class GridEditor {
   /** The selected object's corner handle under the screen point, if any. */
   #cornerAt(sx: number, sy: number): Corner | null {
     const o = this.layer.selected;
-    if (!o) return null;
-    for (const c of CORNERS) {
-      const p = toScreen(this.view, cornerOf(o, c).x, cornerOf(o, c).y);
-      if (Math.abs(p.x - sx) <= HANDLE && Math.abs(p.y - sy) <= HANDLE) return c;
-    }
-    return null;
+    return o ? handleAt(this.view, o, sx, sy) : null;
   }
 
   #cell(sx: number, sy: number): { x: number; y: number } {

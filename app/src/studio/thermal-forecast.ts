@@ -15,7 +15,7 @@ import { overSoftLimit, paceWaits, READING_PERIOD_US } from '../sim/pacing';
 export interface ThermalRun {
   /** The hottest each sensor gets, °C (up to the pause, for a job that pauses). */
   peakC: number[];
-  /** Where the job would pause: the stop under way when a reading first shows `sensor` at its soft limit. */
+  /** Where the job would pause: the stop under way (its index, from 0) when a reading first shows `sensor` at its soft limit. */
   pause: { stop: number; sensor: number; atUs: number; c: number } | null;
   /** Time a paced job waits to cool, µs. */
   waitUs: number;

@@ -3,7 +3,8 @@
 // box faintly, an object cut by the bed's edge in red, and the selection with its corner handles.
 
 import type { ObjectLayer } from '../objects/object-layer.svelte';
-import { CORNERS, cornerOf, exposes, type StudioObject } from '../objects/objects';
+import { exposes, type StudioObject } from '../objects/objects';
+import { HANDLE_PX, handleCentres } from './handles';
 import type { Raster } from '../objects/raster';
 import { doseColours } from './tile-cache';
 import { toScreen, type View } from './viewport';
@@ -86,9 +87,9 @@ export function drawObjects(ctx: CanvasRenderingContext2D, v: View, layer: Objec
   ctx.lineWidth = 2;
   ctx.strokeRect(Math.round(at.x), Math.round(at.y), Math.round(s.w * v.scale), Math.round(s.h * v.scale));
   ctx.fillStyle = '#fff';
-  for (const c of CORNERS) {
-    const p = toScreen(v, cornerOf(s, c).x, cornerOf(s, c).y);
-    ctx.fillRect(p.x - 4, p.y - 4, 8, 8);
-    ctx.strokeRect(p.x - 4, p.y - 4, 8, 8);
+  const half = HANDLE_PX / 2;
+  for (const p of handleCentres(v, s)) {
+    ctx.fillRect(p.x - half, p.y - half, HANDLE_PX, HANDLE_PX);
+    ctx.strokeRect(p.x - half, p.y - half, HANDLE_PX, HANDLE_PX);
   }
 }

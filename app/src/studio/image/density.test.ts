@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { cellsAt, densityOf, type Density } from './density';
+import { cellsAt, densityOf, shownDpi, type Density } from './density';
 import { bmpFile, halfBlack, jpegFile, pngFile } from './picture-files.fixture';
 
 const PITCH = { x: 50, y: 50 };
@@ -66,5 +66,24 @@ describe('the resolution a picture file states', () => {
         damaged[n] ^= 0xff;
         expect(() => densityOf(damaged)).not.toThrow();
       }
+  });
+});
+
+describe('the resolution shown for a picture on the bed (issue 29, item 14)', () => {
+  it('a 600-dpi PNG reads 600 DPI, not 600.3', () => {
+    const dpi = densityOf(pngFile(709, 472, halfBlack(709), { pixelsPerMetre: { x: PPM_600, y: PPM_600 } }))!;
+    const { w } = cellsAt({ width: 709, height: 472 }, dpi, PITCH);
+    expect((709 * 25400) / (w * PITCH.x)).not.toBe(600); // the width in whole cells is not exactly 600 dpi
+    expect(shownDpi(709, w, PITCH.x)).toBe(600);
+  });
+  it('is the roundest resolution that gives the same cells, and gives them', () => {
+    for (const [px, dpi, pitch] of [[709, 600, 50], [1000, 300, 50], [123, 72, 50], [4000, 1200, 25], [709, 601, 50], [50, 96, 100]]) {
+      const { w } = cellsAt({ width: px, height: 1 }, { x: dpi, y: dpi }, { x: pitch, y: pitch });
+      const shown = shownDpi(px, w, pitch);
+      expect(cellsAt({ width: px, height: 1 }, { x: shown, y: shown }, { x: pitch, y: pitch }).w, `${px} px at ${dpi}`).toBe(w);
+      expect(Number.isInteger(shown), `${px} px at ${dpi}: ${shown}`).toBe(true);
+    }
+    // A picture stretched by hand shows what it is, with decimals where a whole number gives other cells.
+    expect(shownDpi(10, 2000, 50)).toBe(2.54);
   });
 });

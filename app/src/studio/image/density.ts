@@ -115,3 +115,17 @@ export function cellsAt(pixels: { width: number; height: number }, dpi: Density,
     h: Math.max(1, Math.round((pixels.height / dpi.y) * INCH_MM * (1000 / pitchUm.y))),
   };
 }
+
+/**
+ * The resolution to show for a picture `pixels` wide over `cells` of `pitchUm`: the roundest one
+ * that gives it those cells. Its pixels over its width in inches alone read "600.3 DPI" for a
+ * 600-dpi picture, as the width is whole cells (issue 29, item 14).
+ */
+export function shownDpi(pixels: number, cells: number, pitchUm: number): number {
+  const exact = (pixels * INCH_MM * 1000) / (cells * pitchUm);
+  for (let digits = 0; digits <= 3; digits++) {
+    const d = Number(exact.toFixed(digits));
+    if (d > 0 && cellsAt({ width: pixels, height: 1 }, { x: d, y: d }, { x: pitchUm, y: pitchUm }).w === cells) return d;
+  }
+  return exact;
+}
