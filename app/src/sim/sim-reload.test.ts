@@ -17,7 +17,7 @@ async function pageWithJob(fires: number, speed: number, clock: { wall: number }
   const keeper = new SimKeeper(h.sim, store.write, () => speed, undefined, () => clock.wall);
   h.cmd('G28');
   const job = smallJob(9);
-  job.dose.fullUs = 200_000; // some 10 s of exposing: still under way when the page comes back
+  job.dose = { map: 'linear', fullUs: 200_000 }; // some 10 s of exposing: still under way when the page comes back
   h.upload('R.UVJ', encodeJob(job));
   h.cmd('M23 R.UVJ');
   h.cmd('M24');
