@@ -13,7 +13,7 @@ async function settle(wire: SimWire, p: Promise<unknown>): Promise<void> {
   p.then(() => (done = true), () => (done = true));
   while (!done) {
     wire.runUntil(() => done, 5);
-    for (let i = 0; i < 10; i++) await Promise.resolve();
+    await new Promise((resolve) => setImmediate(resolve)); // what the bytes settled runs, timers and all
   }
   await p;
 }

@@ -6,6 +6,7 @@ import { editorBench } from './editor.bench';
 import { p1 } from './link.bench';
 import { p2, p7, printP2 } from './planner.bench';
 import { p10, printP10, printP11 } from './scan.bench';
+import { simSpeed } from './sim-speed.bench';
 
 printTable([...jobCodecBench(), ...p7(), ...pcbBench()]);
 printP2(p2());
@@ -13,4 +14,5 @@ const scans = p10();
 printP10(scans);
 printP11(scans);
 await p1();
+simSpeed();
 await editorBench();

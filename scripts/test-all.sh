@@ -25,6 +25,7 @@ stage() {
   fi
 }
 
+stage "The simulated printer's module (printer.wasm) is what the firmware's sources build, byte for byte" bash scripts/build-wasm.sh --check
 stage "TypeScript unit tests (Vitest)" npm run --silent test:unit
 stage "Type check (svelte-check)" npm run --silent check
 stage "AVR firmware images and budgets" bash scripts/test-firmware.sh images

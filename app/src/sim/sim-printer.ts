@@ -40,8 +40,10 @@ export interface SimOptions {
   saved?: SavedMachine | null;
 }
 
-/** The module runs at most this long between looks at the host's timers and its own output. */
-const SLICE_US = 1000;
+/** The module runs at most this long between looks at the host's timers and its own output: one
+ *  main-loop pass, so a reply leaves when the firmware writes it (at 1 ms slices the lost time
+ *  showed in P1: 76.6 % of the line at 1 ms one-way latency, against 96.9 % at 200 µs). */
+const SLICE_US = 100;
 /** The main loop's pass (mega_rig.h): the module's time moves in whole passes. */
 const PASS_US = 100;
 /** How often the TMP36s are read afresh from the thermal model. */
