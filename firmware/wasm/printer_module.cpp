@@ -46,8 +46,8 @@ extern "C" {
 UV_EXPORT("printer_start") void printerStart() {
   delete machine;
   machine = new mega::MegaRig();
-  // The head rests 10 mm above Z's switch (400 steps/mm), its probe's pin clear of the bed, which it
-  // touches 2 mm above the switch (app/src/sim/bed.ts).
+  // The head rests 10 mm above Z's switch (400 steps/mm); its probe's pin touches the bed 1 mm
+  // below the switch (app/src/sim/bed.ts).
   machine->rig.switchAt[2] = -4000;
   quiet();
   machine->begin();

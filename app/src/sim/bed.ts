@@ -10,7 +10,7 @@ export interface BedShape {
 }
 
 export const DEFAULT_BED: BedShape = {
-  z0: 2000, // the pin touches 2 mm above Z's switch: homed, the deployed pin is clear of the bed
+  z0: -1000, // the pin touches 1 mm below Z's switch (the probe reaches 3 mm below it, probe.h): homed, a deployed pin is clear
   tilt: [0.6, -0.4],
   bumps: [
     { x: 60, y: 140, r: 35, h: 45 },

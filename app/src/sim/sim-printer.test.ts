@@ -104,7 +104,7 @@ describe('simulated printer: probe and mesh', () => {
   it('probes the bed surface and builds a mesh of it', () => {
     const h = new SimHost();
     h.cmd('G28');
-    h.cmd('G0 X50 Y60 Z5'); // deployed at Z 0 (the switch), the pin would be pressed in
+    h.cmd('G0 X50 Y60 Z5');
     expect(h.cmd('M401')).toContain('PROBE:deployed');
     // Where the pin closed, to within one of Z's steps (2.5 µm at 400 steps/mm).
     const bed = parseReply(h.cmd('G30')[0]);
