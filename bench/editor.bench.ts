@@ -86,6 +86,6 @@ export async function editorBench(): Promise<void> {
     await browser.close();
     close();
   }
-  console.log(`\nB2 the app, gzipped as the ESP serves it (the budget holds the first load; see README "Size"):\n${formatBundleSize(bundleSize(DIST))
+  console.log(`\nB2 the app, gzipped as the ESP serves it (the budget holds the first load; see docs/app.md "Size"):\n${formatBundleSize(bundleSize(DIST))
     .split('\n').map((l) => `  ${l}`).join('\n')}`);
 }

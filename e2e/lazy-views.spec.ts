@@ -1,4 +1,4 @@
-// The views that load on demand (README "Size"): a loading line while their chunk comes, and what went
+// The views that load on demand (docs/app.md "Size"): a loading line while their chunk comes, and what went
 // wrong when it cannot come (the printer's hub went away), never an empty panel.
 import { expect, test } from '@playwright/test';
 
