@@ -31,6 +31,8 @@ export interface ScanPreview {
   doses: ScanDoses;
   speedUmS: number;
   windowUs: number;
+  /** Why the printer cannot run the job's passes (planner.md "Limits"), when it cannot. */
+  refused?: string;
 }
 
 /** S(j) of planner.md "Scan mode": when each window starts after the mark, flown stretches included. */
@@ -91,6 +93,7 @@ export function scanPreview(job: PrintJob, scan: ScanPlan): ScanPreview {
     doses: scanDoses(job, scan),
     speedUmS: scan.speedUmS,
     windowUs: scan.windowUs,
+    refused: scan.refused,
   };
 }
 
