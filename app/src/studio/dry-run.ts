@@ -5,8 +5,9 @@
 
 import { headerOf } from '../planner/job-header';
 import type { Mesh } from '../planner/mesh';
+import { durationTables } from '../planner/dose';
 import { planAnyJob } from '../planner/job-plan';
-import type { Plan } from '../planner/planner';
+import { passRows, type Plan } from '../planner/planner';
 import type { ScanPlan } from '../planner/scan';
 import type { PrintJob } from '../protocol/job-types';
 import type { Fault } from '../device/device-state';
@@ -73,11 +74,13 @@ export function dryRun(
   const { bedMm } = bedOf(config);
   if (scan) findings.push(scanFinding(scan));
 
-  // Envelope: every head position the plan stops at (for a scan job, each pass from run-up to run-out), on the bed.
+  // Envelope: every head position the plan stops at (for a scan job, each pass's stroke from its start
+  // to its stop, as the Mega lays it out: a few steps beyond the run-up and run-out), on the bed.
   let minX = Infinity, minY = Infinity, maxX = -Infinity, maxY = -Infinity;
+  const strokeUm = (steps: number) => Math.round((steps * 1_000_000) / machine.stepsMilli[0]);
   for (let i = 0; i < plan.count; i++) {
     const y = job.originUm.y + plan.hy[i] * job.pitchUm.y;
-    const xs = scan ? [scan.passes[i].runUpUm, scan.passes[i].runOutUm] : [job.originUm.x + plan.hx[i] * job.pitchUm.x];
+    const xs = scan ? [strokeUm(scan.passes[i].startSteps), strokeUm(scan.passes[i].stopSteps)] : [job.originUm.x + plan.hx[i] * job.pitchUm.x];
     for (const x of xs) minX = Math.min(minX, x), maxX = Math.max(maxX, x);
     minY = Math.min(minY, y), maxY = Math.max(maxY, y);
   }
@@ -109,14 +112,19 @@ export function dryRun(
     longest = Math.max(longest, plan.durations[i]);
     lit[i & 3] += plan.durations[i];
   }
-  // A scan job's LED stays on across a run of full cells (planner.md "Switch times": touching
-  // intervals merge only when a cell fills its window), so a cell's exposure is at most the window.
-  for (const pass of scan?.passes ?? []) {
-    pass.leds.forEach((list, k) => list.forEach(([on, off]) => {
-      longest = Math.max(longest, Math.min(off - on, pass.windowUs));
-      lit[k] += off - on;
-    }));
+  // A scan job's cell is lit for its stop-mode on-time t_k(v) (an LED stays on across a run of full
+  // cells, but each cell's exposure is its own): judged from the cells, so a scan the Mega cannot run
+  // (no passes) is judged too.
+  if (scan) {
+    const tables = durationTables(header);
+    for (const { ledRows } of passRows(header, job.gridData)) {
+      ledRows.forEach((r, k) => {
+        const row = r >= 0 ? job.gridData[r] : [];
+        for (let c = 0; c < row.length; c++) longest = Math.max(longest, tables[k][row[c]]);
+      });
+    }
   }
+  for (const pass of scan?.passes ?? []) pass.leds.forEach((list, k) => list.forEach(([on, off]) => (lit[k] += off - on)));
   findings.push(longest > NANO_MAX_EXPOSURE_US
     ? { check: 'dose', level: 'error', message: `${scan ? 'a cell' : 'a stop'} would light an LED for ${(longest / 1e6).toFixed(1)} s; the printhead refuses more than ${NANO_MAX_EXPOSURE_US / 1e6} s` }
     : { check: 'dose', level: 'ok', message: `the longest exposure is ${(longest / 1000).toFixed(1)} ms` });
@@ -152,6 +160,7 @@ export function machineFinding(m: MachineCheck): Finding {
 
 /** What a scan job is: its passes, their speed and the cell window. */
 export function scanFinding(scan: ScanPlan): Finding {
+  if (scan.refused) return { check: 'mode', level: 'error', message: `scan job (on the move): the printer cannot run it: ${scan.refused}. Choose a stop-and-fire order, or a dose that makes a shorter window` };
   if (!scan.passes.length) return { check: 'mode', level: 'ok', message: 'scan job (on the move): nothing to expose' };
   return { check: 'mode', level: 'ok', message: `scan job (on the move): ${scanWords(scan.passes.length, scan.speedUmS, scan.windowUs)}` };
 }
