@@ -36,7 +36,7 @@ test('a two-sided board: one side a job, said and chosen; both sides of an older
 
   // The question says the side, in the dry run and beside where the job lands.
   await ask(page);
-  await expect(sidesLine(page)).toHaveText('sides: the top side of board demo; the board is turned over for the other');
+  await expect(sidesLine(page)).toHaveText('sides: the top side of board demo. The other side is left out, for once the board is turned over');
   await expect(sidesLine(page)).toHaveAttribute('data-level', 'ok');
   await expect(question(page).getByText(/mm\): the top side of board demo\./)).toBeVisible();
   await question(page).screenshot({ path: info.outputPath('question-top-side.png') });
@@ -46,7 +46,7 @@ test('a two-sided board: one side a job, said and chosen; both sides of an older
   await sideChoice(page).selectOption({ label: 'bottom side (demo (bottom))' });
   await expect(sideChoice(page).locator('option:checked')).toHaveText('bottom side (demo (bottom))');
   await ask(page);
-  await expect(sidesLine(page)).toHaveText(/^sides: the bottom side of board demo;/);
+  await expect(sidesLine(page)).toHaveText(/^sides: the bottom side of board demo\./);
   await expect(question(page).getByText(/mm\): the bottom side of board demo\./)).toBeVisible();
   await question(page).getByRole('button', { name: 'Cancel' }).click();
 
@@ -64,7 +64,7 @@ test('a two-sided board: one side a job, said and chosen; both sides of an older
 
   // The dry run says it and stops the job; the question offers to leave one side out.
   await ask(page);
-  await expect(sidesLine(page)).toHaveText('sides: board demo: both sides are in the job, exposed on top of each other. Expose one side at a time');
+  await expect(sidesLine(page)).toHaveText('sides: board demo: both sides are in the job, exposed on top of each other. A board is exposed one side at a time: leave one out');
   await expect(sidesLine(page)).toHaveAttribute('data-level', 'error');
   await expect(question(page).getByText('Not exposed: fix what is marked above.')).toBeVisible();
   await expect(question(page).getByText(/mm\): both sides of board demo\./)).toBeVisible();
@@ -74,7 +74,7 @@ test('a two-sided board: one side a job, said and chosen; both sides of an older
   await offer.getByRole('button', { name: 'Expose the top side only' }).click();
 
   // Checked again with the bottom side left out: nothing stops it now.
-  await expect(sidesLine(page)).toHaveText(/^sides: the top side of board demo;/, { timeout: 30_000 });
+  await expect(sidesLine(page)).toHaveText(/^sides: the top side of board demo\./, { timeout: 30_000 });
   await expect(offer).toHaveCount(0);
   await expect(question(page).getByRole('button', { name: /^Expose (now|anyway)$/ })).toBeVisible();
   await question(page).screenshot({ path: info.outputPath('question-top-side-chosen.png') });

@@ -45,10 +45,10 @@ describe('dry run', () => {
     expect(sidesFinding([])).toBeNull();
     expect(levels(dryRun(job(), DEFAULT_CONFIG, { boards: [] })).sides).toBeUndefined();
     const both = dryRun(job(), DEFAULT_CONFIG, { boards: [board(true, true)] }).findings.find((f) => f.check === 'sides')!;
-    expect(both).toEqual({ check: 'sides', level: 'error', message: 'board demo: both sides are in the job, exposed on top of each other. Expose one side at a time' });
-    expect(sidesFinding([board(true, false)])).toEqual({ check: 'sides', level: 'ok', message: 'the top side of board demo; the board is turned over for the other' });
-    expect(sidesFinding([board(false, true)])!.message).toBe('the bottom side of board demo; the board is turned over for the other');
-    expect(sidesFinding([board(false, false)])!.message).toBe('no side of board demo; the board is turned over for the other');
+    expect(both).toEqual({ check: 'sides', level: 'error', message: 'board demo: both sides are in the job, exposed on top of each other. A board is exposed one side at a time: leave one out' });
+    expect(sidesFinding([board(true, false)])).toEqual({ check: 'sides', level: 'ok', message: 'the top side of board demo. The other side is left out, for once the board is turned over' });
+    expect(sidesFinding([board(false, true)])!.message).toBe('the bottom side of board demo. The other side is left out, for once the board is turned over');
+    expect(sidesFinding([board(false, false)])!.message).toBe('no side of board demo. The other side is left out, for once the board is turned over');
   });
 
   it('stops an exposure longer than the printhead takes', () => {

@@ -66,8 +66,8 @@ export function clippingFinding(cuts: readonly Cut[], accepted: boolean): Findin
 export function sidesFinding(boards: readonly TwoSided[]): Finding | null {
   if (!boards.length) return null;
   const both = boards.filter((b) => b.sides.filter((s) => s.inJob).length > 1);
-  if (both.length) return { check: 'sides', level: 'error', message: `${both.map((b) => `board ${b.name}`).join(', ')}: both sides are in the job, exposed on top of each other. Expose one side at a time` };
-  return { check: 'sides', level: 'ok', message: `${boards.map((b) => sideInJob(b) ?? `no side of board ${b.name}`).join('; ')}; the board is turned over for the other` };
+  if (both.length) return { check: 'sides', level: 'error', message: `${both.map((b) => `board ${b.name}`).join(', ')}: both sides are in the job, exposed on top of each other. A board is exposed one side at a time: leave one out` };
+  return { check: 'sides', level: 'ok', message: `${boards.map((b) => sideInJob(b) ?? `no side of board ${b.name}`).join('; ')}. The other side is left out, for once the board is turned over` };
 }
 
 /**
