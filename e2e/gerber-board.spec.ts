@@ -102,6 +102,7 @@ test('a two-sided board: layers chosen, drill dots, positive resist, the bottom 
   const bottom = await placed(page);
   expect(bottom.x).toBeCloseTo(box.x - 30.1, 1);
   await expect(panel(page).getByTestId('object-off-bed')).toContainText('past the left edge');
+  await expect(panel(page).getByTestId('object-off-bed')).toContainText('This side is left out of the job: that stops nothing');
   await page.getByRole('region', { name: 'Drawing' }).screenshot({ path: info.outputPath('board-both-sides.png') });
 
   // Made left out of the job (the top side is exposed first, the board turned over after): it stops nothing, and the dry run says which side.
@@ -115,6 +116,7 @@ test('a two-sided board: layers chosen, drill dots, positive resist, the bottom 
 
   // The bottom side taken into the job: the dry run names it as cut and stops the job.
   await panel(page).getByLabel(/^Side exposed in this job/).selectOption({ label: 'bottom side (demo (bottom))' });
+  await expect(panel(page).getByTestId('object-off-bed')).toContainText('the dry run stops the job until that is accepted');
   await page.getByRole('button', { name: 'Expose drawing' }).click();
   await expect(clipping).toHaveAttribute('data-level', 'error', { timeout: 30_000 });
   await expect(clipping).toContainText('board demo (bottom)');
