@@ -9,6 +9,7 @@ import type { OrderChoice } from '../planner/job-plan';
 import { num } from '../sim/config';
 import type { Finding } from '../studio/dry-run';
 import type { Cut } from '../studio/objects/clipping';
+import type { TwoSided } from '../studio/objects/board-object';
 import type { GridEditor } from '../studio/editor.svelte';
 import { jobFromGrid } from '../studio/grid-job';
 import { DEFAULT_CONFIG, ledsOf, motionOf, type MachineConfig } from '../studio/machine-config';
@@ -34,6 +35,8 @@ export type Pending =
       /** The drawing's objects cut by the bed's edge, and whether the user accepted the cut. */
       cuts: Cut[];
       accepted: boolean;
+      /** The drawing's boards placed as two sides: the job exposes one side of each. */
+      boards: TwoSided[];
     }
   | { kind: 'home-first'; what: string; homed: boolean | null; run: () => Promise<unknown> };
 
@@ -117,8 +120,17 @@ export class JobControl {
       if (!job) throw new Error('nothing is drawn');
       const ed = this.editor();
       const { cutsOf } = await import('../studio/objects/clipping');
-      await this.#ask('drawing', job, cutsOf(ed.layer.objects, (o) => ed.layer.raster(o), ed.grid.cols, ed.grid.rows, ed.machine.pitchUm));
+      const { twoSidedBoards } = await import('../studio/objects/board-object');
+      await this.#ask('drawing', job, cutsOf(ed.layer.objects, (o) => ed.layer.raster(o), ed.grid.cols, ed.grid.rows, ed.machine.pitchUm), twoSidedBoards(ed.layer.objects));
     });
+
+  /** From the question: the job exposes only this side of a two-sided board (the others left out), checked again. */
+  exposeOnlySide = async (board: TwoSided, id: number) => {
+    const { onlySide } = await import('../studio/objects/board-object');
+    this.pending = null;
+    this.editor().layer.updateEach(onlySide(board, id), 'one side in the job');
+    await this.exposeDrawing();
+  };
 
   /** The test pattern at the full dose set here, checked and asked about like a drawing. */
   exposeTestPattern = () =>
@@ -207,7 +219,7 @@ export class JobControl {
     if (!gate.open) throw new Error(`Not now: ${gate.why}`);
   }
 
-  async #ask(what: 'drawing' | 'test pattern', asked: PrintJob, cuts?: Cut[]): Promise<void> {
+  async #ask(what: 'drawing' | 'test pattern', asked: PrintJob, cuts?: Cut[], boards: TwoSided[] = []): Promise<void> {
     let job = asked;
     if (this.strategy === 'auto') {
       // The fastest order for exactly this job, whatever the preview last saw.
@@ -222,7 +234,7 @@ export class JobControl {
     const startC = device.deciC?.map((d) => d / 10) ?? null;
     const machine = { faults: device.activeFaults, printheadAnswers, hot: hotSensors(device.deciC, limitsOf(this.config)) };
     const { dryRun } = await import('../studio/dry-run');
-    const { findings, duty, plan, paced } = dryRun(job, this.config, { leveling: leveling.on, mesh: leveling.mesh, startC, cuts, machine });
+    const { findings, duty, plan, paced } = dryRun(job, this.config, { leveling: leveling.on, mesh: leveling.mesh, startC, cuts, boards, machine });
     this.check = { findings, job, duty };
     const mm = (um: number) => Math.round(um) / 1000;
     const areaMm = {
@@ -230,7 +242,7 @@ export class JobControl {
       x1: mm(job.originUm.x + job.grid.cols * job.pitchUm.x), y1: mm(job.originUm.y + job.grid.rows * job.pitchUm.y),
     };
     const pacedUs = paced && !paced.pause ? paced.totalUs : null;
-    this.pending = { kind: 'expose', what, job, findings, duty, estimateUs: plan.estimateUs, pacedUs, areaMm, cuts: cuts ?? [], accepted: false };
+    this.pending = { kind: 'expose', what, job, findings, duty, estimateUs: plan.estimateUs, pacedUs, areaMm, cuts: cuts ?? [], accepted: false, boards };
   }
 
   async #run(job: PrintJob, duty: number[] | null, paced: boolean): Promise<void> {

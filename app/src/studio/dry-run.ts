@@ -1,7 +1,8 @@
 // The check before any LED fires (issue 8 "Job control"): the job is planned as the Mega will
 // plan it, and the plan is held against the bed, the mesh, the printhead's exposure cap and
 // the LEDs' thermal budget, and the machine's own faults; the drawing's objects are held against the bed's edges (a cut
-// object is an error until the user accepts the cut). Errors stop the job; warnings ask the user.
+// object is an error until the user accepts the cut), and a two-sided board's sides (one a job).
+// Errors stop the job; warnings ask the user.
 
 import { headerOf } from '../planner/job-header';
 import type { Mesh } from '../planner/mesh';
@@ -16,10 +17,11 @@ import { hms } from '../job/hms';
 import { scanWords } from '../job/scan-words';
 import { bedOf, limitsOf, motionOf, type MachineConfig } from './machine-config';
 import { cutWords, type Cut } from './objects/clipping';
+import { sideInJob, type TwoSided } from './objects/board-object';
 import { forecastScanThermal, forecastThermal, type ThermalRun } from './thermal-forecast';
 
 export interface Finding {
-  check: 'machine' | 'mode' | 'envelope' | 'clipping' | 'mesh' | 'dose' | 'thermal';
+  check: 'machine' | 'mode' | 'envelope' | 'clipping' | 'sides' | 'mesh' | 'dose' | 'thermal';
   level: 'error' | 'warning' | 'ok';
   message: string;
 }
@@ -58,14 +60,27 @@ export function clippingFinding(cuts: readonly Cut[], accepted: boolean): Findin
 }
 
 /**
+ * A two-sided board is exposed one side a job, the board turned over between them: both sides in one
+ * job would expose them on top of each other (or the second side beside the first, on a board not yet
+ * turned), so that is an error; the side the job exposes is said.
+ */
+export function sidesFinding(boards: readonly TwoSided[]): Finding | null {
+  if (!boards.length) return null;
+  const both = boards.filter((b) => b.sides.filter((s) => s.inJob).length > 1);
+  if (both.length) return { check: 'sides', level: 'error', message: `${both.map((b) => `board ${b.name}`).join(', ')}: both sides are in the job, exposed on top of each other. A board is exposed one side at a time: leave one out` };
+  return { check: 'sides', level: 'ok', message: `${boards.map((b) => sideInJob(b) ?? `no side of board ${b.name}`).join('; ')}. The other side is left out, for once the board is turned over` };
+}
+
+/**
  * `leveling` is whether the printer said exposures follow the mesh; null or absent if it did not
- * say. `cuts`: the drawing's objects cut by the bed's edge (absent for a job with no objects).
+ * say. `cuts`: the drawing's objects cut by the bed's edge (absent for a job with no objects);
+ * `boards`: its boards placed as two sides.
  * `startC` is the head's temperatures now (the printer's last report); a warm head pauses sooner.
  */
 export function dryRun(
   job: PrintJob,
   config: MachineConfig,
-  opts: { mesh?: Mesh | null; leveling?: boolean | null; startC?: number[] | null; cuts?: readonly Cut[]; acceptCuts?: boolean; machine?: MachineCheck } = {},
+  opts: { mesh?: Mesh | null; leveling?: boolean | null; startC?: number[] | null; cuts?: readonly Cut[]; acceptCuts?: boolean; boards?: readonly TwoSided[]; machine?: MachineCheck } = {},
 ): DryRun {
   const header = headerOf(job);
   const machine = motionOf(config);
@@ -91,6 +106,8 @@ export function dryRun(
     findings.push({ check: 'envelope', level: 'ok', message: plan.count ? `the head stays within X ${mm(minX)}–${mm(maxX)}, Y ${mm(minY)}–${mm(maxY)} mm` : 'nothing to expose' });
   }
   if (opts.cuts) findings.push(clippingFinding(opts.cuts, opts.acceptCuts ?? false));
+  const sides = sidesFinding(opts.boards ?? []);
+  if (sides) findings.push(sides);
 
   // Mesh: with leveling on, the job should lie within the probed points (beyond them Z is held at the edge).
   if (opts.leveling === false) findings.push({ check: 'mesh', level: 'ok', message: 'leveling is off: the whole job is exposed at one height' });
