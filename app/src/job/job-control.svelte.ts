@@ -12,7 +12,7 @@ import type { Cut } from '../studio/objects/clipping';
 import type { TwoSided } from '../studio/objects/board-object';
 import type { GridEditor } from '../studio/editor.svelte';
 import { jobFromGrid } from '../studio/grid-job';
-import { DEFAULT_CONFIG, ledsOf, motionOf, type MachineConfig } from '../studio/machine-config';
+import { bedOf, DEFAULT_CONFIG, ledsOf, motionOf, type MachineConfig } from '../studio/machine-config';
 import { JobNotice } from './job-notice.svelte';
 import { calibrationOf, doseOf, msFor, type Calibration } from './dose-units';
 import { actionsFor, hotSensors, viewOf, type Action, type Actions } from './actions';
@@ -225,7 +225,7 @@ export class JobControl {
       // The fastest order for exactly this job, whatever the preview last saw.
       const { fastestOrder, orderEstimates } = await import('../planner/job-plan');
       const { headerOf } = await import('../planner/job-header');
-      const orders = orderEstimates({ header: headerOf(job), cells: job.gridData }, motionOf(this.config));
+      const orders = orderEstimates({ header: headerOf(job), cells: job.gridData }, motionOf(this.config), bedOf(this.config).bedMm.x * 1000);
       job = { ...job, strategy: { name: fastestOrder(orders) } };
     }
     const leveling = await this.printer.leveling();

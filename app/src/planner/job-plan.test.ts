@@ -2,6 +2,8 @@ import { mergeLight } from '../protocol/scan-program';
 import { describe, expect, it } from 'vitest';
 import { fastestOrder, ORDERS, orderEstimates, passDurationUs, passSwitches, planAnyJob } from './job-plan';
 import { planJob } from './planner';
+import { GEOMETRIES, randomJob } from './golden';
+import { CONFIG_DEFAULTS, motionOf } from '../sim/config';
 import type { ScanPass, ScanPlan } from './scan';
 import { headerOf } from './job-header';
 import type { Machine } from './time-model';
@@ -82,5 +84,20 @@ describe('the automatic order', () => {
   it('prefers scan on a tie, and never an order that cannot plan a job with light', () => {
     expect(fastestOrder({ scan: 5, serpentine: 5, shortest: 5, raster: 5, random: 5 })).toBe('scan');
     expect(fastestOrder({ scan: Infinity, serpentine: 9, shortest: 7, raster: 8, random: 9 })).toBe('shortest');
+  });
+});
+
+describe('the automatic order on a bed', () => {
+  it('never picks a scan whose strokes would leave the bed', () => {
+    const job = randomJob(5, GEOMETRIES.adjacent, 'scan', [200, 20], 1);
+    job.originUm = { x: 190_000, y: 20_000 }; // its right edge at the bed's: the run-out is beyond it
+    job.pitchUm = { x: 50, y: 50 };
+    job.dose = { map: 'linear', fullUs: 2000 };
+    const p = { header: headerOf(job), cells: job.gridData };
+    const machine = motionOf(CONFIG_DEFAULTS, [0, 0]);
+    expect(Number.isFinite(orderEstimates(p, machine).scan)).toBe(true);
+    const onBed = orderEstimates(p, machine, 200_000);
+    expect(onBed.scan).toBe(Infinity);
+    expect(fastestOrder(onBed)).not.toBe('scan');
   });
 });

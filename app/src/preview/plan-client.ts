@@ -21,7 +21,7 @@ export interface Planned {
 }
 
 /** `auto`: plan the job in its fastest order, whatever its strategy says. */
-export type PlanRequest = { id: number; job: PrintJob; machine: Machine; auto?: boolean };
+export type PlanRequest = { id: number; job: PrintJob; machine: Machine; auto?: boolean; bedXUm?: number };
 export type PlanReply = { id: number; planned: Planned } | { id: number; error: string };
 
 /** What the client needs of a Worker (a test hands it a fake one). */
@@ -39,7 +39,8 @@ export class PlanClient {
     port.onmessage = (e) => this.#settle(e.data);
   }
 
-  plan(job: PrintJob, machine: Machine, auto = false): Promise<Planned> {
+  /** `bedXUm`: the bed's width, which an automatic order's scan strokes must stay within. */
+  plan(job: PrintJob, machine: Machine, auto = false, bedXUm?: number): Promise<Planned> {
     const id = this.#next++;
     return new Promise((resolve, reject) => {
       const timer = setTimeout(() => {
@@ -47,7 +48,7 @@ export class PlanClient {
         reject(new Error(`planning took over ${this.timeoutMs / 1000} s`));
       }, this.timeoutMs);
       this.#pending.set(id, { resolve, reject, timer });
-      this.port.postMessage({ id, job, machine, auto });
+      this.port.postMessage({ id, job, machine, auto, bedXUm });
     });
   }
 

@@ -7,9 +7,9 @@ import { ledCoverage, timeline } from './exposure-preview';
 import type { PlanReply, PlanRequest } from './plan-client';
 import { scanCoverage, scanPreview, scanTimeline } from './scan-preview';
 
-export function planReply({ id, job: asked, machine, auto }: PlanRequest): PlanReply {
+export function planReply({ id, job: asked, machine, auto, bedXUm }: PlanRequest): PlanReply {
   try {
-    const orders = orderEstimates({ header: headerOf(asked), cells: asked.gridData }, machine);
+    const orders = orderEstimates({ header: headerOf(asked), cells: asked.gridData }, machine, bedXUm);
     const order = auto ? fastestOrder(orders) : asked.strategy.name;
     const job = { ...asked, strategy: { ...asked.strategy, name: order } };
     const { plan, scan } = planAnyJob({ header: headerOf(job), cells: job.gridData }, machine);
