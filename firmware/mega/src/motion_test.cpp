@@ -11,6 +11,7 @@
 #include "scan.h"
 #include "scan_stroke.h"
 #include "time_model.h"
+#include "time_model.h"
 
 using namespace mega;
 
@@ -54,7 +55,7 @@ double moveSeconds(const std::vector<StepEvent>& ev) {
 
 TEST(StepProfile, IsqrtIsExactlyTheFloor) {
   for (uint32_t n : {0u, 1u, 2u, 3u, 4u, 15u, 16u, 17u, 99u, 100u, 65535u, 65536u, 400000000u, 1073741823u, 4294967295u}) {
-    uint32_t r = isqrt32(n);
+    uint32_t r = uv::isqrt32(n);
     EXPECT_LE(static_cast<uint64_t>(r) * r, n);
     EXPECT_GT(static_cast<uint64_t>(r + 1) * (r + 1), n);
   }
