@@ -11,7 +11,6 @@
 #include "scan.h"
 #include "scan_stroke.h"
 #include "time_model.h"
-#include "time_model.h"
 
 using namespace mega;
 

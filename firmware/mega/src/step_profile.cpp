@@ -2,7 +2,7 @@
 // short constant-rate segments the step interrupt runs.
 #include "step_profile.h"
 
-#include "time_model.h"  // uv::isqrt32, one square root for the planner and the step engine
+#include "isqrt.h"  // one square root for the planner and the step engine
 
 namespace mega {
 

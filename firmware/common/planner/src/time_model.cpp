@@ -26,21 +26,6 @@ uint64_t isqrt64(uint64_t n) {
   return x;
 }
 
-uint32_t isqrt32(uint32_t n) {
-  uint32_t root = 0, bit = 1ul << 30;
-  while (bit > n) bit >>= 2;
-  while (bit) {
-    if (n >= root + bit) {
-      n -= root + bit;
-      root = (root >> 1) + bit;
-    } else {
-      root >>= 1;
-    }
-    bit >>= 2;
-  }
-  return root;
-}
-
 namespace {
 // One moving axis's limits, scaled up to the dominant axis's `total` steps.
 void scaleLimits(StepRamp& p, uint32_t steps, uint32_t rate, uint32_t accel) {

@@ -3,6 +3,7 @@
 #pragma once
 #include <stdint.h>
 
+#include "isqrt.h"
 #include "job_types.h"
 
 namespace uv {
@@ -51,7 +52,6 @@ struct Stop {
 };
 
 uint64_t isqrt64(uint64_t n);
-uint32_t isqrt32(uint32_t n);
 // Time in µs to move d µm on one axis, from rest to rest, on the continuous trapezoid (a scan
 // pass's flown stretch is planned on it: the Mega flies it in exactly that time).
 uint32_t moveTimeUs(uint32_t d, uint32_t v, uint32_t a);
