@@ -6,7 +6,8 @@ set -uo pipefail
 cd "$(dirname "$0")/.."
 
 images() {
-  bash scripts/build-avr.sh
+  bash scripts/build-avr.sh &&
+    bash scripts/build-bootloaders.sh  # the real bootloaders, from Debian's sources, for the flasher's rig
 }
 
 host() {

@@ -1,0 +1,204 @@
+// A chip in simavr that starts at its bootloader, as the BOOTRST fuse makes it, with its UART on stdio:
+// what the browser's flasher meets at the end of a USB cable (e2e/bootloader-rig.ts, bench/flash.bench.ts).
+//
+//   bootloader_rig --mcu atmega328p --boot optiboot_atmega328.hex [--app nano.hex]
+//
+// stdin carries framed messages from the host, since a cable carries more than bytes:
+//   'D' n b1..bn   n bytes (1..255) on the wire to the chip's RX, at the host's baud
+//   'B' b0..b3     the host opened the port at this baud (little endian)
+//   'R'            DTR pulsed low: the auto-reset capacitor resets the chip (external reset)
+// stdout carries the chip's TX bytes, as they are sent. The run is paced to the wall clock (a
+// bootloader's time-outs are real time to the host), and ends when stdin closes.
+#include <poll.h>
+#include <simavr/avr_adc.h>
+#include <simavr/avr_uart.h>
+#include <simavr/sim_avr.h>
+#include <time.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <deque>
+#include <string>
+#include <vector>
+
+#include "rig_frames.h"
+
+namespace {
+
+// MCUSR is at I/O 0x34 (data 0x54) on both the ATmega328P and the ATmega2560.
+constexpr uint16_t kMcusr = 0x54;
+constexpr uint8_t kPorf = 1 << 0, kExtrf = 1 << 1;
+
+struct Rig {
+  avr_t* avr = nullptr;
+  avr_irq_t* rx = nullptr;
+  uint32_t bootStart = 0;
+  uint32_t hostBaud = 115200;
+  bool xon = true;
+  std::deque<uint8_t> wire;   // bytes the host sent, not yet at the chip's RX pin
+  uint64_t nextRxCycle = 0;   // when the next one has crossed the wire
+  std::vector<uint8_t> tx;    // the chip's bytes, not yet written to stdout
+};
+
+Rig rig;
+
+void noSleep(avr_t*, avr_cycle_count_t) {}
+
+// The chip's UART baud from UBRR0 and U2X0 (simavr does not compare it with the host's): a host at
+// another baud meets framing garbage on a real board, here silence.
+uint32_t chipBaud() {
+  // UCSR0A, UBRR0L, UBRR0H: 0xC0, 0xC4, 0xC5 on both chips.
+  uint16_t ubrr = rig.avr->data[0xC4] | ((rig.avr->data[0xC5] & 0x0f) << 8);
+  bool u2x = rig.avr->data[0xC0] & 0x02;
+  return static_cast<uint32_t>(rig.avr->frequency / ((u2x ? 8.0 : 16.0) * (ubrr + 1)));
+}
+
+bool baudsMatch() {
+  double ratio = static_cast<double>(chipBaud()) / rig.hostBaud;
+  return std::fabs(ratio - 1.0) < 0.035;  // what 8N1 tolerates between two ends
+}
+
+void onTx(avr_irq_t*, uint32_t value, void*) {
+  if (baudsMatch()) rig.tx.push_back(static_cast<uint8_t>(value));
+}
+void onXon(avr_irq_t*, uint32_t, void*) { rig.xon = true; }
+void onXoff(avr_irq_t*, uint32_t, void*) { rig.xon = false; }
+
+uint64_t byteCycles() { return static_cast<uint64_t>(rig.avr->frequency * 10.0 / rig.hostBaud); }
+
+void resetChip(uint8_t cause) {
+  avr_reset(rig.avr);
+  rig.avr->pc = rig.bootStart;
+  rig.avr->data[kMcusr] = cause;
+}
+
+// Reads an Intel HEX file into flash. simavr's own reader refuses the start-address records (type 03)
+// that Debian's bootloader images carry.
+bool loadHex(const char* path, bool boot) {
+  FILE* f = std::fopen(path, "r");
+  if (!f) return false;
+  char line[600];
+  uint32_t base = 0, lowest = UINT32_MAX;
+  bool ok = true;
+  while (ok && std::fgets(line, sizeof line, f)) {
+    if (line[0] != ':') continue;
+    auto byteAt = [&](int i) { return static_cast<uint32_t>(std::strtoul(std::string(line + 1 + 2 * i, 2).c_str(), nullptr, 16)); };
+    uint32_t count = byteAt(0), offset = byteAt(1) << 8 | byteAt(2), type = byteAt(3);
+    if (type == 1) break;
+    if (type == 2) base = (byteAt(4) << 8 | byteAt(5)) << 4;
+    if (type == 4) base = (byteAt(4) << 8 | byteAt(5)) << 16;
+    if (type != 0) continue;
+    for (uint32_t i = 0; i < count; i++) {
+      uint32_t at = base + offset + i;
+      if (at > rig.avr->flashend) ok = false;
+      else rig.avr->flash[at] = static_cast<uint8_t>(byteAt(4 + i));
+    }
+    if (base + offset < lowest) lowest = base + offset;
+  }
+  std::fclose(f);
+  if (boot) rig.bootStart = lowest;
+  return ok && lowest != UINT32_MAX;
+}
+
+double wallSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_MONOTONIC, &t);
+  return t.tv_sec + t.tv_nsec * 1e-9;
+}
+
+void writeAll(const std::vector<uint8_t>& bytes) {
+  size_t done = 0;
+  while (done < bytes.size()) {
+    ssize_t w = write(1, bytes.data() + done, bytes.size() - done);
+    if (w <= 0) std::exit(0);  // the host went away
+    done += static_cast<size_t>(w);
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string mcu = "atmega328p", boot, app;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    std::string flag = argv[i];
+    if (flag == "--mcu") mcu = argv[i + 1];
+    else if (flag == "--boot") boot = argv[i + 1];
+    else if (flag == "--app") app = argv[i + 1];
+  }
+  if (boot.empty()) {
+    std::fprintf(stderr, "usage: bootloader_rig --mcu <atmega328p|atmega2560> --boot <bootloader.hex> [--app <app.hex>]\n");
+    return 2;
+  }
+  rig.avr = avr_make_mcu_by_name(mcu.c_str());
+  if (!rig.avr) return std::fprintf(stderr, "simavr has no %s\n", mcu.c_str()), 2;
+  avr_init(rig.avr);
+  rig.avr->frequency = 16000000;
+  rig.avr->vcc = rig.avr->avcc = rig.avr->aref = 5000;
+  rig.avr->log = 0;
+  rig.avr->sleep = noSleep;  // else simavr sleeps in real time whenever a firmware polls its UART
+  std::memset(rig.avr->flash, 0xff, rig.avr->flashend + 1);  // an erased chip
+  if (!loadHex(boot.c_str(), true)) return std::fprintf(stderr, "cannot load %s\n", boot.c_str()), 2;
+  if (!app.empty() && !loadHex(app.c_str(), false)) return std::fprintf(stderr, "cannot load %s\n", app.c_str()), 2;
+  rig.avr->reset_pc = rig.bootStart;  // BOOTRST: every reset, the watchdog's too, starts the bootloader
+  rig.avr->codeend = rig.avr->flashend;
+
+  uint32_t flags = 0;
+  avr_ioctl(rig.avr, AVR_IOCTL_UART_SET_FLAGS('0'), &flags);
+  rig.rx = avr_io_getirq(rig.avr, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_INPUT);
+  avr_irq_register_notify(avr_io_getirq(rig.avr, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_OUTPUT), onTx, nullptr);
+  avr_irq_register_notify(avr_io_getirq(rig.avr, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_OUT_XON), onXon, nullptr);
+  avr_irq_register_notify(avr_io_getirq(rig.avr, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_OUT_XOFF), onXoff, nullptr);
+  // The Nano's sensors at 25 °C (750 mV), so its firmware starts without a thermal fault.
+  if (mcu == "atmega328p")
+    for (int ch = 0; ch < 6; ch++) avr_raise_irq(avr_io_getirq(rig.avr, AVR_IOCTL_ADC_GETIRQ, ADC_IRQ_ADC0 + ch), 750);
+  resetChip(kPorf);  // plugged in: power-on reset
+
+  uv::RigFrames frames;
+  const double start = wallSeconds();
+  const uint64_t slice = rig.avr->frequency / 2000;  // 0.5 ms of simulated time between looks at stdin
+  uint8_t in[4096];
+  for (;;) {
+    uint64_t end = rig.avr->cycle + slice;
+    while (rig.avr->cycle < end) {
+      if (!rig.wire.empty() && rig.xon && rig.avr->cycle >= rig.nextRxCycle) {
+        uint8_t b = rig.wire.front();
+        rig.wire.pop_front();
+        if (baudsMatch()) avr_raise_irq(rig.rx, b);
+        rig.nextRxCycle = rig.avr->cycle + byteCycles();
+      }
+      int state = avr_run(rig.avr);
+      if (state == cpu_Crashed || state == cpu_Done) {
+        // An erased word (0xFFFF) or a broken image: a real chip runs on through the erased flash into
+        // the boot section; the bootloader then starts the application again, as it would there.
+        rig.avr->state = cpu_Running;
+        rig.avr->pc = rig.bootStart;
+      }
+    }
+    if (!rig.tx.empty()) {
+      writeAll(rig.tx);
+      rig.tx.clear();
+    }
+    // Ahead of the wall clock: wait for the host (or the time) instead of running on.
+    double ahead = static_cast<double>(rig.avr->cycle) / rig.avr->frequency - (wallSeconds() - start);
+    pollfd p{0, POLLIN, 0};
+    if (poll(&p, 1, ahead > 0 ? static_cast<int>(ahead * 1000) : 0) > 0) {
+      ssize_t n = read(0, in, sizeof in);
+      if (n <= 0) return 0;  // the host closed the port for good
+      frames.feed(in, static_cast<size_t>(n), [](const uv::RigFrame& f) {
+        if (f.kind == 'D') {
+          if (rig.wire.empty() && rig.nextRxCycle < rig.avr->cycle) rig.nextRxCycle = rig.avr->cycle + byteCycles();
+          rig.wire.insert(rig.wire.end(), f.bytes.begin(), f.bytes.end());
+        } else if (f.kind == 'B') {
+          rig.hostBaud = f.baud;
+        } else if (f.kind == 'R') {
+          rig.wire.clear();
+          resetChip(kExtrf);
+        }
+      });
+    }
+  }
+}
