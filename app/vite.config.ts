@@ -14,7 +14,7 @@ const ON_DEMAND_LINKS = /\/(chosen-links|esp-link|serial-transport|bytes)\.ts$/;
  * Views that load on demand bring their styles in their own chunk (Svelte injects them when first
  * shown), so the one stylesheet holds only the first screen's and no further file goes to the flash.
  */
-const LAZY_VIEW = new RegExp(`${ON_DEMAND_PANELS.source}|/SimulatorPanel\\.svelte$`);
+const LAZY_VIEW = new RegExp(`${ON_DEMAND_PANELS.source}|/(SimulatorPanel|FirmwarePanel)\\.svelte$`);
 
 /** What saving, opening or running something needs: the project file, the job's encoding, the test pattern, framing. */
 const ON_DEMAND_FILES = /\/(project-file|cells-codec|halftones|job-types|job-encode|crc32|test-pattern|framing)\.ts$/;
@@ -65,6 +65,15 @@ export default defineConfig(({ mode }) => ({
   // The Gerber libraries' Node streams give way to stand-ins (STREAM_SHIMS); the ESP's flash image
   // (scripts/build-esp-fs.mjs) also leaves the simulated printer out.
   resolve: {
-    alias: [...STREAM_SHIMS, ...(mode === 'esp' ? [{ find: /^\.\/sim-transport$/, replacement: fileURLToPath(new URL('src/device/sim-absent.ts', import.meta.url)) }] : [])],
+    alias: [
+      ...STREAM_SHIMS,
+      ...(mode === 'esp'
+        ? [
+            { find: /^\.\/sim-transport$/, replacement: fileURLToPath(new URL('src/device/sim-absent.ts', import.meta.url)) },
+            // No Firmware view in the hub's own image (app/src/firmware/firmware-view.ts).
+            { find: /^\.\.\/firmware\/firmware-view$/, replacement: fileURLToPath(new URL('src/firmware/firmware-view-absent.ts', import.meta.url)) },
+          ]
+        : []),
+    ],
   },
 }));

@@ -4,8 +4,10 @@ import type { Page } from '@playwright/test';
 export interface SerialPeer {
   /** Bytes the page wrote to the port. */
   receive(bytes: string): void;
-  /** The page opened the port (a real Mega resets then). */
-  open?(): void;
+  /** The page opened the port at this baud (a real Mega resets then). */
+  open?(baud: number): void;
+  /** The page set the port's control lines (DTR low then high resets an Arduino through its capacitor). */
+  signals?(s: { dataTerminalReady?: boolean; requestToSend?: boolean }): void;
 }
 
 export interface FakeSerial {
@@ -21,7 +23,7 @@ export interface FakeSerial {
  * Installs the fake before any page script runs. `pick` decides what requestPort() does:
  * 'port' hands out the fake port, 'dismiss' behaves like a closed picker.
  */
-export async function installFakeSerial(page: Page, peer: (fake: FakeSerial) => SerialPeer, pick: 'port' | 'dismiss' = 'port'): Promise<FakeSerial> {
+export async function installFakeSerial(page: Page, peer: (fake: FakeSerial) => SerialPeer, pick: 'port' | 'dismiss' = 'port', bauds: number[] = [115200]): Promise<FakeSerial> {
   let written = '';
   let chain = Promise.resolve();
   // Bytes wait here while a delivery is under way and go together in the next: one page.evaluate
@@ -46,16 +48,18 @@ export async function installFakeSerial(page: Page, peer: (fake: FakeSerial) => 
     },
   };
   const device = peer(fake);
-  await page.exposeBinding('__serialOpen', () => device.open?.());
+  await page.exposeBinding('__serialOpen', (_source, baud: number) => device.open?.(baud));
+  await page.exposeBinding('__serialSignals', (_source, lines: { dataTerminalReady?: boolean; requestToSend?: boolean }) => device.signals?.(lines));
   await page.exposeBinding('__serialTx', (_source, codes: number[]) => {
     const text = String.fromCharCode(...codes);
     written += text;
     device.receive(text);
   });
-  await page.addInitScript((mode) => {
+  await page.addInitScript(({ mode, bauds }) => {
     const w = window as unknown as {
       __serialTx(b: number[]): Promise<void>;
-      __serialOpen(): Promise<void>;
+      __serialOpen(baud: number): Promise<void>;
+      __serialSignals(lines: object): Promise<void>;
       __serialRx(b: number[]): void;
       __serialLost(): void;
     };
@@ -65,7 +69,7 @@ export async function installFakeSerial(page: Page, peer: (fake: FakeSerial) => 
       readable: ReadableStream<Uint8Array> | null = null;
       writable: WritableStream<Uint8Array> | null = null;
       async open(options: { baudRate: number }) {
-        if (options.baudRate !== 115200) throw new Error(`unexpected baud rate ${options.baudRate}`);
+        if (!bauds.includes(options.baudRate)) throw new Error(`unexpected baud rate ${options.baudRate}`);
         this.readable = new ReadableStream({
           start(controller) {
             let lost = false;
@@ -83,7 +87,10 @@ export async function installFakeSerial(page: Page, peer: (fake: FakeSerial) => 
             await w.__serialTx(Array.from(chunk));
           },
         });
-        await w.__serialOpen();
+        await w.__serialOpen(options.baudRate);
+      }
+      async setSignals(lines: object) {
+        await w.__serialSignals(lines);
       }
       async close() {
         this.readable = null;
@@ -103,6 +110,6 @@ export async function installFakeSerial(page: Page, peer: (fake: FakeSerial) => 
       },
     });
     Object.defineProperty(navigator, 'serial', { value: serial, configurable: true });
-  }, pick);
+  }, { mode: pick, bauds });
   return fake;
 }

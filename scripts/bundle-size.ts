@@ -31,7 +31,8 @@ export function bundleSize(dist: string): BundleSize {
   const named = new Set([...html.matchAll(/(?:src|href)="\/(assets\/[^"]+)"/g)].map((m) => m[1]));
   const files: Sized[] = readdirSync(join(dist, 'assets')).map((f) => ({ file: `assets/${f}`, gzip: gz(join(dist, 'assets', f)) }));
   // index.html, what it names, and the files beside it: the manifest, the icon, the service worker.
-  const root: Sized[] = readdirSync(dist).filter((f) => f !== 'assets').map((f) => ({ file: f, gzip: gz(join(dist, f)) }));
+  // Not the firmware images (firmware/), which only the Firmware view fetches.
+  const root: Sized[] = readdirSync(dist).filter((f) => f !== 'assets' && f !== 'firmware').map((f) => ({ file: f, gzip: gz(join(dist, f)) }));
   const first = [...root, ...files.filter((f) => named.has(f.file))];
   const simulator = files.filter((f) => !named.has(f.file) && /sim-worker/.test(f.file));
   const onDemand = files.filter((f) => !named.has(f.file) && !/sim-worker/.test(f.file));

@@ -15,18 +15,24 @@ export class ProtocolError extends Error {}
 export class Stk500v1 {
   constructor(private readonly link: ByteLink, private readonly timeoutMs = 500) {}
 
-  /** Gets in step with a bootloader that may have seen line noise: a few GET_SYNCs, answers to the extra ones dropped. */
-  async sync(attempts = 8): Promise<void> {
+  /**
+   * Gets in step with a bootloader that may have seen line noise or still be starting: GET_SYNC until
+   * one is answered, then, once the answers to the earlier ones have come and been dropped, one more
+   * that must be answered alone.
+   */
+  async sync(attempts = 10): Promise<void> {
     for (let i = 0; i < attempts; i++) {
       await this.link.write(Uint8Array.of(STK.GET_SYNC, STK.CRC_EOP));
       try {
-        const reply = await this.link.read(2, 200);
+        const reply = await this.link.read(2, 250);
         if (reply[0] === STK.INSYNC && reply[1] === STK.OK) {
+          await new Promise((r) => setTimeout(r, 250));
           this.link.discard();
+          await this.#command([STK.GET_SYNC], 0);
           return;
         }
       } catch (e) {
-        if (!(e instanceof LinkTimeout)) throw e;
+        if (!(e instanceof LinkTimeout) && !(e instanceof ProtocolError)) throw e;
       }
       this.link.discard();
     }
