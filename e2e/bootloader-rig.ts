@@ -36,7 +36,7 @@ export class SimulatedBoard implements SerialPeer {
   /** Everything the chip sent, as text. */
   heard = '';
 
-  constructor(bootloader: keyof typeof BOOTLOADERS, app?: string) {
+  constructor(readonly bootloader: keyof typeof BOOTLOADERS, app?: string) {
     buildRig();
     const b = BOOTLOADERS[bootloader];
     const args = ['--mcu', b.mcu, '--boot', b.hex, ...(app ? ['--app', app] : [])];
@@ -89,6 +89,25 @@ export class SimulatedBoard implements SerialPeer {
       const part = data.subarray(at, at + 255);
       this.#child.stdin!.write(Buffer.concat([Buffer.from([0x44, part.length]), part]));
     }
+  }
+
+  /**
+   * Whether the chip's bootloader still answers, asked from here after a reset as a second host would:
+   * Optiboot its GET_SYNC, the Mega's bootloader its sign-on.
+   */
+  async bootloaderAnswers(): Promise<boolean> {
+    const stk500v2 = this.bootloader === 'stk500v2';
+    const ask = stk500v2 ? Buffer.from([0x1b, 0x01, 0x00, 0x01, 0x0e, 0x01, 0x14]) : Buffer.from([0x30, 0x20]);
+    const answer = stk500v2 ? 'AVRISP_2' : '\x14\x10';
+    this.#pulled = true; // the page's port hears none of this
+    const from = this.heard.length;
+    this.open(this.bootloader === 'atmegaboot' ? 57600 : 115200);
+    for (let i = 0; i < 20; i++) {
+      await new Promise((r) => setTimeout(r, 150));
+      this.#child.stdin!.write(Buffer.concat([Buffer.from([0x44, ask.length]), ask]));
+      if (this.heard.slice(from).includes(answer)) return true;
+    }
+    return false;
   }
 
   stop(): void {

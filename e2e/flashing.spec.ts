@@ -1,5 +1,6 @@
 // The Firmware view flashes the real bootloaders, each running in simavr behind the fake USB cable
 // (e2e/bootloader-rig.ts): the image is written and read back, then the new firmware answers.
+import { readFileSync } from 'node:fs';
 import { expect, test, type Page } from '@playwright/test';
 import { IMAGES, SimulatedBoard } from './bootloader-rig';
 import { installFakeSerial } from './fake-serial';
@@ -31,4 +32,59 @@ test('the Nano image goes into Optiboot, is read back, and the flashed Nano answ
   await expect(page.getByTestId('firmware-status')).toHaveAttribute('data-state', 'done', { timeout: 90_000 });
   await expect(page.getByTestId('firmware-version')).toContainText(/^\d+\.\d+\.\d+ \(Nano link protocol 1\)$/);
   await expect(page.getByTestId('firmware-answers')).toContainText(/S:\d+, T:[\d,-]+/);
+});
+
+test('the Mega image goes into the STK500 v2 bootloader, is read back, and the flashed Mega answers M115', async ({ page }) => {
+  board = new SimulatedBoard('stk500v2');
+  await openFirmwareView(page, board);
+  await page.getByTestId('firmware-board').selectOption('mega');
+  await expect(page.getByTestId('firmware-plug-in')).toContainText('DIP switches 3 and 4 ON');
+  await flashFile(page, 'mega', IMAGES.mega);
+  await expect(page.getByTestId('firmware-status')).toHaveAttribute('data-state', 'done', { timeout: 110_000 });
+  await expect(page.getByTestId('firmware-version')).toHaveText(/^UVExposure \d+\.\d+\.\d+ \(Mega\)$/);
+});
+
+test('the old Nano bootloader at 57600 takes the Nano image too', async ({ page }) => {
+  board = new SimulatedBoard('atmegaboot');
+  await openFirmwareView(page, board);
+  await flashFile(page, 'nano-old', IMAGES.nano);
+  await expect(page.getByTestId('firmware-status')).toHaveAttribute('data-state', 'done', { timeout: 110_000 });
+  await expect(page.getByTestId('firmware-version')).toContainText('(Nano link protocol 1)');
+});
+
+test('a Nano plugged in where the Mega was picked is named, nothing is written, and its bootloader still answers', async ({ page }) => {
+  board = new SimulatedBoard('optiboot');
+  await openFirmwareView(page, board);
+  await flashFile(page, 'mega', IMAGES.mega);
+  await expect(page.getByTestId('firmware-error')).toHaveAttribute('data-failure', 'wrong-chip', { timeout: 30_000 });
+  await expect(page.getByTestId('firmware-error')).toContainText('has an ATmega328P, not the ATmega2560 of the Mega 2560');
+  expect(await board.bootloaderAnswers()).toBe(true);
+});
+
+test('an image built for the other chip, and a damaged file, are refused before any port is opened', async ({ page }) => {
+  board = new SimulatedBoard('optiboot');
+  await openFirmwareView(page, board);
+  await flashFile(page, 'nano', IMAGES.mega);
+  await expect(page.getByTestId('firmware-error')).toContainText('built for the ATmega2560');
+  const hex = readFileSync(IMAGES.nano, 'latin1').split('\n');
+  hex[5] = hex[5].slice(0, 12) + (hex[5][12] === '0' ? '1' : '0') + hex[5].slice(13); // one digit changed
+  await page.getByTestId('firmware-file').setInputFiles({ name: 'nano.hex', mimeType: 'text/plain', buffer: Buffer.from(hex.join('\n')) });
+  await expect(page.getByTestId('firmware-image-error')).toHaveText('nano.hex: line 6 fails its checksum: the file is damaged.');
+  await expect(page.getByTestId('firmware-flash')).toBeDisabled();
+  expect(board.sent).toBe(0);
+  expect(await board.bootloaderAnswers()).toBe(true);
+});
+
+test('a cable pulled mid-write says the bootloader is still there, and flashing again works', async ({ page }) => {
+  board = new SimulatedBoard('optiboot');
+  await openFirmwareView(page, board);
+  board.pullAfter = 8000; // about a third of the image
+  await flashFile(page, 'nano', IMAGES.nano);
+  const error = page.getByTestId('firmware-error');
+  await expect(error).toHaveAttribute('data-failure', 'cable-pulled', { timeout: 60_000 });
+  await expect(error).toContainText(/while writing page \d+ of \d+.*bootloader.*still there.*Plug the board back in and flash again/);
+  board.plugIn();
+  await page.getByTestId('firmware-flash').click();
+  await expect(page.getByTestId('firmware-status')).toHaveAttribute('data-state', 'done', { timeout: 90_000 });
+  await expect(page.getByTestId('firmware-answers')).toContainText(/S:\d+, T:/);
 });

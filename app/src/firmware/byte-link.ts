@@ -12,6 +12,8 @@ export interface ByteLink {
   read(n: number, timeoutMs: number): Promise<Uint8Array>;
   /** Drops what has arrived and not been read (a bootloader's answers to a resync). */
   discard(): void;
+  /** Resets the board so its bootloader listens again (DTR), where the link can. */
+  reset?(): Promise<void>;
 }
 
 /** Bytes arriving in chunks, handed out n at a time: the part of a link that tests share. */

@@ -39,6 +39,11 @@ abstract class FakeBootloader implements ByteLink {
     this.#answers.discard();
   }
 
+  async reset(): Promise<void> {
+    this.input = [];
+    this.#answers.discard();
+  }
+
   protected answer(bytes: ArrayLike<number>): void {
     this.#answers.push(Uint8Array.from(bytes));
   }
@@ -96,6 +101,7 @@ export class FakeStk500v2 extends FakeBootloader {
 
   protected take(): void {
     for (;;) {
+      while (this.input.length && this.input[0] !== 0x1b) this.input.shift(); // as stk500boot.c: waits for a message start
       if (this.input.length < 5) return;
       const size = (this.input[2] << 8) | this.input[3];
       if (this.input.length < 6 + size) return;

@@ -77,3 +77,18 @@ describe('flashing over the bootloader', () => {
     expect(e.message).toContain('old bootloader (57600 baud)');
   });
 });
+
+describe('a board that speaks the other protocol', () => {
+  it('is named by its chip: a Nano where the Mega was picked', async () => {
+    const nano = new FakeOptiboot(ATMEGA328P);
+    const e = await failure(flashAvr(nano, board('mega'), image(57, 3000)));
+    expect(e.failure).toBe('wrong-chip');
+    expect(e.message).toContain('has an ATmega328P, not the ATmega2560');
+    expect(nano.pagesWritten).toBe(0);
+  });
+
+  it('is named by its chip: a Mega where the Nano was picked', async () => {
+    const e = await failure(flashAvr(new FakeStk500v2(ATMEGA2560), board('nano'), image(26, 3000)));
+    expect(e.message).toContain('has an ATmega2560, not the ATmega328P');
+  });
+});

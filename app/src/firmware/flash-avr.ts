@@ -3,7 +3,7 @@
 
 import { LinkLost, LinkTimeout, type ByteLink } from './byte-link';
 import { chipBySignature, chipOfImage, flashLimit, hexBytes, type AvrBoard } from './chips';
-import { Stk500v1 } from './stk500v1';
+import { ProtocolError, Stk500v1 } from './stk500v1';
 import { Stk500v2 } from './stk500v2';
 
 export type FlashFailure = 'image-too-big' | 'image-for-other-chip' | 'wrong-chip' | 'no-bootloader' | 'cable-pulled' | 'verify-failed' | 'protocol';
@@ -35,15 +35,42 @@ function bootloaderOn(link: ByteLink, board: AvrBoard): Bootloader {
   return Object.assign(v2, { hello: async () => void (await v2.signOn()) });
 }
 
+/**
+ * Who is there when the board's bootloader did not answer: the other protocol's bootloader, asked for
+ * its chip after a reset (the Optiboot a Mega's first message threw out has started the application).
+ */
+async function chipOfOtherBootloader(link: ByteLink, board: AvrBoard): Promise<Uint8Array | null> {
+  if (!link.reset) return null;
+  try {
+    await link.reset();
+    if (board.protocol === 'stk500v2') {
+      const v1 = new Stk500v1(link, 300);
+      await v1.sync(4);
+      return await v1.signature();
+    }
+    const v2 = new Stk500v2(link, 300);
+    await v2.signOn();
+    return await v2.signature();
+  } catch {
+    return null;
+  }
+}
+
+function wrongChip(board: AvrBoard, signature: Uint8Array): FlashError {
+  const chip = chipBySignature(signature);
+  const what = chip ? `an ${chip.name}` : `a chip with signature ${hexBytes(signature)}`;
+  return new FlashError('wrong-chip', `The board on this port has ${what}, not the ${board.chip.name} of the ${board.name}. Nothing was written. Pick the board that is plugged in, or plug in the ${board.name}.`);
+}
+
 /** Refuses an image that cannot go on this board, before the port is even opened. */
 export function checkImage(board: AvrBoard, bytes: Uint8Array): void {
-  const limit = flashLimit(board);
-  if (bytes.length > limit) {
-    throw new FlashError('image-too-big', `The image is ${bytes.length} B; the ${board.chip.name} has ${limit} B of flash beside its ${board.bootBytes} B bootloader. Pick the image built for this board.`);
-  }
   const built = chipOfImage(bytes);
   if (built && built !== board.chip) {
     throw new FlashError('image-for-other-chip', `This image is built for the ${built.name}, and the ${board.name} has an ${board.chip.name}. Pick the image built for this board.`);
+  }
+  const limit = flashLimit(board);
+  if (bytes.length > limit) {
+    throw new FlashError('image-too-big', `The image is ${bytes.length} B; the ${board.chip.name} has ${limit} B of flash beside its ${board.bootBytes} B bootloader. Pick the image built for this board.`);
   }
 }
 
@@ -61,13 +88,15 @@ export async function flashAvr(link: ByteLink, board: AvrBoard, bytes: Uint8Arra
   let writing = -1;
   try {
     progress({ phase: 'connecting' });
-    await boot.hello();
-    const signature = await boot.signature();
-    const chip = chipBySignature(signature);
-    if (chip !== board.chip) {
-      const what = chip ? `an ${chip.name}` : `a chip with signature ${hexBytes(signature)}`;
-      throw new FlashError('wrong-chip', `The board on this port has ${what}, not the ${board.chip.name} of the ${board.name}. Nothing was written. Pick the board that is plugged in, or plug in the ${board.name}.`);
+    try {
+      await boot.hello();
+    } catch (e) {
+      if (!(e instanceof LinkTimeout || e instanceof ProtocolError)) throw e;
+      const other = await chipOfOtherBootloader(link, board);
+      throw other ? wrongChip(board, other) : e;
     }
+    const signature = await boot.signature();
+    if (chipBySignature(signature) !== board.chip) throw wrongChip(board, signature);
     await boot.enterProgramming();
     for (writing = 0; writing < pages; writing++) {
       await boot.writePage(writing * page, pageAt(writing));
