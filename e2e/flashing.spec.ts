@@ -24,11 +24,14 @@ async function flashFile(page: Page, boardId: string, file: string) {
   await page.getByTestId('firmware-flash').click();
 }
 
-test('the Nano image goes into Optiboot, is read back, and the flashed Nano answers V, S and T', async ({ page }) => {
+test('the published Nano image goes into Optiboot, is read back, and the flashed Nano answers V, S and T', async ({ page }) => {
   board = new SimulatedBoard('optiboot');
   await openFirmwareView(page, board);
   await expect(page.getByTestId('firmware-plug-in')).toContainText('Unplug the Nano from the Mega');
-  await flashFile(page, 'nano', IMAGES.nano);
+  // The image this machine built, published beside the app with its manifest (scripts/firmware-manifest.mjs).
+  await expect(page.getByTestId('firmware-image')).toContainText(/^\d+\.\d+\.\d+ \(Debian avr-gcc, this machine\)$/);
+  await expect(page.getByTestId('firmware-lacks')).toHaveCount(0);
+  await page.getByTestId('firmware-flash').click();
   await expect(page.getByTestId('firmware-status')).toHaveAttribute('data-state', 'done', { timeout: 90_000 });
   await expect(page.getByTestId('firmware-version')).toContainText(/^\d+\.\d+\.\d+ \(Nano link protocol 1\)$/);
   await expect(page.getByTestId('firmware-answers')).toContainText(/S:\d+, T:[\d,-]+/);
@@ -39,6 +42,8 @@ test('the Mega image goes into the STK500 v2 bootloader, is read back, and the f
   await openFirmwareView(page, board);
   await page.getByTestId('firmware-board').selectOption('mega');
   await expect(page.getByTestId('firmware-plug-in')).toContainText('DIP switches 3 and 4 ON');
+  // The Mega image built here lacks the SD card, and says so; the user's own file takes the same path.
+  await expect(page.getByTestId('firmware-lacks')).toContainText('has no SD card support');
   await flashFile(page, 'mega', IMAGES.mega);
   await expect(page.getByTestId('firmware-status')).toHaveAttribute('data-state', 'done', { timeout: 110_000 });
   await expect(page.getByTestId('firmware-version')).toHaveText(/^UVExposure \d+\.\d+\.\d+ \(Mega\)$/);
