@@ -38,6 +38,7 @@ test('the published Nano image goes into Optiboot, is read back, and the flashed
 });
 
 test('the Mega image goes into the STK500 v2 bootloader, is read back, and the flashed Mega answers M115', async ({ page }) => {
+  test.setTimeout(240_000); // 138 KB written and read back at 115200 baud, paced to the wall clock
   board = new SimulatedBoard('stk500v2');
   await openFirmwareView(page, board);
   await page.getByTestId('firmware-board').selectOption('mega');
@@ -45,7 +46,7 @@ test('the Mega image goes into the STK500 v2 bootloader, is read back, and the f
   // The Mega image built here lacks the SD card, and says so; the user's own file takes the same path.
   await expect(page.getByTestId('firmware-lacks')).toContainText('has no SD card support');
   await flashFile(page, 'mega', IMAGES.mega);
-  await expect(page.getByTestId('firmware-status')).toHaveAttribute('data-state', 'done', { timeout: 110_000 });
+  await expect(page.getByTestId('firmware-status')).toHaveAttribute('data-state', 'done', { timeout: 220_000 });
   await expect(page.getByTestId('firmware-version')).toHaveText(/^UVExposure \d+\.\d+\.\d+ \(Mega\)$/);
 });
 

@@ -16,6 +16,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -41,12 +42,25 @@ struct Rig {
   bool xon = true;
   std::deque<uint8_t> wire;   // bytes the host sent, not yet at the chip's RX pin
   uint64_t nextRxCycle = 0;   // when the next one has crossed the wire
-  std::vector<uint8_t> tx;    // the chip's bytes, not yet written to stdout
+  // The chip's bytes with the cycle each has crossed the wire by: simavr 1.6 hands a byte written to
+  // UDR out at once, so the rig keeps the line's pace (10 bits a byte at the host's baud).
+  std::deque<std::pair<uint64_t, uint8_t>> tx;
+  uint64_t txFree = 0;
+  // avr_reset (ours, and the watchdog's inside simavr) starts avr->cycle again from 0: the rig's
+  // clock is this base plus avr->cycle, so it never runs backwards.
+  uint64_t cycleBase = 0;
+  uint64_t lastCycle = 0;
 };
 
 Rig rig;
 
 void noSleep(avr_t*, avr_cycle_count_t) {}
+
+uint64_t now() {
+  if (rig.avr->cycle < rig.lastCycle) rig.cycleBase += rig.lastCycle - rig.avr->cycle;
+  rig.lastCycle = rig.avr->cycle;
+  return rig.cycleBase + rig.avr->cycle;
+}
 
 // The chip's UART baud from UBRR0 and U2X0 (simavr does not compare it with the host's): a host at
 // another baud meets framing garbage on a real board, here silence.
@@ -62,16 +76,20 @@ bool baudsMatch() {
   return std::fabs(ratio - 1.0) < 0.035;  // what 8N1 tolerates between two ends
 }
 
+uint64_t byteCycles() { return static_cast<uint64_t>(rig.avr->frequency * 10.0 / rig.hostBaud); }
+
 void onTx(avr_irq_t*, uint32_t value, void*) {
-  if (baudsMatch()) rig.tx.push_back(static_cast<uint8_t>(value));
+  if (!baudsMatch()) return;
+  rig.txFree = std::max(rig.txFree, now()) + byteCycles();
+  rig.tx.push_back({rig.txFree, static_cast<uint8_t>(value)});
 }
 void onXon(avr_irq_t*, uint32_t, void*) { rig.xon = true; }
 void onXoff(avr_irq_t*, uint32_t, void*) { rig.xon = false; }
 
-uint64_t byteCycles() { return static_cast<uint64_t>(rig.avr->frequency * 10.0 / rig.hostBaud); }
-
 void resetChip(uint8_t cause) {
+  now();
   avr_reset(rig.avr);
+  now();
   rig.avr->pc = rig.bootStart;
   rig.avr->data[kMcusr] = cause;
 }
@@ -162,13 +180,13 @@ int main(int argc, char** argv) {
   const uint64_t slice = rig.avr->frequency / 2000;  // 0.5 ms of simulated time between looks at stdin
   uint8_t in[4096];
   for (;;) {
-    uint64_t end = rig.avr->cycle + slice;
-    while (rig.avr->cycle < end) {
-      if (!rig.wire.empty() && rig.xon && rig.avr->cycle >= rig.nextRxCycle) {
+    uint64_t end = now() + slice;
+    while (now() < end) {
+      if (!rig.wire.empty() && rig.xon && now() >= rig.nextRxCycle) {
         uint8_t b = rig.wire.front();
         rig.wire.pop_front();
         if (baudsMatch()) avr_raise_irq(rig.rx, b);
-        rig.nextRxCycle = rig.avr->cycle + byteCycles();
+        rig.nextRxCycle = now() + byteCycles();
       }
       int state = avr_run(rig.avr);
       if (state == cpu_Crashed || state == cpu_Done) {
@@ -178,19 +196,24 @@ int main(int argc, char** argv) {
         rig.avr->pc = rig.bootStart;
       }
     }
-    if (!rig.tx.empty()) {
-      writeAll(rig.tx);
-      rig.tx.clear();
+    std::vector<uint8_t> out;
+    while (!rig.tx.empty() && rig.tx.front().first <= now()) {
+      out.push_back(rig.tx.front().second);
+      rig.tx.pop_front();
     }
-    // Ahead of the wall clock: wait for the host (or the time) instead of running on.
-    double ahead = static_cast<double>(rig.avr->cycle) / rig.avr->frequency - (wallSeconds() - start);
-    pollfd p{0, POLLIN, 0};
-    if (poll(&p, 1, ahead > 0 ? static_cast<int>(ahead * 1000) : 0) > 0) {
+    if (!out.empty()) writeAll(out);
+    // Ahead of the wall clock: wait for it, taking in what the host sends meanwhile; the chip sees
+    // those bytes once its time has caught up, as it would on a real line.
+    for (;;) {
+      double ahead = static_cast<double>(now()) / rig.avr->frequency - (wallSeconds() - start);
+      pollfd p{0, POLLIN, 0};
+      int ready = poll(&p, 1, ahead > 0 ? static_cast<int>(std::ceil(ahead * 1000)) : 0);
+      if (ready <= 0) break;
       ssize_t n = read(0, in, sizeof in);
       if (n <= 0) return 0;  // the host closed the port for good
       frames.feed(in, static_cast<size_t>(n), [](const uv::RigFrame& f) {
         if (f.kind == 'D') {
-          if (rig.wire.empty() && rig.nextRxCycle < rig.avr->cycle) rig.nextRxCycle = rig.avr->cycle + byteCycles();
+          if (rig.wire.empty() && rig.nextRxCycle < now()) rig.nextRxCycle = now() + byteCycles();
           rig.wire.insert(rig.wire.end(), f.bytes.begin(), f.bytes.end());
         } else if (f.kind == 'B') {
           rig.hostBaud = f.baud;
@@ -199,6 +222,7 @@ int main(int argc, char** argv) {
           resetChip(kExtrf);
         }
       });
+      if (ahead <= 0) break;
     }
   }
 }

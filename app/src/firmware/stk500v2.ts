@@ -21,6 +21,8 @@ export function frame(sequence: number, body: ArrayLike<number>): Uint8Array {
 
 export class Stk500v2 {
   #sequence = 0;
+  /** Where the bootloader's address points: it moves on past each page written or read. */
+  #next = -1;
 
   constructor(private readonly link: ByteLink, private readonly timeoutMs = 1000) {}
 
@@ -50,24 +52,29 @@ export class Stk500v2 {
    * the page addressed: pages must come in order from address 0, none skipped (FlashSession does).
    */
   async writePage(byteAddress: number, page: Uint8Array): Promise<void> {
-    await this.#loadAddress(byteAddress);
+    await this.#loadAddress(byteAddress, page.length);
     await this.#command([CMD.PROGRAM_FLASH_ISP, page.length >> 8, page.length & 0xff, 0xc1, 0x0a, 0x40, 0x4c, 0x20, 0x00, 0x00, ...page]);
   }
 
   async readPage(byteAddress: number, length: number): Promise<Uint8Array> {
-    await this.#loadAddress(byteAddress);
+    await this.#loadAddress(byteAddress, length);
     const answer = await this.#command([CMD.READ_FLASH_ISP, length >> 8, length & 0xff, 0x20]);
     return answer.slice(2, 2 + length);
   }
 
-  #loadAddress(byteAddress: number): Promise<Uint8Array> {
+  /** Sets the address, unless the bootloader's own count is there already: one round trip a page, not two. */
+  async #loadAddress(byteAddress: number, length: number): Promise<void> {
+    const here = this.#next;
+    this.#next = byteAddress + length;
+    if (here === byteAddress) return;
     const word = byteAddress >>> 1;
     // Bit 31: the address is past 64 K words' reach of the old commands (avrdude sets it for big chips).
     const top = (word >>> 24) | (byteAddress >= 0x20000 ? 0x80 : 0);
-    return this.#command([CMD.LOAD_ADDRESS, top, (word >> 16) & 0xff, (word >> 8) & 0xff, word & 0xff]);
+    await this.#command([CMD.LOAD_ADDRESS, top, (word >> 16) & 0xff, (word >> 8) & 0xff, word & 0xff]);
   }
 
   async #command(body: number[]): Promise<Uint8Array> {
+    this.#next = body[0] === CMD.PROGRAM_FLASH_ISP || body[0] === CMD.READ_FLASH_ISP || body[0] === CMD.LOAD_ADDRESS ? this.#next : -1;
     const sequence = (this.#sequence = (this.#sequence + 1) & 0xff);
     await this.link.write(frame(sequence, body));
     const head = await this.link.read(5, this.timeoutMs);
