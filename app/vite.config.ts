@@ -10,6 +10,9 @@ const ON_DEMAND_PANELS = /\/(PositionDashboard|ProbeDashboard|MeshDashboard|Link
 /** The Wi-Fi hub's link and USB's (with the Latin-1 bytes only USB uses), loaded when that device is first chosen (device/chosen-links.ts). */
 const ON_DEMAND_LINKS = /\/(chosen-links|esp-link|serial-transport|bytes)\.ts$/;
 
+/** Espressif's esptool-js with its stub flashers, one file: the Firmware view loads it to flash an ESP. */
+const ESPTOOL = /\/node_modules\/(esptool-js|pako|atob-lite)\//;
+
 /**
  * Views that load on demand bring their styles in their own chunk (Svelte injects them when first
  * shown), so the one stylesheet holds only the first screen's and no further file goes to the flash.
@@ -57,7 +60,7 @@ export default defineConfig(({ mode }) => ({
     // and running need in another, the chosen links in a third; uPlot's chart and the serial polyfill
     // stay apart. Without a group, a chunk loaded on demand can split the first load into several files.
     cssCodeSplit: false,
-    rolldownOptions: { output: { codeSplitting: { includeDependenciesRecursively: false, groups: [{ name: 'panels', test: ON_DEMAND_PANELS }, { name: 'files', test: ON_DEMAND_FILES }, { name: 'links', test: ON_DEMAND_LINKS }] } } },
+    rolldownOptions: { output: { codeSplitting: { includeDependenciesRecursively: false, groups: [{ name: 'panels', test: ON_DEMAND_PANELS }, { name: 'files', test: ON_DEMAND_FILES }, { name: 'links', test: ON_DEMAND_LINKS }, { name: 'esptool', test: ESPTOOL }] } } },
   },
   worker: { format: 'es' },
   server: { port: 5173 },

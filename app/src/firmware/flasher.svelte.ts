@@ -4,6 +4,7 @@ import { PickerDismissed, serialApi } from '../device/serial-transport';
 import type { AvrBoard } from './chips';
 import { FlashError, checkImage, flashAvr, type FlashFailure, type FlashProgress } from './flash-avr';
 import { askVersion } from './firmware-version';
+import type { EspBoard, EspPart } from './esp-flash';
 import { SerialLink } from './serial-link';
 
 export type FlashState =
@@ -51,6 +52,26 @@ export class Flasher {
       this.#fail(e);
     } finally {
       await link?.close();
+    }
+  }
+
+  /** The Wi-Fi hub: its firmware and the LittleFS image holding the app, through esptool-js. */
+  async flashEsp(board: EspBoard, parts: EspPart[], version: string): Promise<void> {
+    let port: SerialPort;
+    try {
+      port = await (await serialApi()).requestPort();
+    } catch (e) {
+      if ((e as Error).name === 'NotFoundError' || e instanceof PickerDismissed) return;
+      this.#fail(e);
+      return;
+    }
+    try {
+      this.state = { state: 'flashing', progress: { phase: 'connecting' } };
+      const { flashEsp } = await import('./esp-flash');
+      const chip = await flashEsp(port, board, parts, (progress) => (this.state = { state: 'flashing', progress }));
+      this.state = { state: 'done', version: `${version} on the ${chip}`, also: ['set DIP switches 1 and 2 ON (the others OFF) and open the hub\'s page to check it'] };
+    } catch (e) {
+      this.#fail(e);
     }
   }
 
