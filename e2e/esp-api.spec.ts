@@ -149,11 +149,13 @@ test('esp API (firmware): a POST /print cut off mid-body frees the Mega for the 
   host.stop();
 });
 
-test('the app from the ESP\'s flash connects over Wi-Fi and has no simulated printer to offer', async ({ page }) => {
+test('the app from the ESP\'s flash connects over Wi-Fi and has no simulated printer to offer, nor a Firmware tab', async ({ page }) => {
   const host = await startEspHost(20);
   await page.goto(host.url);
   await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected');
   await expect(page.getByTestId('device-kind')).toHaveValue('esp');
   await expect(page.getByTestId('device-kind').locator('option')).toHaveText(['USB (Web Serial)', 'Wi-Fi (printer hub)']);
+  await expect(page.getByTestId('tab-settings')).toBeVisible();
+  await expect(page.getByTestId('tab-firmware')).toHaveCount(0); // flashing is the full app's (app/src/firmware/firmware-view.ts)
   host.stop();
 });
