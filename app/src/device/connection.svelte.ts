@@ -15,7 +15,7 @@ import { DeviceClock } from './device-clock';
 import type { Mesh } from '../planner/mesh';
 import { linkFor } from './links';
 import { PickerDismissed } from './serial-support';
-export { SIMULATOR_BUILT_IN, loadSimulatorPanel, tellSimulator } from './sim-transport';
+export { SIMULATOR_BUILT_IN, loadSimulatorPanel, setSimulatorSpeed, tellSimulator } from './sim-transport';
 import type { TransportKind } from './transport';
 
 export type Connection =

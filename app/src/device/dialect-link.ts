@@ -41,10 +41,15 @@ export class DialectLink implements PrinterLink {
     this.#onReply = onReply;
     await this.#client.open((error) => {
       this.#stopHeartbeat();
+      this.transport.onRescaled = null;
       onClosed(error);
     });
     await this.#client.command('M115'); // learns the receive window
     this.#beat();
+    this.transport.onRescaled = () => { // the next heartbeat at the new speed's period, from now
+      this.#stopHeartbeat();
+      this.#beat();
+    };
   }
 
   /** The next heartbeat, in the client's clock (the printer's own, or the page's at its speed-up). */
@@ -116,6 +121,7 @@ export class DialectLink implements PrinterLink {
 
   close(): Promise<void> {
     this.#stopHeartbeat();
+    this.transport.onRescaled = null;
     return this.#client.close();
   }
 }
