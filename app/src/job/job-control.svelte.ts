@@ -53,6 +53,9 @@ export class JobControl {
   }
   /** The last dry run's findings, and the job they were found for. */
   check = $state.raw<{ findings: Finding[]; job: PrintJob; duty: number[] } | null>(null);
+  /** The dry run under way (in a worker: a whole bed's takes seconds): what it checks and how far it has got. */
+  checking = $state.raw<{ what: string; stage: string } | null>(null);
+  #stopCheck: AbortController | null = null;
   /** The question the user has not answered yet; nothing moves or lights until they do. */
   pending = $state.raw<Pending | null>(null);
   error = $state<string | null>(null);
@@ -113,9 +116,11 @@ export class JobControl {
   exposeDrawing = () =>
     this.#act(async () => {
       this.#gate('expose');
+      const ed = this.editor();
+      this.checking = { what: 'drawing', stage: 'drawing the objects' };
+      await ed.layer.settled().finally(() => (this.checking = null)); // rasters made in a worker
       const job = this.job();
       if (!job) throw new Error('nothing is drawn');
-      const ed = this.editor();
       const { cutsOf } = await import('../studio/objects/clipping');
       await this.#ask('drawing', job, cutsOf(ed.layer.objects, (o) => ed.layer.raster(o), ed.grid.cols, ed.grid.rows, ed.machine.pitchUm));
     });
@@ -207,30 +212,41 @@ export class JobControl {
     if (!gate.open) throw new Error(`Not now: ${gate.why}`);
   }
 
+  /** Stops the dry run under way: no question follows. */
+  stopCheck = () => this.#stopCheck?.abort();
+
   async #ask(what: 'drawing' | 'test pattern', asked: PrintJob, cuts?: Cut[]): Promise<void> {
-    let job = asked;
-    if (this.strategy === 'auto') {
-      // The fastest order for exactly this job, whatever the preview last saw.
-      const { fastestOrder, orderEstimates } = await import('../planner/job-plan');
-      const { headerOf } = await import('../planner/job-header');
-      const orders = orderEstimates({ header: headerOf(job), cells: job.gridData }, motionOf(this.config));
-      job = { ...job, strategy: { name: fastestOrder(orders) } };
-    }
     const leveling = await this.printer.leveling();
     const printheadAnswers = await this.printer.checkPrinthead();
     const device = this.printer.device;
     const startC = device.deciC?.map((d) => d / 10) ?? null;
     const machine = { faults: device.activeFaults, printheadAnswers, hot: hotSensors(device.deciC, limitsOf(this.config)) };
-    const { dryRun } = await import('../studio/dry-run');
-    const { findings, duty, plan, paced } = dryRun(job, this.config, { leveling: leveling.on, mesh: leveling.mesh, startC, cuts, machine });
+    const { checkJob, Cancelled } = await import('../work/check-job');
+    const stop = (this.#stopCheck = new AbortController());
+    this.checking = { what, stage: 'starting' };
+    let summary;
+    try {
+      // In the worker: for `auto`, the fastest order for exactly this job, whatever the preview last saw; then the dry run.
+      summary = await checkJob(
+        { job: asked, config: $state.snapshot(this.config), auto: this.strategy === 'auto', opts: $state.snapshot({ leveling: leveling.on, mesh: leveling.mesh, startC, cuts, machine }) },
+        { signal: stop.signal, onProgress: (p) => (this.checking = { what, stage: p.stage }) },
+      );
+    } catch (e) {
+      if (e instanceof Cancelled) return;
+      throw e;
+    } finally {
+      this.checking = null;
+      this.#stopCheck = null;
+    }
+    const { findings, duty, estimateUs, pacedUs } = summary;
+    const job = { ...asked, strategy: { name: summary.order } };
     this.check = { findings, job, duty };
     const mm = (um: number) => Math.round(um) / 1000;
     const areaMm = {
       x0: mm(job.originUm.x), y0: mm(job.originUm.y),
       x1: mm(job.originUm.x + job.grid.cols * job.pitchUm.x), y1: mm(job.originUm.y + job.grid.rows * job.pitchUm.y),
     };
-    const pacedUs = paced && !paced.pause ? paced.totalUs : null;
-    this.pending = { kind: 'expose', what, job, findings, duty, estimateUs: plan.estimateUs, pacedUs, areaMm, cuts: cuts ?? [], accepted: false };
+    this.pending = { kind: 'expose', what, job, findings, duty, estimateUs, pacedUs, areaMm, cuts: cuts ?? [], accepted: false };
   }
 
   async #run(job: PrintJob, duty: number[] | null, paced: boolean): Promise<void> {

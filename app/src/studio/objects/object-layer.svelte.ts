@@ -4,7 +4,7 @@
 
 import type { History } from '../grid/history';
 import type { DoseGrid } from '../grid/grid';
-import { centredAt, keepsAspect, moved, objectAt, resized, type Corner, type Rect, type StudioObject } from './objects';
+import { centredAt, exposes, keepsAspect, moved, objectAt, resized, type Corner, type Rect, type StudioObject } from './objects';
 import { mirrored, turned } from './orientation';
 import { compose, rasterOf, type Polarity, type Raster, type ReadyArtwork } from './raster';
 import { textRaster } from './text-raster';
@@ -41,7 +41,16 @@ export class ObjectLayer {
   /** An artwork read from its file, known by its data: URL. */
   addArtwork(src: string, artwork: ReadyArtwork): void {
     this.#artworks.set(src, artwork);
+    artwork.onDrawn = () => this.revision++;
     this.revision++;
+  }
+
+  /** Once every exposing object's raster is in (those drawn off the page's thread take a while): what a job is made from. */
+  async settled(): Promise<void> {
+    for (const o of this.objects) {
+      if (!exposes(o) || o.kind === 'text' || o.kind === 'frame') continue;
+      await this.#artworks.get(o.src)?.settle?.(o, this.polarity);
+    }
   }
 
   artwork(src: string): ReadyArtwork | undefined {
