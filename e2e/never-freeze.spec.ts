@@ -57,8 +57,10 @@ test('a 36-megapixel PNG: read and placed with no long task on the page', async 
 test('a busy 100 × 80 mm Gerber board: imported and exposed with no long task on the page', async ({ page }, info) => {
   test.setTimeout(120_000);
   await studio(page);
+  const path = info.outputPath('busy-F_Cu.gbr'); // 41 600 shapes; picked from a file, as the PNG is
+  writeFileSync(path, busyBoard());
   const watch = await watchLongTasks(page);
-  await page.getByLabel(IMPORT).setInputFiles({ name: 'busy-F_Cu.gbr', mimeType: 'application/octet-stream', buffer: Buffer.from(busyBoard()) });
+  await page.getByLabel(IMPORT).setInputFiles(path);
   await expect(page.getByRole('region', { name: 'Selected object' })).toContainText('busy', { timeout: 60_000 });
   await page.waitForTimeout(500);
   const imported = await watch.stop();
@@ -86,4 +88,42 @@ test('a whole-bed preview: shown with no long task on the page', async ({ page }
   report('whole-bed preview', r);
   await page.screenshot({ path: info.outputPath('preview.png') });
   expect(r.longestMs).toBeLessThanOrEqual(BUDGET_MS);
+});
+
+test('what takes over a second says how far it has got and can be cancelled: the dry run, an import, the preview', async ({ page }, info) => {
+  test.setTimeout(120_000);
+  await studio(page);
+  await paintWholeBed(page);
+
+  // The dry run: its stage shown beside the job's controls; cancelled, no question follows.
+  await page.getByRole('button', { name: 'Expose drawing' }).click();
+  const checking = page.getByRole('status', { name: 'Checking the drawing' });
+  await expect(checking).toContainText(/Checking the drawing: (starting|choosing the fastest order|planning|forecasting the heat)/);
+  await page.screenshot({ path: info.outputPath('dry-run-progress.png') });
+  await checking.getByRole('button', { name: 'Cancel' }).click();
+  await expect(checking).toBeHidden();
+  await page.waitForTimeout(500);
+  await expect(page.getByRole('dialog', { name: 'Expose the drawing?' })).toBeHidden();
+  await expect(page.getByTestId('action-error')).toHaveCount(0);
+
+  // A 36-megapixel picture being read: cancelled, nothing is placed.
+  const path = info.outputPath('big.png');
+  writeFileSync(path, greyPng(6000, 6000, 1000));
+  await page.getByLabel(IMPORT).setInputFiles(path);
+  const reading = page.getByRole('status', { name: 'Reading big.png' });
+  await expect(reading).toContainText(/big\.png: (reading the file|decoding the picture)/);
+  await reading.screenshot({ path: info.outputPath('import-progress.png') });
+  await reading.getByRole('button', { name: 'Cancel' }).click();
+  await expect(reading).toBeHidden();
+  await expect(page.getByRole('region', { name: 'Selected object' })).toHaveCount(0);
+
+  // The whole bed's preview: planning, cancelled, planned again on request.
+  await page.getByTestId('view-preview').click();
+  const planning = page.getByRole('status').filter({ hasText: 'Planning…' });
+  await expect(planning).toBeVisible();
+  await planning.getByRole('button', { name: 'Cancel' }).click();
+  await expect(page.getByText('Planning cancelled')).toBeVisible();
+  await page.getByRole('button', { name: 'Plan again' }).click();
+  await expect(page.getByTestId('preview-summary')).toContainText(/about \d+:\d\d:\d\d/, { timeout: 60_000 });
+  await page.screenshot({ path: info.outputPath('preview-again.png') });
 });

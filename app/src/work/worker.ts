@@ -2,32 +2,8 @@
 // board read and drawn in cells) runs here. One file in the build, so it takes the flash blocks
 // the Gerber reader and the planning worker took apart (docs/app.md "Size").
 
-import { planForPreview, keptGrid } from './preview-work';
-import { dryRunSummary } from './dry-run-work';
-import { BoardUnreadable, rasterInWorker, readBoard, readPicture, spriteOf } from './artwork-work';
-import type { Progress, WorkReply, WorkRequest } from './work-types';
-
-type Answer = { result: unknown; transfer?: Transferable[] };
-
-async function answer(request: WorkRequest, report: (p: Progress) => void): Promise<Answer> {
-  switch (request.kind) {
-    case 'plan':
-      return planForPreview(request);
-    case 'preview-grid':
-      return keptGrid(request.upTo, request.maxSide);
-    case 'dry-run':
-      return { result: dryRunSummary(request, report) };
-    case 'read-picture':
-      return { result: await readPicture(request.src, report) };
-    case 'read-board':
-      return { result: readBoard(request, report) };
-    case 'raster': {
-      const raster = await rasterInWorker(request.object, request.polarity, report);
-      const sprite = spriteOf(raster, request.object.w, request.object.h);
-      return { result: { raster, sprite }, transfer: [raster.buffer, ...(sprite ? [sprite] : [])] };
-    }
-  }
-}
+import { answer, BoardUnreadable } from './answer';
+import type { WorkReply, WorkRequest } from './work-types';
 
 const reply = (m: WorkReply, transfer: Transferable[] = []) => postMessage(m, { transfer });
 

@@ -40,8 +40,13 @@ const LAST_DPI_KEY = 'uv-exposure.import-dpi';
 
 const PICTURE = /\.(svg|png|jpe?g|bmp|gif|webp)$/i;
 
+/** Linux's shared MIME database calls a .gbr a GIMP brush (image/x-gimp-gbr): its name says Gerber first. */
+const GERBER_NAME = /\.gbr$/i;
+
+const isPicture = (f: File) => PICTURE.test(f.name) || (f.type.startsWith('image/') && !GERBER_NAME.test(f.name));
+
 /** Several files at once, or one that is no picture or drawing (a .gbr, .gtl, .drl…): a board's files. */
-export const isBoardPick = (files: readonly File[]): boolean => files.length > 1 || (files.length === 1 && !files[0].type.startsWith('image/') && !PICTURE.test(files[0].name));
+export const isBoardPick = (files: readonly File[]): boolean => files.length > 1 || (files.length === 1 && !isPicture(files[0]));
 
 /** A board's files as one object at the size of its window, each file's kind guessed from what it says and draws (read in the worker). */
 export async function importBoard(files: readonly File[], opts?: CallOptions): Promise<ImportedArtwork> {
