@@ -41,7 +41,7 @@ export class ObjectLayer {
   /** An artwork read from its file, known by its data: URL. */
   addArtwork(src: string, artwork: ReadyArtwork): void {
     this.#artworks.set(src, artwork);
-    artwork.onDrawn = () => this.revision++;
+    artwork.whenDrawn?.(() => this.revision++);
     this.revision++;
   }
 
@@ -160,14 +160,16 @@ export class ObjectLayer {
   }
 
   /**
-   * What to draw for the object: its raster and that raster's size. While a resize is dragged the
-   * raster made before it is drawn stretched, and the object is rasterised again once released.
+   * What to draw for the object: its raster and that raster's size. While a resize is dragged, or
+   * while a new raster is drawn off the page's thread, the raster made before it is drawn stretched.
    */
   drawable(o: StudioObject): { raster: Raster; w: number; h: number } | null {
     const kept = this.#rasters.get(o.id);
     if (kept && this.#drag) return { raster: kept.raster, w: kept.of.w, h: kept.of.h };
     const raster = this.raster(o);
-    return raster && { raster, w: o.w, h: o.h };
+    if (raster) return { raster, w: o.w, h: o.h };
+    // Its new raster is being drawn in the work worker: the one before it stands in until it is in.
+    return kept ? { raster: kept.raster, w: kept.of.w, h: kept.of.h } : null;
   }
 
   composed(paint: DoseGrid): DoseGrid {

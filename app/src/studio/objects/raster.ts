@@ -26,10 +26,10 @@ export interface ReadyArtwork {
   doses?(o: ArtworkObject, w: number, h: number): Raster;
   /**
    * Or the object's whole raster made off the page's thread (remote-artwork.ts): null while it is
-   * being made; `onDrawn` is called when it is in.
+   * being made; the function given to `whenDrawn` is called each time one is in.
    */
   drawn?(o: ArtworkObject, polarity: Polarity): Raster | null;
-  onDrawn?: () => void;
+  whenDrawn?(redraw: () => void): void;
   /** Waits until the object's raster is in (it throws if it cannot be made). */
   settle?(o: ArtworkObject, polarity: Polarity): Promise<void>;
 }

@@ -25,8 +25,11 @@ type Entry = { raster: Raster | null; error: Error | null; done: Promise<void> }
 
 export function remoteArtwork(pixels: { width: number; height: number }, client: WorkClient = studioWork): ReadyArtwork {
   const drawn = new Map<string, Entry>();
+  // Kept here, not on the object: the object may sit in Svelte state behind a proxy.
+  let redraw = () => {};
   const art: ReadyArtwork = {
     pixels,
+    whenDrawn: (f) => void (redraw = f),
     drawn: (o, polarity) => entry(o, polarity).raster,
     settle: async (o, polarity) => {
       const e = entry(o, polarity);
@@ -43,13 +46,16 @@ export function remoteArtwork(pixels: { width: number; height: number }, client:
       ({ raster, sprite }) => {
         if (sprite) madeSprites.set(raster, sprite);
         e.raster = raster;
-        art.onDrawn?.();
+        redraw();
       },
       (err: Error) => {
         if (err instanceof Cancelled) {
           drawn.delete(key); // the worker was ended (an import cancelled): asked again when next drawn
-          art.onDrawn?.();
-        } else e.error = err;
+          redraw();
+        } else {
+          e.error = err; // an exposure waiting for it says so (settle)
+          console.error(`the artwork could not be drawn: ${err.message}`);
+        }
       },
     );
     if (drawn.size >= KEPT) drawn.delete(drawn.keys().next().value!);
