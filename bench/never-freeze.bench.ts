@@ -13,6 +13,7 @@ import { headerOf } from '../app/src/planner/job-header';
 import { fastestOrder, orderEstimates } from '../app/src/planner/job-plan';
 import { previewGrid } from '../app/src/preview/exposure-preview';
 import { planJob } from '../app/src/preview/plan-work';
+import { scanPreviewGrid } from '../app/src/preview/scan-preview';
 import { dryRun } from '../app/src/studio/dry-run';
 import { DoseGrid } from '../app/src/studio/grid/grid';
 import { jobFromGrid } from '../app/src/studio/grid-job';
@@ -40,10 +41,10 @@ function oneThread(): Record<'dryRun' | 'preview' | 'board', number> {
     const orders = orderEstimates({ header: headerOf(job), cells: job.gridData }, machine);
     dryRun({ ...job, strategy: { name: fastestOrder(orders) } }, DEFAULT_CONFIG, { leveling: false, startC: null, cuts: [] });
   });
-  const previewMs = timed(() => {
-    const p = planJob({ job, machine, auto: true });
-    previewGrid({ ...job, strategy: { name: p.order } }, p.plan, p.plan.count);
-  });
+  // The preview planned in a worker already: the page binned the plan's light for the canvas.
+  const p = planJob({ job, machine, auto: true });
+  const planned = { ...job, strategy: { name: p.order } };
+  const previewMs = timed(() => (p.scan ? scanPreviewGrid(planned, p.scan.doses, p.plan.count) : previewGrid(planned, p.plan, p.plan.count)));
   const src = boardSrc([{ name: 'busy-F_Cu.gbr', text: busyBoard() }]);
   const boardMs = timed(() => {
     const b = boardArtwork(src);
@@ -81,11 +82,6 @@ async function pictureOnThePage(page: Page, path: string): Promise<number> {
   }, readFileSync(path).toString('base64'));
 }
 
-async function studio(page: Page, url: string) {
-  await page.goto(url);
-  await page.getByTestId('connection').and(page.locator('[data-state="connected"]')).waitFor({ timeout: 30_000 });
-}
-
 export async function neverFreezeBench(): Promise<void> {
   if (!existsSync(join(DIST, 'index.html'))) throw new Error('build the app first: npm run build');
   const dir = mkdtempSync(join(tmpdir(), 'uv-bench-'));
@@ -97,18 +93,25 @@ export async function neverFreezeBench(): Promise<void> {
   const browser = await chromium.launch({ executablePath: process.env.CHROMIUM_PATH ?? '/usr/bin/chromium', args: ['--no-sandbox'] });
   const rows: { what: string; longest: number; before: number; where: string }[] = [];
   try {
-    const page = await browser.newPage({ viewport: { width: 1440, height: 900 } });
-    await page.addInitScript('window.__name = (f) => f'); // tsx keeps function names with an `__name` helper that the page lacks
+    // Each case in a fresh context: nothing autosaved by the one before it is restored.
+    let page: Page = null as unknown as Page;
+    const studio = async () => {
+      await page?.context().close();
+      page = await browser.newPage({ viewport: { width: 1440, height: 900 } });
+      await page.addInitScript('window.__name = (f) => f'); // tsx keeps function names with an `__name` helper that the page lacks
+      await page.goto(url);
+      await page.getByTestId('connection').and(page.locator('[data-state="connected"]')).waitFor({ timeout: 30_000 });
+    };
     const whole = () => drawFilledRectangle(page, [0.001, 0.001], [0.999, 0.999]);
 
-    await studio(page, url);
+    await studio();
     await whole();
     let watch = await watchLongTasks(page);
     await page.getByRole('button', { name: 'Expose drawing' }).click();
     await page.getByRole('dialog', { name: 'Expose the drawing?' }).getByText(/of exposing/).waitFor({ timeout: 120_000 });
     rows.push({ what: 'whole-bed dry run (4000 x 4000 cells)', longest: (await watch.stop()).longestMs, before: before.dryRun, where: 'Node' });
 
-    await studio(page, url);
+    await studio();
     const pictureMs = await pictureOnThePage(page, png);
     watch = await watchLongTasks(page);
     await page.getByLabel(IMPORT).setInputFiles(png);
@@ -116,7 +119,7 @@ export async function neverFreezeBench(): Promise<void> {
     await page.waitForTimeout(3000); // its raster and sprite, drawn in the worker
     rows.push({ what: '36-megapixel PNG, read and placed', longest: (await watch.stop()).longestMs, before: pictureMs, where: 'page' });
 
-    await studio(page, url);
+    await studio();
     watch = await watchLongTasks(page);
     await page.getByLabel(IMPORT).setInputFiles(gbr);
     await page.getByRole('region', { name: 'Selected object' }).getByText('busy').first().waitFor({ timeout: 120_000 });
@@ -125,18 +128,18 @@ export async function neverFreezeBench(): Promise<void> {
     await page.getByRole('dialog', { name: 'Expose the drawing?' }).getByText(/of exposing/).waitFor({ timeout: 120_000 });
     rows.push({ what: 'busy 100 x 80 mm Gerber, imported and exposed', longest: (await watch.stop()).longestMs, before: before.board, where: 'Node' });
 
-    await studio(page, url);
+    await studio();
     await whole();
     watch = await watchLongTasks(page);
     await page.getByTestId('view-preview').click();
     await page.getByTestId('preview-summary').getByText(/about/).waitFor({ timeout: 120_000 });
     await page.waitForTimeout(500);
-    rows.push({ what: 'whole-bed preview', longest: (await watch.stop()).longestMs, before: before.preview, where: 'Node' });
+    rows.push({ what: 'whole-bed preview (its light binned for the canvas)', longest: (await watch.stop()).longestMs, before: before.preview, where: 'Node' });
   } finally {
     await browser.close();
     close();
   }
   console.log('\nB4 the page\'s longest task while heavy work runs, built app in Chromium (longtask observer; budget 50 ms), against the same work on one thread');
   for (const r of rows)
-    console.log(`  ${r.what.padEnd(48)} longest task ${String(r.longest).padStart(4)} ms   ${r.longest <= 50 ? 'within budget' : 'OVER BUDGET'}   on one thread (${r.where}): ${r.before.toFixed(0).padStart(5)} ms`);
+    console.log(`  ${r.what.padEnd(52)} longest task ${String(r.longest).padStart(4)} ms   ${r.longest <= 50 ? 'within budget' : 'OVER BUDGET'}   on one thread (${r.where}): ${r.before.toFixed(0).padStart(5)} ms`);
 }
