@@ -11,12 +11,16 @@ import type { Finding } from '../studio/dry-run';
 import type { Cut } from '../studio/objects/clipping';
 import type { GridEditor } from '../studio/editor.svelte';
 import { jobFromGrid } from '../studio/grid-job';
+import type { DoseGrid } from '../studio/grid/grid';
 import { DEFAULT_CONFIG, ledsOf, motionOf, type MachineConfig } from '../studio/machine-config';
 import { JobNotice } from './job-notice.svelte';
 import { calibrationOf, doseOf, msFor, type Calibration } from './dose-units';
 import { actionsFor, hotSensors, viewOf, type Action, type Actions } from './actions';
 import { estimateUsFor, type JobEstimate } from './job-times';
 import { limitsOf } from '../studio/machine-config';
+
+/** Lets the page draw and answer between two steps that each take a while. */
+const nextTask = () => new Promise((r) => setTimeout(r));
 
 /** What waits for the user's yes before anything moves or lights: an exposure, or a homing. */
 export type Pending =
@@ -104,8 +108,19 @@ export class JobControl {
 
   /** The drawing as a job for this machine, or null when nothing is drawn. */
   job(): PrintJob | null {
+    return this.#jobOf(this.editor().composed());
+  }
+
+  /** The same, each step a task of its own: a whole bed composed, then bounded, takes tens of ms each. */
+  async jobSoon(): Promise<PrintJob | null> {
+    const composed = this.editor().composed();
+    await nextTask();
+    return this.#jobOf(composed);
+  }
+
+  #jobOf(grid: DoseGrid): PrintJob | null {
     const ed = this.editor();
-    return jobFromGrid(ed.composed(), ed.machine, {
+    return jobFromGrid(grid, ed.machine, {
       dose: doseOf(this.fullMs, this.doseMJcm2, this.calibration),
       strategy: { name: this.order },
       leds: ledsOf(this.config),
@@ -119,8 +134,9 @@ export class JobControl {
       const ed = this.editor();
       this.checking = { what: 'drawing', stage: 'drawing the objects' };
       await ed.layer.settled().finally(() => (this.checking = null)); // rasters made in a worker
-      const job = this.job();
+      const job = await this.jobSoon();
       if (!job) throw new Error('nothing is drawn');
+      await nextTask();
       const { cutsOf } = await import('../studio/objects/clipping');
       await this.#ask('drawing', job, cutsOf(ed.layer.objects, (o) => ed.layer.raster(o), ed.grid.cols, ed.grid.rows, ed.machine.pitchUm));
     });
@@ -222,6 +238,7 @@ export class JobControl {
     const startC = device.deciC?.map((d) => d / 10) ?? null;
     const machine = { faults: device.activeFaults, printheadAnswers, hot: hotSensors(device.deciC, limitsOf(this.config)) };
     const { checkJob, Cancelled } = await import('../work/check-job');
+    await nextTask();
     const stop = (this.#stopCheck = new AbortController());
     this.checking = { what, stage: 'starting' };
     let summary;
