@@ -11,8 +11,9 @@ export const BENCH_MACHINE: Machine = {
   vmaxUmS: [100_000, 100_000],
   accelUmS2: [2_000_000, 1_500_000],
   settleUs: 2000,
-  overheadUs: 1500,
+  overheadUs: 400,
   startUm: [0, 0],
+  stepsMilli: [80_000, 80_000],
 };
 
 export const GEOMETRY: Record<string, [number, number][]> = {

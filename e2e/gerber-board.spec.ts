@@ -1,8 +1,9 @@
 // Issue 18, a board's Gerber and drill files in the studio: imported together as one object at the
 // board's true size, each file's layer guessed and editable, the exposed layers chosen, drill dots,
 // positive resist; the double-sided flip (the bottom copper mirrored about the board's left edge),
-// a registration mark on both sides, the dry run stopping the bottom side that lies off the bed,
-// then "set the job origin here" with the head over the mark, and the exposure on the simulated
+// a registration mark on both sides, one side a job (the bottom side made left out), the dry run
+// stopping the bottom side, taken in, that lies off the bed, then "set the job origin here" with
+// the head over the mark, and the exposure of that side on the simulated
 // printer. The Gerber parser loads on demand through the stream stand-ins (app/src/pcb/*-shim.ts).
 import { expect, test, type Page } from '@playwright/test';
 import { readFileSync } from 'node:fs';
@@ -101,22 +102,26 @@ test('a two-sided board: layers chosen, drill dots, positive resist, the bottom 
   const bottom = await placed(page);
   expect(bottom.x).toBeCloseTo(box.x - 30.1, 1);
   await expect(panel(page).getByTestId('object-off-bed')).toContainText('past the left edge');
+  await expect(panel(page).getByTestId('object-off-bed')).toContainText('This side is left out of the job: that stops nothing');
   await page.getByRole('region', { name: 'Drawing' }).screenshot({ path: info.outputPath('board-both-sides.png') });
 
-  // The dry run names the bottom side as cut and stops the job.
+  // Made left out of the job (the top side is exposed first, the board turned over after): it stops nothing, and the dry run says which side.
+  await expect(panel(page).getByLabel(/^Side exposed in this job/).locator('option:checked')).toHaveText('top side (demo)');
   await page.getByRole('button', { name: 'Expose drawing' }).click();
   const dialog = page.getByRole('dialog', { name: 'Expose the drawing?' });
   const clipping = dialog.getByRole('listitem').filter({ hasText: /^clipping:/ });
+  await expect(clipping).toHaveAttribute('data-level', 'ok', { timeout: 30_000 });
+  await expect(dialog.getByRole('listitem').filter({ hasText: /^sides:/ })).toContainText('the top side of board demo');
+  await dialog.getByRole('button', { name: 'Cancel' }).click();
+
+  // The bottom side taken into the job: the dry run names it as cut and stops the job.
+  await panel(page).getByLabel(/^Side exposed in this job/).selectOption({ label: 'bottom side (demo (bottom))' });
+  await expect(panel(page).getByTestId('object-off-bed')).toContainText('the dry run stops the job until that is accepted');
+  await page.getByRole('button', { name: 'Expose drawing' }).click();
   await expect(clipping).toHaveAttribute('data-level', 'error', { timeout: 30_000 });
   await expect(clipping).toContainText('board demo (bottom)');
   await dialog.screenshot({ path: info.outputPath('board-dry-run-cut.png') });
   await dialog.getByRole('button', { name: 'Close' }).click();
-  // Left out of the job (while the top side is exposed), the bottom side stops nothing.
-  await page.getByTestId('board-left-out').check();
-  await page.getByRole('button', { name: 'Expose drawing' }).click();
-  await expect(clipping).toHaveAttribute('data-level', 'ok', { timeout: 30_000 });
-  await dialog.getByRole('button', { name: 'Cancel' }).click();
-  await page.getByTestId('board-left-out').uncheck();
 
   // The head jogged over the drilled mark (here: sent to 60, 70 mm), the job origin set there.
   await page.getByTestId('tab-position').click();
@@ -132,9 +137,10 @@ test('a two-sided board: layers chosen, drill dots, positive resist, the bottom 
   expect(Math.abs(there.y + there.h - 3 - 70)).toBeLessThanOrEqual(0.05);
   await expect(panel(page).getByTestId('object-off-bed')).toHaveCount(0);
 
-  // Both sides on the bed: the dry run passes and the job runs on the simulated printer.
+  // The bottom side on the bed: the dry run passes and the job, that side alone, runs on the simulated printer.
   await page.getByRole('button', { name: 'Expose drawing' }).click();
   await expect(clipping).toHaveAttribute('data-level', 'ok', { timeout: 30_000 });
+  await expect(dialog.getByRole('listitem').filter({ hasText: /^sides:/ })).toContainText('the bottom side of board demo');
   await dialog.screenshot({ path: info.outputPath('board-dry-run-ok.png') });
   await dialog.getByRole('button', { name: /^Expose/ }).click();
   await expect(page.getByTestId('job-state')).toHaveAttribute('data-state', /running|done/, { timeout: 30_000 });

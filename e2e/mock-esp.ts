@@ -19,6 +19,7 @@ export class MockEsp {
   #ready: Promise<void>;
   #wifi = { apSsid: 'UVPrinter-5EED01', apPassword: 'abcdefghjkmn', staSsid: '', staPassword: '' };
   #statusTimer: ReturnType<typeof setInterval> | null = null;
+  #heartbeat: ReturnType<typeof setInterval>;
   #cancelled = false;
   /** What the hub last heard of the Mega, as the real one keeps it from the Mega's reports. */
   #heard: { firmware: string; temps: number[]; pos: number[]; job: Extract<Reply, { kind: 'job' }> | null; probe: string | null; limits: number[] } = {
@@ -42,6 +43,8 @@ export class MockEsp {
     this.#ready = this.client.open(() => {}).then(async () => {
       for (const line of ['M115', 'M503', 'M155 S1', 'M154 S1', 'M27 S1']) (await this.client.command(line)).forEach((r) => this.#hear(r));
     });
+    // As the hub: an M105 every 10 s of the printer's time, or the Mega pauses a job as hostless (mega.md §6).
+    this.#heartbeat = setInterval(() => void this.#ready.then(() => this.client.command('M105')).catch(() => {}), 10_000 / speed);
   }
 
   #hear(r: Reply): void {
@@ -235,6 +238,7 @@ export class MockEsp {
 
   stop(): void {
     if (this.#statusTimer) clearInterval(this.#statusTimer);
+    clearInterval(this.#heartbeat);
     this.sim.stop();
   }
 }

@@ -5,6 +5,7 @@ import { bedPoint, isDose, pixel } from './canvas';
 import { bmpFile, halfBlack } from '../app/src/studio/image/picture-files.fixture';
 
 test('draws a filled rectangle, undoes and redoes it, zooms, and exposes it', async ({ page }, info) => {
+  test.setTimeout(90_000); // some 19,000 stops: the firmware's own C++ runs them, at 40x when the machine is not loaded
   await page.goto('/?simSpeed=40');
   await page.getByTestId('strategy').selectOption('serpentine'); // the stop-and-fire flow; the default (automatic) may scan
   await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected');

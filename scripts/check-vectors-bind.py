@@ -31,6 +31,9 @@ CXX_BINARY = {"nano.json": "protocol_tests", "mega.json": "protocol_tests", "job
               "esp.json": "esp_tests", "planner-ts.json": "planner_tests", "planner-cpp.json": "planner_tests",
               "mesh.json": "planner_tests", "scan-ts.json": "planner_tests", "scan-cpp.json": "planner_tests",
               "nano-program.json": "protocol_tests", "nano-program.json#sessions": "nano_tests"}
+# Sections that only the firmware implements: the Nano's program store runs in C++ alone since the
+# simulated printer became the firmware's C++ (issue 27); there is no TypeScript Nano to bind.
+FIRMWARE_ONLY = {"nano-program.json#sessions"}
 
 
 def mutate(value, rng):
@@ -98,10 +101,11 @@ def main():
                     target[field] = mutate(target[field], rng)
                 json.dump(doc, open(os.path.join(tmp, file), "w"))
                 env = dict(os.environ, UV_VECTORS_DIR=tmp)
-                ts = fails(["npx", "vitest", "run", *ts_readers(file), "--reporter=dot"], env)
+                only_cc = f"{file}#{section}" in FIRMWARE_ONLY
+                ts = only_cc or fails(["npx", "vitest", "run", *ts_readers(file), "--reporter=dot"], env)
                 cc = fails([os.path.join(build, CXX_BINARY.get(f"{file}#{section}", CXX_BINARY[file]))], env)
                 checked += 1
-                verdict = "both fail" if ts and cc else f"NOT CAUGHT (ts failed={ts}, c++ failed={cc})"
+                verdict = ("the firmware fails" if only_cc else "both fail") if ts and cc else f"NOT CAUGHT (ts failed={ts}, c++ failed={cc})"
                 print(f"  {file} {section}.{field}: {verdict}")
                 if not (ts and cc):
                     problems.append(f"{file} {section}.{field}")

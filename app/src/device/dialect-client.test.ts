@@ -2,7 +2,9 @@ import { describe, expect, it } from 'vitest';
 import { GEOMETRIES, planCase, randomJob } from '../planner/golden';
 import { encodeJob } from '../protocol/job-encode';
 import { SimWire } from '../sim/wire';
-import { CommandError } from './dialect-client';
+import { CommandError, DialectClient } from './dialect-client';
+import type { Transport } from './transport';
+import { SimPrinter } from '../sim/sim-printer';
 import { DialectLink } from './dialect-link';
 import type { LinkFaults } from '../sim/link-faults';
 import { CONFIG_DEFAULTS, motionOf } from '../sim/config';
@@ -99,5 +101,98 @@ describe('dialect client over a simulated 115200-baud wire', () => {
     r.wire.runUntil(() => r.lines.some((l) => l.startsWith('JOB:done')), 600_000);
     expect(r.lines.find((l) => l.startsWith('JOB:done'))).toContain(`stop=${stops.length}/${stops.length}`);
     expect(printer.module.fires).toBe(stops.filter((s) => s.slice(2).some((us) => us > 0)).length);
+  });
+});
+
+/**
+ * A Mega's USB port, as a host opening it meets it: the port's DTR resets the Mega, its bootloader
+ * waits `bootloaderMs` (bytes sent meanwhile are lost), then the firmware starts and says `start`.
+ * With `bootloaderMs` null the port does not reset the board: its firmware runs on, silent.
+ */
+class MegaPort implements Transport {
+  readonly kind = 'serial' as const;
+  readonly printer: SimPrinter;
+  lost = 0;
+  #onBytes: (b: string) => void = () => {};
+  #bootingUntil = 0;
+
+  /** `latencyUs`: one way, what lies between (a USB frame; a test harness's page round trip). */
+  constructor(private readonly bootloaderMs: number | null, private readonly latencyUs = 1000) {
+    this.printer = new SimPrinter((b) => {
+      if (this.printer.clock.now >= this.#bootingUntil) this.printer.clock.after(this.latencyUs, () => this.#onBytes(b));
+    });
+  }
+
+  async open(onBytes: (b: string) => void): Promise<void> {
+    this.#onBytes = onBytes;
+    if (this.bootloaderMs === null) return;
+    this.#bootingUntil = this.printer.clock.now + this.bootloaderMs * 1000;
+    this.printer.clock.after(this.bootloaderMs * 1000, () => this.printer.boot());
+  }
+
+  async send(bytes: string): Promise<void> {
+    if (this.printer.clock.now < this.#bootingUntil) this.lost += bytes.length;
+    else this.printer.clock.after(this.latencyUs, () => this.printer.receive(bytes));
+  }
+
+  async close(): Promise<void> {}
+
+  readonly clientOptions = {
+    now: () => this.printer.clock.now / 1000,
+    setTimer: (fn: () => void, ms: number) => this.printer.clock.after(ms * 1000, fn),
+    clearTimer: (t: unknown) => this.printer.clock.cancel(t as object),
+  };
+
+  /** Runs virtual time until the promise settles; resolves with it and the virtual ms it took. */
+  async settle<T>(p: Promise<T>, maxMs = 30_000): Promise<{ value: T; ms: number }> {
+    const clock = this.printer.clock, from = clock.now;
+    let done = false;
+    p.then(() => (done = true), () => (done = true));
+    while (!done && clock.now - from < maxMs * 1000) {
+      this.printer.advanceTo(Math.max(clock.now + 100, Math.min(clock.next, clock.now + 5000)));
+      for (let i = 0; i < 10; i++) await Promise.resolve();
+    }
+    return { value: await p, ms: (clock.now - from) / 1000 };
+  }
+}
+
+describe('the first exchange of a link', () => {
+  it("waits for the Mega's `start` after the port resets it: nothing is lost to its bootloader, nothing times out", async () => {
+    const port = new MegaPort(1000);
+    const client = new DialectClient(port, () => {}, port.clientOptions);
+    const { ms } = await port.settle(client.open(() => {}));
+    await port.settle(client.command('M115'));
+    expect(port.lost).toBe(0);
+    expect(client.health).toMatchObject({ timeouts: 0, resends: 0, bytesRetransmitted: 0 });
+    expect(ms).toBeGreaterThan(1000);
+    expect(ms).toBeLessThan(1200); // the Mega's own 0.1 s start, the wire: no time-out's wait
+  });
+
+  it('a board the port did not reset says nothing: the first line goes after the time-out, and is answered', async () => {
+    const port = new MegaPort(null);
+    const client = new DialectClient(port, () => {}, { ...port.clientOptions, startTimeoutMs: 2000 });
+    const { ms } = await port.settle(client.open(() => {}));
+    expect(ms).toBeGreaterThanOrEqual(2000);
+    expect(ms).toBeLessThan(2100);
+    expect((await port.settle(client.command('M115'))).value.some((r) => r.kind === 'firmware')).toBe(true);
+    expect(client.health.timeouts).toBe(0);
+  });
+
+  it('a slow first round trip is not a time-out: with none measured yet, the first line waits 1 s', async () => {
+    const port = new MegaPort(1000, 150_000); // 0.3 s there and back
+    const client = new DialectClient(port, () => {}, port.clientOptions);
+    await port.settle(client.open(() => {}));
+    await port.settle(client.command('M115'));
+    expect(client.health.timeouts).toBe(0);
+    expect(client.health.rttMs).toBeGreaterThan(300);
+  });
+
+  it('sent at once, as before, the first line was lost to the bootloader and came back as a time-out', async () => {
+    // What "1 time-outs, 20 bytes again" on every fresh link was: the same port, no wait for `start`.
+    const port = new MegaPort(1000);
+    const client = new DialectClient(port, () => {}, { ...port.clientOptions, startTimeoutMs: 0 });
+    await port.settle(client.open(() => {}));
+    expect(port.lost).toBeGreaterThan(0);
+    expect(client.health.timeouts).toBeGreaterThan(0);
   });
 });

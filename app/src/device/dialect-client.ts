@@ -1,5 +1,6 @@
-// The host side of protocol/mega.md over a byte transport: numbered, checksummed lines sent through the
-// Mega's receive window, replies matched by the `ok N` field, resend and time-out recovery, link health.
+// The host side of protocol/mega.md over a byte transport: the wait for the Mega's `start`, numbered,
+// checksummed lines sent through the Mega's receive window, replies matched by the `ok N` field, resend
+// and time-out recovery, link health.
 
 import { DIALECT_MAX_LINE, encodeFrame } from '../protocol/dialect-frame';
 import { parseReply, type Reply } from '../protocol/dialect-reply';
@@ -44,6 +45,8 @@ export interface ClientOptions {
   maxWindow?: number;
   /** No reply for this long while lines are out: resend from the last accepted line. */
   replyTimeoutMs?: number;
+  /** How long to wait for the Mega's `start` after the link opens before the first line goes anyway (a board the port did not reset). */
+  startTimeoutMs?: number;
   now?: () => number;
   setTimer?: (fn: () => void, ms: number) => unknown;
   clearTimer?: (t: unknown) => void;
@@ -64,23 +67,48 @@ export class DialectClient {
   #closed: Error | null = null;
   #timer: unknown = null;
   #lastReplyMs = 0;
+  /** Ends the wait for `start`, while the link is opening. */
+  #started: (() => void) | null = null;
   readonly #o: Required<ClientOptions>;
 
   constructor(private readonly transport: Transport, private readonly onReply: (r: Reply, line: string) => void, o: ClientOptions = {}) {
     this.#o = {
       maxWindow: o.maxWindow ?? 32,
       replyTimeoutMs: o.replyTimeoutMs ?? 3000, // above the Mega's 2 s busy: keep-alive
+      // The bootloader's wait, then the firmware's set-up with up to 2 s for a card to leave idle (sd_storage.cpp).
+      startTimeoutMs: o.startTimeoutMs ?? 5000,
       now: o.now ?? (() => performance.now()),
       setTimer: o.setTimer ?? ((fn, ms) => setTimeout(fn, ms)),
       clearTimer: o.clearTimer ?? ((t) => clearTimeout(t as ReturnType<typeof setTimeout>)),
     };
   }
 
+  /**
+   * Opens the link and waits for the Mega's `start` before the first line. Opening its USB port resets
+   * it (DTR): its bootloader waits, then the firmware sets up and says `start`, and bytes sent before
+   * that are lost, so a line sent at once would only come back as a time-out. The simulated printer
+   * answers once its worker has loaded the firmware and read its card. As Marlin hosts do, a board
+   * that says nothing (its port did not reset it) gets the first line after `startTimeoutMs`.
+   */
   async open(onClosed: (error?: Error) => void): Promise<void> {
-    await this.transport.open((bytes) => this.receive(bytes), (error) => {
-      this.#fail(error ?? new Error('link closed'));
-      onClosed(error);
+    const started = new Promise<void>((resolve) => {
+      const timer = this.#o.setTimer(() => this.#started?.(), this.#o.startTimeoutMs);
+      this.#started = () => {
+        this.#o.clearTimer(timer);
+        this.#started = null;
+        resolve();
+      };
     });
+    try {
+      await this.transport.open((bytes) => this.receive(bytes), (error) => {
+        this.#fail(error ?? new Error('link closed'));
+        onClosed(error);
+      });
+    } catch (e) {
+      this.#started?.();
+      throw e;
+    }
+    await started;
     await this.resync();
   }
 
@@ -144,6 +172,7 @@ export class DialectClient {
       // room): wait for its keep-alive, not for the round trip, until the next ok.
       if (r.kind === 'busy') this.#busySinceOk = true;
       else if (r.kind === 'ok') this.#busySinceOk = false;
+      else if (r.kind === 'start') this.#started?.();
       this.onReply(r, text);
       if (r.kind === 'cap' && r.name === 'RX_WINDOW') this.window = Math.max(1, Math.min(r.value, this.#o.maxWindow));
       if (r.kind === 'ok') this.#endBlock(r);
@@ -228,11 +257,12 @@ export class DialectClient {
   /**
    * How long to wait for a reply: about four round trips (at least 250 ms), or the full time-out
    * while a long command is out. Resending early is safe: a duplicate of a line still running only
-   * frees its slot (mega.md §2).
+   * frees its slot (mega.md §2). Until a first round trip is measured there is nothing to adapt to:
+   * 1 s, as TCP starts with (RFC 6298), not a guess at the fastest link.
    */
   #timeoutMs(): number {
     if (this.#busySinceOk || this.#out.some((i) => i.sent && LONG_COMMANDS.test(i.body))) return this.#o.replyTimeoutMs;
-    return Math.min(this.#o.replyTimeoutMs, Math.max(250, 4 * this.health.rttMs));
+    return Math.min(this.#o.replyTimeoutMs, this.health.rttMs ? Math.max(250, 4 * this.health.rttMs) : 1000);
   }
 
   #armTimer(): void {
@@ -262,6 +292,7 @@ export class DialectClient {
   #fail(error: Error): void {
     if (this.#closed) return;
     this.#closed = error;
+    this.#started?.(); // the first line then fails with the link
     if (this.#timer !== null) this.#o.clearTimer(this.#timer);
     for (const item of [...this.#out, ...this.#waiting]) item.reject?.(error);
     this.#out = [];

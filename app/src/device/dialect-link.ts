@@ -8,12 +8,19 @@ import type { PrinterLink, StartOptions, UploadProgress } from './link';
 import type { Transport } from './transport';
 
 const UPLOAD_ATTEMPTS = 5;
+/**
+ * The Mega pauses a running job when no host has said anything for 30 s of its time (mega.md §6:
+ * a host that went away). The app's reports come by themselves (M155, M154, M27 S), so it says
+ * something on purpose: an M105 every 10 s of the printer's time, as Marlin hosts poll.
+ */
+export const HEARTBEAT_MS = 10_000;
 const RETRY_CODES = [0, 21, 23, 24, 25, 26];
 
 export class DialectLink implements PrinterLink {
   readonly kind;
   #client: DialectClient;
   #jobs = 0;
+  #heartbeat: unknown = null;
 
   constructor(private readonly transport: Transport, private readonly clientOptions: ClientOptions = {}) {
     this.kind = transport.kind;
@@ -32,8 +39,28 @@ export class DialectLink implements PrinterLink {
 
   async open(onReply: (r: Reply, line: string) => void, onClosed: (error?: Error) => void): Promise<void> {
     this.#onReply = onReply;
-    await this.#client.open(onClosed);
+    await this.#client.open((error) => {
+      this.#stopHeartbeat();
+      onClosed(error);
+    });
     await this.#client.command('M115'); // learns the receive window
+    this.#beat();
+  }
+
+  /** The next heartbeat, in the client's clock (the printer's own, or the page's at its speed-up). */
+  #beat(): void {
+    const set = this.clientOptions.setTimer ?? ((fn: () => void, ms: number) => setTimeout(fn, ms));
+    this.#heartbeat = set(() => {
+      this.#client.command('M105').catch(() => {}); // a refusal or a lost link is said elsewhere
+      this.#beat();
+    }, HEARTBEAT_MS / this.timeScale);
+  }
+
+  #stopHeartbeat(): void {
+    if (this.#heartbeat === null) return;
+    const clear = this.clientOptions.clearTimer ?? ((t: unknown) => clearTimeout(t as ReturnType<typeof setTimeout>));
+    clear(this.#heartbeat);
+    this.#heartbeat = null;
   }
 
   command(line: string): Promise<Reply[]> {
@@ -88,6 +115,7 @@ export class DialectLink implements PrinterLink {
   }
 
   close(): Promise<void> {
+    this.#stopHeartbeat();
     return this.#client.close();
   }
 }

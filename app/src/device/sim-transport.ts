@@ -53,6 +53,7 @@ export class SimTransport implements Transport {
 
   async close(): Promise<void> {
     listener = onLost = null;
+    tellSimulator({ type: 'close' });
   }
 }
 

@@ -9,10 +9,11 @@ import type { OrderChoice } from '../planner/job-plan';
 import { num } from '../sim/config';
 import type { Finding } from '../studio/dry-run';
 import type { Cut } from '../studio/objects/clipping';
+import type { TwoSided } from '../studio/objects/board-object';
 import type { GridEditor } from '../studio/editor.svelte';
 import { jobFromGrid } from '../studio/grid-job';
 import type { DoseGrid } from '../studio/grid/grid';
-import { DEFAULT_CONFIG, ledsOf, motionOf, type MachineConfig } from '../studio/machine-config';
+import { DEFAULT_CONFIG, ledsOf, type MachineConfig } from '../studio/machine-config';
 import { JobNotice } from './job-notice.svelte';
 import { calibrationOf, doseOf, msFor, type Calibration } from './dose-units';
 import { actionsFor, hotSensors, viewOf, type Action, type Actions } from './actions';
@@ -38,6 +39,8 @@ export type Pending =
       /** The drawing's objects cut by the bed's edge, and whether the user accepted the cut. */
       cuts: Cut[];
       accepted: boolean;
+      /** The drawing's boards placed as two sides: the job exposes one side of each. */
+      boards: TwoSided[];
     }
   | { kind: 'home-first'; what: string; homed: boolean | null; run: () => Promise<unknown> };
 
@@ -138,8 +141,17 @@ export class JobControl {
       if (!job) throw new Error('nothing is drawn');
       await nextTask();
       const { cutsOf } = await import('../studio/objects/clipping');
-      await this.#ask('drawing', job, cutsOf(ed.layer.objects, (o) => ed.layer.raster(o), ed.grid.cols, ed.grid.rows, ed.machine.pitchUm));
+      const { twoSidedBoards } = await import('../studio/objects/board-object');
+      await this.#ask('drawing', job, cutsOf(ed.layer.objects, (o) => ed.layer.raster(o), ed.grid.cols, ed.grid.rows, ed.machine.pitchUm), twoSidedBoards(ed.layer.objects));
     });
+
+  /** From the question: the job exposes only this side of a two-sided board (the others left out), checked again. */
+  exposeOnlySide = async (board: TwoSided, id: number) => {
+    const { onlySide } = await import('../studio/objects/board-object');
+    this.pending = null;
+    this.editor().layer.updateEach(onlySide(board, id), 'one side in the job');
+    await this.exposeDrawing();
+  };
 
   /** The test pattern at the full dose set here, checked and asked about like a drawing. */
   exposeTestPattern = () =>
@@ -231,7 +243,7 @@ export class JobControl {
   /** Stops the dry run under way: no question follows. */
   stopCheck = () => this.#stopCheck?.abort();
 
-  async #ask(what: 'drawing' | 'test pattern', asked: PrintJob, cuts?: Cut[]): Promise<void> {
+  async #ask(what: 'drawing' | 'test pattern', asked: PrintJob, cuts?: Cut[], boards: TwoSided[] = []): Promise<void> {
     const leveling = await this.printer.leveling();
     const printheadAnswers = await this.printer.checkPrinthead();
     const device = this.printer.device;
@@ -243,9 +255,9 @@ export class JobControl {
     this.checking = { what, stage: 'starting' };
     let summary;
     try {
-      // In the worker: for `auto`, the fastest order for exactly this job, whatever the preview last saw; then the dry run.
+      // In the worker: for `auto`, the fastest order for exactly this job (of those on the bed), whatever the preview last saw; then the dry run.
       summary = await checkJob(
-        { job: asked, config: $state.snapshot(this.config), auto: this.strategy === 'auto', opts: $state.snapshot({ leveling: leveling.on, mesh: leveling.mesh, startC, cuts, machine }) },
+        { job: asked, config: $state.snapshot(this.config), auto: this.strategy === 'auto', opts: $state.snapshot({ leveling: leveling.on, mesh: leveling.mesh, startC, cuts, boards, machine }) },
         { signal: stop.signal, onProgress: (p) => (this.checking = { what, stage: p.stage }) },
       );
     } catch (e) {
@@ -263,7 +275,7 @@ export class JobControl {
       x0: mm(job.originUm.x), y0: mm(job.originUm.y),
       x1: mm(job.originUm.x + job.grid.cols * job.pitchUm.x), y1: mm(job.originUm.y + job.grid.rows * job.pitchUm.y),
     };
-    this.pending = { kind: 'expose', what, job, findings, duty, estimateUs, pacedUs, areaMm, cuts: cuts ?? [], accepted: false };
+    this.pending = { kind: 'expose', what, job, findings, duty, estimateUs, pacedUs, areaMm, cuts: cuts ?? [], accepted: false, boards };
   }
 
   async #run(job: PrintJob, duty: number[] | null, paced: boolean): Promise<void> {

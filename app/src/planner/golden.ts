@@ -20,6 +20,7 @@ export const MACHINE: Machine = {
   settleUs: 2000,
   overheadUs: 1500,
   startUm: [0, 0],
+  stepsMilli: [80_000, 80_000],
 };
 
 function rng(seed: number) {

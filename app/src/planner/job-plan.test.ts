@@ -2,12 +2,14 @@ import { mergeLight } from '../protocol/scan-program';
 import { describe, expect, it } from 'vitest';
 import { fastestOrder, ORDERS, orderEstimates, passDurationUs, passSwitches, planAnyJob } from './job-plan';
 import { planJob } from './planner';
+import { GEOMETRIES, randomJob } from './golden';
+import { CONFIG_DEFAULTS, motionOf } from '../sim/config';
 import type { ScanPass, ScanPlan } from './scan';
 import { headerOf } from './job-header';
 import type { Machine } from './time-model';
 import type { StrategyName } from '../protocol/job-types';
 
-const MACHINE: Machine = { vmaxUmS: [100_000, 100_000], accelUmS2: [2_000_000, 2_000_000], settleUs: 2000, overheadUs: 1500, startUm: [0, 0] };
+const MACHINE: Machine = { vmaxUmS: [100_000, 100_000], accelUmS2: [2_000_000, 2_000_000], settleUs: 2000, overheadUs: 1500, startUm: [0, 0], stepsMilli: [80_000, 80_000] };
 
 const header = (cols: number, rows: number, name: StrategyName) => headerOf({
   grid: { cols, rows }, pitchUm: { x: 50, y: 50 }, originUm: { x: 5000, y: 5000 }, dose: { map: 'linear', fullUs: 4000 },
@@ -15,7 +17,7 @@ const header = (cols: number, rows: number, name: StrategyName) => headerOf({
 });
 
 const pass = (leds: [number, number][][], jumps: [number, number, number][] = []): ScanPass =>
-  ({ hy: 0, descending: false, first: 0, last: 9, windowUs: 100, accelUs: 7, overscanUm: 1, runUpUm: 0, runOutUm: 0, leds, jumps, events: mergeLight(leds) });
+  ({ hy: 0, descending: false, first: 0, last: 9, windowUs: 100, accelUs: 7, overscanUm: 1, runUpUm: 0, runOutUm: 0, leds, jumps, events: mergeLight(leds), moveUs: 0, startSteps: 0, stopSteps: 0, strokeUs: 1234, markUs: 56 });
 
 describe('a scan pass as the machine runs it', () => {
   it('switches the LEDs in time order, one mask per instant, an LED going off where another comes on', () => {
@@ -28,10 +30,9 @@ describe('a scan pass as the machine runs it', () => {
     ]);
   });
 
-  it('lasts its accelerating, its windows with the flown stretches in their place, and its braking', () => {
+  it('lasts its stroke, as the step engine runs it', () => {
     const scan = { windowUs: 100, accelUs: 7 } as ScanPlan;
-    expect(passDurationUs(scan, pass([]))).toBe(2 * 7 + 10 * 100);
-    expect(passDurationUs(scan, pass([], [[3, 4, 150]]))).toBe(2 * 7 + 6 * 100 + 150);
+    expect(passDurationUs(scan, pass([]))).toBe(1234);
   });
 });
 
@@ -70,8 +71,33 @@ describe('the automatic order', () => {
     expect(['serpentine', 'shortest']).toContain(fastestOrder(est));
   });
 
+  it('never picks a scan the step engine cannot run (mega.md M29: a step over 32.768 ms, or over 16000 steps/s)', () => {
+    // 200 ms windows at 50 µm, 80 steps/mm: 50 ms a step. Dense and long-dosed, where a scan would otherwise win.
+    const j = job(60, 24, () => true, 200_000);
+    const est = orderEstimates(j, MACHINE);
+    expect(est.scan).toBe(Infinity);
+    expect(fastestOrder(est)).not.toBe('scan');
+    // The same job at 130 ms a cell (32.5 ms a step) runs, and the scan is the fastest.
+    expect(fastestOrder(orderEstimates(job(60, 24, () => true, 130_000), MACHINE))).toBe('scan');
+  });
+
   it('prefers scan on a tie, and never an order that cannot plan a job with light', () => {
     expect(fastestOrder({ scan: 5, serpentine: 5, shortest: 5, raster: 5, random: 5 })).toBe('scan');
     expect(fastestOrder({ scan: Infinity, serpentine: 9, shortest: 7, raster: 8, random: 9 })).toBe('shortest');
+  });
+});
+
+describe('the automatic order on a bed', () => {
+  it('never picks a scan whose strokes would leave the bed', () => {
+    const job = randomJob(5, GEOMETRIES.adjacent, 'scan', [200, 20], 1);
+    job.originUm = { x: 190_000, y: 20_000 }; // its right edge at the bed's: the run-out is beyond it
+    job.pitchUm = { x: 50, y: 50 };
+    job.dose = { map: 'linear', fullUs: 2000 };
+    const p = { header: headerOf(job), cells: job.gridData };
+    const machine = motionOf(CONFIG_DEFAULTS, [0, 0]);
+    expect(Number.isFinite(orderEstimates(p, machine).scan)).toBe(true);
+    const onBed = orderEstimates(p, machine, 200_000);
+    expect(onBed.scan).toBe(Infinity);
+    expect(fastestOrder(onBed)).not.toBe('scan');
   });
 });

@@ -61,12 +61,15 @@ export const ORDERS: StrategyName[] = ['scan', 'serpentine', 'shortest', 'raster
  * Each order's estimate for the job, µs: what the Mega's planner will count for it. An order that
  * cannot plan a job that has light (a scan pass over the 32-bit limit) is Infinity.
  */
-export function orderEstimates(job: PlannerJob, machine: Machine): Record<StrategyName, number> {
+export function orderEstimates(job: PlannerJob, machine: Machine, bedXUm = Infinity): Record<StrategyName, number> {
   const out = {} as Record<StrategyName, number>;
   let lit = false;
+  // A scan's strokes run up and out beyond the artwork: one that leaves the bed is no choice.
+  const strokeUm = (steps: number) => (steps * 1_000_000) / machine.stepsMilli[0];
   for (const name of ORDERS) {
-    const { plan } = planAnyJob({ ...job, header: { ...job.header, strategy: name } }, machine);
-    out[name] = plan.count || !lit ? plan.estimateUs : Infinity;
+    const { plan, scan } = planAnyJob({ ...job, header: { ...job.header, strategy: name } }, machine);
+    const offBed = scan?.passes.some((p) => strokeUm(p.startSteps) < 0 || strokeUm(p.stopSteps) > bedXUm) ?? false;
+    out[name] = offBed ? Infinity : plan.count || !lit ? plan.estimateUs : Infinity;
     if (name !== 'scan' && plan.count) lit = true;
   }
   if (lit && out.scan === 0) out.scan = Infinity;

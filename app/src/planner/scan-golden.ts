@@ -8,7 +8,7 @@ import { planScan, type ScanPlan } from './scan';
 import type { Machine } from './time-model';
 
 /** A machine whose X maximum caps the speed of most jobs. */
-export const SLOW_MACHINE: Machine = { ...MACHINE, vmaxUmS: [9000, 100_000], accelUmS2: [700_000, 2_000_000], startUm: [3000, 500] };
+export const SLOW_MACHINE: Machine = { ...MACHINE, vmaxUmS: [9000, 100_000], accelUmS2: [700_000, 2_000_000], startUm: [3000, 500], stepsMilli: [80_000, 100_000] };
 
 export interface ScanCase {
   name: string;

@@ -6,13 +6,19 @@ import { GEOMETRIES, MACHINE, randomJob } from './golden';
 import { headerOf } from './job-header';
 import { passRows, planJob } from './planner';
 import { scanGoldenCases, type ScanCase } from './scan-golden';
-import { MAX_JUMPS, planScan, type ScanPlan } from './scan';
-import { moveTimeUs, type Machine } from './time-model';
+import { MAX_JUMPS, planScan, scanMotion, SCAN_PASS_END_US, type ScanPlan } from './scan';
+import { axisSteps, engineMoveUs, moveTimeUs, type Machine } from './time-model';
 
 /** The fly of g blank windows on MACHINE at 50 µm, 2000 µs windows (planner.md "Blank stretches"). */
 const F = (g: number) => Math.max(1, moveTimeUs(g * 50 + 2 * 105, 150000, 3000000) - 2 * 8334);
 
 const plan = (job: PrintJob, machine: Machine = MACHINE) => planScan({ header: headerOf(job), cells: job.gridData }, machine);
+
+/**
+ * `m` with as many X steps a mm as make the job's step 1 ms, so the step engine runs any window: the
+ * properties of the light hold whatever the machine, and random doses make windows of seconds.
+ */
+const runnable = (j: PrintJob, m: Machine): Machine => ({ ...m, stepsMilli: [Math.max(1, Math.round((1000 * scanMotion(headerOf(j), m).windowUs) / j.pitchUm.x)), m.stepsMilli[1]] });
 
 /** A job on a blank grid with the given lit cells [col, row, value]. */
 function job(cols: number, rows: number, lit: [number, number, number][], over: Partial<PrintJob> = {}): PrintJob {
@@ -70,7 +76,8 @@ describe('scan planner', () => {
       for (let seed = 0; seed < 40; seed++) {
         const j = randomJob(5000 + seed, offsets, 'serpentine');
         const tables = durationTables(headerOf(j));
-        const p = plan(j, seed % 3 ? MACHINE : { ...MACHINE, vmaxUmS: [2000, 2000] });
+        const p = plan(j, runnable(j, seed % 3 ? MACHINE : { ...MACHINE, vmaxUmS: [2000, 2000] }));
+        expect(p.passes.length, 'a plan').toBeGreaterThan(0);
         const got = doses(j, p);
         const owner = new Array<number>(j.grid.rows).fill(-1); // the LED its pass gives each row
         for (const { ledRows } of passRows(headerOf(j), j.gridData)) ledRows.forEach((r, k) => r >= 0 && (owner[r] = k));
@@ -96,8 +103,8 @@ describe('scan planner', () => {
         const j = randomJob(7000 + seed, offsets, 'serpentine');
         const stops = planJob({ header: headerOf(j), cells: j.gridData }, MACHINE);
         const rows = [...new Set(stops.hy)];
-        expect(plan(j).passes.map((p) => p.hy)).toEqual(rows);
-        expect(plan(j).passes.map((p) => p.descending)).toEqual(rows.map((_, i) => i % 2 === 1));
+        expect(plan(j, runnable(j, MACHINE)).passes.map((p) => p.hy)).toEqual(rows);
+        expect(plan(j, runnable(j, MACHINE)).passes.map((p) => p.descending)).toEqual(rows.map((_, i) => i % 2 === 1));
       }
     }
   });
@@ -107,9 +114,21 @@ describe('scan planner', () => {
     expect([p.windowUs, p.speedUmS]).toEqual([2000, 25000]);
     // tA = ceil(50e12 / (3e6 × 2000)) = 8334 µs; o = ceil(50 × 8334 / 4000) = 105 µm.
     expect([p.accelUs, p.overscanUm]).toEqual([8334, 105]);
-    expect(p.passes).toEqual([{ hy: 0, descending: false, first: 3, last: 3, windowUs: 2000, accelUs: 8334, overscanUm: 105, runUpUm: 1000 + 150 - 25 - 105, runOutUm: 1000 + 150 + 25 + 105, leds: [[[0, 2000]], [], [], []], jumps: [], events: [[0, 1], [2000, 0]] }]);
-    const move = Math.max(moveTimeUs(1020, 150000, 3000000), moveTimeUs(2000, 100000, 2000000));
-    expect(p.estimateUs).toBe(move + 2000 + 1500 + 2 * 8334 + 2000);
+    const [pass] = p.passes;
+    expect(pass).toMatchObject({ hy: 0, descending: false, first: 3, last: 3, windowUs: 2000, accelUs: 8334, overscanUm: 105, runUpUm: 1000 + 150 - 25 - 105, runOutUm: 1000 + 150 + 25 + 105, leds: [[[0, 2000]], [], [], []], jumps: [], events: [[0, 1], [2000, 0]] });
+    // The stroke (planner.md "The stroke"), at 80 steps/mm: 4 steps a window, 500 µs a step (q = 1000
+    // ticks), 2000 steps/s reached in R = ceil(2000² / (2 × 240000)) = 9 steps. The mark, X 1125 µm, is
+    // step 90; the G step 4 before it (ceil(2340 / 1000) + 1), after R + 2 steps from the start: 75.
+    // The last window ends at step 94; the stroke R + 1 steps later, at 104.
+    expect([pass.startSteps, pass.stopSteps]).toEqual([75, 104]);
+    // From X 0 (step 0) and Y 0 to step 75 and Y 2000 µm (160 steps): the step engine's move.
+    expect(pass.moveUs).toBe(engineMoveUs(MACHINE, 75, axisSteps(MACHINE, 1, 2000)));
+    // 11 steps at 500 µs between the ramps, each some 0.7 ms quicker than the continuous 2000 / 240000 s
+    // (the engine's first step goes at once, each segment at the rate at its middle).
+    expect(pass.strokeUs).toBe(20772);
+    expect(pass.strokeUs).toBeGreaterThan(11 * 500 + 2 * 7500);
+    expect(pass.strokeUs).toBeLessThan(11 * 500 + 2 * 8334);
+    expect(p.estimateUs).toBe(pass.moveUs + 1500 + pass.strokeUs + SCAN_PASS_END_US);
   });
 
   it('writes gray levels as on-time within the window, and merges only runs that fill their windows', () => {
@@ -146,8 +165,8 @@ describe('scan planner', () => {
     expect(pass.jumps).toEqual([]);
     const S4 = 8000, S5 = 10000, S7 = 14000;
     expect(pass.leds).toEqual([[[S4, S4 + 2000]], [[S7, S7 + 2000]], [[0, 2000]], [[S5, S5 + 2000]]]);
-    const move = Math.max(moveTimeUs(1000 + 50 - 25 - 105, 150000, 3000000), moveTimeUs(2000, 100000, 2000000));
-    expect(p.estimateUs).toBe(move + 2000 + 1500 + 2 * 8334 + S7 + 2000);
+    expect(p.estimateUs).toBe(pass.moveUs + 1500 + pass.strokeUs + SCAN_PASS_END_US);
+    expect(pass.strokeUs - pass.markUs).toBeGreaterThan(S7 + 2000); // the mark, then the windows, then the ramp down
   });
 
   it('flies no blank stretch when the speed is capped, and one only when it saves a window', () => {
@@ -233,9 +252,22 @@ describe('scan planner', () => {
 describe('scan planner limits', () => {
   it('plans nothing when a pass would outlast a 32-bit µs timer', () => {
     const long = job(3000, 4, [[1, 0, 255]], { dose: { map: 'linear', fullUs: 1_500_000 } });
-    expect(plan(long).passes).toEqual([]);
+    const fine: Machine = { ...MACHINE, stepsMilli: [2_000_000, 80_000] }; // 100 steps a window: 15 ms a step
+    expect(plan(long, fine).passes).toEqual([]);
     long.grid.cols = 2800; // 2800 × 1.5 s < 2³² µs
-    expect(plan(long).passes.length).toBe(1);
+    expect(plan(long, fine).passes.length).toBe(1);
+  });
+
+  it('plans nothing, and says why, when the step engine cannot run the speed (mega.md M29)', () => {
+    // 200 ms windows at 50 µm and 80 steps/mm: 4 steps a window, 50 ms a step; the engine's longest is 32.768 ms.
+    const slow = plan(job(10, 4, [[1, 0, 255]], { dose: { map: 'linear', fullUs: 200_000 } }));
+    expect([slow.passes.length, slow.estimateUs]).toEqual([0, 0]);
+    expect(slow.refused).toMatch(/step longer than the step engine's 32.8 ms/);
+    // 131 ms makes a step of 32.75 ms: it runs.
+    expect(plan(job(10, 4, [[1, 0, 255]], { dose: { map: 'linear', fullUs: 131_000 } })).passes.length).toBe(1);
+    // A machine that would go faster than its steps: 100 µm in 400 µs at 400 steps/mm is 100000 steps/s.
+    const fast = plan(job(10, 4, [[1, 0, 255]], { pitchUm: { x: 100, y: 50 }, dose: { map: 'linear', fullUs: 400 } }), { ...MACHINE, vmaxUmS: [250_000, 100_000], stepsMilli: [400_000, 80_000] });
+    expect(fast.refused).toMatch(/over the step engine's 16000 steps\/s/);
   });
 });
 

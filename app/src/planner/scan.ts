@@ -3,7 +3,7 @@
 import type { JobHeader } from '../protocol/job-types';
 import { durationTables } from './dose';
 import { passRows, type PlannerJob } from './planner';
-import { MoveTimes, type Machine } from './time-model';
+import { axisAccel, axisSteps, ENGINE_MAX_RATE, ENGINE_TICK_HZ, MoveTimes, stepRamp, stepTicks, type Machine } from './time-model';
 import { mergeLight, programLines, type ScanEvent } from '../protocol/scan-program';
 
 export interface ScanPass {
@@ -27,6 +27,13 @@ export interface ScanPass {
   jumps: [number, number, number][];
   /** The pass as the Nano runs it: [t µs after the mark, the LEDs' state from then on], one per switching moment. */
   events: ScanEvent[];
+  /** The pass as the Mega runs it (planner.md "The stroke"): the step engine's move to the stroke's start, µs. */
+  moveUs: number;
+  /** The stroke's X ends, in steps; its µs from rest to idle, and the start mark's µs in it. */
+  startSteps: number;
+  stopSteps: number;
+  strokeUs: number;
+  markUs: number;
 }
 
 export interface ScanPlan {
@@ -39,6 +46,8 @@ export interface ScanPlan {
   overscanUm: number;
   passes: ScanPass[];
   estimateUs: number;
+  /** Why the Mega cannot run the job's passes, when it cannot (planner.md "Limits"): the plan is then empty. */
+  refused?: string;
 }
 
 const ceilDiv = (n: bigint, d: bigint) => (n + d - 1n) / d;
@@ -71,6 +80,54 @@ export function scanMotion(h: JobHeader, machine: Machine, tables = durationTabl
 export function fitsTimer(h: JobHeader, windowUs: number): boolean {
   const dx = h.offsets.map((o) => o[0]);
   return (h.cols + Math.max(...dx) - Math.min(...dx)) * windowUs < 2 ** 32;
+}
+
+/** The G step comes at least this long before a pass's start mark (its line at 115200, the Nano's lead: scan_stroke.h). */
+export const STROKE_MARK_LEAD_US = 1000 + 2 * 85;
+/** After the stroke the Mega waits for the Nano's next Q answer (asked every 10 ms): half a poll on average. */
+export const SCAN_PASS_END_US = 5000;
+
+/**
+ * A pass's step at window W as 16.16 timer ticks, or why the step engine cannot run it: over
+ * ENGINE_MAX_RATE steps/s, or a step of 2¹⁶ ticks (32.768 ms) or more (mega.md M29, E29).
+ */
+export function engineStep(machine: Machine, pitchUm: number, windowUs: number): { q16: bigint } | { refused: string } {
+  const den = BigInt(pitchUm) * BigInt(machine.stepsMilli[0]);
+  if (den === 0n) return { refused: 'the X axis has no steps per mm' };
+  const q16 = ((2n * BigInt(windowUs) * 1_000_000n << 16n) + den / 2n) / den;
+  const stepsS = Number(den) / windowUs; // steps a window (den / 10⁶) over the window in s (W / 10⁶)
+  const speed = `${((pitchUm * 1000) / windowUs).toFixed(3)} mm/s (${stepsS < 100 ? stepsS.toFixed(1) : Math.round(stepsS)} steps/s)`;
+  if (q16 < BigInt(ENGINE_TICK_HZ / ENGINE_MAX_RATE) << 16n) return { refused: `the scan speed ${speed} is over the step engine's ${ENGINE_MAX_RATE} steps/s` };
+  if (q16 >= 1n << 32n) return { refused: `the scan speed ${speed} makes a step longer than the step engine's 32.8 ms` };
+  return { q16 };
+}
+
+const floorDivBig = (n: bigint, d: bigint) => (n >= 0n ? n / d : -((-n + d - 1n) / d));
+
+/**
+ * The stroke of a pass at the step `q16` whose start mark and last window's end are at twice the bed
+ * X `markX2Um` and `endX2Um` (µm), as the Mega's scan_stroke.cpp lays it out (planner.md "The stroke").
+ */
+export function planStroke(machine: Machine, markX2Um: number, endX2Um: number, descending: boolean, q16: bigint, savedUs: number): Pick<ScanPass, 'startSteps' | 'stopSteps' | 'strokeUs' | 'markUs'> {
+  const sign = descending ? -1n : 1n, S = BigInt(machine.stepsMilli[0]), den = 2_000_000n;
+  const rate = Math.min(Number(((BigInt(ENGINE_TICK_HZ) << 16n) + q16 - 1n) / q16), ENGINE_MAX_RATE);
+  const accel = axisAccel(machine, 0);
+  const ramp = stepRamp([1, 0], [rate, 0], [accel, 1]).ramp;
+  const mark = sign * BigInt(markX2Um) * S;
+  const gAt = floorDivBig(mark, den) - ceilDiv((2n * BigInt(STROKE_MARK_LEAD_US)) << 16n, q16) - 1n;
+  const start = gAt - BigInt(ramp + 2);
+  const stop = -floorDivBig(-(sign * BigInt(endX2Um) * S), den) + BigInt(ramp + 1);
+  const n = Number(stop - start);
+  const p = stepRamp([n, 0], [rate, 0], [accel, 1]);
+  const up = stepTicks(p, 0, ramp);
+  const ticks = BigInt(up) + ((BigInt(n - 2 * ramp) * q16) >> 16n) + BigInt(stepTicks(p, n - ramp, n));
+  const markTicks16 = (BigInt(up) << 16n) + q16 + ((mark - gAt * den) * q16) / den;
+  return {
+    startSteps: Number(sign * start),
+    stopSteps: Number(sign * stop),
+    strokeUs: Number((ticks - 2n * BigInt(savedUs) + 1n) / 2n),
+    markUs: Number((markTicks16 + 65536n) / 131072n),
+  };
 }
 
 /** Bytes a second the printhead link carries: 115200 baud, ten bits a byte (nano.md). */
@@ -111,9 +168,12 @@ export function planScan(job: PlannerJob, machine: Machine, opts: { neverFly?: b
   const plan: ScanPlan = { ...motion, passes: [], estimateUs: 0 };
   const W = motion.windowUs;
   if (W === 0 || !fitsTimer(h, W)) return plan;
+  const jobStep = engineStep(machine, h.pitchUm[0], W);
+  if ('refused' in jobStep) return { ...plan, refused: jobStep.refused };
   const Y = (hy: number) => h.originUm[1] + hy * h.pitchUm[1];
+  const X = (hx: number) => h.originUm[0] + hx * h.pitchUm[0];
   const moves = new MoveTimes(machine);
-  let curX = machine.startUm[0], curY = machine.startUm[1];
+  let curX = axisSteps(machine, 0, machine.startUm[0]), curY = machine.startUm[1];
   // Rows still to arrive (a stream): the plan is every pass up to the first that reads one of them
   // (planner.md "Planning while rows arrive"), a prefix of the whole job's.
   const known = job.knownRows ?? h.rows;
@@ -130,25 +190,46 @@ export function planScan(job: PlannerJob, machine: Machine, opts: { neverFly?: b
       if (!fitsTimer(h, w)) return { ...motion, passes: [], estimateUs: 0 };
       pass = layoutPass(job, tables, ledRows, hy, descending, passMotion(h, machine, w), machine, moves, !!opts.neverFly)!;
     }
+    // The pass as the Mega runs it (planner.md "The stroke"): the step engine's move to the stroke's
+    // start, the overhead, the stroke, and the Nano's Q answer that confirms the pass.
+    const step = engineStep(machine, h.pitchUm[0], pass.windowUs);
+    if ('refused' in step) return { ...motion, passes: [], estimateUs: 0, refused: step.refused };
+    const p = h.pitchUm[0], dir = pass.descending ? -1 : 1;
+    const x0 = X(pass.descending ? pass.last : pass.first), x1 = X(pass.descending ? pass.first : pass.last);
+    const saved = (pass.last - pass.first + 1) * pass.windowUs - windowsSpanUs(pass);
+    const stroke = planStroke(machine, 2 * x0 - dir * p, 2 * x1 + dir * p, pass.descending, step.q16, saved);
     const y = Y(hy);
-    const move = Math.max(moves.axis(0, Math.abs(pass.runUpUm - curX)), moves.axis(1, Math.abs(y - curY)));
-    plan.estimateUs += move + (move > 0 ? machine.settleUs : 0) + machine.overheadUs + passSpanUs(pass);
-    curX = pass.runOutUm;
+    const moveUs = moves.engine(stroke.startSteps - curX, axisSteps(machine, 1, y) - axisSteps(machine, 1, curY));
+    const full: ScanPass = { ...pass, moveUs, ...stroke };
+    plan.estimateUs += passWallUs(full, machine);
+    curX = stroke.stopSteps;
     curY = y;
-    plan.passes.push(pass);
+    plan.passes.push(full);
   }
   return plan;
 }
 
-/** A pass's time from its start at rest to its end at rest: accelerate, S(n − 1) + W, brake. */
-export function passSpanUs(pass: ScanPass): number {
+/** S(n − 1) + W: a pass's windows with its flown stretches in their place. */
+function windowsSpanUs(pass: Pick<ScanPass, 'first' | 'last' | 'windowUs' | 'jumps'>): number {
   let t = (pass.last - pass.first + 1) * pass.windowUs;
   for (const [, g, f] of pass.jumps) t += f - g * pass.windowUs;
-  return 2 * pass.accelUs + t;
+  return t;
+}
+
+/** A pass's whole time in the estimate: the move to its stroke, the overhead, the stroke, the Q that confirms it. */
+export function passWallUs(pass: ScanPass, machine: Pick<Machine, 'overheadUs'>): number {
+  return pass.moveUs + machine.overheadUs + pass.strokeUs + SCAN_PASS_END_US;
+}
+
+/** A pass's time from its start at rest to its end at rest, as the step engine runs its stroke. */
+export function passSpanUs(pass: ScanPass): number {
+  return pass.strokeUs;
 }
 
 /** One pass laid out at the motion `m`: its extent, flown stretches, switch times and events; null when nothing is lit. */
-export function layoutPass(job: PlannerJob, tables: Uint32Array[], ledRows: number[], hy: number, descending: boolean, m: ScanMotion, machine: Machine, moves: MoveTimes, neverFly: boolean): ScanPass | null {
+export type LaidOutPass = Omit<ScanPass, 'moveUs' | 'startSteps' | 'stopSteps' | 'strokeUs' | 'markUs'>;
+
+export function layoutPass(job: PlannerJob, tables: Uint32Array[], ledRows: number[], hy: number, descending: boolean, m: ScanMotion, machine: Machine, moves: MoveTimes, neverFly: boolean): LaidOutPass | null {
   const h = job.header;
   const p = h.pitchUm[0], W = m.windowUs;
   const X = (hx: number) => h.originUm[0] + hx * p;

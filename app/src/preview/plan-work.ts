@@ -22,9 +22,14 @@ export interface Planned {
   order: StrategyName;
 }
 
-/** The plan for `asked`, in its fastest order when `auto`; it throws what the planner throws. */
-export function planJob({ job: asked, machine, auto }: { job: PrintJob; machine: Machine; auto?: boolean }): Planned {
-  const orders = orderEstimates({ header: headerOf(asked), cells: asked.gridData }, machine);
+export type PlanRequest = { job: PrintJob; machine: Machine; auto?: boolean; bedXUm?: number };
+
+/**
+ * The plan for `asked`, in its fastest order when `auto`; it throws what the planner throws.
+ * `bedXUm`: the bed's width, which an automatic order's scan strokes must stay within.
+ */
+export function planJob({ job: asked, machine, auto, bedXUm }: PlanRequest): Planned {
+  const orders = orderEstimates({ header: headerOf(asked), cells: asked.gridData }, machine, bedXUm);
   const order = auto ? fastestOrder(orders) : asked.strategy.name;
   const job = { ...asked, strategy: { ...asked.strategy, name: order } };
   const { plan, scan } = planAnyJob({ header: headerOf(job), cells: job.gridData }, machine);

@@ -3,10 +3,8 @@
 // on-time inside each cell's window), so the picture is what the plan will switch, not what the
 // cells ask for.
 
-import type { ScanPass, ScanPlan } from '../planner/scan';
+import { passWallUs, type ScanPass, type ScanPlan } from '../planner/scan';
 import type { Machine } from '../planner/time-model';
-import { MoveTimes } from '../planner/time-model';
-import { passDurationUs } from '../planner/job-plan';
 import type { PrintJob } from '../protocol/job-types';
 import { emptyGrid, type PreviewGrid } from './exposure-preview';
 
@@ -33,6 +31,8 @@ export interface ScanPreview {
   doses: ScanDoses;
   speedUmS: number;
   windowUs: number;
+  /** Why the printer cannot run the job's passes (planner.md "Limits"), when it cannot. */
+  refused?: string;
 }
 
 /** S(j) of planner.md "Scan mode": when each window starts after the mark, flown stretches included. */
@@ -93,6 +93,7 @@ export function scanPreview(job: PrintJob, scan: ScanPlan): ScanPreview {
     doses: scanDoses(job, scan),
     speedUmS: scan.speedUmS,
     windowUs: scan.windowUs,
+    refused: scan.refused,
   };
 }
 
@@ -115,16 +116,12 @@ export function scanPreviewGrid(job: PrintJob, doses: ScanDoses, upTo: number, m
 }
 
 /** The clock when each pass ends, µs, as planScan's estimate counts it. */
-export function scanTimeline(job: PrintJob, scan: ScanPlan, machine: Machine): Float64Array {
-  const moves = new MoveTimes(machine);
+export function scanTimeline(_job: PrintJob, scan: ScanPlan, machine: Machine): Float64Array {
   const out = new Float64Array(scan.passes.length);
-  let x = machine.startUm[0], y = machine.startUm[1], t = 0;
+  let t = 0;
   scan.passes.forEach((p, i) => {
-    const ny = job.originUm.y + p.hy * job.pitchUm.y;
-    const move = Math.max(moves.axis(0, Math.abs(p.runUpUm - x)), moves.axis(1, Math.abs(ny - y)));
-    t += move + (move > 0 ? machine.settleUs : 0) + machine.overheadUs + passDurationUs(scan, p);
+    t += passWallUs(p, machine);
     out[i] = t;
-    x = p.runOutUm, y = ny;
   });
   return out;
 }

@@ -18,7 +18,7 @@ export const CONFIG_DEFAULTS: Record<string, string> = {
   'accel.y': '1500',
   'accel.z': '200',
   'settle_ms': '2',
-  'stop_overhead_us': '1500',
+  'stop_overhead_us': '400',
   'invert.x': '0',
   'invert.y': '0',
   'invert.z': '0',
@@ -127,6 +127,7 @@ export function motionOf(config: Record<string, string>, startUm: [number, numbe
     settleUs: num(config, 'settle_ms') * 1000,
     overheadUs: num(config, 'stop_overhead_us'),
     startUm,
+    stepsMilli: [Math.round(num(config, 'steps_per_mm.x') * 1000), Math.round(num(config, 'steps_per_mm.y') * 1000)],
   };
 }
 

@@ -10,6 +10,8 @@ export type ToSimulator =
   /** The printer's speed, times real time (1-1000). */
   | { type: 'speed'; speed: number }
   | { type: 'faults'; faults: Partial<SimFaults> }
+  /** The host closed its link (Disconnect): the printer runs on, nobody listening. */
+  | { type: 'close' }
   /** The USB cable comes out: the printer runs on, the host's link is lost. */
   | { type: 'unplug' }
   /** Switched off (the app connects to a real printer): a job stops, and the worker ends. */

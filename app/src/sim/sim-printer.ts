@@ -85,7 +85,7 @@ export class SimPrinter {
     m.starts = saved?.boots ?? 0;
     this.#powerUp();
     m.cardInserted(!o.noSd);
-    this.setFaults({});
+    this.setFaults({ probeAlarm: this.#faults.probeAlarm });
   }
 
   /** The whole machine starts afresh from its card and EEPROMs, the Nano's start count one more. */
@@ -115,7 +115,7 @@ export class SimPrinter {
     this.#heat();
     this.thermal.model.extraHeatingCPerS = f.overheatCPerS;
     // For the next deploy: the alarm release disarms it, as the panel's box stays as set.
-    if (faults.probeAlarm !== undefined || Object.keys(faults).length === 0) this.module.probeAlarm(f.probeAlarm);
+    if (faults.probeAlarm !== undefined) this.module.probeAlarm(f.probeAlarm);
   }
 
   /** The USB cable comes out now: the printer runs on, nothing passes until a host opens the link again. */

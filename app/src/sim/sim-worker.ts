@@ -33,9 +33,25 @@ const early: ToSimulator[] = []; // what the app sent while the module and the s
 
 onmessage = (e: MessageEvent<ToSimulator>) => (printer ? obey(printer, e.data) : early.push(e.data));
 
+/**
+ * The printer's time runs `speed` times the page's, but never more than this far ahead of what
+ * the page last sent while its link is open: a page busy for a second at 40x would otherwise be a
+ * host gone quiet for 40 s, and the Mega pauses a job whose hosts are silent for 30 s (mega.md §6).
+ * The page's link speaks every 10 s of the printer's time (device/dialect-link.ts).
+ */
+const AHEAD_OF_HOST_US = 20_000_000;
+let heardUs = 0;
+let hostOpen = true; // the worker is made when the page opens its link
+
 function obey(p: SimPrinter, m: ToSimulator): void {
-  if (m.type === 'tx') p.receive(m.bytes);
-  else if (m.type === 'reset') p.resetMega(); // the link was opened again
+  if (m.type === 'tx') {
+    p.receive(m.bytes);
+    heardUs = p.clock.now;
+  } else if (m.type === 'reset') {
+    p.resetMega(); // the link was opened again
+    heardUs = p.clock.now;
+    hostOpen = true;
+  } else if (m.type === 'close') hostOpen = false; // the printer runs on at its own pace
   else if (m.type === 'speed') {
     speed = Math.max(1, Math.min(1000, m.speed));
     start = performance.now() - p.clock.now / 1000 / speed;
@@ -73,7 +89,8 @@ async function boot(): Promise<void> {
   for (const m of early.splice(0)) obey(p, m);
   setInterval(() => {
     const began = performance.now();
-    const target = (began - start) * speed * 1000;
+    let target = (began - start) * speed * 1000;
+    if (hostOpen && !p.disconnected) target = Math.min(target, heardUs + AHEAD_OF_HOST_US);
     // In slices, so that a machine slower than its speed gives up the rest of the tick, and its
     // clock starts again from where it got: the page sees a slower printer, never a frozen one.
     while (p.clock.now < target && performance.now() - began < TICK_BUDGET_MS) p.advanceTo(Math.min(target, p.clock.now + 20_000 * speed));

@@ -1,6 +1,6 @@
 import { describe, expect, it } from 'vitest';
 import type { PrintJob } from '../protocol/job-types';
-import { dryRun, machineFinding } from './dry-run';
+import { dryRun, machineFinding, sidesFinding } from './dry-run';
 import { DEFAULT_CONFIG } from './machine-config';
 
 function job(over: Partial<PrintJob> = {}, cols = 20, rows = 8, value = 255): PrintJob {
@@ -38,6 +38,17 @@ describe('dry run', () => {
     expect(levels(stopped).envelope).toBe('ok'); // the cut part is not in the job: the head stays on the bed
     expect(levels(dryRun(job(), DEFAULT_CONFIG, { cuts: [cut], acceptCuts: true })).clipping).toBe('warning');
     expect(levels(dryRun(job(), DEFAULT_CONFIG, { cuts: [] })).clipping).toBe('ok');
+  });
+
+  it('exposes a two-sided board one side at a time, and says which', () => {
+    const board = (top: boolean, bottom: boolean) => ({ name: 'demo', sides: [{ id: 1, name: 'demo', side: 'top' as const, inJob: top }, { id: 2, name: 'demo (bottom)', side: 'bottom' as const, inJob: bottom }] });
+    expect(sidesFinding([])).toBeNull();
+    expect(levels(dryRun(job(), DEFAULT_CONFIG, { boards: [] })).sides).toBeUndefined();
+    const both = dryRun(job(), DEFAULT_CONFIG, { boards: [board(true, true)] }).findings.find((f) => f.check === 'sides')!;
+    expect(both).toEqual({ check: 'sides', level: 'error', message: 'board demo: both sides are in the job, exposed on top of each other. A board is exposed one side at a time: leave one out' });
+    expect(sidesFinding([board(true, false)])).toEqual({ check: 'sides', level: 'ok', message: 'the top side of board demo. The other side is left out, for once the board is turned over' });
+    expect(sidesFinding([board(false, true)])!.message).toBe('the bottom side of board demo. The other side is left out, for once the board is turned over');
+    expect(sidesFinding([board(false, false)])!.message).toBe('no side of board demo. The other side is left out, for once the board is turned over');
   });
 
   it('stops an exposure longer than the printhead takes', () => {

@@ -1,12 +1,14 @@
 // The check before any LED fires (issue 8 "Job control"): the job is planned as the Mega will
 // plan it, and the plan is held against the bed, the mesh, the printhead's exposure cap and
 // the LEDs' thermal budget, and the machine's own faults; the drawing's objects are held against the bed's edges (a cut
-// object is an error until the user accepts the cut). Errors stop the job; warnings ask the user.
+// object is an error until the user accepts the cut), and a two-sided board's sides (one a job).
+// Errors stop the job; warnings ask the user.
 
 import { headerOf } from '../planner/job-header';
 import type { Mesh } from '../planner/mesh';
+import { durationTables } from '../planner/dose';
 import { planAnyJob } from '../planner/job-plan';
-import type { Plan } from '../planner/planner';
+import { passRows, type Plan } from '../planner/planner';
 import type { ScanPlan } from '../planner/scan';
 import type { PrintJob } from '../protocol/job-types';
 import type { Fault } from '../device/device-state';
@@ -15,10 +17,11 @@ import { hms } from '../job/hms';
 import { scanWords } from '../job/scan-words';
 import { bedOf, limitsOf, motionOf, type MachineConfig } from './machine-config';
 import { cutWords, type Cut } from './objects/clipping';
+import { sideInJob, type TwoSided } from './objects/board-object';
 import { forecastScanThermal, forecastThermal, type ThermalRun } from './thermal-forecast';
 
 export interface Finding {
-  check: 'machine' | 'mode' | 'envelope' | 'clipping' | 'mesh' | 'dose' | 'thermal';
+  check: 'machine' | 'mode' | 'envelope' | 'clipping' | 'sides' | 'mesh' | 'dose' | 'thermal';
   level: 'error' | 'warning' | 'ok';
   message: string;
 }
@@ -57,14 +60,27 @@ export function clippingFinding(cuts: readonly Cut[], accepted: boolean): Findin
 }
 
 /**
+ * A two-sided board is exposed one side a job, the board turned over between them: both sides in one
+ * job would expose them on top of each other (or the second side beside the first, on a board not yet
+ * turned), so that is an error; the side the job exposes is said.
+ */
+export function sidesFinding(boards: readonly TwoSided[]): Finding | null {
+  if (!boards.length) return null;
+  const both = boards.filter((b) => b.sides.filter((s) => s.inJob).length > 1);
+  if (both.length) return { check: 'sides', level: 'error', message: `${both.map((b) => `board ${b.name}`).join(', ')}: both sides are in the job, exposed on top of each other. A board is exposed one side at a time: leave one out` };
+  return { check: 'sides', level: 'ok', message: `${boards.map((b) => sideInJob(b) ?? `no side of board ${b.name}`).join('; ')}. The other side is left out, for once the board is turned over` };
+}
+
+/**
  * `leveling` is whether the printer said exposures follow the mesh; null or absent if it did not
- * say. `cuts`: the drawing's objects cut by the bed's edge (absent for a job with no objects).
+ * say. `cuts`: the drawing's objects cut by the bed's edge (absent for a job with no objects);
+ * `boards`: its boards placed as two sides.
  * `startC` is the head's temperatures now (the printer's last report); a warm head pauses sooner.
  */
 export function dryRun(
   job: PrintJob,
   config: MachineConfig,
-  opts: { mesh?: Mesh | null; leveling?: boolean | null; startC?: number[] | null; cuts?: readonly Cut[]; acceptCuts?: boolean; machine?: MachineCheck; onStage?: (stage: string) => void } = {},
+  opts: { mesh?: Mesh | null; leveling?: boolean | null; startC?: number[] | null; cuts?: readonly Cut[]; acceptCuts?: boolean; boards?: readonly TwoSided[]; machine?: MachineCheck; onStage?: (stage: string) => void } = {},
 ): DryRun {
   opts.onStage?.('planning');
   const header = headerOf(job);
@@ -74,11 +90,13 @@ export function dryRun(
   const { bedMm } = bedOf(config);
   if (scan) findings.push(scanFinding(scan));
 
-  // Envelope: every head position the plan stops at (for a scan job, each pass from run-up to run-out), on the bed.
+  // Envelope: every head position the plan stops at (for a scan job, each pass's stroke from its start
+  // to its stop, as the Mega lays it out: a few steps beyond the run-up and run-out), on the bed.
   let minX = Infinity, minY = Infinity, maxX = -Infinity, maxY = -Infinity;
+  const strokeUm = (steps: number) => Math.round((steps * 1_000_000) / machine.stepsMilli[0]);
   for (let i = 0; i < plan.count; i++) {
     const y = job.originUm.y + plan.hy[i] * job.pitchUm.y;
-    const xs = scan ? [scan.passes[i].runUpUm, scan.passes[i].runOutUm] : [job.originUm.x + plan.hx[i] * job.pitchUm.x];
+    const xs = scan ? [strokeUm(scan.passes[i].startSteps), strokeUm(scan.passes[i].stopSteps)] : [job.originUm.x + plan.hx[i] * job.pitchUm.x];
     for (const x of xs) minX = Math.min(minX, x), maxX = Math.max(maxX, x);
     minY = Math.min(minY, y), maxY = Math.max(maxY, y);
   }
@@ -89,6 +107,8 @@ export function dryRun(
     findings.push({ check: 'envelope', level: 'ok', message: plan.count ? `the head stays within X ${mm(minX)}–${mm(maxX)}, Y ${mm(minY)}–${mm(maxY)} mm` : 'nothing to expose' });
   }
   if (opts.cuts) findings.push(clippingFinding(opts.cuts, opts.acceptCuts ?? false));
+  const sides = sidesFinding(opts.boards ?? []);
+  if (sides) findings.push(sides);
 
   // Mesh: with leveling on, the job should lie within the probed points (beyond them Z is held at the edge).
   if (opts.leveling === false) findings.push({ check: 'mesh', level: 'ok', message: 'leveling is off: the whole job is exposed at one height' });
@@ -110,14 +130,19 @@ export function dryRun(
     longest = Math.max(longest, plan.durations[i]);
     lit[i & 3] += plan.durations[i];
   }
-  // A scan job's LED stays on across a run of full cells (planner.md "Switch times": touching
-  // intervals merge only when a cell fills its window), so a cell's exposure is at most the window.
-  for (const pass of scan?.passes ?? []) {
-    pass.leds.forEach((list, k) => list.forEach(([on, off]) => {
-      longest = Math.max(longest, Math.min(off - on, pass.windowUs));
-      lit[k] += off - on;
-    }));
+  // A scan job's cell is lit for its stop-mode on-time t_k(v) (an LED stays on across a run of full
+  // cells, but each cell's exposure is its own): judged from the cells, so a scan the Mega cannot run
+  // (no passes) is judged too.
+  if (scan) {
+    const tables = durationTables(header);
+    for (const { ledRows } of passRows(header, job.gridData)) {
+      ledRows.forEach((r, k) => {
+        const row = r >= 0 ? job.gridData[r] : [];
+        for (let c = 0; c < row.length; c++) longest = Math.max(longest, tables[k][row[c]]);
+      });
+    }
   }
+  for (const pass of scan?.passes ?? []) pass.leds.forEach((list, k) => list.forEach(([on, off]) => (lit[k] += off - on)));
   findings.push(longest > NANO_MAX_EXPOSURE_US
     ? { check: 'dose', level: 'error', message: `${scan ? 'a cell' : 'a stop'} would light an LED for ${(longest / 1e6).toFixed(1)} s; the printhead refuses more than ${NANO_MAX_EXPOSURE_US / 1e6} s` }
     : { check: 'dose', level: 'ok', message: `the longest exposure is ${(longest / 1000).toFixed(1)} ms` });
@@ -155,6 +180,7 @@ export function machineFinding(m: MachineCheck): Finding {
 
 /** What a scan job is: its passes, their speed and the cell window. */
 export function scanFinding(scan: ScanPlan): Finding {
+  if (scan.refused) return { check: 'mode', level: 'error', message: `scan job (on the move): the printer cannot run it: ${scan.refused}. Choose a stop-and-fire order, or a dose that makes a shorter window` };
   if (!scan.passes.length) return { check: 'mode', level: 'ok', message: 'scan job (on the move): nothing to expose' };
   return { check: 'mode', level: 'ok', message: `scan job (on the move): ${scanWords(scan.passes.length, scan.speedUmS, scan.windowUs)}` };
 }

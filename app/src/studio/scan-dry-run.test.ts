@@ -20,6 +20,7 @@ function simulate(job: PrintJob) {
   h.cmd('G28');
   h.upload('F.UVJ', encodeJob(job));
   h.cmd('M23 F.UVJ');
+  h.sim.advance(3000); // the Mega measures the Nano's clock (W) for 2 s after it answers: a scan pass waits for it
   const startC = h.sim.thermal.temp.slice();
   h.sim.thermal.resetPeak();
   const from = h.sim.clock.now;
@@ -47,9 +48,23 @@ describe('dry run of a scan job', () => {
 
   it('judges the dose per cell: a run of full cells lights an LED without a break, and is no error', () => {
     const job = block(4000, 1, 10, 4); // 4 s a cell, 40 s a pass with the LEDs on throughout
-    const r = dryRun(job, DEFAULT_CONFIG);
+    job.pitchUm.x = 100; // 200 steps a window at 2000 steps/mm: a 20 ms step, which the step engine runs
+    const fine = { ...DEFAULT_CONFIG, 'steps_per_mm.x': '2000' };
+    const r = dryRun(job, fine);
+    expect(r.scan?.passes[0].leds[0][0]).toEqual([0, 8_000_000]); // two full cells, the LED on across both
     expect(r.findings.find((f) => f.check === 'dose')).toEqual({ check: 'dose', level: 'ok', message: 'the longest exposure is 4000.0 ms' });
     expect(dryRun(block(10_001, 0.5, 4, 4), DEFAULT_CONFIG).findings.find((f) => f.check === 'dose')?.level).toBe('error');
+  });
+
+  it('says why the printer cannot run a scan whose step the step engine cannot make (mega.md M29)', () => {
+    // 200 ms windows at 50 µm and 80 steps/mm: a step of 50 ms, over the engine's 32.768 ms.
+    const r = dryRun(block(200, 1), DEFAULT_CONFIG);
+    expect(r.scan?.passes).toEqual([]);
+    expect(r.findings.find((f) => f.check === 'mode')).toEqual({
+      check: 'mode',
+      level: 'error',
+      message: "scan job (on the move): the printer cannot run it: the scan speed 0.250 mm/s (20.0 steps/s) makes a step longer than the step engine's 32.8 ms. Choose a stop-and-fire order, or a dose that makes a shorter window",
+    });
   });
 
   it('holds the whole pass, run-up to run-out, against the bed', () => {
@@ -59,7 +74,9 @@ describe('dry run of a scan job', () => {
     expect(r.findings.find((f) => f.check === 'envelope')?.level).toBe('error');
   });
 
-  it.each([[200, 1], [400, 0.5]])('forecasts the heat of a scan job at %i ms, %f lit, as the simulated printer heats (2 °C)', (fullMs, fill) => {
+  // Windows the step engine runs: 100 and 120 ms at 50 µm and 80 steps/mm are steps of 25 and 30 ms
+  // (its longest is 32.768 ms: a 200 ms window is refused, mega.md M29).
+  it.each([[100, 1], [120, 0.5]])('forecasts the heat of a scan job at %i ms, %f lit, as the simulated printer heats (2 °C)', (fullMs, fill) => {
     const job = block(fullMs, fill);
     const sim = simulate(job);
     const header = headerOf(job);

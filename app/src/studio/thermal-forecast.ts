@@ -7,7 +7,7 @@
 
 import { passDurationUs, passSwitches } from '../planner/job-plan';
 import type { Plan } from '../planner/planner';
-import type { ScanPlan } from '../planner/scan';
+import { passWallUs, type ScanPlan } from '../planner/scan';
 import { MoveTimes, type Machine } from '../planner/time-model';
 import { HEAD_THERMAL, HeadThermal, type HeadThermalModel } from '../sim/head-thermal';
 import { overSoftLimit, paceWaits, READING_PERIOD_US } from '../sim/pacing';
@@ -111,22 +111,18 @@ export function forecastThermal(plan: Plan, place: PlanPlace, machine: Machine, 
  */
 export function forecastScanThermal(scan: ScanPlan, place: PlanPlace, machine: Machine, o: ForecastOptions): ThermalRun {
   const { s, hold, paceWait, result } = forecastHead(o);
-  const moves = new MoveTimes(machine);
-  let x = machine.startUm[0], y = machine.startUm[1];
   run: for (s.stop = 0; s.stop < scan.passes.length; s.stop++) {
     const pass = scan.passes[s.stop];
-    const ny = place.originUm[1] + pass.hy * place.pitchUm[1];
-    const move = Math.max(moves.axis(0, Math.abs(pass.runUpUm - x)), moves.axis(1, Math.abs(ny - y)));
-    if (!hold(move + (move > 0 ? machine.settleUs : 0) + machine.overheadUs, 0)) break;
+    const stroke = passDurationUs(scan, pass);
+    if (!hold(passWallUs(pass, machine) - stroke, 0)) break; // the move, the overhead, the Q that ends the pass
     if (!paceWait()) break;
-    let at = -pass.accelUs, lit = 0; // µs after the pass's start mark
+    let at = -pass.markUs, lit = 0; // µs after the pass's start mark, as the stroke runs
     for (const sw of passSwitches(pass)) {
       if (!hold(sw.atUs - at, lit)) break run;
       at = sw.atUs;
       lit = sw.mask;
     }
-    if (!hold(passDurationUs(scan, pass) - pass.accelUs - at, lit)) break;
-    x = pass.runOutUm, y = ny;
+    if (!hold(stroke - pass.markUs - at, lit)) break;
   }
   return result();
 }

@@ -2,7 +2,7 @@
 // pass binned for the canvas, so scrubbing a whole bed's plan never runs on the page's thread.
 
 import { previewGrid, type PreviewGrid } from '../preview/exposure-preview';
-import { planJob, type Planned } from '../preview/plan-work';
+import { planJob, type Planned, type PlanRequest } from '../preview/plan-work';
 import { scanPreviewGrid } from '../preview/scan-preview';
 import type { Machine } from '../planner/time-model';
 import type { PrintJob } from '../protocol/job-types';
@@ -10,7 +10,7 @@ import type { PrintJob } from '../protocol/job-types';
 let kept: { job: PrintJob; planned: Planned } | null = null;
 
 /** The plan, kept for `keptGrid`; the page gets copies of its arrays, handed over (`transfer`). */
-export function planForPreview(req: { job: PrintJob; machine: Machine; auto?: boolean }): { result: Planned; transfer: Transferable[] } {
+export function planForPreview(req: PlanRequest): { result: Planned; transfer: Transferable[] } {
   const planned = planJob(req);
   kept = { job: { ...req.job, strategy: { ...req.job.strategy, name: planned.order } }, planned };
   const plan = { ...planned.plan, hx: planned.plan.hx.slice(), hy: planned.plan.hy.slice(), durations: planned.plan.durations.slice() };

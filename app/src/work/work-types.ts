@@ -10,6 +10,7 @@ import type { PrintJob, StrategyName } from '../protocol/job-types';
 import type { Finding, MachineCheck } from '../studio/dry-run';
 import type { MachineConfig } from '../studio/machine-config';
 import type { Cut } from '../studio/objects/clipping';
+import type { TwoSided } from '../studio/objects/board-object';
 import type { ArtworkObject } from '../studio/objects/objects';
 import type { Polarity } from '../studio/objects/raster';
 
@@ -21,12 +22,18 @@ export interface Progress {
 }
 
 export type WorkRequest =
-  /** The preview's plan; the worker keeps it for `preview-grid`. `auto`: in its fastest order. */
-  | { kind: 'plan'; job: PrintJob; machine: Machine; auto?: boolean }
+  /**
+   * The preview's plan; the worker keeps it for `preview-grid`. `auto`: in its fastest order, of
+   * those whose scan strokes stay within the bed's width `bedXUm`.
+   */
+  | { kind: 'plan'; job: PrintJob; machine: Machine; auto?: boolean; bedXUm?: number }
   /** The kept plan's light up to stop (or pass) `upTo`, in bins of at most `maxSide` a side. */
   | { kind: 'preview-grid'; upTo: number; maxSide: number }
-  /** The check before an exposure (studio/dry-run.ts); `auto`: in its fastest order. */
-  | { kind: 'dry-run'; job: PrintJob; config: MachineConfig; auto: boolean; opts: { mesh?: Mesh | null; leveling?: boolean | null; startC?: number[] | null; cuts?: Cut[]; machine?: MachineCheck } }
+  /**
+   * The check before an exposure (studio/dry-run.ts); `auto`: in its fastest order, of those that
+   * stay on the config's bed. `boards`: the drawing's two-sided boards, one side a job.
+   */
+  | { kind: 'dry-run'; job: PrintJob; config: MachineConfig; auto: boolean; opts: { mesh?: Mesh | null; leveling?: boolean | null; startC?: number[] | null; cuts?: Cut[]; boards?: TwoSided[]; machine?: MachineCheck } }
   /** A picture embedded as a data: URL, decoded and kept. */
   | { kind: 'read-picture'; src: string }
   /** A board's files, as picked or embedded as a data: URL (pcb/board-artwork.ts), read and kept. */

@@ -40,6 +40,10 @@ void Bridge::poll(uint32_t nowMs) {
   nowMs_ = nowMs;
   upload_.poll();
   sender_.poll(nowMs);
+  if (nowMs - heartbeatMs_ >= kHeartbeatMs) {  // an upload's records say it already
+    heartbeatMs_ = nowMs;
+    if (!upload_.active()) sender_.send("M105", kTagInit);
+  }
   bool online = status_.online(nowMs);
   bool changed = status_.changes() != statusChanges_ || online != statusOnline_;
   if (nowMs - statusSentMs_ >= kStatusMs || (changed && nowMs - statusSentMs_ >= kStatusMinMs)) {

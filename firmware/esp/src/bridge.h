@@ -27,6 +27,9 @@ class Bridge : public MegaListener {
   static constexpr uint8_t kConsoleReserve = 4;  // sender slots an upload leaves for the console
   static constexpr uint16_t kBlock = 2048;       // the reply block kept for a `reply`
   static constexpr uint32_t kStatusMs = 1000, kStatusMinMs = 250, kUploadMs = 500;
+  // The Mega pauses a running job when no host has said anything for 30 s (mega.md §6); its
+  // reports come by themselves, so the hub says something on purpose, as Marlin hosts poll.
+  static constexpr uint32_t kHeartbeatMs = 10000;
 
   Bridge(MegaWire& wire, LiveChannel& live) : sender_(wire, *this), upload_(sender_, kConsoleReserve), live_(live) {}
 
@@ -101,6 +104,7 @@ class Bridge : public MegaListener {
   uint32_t uploads_ = 0;
   bool reserved_ = false;
   uint32_t statusSentMs_ = 0, statusChanges_ = 0;
+  uint32_t heartbeatMs_ = 0;
   bool statusOnline_ = false;
   uint32_t uploadSentMs_ = 0, uploadChanges_ = 0;
   uint8_t uploadState_ = 0xff;

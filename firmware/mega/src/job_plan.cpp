@@ -28,6 +28,8 @@ uv::Machine plannerMachine(const Config& config, int32_t x, int32_t y) {
   m.overheadUs = static_cast<uint32_t>(config.whole(Key::StopOverheadUs));
   m.startUm[0] = x;
   m.startUm[1] = y;
+  m.stepsMilli[0] = static_cast<uint32_t>(config.milli(Key::StepsX));
+  m.stepsMilli[1] = static_cast<uint32_t>(config.milli(Key::StepsY));
   return m;
 }
 
@@ -109,7 +111,12 @@ bool JobPlan::passEvent(void* ctx, uint32_t& t, uint8_t& m) {
 // fifth to spare for the Q polls. A pass that would outrun it is refused here, before any light.
 bool JobPlan::stepScan() {
   uv::ScanPass p;
-  if (!scan_->nextPass(p)) return finish(scan_->estimateUs());
+  if (!scan_->nextPass(p)) {
+    if (!scan_->refused()) return finish(scan_->estimateUs());
+    error_ = uv::kScanUnsupported;  // a window the step engine cannot run: refused before any light
+    close();
+    return true;
+  }
   uv::ProgramLines lines(passEvent, this);
   char line[uv::kNanoMaxLine + 2];
   uint32_t bytes = 0, ahead = 0;

@@ -68,6 +68,8 @@ class JobRunner {
   void setPaced(bool paced) { paced_ = paced; }
   bool paced() const { return paced_; }
   bool cooling() const { return phase_ == Phase::Cool; }
+  // The first sensor (1-6) reading at or over its soft limit now, or 0.
+  uint8_t tooHot() const;
 
   RunState state() const { return state_; }
   uint8_t reason() const { return reason_; }
@@ -87,7 +89,6 @@ class JobRunner {
   void fail(uint8_t code);
   void halt(RunState s, uint8_t reason);
   uint32_t compensate(uint8_t led, uint32_t us) const;
-  uint8_t tooHot() const;
   // What stops an exposure from starting now (too hot, a printhead fault, the Nano gone): its error code, or 0.
   uint8_t exposureBlocked() const;
   bool paceWaits(bool cooling) const;

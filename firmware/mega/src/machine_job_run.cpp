@@ -6,6 +6,7 @@
 #include "dialect_reply.h"
 #include "error_codes.h"
 #include "machine.h"
+#include "nano_codec.h"
 #include "progmem.h"
 #include "text_scan.h"
 
@@ -236,9 +237,19 @@ void Machine::runJob() {
     *p++ = ' ';
     uv::errorMessage(j.reason(), p, 48);
     p += strlen(p);
-    uvMemcpyP(p, UV_P(" at stop "), 9);
-    p += 9;
-    p[uv::putUnsigned(j.faultStop(), p)] = 0;
+    uint8_t hot = j.reason() == uv::kOverTemperature ? j.tooHot() : 0;
+    if (hot) {  // a soft limit: which sensor, at what reading (mega.md "Pacing")
+      *p++ = ' ';
+      *p++ = 'T';
+      *p++ = static_cast<char>('0' + hot - 1);
+      *p++ = ' ';
+      p += uv::formatDeciC(head_.deciC()[hot - 1], p);
+      uvMemcpyP(p, UV_P(" (soft limit)"), 14);
+    } else {
+      uvMemcpyP(p, UV_P(" at stop "), 9);
+      p += 9;
+      p[uv::putUnsigned(j.faultStop(), p)] = 0;
+    }
     if (!broadcastWhole(buf)) return;
     faultToShow_ = false;
   }

@@ -125,6 +125,20 @@ TEST_F(ScanCardTest, AJobWhosePassWouldOutlastTheStrokesTickCountIsRefusedAtM29B
   EXPECT_TRUE(m.nano.scanLight.empty());
 }
 
+TEST_F(ScanCardTest, AJobWhoseStepTheEngineCannotMakeIsRefusedAtM29BeforeAnyLight) {
+  // 200 ms windows at 50 µm and 80 steps/mm: 4 steps a window, 50 ms a step, over the step engine's
+  // 32.768 ms. The planner knows it (planner.md "Limits"), so M29 refuses it rather than M24 failing.
+  job(12, 4, 200000);
+  h.pitchUm[0] = h.pitchUm[1] = 50;
+  for (auto& row : g)
+    for (uint16_t c = 0; c < h.cols; c++) row[c] = 255;
+  Lines got = upload("SLOW.UVJ", encode(h, g));
+  EXPECT_TRUE(has(got, "echo:E29 scan job not supported by this machine")) << ::testing::PrintToString(got);
+  m.cmd("G28");
+  EXPECT_EQ(payload("M24"), (Lines{"echo:E26 no job selected"}));
+  EXPECT_TRUE(m.nano.scanLight.empty());
+}
+
 TEST_F(ScanCardTest, APhotoWhosePassesWouldOutrunThePrintheadLinkRunsSlowerEveryCellItsDose) {
   // A photo: every cell a different gray, so each LED switches twice a window, 2 ms each: some
   // 30 kB/s of program lines for a link that carries 11.5. The planner slows each pass until its

@@ -6,7 +6,10 @@
 #include <cmath>
 #include <random>
 
+#include "job_plan.h"
 #include "motion_rig.h"
+#include "scan.h"
+#include "scan_stroke.h"
 #include "time_model.h"
 
 using namespace mega;
@@ -51,7 +54,7 @@ double moveSeconds(const std::vector<StepEvent>& ev) {
 
 TEST(StepProfile, IsqrtIsExactlyTheFloor) {
   for (uint32_t n : {0u, 1u, 2u, 3u, 4u, 15u, 16u, 17u, 99u, 100u, 65535u, 65536u, 400000000u, 1073741823u, 4294967295u}) {
-    uint32_t r = isqrt32(n);
+    uint32_t r = uv::isqrt32(n);
     EXPECT_LE(static_cast<uint64_t>(r) * r, n);
     EXPECT_GT(static_cast<uint64_t>(r + 1) * (r + 1), n);
   }
@@ -254,4 +257,64 @@ TEST_F(MotionTest, AMainLoopUpTo30msLateNeverStarvesTheStepInterrupt) {
   ASSERT_TRUE(late.motion.moveTo(far, 0));
   ASSERT_TRUE(late.runIdle());
   EXPECT_GT(late.engine.underruns(), 0);
+}
+
+// The planner's time model (planner.md "Time model", "The stroke") prices moves as this step engine
+// runs them: to the half µs, for moves on X, Y and both, short hops and long ones.
+TEST_F(MotionTest, ThePlannersStepEngineTimesEveryMoveAsTheEngineRunsIt) {
+  const uv::Machine m = plannerMachine(config, 0, 0);
+  std::mt19937 rng(5);
+  for (int i = 0; i < 60; i++) {
+    MotionRig r{config};
+    const int32_t scale = i % 3 == 0 ? 300 : i % 3 == 1 ? 5000 : 200000;
+    int32_t to[3] = {static_cast<int32_t>(rng() % scale), static_cast<int32_t>(i % 4 == 0 ? 0 : rng() % scale), 0};
+    if (i == 0) {  // the 4-step hop between stops at 50 µm
+      to[0] = 50;
+      to[1] = 0;
+    }
+    ASSERT_TRUE(r.motion.moveTo(to, 0));
+    ASSERT_TRUE(r.runIdle());
+    SCOPED_TRACE(testing::Message() << to[0] << ", " << to[1]);
+    EXPECT_NEAR(moveSeconds(r.steps) * 1e6, uv::engineMoveUs(m, 0, 0, to[0], to[1]), 0.5);
+    if (i == 0) {
+      EXPECT_EQ(uv::engineMoveUs(m, 0, 0, to[0], to[1]), 7890u);  // 2.5 + 1.445 + 1.445 + 2.5 ms
+    }
+  }
+}
+
+TEST_F(MotionTest, ThePlannersStrokeIsTheOneTheMegaRunsAndTakesItsTime) {
+  const uv::Machine m = plannerMachine(config, 0, 0);
+  for (uint32_t window : {2000u, 4000u, 25000u, 100000u, 130000u}) {
+    for (bool descending : {false, true}) {
+      SCOPED_TRACE(testing::Message() << window << (descending ? " −X" : " +X"));
+      MotionRig r{config};
+      // A pass of 24 windows at 50 µm from X 20 mm: the mark half a pitch before window 0's column.
+      const int32_t firstX = descending ? 21150 : 20000, lastX = descending ? 20000 : 21150, dir = descending ? -1 : 1;
+      StrokeInput in{2 * firstX - dir * 50, 2 * lastX + dir * 50, descending, window, 50, r.motion.stepsMilli(0), 0};
+      uint16_t interval, frac;
+      ASSERT_TRUE(strokeInterval(window, 50, in.stepsMilli, interval, frac));
+      in.rampSteps = r.motion.strokeRampSteps(interval, frac);
+      StrokePlan k;
+      ASSERT_TRUE(planStroke(in, k));
+      uint64_t q16;
+      ASSERT_TRUE(uv::engineStep(m, 50, window, q16));
+      uv::ScanPass pass{};
+      uv::planStroke(m, in.markX2Um, in.endX2Um, descending, q16, 0, pass);
+      EXPECT_EQ(pass.startSteps, k.startSteps);
+      EXPECT_EQ(pass.stopSteps, k.startSteps + k.steps);
+      const int32_t start[3] = {k.startSteps, 0, 0};
+      ASSERT_TRUE(r.motion.moveToSteps(start));
+      ASSERT_TRUE(r.runIdle());
+      r.steps.clear();
+      ASSERT_TRUE(r.motion.stroke({k.steps, k.interval, k.frac, k.markStep, nullptr, nullptr}));
+      ASSERT_TRUE(r.runIdle());
+      EXPECT_NEAR(moveSeconds(r.steps) * 1e6, pass.strokeUs, 1);
+      // The mark: the G step, then the lead and the shift.
+      ASSERT_EQ(r.marks.size(), 1u);
+      EXPECT_NEAR((r.marks[0] - r.steps.front().us2) / 2.0 + kMarkLeadUs + k.shiftUs, pass.markUs, 1);
+    }
+  }
+  uint64_t q16;
+  EXPECT_FALSE(uv::engineStep(m, 50, 200000, q16));  // 50 ms a step: E29 at M29 (mega.md)
+  EXPECT_TRUE(uv::engineStep(m, 50, 131000, q16));
 }

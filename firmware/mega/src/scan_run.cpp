@@ -36,7 +36,10 @@ ScanRun::Step ScanRun::fail(PrintheadLink& head, uint8_t code) {
 
 bool ScanRun::open(Motion& motion, const uv::JobHeader& h) {
   uv::ScanPass p;
-  if (!planner_.nextPass(p)) return false;
+  if (!planner_.nextPass(p)) {
+    if (planner_.refused()) error_ = uv::kScanUnsupported;  // a window the step engine cannot run
+    return planner_.refused();
+  }
   const int32_t pitch = static_cast<int32_t>(h.pitchUm[0]), dir = p.descending ? -1 : 1;
   const int32_t x0 = static_cast<int32_t>(h.originUm[0]);
   // Window 0's column and the last window's, in the pass's direction.

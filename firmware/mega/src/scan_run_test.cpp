@@ -46,6 +46,8 @@ struct ScanRunTest : ::testing::Test {
     m.vmaxUmS[0] = m.vmaxUmS[1] = static_cast<uint32_t>(config.milli(Key::SpeedTravel));
     m.accelUmS2[0] = static_cast<uint32_t>(config.milli(Key::AccelX));
     m.accelUmS2[1] = static_cast<uint32_t>(config.milli(Key::AccelY));
+    m.stepsMilli[0] = static_cast<uint32_t>(config.milli(Key::StepsX));
+    m.stepsMilli[1] = static_cast<uint32_t>(config.milli(Key::StepsY));
     return m;
   }
   uint32_t us() const { return static_cast<uint32_t>(rig.now / 2); }

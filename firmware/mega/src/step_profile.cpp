@@ -2,22 +2,11 @@
 // short constant-rate segments the step interrupt runs.
 #include "step_profile.h"
 
+#include "isqrt.h"  // one square root for the planner and the step engine
+
 namespace mega {
 
-uint32_t isqrt32(uint32_t n) {
-  uint32_t root = 0, bit = 1ul << 30;
-  while (bit > n) bit >>= 2;
-  while (bit) {  // digit by digit: shifts and adds only, no division
-    if (n >= root + bit) {
-      n -= root + bit;
-      root = (root >> 1) + bit;
-    } else {
-      root >>= 1;
-    }
-    bit >>= 2;
-  }
-  return root;
-}
+using uv::isqrt32;
 
 Profile profileFor(const uint32_t steps[3], const AxisLimits limits[3]) {
   Profile p{};

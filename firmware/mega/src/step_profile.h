@@ -45,6 +45,4 @@ uint32_t rateAt(const Profile& p, uint32_t d2);
 // Steps needed to come to rest from `rate`, rounded up.
 uint32_t stoppingSteps(const Profile& p, uint32_t rate);
 
-uint32_t isqrt32(uint32_t n);
-
 }  // namespace mega

@@ -1,6 +1,6 @@
-// The double-sided workflow's arithmetic: the bottom side, marks on the bed, the job origin at the head.
+// The double-sided workflow's arithmetic: the bottom side, one side a job, marks on the bed, the job origin at the head.
 import { describe, expect, it } from 'vitest';
-import { bottomSide, hasCopper, markOnBed, newBoardFields, originAtHead } from './board-object';
+import { bottomSide, hasCopper, markOnBed, newBoardFields, onlySide, originAtHead, sideInJob, sideOf, twoSidedBoards } from './board-object';
 import { exposes, type BoardLayerKind, type BoardObject } from './objects';
 
 const KINDS = (['copper-top', 'copper-bottom', 'outline', 'drill'] as const).map((kind) => ({ file: `demo-${kind}.gbr`, kind }));
@@ -49,10 +49,42 @@ describe('the bottom side', () => {
     expect('id' in b).toBe(false);
   });
 
+  it('starts left out of the job: the top side is exposed first, and one side at a time', () => {
+    expect(bottomSide(board(), 'left-right', 'centre').leftOut).toBe(true);
+    expect(bottomSide(board({ leftOut: false }), 'top-bottom', 'end').leftOut).toBe(true);
+  });
+
   it('turned over about an edge: beside the board on that side', () => {
     expect(bottomSide(board(), 'left-right', 'start')).toMatchObject({ x: -200, y: 50 });
     expect(bottomSide(board(), 'left-right', 'end')).toMatchObject({ x: 400, y: 50 });
     expect(bottomSide(board(), 'top-bottom', 'end')).toMatchObject({ x: 100, y: 250, mirror: true, turn: 2 });
+  });
+});
+
+describe('one side a job', () => {
+  const top = board();
+  const bottom = { ...bottomSide(top, 'left-right', 'centre'), id: 2 } as BoardObject;
+  const other = board({ id: 3, src: 'data:other', name: 'other' });
+
+  it('knows a side by the layers it exposes, else by its mirror', () => {
+    expect([sideOf(top), sideOf(bottom)]).toEqual(['top', 'bottom']);
+    const bare = (mirror: boolean) => board({ mirror, layers: KINDS.map(({ file, kind }) => ({ file, kind, expose: kind === 'outline' })) });
+    expect([sideOf(bare(false)), sideOf(bare(true))]).toEqual(['top', 'bottom']);
+    expect(sideOf(board({ layers: [{ file: 'b-mask.gbr', kind: 'mask-bottom', expose: true }] }))).toBe('bottom');
+  });
+
+  it('finds the boards placed as two sides, and which side the job exposes', () => {
+    expect(twoSidedBoards([top, other])).toEqual([]);
+    const [b] = twoSidedBoards([top, other, bottom]);
+    expect(b).toEqual({ name: 'demo', sides: [{ id: 1, name: 'demo', side: 'top', inJob: true }, { id: 2, name: 'demo (bottom)', side: 'bottom', inJob: false }] });
+    expect(sideInJob(b)).toBe('the top side of board demo');
+    expect(sideInJob(twoSidedBoards([top, { ...bottom, leftOut: false }])[0])).toBeNull(); // both: no one side to name
+  });
+
+  it('takes one side into the job and leaves the others out', () => {
+    const [b] = twoSidedBoards([top, bottom]);
+    expect(onlySide(b, 2)).toEqual(new Map([[1, { leftOut: true }], [2, { leftOut: false }]]));
+    expect(onlySide(b, 1)).toEqual(new Map([[1, { leftOut: false }], [2, { leftOut: true }]]));
   });
 });
 

@@ -1,7 +1,8 @@
 // A board object's double-sided workflow, as pure arithmetic: the bottom side as a second object
-// mirrored about the flip axis the user chooses, where a registration mark lies on the bed, and
-// the move that puts a mark under the head ("set the job origin here").
-import type { BoardLayerKind, BoardObject, DrillClear, Rect } from './objects';
+// mirrored about the flip axis the user chooses, which side a job exposes (one at a time: the board
+// is turned over between them), where a registration mark lies on the bed, and the move that puts
+// a mark under the head ("set the job origin here").
+import type { BoardLayerKind, BoardObject, DrillClear, Rect, StudioObject } from './objects';
 import { frameSize, mirrored } from './orientation';
 
 /** How the board is turned over: about a vertical line (its left and right swap) or a horizontal one. */
@@ -36,9 +37,10 @@ export const hasCopper = (o: Pick<BoardObject, 'layers'>): boolean => o.layers.s
 /**
  * The bottom side of the board lying as the board will once turned over about the axis: mirrored
  * across it, its box reflected about the line (in place for the centre), exposing the bottom copper.
+ * It starts left out of the job: the top side is exposed first, and the board turned over after.
  */
 export function bottomSide(o: BoardObject, axis: FlipAxis, at: FlipAt): Omit<BoardObject, 'id'> {
-  const { id: _, leftOut: __, ...rest } = o; // a new side takes part in the job
+  const { id: _, ...rest } = o;
   const across = axis === 'left-right' ? 'x' : 'y';
   const side = across === 'x' ? o.w : o.h;
   const shift = at === 'centre' ? 0 : at === 'start' ? -side : side;
@@ -48,7 +50,48 @@ export function bottomSide(o: BoardObject, axis: FlipAxis, at: FlipAt): Omit<Boa
     name: `${o.name} (bottom)`,
     [across]: o[across] + shift,
     layers: o.layers.map((l) => ({ ...l, expose: l.kind === 'copper-bottom' })),
+    leftOut: true,
   };
+}
+
+export type Side = 'top' | 'bottom';
+
+/** Which side of the board the object exposes: by its exposed layers' kinds, else mirrored (as the board lies turned over) or not. */
+export function sideOf(o: BoardObject): Side {
+  const exposed = o.layers.filter((l) => l.expose).map((l) => l.kind);
+  if (exposed.some((k) => k.endsWith('-bottom'))) return 'bottom';
+  if (exposed.some((k) => k.endsWith('-top'))) return 'top';
+  return o.mirror ? 'bottom' : 'top';
+}
+
+/** A board placed more than once (its top and bottom sides): its objects in the order they were made, and which of them the job exposes. */
+export interface TwoSided {
+  /** The board's name, as its first object has it. */
+  name: string;
+  sides: { id: number; name: string; side: Side; inJob: boolean }[];
+}
+
+/** The sides placed of the board whose files are `src`: its objects. */
+export function boardSides(objects: readonly StudioObject[], src: string): TwoSided {
+  const list = objects.filter((o): o is BoardObject => o.kind === 'board' && o.src === src);
+  return { name: list[0]?.name ?? '', sides: list.map((o) => ({ id: o.id, name: o.name, side: sideOf(o), inJob: !o.leftOut })) };
+}
+
+/** The boards of the drawing placed as more than one side (objects of the same files). */
+export function twoSidedBoards(objects: readonly StudioObject[]): TwoSided[] {
+  const srcs = new Set(objects.flatMap((o) => (o.kind === 'board' ? [o.src] : [])));
+  return [...srcs].map((src) => boardSides(objects, src)).filter((b) => b.sides.length > 1);
+}
+
+/** What the job exposes of a two-sided board ("the top side of board demo"), or null when not one side. */
+export function sideInJob(b: TwoSided): string | null {
+  const inJob = b.sides.filter((s) => s.inJob);
+  return inJob.length === 1 ? `the ${inJob[0].side} side of board ${b.name}` : null;
+}
+
+/** The leftOut of each object of the board for a job that exposes only the side `id`. */
+export function onlySide(b: TwoSided, id: number): Map<number, { leftOut: boolean }> {
+  return new Map(b.sides.map((s) => [s.id, { leftOut: s.id !== id }]));
 }
 
 /**

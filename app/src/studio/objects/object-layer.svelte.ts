@@ -74,6 +74,11 @@ export class ObjectLayer {
     this.#change(label, list);
   }
 
+  /** Changes several objects as one undo step (a two-sided board's sides, one in the job and the other out). */
+  updateEach(patches: ReadonlyMap<number, Partial<StudioObject>>, label = 'change'): void {
+    this.#change(label, this.objects.map((o) => (patches.has(o.id) ? ({ ...o, ...patches.get(o.id), id: o.id } as StudioObject) : o)));
+  }
+
   remove(id: number): void {
     this.#change('delete', this.objects.filter((o) => o.id !== id));
     if (this.selectedId === id) this.selectedId = null;

@@ -12,6 +12,7 @@ inline uv::Machine machineFrom(const nlohmann::json& m) {
     out.vmaxUmS[a] = m["vmaxUmS"][a];
     out.accelUmS2[a] = m["accelUmS2"][a];
     out.startUm[a] = m["startUm"][a];
+    out.stepsMilli[a] = m["stepsMilli"][a];
   }
   out.settleUs = m["settleUs"];
   out.overheadUs = m["overheadUs"];

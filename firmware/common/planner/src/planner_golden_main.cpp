@@ -58,9 +58,9 @@ json makeJob(Rng& r, const std::vector<std::array<int, 2>>& offsets, const char*
 // Scan plans (planner.md "Scan mode") of random jobs, on the same machine and on one that caps the speed.
 void writeScans(const char* path, const std::vector<std::pair<const char*, std::vector<std::array<int, 2>>>>& geometries,
                 const uv::Machine& fast, const json& fastJson) {
-  const uv::Machine slow{{8000, 90000}, {600000, 1500000}, 1000, 900, {0, 4000}};
+  const uv::Machine slow{{8000, 90000}, {600000, 1500000}, 1000, 900, {0, 4000}, {80000, 100000}};
   const json slowJson = {{"vmaxUmS", {8000, 90000}}, {"accelUmS2", {600000, 1500000}}, {"settleUs", 1000},
-                         {"overheadUs", 900}, {"startUm", {0, 4000}}};
+                         {"overheadUs", 900}, {"startUm", {0, 4000}}, {"stepsMilli", {80000, 100000}}};
   Rng r(20261124);
   json cases = json::array();
   for (const auto& [gname, offsets] : geometries) {
@@ -123,8 +123,8 @@ int main(int argc, char** argv) {
       {"staggered", {{{0, 0}}, {{1, 2}}, {{-2, 5}}, {{0, -1}}}},
   };
   const json machine = {{"vmaxUmS", {120000, 90000}}, {"accelUmS2", {2500000, 1500000}}, {"settleUs", 3000},
-                        {"overheadUs", 1200}, {"startUm", {5000, 0}}};
-  uv::Machine m{{120000, 90000}, {2500000, 1500000}, 3000, 1200, {5000, 0}};
+                        {"overheadUs", 1200}, {"startUm", {5000, 0}}, {"stepsMilli", {80000, 80000}}};
+  uv::Machine m{{120000, 90000}, {2500000, 1500000}, 3000, 1200, {5000, 0}, {80000, 80000}};
   Rng r(20261121);
   json cases = json::array();
   for (const auto& [gname, offsets] : geometries) {

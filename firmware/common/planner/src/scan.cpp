@@ -8,8 +8,38 @@ namespace uv {
 namespace {
 uint64_t ceilDiv(uint64_t n, uint64_t d) { return (n + d - 1) / d; }
 uint64_t roundDiv(uint64_t n, uint64_t d) { return (2 * n + d) / (2 * d); }
-uint32_t absDiff(int32_t a, int32_t b) { return static_cast<uint32_t>(a > b ? a - b : b - a); }
+int64_t floorDiv(int64_t n, int64_t d) { return n >= 0 ? n / d : -((-n + d - 1) / d); }
 }  // namespace
+
+bool engineStep(const Machine& m, uint32_t pitchUm, uint32_t windowUs, uint64_t& q16) {
+  const uint64_t den = static_cast<uint64_t>(pitchUm) * m.stepsMilli[0];
+  if (!den) return false;
+  q16 = (((2ull * windowUs * 1000000u) << 16) + den / 2) / den;
+  return q16 >= (static_cast<uint64_t>(kEngineTickHz / kEngineMaxRate) << 16) && q16 < (1ull << 32);
+}
+
+void planStroke(const Machine& m, int32_t markX2Um, int32_t endX2Um, bool descending, uint64_t q16, uint32_t savedUs, ScanPass& out) {
+  const int64_t sign = descending ? -1 : 1, S = m.stepsMilli[0], den = 2000000;  // positions in steps × den
+  uint64_t rate = ((static_cast<uint64_t>(kEngineTickHz) << 16) + q16 - 1) / q16;  // Motion::strokeProfile
+  if (rate > kEngineMaxRate) rate = kEngineMaxRate;
+  const uint32_t accel = axisAccel(m, 0);
+  const uint32_t ramp = stepRamp(1, static_cast<uint32_t>(rate), accel, 0, 0, 0).ramp;
+  // The G step: at least the lead before the mark, one step more in hand, after the ramp and a step.
+  const int64_t mark = sign * markX2Um * S;
+  const int64_t gAt = floorDiv(mark, den) - static_cast<int64_t>(ceilDiv((2ull * kStrokeMarkLeadUs) << 16, q16)) - 1;
+  const int64_t start = gAt - (ramp + 2);
+  const int64_t stop = -floorDiv(-(sign * endX2Um * S), den) + ramp + 1;
+  out.startSteps = static_cast<int32_t>(sign * start);
+  out.stopSteps = static_cast<int32_t>(sign * stop);
+  const uint32_t n = static_cast<uint32_t>(stop - start);
+  const StepRamp p = stepRamp(n, static_cast<uint32_t>(rate), accel, 0, 0, 0);
+  const uint64_t up = stepTicks(p, 0, ramp);
+  const uint64_t ticks = up + ((static_cast<uint64_t>(n - 2 * ramp) * q16) >> 16) + stepTicks(p, n - ramp, n);
+  out.strokeUs = static_cast<uint32_t>((ticks - 2ull * savedUs + 1) / 2);
+  // The G step comes after the ramp and one step at the speed; the mark, (mark − gAt) steps later.
+  const uint64_t markTicks16 = (up << 16) + q16 + static_cast<uint64_t>(mark - gAt * den) * q16 / den;
+  out.markUs = static_cast<uint32_t>((markTicks16 + 65536) / 131072);
+}
 
 ScanMotion scanMotion(const JobHeader& h, const Durations& dose, const Machine& m) {
   ScanMotion out{0, 0, 0, 0};
@@ -34,7 +64,7 @@ ScanMotion passMotion(const JobHeader& h, const Machine& m, uint32_t windowUs) {
 }
 
 ScanPlanner::ScanPlanner(const JobHeader& h, CellSource& cells, const Machine& m)
-    : h_(h), cells_(cells), m_(m), dose_(h), known_(h.rows), curX_(m.startUm[0]), curY_(m.startUm[1]),
+    : h_(h), cells_(cells), m_(m), dose_(h), known_(h.rows), curX_(axisSteps(m, 0, m.startUm[0])), curY_(m.startUm[1]),
       flies_(false), pass_(scanMotion(h, dose_, m)) {
   dyMin_ = dyMax_ = h.offsets[0][1];
   for (uint8_t k = 1; k < 4; k++) {
@@ -67,12 +97,12 @@ bool ScanPlanner::supported() const {
     if (h_.offsets[k][0] > dxMax) dxMax = h_.offsets[k][0];
   }
   const uint64_t span = static_cast<uint64_t>(h_.cols + dxMax - dxMin);
-  return !tooLong_ && dyMax_ - dyMin_ < static_cast<int16_t>(kCoveredWindowRows) && span * motion().windowUs < (1ull << 32);
+  return refusal_ != Refusal::TooLong && dyMax_ - dyMin_ < static_cast<int16_t>(kCoveredWindowRows) && span * motion().windowUs < (1ull << 32);
 }
 
 bool ScanPlanner::nextPass(ScanPass& out) {
   starved_ = false;
-  if (!supported() || motion().windowUs == 0) return false;
+  if (!supported() || refused() || motion().windowUs == 0) return false;
   for (; scan_ < h_.rows; uncover(scan_), scan_++) {
     const uint16_t r = scan_;
     low_ = r;
@@ -111,7 +141,7 @@ bool ScanPlanner::nextPass(ScanPass& out) {
         if (h_.offsets[k][0] > dxMax) dxMax = h_.offsets[k][0];
       }
       if (static_cast<uint64_t>(h_.cols + dxMax - dxMin) * w >= (1ull << 32)) {
-        tooLong_ = true;
+        refusal_ = Refusal::TooLong;
         return false;
       }
       pass_ = uv::passMotion(h_, m_, static_cast<uint32_t>(w));
@@ -125,12 +155,21 @@ bool ScanPlanner::nextPass(ScanPass& out) {
     out.last = last;
     out.runUpUm = descending_ ? X(last) + reach : X(first) - reach;
     out.runOutUm = descending_ ? X(first) - reach : X(last) + reach;
-    const int32_t y = Y(out.hy);
-    const uint32_t tx = moveTimeUs(absDiff(out.runUpUm, curX_), m_.vmaxUmS[0], m_.accelUmS2[0]);
-    const uint32_t ty = moveTimeUs(absDiff(y, curY_), m_.vmaxUmS[1], m_.accelUmS2[1]);
-    const uint32_t move = tx > ty ? tx : ty;
-    estimate_ += move + (move ? m_.settleUs : 0) + m_.overheadUs + 2ull * pass_.accelUs + span;
-    curX_ = out.runOutUm;
+    // The pass as the Mega runs it (planner.md "The stroke"): the step engine's move to the stroke's
+    // start, the overhead, the stroke, and the Nano's Q answer that confirms the pass.
+    uint64_t q16;
+    if (!engineStep(m_, h_.pitchUm[0], pass_.windowUs, q16)) {
+      refusal_ = Refusal::Engine;  // the job's window, or a pass the link cap slowed, is beyond the step engine
+      return false;
+    }
+    const int32_t pitch = static_cast<int32_t>(h_.pitchUm[0]), dir = descending_ ? -1 : 1;
+    const int32_t x0 = X(descending_ ? last : first), x1 = X(descending_ ? first : last);
+    const uint64_t saved = static_cast<uint64_t>(last - first + 1) * pass_.windowUs - span;
+    planStroke(m_, 2 * x0 - dir * pitch, 2 * x1 + dir * pitch, descending_, q16, static_cast<uint32_t>(saved), out);
+    const int32_t y = Y(out.hy), dy = axisSteps(m_, 1, y) - axisSteps(m_, 1, curY_), dx = out.startSteps - curX_;
+    out.moveUs = engineMoveUs(m_, static_cast<uint32_t>(dx < 0 ? -dx : dx), static_cast<uint32_t>(dy < 0 ? -dy : dy));
+    estimate_ += out.moveUs + m_.overheadUs + out.strokeUs + kScanPassEndUs;
+    curX_ = out.stopSteps;
     curY_ = y;
     passes_++;
     return true;
@@ -145,7 +184,7 @@ bool ScanPlanner::layout(int32_t& first, int32_t& last, uint64_t& span) {
   first = INT32_MAX;
   last = INT32_MIN;
   for (uint8_t k = 0; k < 4; k++) {
-    live_[k] = false;
+    setLive(k, false);
     if (row_[k] < 0) continue;
     cells_.open(k, static_cast<uint16_t>(row_[k]), false);
     peek(k);
@@ -155,7 +194,7 @@ bool ScanPlanner::layout(int32_t& first, int32_t& last, uint64_t& span) {
     bool any = false;
     int32_t best = 0;
     for (uint8_t k = 0; k < 4; k++)
-      if (live_[k] && (!any || hx_[k] < best)) {
+      if (isLive(k) && (!any || hx_[k] < best)) {
         best = hx_[k];
         any = true;
       }
@@ -167,7 +206,7 @@ bool ScanPlanner::layout(int32_t& first, int32_t& last, uint64_t& span) {
     }
     last = best;
     for (uint8_t k = 0; k < 4; k++)
-      if (live_[k] && hx_[k] == best) peek(k);
+      if (isLive(k) && hx_[k] == best) peek(k);
   }
   if (first > last) return false;
   // S(n − 1) + W: every window, less what each flown stretch saves.
@@ -187,11 +226,11 @@ bool ScanPlanner::layout(int32_t& first, int32_t& last, uint64_t& span) {
 // Opens the pass's cursors in its direction and clears what next() and nextEvent() hand out.
 void ScanPlanner::openPass() {
   for (uint8_t k = 0; k < 4; k++) {
-    live_[k] = false;
+    setLive(k, false);
     if (row_[k] < 0) continue;
     cells_.open(k, static_cast<uint16_t>(row_[k]), descending_);
     peek(k);
-    pending_[k] = false;
+    setPending(k, false);
   }
   started_ = false;
   ready_ = 0;
@@ -266,7 +305,7 @@ bool ScanPlanner::nextLitWindow(uint32_t& j) {
   bool any = false;
   int32_t best = 0;
   for (uint8_t k = 0; k < 4; k++)
-    if (live_[k] && (!any || (descending_ ? hx_[k] > best : hx_[k] < best))) {
+    if (isLive(k) && (!any || (descending_ ? hx_[k] > best : hx_[k] < best))) {
       best = hx_[k];
       any = true;
     }
@@ -295,18 +334,18 @@ bool ScanPlanner::nextLitWindow(uint32_t& j) {
   lastS_ = s;
   for (uint8_t k = 0; k < 4; k++) {
     winUs_[k] = 0;
-    if (!live_[k] || hx_[k] != best) continue;
+    if (!isLive(k) || hx_[k] != best) continue;
     winUs_[k] = us_[k];
     const uint32_t on = s + (w - us_[k]) / 2, off = on + us_[k];
-    if (pending_[k] && pendOff_[k] == on) {
+    if (isPending(k) && pendOff_[k] == on) {
       pendOff_[k] = off;  // touching: the LED stays on
     } else {
-      if (pending_[k]) {
+      if (isPending(k)) {
         ready_ |= static_cast<uint8_t>(1 << k);
         readyOn_[k] = pendOn_[k];
         readyOff_[k] = pendOff_[k];
       }
-      pending_[k] = true;
+      setPending(k, true);
       pendOn_[k] = on;
       pendOff_[k] = off;
     }
@@ -331,8 +370,8 @@ bool ScanPlanner::next(ScanEvent& out) {
     uint32_t j;
     if (nextLitWindow(j)) continue;
     for (uint8_t k = 0; k < 4; k++) {  // the pass's end closes every open interval
-      if (!pending_[k]) continue;
-      pending_[k] = false;
+      if (!isPending(k)) continue;
+      setPending(k, false);
       out = ScanEvent{false, k, pendOn_[k], pendOff_[k], 0, 0, 0};
       return true;
     }

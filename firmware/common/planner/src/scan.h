@@ -26,6 +26,11 @@ struct ScanPass {
   bool descending;        // towards −X
   int32_t first, last;    // head columns of the first and last lit cell; last − first + 1 windows
   int32_t runUpUm, runOutUm;  // bed X where the pass starts and ends at rest
+  // The pass as the Mega runs it (planner.md "The stroke"): the step engine's move to the stroke's
+  // start, µs; the stroke's X ends in steps; its µs from rest to idle, and the start mark's µs in it.
+  uint32_t moveUs;
+  int32_t startSteps, stopSteps;
+  uint32_t strokeUs, markUs;
 };
 
 // What a pass does, in the order the planner finds it: an LED's interval of light (merged runs), or
@@ -41,6 +46,20 @@ struct ScanEvent {
 // A pass flies at most this many of its blank stretches (planner.md "Blank stretches"): the Mega
 // holds them while the pass runs, for the head's moves.
 constexpr uint8_t kMaxJumps = 8;
+
+// A scan pass's stroke as the Mega runs it (planner.md "The stroke", firmware/mega/src/scan_stroke.h):
+// the G step comes at least this long before the start mark (its line at 115200, the Nano's lead).
+constexpr uint32_t kStrokeMarkLeadUs = 1000 + 2 * 85;
+// After the stroke the Mega waits for the Nano's next Q answer (asked every 10 ms): half a poll on average.
+constexpr uint32_t kScanPassEndUs = 5000;
+// The step of a pass at window W, as 16.16 timer ticks; false when the step engine cannot run it
+// (over kEngineMaxRate steps/s, or a step of 2¹⁶ ticks, 32.768 ms, or more).
+bool engineStep(const Machine& m, uint32_t pitchUm, uint32_t windowUs, uint64_t& q16);
+// The stroke of a pass at the step `q16` (engineStep) whose start mark and last window's end are at
+// twice the bed X `markX2Um` and `endX2Um` (µm), as scan_stroke.cpp lays it out: where it starts and
+// stops (X steps), its µs from rest to idle (the ramps as the engine runs them, the middle at the
+// exact step, less the flown stretches' `savedUs`), and the mark's µs after it starts.
+void planStroke(const Machine& m, int32_t markX2Um, int32_t endX2Um, bool descending, uint64_t q16, uint32_t savedUs, ScanPass& out);
 
 // CellSource cursors the scan planner opens: one an LED, numbered as the LEDs.
 constexpr uint8_t kScanCursors = 4;
@@ -71,6 +90,9 @@ class ScanPlanner {
   // As Planner::supported(): the LEDs' rows span less than kCoveredWindowRows. And every switch
   // time fits 32 bits: (cols + the LEDs' spread in X) × window < 2³² µs.
   bool supported() const;
+  // The step engine cannot run the job's window, or a pass's (engineStep): nextPass() said false for
+  // it, and the Mega refuses the job with E29 (mega.md M29).
+  bool refused() const { return refusal_ == Refusal::Engine; }
   // The speed is below the X axis's maximum, so a blank stretch may be flown (planner.md "Blank stretches").
   bool mayFly() const;
   // A machine that cannot fly crosses every blank stretch at the pass's speed: no jumps, S(j) = j·W,
@@ -88,7 +110,12 @@ class ScanPlanner {
 
  private:
   bool readLit(uint8_t led, int32_t& hx, uint32_t& us);
-  void peek(uint8_t led) { live_[led] = readLit(led, hx_[led], us_[led]); }
+  void peek(uint8_t led) { setLive(led, readLit(led, hx_[led], us_[led])); }
+  // Bit k for LED k (flags kept as bits: the planner lives in the Mega's job arena).
+  bool isLive(uint8_t k) const { return live_ >> k & 1; }
+  void setLive(uint8_t k, bool on) { live_ = static_cast<uint8_t>(on ? live_ | (1 << k) : live_ & ~(1 << k)); }
+  bool isPending(uint8_t k) const { return pending_ >> k & 1; }
+  void setPending(uint8_t k, bool on) { pending_ = static_cast<uint8_t>(on ? pending_ | (1 << k) : pending_ & ~(1 << k)); }
   bool nextLitWindow(uint32_t& j);
   uint32_t fly(uint32_t g);
   void consider(int32_t col, uint16_t g);
@@ -110,12 +137,15 @@ class ScanPlanner {
   bool starved_ = false;
   int32_t low_ = 0;    // the open pass's lowest row, or the next that may open one
   int16_t dyMin_ = 0, dyMax_ = 0;
-  int32_t curX_, curY_;  // where the last pass ended, µm
+  int32_t curX_, curY_;  // where the last pass ended: X in steps, Y in µm
   uint64_t estimate_ = 0;
   uint16_t passes_ = 0;
   bool flies_;  // the open pass's speed is below the maximum: blank stretches may be flown
   bool neverFly_ = false;
-  bool tooLong_ = false;  // a pass the link cap slowed until its switch times outgrew 32 bits
+  // Why the plan stopped short: a pass the link cap slowed until its switch times outgrew 32 bits
+  // (not supported()), or a window the step engine cannot run (refused()).
+  enum class Refusal : uint8_t { None, TooLong, Engine };
+  Refusal refusal_ = Refusal::None;
   ScanMotion pass_;       // the open pass's motion
   bool layout(int32_t& first, int32_t& last, uint64_t& span);
   void openPass();
@@ -126,14 +156,14 @@ class ScanPlanner {
   int16_t row_[4] = {-1, -1, -1, -1};
   bool descending_ = false;
   int32_t start_ = 0;  // head column of window 0
-  bool live_[4] = {};
+  uint8_t live_ = 0;  // bit k: LED k has a next lit cell, hx_[k] and us_[k]
   int32_t hx_[4] = {};
   uint32_t us_[4] = {};
   // Emission: the last lit window and its start S(j); each LED's interval not yet closed; the
   // intervals the current window closed, waiting to be handed out.
   bool started_ = false;
   uint32_t lastJ_ = 0, lastS_ = 0;
-  bool pending_[4] = {};
+  uint8_t pending_ = 0;  // bit k: LED k's interval is open, pendOn_[k] to pendOff_[k]
   uint32_t pendOn_[4] = {}, pendOff_[4] = {};
   uint8_t ready_ = 0;  // bit k: LED k's closed interval waits in readyOn_/readyOff_
   uint32_t readyOn_[4] = {}, readyOff_[4] = {};

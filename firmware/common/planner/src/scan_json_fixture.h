@@ -31,7 +31,8 @@ inline nlohmann::json scanPlanJson(const uv::JobHeader& h, const std::vector<std
     passes.push_back({{"hy", p.hy}, {"descending", p.descending}, {"first", p.first}, {"last", p.last},
                       {"windowUs", own.windowUs}, {"accelUs", own.accelUs}, {"overscanUm", own.overscanUm},
                       {"runUpUm", p.runUpUm}, {"runOutUm", p.runOutUm}, {"leds", leds}, {"jumps", jumps},
-                      {"events", events}});
+                      {"events", events}, {"moveUs", p.moveUs}, {"startSteps", p.startSteps}, {"stopSteps", p.stopSteps},
+                      {"strokeUs", p.strokeUs}, {"markUs", p.markUs}});
   }
   return {{"windowUs", motion.windowUs}, {"speedUmS", motion.speedUmS}, {"accelUs", motion.accelUs},
           {"overscanUm", motion.overscanUm}, {"passes", passes}, {"estimateUs", planner.estimateUs()}};

@@ -48,7 +48,7 @@ struct Xorshift {
   }
 };
 
-const Machine kMachine{{150000, 100000}, {3000000, 2000000}, 2000, 1500, {0, 0}};
+const Machine kMachine{{150000, 100000}, {3000000, 2000000}, 2000, 1500, {0, 0}, {80000, 80000}};
 
 JobHeader smallJob(uint16_t cols, uint16_t rows) {
   JobHeader h{};
@@ -155,6 +155,22 @@ TEST(ScanPlanner, NegativeOffsetsAndTheSpeedCap) {
   EXPECT_EQ(capped.motion().speedUmS, 10000u);
   ASSERT_TRUE(capped.nextPass(p));
   EXPECT_EQ(eventsOf(capped).leds[0], (Lists{{1500, 3500}, {6500, 8500}}));
+}
+
+// A window the Mega's step engine cannot run (planner.md "Limits"): no pass, and refused() says why,
+// so the Mega answers M29 with E29. 200 ms at 50 µm and 80 steps/mm is 50 ms a step; 131 ms runs.
+TEST(ScanPlanner, RefusesAWindowTheStepEngineCannotRun) {
+  std::vector<std::vector<uint8_t>> rows(4, std::vector<uint8_t>(12, 255));
+  for (uint32_t fullUs : {200000u, 131000u}) {
+    JobHeader h = smallJob(12, 4);
+    h.fullUs = fullUs;
+    GridCells cells(rows);
+    ScanPlanner planner(h, cells, kMachine);
+    ScanPass p;
+    EXPECT_TRUE(planner.supported());
+    EXPECT_EQ(planner.nextPass(p), fullUs < 131072);
+    EXPECT_EQ(planner.refused(), fullUs >= 131072);
+  }
 }
 
 // More stretches than a pass flies: the kMaxJumps longest, the lower column first among equals, in

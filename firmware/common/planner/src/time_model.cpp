@@ -1,4 +1,5 @@
-// Trapezoidal move times and the per-stop clock of protocol/planner.md "Time model", in integer µs.
+// Move times (the continuous trapezoid, and the Mega's step engine) and the per-stop clock of
+// protocol/planner.md "Time model", in integer µs.
 #include "time_model.h"
 
 namespace uv {
@@ -25,6 +26,98 @@ uint64_t isqrt64(uint64_t n) {
   return x;
 }
 
+namespace {
+// One moving axis's limits, scaled up to the dominant axis's `total` steps.
+void scaleLimits(StepRamp& p, uint32_t steps, uint32_t rate, uint32_t accel) {
+  if (!steps) return;
+  const uint64_t r = static_cast<uint64_t>(rate) * p.total / steps;
+  const uint64_t c = static_cast<uint64_t>(accel) * p.total / steps;
+  if (r < p.rate) p.rate = static_cast<uint32_t>(r);
+  if (c < p.accel) p.accel = static_cast<uint32_t>(c);
+}
+}  // namespace
+
+StepRamp stepRamp(uint32_t stepsX, uint32_t rateX, uint32_t accelX, uint32_t stepsY, uint32_t rateY, uint32_t accelY) {
+  StepRamp p{stepsX > stepsY ? stepsX : stepsY, kEngineMaxRate, 0xffffffffu, 0};
+  scaleLimits(p, stepsX, rateX, accelX);
+  scaleLimits(p, stepsY, rateY, accelY);
+  if (p.rate < kEngineMinRate) p.rate = kEngineMinRate;
+  if (p.accel < 1) p.accel = 1;
+  const uint64_t twoA = 2ull * p.accel;
+  p.ramp = static_cast<uint32_t>((static_cast<uint64_t>(p.rate) * p.rate + twoA - 1) / twoA);
+  return p;
+}
+
+namespace {
+// The rate at twice-distance d2 (half steps) from the nearer end (step_profile.cpp's rateAt).
+uint32_t rateAt(const StepRamp& p, uint32_t d2) {
+  if (d2 >= 2 * p.ramp) return p.rate;
+  uint32_t r = isqrt32(p.accel * d2);
+  if (r > p.rate) r = p.rate;
+  return r < kEngineMinRate ? kEngineMinRate : r;
+}
+uint32_t segmentSteps(uint32_t rate, uint32_t remaining) {
+  uint32_t k = rate / kEngineSegmentsPerS;
+  if (k < 1) k = 1;
+  if (k > remaining) k = remaining;
+  return k > 0xffff ? 0xffff : k;
+}
+}  // namespace
+
+uint64_t stepTicks(const StepRamp& p, uint32_t from, uint32_t to) {
+  uint64_t ticks = 0;
+  for (uint32_t done = from; done < to;) {
+    const uint32_t remaining = p.total - done;
+    if (done >= p.ramp) {
+      // At the cruise rate: whole segments that stay clear of the ramp down, counted at once.
+      const uint32_t k = segmentSteps(p.rate, 0xffffffffu);
+      const uint64_t need = 2ull * p.ramp + k > 2ull * k ? 2ull * p.ramp + k : 2ull * k;
+      if (2ull * remaining >= need) {
+        uint64_t n = (2ull * remaining - need) / (2ull * k) + 1;
+        if (n > (to - done) / k) n = (to - done) / k;
+        if (n) {
+          ticks += n * k * (kEngineTickHz / p.rate);
+          done += static_cast<uint32_t>(n * k);
+          continue;
+        }
+      }
+    }
+    const uint32_t fromStart = 2 * done + 1, fromEnd = 2 * remaining - 1;
+    uint32_t k = segmentSteps(rateAt(p, fromStart < fromEnd ? fromStart : fromEnd), remaining);
+    const uint32_t midStart = 2 * done + k, midEnd = 2 * remaining - k;
+    const uint32_t interval = kEngineTickHz / rateAt(p, midStart < midEnd ? midStart : midEnd);
+    if (k > to - done) k = to - done;
+    ticks += static_cast<uint64_t>(k) * interval;
+    done += k;
+  }
+  return ticks;
+}
+
+int32_t axisSteps(const Machine& m, uint8_t axis, int32_t um) {
+  const int64_t n = static_cast<int64_t>(um) * m.stepsMilli[axis];
+  return static_cast<int32_t>(n >= 0 ? (n + 500000) / 1000000 : -((-n + 500000) / 1000000));
+}
+
+uint32_t axisRate(const Machine& m, uint8_t axis) {
+  const uint64_t r = static_cast<uint64_t>(m.vmaxUmS[axis]) * m.stepsMilli[axis] / 1000000u;
+  return r > kEngineMaxRate ? kEngineMaxRate : static_cast<uint32_t>(r);
+}
+
+uint32_t axisAccel(const Machine& m, uint8_t axis) {
+  return static_cast<uint32_t>(static_cast<uint64_t>(m.accelUmS2[axis]) * m.stepsMilli[axis] / 1000000u);
+}
+
+uint32_t engineMoveUs(const Machine& m, uint32_t dx, uint32_t dy) {
+  if (!dx && !dy) return 0;
+  const StepRamp p = stepRamp(dx, axisRate(m, 0), axisAccel(m, 0), dy, axisRate(m, 1), axisAccel(m, 1));
+  return static_cast<uint32_t>((stepTicks(p, 0, p.total) + 1) / 2);
+}
+
+uint32_t engineMoveUs(const Machine& m, int32_t fromX, int32_t fromY, int32_t toX, int32_t toY) {
+  const int32_t dx = axisSteps(m, 0, toX) - axisSteps(m, 0, fromX), dy = axisSteps(m, 1, toY) - axisSteps(m, 1, fromY);
+  return engineMoveUs(m, static_cast<uint32_t>(dx < 0 ? -dx : dx), static_cast<uint32_t>(dy < 0 ? -dy : dy));
+}
+
 uint32_t moveTimeUs(uint32_t d, uint32_t v, uint32_t a) {
   if (d == 0) return 0;
   if (static_cast<uint64_t>(d) * a >= static_cast<uint64_t>(v) * v) {
@@ -34,9 +127,7 @@ uint32_t moveTimeUs(uint32_t d, uint32_t v, uint32_t a) {
 }
 
 uint32_t stopCostUs(const Machine& m, int32_t fromX, int32_t fromY, int32_t toX, int32_t toY, uint32_t longestUs) {
-  uint32_t tx = moveTimeUs(absDiff(toX, fromX), m.vmaxUmS[0], m.accelUmS2[0]);
-  uint32_t ty = moveTimeUs(absDiff(toY, fromY), m.vmaxUmS[1], m.accelUmS2[1]);
-  uint32_t move = tx > ty ? tx : ty;
+  const uint32_t move = engineMoveUs(m, fromX, fromY, toX, toY);
   return move + (move ? m.settleUs : 0) + m.overheadUs + longestUs;
 }
 
