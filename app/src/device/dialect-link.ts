@@ -3,7 +3,8 @@
 
 import type { Reply } from '../protocol/dialect-reply';
 import type { PrintJob } from '../protocol/job-types';
-import { CommandError, DialectClient, type ClientOptions, type LinkHealth } from './dialect-client';
+import { CommandError } from './command-error';
+import { DialectClient, type ClientOptions, type LinkHealth } from './dialect-client';
 import type { PrinterLink, StartOptions, UploadProgress } from './link';
 import type { Transport } from './transport';
 

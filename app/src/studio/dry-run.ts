@@ -80,8 +80,9 @@ export function sidesFinding(boards: readonly TwoSided[]): Finding | null {
 export function dryRun(
   job: PrintJob,
   config: MachineConfig,
-  opts: { mesh?: Mesh | null; leveling?: boolean | null; startC?: number[] | null; cuts?: readonly Cut[]; acceptCuts?: boolean; boards?: readonly TwoSided[]; machine?: MachineCheck } = {},
+  opts: { mesh?: Mesh | null; leveling?: boolean | null; startC?: number[] | null; cuts?: readonly Cut[]; acceptCuts?: boolean; boards?: readonly TwoSided[]; machine?: MachineCheck; onStage?: (stage: string) => void } = {},
 ): DryRun {
+  opts.onStage?.('planning');
   const header = headerOf(job);
   const machine = motionOf(config);
   const { plan, scan } = planAnyJob({ header, cells: job.gridData }, machine);
@@ -153,7 +154,9 @@ export function dryRun(
     const o = { limitsC, startC: opts.startC ?? undefined, paced };
     return scan ? forecastScanThermal(scan, header, machine, o) : forecastThermal(plan, header, machine, o);
   };
+  opts.onStage?.('forecasting the heat');
   const thermal = forecast(false);
+  if (thermal.pause) opts.onStage?.('forecasting the heat, paced');
   const paced = thermal.pause ? forecast(true) : null;
   findings.push(thermalFinding(thermal, paced, plan.count, limitsC, scan ? 'pass' : 'stop'));
 
