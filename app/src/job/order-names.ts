@@ -4,6 +4,7 @@ import type { StrategyName } from '../protocol/job-types';
 
 export const ORDER_NAMES: Record<StrategyName, string> = {
   scan: 'Scan (on the move)',
+  mixed: 'Mixed (each pass on the move or by stops)',
   serpentine: 'Serpentine',
   raster: 'Raster',
   shortest: 'Shortest travel',

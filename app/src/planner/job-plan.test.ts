@@ -82,8 +82,8 @@ describe('the automatic order', () => {
   });
 
   it('prefers scan on a tie, and never an order that cannot plan a job with light', () => {
-    expect(fastestOrder({ scan: 5, serpentine: 5, shortest: 5, raster: 5, random: 5 })).toBe('scan');
-    expect(fastestOrder({ scan: Infinity, serpentine: 9, shortest: 7, raster: 8, random: 9 })).toBe('shortest');
+    expect(fastestOrder({ scan: 5, mixed: 5, serpentine: 5, shortest: 5, raster: 5, random: 5 })).toBe('scan');
+    expect(fastestOrder({ scan: Infinity, mixed: Infinity, serpentine: 9, shortest: 7, raster: 8, random: 9 })).toBe('shortest');
   });
 });
 

@@ -65,7 +65,7 @@ ScanMotion passMotion(const JobHeader& h, const Machine& m, uint32_t windowUs) {
 
 ScanPlanner::ScanPlanner(const JobHeader& h, CellSource& cells, const Machine& m)
     : h_(h), cells_(cells), m_(m), dose_(h), known_(h.rows), curX_(axisSteps(m, 0, m.startUm[0])), curY_(m.startUm[1]),
-      flies_(false), pass_(scanMotion(h, dose_, m)) {
+      flies_(false), pass_(scanMotion(h, dose_, m)), mixed_(h.strategy == Strategy::Mixed) {
   dyMin_ = dyMax_ = h.offsets[0][1];
   for (uint8_t k = 1; k < 4; k++) {
     if (h.offsets[k][1] < dyMin_) dyMin_ = h.offsets[k][1];
@@ -168,13 +168,81 @@ bool ScanPlanner::nextPass(ScanPass& out) {
     planStroke(m_, 2 * x0 - dir * pitch, 2 * x1 + dir * pitch, descending_, q16, static_cast<uint32_t>(saved), out);
     const int32_t y = Y(out.hy), dy = axisSteps(m_, 1, y) - axisSteps(m_, 1, curY_), dx = out.startSteps - curX_;
     out.moveUs = engineMoveUs(m_, static_cast<uint32_t>(dx < 0 ? -dx : dx), static_cast<uint32_t>(dy < 0 ? -dy : dy));
-    estimate_ += out.moveUs + m_.overheadUs + out.strokeUs + kScanPassEndUs;
-    curX_ = out.stopSteps;
+    out.scanUs = static_cast<uint64_t>(out.moveUs) + m_.overheadUs + out.strokeUs + kScanPassEndUs;
+    out.stopsUs = 0;
+    out.stops = false;
+    uint32_t stops = 1;
+    int32_t endX = out.stopSteps;
+    if (mixed_) {  // planner.md "Mixed mode": the stops when they cost no more than the stroke
+      stopHy_ = static_cast<int16_t>(hy);
+      out.stopsUs = priceStops(hy, endX, stops);
+      out.stops = out.stopsUs <= out.scanUs;
+      openPass();  // the cursors again, for the events or the stops
+      stopPass_ = out.stops;
+    }
+    if (out.stops) {
+      estimate_ += out.stopsUs;
+      curX_ = endX;
+      steps_ += stops;
+    } else {
+      estimate_ += out.scanUs;
+      curX_ = out.stopSteps;
+      steps_++;
+    }
     curY_ = y;
     passes_++;
     return true;
   }
   return false;
+}
+
+// The open pass as stops from where the head stands (planner.md "Mixed mode"): their time, how many,
+// and the last one's X in steps.
+uint64_t ScanPlanner::priceStops(int32_t hy, int32_t& endX, uint32_t& count) {
+  openPass();
+  stopPass_ = true;
+  const int32_t y = axisSteps(m_, 1, Y(hy));
+  int32_t x = curX_, from = axisSteps(m_, 1, curY_);
+  uint64_t total = 0;
+  count = 0;
+  Stop s;
+  while (nextStop(s)) {
+    uint32_t longest = 0;
+    for (uint32_t us : s.us)
+      if (us > longest) longest = us;
+    const int32_t to = axisSteps(m_, 0, X(s.hx)), dx = to - x, dy = y - from;
+    const uint32_t move = engineMoveUs(m_, static_cast<uint32_t>(dx < 0 ? -dx : dx), static_cast<uint32_t>(dy < 0 ? -dy : dy));
+    total += move + (move ? m_.settleUs : 0) + m_.overheadUs + longest;
+    x = to;
+    from = y;
+    count++;
+  }
+  endX = x;
+  return total;
+}
+
+bool ScanPlanner::nextStop(Stop& out) {
+  if (!stopPass_) return false;
+  bool any = false;
+  int32_t best = 0;
+  for (uint8_t k = 0; k < 4; k++)
+    if (isLive(k) && (!any || (descending_ ? hx_[k] > best : hx_[k] < best))) {
+      best = hx_[k];
+      any = true;
+    }
+  if (!any) {
+    stopPass_ = false;
+    return false;
+  }
+  out.hx = best;
+  out.hy = stopHy_;
+  for (uint8_t k = 0; k < 4; k++) {
+    out.us[k] = 0;
+    if (!isLive(k) || hx_[k] != best) continue;
+    out.us[k] = us_[k];
+    peek(k);
+  }
+  return true;
 }
 
 // The open pass's lit windows at the window pass_, ascending: its extent, the stretches it flies,

@@ -31,6 +31,10 @@ struct ScanPass {
   uint32_t moveUs;
   int32_t startSteps, stopSteps;
   uint32_t strokeUs, markUs;
+  // Mixed mode (planner.md "Mixed mode"): the pass priced as a scan pass and as stops, and the way
+  // taken. A stop pass's stops come from nextStop(); its scan fields above say what it would have been.
+  uint64_t scanUs, stopsUs;
+  bool stops;
 };
 
 // What a pass does, in the order the planner finds it: an LED's interval of light (merged runs), or
@@ -87,6 +91,11 @@ class ScanPlanner {
   void jump(uint8_t i, uint32_t& window, uint32_t& windows, uint32_t& flyUs);
   uint64_t estimateUs() const { return estimate_; }
   uint16_t passes() const { return passes_; }
+  // A mixed job's open stop pass (ScanPass::stops): its next stop in the pass's direction, the very
+  // stop the stop planner gives; false at the pass's end, and always for a scan pass.
+  bool nextStop(Stop& out);
+  // The job's progress count so far: one for each scan pass, one for each stop of a stop pass.
+  uint32_t steps() const { return steps_; }
   // As Planner::supported(): the LEDs' rows span less than kCoveredWindowRows. And every switch
   // time fits 32 bits: (cols + the LEDs' spread in X) × window < 2³² µs.
   bool supported() const;
@@ -148,6 +157,11 @@ class ScanPlanner {
   Refusal refusal_ = Refusal::None;
   ScanMotion pass_;       // the open pass's motion
   bool layout(int32_t& first, int32_t& last, uint64_t& span);
+  uint64_t priceStops(int32_t hy, int32_t& endX, uint32_t& count);
+  bool mixed_;       // the job's strategy is `mixed`: each pass is a scan pass or a stop pass
+  bool stopPass_ = false;  // nextStop() walks the open pass's stops
+  int16_t stopHy_ = 0;
+  uint32_t steps_ = 0;
   void openPass();
   bool outrunsLink(uint64_t& need, uint64_t& have);
   static bool passEvent(void* ctx, uint32_t& t, uint8_t& m) { return static_cast<ScanPlanner*>(ctx)->nextEvent(t, m); }
