@@ -63,6 +63,11 @@ uint8_t JobPlan::begin(const char* name) {
     close();
     return error_;
   }
+  if (header_.strategy == uv::Strategy::Mixed) {  // mixed runs streamed (M828) only, so far
+    error_ = uv::kScanUnsupported;
+    close();
+    return error_;
+  }
   source_ = new (sourceMem_) SdCellsWith<uv::kPlannerCursors>(sd_, cells_, index_);
   bool supported;
   if (header_.strategy == uv::Strategy::Scan) {

@@ -65,7 +65,7 @@ ScanMotion passMotion(const JobHeader& h, const Machine& m, uint32_t windowUs) {
 
 ScanPlanner::ScanPlanner(const JobHeader& h, CellSource& cells, const Machine& m)
     : h_(h), cells_(cells), m_(m), dose_(h), known_(h.rows), curX_(axisSteps(m, 0, m.startUm[0])), curY_(m.startUm[1]),
-      flies_(false), pass_(scanMotion(h, dose_, m)), mixed_(h.strategy == Strategy::Mixed) {
+      flies_(false), pass_(scanMotion(h, dose_, m)) {
   dyMin_ = dyMax_ = h.offsets[0][1];
   for (uint8_t k = 1; k < 4; k++) {
     if (h.offsets[k][1] < dyMin_) dyMin_ = h.offsets[k][1];
@@ -171,24 +171,15 @@ bool ScanPlanner::nextPass(ScanPass& out) {
     out.scanUs = static_cast<uint64_t>(out.moveUs) + m_.overheadUs + out.strokeUs + kScanPassEndUs;
     out.stopsUs = 0;
     out.stops = false;
-    uint32_t stops = 1;
     int32_t endX = out.stopSteps;
-    if (mixed_) {  // planner.md "Mixed mode": the stops when they cost no more than the stroke
-      stopHy_ = static_cast<int16_t>(hy);
-      out.stopsUs = priceStops(hy, endX, stops);
+    if (h_.strategy == Strategy::Mixed) {  // planner.md "Mixed mode": the stops when they cost no more than the stroke
+      out.stopsUs = priceStops(hy, endX);
       out.stops = out.stopsUs <= out.scanUs;
       openPass();  // the cursors again, for the events or the stops
-      stopPass_ = out.stops;
+      setStopPass(out.stops);
     }
-    if (out.stops) {
-      estimate_ += out.stopsUs;
-      curX_ = endX;
-      steps_ += stops;
-    } else {
-      estimate_ += out.scanUs;
-      curX_ = out.stopSteps;
-      steps_++;
-    }
+    estimate_ += out.stops ? out.stopsUs : out.scanUs;
+    curX_ = out.stops ? endX : out.stopSteps;
     curY_ = y;
     passes_++;
     return true;
@@ -196,15 +187,14 @@ bool ScanPlanner::nextPass(ScanPass& out) {
   return false;
 }
 
-// The open pass as stops from where the head stands (planner.md "Mixed mode"): their time, how many,
-// and the last one's X in steps.
-uint64_t ScanPlanner::priceStops(int32_t hy, int32_t& endX, uint32_t& count) {
+// The open pass as stops from where the head stands (planner.md "Mixed mode"): their time, and the
+// last one's X in steps.
+uint64_t ScanPlanner::priceStops(int32_t hy, int32_t& endX) {
   openPass();
-  stopPass_ = true;
+  setStopPass(true);
   const int32_t y = axisSteps(m_, 1, Y(hy));
   int32_t x = curX_, from = axisSteps(m_, 1, curY_);
   uint64_t total = 0;
-  count = 0;
   Stop s;
   while (nextStop(s)) {
     uint32_t longest = 0;
@@ -215,14 +205,13 @@ uint64_t ScanPlanner::priceStops(int32_t hy, int32_t& endX, uint32_t& count) {
     total += move + (move ? m_.settleUs : 0) + m_.overheadUs + longest;
     x = to;
     from = y;
-    count++;
   }
   endX = x;
   return total;
 }
 
 bool ScanPlanner::nextStop(Stop& out) {
-  if (!stopPass_) return false;
+  if (!stopPass()) return false;
   bool any = false;
   int32_t best = 0;
   for (uint8_t k = 0; k < 4; k++)
@@ -231,13 +220,13 @@ bool ScanPlanner::nextStop(Stop& out) {
       any = true;
     }
   if (!any) {
-    stopPass_ = false;
+    setStopPass(false);
     return false;
   }
   out.hx = best;
-  out.hy = stopHy_;
   for (uint8_t k = 0; k < 4; k++) {
     out.us[k] = 0;
+    if (row_[k] >= 0) out.hy = row_[k] - h_.offsets[k][1];  // the pass's head row (no byte kept for it)
     if (!isLive(k) || hx_[k] != best) continue;
     out.us[k] = us_[k];
     peek(k);

@@ -94,8 +94,6 @@ class ScanPlanner {
   // A mixed job's open stop pass (ScanPass::stops): its next stop in the pass's direction, the very
   // stop the stop planner gives; false at the pass's end, and always for a scan pass.
   bool nextStop(Stop& out);
-  // The job's progress count so far: one for each scan pass, one for each stop of a stop pass.
-  uint32_t steps() const { return steps_; }
   // As Planner::supported(): the LEDs' rows span less than kCoveredWindowRows. And every switch
   // time fits 32 bits: (cols + the LEDs' spread in X) × window < 2³² µs.
   bool supported() const;
@@ -157,11 +155,12 @@ class ScanPlanner {
   Refusal refusal_ = Refusal::None;
   ScanMotion pass_;       // the open pass's motion
   bool layout(int32_t& first, int32_t& last, uint64_t& span);
-  uint64_t priceStops(int32_t hy, int32_t& endX, uint32_t& count);
-  bool mixed_;       // the job's strategy is `mixed`: each pass is a scan pass or a stop pass
-  bool stopPass_ = false;  // nextStop() walks the open pass's stops
-  int16_t stopHy_ = 0;
-  uint32_t steps_ = 0;
+  uint64_t priceStops(int32_t hy, int32_t& endX);
+  // nextStop() walks the open pass's stops: a flag above the LEDs' bits of live_ (no byte more in
+  // the Mega's job arena, whose every byte is spoken for).
+  static constexpr uint8_t kStopPassBit = 1 << 4;
+  bool stopPass() const { return live_ & kStopPassBit; }
+  void setStopPass(bool on) { live_ = static_cast<uint8_t>(on ? live_ | kStopPassBit : live_ & ~kStopPassBit); }
   void openPass();
   bool outrunsLink(uint64_t& need, uint64_t& have);
   static bool passEvent(void* ctx, uint32_t& t, uint8_t& m) { return static_cast<ScanPlanner*>(ctx)->nextEvent(t, m); }
@@ -170,7 +169,7 @@ class ScanPlanner {
   int16_t row_[4] = {-1, -1, -1, -1};
   bool descending_ = false;
   int32_t start_ = 0;  // head column of window 0
-  uint8_t live_ = 0;  // bit k: LED k has a next lit cell, hx_[k] and us_[k]
+  uint8_t live_ = 0;  // bit k: LED k has a next lit cell, hx_[k] and us_[k]; and kStopPassBit
   int32_t hx_[4] = {};
   uint32_t us_[4] = {};
   // Emission: the last lit window and its start S(j); each LED's interval not yet closed; the
