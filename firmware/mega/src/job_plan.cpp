@@ -63,14 +63,9 @@ uint8_t JobPlan::begin(const char* name) {
     close();
     return error_;
   }
-  if (header_.strategy == uv::Strategy::Mixed) {  // mixed runs streamed (M828) only, so far
-    error_ = uv::kScanUnsupported;
-    close();
-    return error_;
-  }
   source_ = new (sourceMem_) SdCellsWith<uv::kPlannerCursors>(sd_, cells_, index_);
   bool supported;
-  if (header_.strategy == uv::Strategy::Scan) {
+  if (header_.strategy == uv::Strategy::Scan || header_.strategy == uv::Strategy::Mixed) {
     scan_ = new (plannerMem_) uv::ScanPlanner(header_, *source_, machine_);
     supported = scan_->supported();
   } else {
@@ -121,6 +116,11 @@ bool JobPlan::stepScan() {
     error_ = uv::kScanUnsupported;  // a window the step engine cannot run: refused before any light
     close();
     return true;
+  }
+  if (p.stops) {  // a mixed job's pass of stops: each stop is a step of the job
+    uv::Stop s;
+    while (scan_->nextStop(s)) count_++;
+    return false;
   }
   uv::ProgramLines lines(passEvent, this);
   char line[uv::kNanoMaxLine + 2];

@@ -94,6 +94,8 @@ class ScanPlanner {
   // A mixed job's open stop pass (ScanPass::stops): its next stop in the pass's direction, the very
   // stop the stop planner gives; false at the pass's end, and always for a scan pass.
   bool nextStop(Stop& out);
+  // A stop pass is open, and nextStop() has not yet said false for it.
+  bool inStopPass() const { return live_ & kStopPassBit; }
   // As Planner::supported(): the LEDs' rows span less than kCoveredWindowRows. And every switch
   // time fits 32 bits: (cols + the LEDs' spread in X) × window < 2³² µs.
   bool supported() const;
