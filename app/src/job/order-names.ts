@@ -12,7 +12,7 @@ export const ORDER_NAMES: Record<StrategyName, string> = {
 };
 
 /** The list's order, the automatic choice first. */
-export const ORDER_LIST: StrategyName[] = ['scan', 'serpentine', 'raster', 'shortest', 'random'];
+export const ORDER_LIST: StrategyName[] = ['scan', 'mixed', 'serpentine', 'raster', 'shortest', 'random'];
 
 /** An estimate as the list shows it beside an order: "53 min", "1 h 05 min", "40 s". */
 export function estimateWords(us: number | undefined): string {

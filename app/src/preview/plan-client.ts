@@ -15,6 +15,8 @@ export interface Planned {
   coverage: number[];
   /** A scan job's passes and light from its switch times (the plan then counts passes); null for stops. */
   scan: ScanPreview | null;
+  /** A mixed job's words for its passes (planner.md "Mixed mode"), drawn as `scan`; null for the others. */
+  mixed: string | null;
   /** Every order's estimate for the drawing, µs (job-plan.ts orderEstimates), and the order planned. */
   orders: Record<StrategyName, number>;
   order: StrategyName;
