@@ -68,8 +68,8 @@ export class JobControl {
   error = $state<string | null>(null);
   /** Each LED's share of the running job's time lit, from its dry run; null for a job not checked here. */
   duty = $state<number[] | null>(null);
-  /** The job started here is a scan job: its progress counts passes. */
-  runningScan = $state(false);
+  /** What the running job counts: passes on the move (scan), stops, or both (mixed: a pass on the move or a stop is one step). */
+  runningUnit = $state<'pass' | 'stop' | 'step'>('stop');
   /** The estimates the user was shown for the job started here (with its paced time when one was offered). */
   runningEstimate = $state.raw<JobEstimate | null>(null);
   /** The job started here runs paced: started so, or continued so after a pause to cool. */
@@ -281,7 +281,7 @@ export class JobControl {
   async #run(job: PrintJob, duty: number[] | null, paced: boolean): Promise<void> {
     JobNotice.askPermission(); // from the click that starts the job: its end can reach the desktop
     this.duty = duty;
-    this.runningScan = job.strategy.name === 'scan';
+    this.runningUnit = job.strategy.name === 'scan' ? 'pass' : job.strategy.name === 'mixed' ? 'step' : 'stop';
     await this.beforeJob();
     await this.printer.send('G28');
     await this.printer.startJob(job, { paced });
