@@ -5,11 +5,13 @@ import { bundleSize, formatBundleSize } from '../scripts/bundle-size.ts';
 import { serviceWorker } from './pwa.ts';
 
 /** What loads only when a panel is first opened: grouped into one chunk. */
-const ON_DEMAND_PANELS = /\/(PositionDashboard|ProbeDashboard|MeshDashboard|LinkDashboard|mesh-image|Settings|setting-groups|setting-docs|Lamp|PreviewPanel|exposure-preview|plan-client|preview-colours|MaterialTest|material-test|ObjectPanel|BoardPanel|board-object|fonts|Panel|ImportFile|import-artwork|artwork|svg-artwork|svg-size|density|picture|decode|clipping|dry-run|planner|job-header|time-model|adjust|gray|dither|ConfirmDialog|hms|thermal-forecast|pacing|mesh|scan-words)\.(svelte|ts)|\/CONFIG\.md\?raw$/; // CONFIG.md: the settings' words (setting-docs.ts)
+const ON_DEMAND_PANELS = /\/(PositionDashboard|ProbeDashboard|MeshDashboard|LinkDashboard|mesh-image|Settings|setting-groups|setting-docs|Lamp|PreviewPanel|exposure-preview|preview-colours|MaterialTest|material-test|ObjectPanel|BoardPanel|board-object|fonts|Panel|ImportFile|import-artwork|artwork|svg-artwork|svg-size|density|picture|decode|clipping|dry-run|planner|job-header|time-model|adjust|gray|dither|ConfirmDialog|hms|thermal-forecast|pacing|mesh|mesh-figures|scan-words|work-client|check-job|remote-artwork)\.(svelte|ts)|\/CONFIG\.md\?raw$/; // CONFIG.md: the settings' words (setting-docs.ts)
 
 /** The Wi-Fi hub's link and USB's (with the Latin-1 bytes only USB uses), loaded when that device is first chosen (device/chosen-links.ts). */
 const ON_DEMAND_LINKS = /\/(chosen-links|esp-link|serial-transport|bytes)\.ts$/;
 
+/** The text dialect's client and the simulated printer's link on it, loaded on connect, just after the first screen (device/links.ts). */
+const ON_DEMAND_DIALECT = /\/(sim-link|dialect-link|dialect-client|dialect-reply|line-splitter|dialect-frame)\.ts$/;
 /** Espressif's esptool-js with its stub flashers, one file: the Firmware view loads it to flash an ESP. */
 const ESPTOOL = /\/node_modules\/(esptool-js|pako|atob-lite)\//;
 
@@ -55,12 +57,16 @@ export default defineConfig(({ mode }) => ({
   build: {
     outDir,
     emptyOutDir: true,
+    // Every browser the app runs in preloads modules itself (Chromium since 66, Firefox 115, Safari
+    // 17); without that, a preload is only a hint missed. Vite's polyfill would be first-load code no
+    // browser of ours runs.
+    modulePreload: { polyfill: false },
     // Few files: the ESP's LittleFS gives each file whole 4 KB blocks. One stylesheet (the lazy views'
     // styles ride in their chunks: LAZY_VIEW), the panels that load on demand in one chunk, what saving
     // and running need in another, the chosen links in a third; uPlot's chart and the serial polyfill
     // stay apart. Without a group, a chunk loaded on demand can split the first load into several files.
     cssCodeSplit: false,
-    rolldownOptions: { output: { codeSplitting: { includeDependenciesRecursively: false, groups: [{ name: 'panels', test: ON_DEMAND_PANELS }, { name: 'files', test: ON_DEMAND_FILES }, { name: 'links', test: ON_DEMAND_LINKS }, { name: 'esptool', test: ESPTOOL }] } } },
+    rolldownOptions: { output: { codeSplitting: { includeDependenciesRecursively: false, groups: [{ name: 'panels', test: ON_DEMAND_PANELS }, { name: 'files', test: ON_DEMAND_FILES }, { name: 'links', test: ON_DEMAND_LINKS }, { name: 'dialect', test: ON_DEMAND_DIALECT }, { name: 'esptool', test: ESPTOOL }] } } },
   },
   worker: { format: 'es' },
   server: { port: 5173 },

@@ -10,9 +10,10 @@ import { extname, join } from 'node:path';
 import { bundleSize, formatBundleSize } from '../scripts/bundle-size';
 
 const DIST = join(import.meta.dirname, '..', 'dist', 'app');
-const TYPES: Record<string, string> = { '.html': 'text/html', '.js': 'text/javascript', '.css': 'text/css', '.svg': 'image/svg+xml' };
+const TYPES: Record<string, string> = { '.html': 'text/html', '.js': 'text/javascript', '.css': 'text/css', '.svg': 'image/svg+xml', '.wasm': 'application/wasm' };
 
-function serve(): Promise<{ url: string; close: () => void }> {
+/** The built app over HTTP on a free port (B4 serves it too). */
+export function serve(): Promise<{ url: string; close: () => void }> {
   const server = createServer((req, res) => {
     const path = join(DIST, (req.url ?? '/').split('?')[0].replace(/\/$/, '/index.html'));
     if (!path.startsWith(DIST) || !existsSync(path) || statSync(path).isDirectory()) {

@@ -24,12 +24,15 @@ EXPECTED = {
     "mesh.json": {"cases": "points"},
     "scan-ts.json": {"cases": "scan"},
     "scan-cpp.json": {"cases": "scan"},
+    "mixed-ts.json": {"cases": "mixed"},
+    "mixed-cpp.json": {"cases": "mixed"},
     "nano-program.json": {"programs": "lines", "sessions": "steps"},
 }
 # The C++ test program that reads each file.
 CXX_BINARY = {"nano.json": "protocol_tests", "mega.json": "protocol_tests", "job.json": "protocol_tests",
               "esp.json": "esp_tests", "planner-ts.json": "planner_tests", "planner-cpp.json": "planner_tests",
               "mesh.json": "planner_tests", "scan-ts.json": "planner_tests", "scan-cpp.json": "planner_tests",
+              "mixed-ts.json": "planner_tests", "mixed-cpp.json": "planner_tests",
               "nano-program.json": "protocol_tests", "nano-program.json#sessions": "nano_tests"}
 # Sections that only the firmware implements: the Nano's program store runs in C++ alone since the
 # simulated printer became the firmware's C++ (issue 27); there is no TypeScript Nano to bind.

@@ -2,10 +2,11 @@
 // folded from every report, link health, and the job and machine actions the UI calls.
 
 import { ConsoleLog, type Entry } from '../console/console-log';
-import { formatReply } from '../protocol/dialect-reply';
 import type { Reply } from '../protocol/dialect-reply';
+import { formatReply } from '../protocol/reply-format';
 import type { PrintJob } from '../protocol/job-types';
-import { CommandError, type LinkHealth } from './dialect-client';
+import { CommandError } from './command-error';
+import type { LinkHealth } from './dialect-client';
 import { applyReport, clearFault, emptyState, PRINTHEAD_SILENT, type DeviceState, type JobProgress } from './device-state';
 import type { PrinterLink, StartOptions, UploadProgress } from './link';
 import { configOf, interruptedOf, levelingOf, type InterruptedJob } from './printer-replies';
@@ -15,7 +16,7 @@ import { DeviceClock } from './device-clock';
 import type { Mesh } from '../planner/mesh';
 import { linkFor } from './links';
 import { PickerDismissed } from './serial-support';
-export { SIMULATOR_BUILT_IN, loadSimulatorPanel, tellSimulator } from './sim-transport';
+export { SIMULATOR_BUILT_IN, loadSimulatorPanel, setSimulatorSpeed, tellSimulator } from './sim-transport';
 import type { TransportKind } from './transport';
 
 export type Connection =

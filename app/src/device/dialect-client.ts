@@ -5,13 +5,8 @@
 import { DIALECT_MAX_LINE, encodeFrame } from '../protocol/dialect-frame';
 import { parseReply, type Reply } from '../protocol/dialect-reply';
 import { LineSplitter } from '../protocol/line-splitter';
+import { CommandError } from './command-error';
 import type { Transport } from './transport';
-
-export class CommandError extends Error {
-  constructor(readonly code: number, message: string) {
-    super(`E${code} ${message}`);
-  }
-}
 
 export interface LinkHealth {
   linesSent: number;

@@ -3,7 +3,8 @@
 
 import type { Reply } from '../protocol/dialect-reply';
 import type { PrintJob } from '../protocol/job-types';
-import { CommandError, DialectClient, type ClientOptions, type LinkHealth } from './dialect-client';
+import { CommandError } from './command-error';
+import { DialectClient, type ClientOptions, type LinkHealth } from './dialect-client';
 import type { PrinterLink, StartOptions, UploadProgress } from './link';
 import type { Transport } from './transport';
 
@@ -41,10 +42,15 @@ export class DialectLink implements PrinterLink {
     this.#onReply = onReply;
     await this.#client.open((error) => {
       this.#stopHeartbeat();
+      this.transport.onRescaled = null;
       onClosed(error);
     });
     await this.#client.command('M115'); // learns the receive window
     this.#beat();
+    this.transport.onRescaled = () => { // the next heartbeat at the new speed's period, from now
+      this.#stopHeartbeat();
+      this.#beat();
+    };
   }
 
   /** The next heartbeat, in the client's clock (the printer's own, or the page's at its speed-up). */
@@ -116,6 +122,7 @@ export class DialectLink implements PrinterLink {
 
   close(): Promise<void> {
     this.#stopHeartbeat();
+    this.transport.onRescaled = null;
     return this.#client.close();
   }
 }

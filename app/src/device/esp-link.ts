@@ -2,7 +2,8 @@
 
 import { parseReply, type Reply } from '../protocol/dialect-reply';
 import type { PrintJob } from '../protocol/job-types';
-import { CommandError, type LinkHealth } from './dialect-client';
+import { CommandError } from './command-error';
+import type { LinkHealth } from './dialect-client';
 import type { PrinterLink, StartOptions, UploadProgress } from './link';
 
 type FromEsp =

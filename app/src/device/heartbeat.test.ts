@@ -3,7 +3,8 @@
 import { describe, expect, it } from 'vitest';
 import { GEOMETRIES, randomJob } from '../planner/golden';
 import { SimWire } from '../sim/wire';
-import { DialectLink } from './dialect-link';
+import { DialectLink, HEARTBEAT_MS } from './dialect-link';
+import type { Transport } from './transport';
 
 async function settle<T>(wire: SimWire, p: Promise<T>): Promise<T> {
   let done = false;
@@ -35,5 +36,21 @@ describe('the link keeps a long job from pausing for a lost host', () => {
     const elapsedS = Number(/elapsed=(\d+)/.exec(end)?.[1]);
     expect(elapsedS).toBeGreaterThan(60); // twice the Mega's 30 s and more, with no line but the heartbeat's
     expect(lines.filter((l) => l.startsWith('T:')).length).toBeGreaterThanOrEqual(Math.floor(elapsedS / 10) - 1); // its answers
+  });
+});
+
+describe("the heartbeat follows the printer's speed", () => {
+  it('beats at the new period from the moment the speed changes (the simulated printer at 20x)', async () => {
+    const wire = new SimWire();
+    const host: Transport = { ...wire.host, timeScale: 1, onRescaled: null };
+    const periods: number[] = [];
+    const link = new DialectLink(host, { ...wire.clientOptions, setTimer: (fn, ms) => (periods.push(ms), wire.clientOptions.setTimer!(fn, ms)) });
+    await settle(wire, link.open(() => {}, () => {}));
+    expect(periods.at(-1)).toBe(HEARTBEAT_MS);
+    (host as { timeScale: number }).timeScale = 20;
+    host.onRescaled?.();
+    expect(periods.at(-1)).toBe(HEARTBEAT_MS / 20);
+    await link.close();
+    expect(host.onRescaled).toBeNull(); // nobody left to tell
   });
 });

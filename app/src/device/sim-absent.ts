@@ -22,4 +22,6 @@ export function switchOffSimulatedPrinter(): void {}
 
 export function tellSimulator(): void {}
 
+export function setSimulatorSpeed(): void {}
+
 export const loadSimulatorPanel = (): Promise<never> => Promise.reject(new Error('no simulated printer in the app served by the printer'));

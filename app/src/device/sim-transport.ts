@@ -14,6 +14,7 @@ export const SIMULATOR_BUILT_IN = true;
 let machine: Worker | null = null;
 let listener: ((bytes: string) => void) | null = null;
 let onLost: ((error?: Error) => void) | null = null;
+let rescaled: (() => void) | null = null;
 
 /** ?simSpeed=N runs the simulated printer N times real time (the worker's clock; at least 1). */
 function simSpeed(): number {
@@ -33,7 +34,16 @@ function hear(m: FromSimulator): void {
 
 export class SimTransport implements Transport {
   readonly kind = 'sim' as const;
-  readonly timeScale = (simulator.speed = simSpeed());
+  constructor() {
+    simulator.speed = simSpeed();
+  }
+  /** The speed the worker runs at now: the URL's at first, then the panel's (setSimulatorSpeed). */
+  get timeScale(): number {
+    return simulator.speed;
+  }
+  set onRescaled(fn: (() => void) | null) {
+    rescaled = fn;
+  }
 
   async open(onBytes: (bytes: string) => void, onClosed: (error?: Error) => void): Promise<void> {
     listener = onBytes;
@@ -52,9 +62,21 @@ export class SimTransport implements Transport {
   }
 
   async close(): Promise<void> {
-    listener = onLost = null;
+    listener = onLost = rescaled = null;
     tellSimulator({ type: 'close' });
   }
+}
+
+/**
+ * The simulated printer's speed, changed live (its panel): the worker's clock, and the link's
+ * heartbeat with it. A heartbeat left at the old speed's period let the worker, which never runs
+ * more than 20 s of its time past the page's last line, stall for most of each period at a faster
+ * speed (the thermal chart's samples came in bursts, and its window ran ahead of the printer).
+ */
+export function setSimulatorSpeed(speed: number): void {
+  simulator.speed = speed;
+  tellSimulator({ type: 'speed', speed });
+  rescaled?.();
 }
 
 /** A message to the running simulated printer (its panel: speed, faults, the cable). */
@@ -69,6 +91,6 @@ export const loadSimulatorPanel = () => import('../dashboards/SimulatorPanel.sve
 export function switchOffSimulatedPrinter(): void {
   machine?.postMessage({ type: 'off' } satisfies ToSimulator); // it writes that, then ends
   machine = null;
-  listener = onLost = null;
+  listener = onLost = rescaled = null;
   simulator.keeping = simulator.note = null;
 }

@@ -12,12 +12,16 @@ import type { Cut } from '../studio/objects/clipping';
 import type { TwoSided } from '../studio/objects/board-object';
 import type { GridEditor } from '../studio/editor.svelte';
 import { jobFromGrid } from '../studio/grid-job';
-import { bedOf, DEFAULT_CONFIG, ledsOf, motionOf, type MachineConfig } from '../studio/machine-config';
+import type { DoseGrid } from '../studio/grid/grid';
+import { DEFAULT_CONFIG, ledsOf, type MachineConfig } from '../studio/machine-config';
 import { JobNotice } from './job-notice.svelte';
 import { calibrationOf, doseOf, msFor, type Calibration } from './dose-units';
 import { actionsFor, hotSensors, viewOf, type Action, type Actions } from './actions';
 import { estimateUsFor, type JobEstimate } from './job-times';
 import { limitsOf } from '../studio/machine-config';
+
+/** Lets the page draw and answer between two steps that each take a while. */
+const nextTask = () => new Promise((r) => setTimeout(r));
 
 /** What waits for the user's yes before anything moves or lights: an exposure, or a homing. */
 export type Pending =
@@ -56,13 +60,16 @@ export class JobControl {
   }
   /** The last dry run's findings, and the job they were found for. */
   check = $state.raw<{ findings: Finding[]; job: PrintJob; duty: number[] } | null>(null);
+  /** The dry run under way (in a worker: a whole bed's takes seconds): what it checks and how far it has got. */
+  checking = $state.raw<{ what: string; stage: string } | null>(null);
+  #stopCheck: AbortController | null = null;
   /** The question the user has not answered yet; nothing moves or lights until they do. */
   pending = $state.raw<Pending | null>(null);
   error = $state<string | null>(null);
   /** Each LED's share of the running job's time lit, from its dry run; null for a job not checked here. */
   duty = $state<number[] | null>(null);
-  /** The job started here is a scan job: its progress counts passes. */
-  runningScan = $state(false);
+  /** What the running job counts: passes on the move (scan), stops, or both (mixed: a pass on the move or a stop is one step). */
+  runningUnit = $state<'pass' | 'stop' | 'step'>('stop');
   /** The estimates the user was shown for the job started here (with its paced time when one was offered). */
   runningEstimate = $state.raw<JobEstimate | null>(null);
   /** The job started here runs paced: started so, or continued so after a pause to cool. */
@@ -104,8 +111,19 @@ export class JobControl {
 
   /** The drawing as a job for this machine, or null when nothing is drawn. */
   job(): PrintJob | null {
+    return this.#jobOf(this.editor().composed());
+  }
+
+  /** The same, each step a task of its own: a whole bed composed, then bounded, takes tens of ms each. */
+  async jobSoon(): Promise<PrintJob | null> {
+    const composed = this.editor().composed();
+    await nextTask();
+    return this.#jobOf(composed);
+  }
+
+  #jobOf(grid: DoseGrid): PrintJob | null {
     const ed = this.editor();
-    return jobFromGrid(ed.composed(), ed.machine, {
+    return jobFromGrid(grid, ed.machine, {
       dose: doseOf(this.fullMs, this.doseMJcm2, this.calibration),
       strategy: { name: this.order },
       leds: ledsOf(this.config),
@@ -116,9 +134,12 @@ export class JobControl {
   exposeDrawing = () =>
     this.#act(async () => {
       this.#gate('expose');
-      const job = this.job();
-      if (!job) throw new Error('nothing is drawn');
       const ed = this.editor();
+      this.checking = { what: 'drawing', stage: 'drawing the objects' };
+      await ed.layer.settled().finally(() => (this.checking = null)); // rasters made in a worker
+      const job = await this.jobSoon();
+      if (!job) throw new Error('nothing is drawn');
+      await nextTask();
       const { cutsOf } = await import('../studio/objects/clipping');
       const { twoSidedBoards } = await import('../studio/objects/board-object');
       await this.#ask('drawing', job, cutsOf(ed.layer.objects, (o) => ed.layer.raster(o), ed.grid.cols, ed.grid.rows, ed.machine.pitchUm), twoSidedBoards(ed.layer.objects));
@@ -219,36 +240,48 @@ export class JobControl {
     if (!gate.open) throw new Error(`Not now: ${gate.why}`);
   }
 
+  /** Stops the dry run under way: no question follows. */
+  stopCheck = () => this.#stopCheck?.abort();
+
   async #ask(what: 'drawing' | 'test pattern', asked: PrintJob, cuts?: Cut[], boards: TwoSided[] = []): Promise<void> {
-    let job = asked;
-    if (this.strategy === 'auto') {
-      // The fastest order for exactly this job, whatever the preview last saw.
-      const { fastestOrder, orderEstimates } = await import('../planner/job-plan');
-      const { headerOf } = await import('../planner/job-header');
-      const orders = orderEstimates({ header: headerOf(job), cells: job.gridData }, motionOf(this.config), bedOf(this.config).bedMm.x * 1000);
-      job = { ...job, strategy: { name: fastestOrder(orders) } };
-    }
     const leveling = await this.printer.leveling();
     const printheadAnswers = await this.printer.checkPrinthead();
     const device = this.printer.device;
     const startC = device.deciC?.map((d) => d / 10) ?? null;
     const machine = { faults: device.activeFaults, printheadAnswers, hot: hotSensors(device.deciC, limitsOf(this.config)) };
-    const { dryRun } = await import('../studio/dry-run');
-    const { findings, duty, plan, paced } = dryRun(job, this.config, { leveling: leveling.on, mesh: leveling.mesh, startC, cuts, boards, machine });
+    const { checkJob, Cancelled } = await import('../work/check-job');
+    await nextTask();
+    const stop = (this.#stopCheck = new AbortController());
+    this.checking = { what, stage: 'starting' };
+    let summary;
+    try {
+      // In the worker: for `auto`, the fastest order for exactly this job (of those on the bed), whatever the preview last saw; then the dry run.
+      summary = await checkJob(
+        { job: asked, config: $state.snapshot(this.config), auto: this.strategy === 'auto', opts: $state.snapshot({ leveling: leveling.on, mesh: leveling.mesh, startC, cuts, boards, machine }) },
+        { signal: stop.signal, onProgress: (p) => (this.checking = { what, stage: p.stage }) },
+      );
+    } catch (e) {
+      if (e instanceof Cancelled) return;
+      throw e;
+    } finally {
+      this.checking = null;
+      this.#stopCheck = null;
+    }
+    const { findings, duty, estimateUs, pacedUs } = summary;
+    const job = { ...asked, strategy: { name: summary.order } };
     this.check = { findings, job, duty };
     const mm = (um: number) => Math.round(um) / 1000;
     const areaMm = {
       x0: mm(job.originUm.x), y0: mm(job.originUm.y),
       x1: mm(job.originUm.x + job.grid.cols * job.pitchUm.x), y1: mm(job.originUm.y + job.grid.rows * job.pitchUm.y),
     };
-    const pacedUs = paced && !paced.pause ? paced.totalUs : null;
-    this.pending = { kind: 'expose', what, job, findings, duty, estimateUs: plan.estimateUs, pacedUs, areaMm, cuts: cuts ?? [], accepted: false, boards };
+    this.pending = { kind: 'expose', what, job, findings, duty, estimateUs, pacedUs, areaMm, cuts: cuts ?? [], accepted: false, boards };
   }
 
   async #run(job: PrintJob, duty: number[] | null, paced: boolean): Promise<void> {
     JobNotice.askPermission(); // from the click that starts the job: its end can reach the desktop
     this.duty = duty;
-    this.runningScan = job.strategy.name === 'scan';
+    this.runningUnit = job.strategy.name === 'scan' ? 'pass' : job.strategy.name === 'mixed' ? 'step' : 'stop';
     await this.beforeJob();
     await this.printer.send('G28');
     await this.printer.startJob(job, { paced });

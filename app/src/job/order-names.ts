@@ -4,6 +4,7 @@ import type { StrategyName } from '../protocol/job-types';
 
 export const ORDER_NAMES: Record<StrategyName, string> = {
   scan: 'Scan (on the move)',
+  mixed: 'Mixed (each pass on the move or by stops)',
   serpentine: 'Serpentine',
   raster: 'Raster',
   shortest: 'Shortest travel',
@@ -11,7 +12,7 @@ export const ORDER_NAMES: Record<StrategyName, string> = {
 };
 
 /** The list's order, the automatic choice first. */
-export const ORDER_LIST: StrategyName[] = ['scan', 'serpentine', 'raster', 'shortest', 'random'];
+export const ORDER_LIST: StrategyName[] = ['scan', 'mixed', 'serpentine', 'raster', 'shortest', 'random'];
 
 /** An estimate as the list shows it beside an order: "53 min", "1 h 05 min", "40 s". */
 export function estimateWords(us: number | undefined): string {

@@ -50,6 +50,29 @@ describe('planning by strategy', () => {
   });
 });
 
+describe('a mixed plan as the Mega counts it', () => {
+  it('counts each pass on the move once and each stop once, with the stops\' durations and the mixed estimate', () => {
+    // Dense bands of four rows between bands with one dot: passes on the move and passes of stops.
+    const cells = Array.from({ length: 32 }, (_, y) => Array.from({ length: 80 }, (_, x) => ((y >> 2) % 2 === 0 ? 255 : y % 4 === 1 && x === (y * 37) % 80 ? 255 : 0)));
+    const { plan, mixed, scan } = planAnyJob({ header: header(80, 32, 'mixed'), cells }, MACHINE);
+    expect(scan).toBeNull();
+    const ways = mixed!.passes.map((p) => p.scan);
+    expect(ways).toContain(true);
+    expect(ways).toContain(false);
+    expect(plan.count).toBe(mixed!.steps);
+    expect(plan.count).toBe(mixed!.passes.reduce((n, p) => n + (p.scan ? 1 : p.stops.length), 0));
+    expect(plan.estimateUs).toBe(mixed!.estimateUs);
+    expect(plan.passes).toBe(mixed!.passes.length);
+    const stops = mixed!.passes.flatMap((p) => (p.scan ? [[p.pass.descending ? p.pass.last : p.pass.first, p.hy, 0, 0, 0, 0]] : p.stops));
+    expect(Array.from({ length: plan.count }, (_, i) => [plan.hx[i], plan.hy[i], ...plan.durations.subarray(4 * i, 4 * i + 4)])).toEqual(stops);
+    // Never slower than either pure mode here, and the automatic order takes it.
+    const est = orderEstimates({ header: header(80, 32, 'mixed'), cells }, MACHINE);
+    expect(est.mixed).toBeLessThan(est.scan);
+    expect(est.mixed).toBeLessThan(Math.min(est.serpentine, est.shortest, est.raster, est.random));
+    expect(fastestOrder(est)).toBe('mixed');
+  });
+});
+
 describe('the automatic order', () => {
   const job = (cols: number, rows: number, lit: (x: number, y: number) => boolean, fullUs: number) => ({
     header: { ...header(cols, rows, 'serpentine'), fullUs, map: 'threshold' as const, level: 128 },
@@ -82,8 +105,8 @@ describe('the automatic order', () => {
   });
 
   it('prefers scan on a tie, and never an order that cannot plan a job with light', () => {
-    expect(fastestOrder({ scan: 5, serpentine: 5, shortest: 5, raster: 5, random: 5 })).toBe('scan');
-    expect(fastestOrder({ scan: Infinity, serpentine: 9, shortest: 7, raster: 8, random: 9 })).toBe('shortest');
+    expect(fastestOrder({ scan: 5, mixed: 5, serpentine: 5, shortest: 5, raster: 5, random: 5 })).toBe('scan');
+    expect(fastestOrder({ scan: Infinity, mixed: Infinity, serpentine: 9, shortest: 7, raster: 8, random: 9 })).toBe('shortest');
   });
 });
 

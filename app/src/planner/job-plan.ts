@@ -2,20 +2,61 @@
 // through the same Plan, one "stop" per pass, so progress, estimates and checkpoints count passes.
 
 import type { JobHeader, StrategyName } from '../protocol/job-types';
+import { planMixed, type MixedPlan } from './mixed';
 import { planJob, type Plan, type PlannerJob } from './planner';
 import { passSpanUs, planScan, type ScanPlan } from './scan';
 import type { Machine } from './time-model';
 
 export interface JobPlan {
+  /** One entry per step of the job's progress, as the Mega counts it: a stop, or a pass on the move. */
   plan: Plan;
   /** Set for a scan job: its passes, their switch times and its motion. */
   scan: ScanPlan | null;
+  /** Set for a mixed job: each pass on the move or stop by stop (planner.md "Mixed mode"). */
+  mixed: MixedPlan | null;
 }
 
 export function planAnyJob(job: PlannerJob, machine: Machine): JobPlan {
-  if (job.header.strategy !== 'scan') return { plan: planJob(job, machine), scan: null };
+  if (job.header.strategy === 'mixed') {
+    const mixed = planMixed(job, machine);
+    return { plan: mixedAsPlan(mixed, machine, job.header), scan: null, mixed };
+  }
+  if (job.header.strategy !== 'scan') return { plan: planJob(job, machine), scan: null, mixed: null };
   const scan = planScan(job, machine);
-  return { plan: scanAsPlan(scan, machine, job.header), scan };
+  return { plan: scanAsPlan(scan, machine, job.header), scan, mixed: null };
+}
+
+/**
+ * A mixed plan as a Plan of the Mega's progress steps: each stop with its durations, each pass on the
+ * move as one entry at its first head column with none; `passes` counts every pass.
+ */
+export function mixedAsPlan(mixed: MixedPlan, machine: Machine, h: Pick<JobHeader, 'originUm' | 'pitchUm'>): Plan {
+  const n = mixed.steps;
+  const plan: Plan = { count: n, hx: new Int32Array(n), hy: new Int32Array(n), durations: new Uint32Array(4 * n), passes: mixed.passes.length, estimateUs: mixed.estimateUs, travelUm: [0, 0] };
+  let i = 0, x = machine.startUm[0], y = machine.startUm[1];
+  const go = (toX: number, toY: number) => {
+    plan.travelUm[0] += Math.abs(toX - x);
+    plan.travelUm[1] += Math.abs(toY - y);
+    x = toX;
+    y = toY;
+  };
+  for (const p of mixed.passes) {
+    const py = h.originUm[1] + p.hy * h.pitchUm[1];
+    if (p.scan) {
+      plan.hx[i] = p.pass.descending ? p.pass.last : p.pass.first;
+      plan.hy[i++] = p.hy;
+      go(p.pass.runUpUm, py);
+      go(p.pass.runOutUm, py);
+      continue;
+    }
+    for (const [hx, hy, ...us] of p.stops) {
+      plan.hx[i] = hx;
+      plan.hy[i] = hy;
+      plan.durations.set(us, 4 * i++);
+      go(h.originUm[0] + hx * h.pitchUm[0], py);
+    }
+  }
+  return plan;
 }
 
 /** A scan plan as a Plan of one entry per pass (at its first head column), with no stop durations. */
@@ -55,7 +96,7 @@ export function passSwitches(pass: ScanPlan['passes'][number]): { atUs: number; 
 export type OrderChoice = StrategyName | 'auto';
 
 /** The orders the automatic choice weighs, in the order it prefers them on a tie. */
-export const ORDERS: StrategyName[] = ['scan', 'serpentine', 'shortest', 'raster', 'random'];
+export const ORDERS: StrategyName[] = ['scan', 'mixed', 'serpentine', 'shortest', 'raster', 'random'];
 
 /**
  * Each order's estimate for the job, µs: what the Mega's planner will count for it. An order that
@@ -67,12 +108,15 @@ export function orderEstimates(job: PlannerJob, machine: Machine, bedXUm = Infin
   // A scan's strokes run up and out beyond the artwork: one that leaves the bed is no choice.
   const strokeUm = (steps: number) => (steps * 1_000_000) / machine.stepsMilli[0];
   for (const name of ORDERS) {
-    const { plan, scan } = planAnyJob({ ...job, header: { ...job.header, strategy: name } }, machine);
-    const offBed = scan?.passes.some((p) => strokeUm(p.startSteps) < 0 || strokeUm(p.stopSteps) > bedXUm) ?? false;
+    const { plan, scan, mixed } = planAnyJob({ ...job, header: { ...job.header, strategy: name } }, machine);
+    const strokes = scan?.passes ?? mixed?.passes.flatMap((p) => (p.scan ? [p.pass] : [])) ?? [];
+    const offBed = strokes.some((p) => strokeUm(p.startSteps) < 0 || strokeUm(p.stopSteps) > bedXUm);
     out[name] = offBed ? Infinity : plan.count || !lit ? plan.estimateUs : Infinity;
-    if (name !== 'scan' && plan.count) lit = true;
+    if (name !== 'scan' && name !== 'mixed' && plan.count) lit = true;
   }
+  // A scan or mixed plan that is empty where stops are not: refused (planner.md "Limits").
   if (lit && out.scan === 0) out.scan = Infinity;
+  if (lit && out.mixed === 0) out.mixed = Infinity;
   return out;
 }
 

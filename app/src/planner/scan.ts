@@ -171,7 +171,6 @@ export function planScan(job: PlannerJob, machine: Machine, opts: { neverFly?: b
   const jobStep = engineStep(machine, h.pitchUm[0], W);
   if ('refused' in jobStep) return { ...plan, refused: jobStep.refused };
   const Y = (hy: number) => h.originUm[1] + hy * h.pitchUm[1];
-  const X = (hx: number) => h.originUm[0] + hx * h.pitchUm[0];
   const moves = new MoveTimes(machine);
   let curX = axisSteps(machine, 0, machine.startUm[0]), curY = machine.startUm[1];
   // Rows still to arrive (a stream): the plan is every pass up to the first that reads one of them
@@ -182,31 +181,56 @@ export function planScan(job: PlannerJob, machine: Machine, opts: { neverFly?: b
   for (const { hy, ledRows } of passRows(h, job.cells)) {
     if (known < h.rows && hy + dyMax >= known) break;
     const descending = plan.passes.length % 2 === 1;
-    let pass = layoutPass(job, tables, ledRows, hy, descending, motion, machine, moves, !!opts.neverFly);
-    if (!pass) continue;
-    // The link cap: a pass whose program lines would outrun the link is laid out again at a longer window.
-    for (let short = opts.noLinkCap ? null : linkShortfall(pass.events); short; short = linkShortfall(pass.events)) {
-      const w = linkWindow(pass.windowUs, short);
-      if (!fitsTimer(h, w)) return { ...motion, passes: [], estimateUs: 0 };
-      pass = layoutPass(job, tables, ledRows, hy, descending, passMotion(h, machine, w), machine, moves, !!opts.neverFly)!;
-    }
-    // The pass as the Mega runs it (planner.md "The stroke"): the step engine's move to the stroke's
-    // start, the overhead, the stroke, and the Nano's Q answer that confirms the pass.
-    const step = engineStep(machine, h.pitchUm[0], pass.windowUs);
-    if ('refused' in step) return { ...motion, passes: [], estimateUs: 0, refused: step.refused };
-    const p = h.pitchUm[0], dir = pass.descending ? -1 : 1;
-    const x0 = X(pass.descending ? pass.last : pass.first), x1 = X(pass.descending ? pass.first : pass.last);
-    const saved = (pass.last - pass.first + 1) * pass.windowUs - windowsSpanUs(pass);
-    const stroke = planStroke(machine, 2 * x0 - dir * p, 2 * x1 + dir * p, pass.descending, step.q16, saved);
-    const y = Y(hy);
-    const moveUs = moves.engine(stroke.startSteps - curX, axisSteps(machine, 1, y) - axisSteps(machine, 1, curY));
-    const full: ScanPass = { ...pass, moveUs, ...stroke };
+    const full = planScanPass({ job, tables, motion, machine, moves, neverFly: !!opts.neverFly, noLinkCap: !!opts.noLinkCap }, ledRows, hy, descending, curX, curY);
+    if (full === null) continue;
+    if ('refused' in full) return { ...motion, passes: [], estimateUs: 0, ...(full.refused ? { refused: full.refused } : {}) };
     plan.estimateUs += passWallUs(full, machine);
-    curX = stroke.stopSteps;
-    curY = y;
+    curX = full.stopSteps;
+    curY = Y(hy);
     plan.passes.push(full);
   }
   return plan;
+}
+
+/** What planning one scan pass needs: the job, its duration tables and motion, the machine. */
+export interface ScanContext {
+  job: PlannerJob;
+  tables: Uint32Array[];
+  motion: ScanMotion;
+  machine: Machine;
+  moves: MoveTimes;
+  neverFly: boolean;
+  noLinkCap: boolean;
+}
+
+/**
+ * One scan pass from the head at (curX steps, curY µm): laid out, link-capped and stroked as the Mega
+ * runs it; null when nothing is lit; `refused` when the plan must end there (the step engine cannot
+ * run its window: why; or its link-capped window breaks the 32-bit limit: '').
+ */
+export function planScanPass(ctx: ScanContext, ledRows: number[], hy: number, descending: boolean, curX: number, curY: number): ScanPass | null | { refused: string } {
+  const { job, tables, motion, machine, moves } = ctx;
+  const h = job.header;
+  let pass = layoutPass(job, tables, ledRows, hy, descending, motion, machine, moves, ctx.neverFly);
+  if (!pass) return null;
+  // The link cap: a pass whose program lines would outrun the link is laid out again at a longer window.
+  for (let short = ctx.noLinkCap ? null : linkShortfall(pass.events); short; short = linkShortfall(pass.events)) {
+    const w = linkWindow(pass.windowUs, short);
+    if (!fitsTimer(h, w)) return { refused: '' };
+    pass = layoutPass(job, tables, ledRows, hy, descending, passMotion(h, machine, w), machine, moves, ctx.neverFly)!;
+  }
+  // The pass as the Mega runs it (planner.md "The stroke"): the step engine's move to the stroke's
+  // start, the overhead, the stroke, and the Nano's Q answer that confirms the pass.
+  const step = engineStep(machine, h.pitchUm[0], pass.windowUs);
+  if ('refused' in step) return { refused: step.refused };
+  const X = (hx: number) => h.originUm[0] + hx * h.pitchUm[0];
+  const p = h.pitchUm[0], dir = pass.descending ? -1 : 1;
+  const x0 = X(pass.descending ? pass.last : pass.first), x1 = X(pass.descending ? pass.first : pass.last);
+  const saved = (pass.last - pass.first + 1) * pass.windowUs - windowsSpanUs(pass);
+  const stroke = planStroke(machine, 2 * x0 - dir * p, 2 * x1 + dir * p, pass.descending, step.q16, saved);
+  const y = h.originUm[1] + hy * h.pitchUm[1];
+  const moveUs = moves.engine(stroke.startSteps - curX, axisSteps(machine, 1, y) - axisSteps(machine, 1, curY));
+  return { ...pass, moveUs, ...stroke };
 }
 
 /** S(n − 1) + W: a pass's windows with its flown stretches in their place. */

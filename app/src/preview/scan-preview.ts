@@ -24,6 +24,8 @@ export interface ScanLine {
   fromCol: number;
   toCol: number;
   descending: boolean;
+  /** A mixed job's pass of stops (planner.md "Mixed mode"): its stops' head columns, in order; absent for a pass on the move. */
+  stops?: number[];
 }
 
 export interface ScanPreview {

@@ -156,7 +156,7 @@ export class ProjectSession {
     // Pictures and drawings are read after the project shows; each appears as it is ready.
     const artwork = new Map(p.objects.filter(isArtwork).map((o) => [o.src, o]));
     if (!artwork.size) return;
-    const { readArtwork } = await import('../studio/objects/artwork');
+    const { readArtwork } = await import('../studio/objects/remote-artwork');
     for (const [src, o] of artwork)
       readArtwork(o).then((a) => ed.layer.addArtwork(src, a), (e) => (this.error = `A picture of the project could not be read: ${(e as Error).message}`));
   }

@@ -4,7 +4,7 @@ import { parseCommand } from './dialect-command';
 import { parseFrame } from './dialect-frame';
 import { errorByCode, isLineError } from './errors';
 import type { SplitLine } from './line-splitter';
-import { formatOk } from './dialect-reply';
+import { formatOk } from './reply-format';
 
 export type Acceptance =
   | { kind: 'none' }

@@ -1,9 +1,9 @@
-// Replies and reports of the Mega dialect: typed parse (host side) and canonical format (Mega side).
+// Replies and reports of the Mega dialect, typed and parsed (host side); their canonical lines are
+// reply-format.ts's (Mega side).
 
-import { formatMilli, parseMilli } from './dialect-command';
+import { parseMilli } from './dialect-command';
 import { crc16Hex } from './crc16';
-import { errorClass } from './errors';
-import { formatDeciC, parseDeciC, SENSOR_COUNT } from './nano';
+import { parseDeciC, SENSOR_COUNT } from './nano';
 
 export type JobState = 'idle' | 'uploading' | 'ready' | 'running' | 'paused' | 'done' | 'aborted' | 'failed' | 'interrupted';
 export type ProbeState = 'triggered' | 'open' | 'alarm' | 'deployed' | 'stowed';
@@ -35,12 +35,6 @@ const BED = new RegExp(`^Bed X: ${MM} Y: ${MM} Z: ${MM}$`);
 const DECI = '(-?[0-9]{1,3}\\.[0-9])';
 const TEMP_PAIR = new RegExp(`^S([0-5]):${DECI} /0\\.0$`);
 
-/** The end of a reply block: `n` is the line it answers, undefined when it accepts none (mega.md §2). */
-export function formatOk(n: number | undefined, p: number, b: number): string {
-  const head = n === undefined ? `ok P${p} B${b}` : `ok N${n} P${p} B${b}`;
-  return `${head}*${crc16Hex(head)}`;
-}
-
 /** `key=value` words; null if any word is not that shape. */
 function parseFields(rest: string): Record<string, string> | null {
   const fields: Record<string, string> = {};
@@ -50,10 +44,6 @@ function parseFields(rest: string): Record<string, string> | null {
     fields[m[1]] = m[2];
   }
   return fields;
-}
-
-function formatFields(fields: Record<string, string>): string {
-  return Object.entries(fields).map(([k, v]) => ` ${k}=${v}`).join('');
 }
 
 function parseTemps(line: string): Reply | null {
@@ -135,43 +125,4 @@ export function parseReply(line: string): Reply | null {
     return m ? { kind: 'cap', name: m[1], value: Number(m[2]) } : null;
   }
   return { kind: 'other', text: line };
-}
-
-export interface FirmwareInfo {
-  machine: string;
-}
-
-/** Canonical line for a reply; the Mega and the simulated printer print exactly this. */
-export function formatReply(r: Reply, info: FirmwareInfo = { machine: 'UV-LED exposure printer' }): string {
-  switch (r.kind) {
-    case 'ok': return r.p === undefined ? 'ok' : formatOk(r.n, r.p, r.b ?? 0);
-    case 'error': return `${errorClass(r.code) === 'refusal' ? 'echo:' : 'Error:'}E${r.code} ${r.message}`;
-    case 'resend': return `Resend: ${r.n}`;
-    case 'temps': {
-      // Hosts read `T:` as a hotend and `Tn:` as more of them, and every `/` value as a heater's target:
-      // one `T:` and the sensors as `S0`-`S5` (OctoPrint keeps them as custom sensors), all with target
-      // 0.0. The soft limits are config (`M850 thermal.limit.<i>`), never a target a host would show.
-      const pairs = r.deciC.map((v, i) => ` S${i}:${formatDeciC(v)} /0.0`).join('');
-      return `T:${formatDeciC(Math.max(...r.deciC))} /0.0${pairs}`;
-    }
-    case 'position': {
-      const [x, y, z] = r.um.map(formatMilli);
-      return `X:${x} Y:${y} Z:${z} E:0.000 Count X:${r.steps[0]} Y:${r.steps[1]} Z:${r.steps[2]}`;
-    }
-    case 'probePoint': {
-      const [x, y, z] = r.um.map(formatMilli);
-      return `Bed X: ${x} Y: ${y} Z: ${z}`;
-    }
-    case 'job': return `JOB:${r.state}${formatFields(r.fields)}`;
-    case 'probe': return `PROBE:${r.state}`;
-    case 'test': return `TEST:${r.mode}${formatFields(r.fields)}`;
-    case 'fault': return `FAULT:E${r.code} ${r.message}`;
-    case 'echo': return `echo:${r.text}`;
-    case 'busy': return 'busy: processing';
-    case 'start': return 'start';
-    case 'firmware':
-      return `FIRMWARE_NAME:${r.name} PROTOCOL_VERSION:${r.protocol} MACHINE_TYPE:${info.machine} LEDS:4 SENSORS:6`;
-    case 'cap': return `Cap:${r.name}:${r.value}`;
-    case 'other': return r.text;
-  }
 }

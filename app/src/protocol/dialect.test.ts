@@ -2,7 +2,8 @@ import { describe, expect, it } from 'vitest';
 import { formatMilli, parseCommand } from './dialect-command';
 import { DIALECT_MAX_LINE, encodeFrame, parseFrame } from './dialect-frame';
 import { LineReceiver } from './dialect-receiver';
-import { formatReply, parseReply } from './dialect-reply';
+import { parseReply } from './dialect-reply';
+import { formatReply } from './reply-format';
 import { LineSplitter } from './line-splitter';
 import { cases, loadVectors, vectorCounter } from './vectors.fixture';
 

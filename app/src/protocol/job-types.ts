@@ -1,9 +1,9 @@
 // The exposure job as the app, the ESP body (protocol/print-job.schema.json) and the planner see it.
 
-/** `scan` exposes each pass on the move (protocol/planner.md "Scan mode"); the others stop and fire. */
-export type StrategyName = 'raster' | 'serpentine' | 'shortest' | 'random' | 'scan';
+/** `scan` exposes each pass on the move (protocol/planner.md "Scan mode"), `mixed` each pass on the move or stop by stop, whichever is cheaper ("Mixed mode"); the others stop and fire. */
+export type StrategyName = 'raster' | 'serpentine' | 'shortest' | 'random' | 'scan' | 'mixed';
 
-export const STRATEGY_NAMES: readonly StrategyName[] = ['raster', 'serpentine', 'shortest', 'random', 'scan'];
+export const STRATEGY_NAMES: readonly StrategyName[] = ['raster', 'serpentine', 'shortest', 'random', 'scan', 'mixed'];
 
 export type Dose =
   | { map: 'linear' | 'threshold'; level?: number; fullUs: number }

@@ -1,7 +1,8 @@
 import { describe, expect, it } from 'vitest';
 import { GEOMETRIES, randomJob } from '../planner/golden';
 import { encodeFrame } from '../protocol/dialect-frame';
-import { formatOk, parseReply } from '../protocol/dialect-reply';
+import { parseReply } from '../protocol/dialect-reply';
+import { formatOk } from '../protocol/reply-format';
 import { encodeJob } from '../protocol/job-encode';
 import { bedZ, DEFAULT_BED } from './bed';
 import { SimHost } from './sim-host.fixture';

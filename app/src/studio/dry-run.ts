@@ -9,16 +9,17 @@ import type { Mesh } from '../planner/mesh';
 import { durationTables } from '../planner/dose';
 import { planAnyJob } from '../planner/job-plan';
 import { passRows, type Plan } from '../planner/planner';
-import type { ScanPlan } from '../planner/scan';
+import type { MixedPlan } from '../planner/mixed';
+import type { ScanPass, ScanPlan } from '../planner/scan';
 import type { PrintJob } from '../protocol/job-types';
 import type { Fault } from '../device/device-state';
 import { stillTooHot } from '../job/actions';
 import { hms } from '../job/hms';
-import { scanWords } from '../job/scan-words';
+import { mixedWords, scanWords } from '../job/scan-words';
 import { bedOf, limitsOf, motionOf, type MachineConfig } from './machine-config';
 import { cutWords, type Cut } from './objects/clipping';
 import { sideInJob, type TwoSided } from './objects/board-object';
-import { forecastScanThermal, forecastThermal, type ThermalRun } from './thermal-forecast';
+import { forecastMixedThermal, forecastScanThermal, forecastThermal, type ThermalRun } from './thermal-forecast';
 
 export interface Finding {
   check: 'machine' | 'mode' | 'envelope' | 'clipping' | 'sides' | 'mesh' | 'dose' | 'thermal';
@@ -42,6 +43,8 @@ export interface DryRun {
   plan: Plan;
   /** A scan job's plan (exposure on the move), else null. */
   scan: ScanPlan | null;
+  /** A mixed job's plan, else null. */
+  mixed: MixedPlan | null;
   findings: Finding[];
   /** Each LED's share of the job's time lit, 0-1. */
   duty: number[];
@@ -80,14 +83,25 @@ export function sidesFinding(boards: readonly TwoSided[]): Finding | null {
 export function dryRun(
   job: PrintJob,
   config: MachineConfig,
-  opts: { mesh?: Mesh | null; leveling?: boolean | null; startC?: number[] | null; cuts?: readonly Cut[]; acceptCuts?: boolean; boards?: readonly TwoSided[]; machine?: MachineCheck } = {},
+  opts: { mesh?: Mesh | null; leveling?: boolean | null; startC?: number[] | null; cuts?: readonly Cut[]; acceptCuts?: boolean; boards?: readonly TwoSided[]; machine?: MachineCheck; onStage?: (stage: string) => void } = {},
 ): DryRun {
+  opts.onStage?.('planning');
   const header = headerOf(job);
   const machine = motionOf(config);
-  const { plan, scan } = planAnyJob({ header, cells: job.gridData }, machine);
+  const { plan, scan, mixed } = planAnyJob({ header, cells: job.gridData }, machine);
   const findings: Finding[] = opts.machine ? [machineFinding(opts.machine)] : [];
   const { bedMm } = bedOf(config);
   if (scan) findings.push(scanFinding(scan));
+  if (mixed) findings.push(mixedFinding(mixed));
+  // A mixed job's passes on the move, by the index of their step in the plan.
+  const strokes = new Map<number, ScanPass>();
+  if (mixed) {
+    let i = 0;
+    for (const p of mixed.passes) {
+      if (p.scan) strokes.set(i, p.pass);
+      i += p.scan ? 1 : p.stops.length;
+    }
+  }
 
   // Envelope: every head position the plan stops at (for a scan job, each pass's stroke from its start
   // to its stop, as the Mega lays it out: a few steps beyond the run-up and run-out), on the bed.
@@ -95,7 +109,8 @@ export function dryRun(
   const strokeUm = (steps: number) => Math.round((steps * 1_000_000) / machine.stepsMilli[0]);
   for (let i = 0; i < plan.count; i++) {
     const y = job.originUm.y + plan.hy[i] * job.pitchUm.y;
-    const xs = scan ? [strokeUm(scan.passes[i].startSteps), strokeUm(scan.passes[i].stopSteps)] : [job.originUm.x + plan.hx[i] * job.pitchUm.x];
+    const stroke = scan ? scan.passes[i] : strokes.get(i);
+    const xs = stroke ? [strokeUm(stroke.startSteps), strokeUm(stroke.stopSteps)] : [job.originUm.x + plan.hx[i] * job.pitchUm.x];
     for (const x of xs) minX = Math.min(minX, x), maxX = Math.max(maxX, x);
     minY = Math.min(minY, y), maxY = Math.max(maxY, y);
   }
@@ -132,7 +147,7 @@ export function dryRun(
   // A scan job's cell is lit for its stop-mode on-time t_k(v) (an LED stays on across a run of full
   // cells, but each cell's exposure is its own): judged from the cells, so a scan the Mega cannot run
   // (no passes) is judged too.
-  if (scan) {
+  if (scan || mixed) {
     const tables = durationTables(header);
     for (const { ledRows } of passRows(header, job.gridData)) {
       ledRows.forEach((r, k) => {
@@ -141,9 +156,9 @@ export function dryRun(
       });
     }
   }
-  for (const pass of scan?.passes ?? []) pass.leds.forEach((list, k) => list.forEach(([on, off]) => (lit[k] += off - on)));
+  for (const pass of scan?.passes ?? strokes.values()) pass.leds.forEach((list, k) => list.forEach(([on, off]) => (lit[k] += off - on)));
   findings.push(longest > NANO_MAX_EXPOSURE_US
-    ? { check: 'dose', level: 'error', message: `${scan ? 'a cell' : 'a stop'} would light an LED for ${(longest / 1e6).toFixed(1)} s; the printhead refuses more than ${NANO_MAX_EXPOSURE_US / 1e6} s` }
+    ? { check: 'dose', level: 'error', message: `${scan || mixed ? 'a cell' : 'a stop'} would light an LED for ${(longest / 1e6).toFixed(1)} s; the printhead refuses more than ${NANO_MAX_EXPOSURE_US / 1e6} s` }
     : { check: 'dose', level: 'ok', message: `the longest exposure is ${(longest / 1000).toFixed(1)} ms` });
 
   // Thermal: the plan played through the head's model, as the Mega reads and judges it.
@@ -151,13 +166,15 @@ export function dryRun(
   const limitsC = limitsOf(config);
   const forecast = (paced: boolean) => {
     const o = { limitsC, startC: opts.startC ?? undefined, paced };
-    return scan ? forecastScanThermal(scan, header, machine, o) : forecastThermal(plan, header, machine, o);
+    return scan ? forecastScanThermal(scan, header, machine, o) : mixed ? forecastMixedThermal(mixed, header, machine, o) : forecastThermal(plan, header, machine, o);
   };
+  opts.onStage?.('forecasting the heat');
   const thermal = forecast(false);
+  if (thermal.pause) opts.onStage?.('forecasting the heat, paced');
   const paced = thermal.pause ? forecast(true) : null;
-  findings.push(thermalFinding(thermal, paced, plan.count, limitsC, scan ? 'pass' : 'stop'));
+  findings.push(thermalFinding(thermal, paced, plan.count, limitsC, scan ? 'pass' : mixed ? 'step' : 'stop'));
 
-  return { plan, scan, findings, duty, thermal, paced };
+  return { plan, scan, mixed, findings, duty, thermal, paced };
 }
 
 /**
@@ -182,7 +199,14 @@ export function scanFinding(scan: ScanPlan): Finding {
   return { check: 'mode', level: 'ok', message: `scan job (on the move): ${scanWords(scan.passes.length, scan.speedUmS, scan.windowUs)}` };
 }
 
-function thermalFinding(run: ThermalRun, paced: ThermalRun | null, stops: number, limitsC: number[], unit: 'stop' | 'pass'): Finding {
+/** What a mixed job is: which of its passes run on the move. */
+export function mixedFinding(mixed: MixedPlan): Finding {
+  if (mixed.refused) return { check: 'mode', level: 'error', message: `mixed job: the printer cannot run its passes on the move: ${mixed.refused}. Choose a stop-and-fire order, or a dose that makes a shorter window` };
+  if (!mixed.passes.length) return { check: 'mode', level: 'ok', message: 'mixed job: nothing to expose' };
+  return { check: 'mode', level: 'ok', message: `mixed job: ${mixedWords(mixed)}` };
+}
+
+function thermalFinding(run: ThermalRun, paced: ThermalRun | null, stops: number, limitsC: number[], unit: 'stop' | 'pass' | 'step'): Finding {
   const hottest = run.peakC.reduce((best, c, i) => (c - limitsC[i] > run.peakC[best] - limitsC[best] ? i : best), 0);
   const peak = (r: ThermalRun, i: number) => `T${i} ${r.peakC[i].toFixed(0)} °C (limit ${limitsC[i]})`;
   if (!run.pause) return { check: 'thermal', level: 'ok', message: `the hottest sensor stays below its soft limit: ${peak(run, hottest)}` };

@@ -3,12 +3,13 @@
 // 500 ms and its rules for them (sim/pacing.ts): an unpaced job pauses when a reading reaches a soft
 // limit; a paced one waits before a stop while a reading is near one. The simulated printer runs the
 // same model and rules, so the forecast is what it then does (thermal-forecast.test.ts). A scan job
-// is played pass by pass with its LEDs' switch times.
+// is played pass by pass with its LEDs' switch times, a mixed job pass by pass either way.
 
 import { passDurationUs, passSwitches } from '../planner/job-plan';
 import type { Plan } from '../planner/planner';
-import { passWallUs, type ScanPlan } from '../planner/scan';
-import { MoveTimes, type Machine } from '../planner/time-model';
+import type { MixedPlan } from '../planner/mixed';
+import { passWallUs, type ScanPass, type ScanPlan } from '../planner/scan';
+import { axisSteps, MoveTimes, type Machine } from '../planner/time-model';
 import { HEAD_THERMAL, HeadThermal, type HeadThermalModel } from '../sim/head-thermal';
 import { overSoftLimit, paceWaits, READING_PERIOD_US } from '../sim/pacing';
 
@@ -82,7 +83,7 @@ export function forecastThermal(plan: Plan, place: PlanPlace, machine: Machine, 
   const moves = new MoveTimes(machine);
   let x = machine.startUm[0], y = machine.startUm[1];
   const d = [0, 0, 0, 0];
-  run: for (s.stop = 0; s.stop < plan.count; s.stop++) {
+  for (s.stop = 0; s.stop < plan.count; s.stop++) {
     const stop = s.stop;
     const nx = place.originUm[0] + plan.hx[stop] * place.pitchUm[0];
     const ny = place.originUm[1] + plan.hy[stop] * place.pitchUm[1];
@@ -90,14 +91,61 @@ export function forecastThermal(plan: Plan, place: PlanPlace, machine: Machine, 
     for (let k = 0; k < 4; k++) longest = Math.max(longest, (d[k] = plan.durations[stop * 4 + k]));
     if (!hold(moves.stop(nx, ny, x, y, longest) - longest, 0)) break;
     x = nx, y = ny;
-    if (!paceWait()) break;
-    // The exposure: every LED of the stop lit at once, each off after its own time.
-    let at = 0;
-    while (at < longest) {
-      let lit = 0, next = longest;
-      for (let k = 0; k < 4; k++) if (d[k] > at) (lit |= 1 << k), (next = Math.min(next, d[k]));
-      if (!hold(next - at, lit)) break run;
-      at = next;
+    if (!paceWait() || !exposeStop(hold, d)) break;
+  }
+  return result();
+}
+
+/** A stop's exposure: every LED lit at once, each off after its own time `d[k]`; false if the job paused. */
+function exposeStop(hold: (dt: number, lit: number) => boolean, d: ArrayLike<number>): boolean {
+  const longest = Math.max(d[0], d[1], d[2], d[3]);
+  let at = 0;
+  while (at < longest) {
+    let lit = 0, next = longest;
+    for (let k = 0; k < 4; k++) if (d[k] > at) (lit |= 1 << k), (next = Math.min(next, d[k]));
+    if (!hold(next - at, lit)) return false;
+    at = next;
+  }
+  return true;
+}
+
+/** A pass on the move after its move and overhead: each LED lit exactly over its on-intervals; false if the job paused. */
+function exposeStroke(hold: (dt: number, lit: number) => boolean, pass: ScanPass): boolean {
+  const stroke = pass.strokeUs;
+  let at = -pass.markUs, lit = 0; // µs after the pass's start mark, as the stroke runs
+  for (const sw of passSwitches(pass)) {
+    if (!hold(sw.atUs - at, lit)) return false;
+    at = sw.atUs;
+    lit = sw.mask;
+  }
+  return hold(stroke - pass.markUs - at, lit);
+}
+
+/**
+ * A mixed job (planner.md "Mixed mode") played pass by pass: a pass on the move as forecastScanThermal
+ * plays it, a pass of stops as forecastThermal does, each stop's time the one planMixed priced (the
+ * head kept in steps). A pause is reported at the step under way (`stop` counts the Mega's steps: a
+ * stop, or a pass on the move).
+ */
+export function forecastMixedThermal(mixed: MixedPlan, place: PlanPlace, machine: Machine, o: ForecastOptions): ThermalRun {
+  const { s, hold, paceWait, result } = forecastHead(o);
+  const moves = new MoveTimes(machine);
+  let x = axisSteps(machine, 0, machine.startUm[0]), y = axisSteps(machine, 1, machine.startUm[1]);
+  s.stop = 0;
+  for (const p of mixed.passes) {
+    if (p.scan) {
+      if (!hold(p.scanUs - p.pass.strokeUs, 0) || !paceWait() || !exposeStroke(hold, p.pass)) break;
+      x = p.pass.stopSteps;
+      y = axisSteps(machine, 1, place.originUm[1] + p.hy * place.pitchUm[1]);
+      s.stop++;
+      continue;
+    }
+    for (const [hx, hy, ...d] of p.stops) {
+      const nx = axisSteps(machine, 0, place.originUm[0] + hx * place.pitchUm[0]), ny = axisSteps(machine, 1, place.originUm[1] + hy * place.pitchUm[1]);
+      const move = moves.engine(nx - x, ny - y);
+      if (!hold(move + (move > 0 ? machine.settleUs : 0) + machine.overheadUs, 0) || !paceWait() || !exposeStop(hold, d)) return result();
+      x = nx, y = ny;
+      s.stop++;
     }
   }
   return result();
@@ -111,18 +159,11 @@ export function forecastThermal(plan: Plan, place: PlanPlace, machine: Machine, 
  */
 export function forecastScanThermal(scan: ScanPlan, place: PlanPlace, machine: Machine, o: ForecastOptions): ThermalRun {
   const { s, hold, paceWait, result } = forecastHead(o);
-  run: for (s.stop = 0; s.stop < scan.passes.length; s.stop++) {
+  for (s.stop = 0; s.stop < scan.passes.length; s.stop++) {
     const pass = scan.passes[s.stop];
     const stroke = passDurationUs(scan, pass);
     if (!hold(passWallUs(pass, machine) - stroke, 0)) break; // the move, the overhead, the Q that ends the pass
-    if (!paceWait()) break;
-    let at = -pass.markUs, lit = 0; // µs after the pass's start mark, as the stroke runs
-    for (const sw of passSwitches(pass)) {
-      if (!hold(sw.atUs - at, lit)) break run;
-      at = sw.atUs;
-      lit = sw.mask;
-    }
-    if (!hold(stroke - pass.markUs - at, lit)) break;
+    if (!paceWait() || !exposeStroke(hold, pass)) break;
   }
   return result();
 }

@@ -8,105 +8,11 @@
 #include <cstdio>
 #include <regex>
 
-#include "board_fixture.h"
-#include "job_fixture.h"
-#include "scan_dose.h"
+#include "scan_board_fixture.h"
 
 using namespace mega::jobs;
 
 namespace {
-
-// Streams a scan job to the Mega image, runs it to its end, and measures the light the Nano image
-// gave against the head's steps. `passes`: how many the job has.
-class ScanOnBoard : public BoardTest {
- protected:
-  // A scan job of the grid's size at `fullUs` a full cell, every LED at the same gain.
-  static uv::JobHeader scanJob(const Grid& g, uint32_t fullUs) {
-    uv::JobHeader h = header(static_cast<uint16_t>(g[0].size()), static_cast<uint16_t>(g.size()), uv::Strategy::Scan);
-    h.fullUs = fullUs;
-    for (int k = 0; k < 4; k++) h.gainPermille[k] = 1000;
-    return h;
-  }
-  // Both host ports poll the temperatures and the job while it runs (the stack's heaviest run).
-  bool pollBothHosts = false;
-  int espHeard = 0;  // the ESP port's temperature reports
-  scandose::Figures expose(const uv::JobHeader& h, const Grid& g, int passes) {
-    EXPECT_TRUE(said(cmd("G28", 8e6), "ok"));
-    const int32_t home[2] = {sim.pos[0], sim.pos[1]};  // the Mega's 0 in the rig's count
-    sim.logging = true;
-    EXPECT_TRUE(said(numbered("M828"), "ok"));
-    for (const std::string& r : encode(h, g)) EXPECT_TRUE(said(numbered(r), "ok")) << r;
-    EXPECT_TRUE(said(numbered("M29"), "ok"));
-    std::string end;
-    bool reset = passes < 2;
-    uint64_t nextPoll = sim.megaCycle();
-    EXPECT_TRUE(sim.runUntil([&] {
-      if (pollBothHosts && sim.megaCycle() >= nextPoll) {
-        // Both hosts ask what a dashboard asks, every 100 ms, each within its window (mega.md §3).
-        sim.send("M105\nM114\nM27\n");
-        sim.sendEsp("M105\nM27\n");
-        nextPoll = sim.megaCycle() + static_cast<uint64_t>(100e3 * BoardSim::kCyclesPerUs);
-      }
-      for (std::string& l : sim.takeEspLines()) espHeard += l.rfind("T:", 0) == 0;
-      if (!reset && std::count(sim.nanoLines.begin(), sim.nanoLines.end(), "G") == 2) {
-        sim.send("M821 R\n");  // the main loop's longest pass, from the second pass's G on
-        reset = true;
-      }
-      for (std::string& l : sim.takeLines()) {
-        seen.push_back(l);
-        if (l.rfind("JOB:done", 0) == 0 || l.rfind("JOB:failed", 0) == 0 || l.rfind("JOB:paused", 0) == 0) end = l;
-      }
-      return !end.empty();
-    }, 20e6));
-    sim.logging = false;
-    std::string replies;
-    for (const std::string& l : sim.nanoReplies) replies += l + " ";
-    EXPECT_EQ(end.rfind("JOB:done", 0), 0u) << end << "\nthe Nano said: " << replies;
-    const std::string all = std::to_string(passes);
-    EXPECT_NE(end.find("stop=" + all + "/" + all), std::string::npos) << end;
-    int gs = 0;
-    for (const std::string& l : sim.nanoLines) gs += l == "G";
-    EXPECT_EQ(gs, passes);
-
-    scandose::Track track;
-    track.add(0, 0, 0);
-    for (const BoardSim::HeadStep& s : sim.headSteps) track.add(s.cycle / BoardSim::kCyclesPerUs, s.x - home[0], s.y - home[1]);
-    // simavr sends a UART frame in 11 bit-times where the chip takes 10 (93.5 µs against 85.0 at the
-    // Mega's divisor, ../shared/TOOLCHAIN.md): the G and its newline reach the simulated Nano 2
-    // bit-times (17 µs) later than on the machine, and every edge of the chain with them. The light
-    // is measured as the chip would give it.
-    constexpr double kSimUartLagUs = 2 * 8.5;
-    std::vector<scandose::Light> lights;
-    double onAt[4] = {};
-    for (const BoardSim::LedEdge& e : sim.ledEdges) {
-      const double t = e.cycle / BoardSim::kCyclesPerUs - kSimUartLagUs;
-      if (e.on) onAt[e.led] = t;
-      else lights.push_back({static_cast<uint8_t>(e.led), onAt[e.led], t});
-    }
-    EXPECT_FALSE(lights.empty());
-    const double spm[2] = {80, 80};
-    return scandose::measure(h, g, lights, track, spm, h.fullUs);
-  }
-  // M821's longest main-loop pass (µs) since the second pass's G (the pass that follows flying, and
-  // not the opening of the next, 18 ms at rest), and the step underruns.
-  void diagnostics(unsigned& loopMaxUs, unsigned& underruns) {
-    std::string line;
-    for (const std::string& l : cmd("M821"))
-      if (l.rfind("echo:DIAG", 0) == 0) line = l;
-    std::smatch m;
-    ASSERT_TRUE(std::regex_search(line, m, std::regex(R"(loop_max_us=(\d+) step_isr_max_us=\d+ underruns=(\d+))"))) << line;
-    loopMaxUs = std::stoul(m[1]);
-    underruns = std::stoul(m[2]);
-  }
-  // The head's fastest X step, in steps/s.
-  double fastestX() const {
-    double best = 0;
-    for (size_t i = 1; i < sim.headSteps.size(); i++)
-      if (sim.headSteps[i].x != sim.headSteps[i - 1].x)
-        best = std::max(best, BoardSim::kCyclesPerUs * 1e6 / static_cast<double>(sim.headSteps[i].cycle - sim.headSteps[i - 1].cycle));
-    return best;
-  }
-};
 
 // The Nano's clock's clock against the Mega's, set before both boot: each board's 16 MHz comes from its own
 // crystal or resonator, and a resonator is good to 0.5 %. The Mega measures the Nano's clock by W

@@ -37,12 +37,19 @@ void CardScan::seek(uint32_t done) {
 
 ScanRun::Step CardScan::scanStep(Motion& motion, PrintheadLink& head, uint32_t nowUs) {
   if (!job_) seek(0);
-  if (skip_) {  // a pass done before: planned, its events walked, nothing lit
+  if (skip_) {  // a step done before: a pass planned, its events walked, or a stop; nothing lit
+    uv::Stop stop;
+    if (job_->planner.inStopPass() && job_->planner.nextStop(stop)) {
+      skip_--;
+      opened_++;
+      return ScanRun::Step::Busy;
+    }
     uv::ScanPass p;
     if (!job_->planner.nextPass(p)) {
       error_ = uv::kFileError;  // fewer passes than planned at M29: the files changed
       return ScanRun::Step::Failed;
     }
+    if (p.stops) return ScanRun::Step::Busy;  // its stops are passed over one a call
     uint32_t t;
     uint8_t m;
     while (job_->planner.nextEvent(t, m)) {
@@ -51,6 +58,7 @@ ScanRun::Step CardScan::scanStep(Motion& motion, PrintheadLink& head, uint32_t n
     opened_++;
     return ScanRun::Step::Busy;
   }
+  if (job_->planner.inStopPass()) return ScanRun::Step::Stops;  // a mixed job's stop pass, part done before
   const ScanRun::Step s = job_->run.poll(motion, head, header_, nowUs);
   if (s == ScanRun::Step::PassDone) opened_++;
   if (source_->failed()) {
@@ -58,6 +66,12 @@ ScanRun::Step CardScan::scanStep(Motion& motion, PrintheadLink& head, uint32_t n
     return ScanRun::Step::Failed;
   }
   return s;
+}
+
+bool CardScan::nextStop(uv::Stop& out) {
+  if (!job_ || skip_ || !job_->planner.nextStop(out) || source_->failed()) return false;
+  opened_++;
+  return true;
 }
 
 }  // namespace mega

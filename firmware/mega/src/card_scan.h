@@ -1,7 +1,8 @@
-// A scan job on the card (issue 19): its passes planned again from the job's working files (~c, ~i)
-// as they run, one at a time, by the scan planner that planned them at M29 (job_plan.h), and run by
-// ScanRun. A pass that must run again (after a pause, a fault or a reset) is found by planning the
-// job from its start and passing over the passes done, without light.
+// A scan or mixed job on the card (issues 19, 28): its passes planned again from the job's working
+// files (~c, ~i) as they run, one at a time, by the scan planner that planned them at M29
+// (job_plan.h), and run by ScanRun, or stop by stop by the job runner (a mixed job's stop pass). A
+// step that must run again (after a pause, a fault or a reset) is found by planning the job from its
+// start and passing over the steps done (passes, and a mixed job's stops), without light.
 #pragma once
 #include <stdint.h>
 
@@ -24,6 +25,9 @@ class CardScan final : public StopSource {
   // the job again from its start and passes over the first `done`, a pass each scanStep().
   void seek(uint32_t done);
 
+  // A mixed job's stop pass (after scanStep() said Stops): its next stop, which counts as step
+  // `done` once confirmed; false at the pass's end, or while passes done before are passed over.
+  bool nextStop(uv::Stop& out);
   NextStop next(uint32_t, uv::Stop&) override { return NextStop::Scan; }
   uint32_t count() const override { return passes_; }
   bool complete() const override { return true; }
@@ -40,8 +44,8 @@ class CardScan final : public StopSource {
   FileHandle cells_ = -1, index_ = -1;
   SdCellsWith<uv::kScanCursors>* source_ = nullptr;
   ScanJob* job_ = nullptr;
-  uint32_t opened_ = 0;  // passes the planner has finished (run or passed over)
-  uint32_t skip_ = 0;    // passes still to pass over before the next runs
+  uint32_t opened_ = 0;  // steps the planner has finished (run or passed over): passes on the move, stops
+  uint32_t skip_ = 0;    // steps still to pass over before the next runs
   uint8_t error_ = 0;
   alignas(alignof(SdCellsWith<uv::kScanCursors>)) uint8_t sourceMem_[sizeof(SdCellsWith<uv::kScanCursors>)];
   alignas(alignof(ScanJob)) uint8_t jobMem_[sizeof(ScanJob)];

@@ -65,7 +65,7 @@ uint8_t JobPlan::begin(const char* name) {
   }
   source_ = new (sourceMem_) SdCellsWith<uv::kPlannerCursors>(sd_, cells_, index_);
   bool supported;
-  if (header_.strategy == uv::Strategy::Scan) {
+  if (header_.strategy == uv::Strategy::Scan || header_.strategy == uv::Strategy::Mixed) {
     scan_ = new (plannerMem_) uv::ScanPlanner(header_, *source_, machine_);
     supported = scan_->supported();
   } else {
@@ -116,6 +116,11 @@ bool JobPlan::stepScan() {
     error_ = uv::kScanUnsupported;  // a window the step engine cannot run: refused before any light
     close();
     return true;
+  }
+  if (p.stops) {  // a mixed job's pass of stops: each stop is a step of the job
+    uv::Stop s;
+    while (scan_->nextStop(s)) count_++;
+    return false;
   }
   uv::ProgramLines lines(passEvent, this);
   char line[uv::kNanoMaxLine + 2];

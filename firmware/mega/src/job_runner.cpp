@@ -225,11 +225,14 @@ void JobRunner::poll(uint32_t nowUs) {
           return halt(RunState::Done, 0);
         }
         if (card_) {
-          card_->seek(done_);  // the pass that is next, planned again if need be
-          phase_ = Phase::Scan;
-          return;
+          card_->seek(done_);  // the step that is next, planned again if need be
+          if (!card_->nextStop(stop_)) {  // not a mixed job's stop: a pass on the move
+            phase_ = Phase::Scan;
+            return;
+          }
+        } else if (!readStop(sd_, stops_, done_, stop_)) {
+          return fail(uv::kFileError);
         }
-        if (!readStop(sd_, stops_, done_, stop_)) return fail(uv::kFileError);
       }
       stopInHand_ = true;
       int32_t here[3], to[3];

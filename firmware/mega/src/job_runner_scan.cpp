@@ -1,5 +1,6 @@
 // A scan job's passes in the job runner (issue 19): the planner opens each pass (the stream's, or
-// the card job's own, card_scan.h) and ScanRun exposes it on the move. Passes count as the job's
+// the card job's own, card_scan.h) and ScanRun exposes it on the move; a mixed job's stop pass
+// (issue 28) goes back to the stop-by-stop phases, its stops from the stream's planner. Passes count as the job's
 // stops, and a card job checkpoints after each. A pause, and the checks that come before every
 // exposure, take effect between passes. A pass the Nano cut short is exposed again on continue
 // from the card; a stream cannot (its rows are gone), so it ends failed, dark and stopped.
@@ -27,6 +28,10 @@ void JobRunner::pollScan(uint32_t nowUs) {
     case ScanRun::Step::Starved:
       waiting_ = true;  // the rows of the next pass are on their way
       stopInHand_ = false;
+      return;
+    case ScanRun::Step::Stops:
+      stopInHand_ = false;
+      phase_ = Phase::Load;  // a mixed job's stop pass: its stops come from the source, stop by stop
       return;
     case ScanRun::Step::PassDone:
       stopInHand_ = false;

@@ -56,6 +56,23 @@ inline std::vector<std::vector<uint8_t>> gapPattern(uint16_t cols, uint16_t rows
   return g;
 }
 
+// A job whose passes take both ways in mixed mode (planner.md "Mixed mode"): bands of four rows (one
+// pass of four LEDs a row apart), in turn testPattern's first four rows and a pad of two cells, full
+// or gray. (Not testPattern's rows 8 to 11: two gray rows in a pass at 1 ms a cell outrun the
+// printhead link on the real images, in scan mode as in mixed; see the note in mixed_sim_test.cpp.)
+inline std::vector<std::vector<uint8_t>> mixedPattern(uint16_t cols, uint16_t rows) {
+  const std::vector<std::vector<uint8_t>> dense = testPattern(cols, 4);
+  std::vector<std::vector<uint8_t>> g(rows);
+  for (uint16_t r = 0; r < rows; r++) {
+    g[r] = dense[r % 4];
+    if ((r / 4) % 2 == 0) continue;
+    g[r].assign(cols, 0);
+    const uint16_t c = static_cast<uint16_t>((r * 7) % (cols - 1));
+    if (r % 4 == 0) g[r][c] = g[r][c + 1] = static_cast<uint8_t>(r % 16 == 4 ? 255 : 140);
+  }
+  return g;
+}
+
 struct Light {
   uint8_t led;
   double onUs, offUs;
@@ -77,6 +94,14 @@ struct Track {
     if (i == 0) return x.front();
     if (i == t.size()) return x.back();
     return x[i - 1] + (x[i] - x[i - 1]) * (us - t[i - 1]) / (t[i] - t[i - 1]);
+  }
+  // A stop's light (a mixed job's stop pass): no step from `leadUs` before `from` until `to`, so the
+  // head stood, at its last step's X (xAt would slide it towards the next move's first step).
+  static constexpr double kStillLeadUs = 1000;
+  bool stoodStill(double from, double to) const { return at(from - kStillLeadUs) == at(to); }
+  double xHeld(double us) const {
+    size_t i = at(us);
+    return i == 0 ? x.front() : x[i - 1];
   }
   int32_t yAt(double us) const {
     size_t i = at(us);
@@ -134,8 +159,10 @@ inline Figures measure(const uv::JobHeader& h, const std::vector<std::vector<uin
   auto headRow = [&](int32_t ySteps) { return static_cast<int>(std::lround((ySteps * 1000.0 / stepsPerMm[1] - h.originUm[1]) / py)); };
   for (const Light& l : lights) {
     const int row = headRow(track.yAt(l.onUs)) + h.offsets[l.led][1];
+    const bool still = track.stoodStill(l.onUs, l.offUs);
+    auto xAt = [&](double t) { return still ? track.xHeld(t) : track.xAt(t); };
     for (double t = l.onUs + sampleUs / 2; t < l.offUs; t += sampleUs) {
-      const double col = headCol(track.xAt(t)) + h.offsets[l.led][0];
+      const double col = headCol(xAt(t)) + h.offsets[l.led][0];
       const int c = static_cast<int>(std::floor(col + 0.5));
       if (row < -kMargin || row >= h.rows + kMargin || c < -kMargin || c >= h.cols + kMargin) {
         f.stray++;
@@ -145,12 +172,17 @@ inline Figures measure(const uv::JobHeader& h, const std::vector<std::vector<uin
       xsum[row + kMargin][c + kMargin] += (col - c) * px * sampleUs;
     }
     // The edges: on where the first cell's light should begin, off where the last's should end.
-    const double on = headCol(track.xAt(l.onUs)) + h.offsets[l.led][0], off = headCol(track.xAt(l.offUs)) + h.offsets[l.led][0];
+    const double on = headCol(xAt(l.onUs)) + h.offsets[l.led][0], off = headCol(xAt(l.offUs)) + h.offsets[l.led][0];
     const double dir = off >= on ? 1 : -1;
     // Each end's cell: the middle of that cell's own light, half of it (at most half a cell) in.
     const double half = std::min(std::fabs(off - on), 1.0) / 2;
     const int c0 = static_cast<int>(std::floor(on + dir * half + 0.5)), c1 = static_cast<int>(std::floor(off - dir * half + 0.5));
-    if (row >= 0 && row < h.rows && c0 >= 0 && c0 < h.cols && c1 >= 0 && c1 < h.cols) {
+    if (still) {
+      // A stop's light (a mixed job's stop pass, planner.md "Mixed mode"): the head stood still, so
+      // the spot's edges are the cell's own, off by as much as the head stands off the cell's centre.
+      const int c = static_cast<int>(std::floor(on + 0.5));
+      if (row >= 0 && row < h.rows && c >= 0 && c < h.cols) f.worstEdgeUm = std::max(f.worstEdgeUm, std::fabs((on - c) * px));
+    } else if (row >= 0 && row < h.rows && c0 >= 0 && c0 < h.cols && c1 >= 0 && c1 < h.cols) {
       const double t0 = dose.us(l.led, grid[row][c0]), t1 = dose.us(l.led, grid[row][c1]), windowUs = windowOfRow[row];
       // Centred in its window: half its on-time either side of the centre, one pitch a window.
       f.worstEdgeUm = std::max(f.worstEdgeUm, std::fabs((on - (c0 - dir * t0 / (2 * windowUs))) * px));

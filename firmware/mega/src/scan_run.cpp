@@ -34,12 +34,13 @@ ScanRun::Step ScanRun::fail(PrintheadLink& head, uint8_t code) {
   return Step::Failed;
 }
 
-bool ScanRun::open(Motion& motion, const uv::JobHeader& h) {
+ScanRun::Opened ScanRun::open(Motion& motion, const uv::JobHeader& h) {
   uv::ScanPass p;
   if (!planner_.nextPass(p)) {
     if (planner_.refused()) error_ = uv::kScanUnsupported;  // a window the step engine cannot run
-    return planner_.refused();
+    return planner_.refused() ? Opened::Stroke : Opened::None;
   }
+  if (p.stops) return Opened::Stops;  // a mixed job's pass of stops: the job runner exposes them
   const int32_t pitch = static_cast<int32_t>(h.pitchUm[0]), dir = p.descending ? -1 : 1;
   const int32_t x0 = static_cast<int32_t>(h.originUm[0]);
   // Window 0's column and the last window's, in the pass's direction.
@@ -55,19 +56,19 @@ bool ScanRun::open(Motion& motion, const uv::JobHeader& h) {
   uint16_t interval = 0, frac = 0;
   if (!strokeInterval(in.windowUs, in.pitchUm, in.stepsMilli, interval, frac)) {
     error_ = uv::kScanUnsupported;
-    return true;
+    return Opened::Stroke;
   }
   in.rampSteps = motion.strokeRampSteps(interval, frac);
   if (!planStroke(in, stroke_)) {  // a pass of 35 minutes or more (M29 refuses such a job first)
     error_ = uv::kScanUnsupported;
-    return true;
+    return Opened::Stroke;
   }
   y_ = static_cast<int32_t>(h.originUm[1]) + p.hy * static_cast<int32_t>(h.pitchUm[1]);
   lines_ = uv::ProgramLines(source, this);
   held_ = 0;
   sealSent_ = written_ = moved_ = false;
   armed_ = 0;
-  return true;
+  return Opened::Stroke;
 }
 
 bool ScanRun::sendProgram(PrintheadLink& head, uint32_t nowUs) {
@@ -96,7 +97,7 @@ bool ScanRun::sendProgram(PrintheadLink& head, uint32_t nowUs) {
 ScanRun::Step ScanRun::poll(Motion& motion, PrintheadLink& head, const uv::JobHeader& h, uint32_t nowUs) {
   if (error_) return Step::Failed;
   switch (phase_) {
-    case Phase::Open:
+    case Phase::Open: {
       // The Nano's clock must be known before a pass: its light runs on it (nano_clock.h).
       if (!head.online()) return fail(head, uv::kNanoTimeout);
       if (!head.nanoClock().known()) {
@@ -108,10 +109,13 @@ ScanRun::Step ScanRun::poll(Motion& motion, PrintheadLink& head, const uv::JobHe
       }
       clockWaiting_ = false;
       clockPpm_ = head.nanoClock().ppm();
-      if (!open(motion, h)) return planner_.starved() ? Step::Starved : Step::End;
+      const Opened opened = open(motion, h);
+      if (opened == Opened::None) return planner_.starved() ? Step::Starved : Step::End;
       if (error_) return fail(head, error_);
+      if (opened == Opened::Stops) return Step::Stops;  // stays Open: the pass after it opens next
       phase_ = Phase::Load;
       return Step::Busy;
+    }
     case Phase::Load: {
       if (!moved_) {
         int32_t to[3];

@@ -25,7 +25,9 @@ class ScanRun {
  public:
   explicit ScanRun(uv::ScanPlanner& planner) : planner_(planner), lines_(source, this) {}
 
-  enum class Step : uint8_t { Busy, Starved, PassDone, End, Failed };
+  // Stops: a mixed job's pass opened as stops (planner.md "Mixed mode"): the job runner takes them
+  // from the planner's nextStop(), and the next poll opens the pass after it.
+  enum class Step : uint8_t { Busy, Starved, PassDone, End, Failed, Stops };
   // `h`: the job (its origin and pitch place each pass on the bed).
   Step poll(Motion& motion, PrintheadLink& head, const uv::JobHeader& h, uint32_t nowUs);
   // Why it failed: an error code (29 the speed is out of the step engine's range or the Nano's clock
@@ -43,7 +45,9 @@ class ScanRun {
   enum class Phase : uint8_t { Open, Load, Arm, Run, Finish };
   static bool source(void* ctx, uint32_t& t, uint8_t& m);
   static bool jumpAt(void* ctx, uint8_t i, Motion::StrokeJump& out);
-  bool open(Motion& motion, const uv::JobHeader& h);
+  // What open() found: no pass (starved, or the end), a pass on the move, or a mixed job's stop pass.
+  enum class Opened : uint8_t { None, Stroke, Stops };
+  Opened open(Motion& motion, const uv::JobHeader& h);
   // Sends the chain's lines up to the end of one program; true once its K is answered 0.
   bool sendProgram(PrintheadLink& head, uint32_t nowUs);
   Step fail(PrintheadLink& head, uint8_t code);

@@ -44,7 +44,8 @@ uint8_t StreamJob::record(const char* text, uint8_t len) {
   uint8_t err = verifier_.push(text, len);
   if (err) return fail(err);
   if (!planner_ && !scan_ && verifier_.headerDone()) {
-    if (verifier_.header().strategy != uv::Strategy::Scan) {
+    const uv::Strategy s = verifier_.header().strategy;
+    if (s != uv::Strategy::Scan && s != uv::Strategy::Mixed) {
       planner_ = new (plannerMem_) uv::Planner(verifier_.header(), cells_, machine_);
     } else {
       scan_ = new (plannerMem_) ScanJob(verifier_.header(), cells_, machine_);
@@ -82,7 +83,13 @@ ScanRun::Step StreamJob::scanStep(Motion& motion, PrintheadLink& head, uint32_t 
 
 NextStop StreamJob::next(uint32_t, uv::Stop& out) {
   if (error_) return NextStop::Error;
-  if (scan_) return NextStop::Scan;
+  if (scan_) {
+    // A mixed job's stop pass: its stops one at a time, then its passes on the move again.
+    if (!scan_->planner.nextStop(out)) return NextStop::Scan;
+    planned_++;
+    freeRows(lowestRowNeeded());
+    return NextStop::Stop;
+  }
   if (!planner_) {
     starved_ = true;
     return NextStop::Wait;

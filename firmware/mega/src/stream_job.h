@@ -31,7 +31,8 @@ class StreamJob : public StopSource, private uv::SegmentSink {
   uint16_t heldCells() const { return cells_.cells(); }
 
   NextStop next(uint32_t index, uv::Stop& out) override;
-  uint32_t count() const override { return scan_ ? scan_->planner.passes() : planned_; }
+  // A scan or mixed job: its passes on the move done or under way, and the stops handed out.
+  uint32_t count() const override { return scan_ ? scan_->run.passes() + (scan_->run.idle() ? 0u : 1u) + planned_ : planned_; }
   bool complete() const override { return done_; }
   ScanRun::Step scanStep(Motion& motion, PrintheadLink& head, uint32_t nowUs) override;
   uint8_t scanError() const override { return error_ ? error_ : scan_ ? scan_->run.error() : 0; }
@@ -47,7 +48,7 @@ class StreamJob : public StopSource, private uv::SegmentSink {
   int32_t lowestRowNeeded() const { return scan_ ? scan_->planner.lowestRowNeeded() : planner_->lowestRowNeeded(); }
 
   uv::Planner* planner_ = nullptr;
-  ScanJob* scan_ = nullptr;  // a scan job's, in the stop planner's place
+  ScanJob* scan_ = nullptr;  // a scan or mixed job's, in the stop planner's place
   static constexpr size_t kPlannerBytes = sizeof(uv::Planner) > sizeof(ScanJob) ? sizeof(uv::Planner) : sizeof(ScanJob);
   alignas(alignof(uv::Planner) > alignof(ScanJob) ? alignof(uv::Planner) : alignof(ScanJob)) uint8_t plannerMem_[kPlannerBytes];
   uint32_t planned_ = 0;

@@ -2,7 +2,7 @@
 // firmware as WebAssembly) and met through the app's device layer: the TypeScript printer that
 // once stood in for it ran both jobs (issue 27).
 import { describe, expect, it } from 'vitest';
-import { CommandError } from '../../device/dialect-client';
+import { CommandError } from '../../device/command-error';
 import { DialectLink } from '../../device/dialect-link';
 import type { PrintJob } from '../../protocol/job-types';
 import { SimWire } from '../wire';

@@ -7,21 +7,26 @@ import { exposes, type StudioObject } from '../objects/objects';
 import { HANDLE_PX, handleCentres } from './handles';
 import type { Raster } from '../objects/raster';
 import { doseColours } from './tile-cache';
+import { madeSprites, spritePixels } from './made-sprites';
 import { toScreen, type View } from './viewport';
 
 const ACCENT = '#7a3cff';
 
 export class Sprites {
-  #kept = new Map<number, { raster: Raster; canvas: HTMLCanvasElement }>();
+  #kept = new Map<number, { raster: Raster; canvas: CanvasImageSource }>();
   readonly #lut = doseColours();
 
-  /** The raster as a canvas of its cells, dose 0 see-through. */
-  of(id: number, raster: Raster, w: number, h: number): HTMLCanvasElement {
+  /** The raster as a canvas of its cells, dose 0 see-through; a large artwork's comes made by the work worker. */
+  of(id: number, raster: Raster, w: number, h: number): CanvasImageSource {
     const kept = this.#kept.get(id);
     if (kept?.raster === raster) return kept.canvas;
+    const made = madeSprites.get(raster);
+    if (made) {
+      this.#kept.set(id, { raster, canvas: made });
+      return made;
+    }
     const canvas = Object.assign(document.createElement('canvas'), { width: w, height: h });
-    const pixels = new Uint32Array(raster.length);
-    for (let i = 0; i < raster.length; i++) if (raster[i]) pixels[i] = this.#lut[raster[i]];
+    const pixels = spritePixels(raster, this.#lut);
     canvas.getContext('2d')!.putImageData(new ImageData(new Uint8ClampedArray(pixels.buffer), w, h), 0, 0);
     this.#kept.set(id, { raster, canvas });
     return canvas;

@@ -24,6 +24,16 @@ describe('dose grid', () => {
     e.set(7, 5, 10);
     expect(g.bounds()).toEqual({ x0: 3, y0: 2, x1: 7, y1: 5 });
   });
+
+  it('finds the same box four cells a word as one by one, wherever the cells lie', () => {
+    for (const cols of [16, 15]) // a whole number of words a row, and not
+      for (const [x, y] of [[0, 0], [3, 1], [4, 6], [cols - 1, 7], [9, 3]]) {
+        const g = new DoseGrid(cols, 8);
+        g.cells[y * cols + x] = 1;
+        g.cells[7 * cols + 5] = 2;
+        expect(g.bounds()).toEqual({ x0: Math.min(x, 5), y0: y, x1: Math.max(x, 5), y1: 7 });
+      }
+  });
 });
 
 describe('raster tools', () => {

@@ -8,8 +8,8 @@
 // follows the object's layers, drill dots and marks.
 //
 // A new kind plugs in here: its object type in objects.ts (ArtworkFields
-// and its own kind, added to ArtworkObject, ARTWORK_KINDS and ARTWORK_WORDS), a reader in READERS
-// below giving an Artwork whose cover(w, h) rasterises it over w × h cells by area coverage, its
+// and its own kind, added to ArtworkObject, ARTWORK_KINDS and ARTWORK_WORDS), a reader in remote-artwork.ts
+// (readArtwork) and the work worker (work/artwork-work.ts) giving an Artwork whose cover(w, h) rasterises it over w × h cells by area coverage, its
 // `src` pattern in project-file.ts, and its files recognised by import-artwork.ts with their size
 // in mm. Turning, mirroring, polarity, the threshold and clipping then apply to it unchanged.
 
@@ -17,7 +17,6 @@ import { adjust } from '../image/adjust';
 import { toDoses } from '../image/dither';
 import { resample, type Gray } from '../image/gray';
 import type { ArtworkObject, BoardObject } from './objects';
-import { grayOf } from './picture';
 import type { ReadyArtwork } from './raster';
 
 export interface Artwork {
@@ -45,19 +44,8 @@ export function bitmapArtwork(gray: Gray): Artwork {
   return { pixels: { width: gray.width, height: gray.height }, cover: (w, h) => resample(gray, w, h) };
 }
 
-/** How each kind's file, embedded as a data: URL, is read again (a project opened). */
-const READERS: Record<ArtworkObject['kind'], (src: string) => Promise<Artwork>> = {
-  image: async (src) => bitmapArtwork(await grayOf(src)),
-  svg: async (src) => (await import('./svg-artwork')).svgArtwork(src),
-  board: async (src) => boardReader((await import('../../pcb')).boardArtwork(src)),
-};
-
 /** A board read by app/src/pcb (loaded on demand): drawn over its window with the object's choices. */
 export function boardReader(b: { windowMm: { x0: number; y0: number; x1: number; y1: number }; cover(w: number, h: number, look: BoardObject): Gray }): Artwork {
   const w = b.windowMm;
   return { pixels: { width: Math.round((w.x1 - w.x0) * 1000), height: Math.round((w.y1 - w.y0) * 1000) }, cover: (cw, ch, o) => b.cover(cw, ch, o as BoardObject) };
-}
-
-export async function readArtwork(o: Pick<ArtworkObject, 'kind' | 'src'>): Promise<ReadyArtwork> {
-  return ready(await READERS[o.kind](o.src));
 }

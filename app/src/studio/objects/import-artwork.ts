@@ -6,14 +6,15 @@
 
 import { NEUTRAL_TONE } from '../image/adjust';
 import { densityOf, type Density } from '../image/density';
-import { isLineArt } from '../image/gray';
 import { svgSize } from '../image/svg-size';
-import { bitmapArtwork, boardReader, ready } from './artwork';
+import type { CallOptions } from '../../work/work-client';
+import { ready } from './artwork';
 import { newBoardFields, type NewBoardFields } from './board-object';
 import type { NewObject } from './object-layer.svelte';
 import type { FileProblems } from '../../pcb/problem-words';
 import type { ArtworkObject, Rect } from './objects';
-import { checkSize, dataUrl, readPicture } from './picture';
+import { checkSize, dataUrl } from './picture';
+import { readBoard, readPicture, remoteArtwork } from './remote-artwork';
 import type { ReadyArtwork } from './raster';
 
 export interface ImportedArtwork {
@@ -39,23 +40,21 @@ const LAST_DPI_KEY = 'uv-exposure.import-dpi';
 
 const PICTURE = /\.(svg|png|jpe?g|bmp|gif|webp)$/i;
 
-/** Several files at once, or one that is no picture or drawing (a .gbr, .gtl, .drl…): a board's files. */
-export const isBoardPick = (files: readonly File[]): boolean => files.length > 1 || (files.length === 1 && !files[0].type.startsWith('image/') && !PICTURE.test(files[0].name));
+/** Linux's shared MIME database calls a .gbr a GIMP brush (image/x-gimp-gbr): its name says Gerber first. */
+const GERBER_NAME = /\.gbr$/i;
 
-/** A board's files as one object at the size of its window, each file's kind guessed from what it says and draws. */
-export async function importBoard(files: readonly File[]): Promise<ImportedArtwork> {
+const isPicture = (f: File) => PICTURE.test(f.name) || (f.type.startsWith('image/') && !GERBER_NAME.test(f.name));
+
+/** Several files at once, or one that is no picture or drawing (a .gbr, .gtl, .drl…): a board's files. */
+export const isBoardPick = (files: readonly File[]): boolean => files.length > 1 || (files.length === 1 && !isPicture(files[0]));
+
+/** A board's files as one object at the size of its window, each file's kind guessed from what it says and draws (read in the worker). */
+export async function importBoard(files: readonly File[], opts?: CallOptions): Promise<ImportedArtwork> {
   for (const f of files) checkSize(f);
   const texts = await Promise.all(files.map(async (f) => ({ name: f.name, text: await f.text() })));
-  const pcb = await import('../../pcb');
-  const src = pcb.boardSrc(texts);
-  const board = pcb.boardArtwork(src); // throws when nothing in the files draws
-  const kinds = texts.map((t) => {
-    const layer = board.set.layers.find((l) => l.file === t.name);
-    return { file: t.name, kind: layer?.kind ?? 'other', from: layer?.kindFrom ?? 'unread' };
-  });
-  const art = boardReader(board);
-  const mm = { x: art.pixels.width / 1000, y: art.pixels.height / 1000 };
-  return { kind: 'board', name: boardName(texts.map((t) => t.name)), src, artwork: ready(art), sizeMm: mm, dpi: null, lineArt: true, board: newBoardFields(kinds), problems: pcb.problemsByFile(board.set.problems) };
+  const board = await readBoard({ files: texts }, opts); // refused when nothing in the files draws
+  const mm = { x: board.pixels.width / 1000, y: board.pixels.height / 1000 };
+  return { kind: 'board', name: boardName(texts.map((t) => t.name)), src: board.src, artwork: remoteArtwork(board.pixels), sizeMm: mm, dpi: null, lineArt: true, board: newBoardFields(board.kinds), problems: board.problems };
 }
 
 /** What the files' names share (KiCad's "board-F_Cu.gbr", "board-PTH.drl": "board"), else the first name. */
@@ -68,7 +67,7 @@ export function boardName(names: readonly string[]): string {
 
 const isSvg = (file: File) => file.type === 'image/svg+xml' || /\.svg$/i.test(file.name);
 
-export async function importArtwork(file: File): Promise<ImportedArtwork> {
+export async function importArtwork(file: File, opts?: CallOptions): Promise<ImportedArtwork> {
   checkSize(file);
   if (isSvg(file)) {
     const size = svgSize(await file.text()); // a file that is no SVG drawing is refused here
@@ -77,9 +76,9 @@ export async function importArtwork(file: File): Promise<ImportedArtwork> {
     return { kind: 'svg', name: file.name, src, artwork: ready(await svgArtwork(src)), sizeMm: size.mm, dpi: null, lineArt: true };
   }
   const dpi = densityOf(new Uint8Array(await file.slice(0, 256 * 1024).arrayBuffer()));
-  const { src, gray } = await readPicture(file);
-  const art = bitmapArtwork(gray);
-  return { kind: 'image', name: file.name, src, artwork: ready(art), sizeMm: dpi && mmAt(art.pixels, dpi), dpi, lineArt: isLineArt(gray) };
+  const src = await dataUrl(file);
+  const { pixels, lineArt } = await readPicture(src, opts); // decoded in the worker, where it stays
+  return { kind: 'image', name: file.name, src, artwork: remoteArtwork(pixels), sizeMm: dpi && mmAt(pixels, dpi), dpi, lineArt };
 }
 
 /** The size in mm of `pixels` at a resolution in DPI. */

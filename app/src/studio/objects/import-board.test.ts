@@ -1,8 +1,12 @@
 // A board's files picked together: one object at its window's size, named after the board, kinds guessed, bad files named.
 import { readdirSync, readFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { describe, expect, it } from 'vitest';
+import { describe, expect, it, vi } from 'vitest';
+import { inThreadPort } from '../../work/in-thread.fixture';
 import { artworkObject, boardName, importBoard, isBoardPick } from './import-artwork';
+
+// The board is read by the work worker: here, in the same thread.
+vi.mock('../../work/work-client', async (original) => ({ ...(await original<typeof import('../../work/work-client')>()), spawnWorker: () => inThreadPort() }));
 
 const DIR = join(import.meta.dirname, '../../../../e2e/fixtures/pcb');
 const demo = () => readdirSync(DIR).filter((f) => f.startsWith('demo-')).sort().map((name) => new File([readFileSync(join(DIR, name), 'utf8')], name));
@@ -11,6 +15,7 @@ describe('which picks are a board', () => {
   it('several files, or one that is no picture or drawing', () => {
     expect(isBoardPick(demo())).toBe(true);
     expect(isBoardPick([new File(['G04*'], 'top.gtl')])).toBe(true);
+    expect(isBoardPick([new File(['G04*'], 'board-F_Cu.gbr', { type: 'image/x-gimp-gbr' })])).toBe(true); // as Chromium on Linux types it
     expect(isBoardPick([new File([''], 'logo.png', { type: 'image/png' })])).toBe(false);
     expect(isBoardPick([new File([''], 'drawing.svg')])).toBe(false);
   });

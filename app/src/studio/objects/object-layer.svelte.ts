@@ -4,7 +4,7 @@
 
 import type { History } from '../grid/history';
 import type { DoseGrid } from '../grid/grid';
-import { centredAt, keepsAspect, moved, objectAt, resized, type Corner, type Rect, type StudioObject } from './objects';
+import { centredAt, exposes, keepsAspect, moved, objectAt, resized, type Corner, type Rect, type StudioObject } from './objects';
 import { mirrored, turned } from './orientation';
 import { compose, rasterOf, type Polarity, type Raster, type ReadyArtwork } from './raster';
 import { textRaster } from './text-raster';
@@ -41,7 +41,16 @@ export class ObjectLayer {
   /** An artwork read from its file, known by its data: URL. */
   addArtwork(src: string, artwork: ReadyArtwork): void {
     this.#artworks.set(src, artwork);
+    artwork.whenDrawn?.(() => this.revision++);
     this.revision++;
+  }
+
+  /** Once every exposing object's raster is in (those drawn off the page's thread take a while): what a job is made from. */
+  async settled(): Promise<void> {
+    for (const o of this.objects) {
+      if (!exposes(o) || o.kind === 'text' || o.kind === 'frame') continue;
+      await this.#artworks.get(o.src)?.settle?.(o, this.polarity);
+    }
   }
 
   artwork(src: string): ReadyArtwork | undefined {
@@ -156,14 +165,16 @@ export class ObjectLayer {
   }
 
   /**
-   * What to draw for the object: its raster and that raster's size. While a resize is dragged the
-   * raster made before it is drawn stretched, and the object is rasterised again once released.
+   * What to draw for the object: its raster and that raster's size. While a resize is dragged, or
+   * while a new raster is drawn off the page's thread, the raster made before it is drawn stretched.
    */
   drawable(o: StudioObject): { raster: Raster; w: number; h: number } | null {
     const kept = this.#rasters.get(o.id);
     if (kept && this.#drag) return { raster: kept.raster, w: kept.of.w, h: kept.of.h };
     const raster = this.raster(o);
-    return raster && { raster, w: o.w, h: o.h };
+    if (raster) return { raster, w: o.w, h: o.h };
+    // Its new raster is being drawn in the work worker: the one before it stands in until it is in.
+    return kept ? { raster: kept.raster, w: kept.of.w, h: kept.of.h } : null;
   }
 
   composed(paint: DoseGrid): DoseGrid {

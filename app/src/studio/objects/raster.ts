@@ -23,7 +23,15 @@ export interface ReadyArtwork {
   /** Its own size: a picture's pixels, an SVG's CSS pixels; what a resolution in DPI applies to. */
   pixels: { width: number; height: number };
   /** Doses of w × h cells in its own frame (upright, not mirrored), by its tone, halftone and threshold. */
-  doses(o: ArtworkObject, w: number, h: number): Raster;
+  doses?(o: ArtworkObject, w: number, h: number): Raster;
+  /**
+   * Or the object's whole raster made off the page's thread (remote-artwork.ts): null while it is
+   * being made; the function given to `whenDrawn` is called each time one is in.
+   */
+  drawn?(o: ArtworkObject, polarity: Polarity): Raster | null;
+  whenDrawn?(redraw: () => void): void;
+  /** Waits until the object's raster is in (it throws if it cannot be made). */
+  settle?(o: ArtworkObject, polarity: Polarity): Promise<void>;
 }
 
 export function frameRaster(o: Pick<FrameObject, 'w' | 'h' | 'line' | 'dose'>): Raster {
@@ -47,8 +55,10 @@ export function fullDose(o: StudioObject): number {
 
 /** The object's exposure on its box, or null while its artwork is still being read. */
 export function rasterOf(o: StudioObject, sources: RasterSources, polarity: Polarity = 'negative'): Raster | null {
+  const art = o.kind === 'frame' || o.kind === 'text' ? undefined : sources.artwork(o.src);
+  if (art?.drawn) return art.drawn(o as ArtworkObject, polarity);
   const { w, h } = frameSize(o);
-  const upright = o.kind === 'frame' ? frameRaster({ ...o, w, h }) : o.kind === 'text' ? sources.text({ ...o, w, h }) : (sources.artwork(o.src)?.doses(o, w, h) ?? null);
+  const upright = o.kind === 'frame' ? frameRaster({ ...o, w, h }) : o.kind === 'text' ? sources.text({ ...o, w, h }) : (art?.doses?.(o, w, h) ?? null);
   if (!upright) return null;
   const out = orient(upright, w, h, o);
   if (polarity === 'negative') return out;

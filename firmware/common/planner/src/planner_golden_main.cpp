@@ -1,4 +1,4 @@
-// Writes protocol/vectors/planner-cpp.json (and scan-cpp.json): golden plans made by the C++ planners,
+// Writes protocol/vectors/planner-cpp.json (and scan-cpp.json, mixed-cpp.json): golden plans made by the C++ planners,
 // for the TypeScript suite to check (npm run vectors:planner). Host tool, not firmware.
 #include <cstdio>
 #include <fstream>
@@ -8,6 +8,7 @@
 #include "grid_cells.h"
 #include "job_json_fixture.h"
 #include "planner.h"
+#include "mixed_json_fixture.h"
 #include "scan_json_fixture.h"
 #include "time_model.h"
 
@@ -109,11 +110,49 @@ void writeScans(const char* path, const std::vector<std::pair<const char*, std::
   std::printf("wrote %zu scan cases\n", cases.size());
 }
 
+// Mixed plans (planner.md "Mixed mode"): rows dense in places and sparse in others, on both machines,
+// so the plans take both ways.
+void writeMixed(const char* path, const std::vector<std::pair<const char*, std::vector<std::array<int, 2>>>>& geometries,
+                const uv::Machine& fast, const json& fastJson) {
+  const uv::Machine slow{{8000, 90000}, {600000, 1500000}, 1000, 900, {0, 4000}, {80000, 100000}};
+  const json slowJson = {{"vmaxUmS", {8000, 90000}}, {"accelUmS2", {600000, 1500000}}, {"settleUs", 1000},
+                         {"overheadUs", 900}, {"startUm", {0, 4000}}, {"stepsMilli", {80000, 100000}}};
+  Rng r(20261127);
+  json cases = json::array();
+  for (const auto& [gname, offsets] : geometries) {
+    for (int n = 0; n < 5; n++) {
+      json job = makeJob(r, offsets, "mixed");
+      const int cols = 30 + r.below(40), rows = 8 + r.below(10);
+      json grid = json::array();
+      for (int y = 0; y < rows; y++) {
+        const bool sparse = r.below(100) < 45;
+        json row = json::array();
+        for (int x = 0; x < cols; x++) row.push_back(r.below(100) < (sparse ? 4 : 80) ? 1 + r.below(255) : 0);
+        grid.push_back(row);
+      }
+      job["grid"] = {{"cols", cols}, {"rows", rows}};
+      job["gridData"] = grid;
+      if (job["dose"].contains("targetUJcm2")) job["dose"]["targetUJcm2"] = job["dose"]["targetUJcm2"].get<int>() / 1000 + 1;
+      if (n < 2) job["dose"] = {{"map", "threshold"}, {"level", 60}, {"fullUs", 1200 + r.below(2000)}};
+      const bool capped = n % 2 == 1;
+      uv::JobHeader h = uvtest::headerFrom(job);
+      std::vector<std::vector<uint8_t>> cells;
+      for (const auto& row : job["gridData"]) cells.emplace_back(row.begin(), row.end());
+      cases.push_back({{"name", std::string("c++ mixed ") + gname + " #" + std::to_string(n)},
+                       {"job", job},
+                       {"machine", capped ? slowJson : fastJson},
+                       {"mixed", uvtest::mixedPlanJson(h, cells, capped ? slow : fast)}});
+    }
+  }
+  std::ofstream(path) << json({{"version", 1}, {"madeBy", "c++"}, {"cases", cases}}).dump() << "\n";
+  std::printf("wrote %zu mixed cases\n", cases.size());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 2 && argc != 3) {
-    std::fprintf(stderr, "usage: planner_golden <planner out.json> [<scan out.json>]\n");
+  if (argc < 2 || argc > 4) {
+    std::fprintf(stderr, "usage: planner_golden <planner out.json> [<scan out.json> [<mixed out.json>]]\n");
     return 2;
   }
   const std::vector<std::pair<const char*, std::vector<std::array<int, 2>>>> geometries = {
@@ -153,6 +192,7 @@ int main(int argc, char** argv) {
   }
   std::ofstream(argv[1]) << json({{"version", 1}, {"madeBy", "c++"}, {"cases", cases}}).dump() << "\n";
   std::printf("wrote %zu cases\n", cases.size());
-  if (argc == 3) writeScans(argv[2], geometries, m, machine);
+  if (argc >= 3) writeScans(argv[2], geometries, m, machine);
+  if (argc == 4) writeMixed(argv[3], geometries, m, machine);
   return 0;
 }

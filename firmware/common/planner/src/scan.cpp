@@ -168,8 +168,18 @@ bool ScanPlanner::nextPass(ScanPass& out) {
     planStroke(m_, 2 * x0 - dir * pitch, 2 * x1 + dir * pitch, descending_, q16, static_cast<uint32_t>(saved), out);
     const int32_t y = Y(out.hy), dy = axisSteps(m_, 1, y) - axisSteps(m_, 1, curY_), dx = out.startSteps - curX_;
     out.moveUs = engineMoveUs(m_, static_cast<uint32_t>(dx < 0 ? -dx : dx), static_cast<uint32_t>(dy < 0 ? -dy : dy));
-    estimate_ += out.moveUs + m_.overheadUs + out.strokeUs + kScanPassEndUs;
-    curX_ = out.stopSteps;
+    out.scanUs = static_cast<uint64_t>(out.moveUs) + m_.overheadUs + out.strokeUs + kScanPassEndUs;
+    out.stopsUs = 0;
+    out.stops = false;
+    int32_t endX = out.stopSteps;
+    if (h_.strategy == Strategy::Mixed) {  // planner.md "Mixed mode": the stops when they cost no more than the stroke
+      out.stopsUs = priceStops(hy, endX);
+      out.stops = out.stopsUs <= out.scanUs;
+      openPass();  // the cursors again, for the events or the stops
+      setStopPass(out.stops);
+    }
+    estimate_ += out.stops ? out.stopsUs : out.scanUs;
+    curX_ = out.stops ? endX : out.stopSteps;
     curY_ = y;
     passes_++;
     return true;

@@ -31,6 +31,10 @@ struct ScanPass {
   uint32_t moveUs;
   int32_t startSteps, stopSteps;
   uint32_t strokeUs, markUs;
+  // Mixed mode (planner.md "Mixed mode"): the pass priced as a scan pass and as stops, and the way
+  // taken. A stop pass's stops come from nextStop(); its scan fields above say what it would have been.
+  uint64_t scanUs, stopsUs;
+  bool stops;
 };
 
 // What a pass does, in the order the planner finds it: an LED's interval of light (merged runs), or
@@ -87,6 +91,11 @@ class ScanPlanner {
   void jump(uint8_t i, uint32_t& window, uint32_t& windows, uint32_t& flyUs);
   uint64_t estimateUs() const { return estimate_; }
   uint16_t passes() const { return passes_; }
+  // A mixed job's open stop pass (ScanPass::stops): its next stop in the pass's direction, the very
+  // stop the stop planner gives; false at the pass's end, and always for a scan pass.
+  bool nextStop(Stop& out);
+  // A stop pass is open, and nextStop() has not yet said false for it.
+  bool inStopPass() const { return live_ & kStopPassBit; }
   // As Planner::supported(): the LEDs' rows span less than kCoveredWindowRows. And every switch
   // time fits 32 bits: (cols + the LEDs' spread in X) × window < 2³² µs.
   bool supported() const;
@@ -148,6 +157,12 @@ class ScanPlanner {
   Refusal refusal_ = Refusal::None;
   ScanMotion pass_;       // the open pass's motion
   bool layout(int32_t& first, int32_t& last, uint64_t& span);
+  uint64_t priceStops(int32_t hy, int32_t& endX);
+  // nextStop() walks the open pass's stops: a flag above the LEDs' bits of live_ (no byte more in
+  // the Mega's job arena, whose every byte is spoken for).
+  static constexpr uint8_t kStopPassBit = 1 << 4;
+  bool stopPass() const { return live_ & kStopPassBit; }
+  void setStopPass(bool on) { live_ = static_cast<uint8_t>(on ? live_ | kStopPassBit : live_ & ~kStopPassBit); }
   void openPass();
   bool outrunsLink(uint64_t& need, uint64_t& have);
   static bool passEvent(void* ctx, uint32_t& t, uint8_t& m) { return static_cast<ScanPlanner*>(ctx)->nextEvent(t, m); }
@@ -156,7 +171,7 @@ class ScanPlanner {
   int16_t row_[4] = {-1, -1, -1, -1};
   bool descending_ = false;
   int32_t start_ = 0;  // head column of window 0
-  uint8_t live_ = 0;  // bit k: LED k has a next lit cell, hx_[k] and us_[k]
+  uint8_t live_ = 0;  // bit k: LED k has a next lit cell, hx_[k] and us_[k]; and kStopPassBit
   int32_t hx_[4] = {};
   uint32_t us_[4] = {};
   // Emission: the last lit window and its start S(j); each LED's interval not yet closed; the

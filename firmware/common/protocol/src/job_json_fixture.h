@@ -28,8 +28,9 @@ inline uv::JobHeader headerFrom(const nlohmann::json& j) {
   }
   h.thermalCoeff = j.contains("thermal") ? j["thermal"]["coeffCentiPctPerC"].get<int>() : 0;
   h.thermalRefDeciC = j.contains("thermal") ? j["thermal"]["refDeciC"].get<int>() : 250;
-  static const char* const names[] = {"raster", "serpentine", "shortest", "random", "scan"};
-  for (int i = 0; i < 5; i++)
+  static const char* const names[] = {"raster", "serpentine", "shortest", "random", "scan", "mixed"};
+  static_assert(sizeof(names) / sizeof(names[0]) == uv::kStrategyCount, "a name for every strategy");
+  for (int i = 0; i < uv::kStrategyCount; i++)
     if (j["strategy"]["name"] == names[i]) h.strategy = static_cast<uv::Strategy>(i);
   h.seed = h.strategy == uv::Strategy::Random ? j["strategy"].value("seed", 0u) : 0;
   return h;

@@ -10,8 +10,8 @@ constexpr uint8_t kJobMaxGap = 4;
 
 enum class DoseMap : uint8_t { Linear, Threshold };
 // Scan exposes each pass on the move (protocol/planner.md "Scan mode"); the others stop and fire.
-enum class Strategy : uint8_t { Raster, Serpentine, Shortest, Random, Scan };
-constexpr uint8_t kStrategyCount = 5;
+enum class Strategy : uint8_t { Raster, Serpentine, Shortest, Random, Scan, Mixed };
+constexpr uint8_t kStrategyCount = 6;
 
 struct JobHeader {
   uint16_t cols, rows;

@@ -13,8 +13,8 @@ namespace uv {
 namespace {
 
 const char kRaster[] UV_FLASH = "raster", kSerpentine[] UV_FLASH = "serpentine", kShortest[] UV_FLASH = "shortest",
-           kRandom[] UV_FLASH = "random", kScan[] UV_FLASH = "scan";
-const char* const kStrategies[kStrategyCount] UV_FLASH = {kRaster, kSerpentine, kShortest, kRandom, kScan};
+           kRandom[] UV_FLASH = "random", kScan[] UV_FLASH = "scan", kMixed[] UV_FLASH = "mixed";
+const char* const kStrategies[kStrategyCount] UV_FLASH = {kRaster, kSerpentine, kShortest, kRandom, kScan, kMixed};
 
 // Cursor over single-space separated words.
 struct Words {

@@ -1,0 +1,20 @@
+// The work worker's dry run: the job in its fastest order when asked, then the check before an
+// exposure (studio/dry-run.ts), answered as the question needs it: findings, duty and times.
+
+import { headerOf } from '../planner/job-header';
+import { fastestOrder, orderEstimates } from '../planner/job-plan';
+import { dryRun } from '../studio/dry-run';
+import { bedOf, motionOf } from '../studio/machine-config';
+import type { DryRunSummary, Progress, WorkRequest } from './work-types';
+
+export function dryRunSummary(req: Extract<WorkRequest, { kind: 'dry-run' }>, report: (p: Progress) => void): DryRunSummary {
+  let job = req.job;
+  if (req.auto) {
+    report({ stage: 'choosing the fastest order' });
+    // Of the orders whose scan strokes stay on the bed.
+    const orders = orderEstimates({ header: headerOf(job), cells: job.gridData }, motionOf(req.config), bedOf(req.config).bedMm.x * 1000);
+    job = { ...job, strategy: { name: fastestOrder(orders) } };
+  }
+  const { findings, duty, plan, paced } = dryRun(job, req.config, { ...req.opts, onStage: (stage) => report({ stage }) });
+  return { order: job.strategy.name, findings, duty, estimateUs: plan.estimateUs, pacedUs: paced && !paced.pause ? paced.totalUs : null };
+}

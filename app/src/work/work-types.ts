@@ -1,0 +1,68 @@
+// What the page asks the work worker (worker.ts) and what it answers: plain data that survives
+// structured cloning, one request kind per piece of heavy work.
+
+import type { FileProblems } from '../pcb/problem-words';
+import type { LayerKind } from '../pcb/layer-kind';
+import type { KindSource } from '../pcb/layer-content';
+import type { Mesh } from '../planner/mesh';
+import type { Machine } from '../planner/time-model';
+import type { PrintJob, StrategyName } from '../protocol/job-types';
+import type { Finding, MachineCheck } from '../studio/dry-run';
+import type { MachineConfig } from '../studio/machine-config';
+import type { Cut } from '../studio/objects/clipping';
+import type { TwoSided } from '../studio/objects/board-object';
+import type { ArtworkObject } from '../studio/objects/objects';
+import type { Polarity } from '../studio/objects/raster';
+
+/** How far the work has got: a stage in words, and where it counts, how many of how many. */
+export interface Progress {
+  stage: string;
+  done?: number;
+  of?: number;
+}
+
+export type WorkRequest =
+  /**
+   * The preview's plan; the worker keeps it for `preview-grid`. `auto`: in its fastest order, of
+   * those whose scan strokes stay within the bed's width `bedXUm`.
+   */
+  | { kind: 'plan'; job: PrintJob; machine: Machine; auto?: boolean; bedXUm?: number }
+  /** The kept plan's light up to stop (or pass) `upTo`, in bins of at most `maxSide` a side. */
+  | { kind: 'preview-grid'; upTo: number; maxSide: number }
+  /**
+   * The check before an exposure (studio/dry-run.ts); `auto`: in its fastest order, of those that
+   * stay on the config's bed. `boards`: the drawing's two-sided boards, one side a job.
+   */
+  | { kind: 'dry-run'; job: PrintJob; config: MachineConfig; auto: boolean; opts: { mesh?: Mesh | null; leveling?: boolean | null; startC?: number[] | null; cuts?: Cut[]; boards?: TwoSided[]; machine?: MachineCheck } }
+  /** A picture embedded as a data: URL, decoded and kept. */
+  | { kind: 'read-picture'; src: string }
+  /** A board's files, as picked or embedded as a data: URL (pcb/board-artwork.ts), read and kept. */
+  | { kind: 'read-board'; src?: string; files?: { name: string; text: string }[] }
+  /** An artwork object's doses on its box: drawn, turned, mirrored and in the job's polarity. */
+  | { kind: 'raster'; object: ArtworkObject; polarity: Polarity };
+
+export type WorkReply = { id: number; progress: Progress } | { id: number; result: unknown } | { id: number; error: string; problems?: FileProblems[] };
+
+export interface PictureRead {
+  pixels: { width: number; height: number };
+  lineArt: boolean;
+}
+
+export interface BoardRead {
+  /** The files embedded as one data: URL, the object's `src`. */
+  src: string;
+  /** The board's window in µm, what its box shows. */
+  pixels: { width: number; height: number };
+  /** Each file's kind as guessed, in the files' order; a file with nothing read is 'other', 'unread'. */
+  kinds: { file: string; kind: LayerKind; from: KindSource | 'unread' }[];
+  problems: FileProblems[];
+}
+
+export interface DryRunSummary {
+  order: StrategyName;
+  findings: Finding[];
+  duty: number[];
+  estimateUs: number;
+  /** The paced forecast's time when pacing avoids every pause, else null. */
+  pacedUs: number | null;
+}
