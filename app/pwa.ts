@@ -1,9 +1,16 @@
 // Build step for the installable, offline app: writes sw.js from service-worker.js with the list of
-// every file the build made (the simulated printer's worker and the chart included) and a version
+// every file the build made (the simulated printer's worker and the chart included; not the ESP flasher's) and a version
 // hash of them, so the app works with no network and a new build replaces the old cache.
 import { createHash } from 'node:crypto';
 import { readFileSync } from 'node:fs';
 import type { Plugin } from 'vite';
+
+/**
+ * Chunks left out of the cache: Espressif's flasher (108 KB gzipped) loads only when someone flashes
+ * an ESP, which needs the board's images from the network anyway. Cached, every first visit would
+ * download it in the background, and its name would sit in sw.js, which the first load counts.
+ */
+const NOT_CACHED = /^assets\/(esptool|esp-flash)-/;
 
 export function serviceWorker(source: string): Plugin {
   return {
@@ -12,10 +19,11 @@ export function serviceWorker(source: string): Plugin {
     // After Vite's own plugins: the single stylesheet (cssCodeSplit off) is emitted in their generateBundle.
     enforce: 'post',
     generateBundle(_options, bundle) {
-      const files = ['/index.html', ...Object.keys(bundle).filter((f) => f !== 'index.html').map((f) => `/${f}`), '/manifest.webmanifest', '/icon.svg'].sort();
+      const files = ['/index.html', ...Object.keys(bundle).filter((f) => f !== 'index.html' && !NOT_CACHED.test(f)).map((f) => `/${f}`), '/manifest.webmanifest', '/icon.svg'].sort();
       const hash = createHash('sha256');
       for (const f of Object.values(bundle)) hash.update(f.type === 'chunk' ? f.code : typeof f.source === 'string' ? f.source : Buffer.from(f.source));
       const code = readFileSync(source, 'utf8')
+        .replace(/^\s*\/\/.*\n/gm, '') // its comments are for this repository, not for every visitor's download
         .replace('self.__PRECACHE__', JSON.stringify(files))
         .replace('self.__VERSION__', JSON.stringify(hash.digest('hex').slice(0, 12)));
       this.emitFile({ type: 'asset', fileName: 'sw.js', source: code });
