@@ -2,6 +2,7 @@
 // board's DIP switches, and the hand-off to Espressif's esptool-js over the fake Web Serial. No ESP can
 // run here: the port's far end is silent, so the library's connect must fail and the view say what to do.
 import { createHash } from 'node:crypto';
+import { writeFileSync } from 'node:fs';
 import { expect, test } from '@playwright/test';
 import { installFakeSerial } from './fake-serial';
 
@@ -50,4 +51,36 @@ test('an ESP file that is not the one the manifest names is refused before any p
   await page.getByTestId('firmware-flash').click();
   await expect(page.getByTestId('firmware-image-error')).toContainText('esp8266-firmware.bin is not the file the manifest names');
   expect(opened).toBe(0);
+});
+
+test("an ESP32's own files go to esptool-js at their places; a file that is not what its place holds is refused before any port", async ({ page }, info) => {
+  test.setTimeout(90_000);
+  let opened = 0;
+  await installFakeSerial(page, () => ({ receive() {}, open: () => void opened++ }));
+  await page.route('**/firmware/manifest.json', (route) => route.fulfill({ json: { images: [] } })); // none published for it
+  await page.goto('/');
+  await page.getByTestId('tab-firmware').click();
+  await page.getByTestId('firmware-board').selectOption('esp32');
+  await page.getByTestId('firmware-source').selectOption('file');
+  await expect(page.getByTestId('firmware-own-parts')).toContainText('firmware.bin at 0x10000 (up to 1310720 B)');
+  await expect(page.getByTestId('firmware-flash')).toBeDisabled(); // nothing picked yet
+
+  // A LittleFS image picked where the firmware goes.
+  const fs = Buffer.alloc(8192);
+  fs.write('littlefs', 8, 'latin1');
+  const fsPath = info.outputPath('littlefs.bin');
+  writeFileSync(fsPath, fs);
+  await page.getByTestId('firmware-esp-file-firmware.bin').setInputFiles(fsPath);
+  await page.getByTestId('firmware-flash').click();
+  await expect(page.getByTestId('firmware-image-error')).toContainText('littlefs.bin is no ESP firmware image (those begin with the byte 0xE9)');
+  expect(opened).toBe(0);
+
+  // The right files in their places: esptool-js opens the port, finds no ESP, and the view says how to reach it.
+  const appPath = info.outputPath('firmware.bin');
+  writeFileSync(appPath, Buffer.concat([Buffer.of(0xe9), Buffer.alloc(4095, 0x11)]));
+  await page.getByTestId('firmware-esp-file-firmware.bin').setInputFiles(appPath);
+  await page.getByTestId('firmware-esp-file-littlefs.bin').setInputFiles(fsPath);
+  await page.getByTestId('firmware-flash').click();
+  await expect(page.getByTestId('firmware-error')).toHaveAttribute('data-failure', 'no-bootloader', { timeout: 80_000 });
+  expect(opened).toBeGreaterThan(0);
 });

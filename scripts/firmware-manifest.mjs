@@ -36,13 +36,9 @@ if (pio > 0) {
     const hex = join(dir, env, 'firmware.hex');
     if (existsSync(hex)) images.push({ board, version: versionOf[board](), built: 'PlatformIO', parts: [part(hex, `${board}.hex`, 0)] });
   }
-  // Where each file goes: the ESP8266's firmware.bin holds its boot code and goes at 0, its LittleFS at
-  // 0x200000 (eagle.flash.4m2m.ld); the ESP32's app goes at 0x10000 after its second-stage bootloader
-  // and partition table, its LittleFS at 0x290000 (default.csv). As firmware/esp/platformio.ini sets.
-  const esp = [
-    ['esp12e', 'esp8266', [['firmware.bin', 0x0], ['littlefs.bin', 0x200000]]],
-    ['esp32dev', 'esp32', [['bootloader.bin', 0x1000], ['partitions.bin', 0x8000], ['firmware.bin', 0x10000], ['littlefs.bin', 0x290000]]],
-  ];
+  // Where each file goes (app/src/firmware/esp-layout.json, which the Firmware view checks a person's own files by).
+  const layout = JSON.parse(readFileSync(join(root, 'app/src/firmware/esp-layout.json'), 'utf8'));
+  const esp = [['esp12e', 'esp8266'], ['esp32dev', 'esp32']].map(([env, board]) => [env, board, layout[board].map((r) => [r.file, r.offset])]);
   for (const [env, board, files] of esp) {
     if (!files.every(([f]) => existsSync(join(dir, env, f)))) continue;
     images.push({ board, version: espVersion, built: 'PlatformIO', parts: files.map(([f, offset]) => part(join(dir, env, f), `${board}-${f}`, offset)) });
