@@ -199,7 +199,9 @@ function linkLoad(plan: ScanPlan): { worst: number; whole: number; events: numbe
  * P11: how hard each scan job works the printhead link. A pass's programs (nano.md "Scan
  * programs") must cross the 115200-baud link no slower than the pass plays them, less the two
  * loaded before it starts; above 1.00x the chain would underrun. The planner slows a pass until
- * they fit in four fifths of its time (planner.md "The printhead link"), so no pass is above 0.80x.
+ * they fit in four fifths of its time, and each program after the first two in four fifths of what
+ * the one before it plays less the Mega's relay (planner.md "The printhead link"), so no pass is
+ * above 0.80x, and a dense pass is well below it.
  */
 export function printP11(rows: P10Row[]): void {
   console.log('\nP11 printhead link load of scan passes (program bytes against 115200 baud over the pass time; goal: worst pass <= 1.00x, the photo still >= 3x faster than stop and fire)');

@@ -56,5 +56,22 @@ export function scanGoldenCases(): ScanCase[] {
     j.dose = { map: 'linear', fullUs: 1000 + (seed % 17) * 113 };
     out.push(scanCase(`ts scan ${g} photo, link-capped`, j, MACHINE));
   }
+  // The simavr scan test's dense pass (scan_dose.h testPattern's rows 8 to 11, 100 µm at 1 ms a
+  // cell): a chain of four programs whose third would come late at the window the whole chain's
+  // rule gives, so each program's own rule slows it further.
+  out.push(scanCase('ts scan four programs, each in time', testPatternJob(8, 12), { ...MACHINE, vmaxUmS: [100_000, 100_000], accelUmS2: [2_000_000, 1_500_000], overheadUs: 400 }));
   return out;
+}
+
+/** Rows `from` to `to` − 1 of the simavr tests' pattern (firmware/mega/src/scan_dose.h testPattern, 40 columns). */
+function testPatternJob(from: number, to: number): PrintJob {
+  const gridData: number[][] = [];
+  for (let r = from; r < to; r++) {
+    gridData.push(Array.from({ length: 40 }, (_, c) => (r % 3 === 0 ? (c % 2 ? 255 : 0) : r % 3 === 1 ? (Math.floor(c / 4) % 2 ? 255 : 0) : (c * 41 + r * 13) % 256)));
+  }
+  return {
+    grid: { cols: 40, rows: to - from }, pitchUm: { x: 100, y: 100 }, originUm: { x: 5000, y: 4000 },
+    dose: { map: 'linear', fullUs: 1000 }, leds: { offsets: GEOMETRIES.adjacent, gainPermille: [1000, 1000, 1000, 1000] }, strategy: { name: 'serpentine' },
+    gridData,
+  };
 }

@@ -6,8 +6,9 @@ import { GEOMETRIES, MACHINE, randomJob } from './golden';
 import { headerOf } from './job-header';
 import { passRows, planJob } from './planner';
 import { scanGoldenCases, type ScanCase } from './scan-golden';
-import { MAX_JUMPS, planScan, scanMotion, SCAN_PASS_END_US, type ScanPlan } from './scan';
-import { axisSteps, engineMoveUs, moveTimeUs, type Machine } from './time-model';
+import { LINK_BAUD, linkShortfall, MAX_JUMPS, passMotion, planScan, planScanPass, PROGRAM_RELAY_US, scanMotion, SCAN_PASS_END_US, type ScanPlan } from './scan';
+import { programLines } from '../protocol/scan-program';
+import { axisSteps, engineMoveUs, MoveTimes, moveTimeUs, type Machine } from './time-model';
 
 /** The fly of g blank windows on MACHINE at 50 µm, 2000 µs windows (planner.md "Blank stretches"). */
 const F = (g: number) => Math.max(1, moveTimeUs(g * 50 + 2 * 105, 150000, 3000000) - 2 * 8334);
@@ -268,6 +269,51 @@ describe('scan planner limits', () => {
     // A machine that would go faster than its steps: 100 µm in 400 µs at 400 steps/mm is 100000 steps/s.
     const fast = plan(job(10, 4, [[1, 0, 255]], { pitchUm: { x: 100, y: 50 }, dose: { map: 'linear', fullUs: 400 } }), { ...MACHINE, vmaxUmS: [250_000, 100_000], stepsMilli: [400_000, 80_000] });
     expect(fast.refused).toMatch(/over the step engine's 16000 steps\/s/);
+  });
+});
+
+describe('scan planner and the printhead link', () => {
+  // Each program's bytes and last event, read back from the lines the Mega sends (nano.md "Scan programs").
+  const programs = (events: [number, number][]) => {
+    const out: { bytes: number; endUs: number }[] = [];
+    let bytes = 0, n = 0;
+    for (const line of programLines(events)) {
+      bytes += line.length + 1;
+      if (line.startsWith('A:')) n += line.split(',').length >> 1;
+      else {
+        out.push({ bytes, endUs: events[n - 1][0] });
+        bytes = 0;
+      }
+    }
+    return out;
+  };
+  const wireUs = (bytes: number) => Math.floor((bytes * 1e7) / LINK_BAUD);
+
+  it('loads each program after the first two while the one before it plays, with the relay and a fifth to spare', () => {
+    let chains = 0;
+    for (const c of scanGoldenCases()) {
+      for (const pass of c.scan.passes) {
+        const p = programs(pass.events);
+        if (p.length > 2) chains++;
+        for (let k = 2; k < p.length; k++) {
+          expect(5 * wireUs(p[k].bytes) + 4 * PROGRAM_RELAY_US, `${c.name} pass ${pass.hy} program ${k + 1}`).toBeLessThanOrEqual(4 * (p[k - 1].endUs - p[k - 2].endUs));
+        }
+      }
+    }
+    expect(chains).toBeGreaterThan(0);
+  });
+
+  it('slows a chain whose third program would come late, though the whole chain fits the link (the simavr four-program pass)', () => {
+    const c = scanGoldenCases().find((g) => g.name === 'ts scan four programs, each in time')!;
+    const [pass] = c.scan.passes;
+    expect(programs(pass.events).length).toBe(4);
+    expect(pass.windowUs).toBeGreaterThan(1631); // the whole chain's rule alone stopped at 1631 µs
+    // One µs less a window and some rule breaks: the window is the first that fits.
+    const tighter = planScanPass(
+      { job: { header: headerOf(c.job), cells: c.job.gridData }, tables: durationTables(headerOf(c.job)), motion: passMotion(headerOf(c.job), c.machine, pass.windowUs - 1), machine: c.machine, moves: new MoveTimes(c.machine), neverFly: false, noLinkCap: true },
+      passRows(headerOf(c.job), c.job.gridData)[0].ledRows, pass.hy, false, 0, 0,
+    );
+    expect(tighter && 'events' in tighter && linkShortfall(tighter.events)).toBeTruthy();
   });
 });
 

@@ -4,7 +4,7 @@ import type { JobHeader } from '../protocol/job-types';
 import { durationTables } from './dose';
 import { passRows, type PlannerJob } from './planner';
 import { axisAccel, axisSteps, ENGINE_MAX_RATE, ENGINE_TICK_HZ, MoveTimes, stepRamp, stepTicks, type Machine } from './time-model';
-import { mergeLight, programLines, type ScanEvent } from '../protocol/scan-program';
+import { mergeLight, programLines, PROGRAM_EVENTS, type ScanEvent } from '../protocol/scan-program';
 
 export interface ScanPass {
   /** Head row. */
@@ -134,20 +134,39 @@ export function planStroke(machine: Machine, markX2Um: number, endX2Um: number, 
 export const LINK_BAUD = 115200;
 
 /**
- * How far a pass's program lines outrun the printhead link (planner.md "The printhead link"): the
- * µs its lines after the first two programs take at 115200 baud, L, against the pass's last event
- * P; 0 when 5 × L ≤ 4 × P, else [5 × L, 4 × P].
+ * What the Mega takes to learn that the Nano freed a buffer and start the next program on its way:
+ * its Q poll every 10 ms, the answer, and a main-loop pass or two (planner.md "The printhead link").
+ */
+export const PROGRAM_RELAY_US = 15000;
+
+/** µs `bytes` take on the printhead link at 115200 baud, ten bits a byte. */
+const linkUs = (bytes: number): bigint => (BigInt(bytes) * 10_000_000n) / BigInt(LINK_BAUD);
+
+/**
+ * How far a pass's program lines outrun the printhead link (planner.md "The printhead link"), null
+ * when they fit, else [need, have] of the first rule broken: the whole chain's (5 × its lines after
+ * the first two programs' link µs against 4 × the pass's last event), else that of the first program
+ * k ≥ 3 that would come too late (5 × its link µs + 4 × the relay against 4 × the µs program k − 1 plays).
  */
 export function linkShortfall(events: ScanEvent[]): [bigint, bigint] | null {
   if (!events.length) return null;
-  let bytes = 0, ahead = 0, sealed = 0;
+  let bytes = 0, ahead = 0, sealed = 0, program = 0, end1 = 0, end2 = 0;
+  let late: [bigint, bigint] | null = null;
   for (const line of programLines(events)) {
     bytes += line.length + 1;
-    if (line.startsWith('K:') && ++sealed === 2) ahead = bytes;
+    program += line.length + 1;
+    if (!line.startsWith('K:')) continue;
+    if (++sealed === 2) ahead = bytes;
+    if (sealed > 2 && !late) {
+      const need = 5n * linkUs(program) + 4n * BigInt(PROGRAM_RELAY_US), have = 4n * BigInt(end1 - end2);
+      if (need > have) late = [need, have];
+    }
+    program = 0;
+    end2 = end1;
+    end1 = events[Math.min(sealed * PROGRAM_EVENTS, events.length) - 1][0];
   }
-  const linkUs = sealed > 2 ? (BigInt(bytes - ahead) * 10_000_000n) / BigInt(LINK_BAUD) : 0n;
-  const passUs = BigInt(events[events.length - 1][0]);
-  return 5n * linkUs > 4n * passUs ? [5n * linkUs, 4n * passUs] : null;
+  const need = 5n * (sealed > 2 ? linkUs(bytes - ahead) : 0n), have = 4n * BigInt(events[events.length - 1][0]);
+  return need > have ? [need, have] : late;
 }
 
 /** The next window to try for a pass that outran the link at W: W stretched by need/have, and at least W + 1. */

@@ -49,11 +49,8 @@ Ways waysOf(const uv::JobHeader& h, const Grid& g) {
   return out;
 }
 
-// A note on the pattern (scandose::mixedPattern): testPattern's rows 8 to 11 as one pass at 1 ms a
-// cell fail on these images in scan mode as much as in mixed (found while writing this test: the
-// chain's third program goes out only once the Nano frees a buffer, after the planner's link cap
-// counted on the link from the pass's start, and the Nano reports the chain cut short, Q pass 5).
-// The dense passes here are the first four rows, as scan_sim_test's first pass.
+// The dense passes here are the first four rows, as scan_sim_test's first pass (testPattern's rows 8
+// to 11, a chain of four programs, run in scan_sim_test).
 using MixedBoardTest = ScanOnBoard;
 
 }  // namespace

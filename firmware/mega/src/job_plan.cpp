@@ -106,9 +106,9 @@ bool JobPlan::passEvent(void* ctx, uint32_t& t, uint8_t& m) {
 }
 
 // One pass: opened, and its events written as the Nano's program lines, for the count and the
-// time, and to check the printhead link can carry them: the lines after the two programs loaded
-// before the pass starts must cross it (115200 baud, 10 bits a byte) while the pass plays, with a
-// fifth to spare for the Q polls. A pass that would outrun it is refused here, before any light.
+// time, and to check the printhead link can carry them (uv::LinkLoad, as the planner's link cap):
+// the whole chain while the pass plays, and each program after the first two while the one before
+// it plays. A pass that would outrun it is refused here, before any light.
 bool JobPlan::stepScan() {
   uv::ScanPass p;
   if (!scan_->nextPass(p)) {
@@ -123,17 +123,13 @@ bool JobPlan::stepScan() {
     return false;
   }
   uv::ProgramLines lines(passEvent, this);
+  uv::LinkLoad load;
   char line[uv::kNanoMaxLine + 2];
-  uint32_t bytes = 0, ahead = 0;
-  uint16_t sealed = 0;
   passUs_ = 0;
-  for (uint8_t n; (n = lines.next(line)) != 0;) {
-    bytes += n;
-    if (line[0] == 'K' && ++sealed == 2) ahead = bytes;
-  }
-  const uint64_t linkUs = static_cast<uint64_t>(sealed > 2 ? bytes - ahead : 0) * 10 * 1000000 / uv::kNanoBaud;
+  for (uint8_t n; (n = lines.next(line)) != 0;) load.add(line, n, lines.lastUs());
+  uint64_t need, have;
   // Failed: events 2²⁸ µs apart or more. And a pass too long for its stroke's tick count.
-  if (lines.failed() || linkUs * 5 > static_cast<uint64_t>(passUs_) * 4 || passUs_ >= kScanLongestPassUs) {
+  if (lines.failed() || !load.fits(passUs_, need, have) || passUs_ >= kScanLongestPassUs) {
     error_ = uv::kScanUnsupported;
     close();
     return true;

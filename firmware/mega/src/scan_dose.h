@@ -58,8 +58,7 @@ inline std::vector<std::vector<uint8_t>> gapPattern(uint16_t cols, uint16_t rows
 
 // A job whose passes take both ways in mixed mode (planner.md "Mixed mode"): bands of four rows (one
 // pass of four LEDs a row apart), in turn testPattern's first four rows and a pad of two cells, full
-// or gray. (Not testPattern's rows 8 to 11: two gray rows in a pass at 1 ms a cell outrun the
-// printhead link on the real images, in scan mode as in mixed; see the note in mixed_sim_test.cpp.)
+// or gray.
 inline std::vector<std::vector<uint8_t>> mixedPattern(uint16_t cols, uint16_t rows) {
   const std::vector<std::vector<uint8_t>> dense = testPattern(cols, 4);
   std::vector<std::vector<uint8_t>> g(rows);

@@ -251,25 +251,18 @@ void ScanPlanner::openPass() {
   state_ = emitted_ = 0;
 }
 
-// Plays the open pass's events through the program writer and reopens it: true when its lines
-// after the first two programs need more than four fifths of its time at 115200 baud (5 × link µs
-// = need > have = 4 × its last event's µs), as the Mega checks at M29.
+// Plays the open pass's events through the program writer and reopens it: true when its chain
+// outruns the printhead link (need > have, uv::LinkLoad), as the Mega checks at M29.
 bool ScanPlanner::outrunsLink(uint64_t& need, uint64_t& have) {
   ProgramLines lines(passEvent, this);
+  LinkLoad load;
   char line[kNanoMaxLine + 2];
-  uint32_t bytes = 0, ahead = 0;
-  uint16_t sealed = 0;
-  for (uint8_t n; (n = lines.next(line)) != 0;) {
-    bytes += n;
-    if (line[0] == 'K' && ++sealed == 2) ahead = bytes;
-  }
+  for (uint8_t n; (n = lines.next(line)) != 0;) load.add(line, n, lines.lastUs());
   // The pass's last event (every LED off) is the last moment nextEvent() gathered.
   const uint32_t lastUs = heldT_;
   openPass();
   if (lines.failed()) return false;  // a gap of 2²⁸ µs: the Mega refuses the pass, whatever its speed
-  need = 5 * (static_cast<uint64_t>(sealed > 2 ? bytes - ahead : 0) * 10 * 1000000 / kNanoBaud);
-  have = 4 * static_cast<uint64_t>(lastUs);
-  return need > have;
+  return !load.fits(lastUs, need, have);
 }
 
 // F(g) when flying g blank windows saves at least a window, F(g) ≤ (g − 1)·W, else 0.

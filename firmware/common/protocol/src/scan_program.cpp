@@ -122,4 +122,33 @@ uint8_t ProgramLines::next(char* out) {
   return n;
 }
 
+// Program k ≥ 3 goes out only once program k − 2 has played (the Nano holds two) and the Mega has
+// learnt so, and must be armed before program k − 1 ends: its lines, with a fifth of the link left
+// for the Q polls, fit the time k − 1 plays less the relay (5 × l_k + 4 × relay ≤ 4 × (e_k−1 − e_k−2)).
+void LinkLoad::add(const char* line, uint8_t n, uint32_t lastUs) {
+  bytes_ += n;
+  program_ += n;
+  if (line[0] != 'K') return;
+  if (++sealed_ == 2) ahead_ = bytes_;
+  if (sealed_ > 2 && !need_) {
+    const uint64_t need = 5 * linkUs(program_) + 4ull * kProgramRelayUs, have = 4ull * (end1_ - end2_);
+    if (need > have) {
+      need_ = need;
+      have_ = have;
+    }
+  }
+  program_ = 0;
+  end2_ = end1_;
+  end1_ = lastUs;
+}
+
+bool LinkLoad::fits(uint32_t passUs, uint64_t& need, uint64_t& have) const {
+  need = 5 * linkUs(sealed_ > 2 ? bytes_ - ahead_ : 0);
+  have = 4ull * passUs;
+  if (need > have) return false;
+  need = need_;
+  have = have_;
+  return !need_;
+}
+
 }  // namespace uv

@@ -67,6 +67,8 @@ class ProgramLines {
   uint8_t next(char* out);
   bool failed() const { return failed_; }
   uint16_t programs() const { return programs_; }
+  // The time of the last event written: after a K line, its program's last event.
+  uint32_t lastUs() const { return last_; }
 
  private:
   bool peek();
@@ -85,5 +87,29 @@ class ProgramLines {
   uint16_t check_ = kCheckInit;
   uint16_t programs_ = 0;
 };
+
+// Whether a pass's chain can cross the printhead link while it plays (planner.md "The printhead
+// link"): fed the chain's lines in order, each with ProgramLines::lastUs() after it. The planner's
+// link cap and the Mega's M29 both ask it, so a plan the planner makes is never refused.
+class LinkLoad {
+ public:
+  void add(const char* line, uint8_t n, uint32_t lastUs);
+  // `passUs`: the pass's last event. False when the chain outruns the link: need > have, the first
+  // rule broken (the whole chain's, else the first program that would come too late).
+  bool fits(uint32_t passUs, uint64_t& need, uint64_t& have) const;
+
+ private:
+  uint32_t bytes_ = 0, ahead_ = 0, program_ = 0;  // all, the first two programs', the open program's
+  uint16_t sealed_ = 0;
+  uint32_t end1_ = 0, end2_ = 0;  // the last event of the last program sealed and of the one before
+  uint64_t need_ = 0, have_ = 0;  // the first program that would come too late
+};
+
+// What the Mega takes to learn that the Nano freed a buffer and start the next program on its way:
+// its Q poll every 10 ms, the answer, and a main-loop pass or two (mega/src/scan_run.h).
+constexpr uint32_t kProgramRelayUs = 15000;
+
+// µs `bytes` take on the printhead link: 115200 baud, ten bits a byte.
+inline uint64_t linkUs(uint32_t bytes) { return static_cast<uint64_t>(bytes) * 10 * 1000000 / kNanoBaud; }
 
 }  // namespace uv

@@ -138,3 +138,32 @@ TEST(ProgramLines, StopsUnsealedAtAnEventOutOfOrderOrTooFarApart) {
   EXPECT_EQ(linesOf(far, &failed).size(), 2u);
   EXPECT_FALSE(failed);
 }
+
+// Three programs of 64 events `spacing` µs apart, through LinkLoad as the planner and M29 feed it.
+static bool chainFits(uint32_t spacing, uint64_t& need, uint64_t& have, uint32_t& thirdBytes) {
+  Events events;
+  for (uint32_t i = 1; i <= 3u * kProgramEvents; i++) events.list.push_back({i * spacing, static_cast<uint8_t>(i % 2)});
+  ProgramLines writer(Events::take, &events);
+  LinkLoad load;
+  char out[kNanoMaxLine + 2];
+  uint16_t sealed = 0;
+  thirdBytes = 0;
+  while (uint8_t n = writer.next(out)) {
+    load.add(out, n, writer.lastUs());
+    if (sealed == 2) thirdBytes += n;
+    if (out[0] == 'K') sealed++;
+  }
+  return load.fits(events.list.back().first, need, have);
+}
+
+TEST(LinkLoad, EachProgramAfterTheFirstTwoMustFitTheTimeTheOneBeforeItPlays) {
+  uint64_t need = 0, have = 0;
+  uint32_t third = 0;
+  // At 1 ms an event the whole chain fits the link (its third program's 40 ms within four fifths of
+  // 192 ms), but the third program has only the second's 64 ms, less the 15 ms relay, and needs 5/4 of 40.
+  EXPECT_FALSE(chainFits(1000, need, have, third));
+  EXPECT_EQ(need, 5 * linkUs(third) + 4 * kProgramRelayUs);
+  EXPECT_EQ(have, 4u * 64 * 1000);
+  EXPECT_LE(5 * linkUs(third), 4u * 192 * 1000);
+  EXPECT_TRUE(chainFits(2000, need, have, third));
+}
