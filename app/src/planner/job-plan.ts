@@ -110,7 +110,8 @@ export function orderEstimates(job: PlannerJob, machine: Machine, bedXUm = Infin
   for (const name of ORDERS) {
     const { plan, scan, mixed } = planAnyJob({ ...job, header: { ...job.header, strategy: name } }, machine);
     const strokes = scan?.passes ?? mixed?.passes.flatMap((p) => (p.scan ? [p.pass] : [])) ?? [];
-    const offBed = strokes.some((p) => strokeUm(p.startSteps) < 0 || strokeUm(p.stopSteps) > bedXUm);
+    // Either way along X: a pass run leftwards starts at its right end.
+    const offBed = strokes.some((p) => strokeUm(Math.min(p.startSteps, p.stopSteps)) < 0 || strokeUm(Math.max(p.startSteps, p.stopSteps)) > bedXUm);
     out[name] = offBed ? Infinity : plan.count || !lit ? plan.estimateUs : Infinity;
     if (name !== 'scan' && name !== 'mixed' && plan.count) lit = true;
   }
