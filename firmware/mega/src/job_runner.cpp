@@ -241,6 +241,8 @@ void JobRunner::poll(uint32_t nowUs) {
       to[1] = static_cast<int32_t>(header_.originUm[1]) + stop_.hy * static_cast<int32_t>(header_.pitchUm[1]);
       to[2] = zBase_ + (mesh_ ? mesh_->offsetAt(to[0], to[1]) : 0);  // the bed's height under the stop
       bool moves = to[0] != here[0] || to[1] != here[1] || to[2] != here[2];
+      // A stop off the bed (any host's job, checked here whatever planned it): the head never goes there.
+      if (!motion_.onBed(0, motion_.toSteps(0, to[0])) || !motion_.onBed(1, motion_.toSteps(1, to[1]))) return fail(uv::kSoftLimit);
       if (moves && !motion_.moveTo(to, 0)) return;  // the queue is full: next pass
       settleUntil_ = moves ? static_cast<uint32_t>(config_.whole(Key::SettleMs)) * 1000 : 0;
       phase_ = Phase::Move;

@@ -122,3 +122,17 @@ TEST_F(ScanStreamTest, M25PausesBetweenPassesAndM24GoesOnWithTheNext) {
   ASSERT_NE(end.find("JOB:done"), std::string::npos) << end;
   EXPECT_NE(end.find("stop=3/3"), std::string::npos) << end;
 }
+
+// Whatever planned it, a pass whose stroke would leave the bed (here its run-out, past the artwork's
+// right edge on the bed's) fails with E15 before the head sets off, and nothing is lit.
+TEST_F(ScanStreamTest, AStrokeThatWouldLeaveTheBedFailsWithE15BeforeTheHeadSetsOff) {
+  job(40, 10, 1000);
+  h.originUm[0] = 200000 - 40 * 100;  // the last column ends at X 200 mm, the bed's edge
+  stream();
+  const std::string end = runUntilJob({"done", "failed", "paused", "aborted"}, 120000000);
+  EXPECT_TRUE(has(m.usbLines, "FAULT:E15 target outside soft limits at stop 0")) << end;
+  EXPECT_TRUE(has(m.usbLines, "JOB:failed")) << end;  // then aborted, as a stream that fails is
+  EXPECT_LE(m.rig.head[0], 200 * 80);  // steps: never past the bed's 200 mm
+  EXPECT_EQ(m.nano.lit(), 0);
+  EXPECT_TRUE(m.nano.scanLight.empty());
+}

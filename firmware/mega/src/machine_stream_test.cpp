@@ -143,3 +143,19 @@ TEST_F(StreamTest, NeedsHomingAndKeepsTheCardIdleWhileItsJobRuns) {
   EXPECT_EQ(payload("M28 X.UVJ"), (Lines{"echo:E12 not allowed while a job is running"}));
   EXPECT_EQ(payload("M500"), (Lines{"echo:E12 not allowed while a job is running"}));
 }
+
+// Any host's job, whatever planned it: a stop off the bed stops the job with E15 there, the head
+// never goes past the bed's edge, and no light falls off it.
+TEST_F(StreamTest, AStopOffTheBedPausesTheJobWithE15AndTheHeadStaysOnTheBed) {
+  uv::JobHeader h = header(10, 4, uv::Strategy::Raster);
+  h.originUm[0] = 200000 - 5 * 100;  // half its columns beyond X 200 mm, the bed's edge
+  Grid g(4, std::vector<uint8_t>(10, 255));
+  Lines got = stream(encode(h, g));
+  ASSERT_TRUE(runUntil("FAULT:E15 target outside soft limits at stop "));
+  m.run(1000000);
+  EXPECT_TRUE(has(m.usbLines, "JOB:paused")) << "a fault pauses a job, as an over-temperature does";
+  EXPECT_LE(m.rig.head[0], 200 * 80);  // steps: never past the bed
+  EXPECT_GT(m.nano.exposures.size(), 0u);  // the stops on the bed were exposed
+  EXPECT_LT(m.nano.exposures.size(), plan(h, g).size());
+  for (const std::array<int32_t, 3>& at : m.firedAt) EXPECT_LE(at[0], 200 * 80);
+}

@@ -22,6 +22,10 @@ int32_t Motion::toUm(uint8_t axis, int32_t steps) const {
   return roundDiv(static_cast<int64_t>(steps) * 1000000, c_.milli(kSteps[axis]));
 }
 
+bool Motion::onBed(uint8_t axis, int32_t steps) const {
+  return steps >= 0 && steps <= toSteps(axis, c_.milli(axis ? Key::BedY : Key::BedX));
+}
+
 uint32_t Motion::rateFor(uint8_t axis, int32_t milliMmS) const {
   // (mm/s × 1000) × (steps/mm × 1000) / 10⁶
   uint64_t r = static_cast<uint64_t>(milliMmS) * static_cast<uint64_t>(c_.milli(kSteps[axis])) / 1000000u;

@@ -69,6 +69,8 @@ class Motion {
   int32_t toSteps(uint8_t axis, int32_t um) const;
   uint32_t stepsMilli(uint8_t axis) const;  // steps per mm × 1000
   int32_t toUm(uint8_t axis, int32_t steps) const;
+  // Whether `steps` on X or Y lies on the bed, 0 to its size (bed.x, bed.y), as G0's soft limits say.
+  bool onBed(uint8_t axis, int32_t steps) const;
   // Steps/s for a speed in thousandths of mm/s on an axis.
   uint32_t rateFor(uint8_t axis, int32_t milliMmS) const;
   AxisLimits limits(uint8_t axis, uint32_t feedUmS) const;

@@ -122,6 +122,8 @@ ScanRun::Step ScanRun::poll(Motion& motion, PrintheadLink& head, const uv::JobHe
         motion.targetSteps(to);  // Z stays where the job put it
         to[0] = stroke_.startSteps;
         to[1] = motion.toSteps(1, y_);
+        // The whole stroke, run-up and run-out included, on the bed, or the head never sets off.
+        if (!motion.onBed(0, to[0]) || !motion.onBed(0, to[0] + stroke_.steps) || !motion.onBed(1, to[1])) return fail(head, uv::kSoftLimit);
         moved_ = motion.moveToSteps(to);
       }
       // Two programs armed before the head sets off (the Nano's two buffers), or the whole chain.
