@@ -1,6 +1,7 @@
 // Build step for the installable, offline app: writes sw.js from service-worker.js with the list of
-// every file the build made (the simulated printer's worker and the chart included; not the ESP flasher's) and a version
-// hash of them, so the app works with no network and a new build replaces the old cache.
+// every file the build made (the simulated printer's worker and the chart included; not the ESP
+// flasher's) and a version hash of them, so the app works with no network and a new build replaces
+// the old cache.
 import { createHash } from 'node:crypto';
 import { readFileSync } from 'node:fs';
 import type { Plugin } from 'vite';
