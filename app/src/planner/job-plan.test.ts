@@ -1,6 +1,6 @@
 import { mergeLight } from '../protocol/scan-program';
 import { describe, expect, it } from 'vitest';
-import { fastestOrder, ORDERS, orderEstimates, passDurationUs, passSwitches, planAnyJob } from './job-plan';
+import { fastestOrder, ORDERS, orderEstimates, passDurationUs, passSwitches, planAnyJob, strokeOnBed, strokeSpanUm } from './job-plan';
 import { planJob } from './planner';
 import { GEOMETRIES, randomJob } from './golden';
 import { CONFIG_DEFAULTS, motionOf } from '../sim/config';
@@ -122,5 +122,25 @@ describe('the automatic order on a bed', () => {
     const onBed = orderEstimates(p, machine, 200_000);
     expect(onBed.scan).toBe(Infinity);
     expect(fastestOrder(onBed)).not.toBe('scan');
+  });
+});
+
+describe("a stroke's place on the bed", () => {
+  const m = { ...MACHINE, stepsMilli: [80_201, 80_201] as [number, number] }; // 80.201 steps/mm
+  const rightwards = { ...pass([[], [], [], []]), startSteps: 100, stopSteps: 15_960 };
+
+  it('runs from the lower step to the higher, whichever way the pass goes', () => {
+    for (const p of [rightwards, { ...rightwards, startSteps: 15_960, stopSteps: 100 }]) {
+      expect(strokeSpanUm(p, m)).toEqual({ minUm: (100 * 1e6) / 80_201, maxUm: (15_960 * 1e6) / 80_201 });
+    }
+  });
+
+  it('is on the bed exactly when the Mega says so: in whole steps, the bed rounded to the nearest', () => {
+    // A 199 mm bed is 15959.999 steps, which the Mega rounds to 15960 (Motion::onBed).
+    expect(strokeOnBed(rightwards, m, 199_000)).toBe(true);
+    expect(strokeOnBed({ ...rightwards, stopSteps: 15_961 }, m, 199_000)).toBe(false);
+    expect(strokeOnBed({ ...rightwards, startSteps: 15_961, stopSteps: 100 }, m, 199_000)).toBe(false);
+    expect(strokeOnBed({ ...rightwards, startSteps: -1 }, m, 199_000)).toBe(false);
+    expect(strokeOnBed({ ...rightwards, startSteps: 0 }, m, Infinity)).toBe(true);
   });
 });

@@ -4,7 +4,7 @@
 import type { JobHeader, StrategyName } from '../protocol/job-types';
 import { planMixed, type MixedPlan } from './mixed';
 import { planJob, type Plan, type PlannerJob } from './planner';
-import { passSpanUs, planScan, type ScanPlan } from './scan';
+import { passSpanUs, planScan, type ScanPass, type ScanPlan } from './scan';
 import type { Machine } from './time-model';
 
 export interface JobPlan {
@@ -98,6 +98,21 @@ export type OrderChoice = StrategyName | 'auto';
 /** The orders the automatic choice weighs, in the order it prefers them on a tie. */
 export const ORDERS: StrategyName[] = ['scan', 'mixed', 'serpentine', 'shortest', 'raster', 'random'];
 
+/** Where a pass's stroke on the move runs along X, µm, either way along it (a pass run leftwards
+ *  starts at its right end): from its start to its stop step, run-up and run-out included. */
+export function strokeSpanUm(pass: ScanPass, machine: Machine): { minUm: number; maxUm: number } {
+  const um = (steps: number) => (steps * 1_000_000) / machine.stepsMilli[0];
+  return { minUm: um(Math.min(pass.startSteps, pass.stopSteps)), maxUm: um(Math.max(pass.startSteps, pass.stopSteps)) };
+}
+
+/** Whether a stroke stays on a bed `bedXUm` wide, in whole steps as the Mega holds it there
+ *  (Motion::onBed: 0 to the bed's width rounded to the nearest step). */
+export function strokeOnBed(pass: ScanPass, machine: Machine, bedXUm: number): boolean {
+  if (!Number.isFinite(bedXUm)) return Math.min(pass.startSteps, pass.stopSteps) >= 0;
+  const bedSteps = Math.floor((bedXUm * machine.stepsMilli[0] + 500_000) / 1_000_000);
+  return Math.min(pass.startSteps, pass.stopSteps) >= 0 && Math.max(pass.startSteps, pass.stopSteps) <= bedSteps;
+}
+
 /**
  * Each order's estimate for the job, µs: what the Mega's planner will count for it. An order that
  * cannot plan a job that has light (a scan pass over the 32-bit limit) is Infinity.
@@ -106,12 +121,10 @@ export function orderEstimates(job: PlannerJob, machine: Machine, bedXUm = Infin
   const out = {} as Record<StrategyName, number>;
   let lit = false;
   // A scan's strokes run up and out beyond the artwork: one that leaves the bed is no choice.
-  const strokeUm = (steps: number) => (steps * 1_000_000) / machine.stepsMilli[0];
   for (const name of ORDERS) {
     const { plan, scan, mixed } = planAnyJob({ ...job, header: { ...job.header, strategy: name } }, machine);
     const strokes = scan?.passes ?? mixed?.passes.flatMap((p) => (p.scan ? [p.pass] : [])) ?? [];
-    // Either way along X: a pass run leftwards starts at its right end.
-    const offBed = strokes.some((p) => strokeUm(Math.min(p.startSteps, p.stopSteps)) < 0 || strokeUm(Math.max(p.startSteps, p.stopSteps)) > bedXUm);
+    const offBed = strokes.some((p) => !strokeOnBed(p, machine, bedXUm));
     out[name] = offBed ? Infinity : plan.count || !lit ? plan.estimateUs : Infinity;
     if (name !== 'scan' && name !== 'mixed' && plan.count) lit = true;
   }

@@ -7,7 +7,7 @@
 import { headerOf } from '../planner/job-header';
 import type { Mesh } from '../planner/mesh';
 import { durationTables } from '../planner/dose';
-import { planAnyJob } from '../planner/job-plan';
+import { planAnyJob, strokeOnBed, strokeSpanUm } from '../planner/job-plan';
 import { passRows, type Plan } from '../planner/planner';
 import type { MixedPlan } from '../planner/mixed';
 import type { ScanPass, ScanPlan } from '../planner/scan';
@@ -106,16 +106,24 @@ export function dryRun(
   // Envelope: every head position the plan stops at (for a scan job, each pass's stroke from its start
   // to its stop, as the Mega lays it out: a few steps beyond the run-up and run-out), on the bed.
   let minX = Infinity, minY = Infinity, maxX = -Infinity, maxY = -Infinity;
-  const strokeUm = (steps: number) => Math.round((steps * 1_000_000) / machine.stepsMilli[0]);
+  let strokeOff = false;
+  const bedUm = { x: bedMm.x * 1000, y: bedMm.y * 1000 };
   for (let i = 0; i < plan.count; i++) {
     const y = job.originUm.y + plan.hy[i] * job.pitchUm.y;
     const stroke = scan ? scan.passes[i] : strokes.get(i);
-    const xs = stroke ? [strokeUm(stroke.startSteps), strokeUm(stroke.stopSteps)] : [job.originUm.x + plan.hx[i] * job.pitchUm.x];
-    for (const x of xs) minX = Math.min(minX, x), maxX = Math.max(maxX, x);
+    if (stroke) {
+      const span = strokeSpanUm(stroke, machine);
+      minX = Math.min(minX, span.minUm), maxX = Math.max(maxX, span.maxUm);
+      strokeOff ||= !strokeOnBed(stroke, machine, bedUm.x);
+    } else {
+      const x = job.originUm.x + plan.hx[i] * job.pitchUm.x;
+      minX = Math.min(minX, x), maxX = Math.max(maxX, x);
+      strokeOff ||= x < 0 || x > bedUm.x;
+    }
     minY = Math.min(minY, y), maxY = Math.max(maxY, y);
   }
   const mm = (um: number) => (um / 1000).toFixed(1);
-  if (plan.count && (minX < 0 || minY < 0 || maxX > bedMm.x * 1000 || maxY > bedMm.y * 1000)) {
+  if (plan.count && (strokeOff || minY < 0 || maxY > bedUm.y)) {
     findings.push({ check: 'envelope', level: 'error', message: `the head would go to X ${mm(minX)}–${mm(maxX)}, Y ${mm(minY)}–${mm(maxY)} mm, off the ${bedMm.x} × ${bedMm.y} mm bed` });
   } else {
     findings.push({ check: 'envelope', level: 'ok', message: plan.count ? `the head stays within X ${mm(minX)}–${mm(maxX)}, Y ${mm(minY)}–${mm(maxY)} mm` : 'nothing to expose' });
