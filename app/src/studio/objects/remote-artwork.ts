@@ -5,6 +5,7 @@
 
 import { Cancelled, spawnWorker, WorkClient, type CallOptions } from '../../work/work-client';
 import type { BoardRead, PictureRead } from '../../work/work-types';
+import { ready } from './artwork';
 import type { ArtworkObject } from './objects';
 import type { Polarity, Raster, ReadyArtwork } from './raster';
 import { madeSprites } from '../canvas/made-sprites';
@@ -74,7 +75,6 @@ export const readBoard = (from: { src: string } | { files: { name: string; text:
 /** An artwork of a project opened again, known by its kind and embedded file. */
 export async function readArtwork(o: Pick<ArtworkObject, 'kind' | 'src'>): Promise<ReadyArtwork> {
   if (o.kind === 'svg') {
-    const { ready } = await import('./artwork');
     return ready(await (await import('./svg-artwork')).svgArtwork(o.src));
   }
   const { pixels } = o.kind === 'board' ? await readBoard({ src: o.src }) : await readPicture(o.src);
