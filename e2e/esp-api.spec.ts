@@ -149,6 +149,31 @@ test('esp API (firmware): a POST /print cut off mid-body frees the Mega for the 
   host.stop();
 });
 
+test('esp API (firmware): a DELETE while a POST /print body arrives cancels that POST, 409, and frees the Mega', async ({ page }) => {
+  const host = await startEspHost(20);
+  await page.goto(host.url);
+  await expect.poll(async () => (await call(page, 'GET', '/status')).json.mega).toBe('online');
+  const { port } = new URL(host.url);
+  const body = '{"grid":' + ' '.repeat(4992);
+  const s = connect(Number(port), '127.0.0.1');
+  let reply = '';
+  s.on('data', (d) => (reply += d.toString()));
+  await new Promise<void>((resolve) => s.once('connect', () => resolve()));
+  s.write(`POST /print HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\nContent-Length: ${body.length}\r\n\r\n${body.slice(0, 100)}`);
+  await new Promise((resolve) => setTimeout(resolve, 300));
+  const cancel = await call(page, 'DELETE', '/print'); // the body is still arriving
+  expect(cancel.status).toBe(200);
+  expect(cancel.json).toEqual({ job: { state: 'aborted' } });
+  s.write(body.slice(100));
+  await expect.poll(() => reply, { timeout: 5000 }).toContain('"cancelled"');
+  expect(reply).toMatch(/^HTTP\/1\.1 409/);
+  expect(reply).toContain('cancelled by DELETE /print');
+  s.destroy();
+  expect((await call(page, 'DELETE', '/print')).status).toBe(409); // nothing left to cancel
+  await expect.poll(async () => (await call(page, 'POST', '/print', '{"grid":')).status, { timeout: 5000 }).toBe(400); // judged afresh, not 409
+  host.stop();
+});
+
 test('the app from the ESP\'s flash connects over Wi-Fi and has no simulated printer to offer, nor a Firmware tab', async ({ page }) => {
   const host = await startEspHost(20);
   await page.goto(host.url);

@@ -20,6 +20,7 @@
 #include <string>
 #include <thread>
 
+#include <signal.h>
 #include <unistd.h>
 
 #include "host_body.h"
@@ -148,8 +149,10 @@ class Hub : public hub::Routes {
     if (path == "/status") return handOver(Ask::Status, now, std::move(later));
     if (path == "/print" && req.method() == hub::http::verb::post) {
       std::ofstream(body_.path(), std::ios::binary) << req.body();  // the whole body: onBody's writes
+      if (desk_.bodyCancelled()) return now = error(409, kCancelledCode, kCancelledMessage), true;  // a DELETE came first
       return handOver(Ask::CheckBody, now, std::move(later));
     }
+    if (path == "/print" && desk_.cancelArriving()) return now = {200, "application/json", kCancelledJson, {}}, true;  // DELETE, a body arriving
     if (path == "/print") return handOver(Ask::Cancel, now, std::move(later));  // DELETE
     if (path == "/wifi") return now = wifi(req), true;
     now = appFile(req, path);
@@ -249,6 +252,32 @@ int main(int argc, char** argv) {
   }
   std::filesystem::path state = std::filesystem::temp_directory_path() / ("uv-esp-host-" + std::to_string(::getpid()));
   std::filesystem::create_directories(state);
+  // The hub lives as long as whoever started it: when its stdin closes (the test runner ended,
+  // however it ended) or it is told to stop (SIGTERM, SIGINT, SIGHUP), it takes its flash with it
+  // and exits. Run by hand, it reads the terminal and ends at Ctrl-D. The signals are taken by
+  // one thread alone, so nothing else is cut short in the middle of a write.
+  static std::filesystem::path flash;
+  flash = state;
+  auto leave = [] {
+    std::error_code ignored;
+    std::filesystem::remove_all(flash, ignored);
+    std::_Exit(0);
+  };
+  sigset_t stops;
+  sigemptyset(&stops);
+  for (int sig : {SIGTERM, SIGINT, SIGHUP}) sigaddset(&stops, sig);
+  pthread_sigmask(SIG_BLOCK, &stops, nullptr);  // every thread started from here on inherits it
+  std::thread([stops, leave] {
+    int sig;
+    sigwait(&stops, &sig);
+    leave();
+  }).detach();
+  std::thread([leave] {
+    char c;
+    while (::read(0, &c, 1) > 0) {
+    }
+    leave();
+  }).detach();
   net::io_context io;
   Hub hub(io, www, state);
   tcp::acceptor acceptor(io, {net::ip::make_address("127.0.0.1"), port});
@@ -256,14 +285,6 @@ int main(int argc, char** argv) {
   hub.begin();
   std::printf("listening on http://127.0.0.1:%u\n", acceptor.local_endpoint().port());
   std::fflush(stdout);
-  // The hub lives as long as whoever started it: when its stdin closes (the test runner ended,
-  // however it ended), it exits. Run by hand, it reads the terminal and ends at Ctrl-D.
-  std::thread([] {
-    char c;
-    while (::read(0, &c, 1) > 0) {
-    }
-    std::_Exit(0);
-  }).detach();
   auto last = std::chrono::steady_clock::now();
   for (;;) {
     io.poll();

@@ -268,6 +268,34 @@ TEST(HandOver, ADeleteDuringTheCheckAnswersBoth) {
   EXPECT_EQ(rig.network.admitBody(), Admission::Accepted);
 }
 
+// A DELETE while a POST's body still arrives: the network task answers it at once, and the POST
+// 409 once its body is whole; loop() never sees that body, and the spool is free again.
+TEST(HandOver, ADeleteWhileTheBodyArrivesCancelsItsPost) {
+  Rig rig;
+  rig.settle();
+  ASSERT_EQ(rig.network.admitBody(), Admission::Accepted);
+  EXPECT_TRUE(rig.network.cancelArriving());   // the DELETE, answered by the network task
+  EXPECT_TRUE(rig.network.bodyCancelled());    // the body whole: its POST is answered 409, not handed
+  EXPECT_FALSE(rig.network.bodyCancelled());   // once
+  EXPECT_FALSE(rig.network.cancelArriving());  // nothing arrives now: the next DELETE is loop()'s
+  rig.settle();
+  EXPECT_EQ(rig.hub.uploadsStarted, 0);
+  ASSERT_EQ(rig.network.admitBody(), Admission::Accepted);  // the next body may come
+  EXPECT_FALSE(rig.network.bodyCancelled());  // and it is not the cancelled one
+}
+
+// A client that leaves after its body was cancelled: the next body is judged afresh.
+TEST(HandOver, ACancelledBodysClientMayLeave) {
+  Rig rig;
+  rig.settle();
+  ASSERT_EQ(rig.network.admitBody(), Admission::Accepted);
+  EXPECT_TRUE(rig.network.cancelArriving());
+  rig.network.bodyAbandoned();
+  EXPECT_FALSE(rig.network.bodyCancelled());
+  ASSERT_EQ(rig.network.admitBody(), Admission::Accepted);
+  EXPECT_FALSE(rig.network.bodyCancelled());
+}
+
 // The check's Left has its place kept: requests that fill the ring never crowd it out.
 TEST(HandOver, AChecksClientCanLeaveWhenTheRingIsFull) {
   Rig rig;

@@ -15,6 +15,12 @@ namespace esp {
 
 enum class Method : uint8_t { Get, Post, Delete, Other };
 
+// DELETE /print's answer when it cancelled something (protocol/esp.md).
+constexpr const char* kCancelledJson = "{\"job\":{\"state\":\"aborted\"}}";
+// What a POST /print cancelled by a DELETE is answered: 409, with this code and message.
+constexpr const char* kCancelledCode = "cancelled";
+constexpr const char* kCancelledMessage = "cancelled by DELETE /print";
+
 struct HttpError {
   uint16_t status;  // 0 = go ahead
   const char* code;

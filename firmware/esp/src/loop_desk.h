@@ -59,7 +59,7 @@ class LoopDesk {
         } else if (!hub_.cancel()) {
           return refuse(w.ticket, {409, "busy", "nothing to cancel"});
         }
-        return answer(w.ticket, 200, "{\"job\":{\"state\":\"aborted\"}}");
+        return answer(w.ticket, 200, kCancelledJson);
       case Ask::CheckBody: {
         if (!rings_.answers.room()) return false;
         spoolHeld_ = true;  // whatever comes of it, the spool is loop()'s until tell() gives it back

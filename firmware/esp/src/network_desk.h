@@ -25,13 +25,27 @@ class NetworkDesk {
   // the Mega, which it decides again once the body is whole. Accepted: the body is arriving now.
   Admission admitBody() {
     Admission a = admission();
-    if (a == Admission::Accepted) arriving_ = true;
+    if (a == Admission::Accepted) arriving_ = true, cancelled_ = false;
     return a;
   }
   // The same judgement for a POST that has no body to keep.
   Admission admission() const { return arriving_ || spoolLent_ ? Admission::Busy : admission_; }
   // The arriving body's client left before it was whole: the spool is free again.
   void bodyAbandoned() { arriving_ = false; }
+  // DELETE /print while a body arrives: that POST is cancelled, and the DELETE is answered at
+  // once (kCancelledJson). False: no body arrives, and loop() has the cancel to judge.
+  bool cancelArriving() {
+    if (!arriving_) return false;
+    cancelled_ = true;
+    return true;
+  }
+  // The arriving body is whole. True if a DELETE cancelled it: its POST is answered 409
+  // (kCancelledCode) by the caller, none of it is checked, and the spool is free again.
+  bool bodyCancelled() {
+    if (!arriving_ || !cancelled_) return false;
+    arriving_ = cancelled_ = false;
+    return true;
+  }
 
   // Hands a paused request to loop() and returns its ticket. CheckBody: the arriving body is
   // whole, and the spool goes with it. 0: no room (kWaiting already wait, or the ring is full),
@@ -123,7 +137,7 @@ class NetworkDesk {
   uint16_t ticket_ = 0;
   uint16_t leftOwed_ = 0;  // the check whose client may still leave: its Left has a place kept
   Admission admission_ = Admission::MegaOffline;  // until loop() says otherwise
-  bool arriving_ = false, spoolLent_ = false, pumping_ = false;
+  bool arriving_ = false, cancelled_ = false, spoolLent_ = false, pumping_ = false;
 };
 
 }  // namespace esp

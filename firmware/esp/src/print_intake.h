@@ -8,6 +8,7 @@
 // `use(view)` with a JSON view of the result and returns 0, or 400 (not JSON) / 413 (too big).
 #pragma once
 #include <stdint.h>
+#include <string.h>
 
 #include <new>
 
@@ -67,7 +68,8 @@ class PrintIntake {
   // DELETE /print while the body is being checked.
   void cancel() {
     if (stage_ == Stage::Rows) conversion().~JobConversion();
-    RequestError e{409, "cancelled", "", "cancelled by DELETE /print"};
+    RequestError e{409, kCancelledCode, "", ""};
+    strncpy(e.message, kCancelledMessage, sizeof e.message - 1);
     refuse(e);
   }
 

@@ -153,11 +153,13 @@ void onPost(AsyncWebServerRequest* r) {
   }
   receiving = nullptr;
   spool.close();
+  if (desk.bodyCancelled()) return sendError(r, 409, kCancelledCode, kCancelledMessage);  // a DELETE came first
   handOver(r, Ask::CheckBody, spoolFailed);  // the spool goes with it; loop() checks it and answers
 }
 
 void onDelete(AsyncWebServerRequest* r) {
   pump();
+  if (desk.cancelArriving()) return r->send(200, "application/json", kCancelledJson);  // the body arriving
   handOver(r, Ask::Cancel);
 }
 
