@@ -115,4 +115,15 @@ struct Check {
 using Network = uv::esp::NetworkDesk<Handle>;
 using Loop = uv::esp::LoopDesk<Hub, Check>;
 
+// Both sides of the hand-over, wired as on the ESP: the rings between them, the network task's
+// desk, and loop()'s desk with the hub, the print check and the spool they share.
+struct Desks {
+  uv::esp::HandOver rings;
+  Spool spool;
+  Hub hub{spool};
+  Check check{hub, spool};
+  Network network{rings};
+  Loop loop{rings, hub, check};
+};
+
 }  // namespace handover

@@ -32,18 +32,20 @@ struct Client {
 struct Tally {
   int made = 0, overloaded = 0, refusedAtHeaders = 0, answered = 0;
   int left = 0, leftWhileArriving = 0, leftWhileWaiting = 0, leftWhileSent = 0;
+  int cancelsAtOnce = 0, cancelledWhileArriving = 0;  // a DELETE while a body arrives, and that POST
   int byStatus[600] = {};
 };
 
 }  // namespace
 
 TEST(HandOverRace, EveryRequestIsAnsweredOnceOnTheNetworkThreadWhileClientsLeaveAtRandom) {
-  HandOver rings;
-  Spool spool;
-  Hub hub{spool};
-  Check check{hub, spool};
-  Network network{rings};
-  Loop loop{rings, hub, check};
+  Desks desks;
+  HandOver& rings = desks.rings;
+  Spool& spool = desks.spool;
+  Hub& hub = desks.hub;
+  Check& check = desks.check;
+  Network& network = desks.network;
+  Loop& loop = desks.loop;
   std::atomic<bool> done{false};
   Tally tally;
 
@@ -102,6 +104,11 @@ TEST(HandOverRace, EveryRequestIsAnsweredOnceOnTheNetworkThreadWhileClientsLeave
           if (!c.chunksLeft) tally.leftWhileWaiting++;  // in the ring, being checked, or answered but not sent
           leave(c);
         } else if (c.chunksLeft && --c.chunksLeft == 0) {
+          if (network.bodyCancelled()) {  // a DELETE came while it arrived: 409 at once, never handed
+            c.request.reset();
+            tally.cancelledWhileArriving++;
+            continue;
+          }
           c.ticket = network.hand(c.request, Ask::CheckBody);  // the body is whole
           if (!c.ticket) {
             c.request.reset();  // answered 503 at once
@@ -128,6 +135,10 @@ TEST(HandOverRace, EveryRequestIsAnsweredOnceOnTheNetworkThreadWhileClientsLeave
           c.chunksLeft = 1 + static_cast<int>(rng() % 20);
         } else {
           c.ask = kind < 9 ? Ask::Status : Ask::Cancel;
+          if (c.ask == Ask::Cancel && network.cancelArriving()) {
+            tally.cancelsAtOnce++;  // a body arrives: the network task answers 200 itself
+            continue;
+          }
           c.ticket = network.hand(c.request, c.ask);
           if (!c.ticket) {
             tally.overloaded++;  // 503 at once
@@ -162,13 +173,17 @@ TEST(HandOverRace, EveryRequestIsAnsweredOnceOnTheNetworkThreadWhileClientsLeave
   for (int s : tally.byStatus) answeredAll += s;
   EXPECT_EQ(answeredAll, tally.answered + tally.leftWhileSent);
   std::printf("[esp hand-over] %d requests: %d answered (%d x 202, %d x 400, %d x 409, %d x 503, %d x 200); %d clients left (%d while the body "
-              "arrived, %d waiting, %d during the send); %d refused at the headers, %d overloaded; %d uploads\n",
+              "arrived, %d waiting, %d during the send); %d refused at the headers, %d overloaded; %d uploads; %d DELETEs while a body "
+              "arrived, %d of those POSTs cancelled\n",
               tally.made, answeredAll, tally.byStatus[202], tally.byStatus[400], tally.byStatus[409], tally.byStatus[503], tally.byStatus[200], tally.left,
-              tally.leftWhileArriving, tally.leftWhileWaiting, tally.leftWhileSent, tally.refusedAtHeaders, tally.overloaded, hub.uploadsStarted);
+              tally.leftWhileArriving, tally.leftWhileWaiting, tally.leftWhileSent, tally.refusedAtHeaders, tally.overloaded, hub.uploadsStarted,
+              tally.cancelsAtOnce, tally.cancelledWhileArriving);
   // Each kind of step was reached, or the run proved little.
   EXPECT_GT(tally.byStatus[202], 0);
   EXPECT_GT(tally.byStatus[400], 0);
   EXPECT_GT(tally.leftWhileArriving, 0);
   EXPECT_GT(tally.leftWhileWaiting, 0);
   EXPECT_GT(tally.leftWhileSent, 0);
+  EXPECT_GT(tally.cancelledWhileArriving, 0);
+  EXPECT_LE(tally.cancelledWhileArriving, tally.cancelsAtOnce);
 }

@@ -18,13 +18,7 @@ using uv::esp::Work;
 
 namespace {
 
-struct Rig {
-  HandOver rings;
-  Spool spool;
-  Hub hub{spool};
-  Check check{hub, spool};
-  Network network{rings};
-  Loop loop{rings, hub, check};
+struct Rig : Desks {
   uint32_t ids = 0, ms = 0;
 
   // The network task's whole side of one request: paused, handed, its client's poll pumping.
