@@ -7,6 +7,7 @@ import { DialectClient } from './dialect-client';
 import type { Transport } from './transport';
 import { SimPrinter } from '../sim/sim-printer';
 import { DialectLink } from './dialect-link';
+import { formatOk } from '../protocol/reply-format';
 import type { LinkFaults } from '../sim/link-faults';
 import { CONFIG_DEFAULTS, motionOf } from '../sim/config';
 
@@ -195,5 +196,40 @@ describe('the first exchange of a link', () => {
     await port.settle(client.open(() => {}));
     expect(port.lost).toBeGreaterThan(0);
     expect(client.health.timeouts).toBeGreaterThan(0);
+  });
+});
+
+describe('reply blocks', () => {
+  it("keep a long reply whole when a resent line's ok, with no N, lands inside it (mega.md §2)", async () => {
+    // A page too busy to read the port in time resends the running M503; the Mega frees the
+    // duplicate's slot with a bare ok between the listing's lines. The listing was cut there, and the
+    // app read the settings it lost as their defaults: soft limits back at 50 °C, Continue open on a
+    // head still too hot.
+    let feed: (bytes: string) => void = () => {};
+    const sent: string[] = [];
+    const port: Transport = {
+      kind: 'serial',
+      open: async (onBytes) => void (feed = onBytes),
+      send: async (bytes) => void sent.push(bytes),
+      close: async () => {},
+    };
+    const client = new DialectClient(port, () => {});
+    const tick = () => new Promise((resolve) => setTimeout(resolve, 0));
+    const opening = client.open(() => {});
+    await tick();
+    feed('start\n');
+    await tick();
+    feed(formatOk(Number(/^N(\d+) M110/.exec(sent[0])?.[1]), 8, 3) + '\n');
+    await opening;
+    const reply = client.command('M503');
+    await tick();
+    const n = Number(/^N(\d+) M503/.exec(sent[1])?.[1]);
+    feed('M850 thermal.limit.4 50\n');
+    feed(formatOk(undefined, 8, 1) + '\n'); // the resent N<n>, still running
+    feed('M850 thermal.limit.5 20\n');
+    feed(formatOk(n, 8, 2) + '\n');
+    const lines = (await reply).flatMap((r) => (r.kind === 'other' ? [r.text] : []));
+    expect(lines).toEqual(['M850 thermal.limit.4 50', 'M850 thermal.limit.5 20']);
+    await client.close();
   });
 });

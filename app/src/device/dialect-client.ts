@@ -179,15 +179,18 @@ export class DialectClient {
 
   #endBlock(ok: Extract<Reply, { kind: 'ok' }>): void {
     this.#inflight = Math.max(0, this.#inflight - 1);
-    const block = this.#block;
-    this.#block = [];
     if (ok.n === undefined || ok.n <= this.#lastAccepted) {
-      // A skipped line, a resend request, an old duplicate, or an ok whose checksum failed. Once
-      // every line sent has been answered, any still unconfirmed goes again now rather than after
-      // the time-out: the Mega confirms a duplicate (ok N<n>) without running it twice.
+      // A skipped line, a resend request, an old duplicate, or an ok whose checksum failed: it ends
+      // no command's reply. The lines before it stay in the block: a resent line still running gets
+      // its ok at once, in the middle of the running line's own reply (an M503 listing: mega.md §2),
+      // which was cut there before. Once every line sent has been answered, any still unconfirmed
+      // goes again now rather than after the time-out: the Mega confirms a duplicate (ok N<n>)
+      // without running it twice.
       if (this.#inflight === 0 && this.#out.some((i) => i.sent)) this.#rewindTo(this.#lastAccepted + 1);
       return;
     }
+    const block = this.#block;
+    this.#block = [];
     // N names the line this block answers; lines run in order, so all before it are done too.
     const now = this.#o.now();
     while (this.#out.length && this.#out[0].n <= ok.n) {

@@ -89,16 +89,18 @@ void MegaSender::rewindTo(uint32_t n) {
 
 void MegaSender::endBlock(const Reply& ok, uint32_t nowMs) {
   if (inflight_) inflight_--;
-  uint16_t error = blockError_;
-  blockError_ = 0;
   if (!ok.hasFlow || !ok.hasN || static_cast<int64_t>(ok.n) <= lastAccepted_) {
-    // No line named (a skipped line, a resend request, an old duplicate, a damaged ok): once every
-    // line out has been answered, the ones unconfirmed go again at once.
+    // No line named (a skipped line, a resend request, an old duplicate, a damaged ok): it ends no
+    // line's block, so an error already heard stays with the line still running (a resent line that
+    // runs gets its bare ok in the middle of its own reply: mega.md §2). Once every line out has
+    // been answered, the ones unconfirmed go again at once.
     bool anySent = false;
     for (uint8_t i = 0; i < count_; i++) anySent |= at(i).sent;
     if (!inflight_ && anySent) rewindTo(static_cast<uint32_t>(lastAccepted_ + 1));
     return;
   }
+  uint16_t error = blockError_;
+  blockError_ = 0;
   // Lines run in order: every line up to N is done, and N's block was this one.
   while (count_ && at(0).sent && at(0).n <= ok.n) {
     Item& it = at(0);

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include "crc16.h"
+
 #include <map>
 #include <random>
 #include <string>
@@ -121,4 +123,59 @@ TEST(MegaSender, AMegaThatRestartsIsNumberedFromZeroAgain) {
   b.sender.restart();
   ASSERT_TRUE(b.sendAll({"M115", "M105"}, 10));
   EXPECT_EQ(b.answers[10], 0);
+}
+
+namespace {
+
+struct TapWire : MegaWire {
+  std::string out;
+  bool write(const char* data, uint16_t n) override {
+    out.append(data, n);
+    return true;
+  }
+};
+
+struct Answers : MegaListener {
+  std::map<uint16_t, uint16_t> errors;
+  void line(const char*, uint8_t) override {}
+  void answered(uint16_t tag, uint16_t error, bool) override { errors[tag] = error; }
+};
+
+// The Mega's `ok` with its flow fields and CRC (mega.md §2); n < 0: no N.
+std::string okLine(int32_t n, int p, int b) {
+  std::string body = "ok";
+  if (n >= 0) body += " N" + std::to_string(n);
+  body += " P" + std::to_string(p) + " B" + std::to_string(b);
+  char hex[5];
+  uv::crc16Hex(uv::crc16(body.data(), body.size()), hex);
+  return body + "*" + hex + "\n";
+}
+
+}  // namespace
+
+// A resent line that is still running gets a bare ok at once, between its own reply's lines: the
+// error already heard stays its, and its own ok N<n> then answers it with that error.
+TEST(MegaSender, ABareOkInsideALinesReplyKeepsItsError) {
+  TapWire wire;
+  Answers ears;
+  MegaSender sender(wire, ears);
+  auto feed = [&](const std::string& s) {
+    for (char c : s) sender.received(c, 10);
+  };
+  sender.restart();
+  sender.poll(0);
+  ASSERT_NE(wire.out.find("N0 M110 N0"), std::string::npos);
+  feed(okLine(0, 8, 3));
+  ASSERT_TRUE(sender.send("M29", 7));
+  sender.poll(1);
+  ASSERT_NE(wire.out.find("N1 M29"), std::string::npos);
+  feed("Error:E23 upload out of order\n");
+  feed(okLine(-1, 8, 2));  // a duplicate of N1, still running
+  EXPECT_EQ(ears.errors.count(7), 0u);
+  sender.poll(2);  // every line answered, N1 unconfirmed: it goes again
+  feed(okLine(-1, 8, 2));  // and is still running
+  sender.poll(3);
+  feed(okLine(1, 8, 3));
+  ASSERT_EQ(ears.errors.count(7), 1u);
+  EXPECT_EQ(ears.errors[7], 23);
 }
