@@ -199,37 +199,83 @@ describe('the first exchange of a link', () => {
   });
 });
 
+/** A Mega port whose replies the test writes, on a clock the test moves. */
+async function scriptedPort() {
+  let feed: (bytes: string) => void = () => {};
+  let now = 0;
+  const timers: { at: number; fn: () => void }[] = [];
+  const sent: string[] = [];
+  const port: Transport = {
+    kind: 'serial',
+    open: async (onBytes) => void (feed = onBytes),
+    send: async (bytes) => void sent.push(bytes),
+    close: async () => {},
+  };
+  const client = new DialectClient(port, () => {}, {
+    now: () => now,
+    setTimer: (fn, ms) => {
+      const t = { at: now + ms, fn };
+      timers.push(t);
+      return t;
+    },
+    clearTimer: (t) => void timers.splice(timers.indexOf(t as (typeof timers)[number]) >>> 0, 1),
+  });
+  const tick = () => new Promise((resolve) => setTimeout(resolve, 0));
+  const opening = client.open(() => {});
+  await tick();
+  feed('start\n');
+  await tick();
+  feed(formatOk(Number(/^N(\d+) M110/.exec(sent[0])?.[1]), 8, 3) + '\n');
+  await opening;
+  return {
+    client,
+    sent,
+    tick,
+    feed: (line: string) => feed(line + '\n'),
+    /** The number the client gave the last line it sent with `body`. */
+    numberOf: (body: string) => Number(new RegExp(`^N(\\d+) ${body}\\*`).exec(sent.filter((f) => f.includes(` ${body}*`)).at(-1) ?? '')?.[1]),
+    advance: (ms: number) => {
+      now += ms;
+      for (const t of timers.filter((x) => x.at <= now)) {
+        timers.splice(timers.indexOf(t), 1);
+        t.fn();
+      }
+    },
+  };
+}
+
 describe('reply blocks', () => {
-  it("keep a long reply whole when a resent line's ok, with no N, lands inside it (mega.md §2)", async () => {
-    // A page too busy to read the port in time resends the running M503; the Mega frees the
-    // duplicate's slot with a bare ok between the listing's lines. The listing was cut there, and the
-    // app read the settings it lost as their defaults: soft limits back at 50 °C, Continue open on a
-    // head still too hot.
-    let feed: (bytes: string) => void = () => {};
-    const sent: string[] = [];
-    const port: Transport = {
-      kind: 'serial',
-      open: async (onBytes) => void (feed = onBytes),
-      send: async (bytes) => void sent.push(bytes),
-      close: async () => {},
-    };
-    const client = new DialectClient(port, () => {});
-    const tick = () => new Promise((resolve) => setTimeout(resolve, 0));
-    const opening = client.open(() => {});
-    await tick();
-    feed('start\n');
-    await tick();
-    feed(formatOk(Number(/^N(\d+) M110/.exec(sent[0])?.[1]), 8, 3) + '\n');
-    await opening;
-    const reply = client.command('M503');
-    await tick();
-    const n = Number(/^N(\d+) M503/.exec(sent[1])?.[1]);
-    feed('M850 thermal.limit.4 50\n');
-    feed(formatOk(undefined, 8, 1) + '\n'); // the resent N<n>, still running
-    feed('M850 thermal.limit.5 20\n');
-    feed(formatOk(n, 8, 2) + '\n');
-    const lines = (await reply).flatMap((r) => (r.kind === 'other' ? [r.text] : []));
-    expect(lines).toEqual(['M850 thermal.limit.4 50', 'M850 thermal.limit.5 20']);
-    await client.close();
+  // A busy page reads the port late, so the client times out on a long reply such as M503's
+  // listing, resends the running line, and the Mega frees the duplicate's slot with a bare ok
+  // between the listing's lines (mega.md §2). Either cut the listing: the app read the settings it
+  // lost as their defaults, soft limits back at 50 °C, and Continue open on a head still too hot.
+  const otherLines = (replies: { kind: string; text?: string }[]) => replies.flatMap((r) => (r.kind === 'other' ? [r.text] : []));
+
+  it("keep a long reply whole when a resent line's ok, with no N, lands inside it", async () => {
+    const m = await scriptedPort();
+    const reply = m.client.command('M503');
+    await m.tick();
+    m.feed('M850 thermal.limit.4 50');
+    m.feed(formatOk(undefined, 8, 1)); // the resent M503, still running
+    m.feed('M850 thermal.limit.5 20');
+    m.feed(formatOk(m.numberOf('M503'), 8, 2));
+    expect(otherLines(await reply)).toEqual(['M850 thermal.limit.4 50', 'M850 thermal.limit.5 20']);
+    await m.client.close();
+  });
+
+  it('keep a long reply whole across a time-out in its middle', async () => {
+    const m = await scriptedPort();
+    const reply = m.client.command('M503');
+    await m.tick();
+    m.feed('M850 thermal.limit.4 50');
+    m.advance(5000); // the time-out: M503 goes again
+    await m.tick();
+    expect(m.sent.filter((f) => f.includes(' M503*'))).toHaveLength(2);
+    expect(m.client.health.timeouts).toBe(1);
+    m.feed('M850 thermal.limit.5 20');
+    m.feed(formatOk(m.numberOf('M503'), 8, 2));
+    m.feed(formatOk(m.numberOf('M503'), 8, 3)); // the duplicate, answered already
+    expect(otherLines(await reply)).toEqual(['M850 thermal.limit.4 50', 'M850 thermal.limit.5 20']);
+    await m.client.close();
   });
 });

@@ -275,10 +275,11 @@ export class DialectClient {
     if (this.#closed || !this.#waitingForReplies()) return;
     const remaining = this.#timeoutMs() - (this.#o.now() - this.#lastReplyMs);
     if (remaining < 1) { // within a millisecond counts as expired: never re-arm for a sliver of time
-      // Lost bytes took a line or its reply: start again after the last accepted line.
+      // Lost bytes took a line or its reply: start again after the last accepted line. The lines
+      // heard since the last ok stay: they are the reply of the oldest line not yet answered (a long
+      // one such as M503's listing, slower than the time-out on a busy page), whose ok is to come.
       this.health.timeouts++;
       this.#inflight = 0;
-      this.#block = [];
       this.#rewindTo(this.#lastAccepted + 1);
       this.#lastReplyMs = this.#o.now();
       this.#pump();

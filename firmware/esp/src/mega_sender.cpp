@@ -157,10 +157,10 @@ void MegaSender::poll(uint32_t nowMs) {
   bool waiting = inflight_ > 0;
   for (uint8_t i = 0; i < count_; i++) waiting |= at(i).sent;
   if (waiting && nowMs - lastReplyMs_ >= timeoutMs()) {
-    // Lost bytes took a line or its reply: everything after the last accepted line goes again.
+    // Lost bytes took a line or its reply: everything after the last accepted line goes again. An
+    // error heard since the last ok stays: it is the oldest unanswered line's, whose ok is to come.
     health_.timeouts++;
     inflight_ = 0;
-    blockError_ = 0;
     rewindTo(static_cast<uint32_t>(lastAccepted_ + 1));
     lastReplyMs_ = nowMs;
   }

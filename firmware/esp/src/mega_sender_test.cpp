@@ -179,3 +179,24 @@ TEST(MegaSender, ABareOkInsideALinesReplyKeepsItsError) {
   ASSERT_EQ(ears.errors.count(7), 1u);
   EXPECT_EQ(ears.errors[7], 23);
 }
+
+// The same across a time-out: the error stays with the line still running, which its ok answers.
+TEST(MegaSender, ATimeOutInsideALinesReplyKeepsItsError) {
+  TapWire wire;
+  Answers ears;
+  MegaSender sender(wire, ears);
+  auto feed = [&](const std::string& s) {
+    for (char c : s) sender.received(c, 10);
+  };
+  sender.restart();
+  sender.poll(0);
+  feed(okLine(0, 8, 3));
+  ASSERT_TRUE(sender.send("M29", 7));
+  sender.poll(10);
+  feed("Error:E23 upload out of order\n");
+  sender.poll(10 + MegaSender::kReplyTimeoutMs);  // no ok yet: M29 goes again
+  EXPECT_EQ(sender.health().timeouts, 1u);
+  feed(okLine(1, 8, 3));
+  ASSERT_EQ(ears.errors.count(7), 1u);
+  EXPECT_EQ(ears.errors[7], 23);
+}
