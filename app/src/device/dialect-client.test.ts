@@ -263,6 +263,25 @@ describe('reply blocks', () => {
     await m.client.close();
   });
 
+  it("give a line sent after a quiet spell the whole time-out, not what an earlier line's timer had left", async () => {
+    const m = await scriptedPort();
+    const temps = m.client.command('M105');
+    await m.tick();
+    m.feed(formatOk(m.numberOf('M105'), 8, 3)); // answered at once; the link's first timer (1 s) stays armed
+    await temps;
+    m.advance(800);
+    const reply = m.client.command('M503');
+    await m.tick();
+    m.advance(200); // that timer fires 200 ms after M503 went, under the 250 ms its wait may take
+    await m.tick();
+    expect(m.client.health.timeouts).toBe(0);
+    expect(m.sent.filter((f) => f.includes(' M503*'))).toHaveLength(1);
+    m.feed('M850 thermal.limit.5 20');
+    m.feed(formatOk(m.numberOf('M503'), 8, 3));
+    expect(otherLines(await reply)).toEqual(['M850 thermal.limit.5 20']);
+    await m.client.close();
+  });
+
   it('keep a long reply whole across a time-out in its middle', async () => {
     const m = await scriptedPort();
     const reply = m.client.command('M503');

@@ -237,6 +237,9 @@ export class DialectClient {
         this.health.bytesRetransmitted += item.frame.length;
       }
       if (!item.firstSentMs) item.firstSentMs = this.#o.now();
+      // A line sent when none was owed an answer: the wait for one starts now, not at the last
+      // reply, however long the link was quiet before it.
+      if (!this.#waitingForReplies()) this.#lastReplyMs = this.#o.now();
       item.sent = true;
       this.#inflight++;
       this.health.linesSent++;
