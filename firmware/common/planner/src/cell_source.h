@@ -21,8 +21,9 @@ class CellSource {
   virtual void step(uint8_t cursor) = 0;
 
   // Puts a cursor on a row's first non-zero cell at column `col` or beyond it in its direction (a
-  // mixed job's band of stops reopens a pass where it left it: planner.md "Bands").
-  void openAt(uint8_t cursor, uint16_t row, bool descending, uint16_t col) {
+  // mixed job's band of stops reopens a pass where it left it: planner.md "Bands"). This walks from
+  // the row's end; a source that can go straight to a column (the card, the stream) does.
+  virtual void openAt(uint8_t cursor, uint16_t row, bool descending, uint16_t col) {
     open(cursor, row, descending);
     uint16_t c;
     uint8_t v;
