@@ -71,11 +71,13 @@ describe('the mixed planner', () => {
     expect(m.estimateUs).toBeLessThan(planJob(plannerJob(as(j, 'serpentine')), MACHINE).estimateUs);
   });
 
-  it('plans a stream while its rows arrive: each plan a prefix of the whole job\'s', () => {
-    const j = job(70, 20, (x, y) => (y % 6 < 3 ? (x * 3 + y) % 4 !== 0 : (x * 11 + y * 7) % 31 === 0) ? 60 + ((x + y) % 190) : 0);
-    const whole = mixedVector(planMixed(plannerJob(j), MACHINE)) as { passes: object[] };
+  it('plans a stream while its rows arrive: each plan a prefix of the whole job\'s, bands of stops among them', () => {
+    const dense = (x: number, y: number) => ((y % 6 < 3 ? (x * 3 + y) % 4 !== 0 : (x * 11 + y * 7) % 31 === 0) ? 60 + ((x + y) % 190) : 0);
+    const j = job(70, 60, (x, y) => (y < 24 ? dense(x, y) : y % 2 === 0 && x === (y % 4 ? 3 : 66) ? 255 : 0));
+    const whole = mixedVector(planMixed(plannerJob(j), MACHINE)) as { passes: { band?: number }[] };
+    expect(whole.passes.filter((p) => p.band).length).toBeGreaterThanOrEqual(1);
     let seen = 0;
-    for (let known = 0; known <= 20; known++) {
+    for (let known = 0; known <= 60; known++) {
       const part = mixedVector(planMixed({ ...plannerJob(j), knownRows: known }, MACHINE)) as { passes: object[] };
       expect(part.passes).toEqual(whole.passes.slice(0, part.passes.length));
       expect(part.passes.length).toBeGreaterThanOrEqual(seen);

@@ -236,14 +236,16 @@ TEST(MixedPlanner, EachPassTakesTheCheaperWay) {
 }
 
 // Fed a row at a time, as a stream arrives (planner.md "Planning while rows arrive"), the mixed plan is
-// the whole job's: the same passes, ways, stops and estimate.
+// the whole job's: the same bands, passes, ways, stops and estimate; a band of stops among them.
 TEST(MixedPlanner, PlansWhileRowsArrive) {
-  JobHeader h = mixedJob(70, 20);
+  JobHeader h = mixedJob(70, 76);
   h.offsets[1][0] = 2;
   h.offsets[2][0] = -1;
-  std::vector<std::vector<uint8_t>> rows(20, std::vector<uint8_t>(70, 0));
-  for (int y = 0; y < 20; y++)
+  std::vector<std::vector<uint8_t>> rows(76, std::vector<uint8_t>(70, 0));
+  for (int y = 0; y < 40; y++)
     for (int x = 0; x < 70; x++) rows[y][x] = (y % 6 < 3 ? (x * 3 + y) % 4 != 0 : (x * 11 + y * 7) % 31 == 0) ? static_cast<uint8_t>(60 + (x + y) % 190) : 0;
+  for (int y = 40; y < 76; y += 2) rows[y][y % 4 ? 3 : 66] = 255;  // a cell near either end: bands of stops
+  int bands = 0;
   auto run = [&](bool streamed) {
     GridCells cells(rows);
     ScanPlanner planner(h, cells, kMachine);
@@ -258,7 +260,8 @@ TEST(MixedPlanner, PlansWhileRowsArrive) {
         planner.setKnownRows(++known);
         continue;
       }
-      out.push_back({p.hy, p.descending, p.stops, static_cast<int64_t>(p.scanUs), static_cast<int64_t>(p.stopsUs)});
+      out.push_back({p.hy, p.descending, p.stops, p.band, static_cast<int64_t>(p.scanUs), static_cast<int64_t>(p.stopsUs)});
+      bands += p.band > 0;
       Stop s;
       while (planner.nextStop(s)) out.push_back({s.hx, s.hy, s.us[0], s.us[1], s.us[2], s.us[3]});
       uint32_t t;
@@ -271,4 +274,5 @@ TEST(MixedPlanner, PlansWhileRowsArrive) {
   const auto whole = run(false), streamed = run(true);
   EXPECT_GT(whole.size(), 20u);
   EXPECT_EQ(streamed, whole);
+  EXPECT_GE(bands, 2);  // one a run
 }
