@@ -87,9 +87,13 @@ TEST_F(MixedBoardTest, AMixedJobOnTheRealImagesTakesASparseBandAsOneBandOfStopsE
   const scandose::Figures f = expose(h, g, w.steps, w.strokes, w.windowOfRow);
   int fires = 0;
   for (const std::string& l : sim.nanoLines) fires += !l.empty() && l[0] == 'F';
+  unsigned loopMaxUs = 0, underruns = 1;
+  diagnostics(loopMaxUs, underruns);  // the longest main-loop pass of the run: planning a band is one
   std::printf("[mixed simavr] real Mega + Nano images, passes %s ('b' a band of stops; %d F lines), %d cells (%d lit): worst dose error %.2f %% of "
-              "the full dose, worst LED edge %.2f um from its place, worst cell centroid %.2f um (cell 100 um; goals 2 %% and 25 um)\n",
-              w.ways.c_str(), fires, f.cells, f.lit, f.worstDosePct, f.worstEdgeUm, f.worstCentreUm);
+              "the full dose, worst LED edge %.2f um from its place, worst cell centroid %.2f um (cell 100 um; goals 2 %% and 25 um); "
+              "longest main-loop pass %u us\n",
+              w.ways.c_str(), fires, f.cells, f.lit, f.worstDosePct, f.worstEdgeUm, f.worstCentreUm, loopMaxUs);
+  EXPECT_EQ(underruns, 0u);
   EXPECT_EQ(fires, w.steps - w.strokes);
   EXPECT_EQ(f.stray, 0);
   EXPECT_LE(f.worstDosePct, 2.0);
