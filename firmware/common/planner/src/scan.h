@@ -174,7 +174,7 @@ class ScanPlanner {
   void bandRows(uint8_t q);
   int32_t bandPeek(uint8_t q, int32_t from);
   void openBand(int32_t& first, int32_t& last);
-  uint64_t priceBand(int32_t& endX, int32_t& endY);
+  uint64_t priceBand(uint64_t limit, int32_t& endX, int32_t& endY);
   bool bandNextStop(Stop& out);
   // The band's passes: each one's head row, and bit k of its nibble in bandLeds_ when LED k has a row
   // in it; how many; the next to plan pass by pass (kFilling while the band is gathered).

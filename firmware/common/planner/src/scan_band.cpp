@@ -47,7 +47,7 @@ bool ScanPlanner::nextBand(ScanPass& out) {
     passes_ = p0;
     live_ = static_cast<uint8_t>(live_ & ~kStopPassBit);
     int32_t endX, endY;
-    const uint64_t bandUs = priceBand(endX, endY);
+    const uint64_t bandUs = priceBand(passesUs, endX, endY);
     if (bandUs < passesUs) {  // strictly cheaper: else pass by pass, as `shortest` takes its columns
       int32_t first, last;
       openBand(first, last);
@@ -129,8 +129,9 @@ void ScanPlanner::openBand(int32_t& first, int32_t& last) {
 }
 
 // The band's stops from where the head stands: their time, and where the last leaves the head (X in
-// steps, Y in µm).
-uint64_t ScanPlanner::priceBand(int32_t& endX, int32_t& endY) {
+// steps, Y in µm). Only whether it is below `limit` matters once it reaches it: a dense band, every
+// cell a stop, is left there (on the Mega, walking all its stops would hold the main loop long).
+uint64_t ScanPlanner::priceBand(uint64_t limit, int32_t& endX, int32_t& endY) {
   int32_t first, last;
   openBand(first, last);
   int32_t x = curX_, y = axisSteps(m_, 1, curY_);
@@ -147,6 +148,7 @@ uint64_t ScanPlanner::priceBand(int32_t& endX, int32_t& endY) {
     x = to;
     y = toY;
     endY = Y(s.hy);
+    if (total >= limit) break;
   }
   endX = x;
   return total;
