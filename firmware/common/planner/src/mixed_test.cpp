@@ -236,7 +236,8 @@ TEST(MixedPlanner, EachPassTakesTheCheaperWay) {
 }
 
 // Fed a row at a time, as a stream arrives (planner.md "Planning while rows arrive"), the mixed plan is
-// the whole job's: the same bands, passes, ways, stops and estimate; a band of stops among them.
+// the whole job's: the same bands, passes, ways, stops and estimate; a band of stops among them. And
+// so it is with each band priced a pass a call, as the Mega asks (sliceBands).
 TEST(MixedPlanner, PlansWhileRowsArrive) {
   JobHeader h = mixedJob(70, 76);
   h.offsets[1][0] = 2;
@@ -245,16 +246,22 @@ TEST(MixedPlanner, PlansWhileRowsArrive) {
   for (int y = 0; y < 40; y++)
     for (int x = 0; x < 70; x++) rows[y][x] = (y % 6 < 3 ? (x * 3 + y) % 4 != 0 : (x * 11 + y * 7) % 31 == 0) ? static_cast<uint8_t>(60 + (x + y) % 190) : 0;
   for (int y = 40; y < 76; y += 2) rows[y][y % 4 ? 3 : 66] = 255;  // a cell near either end: bands of stops
-  int bands = 0;
-  auto run = [&](bool streamed) {
+  int bands = 0, pricings = 0;
+  auto run = [&](bool streamed, bool slice) {
     GridCells cells(rows);
     ScanPlanner planner(h, cells, kMachine);
+    if (slice) planner.sliceBands();
     std::vector<std::vector<int64_t>> out;
     uint16_t known = 0;
     if (streamed) planner.setKnownRows(known);
     for (;;) {
       ScanPass p;
       if (!planner.nextPass(p)) {
+        if (planner.pricing()) {
+          pricings++;
+          EXPECT_FALSE(planner.inStopPass());
+          continue;
+        }
         if (!planner.starved()) break;
         EXPECT_LT(known, h.rows);
         planner.setKnownRows(++known);
@@ -271,8 +278,10 @@ TEST(MixedPlanner, PlansWhileRowsArrive) {
     out.push_back({static_cast<int64_t>(planner.estimateUs())});
     return out;
   };
-  const auto whole = run(false), streamed = run(true);
+  const auto whole = run(false, false), streamed = run(true, false), sliced = run(true, true);
   EXPECT_GT(whole.size(), 20u);
   EXPECT_EQ(streamed, whole);
-  EXPECT_GE(bands, 2);  // one a run
+  EXPECT_EQ(sliced, whole);  // a band priced a pass a call (sliceBands), as the Mega does
+  EXPECT_GE(bands, 3);  // one a run
+  EXPECT_GT(pricings, 8);
 }

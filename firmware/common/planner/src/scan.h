@@ -103,6 +103,11 @@ class ScanPlanner {
   bool nextStop(Stop& out);
   // A stop pass is open, and nextStop() has not yet said false for it.
   bool inStopPass() const { return live_ & kStopPassBit; }
+  // A mixed job's band is priced a pass at a time (planner.md "Bands"): nextPass() says false with
+  // pricing() true after each, until the band is priced (the Mega's main loop runs between). Without
+  // this call, nextPass() prices a whole band at once. Before the first nextPass().
+  void sliceBands() { live_ |= kSlicedBit; }
+  bool pricing() const { return bandNext_ == kFilling && bandPriced_ > 0; }
   // As Planner::supported(): the LEDs' rows span less than kCoveredWindowRows. And every switch
   // time fits 32 bits: (cols + the LEDs' spread in X) × window < 2³² µs.
   bool supported() const;
@@ -185,6 +190,12 @@ class ScanPlanner {
   int16_t bandHy_[kMixedBand] = {};
   uint32_t bandLeds_ = 0;
   uint8_t bandLen_ = 0, bandNext_ = kFilling;
+  // The band being priced: passes priced (bandLen_ + 1 once its stops are too), the head before it,
+  // and what its passes priced so far cost (curX_, curY_, estimate_ and passes_ run on meanwhile).
+  static constexpr uint8_t kSlicedBit = 1 << 7;  // live_: sliceBands()
+  uint8_t bandPriced_ = 0;
+  int32_t bandX0_ = 0, bandY0_ = 0;
+  uint64_t bandUs_ = 0;
   // nextStop() walks the open pass's stops: a flag above the LEDs' bits of live_ (no byte more in
   // the Mega's job arena, whose every byte is spoken for).
   static constexpr uint8_t kStopPassBit = 1 << 4;

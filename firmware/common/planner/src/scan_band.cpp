@@ -16,36 +16,40 @@ bool ScanPlanner::nextBand(ScanPass& out) {
     bandLeds_ = 0;
   }
   if (bandNext_ == kFilling) {
-    // Gathered until it has kMixedBand passes or the job has no more; a band part gathered stays so
-    // while rows are awaited, its rows taken (as `shortest`'s).
-    for (int32_t hy, first, last; bandLen_ < kMixedBand;) {
-      uint64_t span;
-      if (!collect(hy, first, last, span)) break;
-      bandHy_[bandLen_] = static_cast<int16_t>(hy);
-      for (uint8_t k = 0; k < 4; k++)
-        if (row_[k] >= 0) bandLeds_ |= 1ul << (4 * bandLen_ + k);
-      bandLen_++;
+    if (bandPriced_ == 0) {
+      // Gathered until it has kMixedBand passes or the job has no more; a band part gathered stays
+      // so while rows are awaited, its rows taken (as `shortest`'s).
+      for (int32_t hy, first, last; bandLen_ < kMixedBand;) {
+        uint64_t span;
+        if (!collect(hy, first, last, span)) break;
+        bandHy_[bandLen_] = static_cast<int16_t>(hy);
+        for (uint8_t k = 0; k < 4; k++)
+          if (row_[k] >= 0) bandLeds_ |= 1ul << (4 * bandLen_ + k);
+        bandLen_++;
+      }
+      if (starved_ || bandLen_ == 0) return false;
+      bandX0_ = curX_;
+      bandY0_ = curY_;
+      bandUs_ = 0;
     }
-    if (starved_ || bandLen_ == 0) return false;
-    // The band pass by pass, each from where the one before leaves the head, then undone.
-    const int32_t x0 = curX_, y0 = curY_;
-    const uint64_t e0 = estimate_;
-    const uint16_t p0 = passes_;
-    uint64_t passesUs = 0;
-    for (uint8_t q = 0; q < bandLen_; q++) {
+    // The band pass by pass, each from where the one before leaves the head; undone once priced.
+    while (bandPriced_ < bandLen_) {
       int32_t first, last;
       uint64_t span;
-      bandRows(q);
+      bandRows(bandPriced_);
       pass_ = motion();
       layout(first, last, span);
-      if (!planPass(bandHy_[q], first, last, span, out)) return false;
-      passesUs += out.stops ? out.stopsUs : out.scanUs;
+      if (!planPass(bandHy_[bandPriced_], first, last, span, out)) return false;
+      live_ = static_cast<uint8_t>(live_ & ~kStopPassBit);  // priced, not open
+      bandUs_ += out.stops ? out.stopsUs : out.scanUs;
+      if (++bandPriced_ < bandLen_ && (live_ & kSlicedBit)) return false;  // pricing()
     }
-    curX_ = x0;
-    curY_ = y0;
-    estimate_ = e0;
-    passes_ = p0;
-    live_ = static_cast<uint8_t>(live_ & ~kStopPassBit);
+    const uint64_t passesUs = bandUs_;
+    curX_ = bandX0_;
+    curY_ = bandY0_;
+    estimate_ -= passesUs;
+    passes_ = static_cast<uint16_t>(passes_ - bandLen_);
+    bandPriced_ = 0;
     int32_t endX, endY;
     const uint64_t bandUs = priceBand(passesUs, endX, endY);
     if (bandUs < passesUs) {  // strictly cheaper: else pass by pass, as `shortest` takes its columns
