@@ -2,7 +2,7 @@
 import type { JobHeader, StrategyName } from '../app/src/protocol/job-types';
 import { durationTables } from '../app/src/planner/dose';
 import { planJob } from '../app/src/planner/planner';
-import { planMixed, type MixedPlan } from '../app/src/planner/mixed';
+import { mixedPassCount, planMixed, type MixedPlan } from '../app/src/planner/mixed';
 import { planScan, type ScanPlan } from '../app/src/planner/scan';
 import { moveTimeUs } from '../app/src/planner/time-model';
 import { programLines } from '../app/src/protocol/scan-program';
@@ -18,7 +18,7 @@ export interface P10Row {
   crossingUs: number;
   /** The better of serpentine and shortest stop-and-fire. */
   stops: number;
-  /** Mixed mode (issue 28 §1): each pass on the move or stop by stop, whichever is cheaper. */
+  /** Mixed mode (issue 28 §1): each band of 8 passes as one group of stops, or pass by pass on the move or stop by stop, whichever is cheaper. */
   mixed: MixedPlan;
   /** Σ dose ÷ 4: four LEDs lit all the time. */
   lightLimit: number;
@@ -126,15 +126,16 @@ function anyPassesUs(cells: ArrayLike<number>[], table: Uint32Array, h: JobHeade
 }
 
 /**
- * P10's mixed line (issue 28 §1): the per-pass choice against stop-and-fire (goal >= 1.00x on every
- * mask) and against the better of the two pure modes (goal on the sparse mask: within 5 %, or better).
+ * P10's mixed line (issue 28 §1): the per-band and per-pass choice against stop-and-fire (goal >= 1.00x
+ * on every mask) and against the better of the two pure modes (goal on the sparse mask: within 5 %, or better).
  */
 function printMixed(rows: P10Row[]): void {
   for (const r of rows) {
     const m = r.mixed.estimateUs, best = Math.min(r.scan.estimateUs, r.stops);
-    const scans = r.mixed.passes.filter((p) => p.scan).length;
+    const scans = r.mixed.passes.filter((p) => p.scan).length, bands = r.mixed.passes.filter((p) => !p.scan && p.band);
+    const inBands = bands.reduce((n, p) => n + (!p.scan && p.band ? p.band : 0), 0);
     console.log(
-      `P10 ${r.mask.padEnd(7)} mixed ${(m / 1e6).toFixed(1).padStart(6)} s (${scans} of ${r.mixed.passes.length} passes on the move, the rest stop by stop)` +
+      `P10 ${r.mask.padEnd(7)} mixed ${(m / 1e6).toFixed(1).padStart(6)} s (${scans} of ${mixedPassCount(r.mixed)} passes on the move, ${inBands} in ${bands.length} bands of stops, the rest stop by stop)` +
         `  speed-up ${(r.stops / m).toFixed(2)}x stop-and-fire (goal >= 1.00x), ${(r.scan.estimateUs / m).toFixed(2)}x scan;` +
         `  ${(m / best).toFixed(3)}x the better pure mode (${r.scan.estimateUs <= r.stops ? 'scan' : 'stop-and-fire'}; sparse goal <= 1.050x)`,
     );

@@ -91,7 +91,10 @@ describe('the automatic order', () => {
     const j = job(400, 40, (x, y) => (x === 3 || x === 396) && y % 9 === 0, 2000);
     const est = orderEstimates(j, MACHINE);
     expect(est.scan).toBeGreaterThan(Math.min(est.serpentine, est.shortest));
-    expect(['serpentine', 'shortest']).toContain(fastestOrder(est));
+    // Mixed takes them as a band of stops, as `shortest` does (planner.md "Bands"), and wins the tie.
+    expect(est.mixed).toBeLessThanOrEqual(Math.min(est.serpentine, est.shortest));
+    expect(['mixed', 'serpentine', 'shortest']).toContain(fastestOrder(est));
+    expect(fastestOrder(est)).not.toBe('scan');
   });
 
   it('never picks a scan the step engine cannot run (mega.md M29: a step over 32.768 ms, or over 16000 steps/s)', () => {

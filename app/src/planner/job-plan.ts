@@ -2,7 +2,7 @@
 // through the same Plan, one "stop" per pass, so progress, estimates and checkpoints count passes.
 
 import type { JobHeader, StrategyName } from '../protocol/job-types';
-import { planMixed, type MixedPlan } from './mixed';
+import { mixedPassCount, planMixed, type MixedPlan } from './mixed';
 import { planJob, type Plan, type PlannerJob } from './planner';
 import { passSpanUs, planScan, type ScanPass, type ScanPlan } from './scan';
 import type { Machine } from './time-model';
@@ -28,11 +28,11 @@ export function planAnyJob(job: PlannerJob, machine: Machine): JobPlan {
 
 /**
  * A mixed plan as a Plan of the Mega's progress steps: each stop with its durations, each pass on the
- * move as one entry at its first head column with none; `passes` counts every pass.
+ * move as one entry at its first head column with none; `passes` counts every pass, a band's each.
  */
 export function mixedAsPlan(mixed: MixedPlan, machine: Machine, h: Pick<JobHeader, 'originUm' | 'pitchUm'>): Plan {
   const n = mixed.steps;
-  const plan: Plan = { count: n, hx: new Int32Array(n), hy: new Int32Array(n), durations: new Uint32Array(4 * n), passes: mixed.passes.length, estimateUs: mixed.estimateUs, travelUm: [0, 0] };
+  const plan: Plan = { count: n, hx: new Int32Array(n), hy: new Int32Array(n), durations: new Uint32Array(4 * n), passes: mixedPassCount(mixed), estimateUs: mixed.estimateUs, travelUm: [0, 0] };
   let i = 0, x = machine.startUm[0], y = machine.startUm[1];
   const go = (toX: number, toY: number) => {
     plan.travelUm[0] += Math.abs(toX - x);
@@ -53,7 +53,7 @@ export function mixedAsPlan(mixed: MixedPlan, machine: Machine, h: Pick<JobHeade
       plan.hx[i] = hx;
       plan.hy[i] = hy;
       plan.durations.set(us, 4 * i++);
-      go(h.originUm[0] + hx * h.pitchUm[0], py);
+      go(h.originUm[0] + hx * h.pitchUm[0], h.originUm[1] + hy * h.pitchUm[1]); // a band's stops change rows
     }
   }
   return plan;

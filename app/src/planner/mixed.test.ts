@@ -4,7 +4,7 @@ import type { PrintJob } from '../protocol/job-types';
 import { GEOMETRIES, MACHINE, planStops } from './golden';
 import { headerOf } from './job-header';
 import { mixedGoldenCases, type MixedCase } from './mixed-golden';
-import { mixedVector, planMixed } from './mixed';
+import { bandStops, mixedVector, planMixed } from './mixed';
 import { planJob } from './planner';
 import { planScan } from './scan';
 
@@ -21,15 +21,34 @@ function job(cols: number, rows: number, lit: (x: number, y: number) => number, 
 const as = (j: PrintJob, name: PrintJob['strategy']['name']): PrintJob => ({ ...j, strategy: { name } });
 
 describe('the mixed planner', () => {
-  it('takes stops for a few dots far apart: the serpentine stops, with their estimate', () => {
+  it('takes a band of stops for a few dots far apart: `shortest`\'s stops column by column, with its estimate', () => {
     const dots = new Map([[0, 7], [5, 250], [9, 40], [17, 299], [22, 0]]);
     const j = job(300, 24, (x, y) => (dots.get(y) === x ? 255 : 0));
     const m = planMixed(plannerJob(j), MACHINE);
-    const stops = planJob(plannerJob(as(j, 'serpentine')), MACHINE);
-    expect(m.passes.every((p) => !p.scan && p.stopsUs < p.scanUs)).toBe(true);
+    const stops = planJob(plannerJob(as(j, 'shortest')), MACHINE);
+    expect(m.passes).toHaveLength(1);
+    const band = m.passes[0];
+    expect(!band.scan && band.band).toBe(5);
+    expect(band.stopsUs).toBeLessThan(band.scanUs); // against the five passes one by one
     expect(m.passes.flatMap((p) => (p.scan ? [] : p.stops))).toEqual(planStops(stops));
     expect(m.estimateUs).toBe(stops.estimateUs);
     expect(m.steps).toBe(stops.count);
+  });
+
+  it('takes each band the cheaper way: dense passes one by one on the move, a sparse band as stops', () => {
+    const j = job(200, 64, (x, y) => (y < 32 ? (x >= 10 && x < 190 ? 255 : 0) : x === (y * 53) % 200 ? 255 : 0));
+    const m = planMixed(plannerJob(j), MACHINE);
+    expect(m.passes.map((p) => (p.scan ? 'scan' : `band ${p.band}`))).toEqual([...Array(8).fill('scan'), 'band 8']);
+    for (const p of m.passes) expect(p.scan ? p.scanUs < p.stopsUs : p.stopsUs < p.scanUs).toBe(true);
+    expect(m.estimateUs).toBe(m.passes.reduce((t, p) => t + (p.scan ? p.scanUs : p.stopsUs), 0));
+    expect(m.steps).toBe(8 + 32);
+  });
+
+  it('orders a band column by column from the nearer end: bandStops', () => {
+    const pass = (hy: number, ...hx: number[]) => hx.map((x) => [x, hy, 1, 0, 0, 0]);
+    const r = bandStops([pass(0, 1, 5), pass(4, 1, 3), pass(8, 5)], (hx) => hx * 4, (hy) => hy * 50, 100, 0);
+    expect(r).toMatchObject({ descending: true, first: 1, last: 5 }); // X 20 is nearer than 4 to the head at 100
+    expect(r.stops.map((s) => [s[0], s[1]])).toEqual([[5, 0], [5, 8], [3, 4], [1, 4], [1, 0]]);
   });
 
   it('takes the scan passes for full rows: the scan plan, with its estimate', () => {
@@ -52,11 +71,13 @@ describe('the mixed planner', () => {
     expect(m.estimateUs).toBeLessThan(planJob(plannerJob(as(j, 'serpentine')), MACHINE).estimateUs);
   });
 
-  it('plans a stream while its rows arrive: each plan a prefix of the whole job\'s', () => {
-    const j = job(70, 20, (x, y) => (y % 6 < 3 ? (x * 3 + y) % 4 !== 0 : (x * 11 + y * 7) % 31 === 0) ? 60 + ((x + y) % 190) : 0);
-    const whole = mixedVector(planMixed(plannerJob(j), MACHINE)) as { passes: object[] };
+  it('plans a stream while its rows arrive: each plan a prefix of the whole job\'s, bands of stops among them', () => {
+    const dense = (x: number, y: number) => ((y % 6 < 3 ? (x * 3 + y) % 4 !== 0 : (x * 11 + y * 7) % 31 === 0) ? 60 + ((x + y) % 190) : 0);
+    const j = job(70, 60, (x, y) => (y < 24 ? dense(x, y) : y % 2 === 0 && x === (y % 4 ? 3 : 66) ? 255 : 0));
+    const whole = mixedVector(planMixed(plannerJob(j), MACHINE)) as { passes: { band?: number }[] };
+    expect(whole.passes.filter((p) => p.band).length).toBeGreaterThanOrEqual(1);
     let seen = 0;
-    for (let known = 0; known <= 20; known++) {
+    for (let known = 0; known <= 60; known++) {
       const part = mixedVector(planMixed({ ...plannerJob(j), knownRows: known }, MACHINE)) as { passes: object[] };
       expect(part.passes).toEqual(whole.passes.slice(0, part.passes.length));
       expect(part.passes.length).toBeGreaterThanOrEqual(seen);
@@ -84,9 +105,10 @@ describe('mixed golden vectors', () => {
       const cases = load(file);
       expect(cases.length).toBeGreaterThanOrEqual(10);
       for (const c of cases) expect(mixedVector(planMixed(plannerJob(c.job), c.machine)), c.name).toEqual(c.mixed);
-      const ways = cases.flatMap((c) => (c.mixed as { passes: { scan: boolean }[] }).passes.map((p) => p.scan));
-      expect(ways.filter((s) => s).length).toBeGreaterThan(5);
-      expect(ways.filter((s) => !s).length).toBeGreaterThan(5);
+      const ways = cases.flatMap((c) => (c.mixed as { passes: { scan: boolean; band?: number }[] }).passes);
+      expect(ways.filter((p) => p.scan).length).toBeGreaterThan(5);
+      expect(ways.filter((p) => !p.scan).length).toBeGreaterThan(5);
+      expect(ways.filter((p) => p.band).length).toBeGreaterThan(2); // bands of stops too
       console.log(`[vectors] ${file}: ${cases.length} mixed plans checked (TypeScript)`);
     });
   }

@@ -33,6 +33,16 @@ describe('the preview of a mixed job', () => {
     expect(mixedWords(mixed)).toMatch(/^8 passes, \d on the move and \d stop by stop$/);
   });
 
+  it('draws a band of stops as its passes, each row with its stops', () => {
+    const dots = { ...job, grid: { cols: 300, rows: 24 }, gridData: Array.from({ length: 24 }, (_, y) => Array.from({ length: 300 }, (_, x) => (y % 5 === 0 && x === (y * 97) % 300 ? 255 : 0))) };
+    const m = planMixed({ header: headerOf(dots), cells: dots.gridData }, MACHINE);
+    expect(m.passes.map((p) => !p.scan && p.band)).toEqual([5]);
+    const lines = mixedPreview(dots, m).lines;
+    expect(lines.map((l) => [l.row, l.stops])).toEqual([0, 5, 10, 15, 20].map((y) => [y, [(y * 97) % 300]]));
+    expect(mixedWords(m)).toBe('5 passes, 0 on the move and 5 stop by stop');
+    expect([...mixedTimeline(m)]).toEqual(Array(5).fill(m.estimateUs));
+  });
+
   it('gives every lit cell its dose once, from the switch times or the stops', () => {
     const got = new Map<number, number>();
     for (let i = 0; i < preview.doses.cell.length; i++) got.set(preview.doses.cell[i], (got.get(preview.doses.cell[i]) ?? 0) + preview.doses.us[i]);

@@ -1,6 +1,6 @@
 // The preview's model of a mixed job (planner.md "Mixed mode"): every pass, on the move or stop by
-// stop, as scan-preview.ts draws a scan job's, so the drawing shows which passes scan; and the light
-// of each, from its switch times or its stops' durations.
+// stop (a band of stops as its passes), as scan-preview.ts draws a scan job's, so the drawing shows
+// which passes scan; and the light of each, from its switch times or its stops' durations.
 
 import type { MixedPlan } from '../planner/mixed';
 import type { ScanPlan } from '../planner/scan';
@@ -20,14 +20,20 @@ export function mixedPreview(job: PrintJob, mixed: MixedPlan): ScanPreview {
       cell.push(...d.cell), led.push(...d.led), us.push(...d.us);
       continue;
     }
-    const stops = p.stops.map((s) => s[0]);
-    lines.push({ row: p.hy, fromCol: stops[0], toCol: stops[stops.length - 1], descending: p.descending, stops });
-    for (const [hx, hy, ...t] of p.stops)
-      t.forEach((tk, k) => {
-        const [dx, dy] = job.leds.offsets[k];
-        const r = hy + dy, c = hx + dx;
-        if (tk > 0 && r >= 0 && r < rows && c >= 0 && c < cols) cell.push(r * cols + c), led.push(k), us.push(tk);
-      });
+    // A band of stops (planner.md "Bands") is drawn as its passes, each row's stops in the band's order.
+    const byRow = new Map<number, number[][]>();
+    for (const s of p.stops) byRow.set(s[1], [...(byRow.get(s[1]) ?? []), s]);
+    [...byRow.keys()].sort((a, b) => a - b).forEach((row, i) => {
+      if (i > 0) from.push(cell.length);
+      const stops = byRow.get(row)!.map((s) => s[0]);
+      lines.push({ row, fromCol: stops[0], toCol: stops[stops.length - 1], descending: p.descending, stops });
+      for (const [hx, hy, ...t] of byRow.get(row)!)
+        t.forEach((tk, k) => {
+          const [dx, dy] = job.leds.offsets[k];
+          const r = hy + dy, c = hx + dx;
+          if (tk > 0 && r >= 0 && r < rows && c >= 0 && c < cols) cell.push(r * cols + c), led.push(k), us.push(tk);
+        });
+    });
   }
   from.push(cell.length);
   const doses = { from: Uint32Array.from(from), cell: Uint32Array.from(cell), led: Uint8Array.from(led), us: Float64Array.from(us) };
@@ -35,8 +41,11 @@ export function mixedPreview(job: PrintJob, mixed: MixedPlan): ScanPreview {
   return { lines, doses, speedUmS: first?.scan ? Math.round((job.pitchUm.x * 1e6) / first.pass.windowUs) : 0, windowUs: mixed.windowUs, refused: mixed.refused };
 }
 
-/** The clock when each pass of a mixed job ends, µs, as planMixed's estimate counts it. */
+/** The clock when each pass of a mixed job ends, µs, as planMixed's estimate counts it (a band's passes: when the band ends). */
 export function mixedTimeline(mixed: MixedPlan): Float64Array {
   let t = 0;
-  return Float64Array.from(mixed.passes, (p) => (t += p.scan ? p.scanUs : p.stopsUs));
+  return Float64Array.from(mixed.passes.flatMap((p) => {
+    t += p.scan ? p.scanUs : p.stopsUs;
+    return Array<number>(p.scan ? 1 : new Set(p.stops.map((s) => s[1])).size).fill(t);
+  }));
 }

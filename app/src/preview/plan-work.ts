@@ -40,7 +40,7 @@ export function planJob({ job: asked, machine, auto, bedXUm }: PlanRequest): Pla
   if (mixed) {
     // Drawn pass by pass as a scan job is, each pass marked on the move or stop by stop.
     const preview = mixedPreview(job, mixed);
-    const passes = { ...plan, count: mixed.passes.length, hx: Int32Array.from(preview.lines, (l) => Math.round(l.fromCol)), hy: Int32Array.from(mixed.passes, (p) => p.hy) };
+    const passes = { ...plan, count: preview.lines.length, hx: Int32Array.from(preview.lines, (l) => Math.round(l.fromCol)), hy: Int32Array.from(preview.lines, (l) => l.row) };
     return { plan: passes, clock: mixedTimeline(mixed), coverage: scanCoverage(preview.doses), scan: preview, mixed: mixedWords(mixed), orders, order };
   }
   if (scan) {

@@ -1,5 +1,6 @@
 // The dry run of a mixed job (planner.md "Mixed mode"): it says which passes run on the move, holds
-// their strokes against the bed, and plays the plan's own times through the head's heat model.
+// their strokes against the bed, and plays the plan's own times through the head's heat model; and
+// the simulated printer runs it, a band of stops too, in the steps and time the app plans.
 
 import { describe, expect, it } from 'vitest';
 import { GEOMETRIES } from '../planner/golden';
@@ -67,5 +68,27 @@ describe('a mixed job on the simulated printer (the firmware itself)', () => {
     console.log(`[mixed sim] ${mixed.passes.filter((p) => p.scan).length} of ${mixed.passes.length} passes on the move, ${mixed.steps} steps: estimate ${(mixed.estimateUs / 1e6).toFixed(2)} s, the simulated printer ${(us / 1e6).toFixed(2)} s`);
     expect(Math.abs(us - run.totalUs) / run.totalUs).toBeLessThan(0.02);
     for (let i = 0; i < 6; i++) expect(Math.abs(run.peakC[i] - h.sim.thermal.peak[i]), `T${i}`).toBeLessThanOrEqual(2);
+  });
+
+  it('runs a band of stops from the card, counted and timed as the app plans it', () => {
+    // The job above, then 8 passes of one cell near either end of every other row: a band of stops (planner.md "Bands").
+    const j = job(20_000);
+    j.grid = { cols: 80, rows: 64 };
+    j.gridData = [...j.gridData, ...Array.from({ length: 32 }, (_, y) => Array.from({ length: 80 }, (_, x) => (y % 2 === 0 && x === (y % 4 ? 2 : 77) ? 255 : 0)))];
+    const header = headerOf(j), machine = motionOf(CONFIG_DEFAULTS, [0, 0]);
+    const mixed = planMixed({ header, cells: j.gridData }, machine);
+    expect(mixed.passes.map((p) => (p.scan ? 's' : p.band ? `b${p.band}` : 'x')).join('')).toMatch(/^[sx]{8}b8$/);
+    const h = new SimHost();
+    h.cmd('G28');
+    h.upload('B.UVJ', encodeJob(j));
+    h.cmd('M23 B.UVJ');
+    h.sim.advance(3000);
+    const from = h.sim.clock.now;
+    h.cmd('M24');
+    const end = h.waitFor(/^JOB:(done|paused|failed)/, 3_600_000);
+    const us = h.sim.clock.now - from;
+    expect(end).toMatch(new RegExp(`^JOB:done file=B.UVJ stop=${mixed.steps}/${mixed.steps}`));
+    console.log(`[mixed sim] a band of stops: ${mixed.steps} steps, estimate ${(mixed.estimateUs / 1e6).toFixed(2)} s, the simulated printer ${(us / 1e6).toFixed(2)} s`);
+    expect(Math.abs(us - mixed.estimateUs) / mixed.estimateUs).toBeLessThan(0.02);
   });
 });

@@ -46,6 +46,7 @@ ScanRun::Step CardScan::scanStep(Motion& motion, PrintheadLink& head, uint32_t n
     }
     uv::ScanPass p;
     if (!job_->planner.nextPass(p)) {
+      if (job_->planner.pricing()) return ScanRun::Step::Busy;  // a band priced a pass a call
       error_ = uv::kFileError;  // fewer passes than planned at M29: the files changed
       return ScanRun::Step::Failed;
     }

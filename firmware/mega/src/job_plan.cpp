@@ -67,6 +67,7 @@ uint8_t JobPlan::begin(const char* name) {
   bool supported;
   if (header_.strategy == uv::Strategy::Scan || header_.strategy == uv::Strategy::Mixed) {
     scan_ = new (plannerMem_) uv::ScanPlanner(header_, *source_, machine_);
+    scan_->sliceBands();
     supported = scan_->supported();
   } else {
     planner_ = new (plannerMem_) uv::Planner(header_, *source_, machine_);
@@ -112,6 +113,7 @@ bool JobPlan::passEvent(void* ctx, uint32_t& t, uint8_t& m) {
 bool JobPlan::stepScan() {
   uv::ScanPass p;
   if (!scan_->nextPass(p)) {
+    if (scan_->pricing()) return false;  // a mixed job's band, priced a pass a step
     if (!scan_->refused()) return finish(scan_->estimateUs());
     error_ = uv::kScanUnsupported;  // a window the step engine cannot run: refused before any light
     close();

@@ -72,6 +72,19 @@ inline std::vector<std::vector<uint8_t>> mixedPattern(uint16_t cols, uint16_t ro
   return g;
 }
 
+// A mixed job with a band of stops (planner.md "Bands"): mixedPattern's rows up to `dense`, then a
+// cell near one end or the other of every other row. Its passes from `dense` up, two cells far apart
+// each, are cheaper as one band of stops, column by column (two columns), than pass by pass.
+inline std::vector<std::vector<uint8_t>> bandedPattern(uint16_t cols, uint16_t rows, uint16_t dense) {
+  std::vector<std::vector<uint8_t>> g = mixedPattern(cols, rows);
+  for (uint16_t r = dense; r < rows; r++) {
+    g[r].assign(cols, 0);
+    if (r % 2) continue;
+    g[r][r % 4 ? 1 : cols - 3] = static_cast<uint8_t>(r % 8 ? 255 : 150);
+  }
+  return g;
+}
+
 struct Light {
   uint8_t led;
   double onUs, offUs;

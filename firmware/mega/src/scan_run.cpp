@@ -110,6 +110,7 @@ ScanRun::Step ScanRun::poll(Motion& motion, PrintheadLink& head, const uv::JobHe
       clockWaiting_ = false;
       clockPpm_ = head.nanoClock().ppm();
       const Opened opened = open(motion, h);
+      if (opened == Opened::None && planner_.pricing()) return Step::Busy;  // a band priced a pass at a time: open again
       if (opened == Opened::None) return planner_.starved() ? Step::Starved : Step::End;
       if (error_) return fail(head, error_);
       if (opened == Opened::Stops) return Step::Stops;  // stays Open: the pass after it opens next

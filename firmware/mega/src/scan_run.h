@@ -77,7 +77,8 @@ class ScanRun {
 // A scan job's planner and the runner of its passes, together. The stroke flies the stretches the
 // planner flies (Motion::StrokeJump).
 struct ScanJob {
-  ScanJob(const uv::JobHeader& h, uv::CellSource& cells, const uv::Machine& m) : planner(h, cells, m), run(planner) {}
+  // A band is priced a pass a main-loop pass (ScanPlanner::sliceBands): ScanRun waits it out.
+  ScanJob(const uv::JobHeader& h, uv::CellSource& cells, const uv::Machine& m) : planner(h, cells, m), run(planner) { planner.sliceBands(); }
   uv::ScanPlanner planner;
   ScanRun run;
 };

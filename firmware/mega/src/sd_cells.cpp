@@ -50,6 +50,24 @@ void SdCells::open(uint8_t cursor, uint16_t row, bool descending) {
   c.pos = static_cast<int16_t>(descending ? r.last : r.first);  // the index's ends are non-zero cells
 }
 
+void SdCells::openAt(uint8_t cursor, uint16_t row, bool descending, uint16_t col) {
+  open(cursor, row, descending);
+  Cursor& c = cursors_[cursor];
+  const bool down = c.flags & kDescending;  // an empty row's cursor walks up, whatever was asked
+  const int32_t bound = c.bound, at = col;
+  if (down ? c.pos < bound : c.pos > bound) return;  // an empty row
+  if (down ? at >= c.pos : at <= c.pos) return;      // the row's first non-zero cell that way is at or past col
+  if (down ? at < bound : at > bound) {
+    c.pos = static_cast<int16_t>(down ? bound - 1 : bound + 1);  // past the row's last non-zero cell
+    return;
+  }
+  c.pos = static_cast<int16_t>(at);  // straight there: the cells file is read at any column
+  c.flags &= static_cast<uint8_t>(~kChunkHeld);
+  uint16_t here;
+  uint8_t value;
+  if (this->at(cursor, here, value) && !value) step(cursor);
+}
+
 bool SdCells::fill(uint8_t cursor) {
   Cursor& c = cursors_[cursor];
   // The aligned chunk that holds pos, cut to the cells still ahead of the walk (so never outside

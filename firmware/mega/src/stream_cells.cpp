@@ -88,6 +88,22 @@ void StreamCells::open(uint8_t cursor, uint16_t row, bool descending) {
   settle(c);
 }
 
+void StreamCells::openAt(uint8_t cursor, uint16_t row, bool descending, uint16_t col) {
+  open(cursor, row, descending);
+  Cursor& c = cursors_[cursor];
+  // From segment to segment, not cell to cell, until the one that holds col or the first beyond it.
+  while (c.seg != 0xffff) {
+    const uint16_t first = segCol(c.seg), n = segLen(c.seg), here = static_cast<uint16_t>(first + c.pos);
+    if (descending ? here <= col : here >= col) return;
+    if (descending ? col >= first : col < first + n) {
+      c.pos = static_cast<uint8_t>(col - first);
+    } else {
+      c.pos = descending ? static_cast<uint8_t>(0xff) : static_cast<uint8_t>(n);  // past this segment
+    }
+    settle(c);
+  }
+}
+
 bool StreamCells::at(uint8_t cursor, uint16_t& col, uint8_t& value) {
   const Cursor& c = cursors_[cursor];
   if (c.seg == 0xffff) return false;

@@ -25,6 +25,7 @@ class StreamCells : public uv::CellSource {
   bool rowNonEmpty(uint16_t row) override;
   bool rowExtent(uint16_t row, uint16_t& first, uint16_t& last) override;
   void open(uint8_t cursor, uint16_t row, bool descending) override;
+  void openAt(uint8_t cursor, uint16_t row, bool descending, uint16_t col) override;
   bool at(uint8_t cursor, uint16_t& col, uint8_t& value) override;
   void step(uint8_t cursor) override;
 

@@ -20,6 +20,16 @@ class CellSource {
   // Moves the cursor on to the next non-zero cell of its row in its direction.
   virtual void step(uint8_t cursor) = 0;
 
+  // Puts a cursor on a row's first non-zero cell at column `col` or beyond it in its direction (a
+  // mixed job's band of stops reopens a pass where it left it: planner.md "Bands"). This walks from
+  // the row's end; a source that can go straight to a column (the card, the stream) does.
+  virtual void openAt(uint8_t cursor, uint16_t row, bool descending, uint16_t col) {
+    open(cursor, row, descending);
+    uint16_t c;
+    uint8_t v;
+    while (at(cursor, c, v) && (descending ? c > col : c < col)) step(cursor);
+  }
+
   // The cell the cursor stands on, and the cursor moved on past it.
   bool next(uint8_t cursor, uint16_t& col, uint8_t& value) {
     if (!at(cursor, col, value)) return false;

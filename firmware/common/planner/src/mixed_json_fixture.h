@@ -8,7 +8,7 @@
 
 namespace uvtest {
 
-// Each pass's two prices and the way taken (planner.md "Mixed mode"); a scan pass's motion, jumps,
+// Each pass's two prices and the way taken (planner.md "Mixed mode"), or a band of stops's; a scan pass's motion, jumps,
 // events and stroke, a stop pass's stops. `h` must ask for the strategy `mixed`.
 inline nlohmann::json mixedPlanJson(const uv::JobHeader& h, const std::vector<std::vector<uint8_t>>& rows, const uv::Machine& m) {
   using nlohmann::json;
@@ -21,6 +21,7 @@ inline nlohmann::json mixedPlanJson(const uv::JobHeader& h, const std::vector<st
     steps += p.stops ? 0 : 1;
     json pass = {{"hy", p.hy}, {"descending", p.descending}, {"first", p.first}, {"last", p.last},
                  {"scanUs", p.scanUs}, {"stopsUs", p.stopsUs}, {"scan", !p.stops}};
+    if (p.band) pass["band"] = p.band;  // a band of stops (planner.md "Bands")
     if (p.stops) {
       json stops = json::array();
       uv::Stop s;

@@ -1,5 +1,5 @@
 // Host tests of mixed mode (planner.md "Mixed mode"): golden plans from both implementations, the
-// choice of each pass, and a mixed job planned while its rows arrive.
+// choice of each band and pass, and a mixed job planned while its rows arrive.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -21,19 +21,23 @@ namespace {
 void checkMixedGolden(const char* file) {
   const json v = loadVectors(file);
   ASSERT_GE(v["cases"].size(), 10u) << file;
-  int scans = 0, stops = 0;
+  int scans = 0, stops = 0, bands = 0;
   for (const json& c : v["cases"]) {
     std::vector<std::vector<uint8_t>> rows;
     for (const auto& r : c["job"]["gridData"]) rows.emplace_back(r.begin(), r.end());
     const JobHeader h = headerFrom(c["job"]);
     ASSERT_EQ(h.strategy, Strategy::Mixed) << c["name"];
     EXPECT_EQ(mixedPlanJson(h, rows, machineFrom(c["machine"])), c["mixed"]) << c["name"];
-    for (const json& p : c["mixed"]["passes"]) (p["scan"].get<bool>() ? scans : stops)++;
+    for (const json& p : c["mixed"]["passes"]) {
+      (p["scan"].get<bool>() ? scans : stops)++;
+      if (p.contains("band")) bands++;
+    }
   }
-  // The vectors bind both ways of exposing a pass.
+  // The vectors bind both ways of exposing a pass, and bands of stops.
   EXPECT_GT(scans, 5);
   EXPECT_GT(stops, 5);
-  std::printf("[vectors] %s: %zu mixed plans checked (C++), %d scan passes and %d stop passes\n", file, v["cases"].size(), scans, stops);
+  EXPECT_GT(bands, 2);
+  std::printf("[vectors] %s: %zu mixed plans checked (C++), %d scan passes and %d of stops (%d of them bands)\n", file, v["cases"].size(), scans, stops, bands);
 }
 
 const Machine kMachine{{150000, 100000}, {3000000, 2000000}, 2000, 1500, {0, 0}, {80000, 80000}};
@@ -60,9 +64,9 @@ JobHeader mixedJob(uint16_t cols, uint16_t rows) {
 TEST(MixedGolden, ReproducesTypeScriptPlans) { checkMixedGolden("mixed-ts.json"); }
 TEST(MixedGolden, ReproducesItsOwnPlans) { checkMixedGolden("mixed-cpp.json"); }
 
-// A few dots far apart: every pass is cheaper as stops, and they are the serpentine stop planner's
-// stops with its estimate to the µs.
-TEST(MixedPlanner, SparseDotsAreTheSerpentineStops) {
+// A few dots far apart: the five passes are one band (planner.md "Bands"), cheaper as one group of
+// stops than pass by pass, and its stops are `shortest`'s column by column, with its estimate to the µs.
+TEST(MixedPlanner, SparseDotsAreABandOfShortestStops) {
   JobHeader h = mixedJob(300, 24);
   std::vector<std::vector<uint8_t>> rows(24, std::vector<uint8_t>(300, 0));
   rows[0][7] = 255;
@@ -72,29 +76,73 @@ TEST(MixedPlanner, SparseDotsAreTheSerpentineStops) {
   rows[22][0] = 30;
   GridCells cells(rows), stopCells(rows);
   ScanPlanner mixed(h, cells, kMachine);
-  JobHeader serpentine = h;
-  serpentine.strategy = Strategy::Serpentine;
-  Planner stopPlanner(serpentine, stopCells, kMachine);
-  PlanClock clock(serpentine, kMachine);
+  JobHeader shortest = h;
+  shortest.strategy = Strategy::Shortest;
+  Planner stopPlanner(shortest, stopCells, kMachine);
+  PlanClock clock(shortest, kMachine);
   ScanPass p;
-  int passes = 0;
-  while (mixed.nextPass(p)) {
-    passes++;
-    EXPECT_TRUE(p.stops) << "pass " << passes;
-    EXPECT_LT(p.stopsUs, p.scanUs);
-    Stop a, b;
-    while (mixed.nextStop(a)) {
-      ASSERT_TRUE(stopPlanner.next(b));
-      clock.add(b);
-      EXPECT_EQ(a.hx, b.hx);
-      EXPECT_EQ(a.hy, b.hy);
-      for (int k = 0; k < 4; k++) EXPECT_EQ(a.us[k], b.us[k]);
-    }
+  ASSERT_TRUE(mixed.nextPass(p));
+  EXPECT_TRUE(p.stops);
+  EXPECT_EQ(p.band, 5);
+  EXPECT_LT(p.stopsUs, p.scanUs);  // the band of stops against the passes one by one
+  EXPECT_EQ(p.first, 0);
+  EXPECT_EQ(p.last, 299);
+  Stop a, b;
+  int stops = 0;
+  while (mixed.nextStop(a)) {
+    ASSERT_TRUE(stopPlanner.next(b));
+    clock.add(b);
+    stops++;
+    EXPECT_EQ(a.hx, b.hx);
+    EXPECT_EQ(a.hy, b.hy);
+    for (int k = 0; k < 4; k++) EXPECT_EQ(a.us[k], b.us[k]);
   }
-  Stop b;
   EXPECT_FALSE(stopPlanner.next(b));
-  EXPECT_EQ(passes, 5);
+  EXPECT_EQ(stops, 6);
+  EXPECT_FALSE(mixed.nextPass(p));
+  EXPECT_EQ(mixed.passes(), 5);
   EXPECT_EQ(mixed.estimateUs(), clock.totalUs());
+  EXPECT_EQ(mixed.estimateUs(), p.stopsUs);
+}
+
+// A band of sparse passes between dense ones: the dense band goes pass by pass on the move, the sparse
+// one as a band of stops, and the estimate is the two bands' cheaper prices.
+TEST(MixedPlanner, EachBandTakesTheCheaperWay) {
+  JobHeader h = mixedJob(200, 64);
+  std::vector<std::vector<uint8_t>> rows(64, std::vector<uint8_t>(200, 0));
+  for (int y = 0; y < 32; y++)
+    for (int x = 10; x < 190; x++) rows[y][x] = 255;
+  for (int y = 32; y < 64; y++) rows[y][(y * 53) % 200] = 255;
+  GridCells cells(rows);
+  ScanPlanner mixed(h, cells, kMachine);
+  ScanPass p;
+  int scans = 0, bands = 0;
+  uint64_t total = 0;
+  while (mixed.nextPass(p)) {
+    if (!p.stops) {
+      scans++;
+      EXPECT_EQ(p.band, 0);
+      EXPECT_LT(p.scanUs, p.stopsUs);
+      total += p.scanUs;
+      uint32_t t;
+      uint8_t m;
+      while (mixed.nextEvent(t, m)) {
+      }
+      continue;
+    }
+    bands++;
+    EXPECT_EQ(p.band, 8);
+    EXPECT_LT(p.stopsUs, p.scanUs);
+    total += p.stopsUs;
+    Stop s;
+    int n = 0;
+    while (mixed.nextStop(s)) n++;
+    EXPECT_EQ(n, 32);
+  }
+  EXPECT_EQ(scans, 8);
+  EXPECT_EQ(bands, 1);
+  EXPECT_EQ(mixed.passes(), 16);
+  EXPECT_EQ(mixed.estimateUs(), total);
 }
 
 // Full rows: every pass is cheaper on the move, and the passes are the scan planner's, events and all.
@@ -188,29 +236,39 @@ TEST(MixedPlanner, EachPassTakesTheCheaperWay) {
 }
 
 // Fed a row at a time, as a stream arrives (planner.md "Planning while rows arrive"), the mixed plan is
-// the whole job's: the same passes, ways, stops and estimate.
+// the whole job's: the same bands, passes, ways, stops and estimate; a band of stops among them. And
+// so it is with each band priced a pass a call, as the Mega asks (sliceBands).
 TEST(MixedPlanner, PlansWhileRowsArrive) {
-  JobHeader h = mixedJob(70, 20);
+  JobHeader h = mixedJob(70, 76);
   h.offsets[1][0] = 2;
   h.offsets[2][0] = -1;
-  std::vector<std::vector<uint8_t>> rows(20, std::vector<uint8_t>(70, 0));
-  for (int y = 0; y < 20; y++)
+  std::vector<std::vector<uint8_t>> rows(76, std::vector<uint8_t>(70, 0));
+  for (int y = 0; y < 40; y++)
     for (int x = 0; x < 70; x++) rows[y][x] = (y % 6 < 3 ? (x * 3 + y) % 4 != 0 : (x * 11 + y * 7) % 31 == 0) ? static_cast<uint8_t>(60 + (x + y) % 190) : 0;
-  auto run = [&](bool streamed) {
+  for (int y = 40; y < 76; y += 2) rows[y][y % 4 ? 3 : 66] = 255;  // a cell near either end: bands of stops
+  int bands = 0, pricings = 0;
+  auto run = [&](bool streamed, bool slice) {
     GridCells cells(rows);
     ScanPlanner planner(h, cells, kMachine);
+    if (slice) planner.sliceBands();
     std::vector<std::vector<int64_t>> out;
     uint16_t known = 0;
     if (streamed) planner.setKnownRows(known);
     for (;;) {
       ScanPass p;
       if (!planner.nextPass(p)) {
+        if (planner.pricing()) {
+          pricings++;
+          EXPECT_FALSE(planner.inStopPass());
+          continue;
+        }
         if (!planner.starved()) break;
         EXPECT_LT(known, h.rows);
         planner.setKnownRows(++known);
         continue;
       }
-      out.push_back({p.hy, p.descending, p.stops, static_cast<int64_t>(p.scanUs), static_cast<int64_t>(p.stopsUs)});
+      out.push_back({p.hy, p.descending, p.stops, p.band, static_cast<int64_t>(p.scanUs), static_cast<int64_t>(p.stopsUs)});
+      bands += p.band > 0;
       Stop s;
       while (planner.nextStop(s)) out.push_back({s.hx, s.hy, s.us[0], s.us[1], s.us[2], s.us[3]});
       uint32_t t;
@@ -220,7 +278,10 @@ TEST(MixedPlanner, PlansWhileRowsArrive) {
     out.push_back({static_cast<int64_t>(planner.estimateUs())});
     return out;
   };
-  const auto whole = run(false), streamed = run(true);
+  const auto whole = run(false, false), streamed = run(true, false), sliced = run(true, true);
   EXPECT_GT(whole.size(), 20u);
   EXPECT_EQ(streamed, whole);
+  EXPECT_EQ(sliced, whole);  // a band priced a pass a call (sliceBands), as the Mega does
+  EXPECT_GE(bands, 3);  // one a run
+  EXPECT_GT(pricings, 8);
 }

@@ -3,6 +3,8 @@
 
 #include "scan_program.h"
 
+#include <string.h>
+
 namespace uv {
 
 namespace {
@@ -100,93 +102,6 @@ bool ScanPlanner::supported() const {
   return refusal_ != Refusal::TooLong && dyMax_ - dyMin_ < static_cast<int16_t>(kCoveredWindowRows) && span * motion().windowUs < (1ull << 32);
 }
 
-bool ScanPlanner::nextPass(ScanPass& out) {
-  starved_ = false;
-  if (!supported() || refused() || motion().windowUs == 0) return false;
-  for (; scan_ < h_.rows; uncover(scan_), scan_++) {
-    const uint16_t r = scan_;
-    low_ = r;
-    // A pass opened here reads the rows up to r + (dyMax − dyMin): they must all have arrived.
-    if (known_ < h_.rows && static_cast<int32_t>(r) + (dyMax_ - dyMin_) >= static_cast<int32_t>(known_)) {
-      starved_ = true;
-      return false;
-    }
-    if (covered(r) || !cells_.rowNonEmpty(r)) continue;
-    // The rows of this pass, as planner.md "Passes" gives them (the same as the stop planner's).
-    const int32_t hy = static_cast<int32_t>(r) - dyMin_;
-    for (uint8_t k = 0; k < 4; k++) {
-      row_[k] = -1;
-      const int32_t rk = hy + h_.offsets[k][1];
-      if (rk < 0 || rk >= h_.rows || covered(rk)) continue;
-      cover(rk);
-      row_[k] = static_cast<int16_t>(rk);
-    }
-    pass_ = motion();  // the job's window first
-    int32_t first, last;
-    uint64_t span;
-    if (!layout(first, last, span)) continue;  // no lit cell: the pass is dropped
-    uncover(scan_);
-    scan_++;
-    descending_ = passes_ % 2 == 1;
-    start_ = descending_ ? last : first;
-    openPass();
-    // The link cap (planner.md "The printhead link"): a pass whose program lines would outrun the
-    // link is laid out again at a longer window, until they fit.
-    for (uint64_t need, have; outrunsLink(need, have);) {
-      uint64_t w = have ? ceilDiv(static_cast<uint64_t>(pass_.windowUs) * need, have) : 2ull * pass_.windowUs;
-      if (w <= pass_.windowUs) w = pass_.windowUs + 1ull;
-      int32_t dxMin = h_.offsets[0][0], dxMax = dxMin;
-      for (uint8_t k = 1; k < 4; k++) {
-        if (h_.offsets[k][0] < dxMin) dxMin = h_.offsets[k][0];
-        if (h_.offsets[k][0] > dxMax) dxMax = h_.offsets[k][0];
-      }
-      if (static_cast<uint64_t>(h_.cols + dxMax - dxMin) * w >= (1ull << 32)) {
-        refusal_ = Refusal::TooLong;
-        return false;
-      }
-      pass_ = uv::passMotion(h_, m_, static_cast<uint32_t>(w));
-      layout(first, last, span);
-      openPass();
-    }
-    const int32_t reach = static_cast<int32_t>((h_.pitchUm[0] + 1) / 2 + pass_.overscanUm);
-    out.hy = hy;
-    out.descending = descending_;
-    out.first = first;
-    out.last = last;
-    out.runUpUm = descending_ ? X(last) + reach : X(first) - reach;
-    out.runOutUm = descending_ ? X(first) - reach : X(last) + reach;
-    // The pass as the Mega runs it (planner.md "The stroke"): the step engine's move to the stroke's
-    // start, the overhead, the stroke, and the Nano's Q answer that confirms the pass.
-    uint64_t q16;
-    if (!engineStep(m_, h_.pitchUm[0], pass_.windowUs, q16)) {
-      refusal_ = Refusal::Engine;  // the job's window, or a pass the link cap slowed, is beyond the step engine
-      return false;
-    }
-    const int32_t pitch = static_cast<int32_t>(h_.pitchUm[0]), dir = descending_ ? -1 : 1;
-    const int32_t x0 = X(descending_ ? last : first), x1 = X(descending_ ? first : last);
-    const uint64_t saved = static_cast<uint64_t>(last - first + 1) * pass_.windowUs - span;
-    planStroke(m_, 2 * x0 - dir * pitch, 2 * x1 + dir * pitch, descending_, q16, static_cast<uint32_t>(saved), out);
-    const int32_t y = Y(out.hy), dy = axisSteps(m_, 1, y) - axisSteps(m_, 1, curY_), dx = out.startSteps - curX_;
-    out.moveUs = engineMoveUs(m_, static_cast<uint32_t>(dx < 0 ? -dx : dx), static_cast<uint32_t>(dy < 0 ? -dy : dy));
-    out.scanUs = static_cast<uint64_t>(out.moveUs) + m_.overheadUs + out.strokeUs + kScanPassEndUs;
-    out.stopsUs = 0;
-    out.stops = false;
-    int32_t endX = out.stopSteps;
-    if (h_.strategy == Strategy::Mixed) {  // planner.md "Mixed mode": the stops when they cost no more than the stroke
-      out.stopsUs = priceStops(hy, endX);
-      out.stops = out.stopsUs <= out.scanUs;
-      openPass();  // the cursors again, for the events or the stops
-      setStopPass(out.stops);
-    }
-    estimate_ += out.stops ? out.stopsUs : out.scanUs;
-    curX_ = out.stops ? endX : out.stopSteps;
-    curY_ = y;
-    passes_++;
-    return true;
-  }
-  return false;
-}
-
 // The open pass's lit windows at the window pass_, ascending: its extent, the stretches it flies,
 // and S(n − 1) + W. False when it has no lit cell.
 bool ScanPlanner::layout(int32_t& first, int32_t& last, uint64_t& span) {
@@ -240,15 +155,10 @@ void ScanPlanner::openPass() {
     if (row_[k] < 0) continue;
     cells_.open(k, static_cast<uint16_t>(row_[k]), descending_);
     peek(k);
-    setPending(k, false);
   }
   started_ = false;
-  ready_ = 0;
   jumpNext_ = 0;
-  jumpReady_ = false;
-  edgeCount_ = edgeNext_ = 0;
-  held_ = false;
-  state_ = emitted_ = 0;
+  memset(&u_, 0, sizeof u_);
 }
 
 // Plays the open pass's events through the program writer and reopens it: true when its chain
@@ -259,7 +169,7 @@ bool ScanPlanner::outrunsLink(uint64_t& need, uint64_t& have) {
   char line[kNanoMaxLine + 2];
   for (uint8_t n; (n = lines.next(line)) != 0;) load.add(line, n, lines.lastUs());
   // The pass's last event (every LED off) is the last moment nextEvent() gathered.
-  const uint32_t lastUs = heldT_;
+  const uint32_t lastUs = u_.ev.heldT;
   openPass();
   if (lines.failed()) return false;  // a gap of 2²⁸ µs: the Mega refuses the pass, whatever its speed
   return !load.fits(lastUs, need, have);
@@ -304,7 +214,7 @@ void ScanPlanner::jump(uint8_t i, uint32_t& window, uint32_t& windows, uint32_t&
 
 // Takes the pass's next lit window in its direction: its start S(j), a jump before it if flown, and
 // its LEDs' cells, which extend or close each LED's open interval.
-bool ScanPlanner::nextLitWindow(uint32_t& j) {
+bool ScanPlanner::nextLitWindow(uint32_t& j, bool intervals) {
   bool any = false;
   int32_t best = 0;
   for (uint8_t k = 0; k < 4; k++)
@@ -325,10 +235,12 @@ bool ScanPlanner::nextLitWindow(uint32_t& j) {
         jumpNext_++;
         const uint32_t f = fly(windows);
         s = lastS_ + w + f;
-        jumpReady_ = true;
-        jumpWindow_ = window;
-        jumpWindows_ = windows;
-        jumpUs_ = f;
+        if (intervals) {
+          u_.iv.jumpReady = true;
+          u_.iv.jumpWindow = window;
+          u_.iv.jumpWindows = windows;
+          u_.iv.jumpUs = f;
+        }
       }
     }
   }
@@ -336,21 +248,25 @@ bool ScanPlanner::nextLitWindow(uint32_t& j) {
   lastJ_ = j;
   lastS_ = s;
   for (uint8_t k = 0; k < 4; k++) {
-    winUs_[k] = 0;
+    if (!intervals) u_.ev.winUs[k] = 0;
     if (!isLive(k) || hx_[k] != best) continue;
-    winUs_[k] = us_[k];
+    if (!intervals) {
+      u_.ev.winUs[k] = us_[k];
+      peek(k);
+      continue;
+    }
     const uint32_t on = s + (w - us_[k]) / 2, off = on + us_[k];
-    if (isPending(k) && pendOff_[k] == on) {
-      pendOff_[k] = off;  // touching: the LED stays on
+    if (isPending(k) && u_.iv.pendOff[k] == on) {
+      u_.iv.pendOff[k] = off;  // touching: the LED stays on
     } else {
       if (isPending(k)) {
-        ready_ |= static_cast<uint8_t>(1 << k);
-        readyOn_[k] = pendOn_[k];
-        readyOff_[k] = pendOff_[k];
+        u_.iv.ready |= static_cast<uint8_t>(1 << k);
+        u_.iv.readyOn[k] = u_.iv.pendOn[k];
+        u_.iv.readyOff[k] = u_.iv.pendOff[k];
       }
       setPending(k, true);
-      pendOn_[k] = on;
-      pendOff_[k] = off;
+      u_.iv.pendOn[k] = on;
+      u_.iv.pendOff[k] = off;
     }
     peek(k);
   }
@@ -359,23 +275,23 @@ bool ScanPlanner::nextLitWindow(uint32_t& j) {
 
 bool ScanPlanner::next(ScanEvent& out) {
   for (;;) {
-    if (jumpReady_) {
-      jumpReady_ = false;
-      out = ScanEvent{true, 0, 0, 0, jumpWindow_, jumpWindows_, jumpUs_};
+    if (u_.iv.jumpReady) {
+      u_.iv.jumpReady = false;
+      out = ScanEvent{true, 0, 0, 0, u_.iv.jumpWindow, u_.iv.jumpWindows, u_.iv.jumpUs};
       return true;
     }
     for (uint8_t k = 0; k < 4; k++) {
-      if (!(ready_ & (1 << k))) continue;
-      ready_ &= static_cast<uint8_t>(~(1 << k));
-      out = ScanEvent{false, k, readyOn_[k], readyOff_[k], 0, 0, 0};
+      if (!(u_.iv.ready & (1 << k))) continue;
+      u_.iv.ready &= static_cast<uint8_t>(~(1 << k));
+      out = ScanEvent{false, k, u_.iv.readyOn[k], u_.iv.readyOff[k], 0, 0, 0};
       return true;
     }
     uint32_t j;
-    if (nextLitWindow(j)) continue;
+    if (nextLitWindow(j, true)) continue;
     for (uint8_t k = 0; k < 4; k++) {  // the pass's end closes every open interval
       if (!isPending(k)) continue;
       setPending(k, false);
-      out = ScanEvent{false, k, pendOn_[k], pendOff_[k], 0, 0, 0};
+      out = ScanEvent{false, k, u_.iv.pendOn[k], u_.iv.pendOff[k], 0, 0, 0};
       return true;
     }
     return false;
@@ -385,20 +301,20 @@ bool ScanPlanner::next(ScanEvent& out) {
 // The next lit window's edges, in time order (insertion sort of at most 8).
 bool ScanPlanner::fillEdges() {
   uint32_t j;
-  if (!nextLitWindow(j)) return false;
-  edgeCount_ = edgeNext_ = 0;
+  if (!nextLitWindow(j, false)) return false;
+  u_.ev.edgeCount = u_.ev.edgeNext = 0;
   const uint32_t w = pass_.windowUs;
   for (uint8_t k = 0; k < 4; k++) {
-    if (!winUs_[k]) continue;
-    const uint32_t on = lastS_ + (w - winUs_[k]) / 2;
-    const Edge two[2] = {{on, k, true}, {on + winUs_[k], k, false}};
+    if (!u_.ev.winUs[k]) continue;
+    const uint32_t on = lastS_ + (w - u_.ev.winUs[k]) / 2;
+    const Edge two[2] = {{on, k, true}, {on + u_.ev.winUs[k], k, false}};
     for (const Edge& e : two) {
-      uint8_t i = edgeCount_++;
-      while (i > 0 && edges_[i - 1].t > e.t) {
-        edges_[i] = edges_[i - 1];
+      uint8_t i = u_.ev.edgeCount++;
+      while (i > 0 && u_.ev.edges[i - 1].t > e.t) {
+        u_.ev.edges[i] = u_.ev.edges[i - 1];
         i--;
       }
-      edges_[i] = e;
+      u_.ev.edges[i] = e;
     }
   }
   return true;
@@ -409,22 +325,22 @@ bool ScanPlanner::fillEdges() {
 // moment, which is no event at all.
 bool ScanPlanner::nextEvent(uint32_t& t, uint8_t& m) {
   for (;;) {
-    const bool more = edgeNext_ < edgeCount_ || fillEdges();
-    if (held_ && (!more || edges_[edgeNext_].t > heldT_)) {
-      held_ = false;
-      if (state_ != emitted_) {
-        emitted_ = state_;
-        t = heldT_;
-        m = state_;
+    const bool more = u_.ev.edgeNext < u_.ev.edgeCount || fillEdges();
+    if (u_.ev.held && (!more || u_.ev.edges[u_.ev.edgeNext].t > u_.ev.heldT)) {
+      u_.ev.held = false;
+      if (u_.ev.state != u_.ev.emitted) {
+        u_.ev.emitted = u_.ev.state;
+        t = u_.ev.heldT;
+        m = u_.ev.state;
         return true;
       }
     }
     if (!more) return false;
-    const Edge& e = edges_[edgeNext_++];
+    const Edge& e = u_.ev.edges[u_.ev.edgeNext++];
     const uint8_t bit = static_cast<uint8_t>(1 << e.led);
-    state_ = e.on ? static_cast<uint8_t>(state_ | bit) : static_cast<uint8_t>(state_ & ~bit);
-    heldT_ = e.t;
-    held_ = true;
+    u_.ev.state = e.on ? static_cast<uint8_t>(u_.ev.state | bit) : static_cast<uint8_t>(u_.ev.state & ~bit);
+    u_.ev.heldT = e.t;
+    u_.ev.held = true;
   }
 }
 

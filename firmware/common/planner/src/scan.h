@@ -35,6 +35,10 @@ struct ScanPass {
   // taken. A stop pass's stops come from nextStop(); its scan fields above say what it would have been.
   uint64_t scanUs, stopsUs;
   bool stops;
+  // A band of stops (planner.md "Bands"): its passes (0: one pass, as above). Then hy is its first
+  // pass's, descending the columns' direction, first and last its extent, scanUs the band priced pass
+  // by pass and stopsUs as this band of stops, whose stops nextStop() hands out column by column.
+  uint8_t band;
 };
 
 // What a pass does, in the order the planner finds it: an LED's interval of light (merged runs), or
@@ -50,6 +54,9 @@ struct ScanEvent {
 // A pass flies at most this many of its blank stretches (planner.md "Blank stretches"): the Mega
 // holds them while the pass runs, for the head's moves.
 constexpr uint8_t kMaxJumps = 8;
+// A mixed job's band (planner.md "Bands"): this many passes, as `shortest`'s, taken as one group of
+// stops column by column when that is cheaper than the passes one by one.
+constexpr uint8_t kMixedBand = kShortestBand;
 
 // A scan pass's stroke as the Mega runs it (planner.md "The stroke", firmware/mega/src/scan_stroke.h):
 // the G step comes at least this long before the start mark (its line at 115200, the Nano's lead).
@@ -96,6 +103,11 @@ class ScanPlanner {
   bool nextStop(Stop& out);
   // A stop pass is open, and nextStop() has not yet said false for it.
   bool inStopPass() const { return live_ & kStopPassBit; }
+  // A mixed job's band is priced a pass at a time (planner.md "Bands"): nextPass() says false with
+  // pricing() true after each, until the band is priced (the Mega's main loop runs between). Without
+  // this call, nextPass() prices a whole band at once. Before the first nextPass().
+  void sliceBands() { live_ |= kSlicedBit; }
+  bool pricing() const { return bandNext_ == kFilling && bandPriced_ > 0; }
   // As Planner::supported(): the LEDs' rows span less than kCoveredWindowRows. And every switch
   // time fits 32 bits: (cols + the LEDs' spread in X) × window < 2³² µs.
   bool supported() const;
@@ -115,7 +127,7 @@ class ScanPlanner {
   void setKnownRows(uint16_t known) { known_ = known; }
   bool starved() const { return starved_; }
   // The lowest row a later call may still read: rows below it may be dropped.
-  int32_t lowestRowNeeded() const { return low_; }
+  int32_t lowestRowNeeded() const { return bandLen_ && bandHy_[0] + dyMin_ < low_ ? bandHy_[0] + dyMin_ : low_; }
 
  private:
   bool readLit(uint8_t led, int32_t& hx, uint32_t& us);
@@ -123,9 +135,10 @@ class ScanPlanner {
   // Bit k for LED k (flags kept as bits: the planner lives in the Mega's job arena).
   bool isLive(uint8_t k) const { return live_ >> k & 1; }
   void setLive(uint8_t k, bool on) { live_ = static_cast<uint8_t>(on ? live_ | (1 << k) : live_ & ~(1 << k)); }
-  bool isPending(uint8_t k) const { return pending_ >> k & 1; }
-  void setPending(uint8_t k, bool on) { pending_ = static_cast<uint8_t>(on ? pending_ | (1 << k) : pending_ & ~(1 << k)); }
-  bool nextLitWindow(uint32_t& j);
+  bool isPending(uint8_t k) const { return u_.iv.pending >> k & 1; }
+  void setPending(uint8_t k, bool on) { u_.iv.pending = static_cast<uint8_t>(on ? u_.iv.pending | (1 << k) : u_.iv.pending & ~(1 << k)); }
+  // intervals: for next() (its intervals and jumps), else for nextEvent() (the window's on-times).
+  bool nextLitWindow(uint32_t& j, bool intervals);
   uint32_t fly(uint32_t g);
   void consider(int32_t col, uint16_t g);
   void stretch(uint8_t i, uint32_t& window, uint32_t& windows) const;  // jump() without its time
@@ -158,6 +171,31 @@ class ScanPlanner {
   ScanMotion pass_;       // the open pass's motion
   bool layout(int32_t& first, int32_t& last, uint64_t& span);
   uint64_t priceStops(int32_t hy, int32_t& endX);
+  // Bands (planner.md "Bands", scan_band.cpp): a mixed job's passes, kMixedBand at a time, each band
+  // priced pass by pass and as one group of stops column by column, and taken the cheaper way.
+  bool collect(int32_t& hy, int32_t& first, int32_t& last, uint64_t& span);
+  bool planPass(int32_t hy, int32_t first, int32_t last, uint64_t span, ScanPass& out);
+  bool nextBand(ScanPass& out);
+  void bandRows(uint8_t q);
+  int32_t bandPeek(uint8_t q, int32_t from);
+  void openBand(int32_t& first, int32_t& last);
+  uint64_t priceBand(uint64_t limit, int32_t& endX, int32_t& endY);
+  bool bandNextStop(Stop& out);
+  // The band's passes: each one's head row, and bit k of its nibble in bandLeds_ when LED k has a row
+  // in it; how many; the next to plan pass by pass (kFilling while the band is gathered).
+  static constexpr uint8_t kFilling = 0xff;
+  static constexpr int16_t kNoColumn = INT16_MIN;
+  static constexpr uint8_t kBandBit = 1 << 5;      // live_: the open stop pass is a band of stops
+  static constexpr uint8_t kColumnUpBit = 1 << 6;  // live_: its column is taken in descending head row
+  int16_t bandHy_[kMixedBand] = {};
+  uint32_t bandLeds_ = 0;
+  uint8_t bandLen_ = 0, bandNext_ = kFilling;
+  // The band being priced: passes priced (bandLen_ + 1 once its stops are too), the head before it,
+  // and what its passes priced so far cost (curX_, curY_, estimate_ and passes_ run on meanwhile).
+  static constexpr uint8_t kSlicedBit = 1 << 7;  // live_: sliceBands()
+  uint8_t bandPriced_ = 0;
+  int32_t bandX0_ = 0, bandY0_ = 0;
+  uint64_t bandUs_ = 0;
   // nextStop() walks the open pass's stops: a flag above the LEDs' bits of live_ (no byte more in
   // the Mega's job arena, whose every byte is spoken for).
   static constexpr uint8_t kStopPassBit = 1 << 4;
@@ -174,34 +212,53 @@ class ScanPlanner {
   uint8_t live_ = 0;  // bit k: LED k has a next lit cell, hx_[k] and us_[k]; and kStopPassBit
   int32_t hx_[4] = {};
   uint32_t us_[4] = {};
-  // Emission: the last lit window and its start S(j); each LED's interval not yet closed; the
-  // intervals the current window closed, waiting to be handed out.
+  // Emission: the last lit window and its start S(j).
   bool started_ = false;
   uint32_t lastJ_ = 0, lastS_ = 0;
-  uint8_t pending_ = 0;  // bit k: LED k's interval is open, pendOn_[k] to pendOff_[k]
-  uint32_t pendOn_[4] = {}, pendOff_[4] = {};
-  uint8_t ready_ = 0;  // bit k: LED k's closed interval waits in readyOn_/readyOff_
-  uint32_t readyOn_[4] = {}, readyOff_[4] = {};
   // The flown stretches, by head column ascending: each one's lowest column less `first_`, and
   // its windows. jumpNext_: the next one the pass's direction reaches.
   int32_t first_ = 0;
   uint16_t jumpCol_[kMaxJumps] = {}, jumpG_[kMaxJumps] = {};
   uint8_t jumpCount_ = 0, jumpNext_ = 0;
-  bool jumpReady_ = false;
-  uint32_t jumpWindow_ = 0, jumpWindows_ = 0, jumpUs_ = 0;
-  // Events: each LED's on-time in the window nextLitWindow() last took (0: none); that window's
-  // edges, sorted; the moment being gathered and the state after it; the last state handed out.
-  uint32_t winUs_[4] = {};
   struct Edge {
     uint32_t t;
     uint8_t led;
     bool on;
   };
-  Edge edges_[8];
-  uint8_t edgeCount_ = 0, edgeNext_ = 0;
-  bool held_ = false;
-  uint32_t heldT_ = 0;
-  uint8_t state_ = 0, emitted_ = 0;
+  // What a pass hands out is either intervals (next(), the host tests') or events (nextEvent(), the
+  // Mega's), never both for one pass; and a band of stops opens no pass at all. So the three share
+  // their bytes (the Mega's job arena has none to spare).
+  union Out {
+    // next(): each LED's interval not yet closed; the intervals the current window closed, waiting
+    // to be handed out; a jump flown before it.
+    struct {
+      uint8_t pending;  // bit k: LED k's interval is open, pendOn[k] to pendOff[k]
+      uint8_t ready;    // bit k: LED k's closed interval waits in readyOn/readyOff
+      uint32_t pendOn[4], pendOff[4], readyOn[4], readyOff[4];
+      bool jumpReady;
+      uint32_t jumpWindow, jumpWindows, jumpUs;
+    } iv;
+    // nextEvent(): each LED's on-time in the window nextLitWindow() last took (0: none); that
+    // window's edges, sorted; the moment being gathered and the state after it; the last state
+    // handed out.
+    struct {
+      uint32_t winUs[4];
+      Edge edges[8];
+      uint8_t edgeCount, edgeNext;
+      bool held;
+      uint32_t heldT;
+      uint8_t state, emitted;
+    } ev;
+    // A band of stops (planner.md "Bands"): each pass's next stop's head column (kNoColumn: none),
+    // the column being taken, and where the head stood before the band (Y, µm) or the pass of the
+    // band's last stop.
+    struct {
+      int16_t nextHx[kMixedBand];
+      int16_t colHx;
+      int32_t startY;
+      uint8_t lastQ;  // 0xff: no stop yet
+    } band;
+  } u_ = {};
   bool fillEdges();
 };
 

@@ -29,6 +29,7 @@ uint64_t ScanPlanner::priceStops(int32_t hy, int32_t& endX) {
 
 bool ScanPlanner::nextStop(Stop& out) {
   if (!stopPass()) return false;
+  if (live_ & kBandBit) return bandNextStop(out);
   bool any = false;
   int32_t best = 0;
   for (uint8_t k = 0; k < 4; k++)

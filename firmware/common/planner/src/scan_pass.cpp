@@ -1,0 +1,113 @@
+// Opening the scan planner's passes (protocol/planner.md "Passes", "Scan mode"): the next pass with
+// a lit cell, and a pass laid out, link-capped, stroked and priced from where the head stands.
+#include "scan.h"
+
+namespace uv {
+
+namespace {
+uint64_t ceilDiv(uint64_t n, uint64_t d) { return (n + d - 1) / d; }
+}  // namespace
+
+bool ScanPlanner::nextPass(ScanPass& out) {
+  starved_ = false;
+  if (!supported() || refused() || motion().windowUs == 0) return false;
+  live_ = static_cast<uint8_t>(live_ & ~(kStopPassBit | kBandBit));
+  if (h_.strategy == Strategy::Mixed) return nextBand(out);
+  int32_t hy, first, last;
+  uint64_t span;
+  return collect(hy, first, last, span) && planPass(hy, first, last, span, out);
+}
+
+// Opens the next pass with a lit cell (planner.md "Passes"): its rows in row_, its head row, and its
+// layout at the job's window (layout()); false when there is none, or none yet (starved()).
+bool ScanPlanner::collect(int32_t& hy, int32_t& first, int32_t& last, uint64_t& span) {
+  for (; scan_ < h_.rows; uncover(scan_), scan_++) {
+    const uint16_t r = scan_;
+    low_ = r;
+    // A pass opened here reads the rows up to r + (dyMax − dyMin): they must all have arrived.
+    if (known_ < h_.rows && static_cast<int32_t>(r) + (dyMax_ - dyMin_) >= static_cast<int32_t>(known_)) {
+      starved_ = true;
+      return false;
+    }
+    if (covered(r) || !cells_.rowNonEmpty(r)) continue;
+    // The rows of this pass, as planner.md "Passes" gives them (the same as the stop planner's).
+    hy = static_cast<int32_t>(r) - dyMin_;
+    for (uint8_t k = 0; k < 4; k++) {
+      row_[k] = -1;
+      const int32_t rk = hy + h_.offsets[k][1];
+      if (rk < 0 || rk >= h_.rows || covered(rk)) continue;
+      cover(rk);
+      row_[k] = static_cast<int16_t>(rk);
+    }
+    pass_ = motion();  // the job's window first
+    if (!layout(first, last, span)) continue;  // no lit cell: the pass is dropped
+    uncover(scan_);
+    scan_++;
+    return true;
+  }
+  return false;
+}
+
+// The pass on the rows in row_, laid out at the job's window, from where the head stands, laid out, link-capped and stroked, and in a
+// mixed job priced as stops too; added to the estimate. False when the plan must end here.
+bool ScanPlanner::planPass(int32_t hy, int32_t first, int32_t last, uint64_t span, ScanPass& out) {
+  descending_ = passes_ % 2 == 1;
+  start_ = descending_ ? last : first;
+  openPass();
+  // The link cap (planner.md "The printhead link"): a pass whose program lines would outrun the
+  // link is laid out again at a longer window, until they fit.
+  for (uint64_t need, have; outrunsLink(need, have);) {
+    uint64_t w = have ? ceilDiv(static_cast<uint64_t>(pass_.windowUs) * need, have) : 2ull * pass_.windowUs;
+    if (w <= pass_.windowUs) w = pass_.windowUs + 1ull;
+    int32_t dxMin = h_.offsets[0][0], dxMax = dxMin;
+    for (uint8_t k = 1; k < 4; k++) {
+      if (h_.offsets[k][0] < dxMin) dxMin = h_.offsets[k][0];
+      if (h_.offsets[k][0] > dxMax) dxMax = h_.offsets[k][0];
+    }
+    if (static_cast<uint64_t>(h_.cols + dxMax - dxMin) * w >= (1ull << 32)) {
+      refusal_ = Refusal::TooLong;
+      return false;
+    }
+    pass_ = uv::passMotion(h_, m_, static_cast<uint32_t>(w));
+    layout(first, last, span);
+    openPass();
+  }
+  const int32_t reach = static_cast<int32_t>((h_.pitchUm[0] + 1) / 2 + pass_.overscanUm);
+  out.hy = hy;
+  out.descending = descending_;
+  out.first = first;
+  out.last = last;
+  out.runUpUm = descending_ ? X(last) + reach : X(first) - reach;
+  out.runOutUm = descending_ ? X(first) - reach : X(last) + reach;
+  // The pass as the Mega runs it (planner.md "The stroke"): the step engine's move to the stroke's
+  // start, the overhead, the stroke, and the Nano's Q answer that confirms the pass.
+  uint64_t q16;
+  if (!engineStep(m_, h_.pitchUm[0], pass_.windowUs, q16)) {
+    refusal_ = Refusal::Engine;  // the job's window, or a pass the link cap slowed, is beyond the step engine
+    return false;
+  }
+  const int32_t pitch = static_cast<int32_t>(h_.pitchUm[0]), dir = descending_ ? -1 : 1;
+  const int32_t x0 = X(descending_ ? last : first), x1 = X(descending_ ? first : last);
+  const uint64_t saved = static_cast<uint64_t>(last - first + 1) * pass_.windowUs - span;
+  planStroke(m_, 2 * x0 - dir * pitch, 2 * x1 + dir * pitch, descending_, q16, static_cast<uint32_t>(saved), out);
+  const int32_t y = Y(out.hy), dy = axisSteps(m_, 1, y) - axisSteps(m_, 1, curY_), dx = out.startSteps - curX_;
+  out.moveUs = engineMoveUs(m_, static_cast<uint32_t>(dx < 0 ? -dx : dx), static_cast<uint32_t>(dy < 0 ? -dy : dy));
+  out.scanUs = static_cast<uint64_t>(out.moveUs) + m_.overheadUs + out.strokeUs + kScanPassEndUs;
+  out.stopsUs = 0;
+  out.stops = false;
+  int32_t endX = out.stopSteps;
+  if (h_.strategy == Strategy::Mixed) {  // planner.md "Mixed mode": the stops when they cost no more than the stroke
+    out.stopsUs = priceStops(out.hy, endX);
+    out.stops = out.stopsUs <= out.scanUs;
+    openPass();  // the cursors again, for the events or the stops
+    setStopPass(out.stops);
+  }
+  estimate_ += out.stops ? out.stopsUs : out.scanUs;
+  curX_ = out.stops ? endX : out.stopSteps;
+  curY_ = y;
+  passes_++;
+  out.band = 0;
+  return true;
+}
+
+}  // namespace uv
