@@ -151,52 +151,54 @@ std::string okLine(int32_t n, int p, int b) {
   return body + "*" + hex + "\n";
 }
 
+// A sender whose Mega is the test: what it writes is kept, what the Mega says is fed to it.
+struct Scripted {
+  TapWire wire;
+  Answers ears;
+  MegaSender sender{wire, ears};
+  void feed(const std::string& s) {
+    for (char c : s) sender.received(c, 10);
+  }
+  // The link up: M110 N0 sent and answered.
+  void up() {
+    sender.restart();
+    sender.poll(0);
+    ASSERT_NE(wire.out.find("N0 M110 N0"), std::string::npos);
+    feed(okLine(0, 8, 3));
+  }
+};
+
 }  // namespace
 
 // A resent line that is still running gets a bare ok at once, between its own reply's lines: the
 // error already heard stays its, and its own ok N<n> then answers it with that error.
 TEST(MegaSender, ABareOkInsideALinesReplyKeepsItsError) {
-  TapWire wire;
-  Answers ears;
-  MegaSender sender(wire, ears);
-  auto feed = [&](const std::string& s) {
-    for (char c : s) sender.received(c, 10);
-  };
-  sender.restart();
-  sender.poll(0);
-  ASSERT_NE(wire.out.find("N0 M110 N0"), std::string::npos);
-  feed(okLine(0, 8, 3));
-  ASSERT_TRUE(sender.send("M29", 7));
-  sender.poll(1);
-  ASSERT_NE(wire.out.find("N1 M29"), std::string::npos);
-  feed("Error:E23 upload out of order\n");
-  feed(okLine(-1, 8, 2));  // a duplicate of N1, still running
-  EXPECT_EQ(ears.errors.count(7), 0u);
-  sender.poll(2);  // every line answered, N1 unconfirmed: it goes again
-  feed(okLine(-1, 8, 2));  // and is still running
-  sender.poll(3);
-  feed(okLine(1, 8, 3));
-  ASSERT_EQ(ears.errors.count(7), 1u);
-  EXPECT_EQ(ears.errors[7], 23);
+  Scripted m;
+  m.up();
+  ASSERT_TRUE(m.sender.send("M29", 7));
+  m.sender.poll(1);
+  ASSERT_NE(m.wire.out.find("N1 M29"), std::string::npos);
+  m.feed("Error:E23 upload out of order\n");
+  m.feed(okLine(-1, 8, 2));  // a duplicate of N1, still running
+  EXPECT_EQ(m.ears.errors.count(7), 0u);
+  m.sender.poll(2);  // every line answered, N1 unconfirmed: it goes again
+  m.feed(okLine(-1, 8, 2));  // and is still running
+  m.sender.poll(3);
+  m.feed(okLine(1, 8, 3));
+  ASSERT_EQ(m.ears.errors.count(7), 1u);
+  EXPECT_EQ(m.ears.errors[7], 23);
 }
 
 // The same across a time-out: the error stays with the line still running, which its ok answers.
 TEST(MegaSender, ATimeOutInsideALinesReplyKeepsItsError) {
-  TapWire wire;
-  Answers ears;
-  MegaSender sender(wire, ears);
-  auto feed = [&](const std::string& s) {
-    for (char c : s) sender.received(c, 10);
-  };
-  sender.restart();
-  sender.poll(0);
-  feed(okLine(0, 8, 3));
-  ASSERT_TRUE(sender.send("M29", 7));
-  sender.poll(10);
-  feed("Error:E23 upload out of order\n");
-  sender.poll(10 + MegaSender::kReplyTimeoutMs);  // no ok yet: M29 goes again
-  EXPECT_EQ(sender.health().timeouts, 1u);
-  feed(okLine(1, 8, 3));
-  ASSERT_EQ(ears.errors.count(7), 1u);
-  EXPECT_EQ(ears.errors[7], 23);
+  Scripted m;
+  m.up();
+  ASSERT_TRUE(m.sender.send("M29", 7));
+  m.sender.poll(10);
+  m.feed("Error:E23 upload out of order\n");
+  m.sender.poll(10 + MegaSender::kReplyTimeoutMs);  // no ok yet: M29 goes again
+  EXPECT_EQ(m.sender.health().timeouts, 1u);
+  m.feed(okLine(1, 8, 3));
+  ASSERT_EQ(m.ears.errors.count(7), 1u);
+  EXPECT_EQ(m.ears.errors[7], 23);
 }
