@@ -3,7 +3,7 @@ import type { JobHeader, StrategyName } from '../app/src/protocol/job-types';
 import { durationTables } from '../app/src/planner/dose';
 import { planJob } from '../app/src/planner/planner';
 import { mixedPassCount, planMixed, type MixedPlan } from '../app/src/planner/mixed';
-import { planScan, type ScanPlan } from '../app/src/planner/scan';
+import { planScan, PROGRAM_EVENT_US, PROGRAM_RELAY_US, type ScanPlan } from '../app/src/planner/scan';
 import { moveTimeUs } from '../app/src/planner/time-model';
 import { programLines } from '../app/src/protocol/scan-program';
 import { BENCH_MACHINE, GEOMETRY } from './planner.bench';
@@ -205,7 +205,9 @@ function linkLoad(plan: ScanPlan): { worst: number; whole: number; events: numbe
  * above 0.80x, and a dense pass is well below it.
  */
 export function printP11(rows: P10Row[]): void {
-  console.log('\nP11 printhead link load of scan passes (program bytes against 115200 baud over the pass time; goal: worst pass <= 1.00x, the photo still >= 3x faster than stop and fire)');
+  console.log(
+    `\nP11 printhead link load of scan passes (program bytes, the packed B lines and K lines the Mega sends, against 115200 baud over the pass time; relay ${PROGRAM_RELAY_US} us, the Mega's planner ${PROGRAM_EVENT_US} us an event; goal: worst pass <= 1.00x, the photo >= 3x faster than stop and fire)`,
+  );
   const s = (us: number) => `${(us / 1e6).toFixed(1)} s`;
   for (const r of rows) {
     const now = linkLoad(r.scan), before = linkLoad(r.uncapped);

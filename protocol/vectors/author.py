@@ -639,8 +639,20 @@ def merge(leds):
     return out
 
 
-def program_lines(events):
-    """Absolute (t, m) events -> the chain's A and K lines, 64 events a program, 63 bytes a line."""
+def pack_word(w):
+    """A B line's packing of the word d*16+m: 5 bits a character, most significant first, '?' + the
+    bits, + 32 on every character but the word's last."""
+    groups = []
+    while True:
+        groups.insert(0, w & 31)
+        w >>= 5
+        if not w:
+            break
+    return "".join(chr(63 + g + (32 if i < len(groups) - 1 else 0)) for i, g in enumerate(groups))
+
+
+def program_lines(events, packed=True):
+    """Absolute (t, m) events -> the chain's B (or A) and K lines, 64 events a program, 63 bytes a line."""
     lines, programs = [], []
     for i in range(0, len(events), 64):
         programs.append(events[i:i + 64])
@@ -652,14 +664,14 @@ def program_lines(events):
             prev = t
         seq, cur = 0, None
         for d, m in rel:
-            pair = f",{d},{m}"
-            if cur is not None and len(cur) + len(pair) > 63:
+            item = pack_word(d * 16 + m) if packed else f",{d},{m}"
+            if cur is not None and len(cur) + len(item) > 63:
                 lines.append(cur)
                 cur = None
             if cur is None:
-                cur = f"A:{seq}"
+                cur = f"B:{seq}," if packed else f"A:{seq}"
                 seq += 1
-            cur += pair
+            cur += item
         lines.append(cur)
         flags = (1 if p_i else 0) | (2 if p_i < len(programs) - 1 else 0)
         lines.append(f"K:{flags},{len(rel)},{check_events(rel)}")
@@ -688,11 +700,16 @@ program_cases = [
     {"name": "LEDs switching together merge", "leds": [[[995, 1005], [2000, 6000]], [[995, 3000]], [], [[5999, 6000]]]},
     {"name": "a long dark gap", "leds": [[[0, 10], [268435000, 268435100]], [], [], []]},
     {"name": "a pass of gray cells: a chain of programs", "leds": gray_row()},
+    {"name": "photo-like: short on-times, many events a line",
+     "leds": [[[j * 40 + k, j * 40 + k + 4 + (j * 7 + k) % 13] for j in range(30)] for k in range(4)]},
 ]
 for c in program_cases:
     c["events"] = [[t, m] for t, m in merge(c["leds"])]
-    c["lines"] = program_lines(c["events"])
-    assert all(len(l) <= 63 for l in c["lines"])
+    c["lines"] = program_lines(c["events"])  # as the Mega sends them: packed
+    c["appendLines"] = program_lines(c["events"], packed=False)  # the same chain in A lines
+    assert all(len(l) <= 63 for l in c["lines"] + c["appendLines"])
+# Words at the packing's edges, each as a one-event B line.
+packed_words = [[w, f"B:0,{pack_word(w)}"] for w in (0, 15, 31, 32, 1023, 1024, 32767, 32768, 2**25 - 1, 2**25, 2**32 - 1)]
 program_bad = [
     {"line": "A:0", "why": "no events"},
     {"line": "A:0,1", "why": "half an event"},
@@ -701,6 +718,17 @@ program_bad = [
     {"line": "A:65536,1,1", "why": "line number over 65535"},
     {"line": "A:0,1,1,", "why": "trailing comma"},
     {"line": "A:0,-1,1", "why": "negative"},
+    {"line": "B:0", "why": "packed: no events"},
+    {"line": "B:0,", "why": "packed: nothing after the comma"},
+    {"line": "B:0?", "why": "packed: no comma"},
+    {"line": "B:,?", "why": "packed: no line number"},
+    {"line": "B:65536,?", "why": "packed: line number over 65535"},
+    {"line": "B:0,_?", "why": "packed: a leading zero group"},
+    {"line": "B:0,?a", "why": "packed: the last word unfinished"},
+    {"line": "B:0,? ?", "why": "packed: a character below '?'"},
+    {"line": "B:0,?,?", "why": "packed: a comma between words"},
+    {"line": "B:0,c_____?", "why": "packed: a word of 2^32"},
+    {"line": "B:0,b~~~~~~^", "why": "packed: eight characters"},
     {"line": "K:4,1,0", "why": "flags over 3"},
     {"line": "K:0,0,0", "why": "no events"},
     {"line": "K:0,65,0", "why": "over 64 events"},
@@ -726,6 +754,12 @@ def steps(*items):
         else:
             out.append({"send": it})
     return out
+
+
+def packed(events, flags):
+    """One program's B line and its K line, events given as (d, m)."""
+    body = "".join(pack_word(d * 16 + m) for d, m in events)
+    return [f"B:0,{body}", f"K:{flags},{len(events)},{check_events(events)}"]
 
 
 ONE = [(0, 1), (2000, 0)]
@@ -755,10 +789,20 @@ program_sessions = [
      "steps": steps(load([(0, 1), (6000000, 1)], 2)[0], (load([(0, 1), (6000000, 1)], 2)[1], "K:0"),
                     load([(4000001, 0)], 1)[0], (load([(4000001, 0)], 1)[1], "K:3"),
                     load([(4000000, 0)], 1)[0], (load([(4000000, 0)], 1)[1], "K:0"))},
+    {"name": "a packed program arms and runs whole",
+     "steps": steps(packed(ONE, 0)[0], (packed(ONE, 0)[1], "K:0"), "G", "RUN", ("Q", "Q:2,0,2"))},
+    {"name": "A and B lines load one program together",
+     "steps": steps("A:0,0,1", f"B:1,{pack_word(2000 * 16)}", (f"K:0,2,{check_events(ONE)}", "K:0"), ("Q", "Q:1,1,0"))},
+    {"name": "a malformed B line latches MALFORMED and spoils the load",
+     "steps": steps("B:0,?", "B:1,_?", (f"K:0,2,{check_events(ONE)}", "K:1"), ("E", "E:32"),
+                    "B:0,?", "B:2,?", (f"K:0,2,{check_events([(0, 0), (0, 0)])}", "K:1"))},
+    {"name": "a B line past 64 events spoils the load",
+     "steps": steps("B:0," + "A" * 59, "B:1," + "A" * 6, ("K:0,64,0", "K:5"))},
     {"name": "no third buffer",
      "steps": steps(load(ONE, 0)[0], (load(ONE, 0)[1], "K:0"), load(ONE, 0)[0], (load(ONE, 0)[1], "K:0"),
                     load(ONE, 0)[0], (load(ONE, 0)[1], "K:6"), ("Q", "Q:0,2,0"))},
 ]
 write("nano-program.json", {"version": 1, "maxEvents": 64, "startLeadUs": 1000, "capUs": 10000000,
-                            "programs": program_cases, "bad": program_bad, "sessions": program_sessions})
+                            "programs": program_cases, "packedWords": packed_words, "bad": program_bad,
+                            "sessions": program_sessions})
 print("wrote nano.json mega.json job.json esp.json mesh.json nano-program.json")

@@ -7,7 +7,7 @@ import { headerOf } from './job-header';
 import { passRows, planJob } from './planner';
 import { scanGoldenCases, type ScanCase } from './scan-golden';
 import { LINK_BAUD, linkShortfall, MAX_JUMPS, passMotion, planScan, planScanPass, PROGRAM_RELAY_US, scanMotion, SCAN_PASS_END_US, type ScanPlan } from './scan';
-import { programLines } from '../protocol/scan-program';
+import { parsePacked, programLines } from '../protocol/scan-program';
 import { axisSteps, engineMoveUs, MoveTimes, moveTimeUs, type Machine } from './time-model';
 
 /** The fly of g blank windows on MACHINE at 50 µm, 2000 µs windows (planner.md "Blank stretches"). */
@@ -279,7 +279,7 @@ describe('scan planner and the printhead link', () => {
     let bytes = 0, n = 0;
     for (const line of programLines(events)) {
       bytes += line.length + 1;
-      if (line.startsWith('A:')) n += line.split(',').length >> 1;
+      if (line.startsWith('B:')) n += parsePacked(line)!.events.length;
       else {
         out.push({ bytes, endUs: events[n - 1][0] });
         bytes = 0;

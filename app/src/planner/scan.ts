@@ -134,13 +134,25 @@ export function planStroke(machine: Machine, markX2Um: number, endX2Um: number, 
 export const LINK_BAUD = 115200;
 
 /**
- * What the Mega takes to learn that the Nano freed a buffer and start the next program on its way:
- * its Q poll every 10 ms, the answer, and a main-loop pass or two (planner.md "The printhead link").
+ * The relay: what the Mega takes from the Nano freeing a buffer to the next program's first byte (its
+ * Q as the program before ends, the answer, a main-loop pass or two), and what a load loses besides
+ * (planner.md "The printhead link"; the C++ kProgramRelayUs, measured in simavr).
  */
-export const PROGRAM_RELAY_US = 15000;
+export const PROGRAM_RELAY_US = 10000;
+
+/**
+ * What the Mega's planner takes over an event as it writes a program's lines (the C++
+ * kProgramEventUs, measured in simavr): a dense program goes out no faster than its events are made.
+ */
+export const PROGRAM_EVENT_US = 300;
 
 /** µs `bytes` take on the printhead link at 115200 baud, ten bits a byte. */
 const linkUs = (bytes: number): bigint => (BigInt(bytes) * 10_000_000n) / BigInt(LINK_BAUD);
+/** µs lines of `bytes` holding `events` take to go out: the wire's time, or the planner's if longer. */
+const sendUs = (bytes: number, events: number): bigint => {
+  const wire = linkUs(bytes), made = BigInt(events * PROGRAM_EVENT_US);
+  return wire > made ? wire : made;
+};
 
 /**
  * How far a pass's program lines outrun the printhead link (planner.md "The printhead link"), null
@@ -150,22 +162,26 @@ const linkUs = (bytes: number): bigint => (BigInt(bytes) * 10_000_000n) / BigInt
  */
 export function linkShortfall(events: ScanEvent[]): [bigint, bigint] | null {
   if (!events.length) return null;
-  let bytes = 0, ahead = 0, sealed = 0, program = 0, end1 = 0, end2 = 0;
+  let bytes = 0, ahead = 0, aheadEvents = 0, sealed = 0, program = 0, end1 = 0, end2 = 0;
   let late: [bigint, bigint] | null = null;
   for (const line of programLines(events)) {
     bytes += line.length + 1;
     program += line.length + 1;
     if (!line.startsWith('K:')) continue;
-    if (++sealed === 2) ahead = bytes;
+    const held = Math.min((sealed + 1) * PROGRAM_EVENTS, events.length) - sealed * PROGRAM_EVENTS;
+    if (++sealed === 2) {
+      ahead = bytes;
+      aheadEvents = Math.min(2 * PROGRAM_EVENTS, events.length);
+    }
     if (sealed > 2 && !late) {
-      const need = 5n * linkUs(program) + 4n * BigInt(PROGRAM_RELAY_US), have = 4n * BigInt(end1 - end2);
+      const need = 5n * sendUs(program, held) + 4n * BigInt(PROGRAM_RELAY_US), have = 4n * BigInt(end1 - end2);
       if (need > have) late = [need, have];
     }
     program = 0;
     end2 = end1;
     end1 = events[Math.min(sealed * PROGRAM_EVENTS, events.length) - 1][0];
   }
-  const need = 5n * (sealed > 2 ? linkUs(bytes - ahead) : 0n), have = 4n * BigInt(events[events.length - 1][0]);
+  const need = sealed > 2 ? 5n * sendUs(bytes - ahead, events.length - aheadEvents) : 0n, have = 4n * BigInt(events[events.length - 1][0]);
   return need > have ? [need, have] : late;
 }
 

@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { checkEvents, mergeLight, parseAppend, parseSeal, programLines, PROGRAM_EVENTS, PROGRAM_START_LEAD_US, type ScanEvent } from './scan-program';
+import { checkEvents, mergeLight, packWord, parseAppend, parsePacked, parseSeal, programLines, PROGRAM_EVENTS, PROGRAM_START_LEAD_US, type ScanEvent } from './scan-program';
 import { cases, loadVectors, vectorCounter } from './vectors.fixture';
 
 const v = loadVectors('nano-program.json');
@@ -17,11 +17,12 @@ describe('scan program vectors', () => {
     count();
   });
 
-  it.each(cases(v.programs, 'name'))('%s: the lines parse back to the events and their checks', (_n, c: any) => {
+  it.each(cases(v.programs, 'name'))('%s: the B lines and the A lines parse back to the events and their checks', (_n, c: any) => {
+    for (const form of [c.lines, c.appendLines] as string[][]) {
     const events: ScanEvent[] = [];
     let t = 0;
     let program: [number, number][] = [];
-    for (const line of c.lines as string[]) {
+    for (const line of form) {
       if (line.startsWith('K:')) {
         const seal = parseSeal(line)!;
         expect(seal.events).toBe(program.length);
@@ -29,17 +30,25 @@ describe('scan program vectors', () => {
         program = [];
         continue;
       }
-      for (const [d, m] of parseAppend(line)!.events) {
+      for (const [d, m] of (line.startsWith('B:') ? parsePacked(line) : parseAppend(line))!.events) {
         t += d;
         events.push([t, m]);
         program.push([d, m]);
       }
     }
     expect(events).toEqual(c.events);
+    }
+  });
+
+  it.each(v.packedWords.map((c: [number, string]) => [c[0], c[1]]))('the word %d packs as %s and back', (w, line) => {
+    expect(`B:0,${packWord(w)}`).toBe(line);
+    expect(parsePacked(line)).toEqual({ seq: 0, events: [[Math.floor(w / 16), w % 16]] });
+    count();
   });
 
   it.each(cases(v.bad, 'why'))('bad line (%s) is refused', (_w, c: any) => {
-    expect(c.line.startsWith('K') ? parseSeal(c.line) : parseAppend(c.line)).toBeNull();
+    const parse = c.line.startsWith('K') ? parseSeal : c.line.startsWith('B') ? parsePacked : parseAppend;
+    expect(parse(c.line)).toBeNull();
     count();
   });
 });

@@ -1,6 +1,6 @@
 // Scan programs on the printhead link (protocol/nano.md "Scan programs"): a pass's per-LED light
-// merged into events, the events cut into a chain of programs and their A and K lines, and the
-// check. The C++ twin is firmware/common/protocol/src/scan_program.*.
+// merged into events, the events cut into a chain of programs and their B (packed) and K lines, and
+// the check. The C++ twin is firmware/common/protocol/src/scan_program.*.
 
 import { NANO_MAX_LINE } from './nano';
 
@@ -50,7 +50,20 @@ export function mergeLight(leds: [number, number][][]): ScanEvent[] {
   return out;
 }
 
-/** The chain's lines, without terminators: each program's A lines, then its K line. */
+/** A B line's packing of an event word d × 16 + m: 5 bits a character, most significant first, each '?' + the bits, + 32 on all but the last. */
+export const PACK_BASE = 0x3f;
+const PACK_MORE = 32;
+
+export function packWord(w: number): string {
+  const groups: number[] = [];
+  do {
+    groups.unshift(w % 32);
+    w = Math.floor(w / 32);
+  } while (w > 0);
+  return groups.map((g, i) => String.fromCharCode(PACK_BASE + g + (i < groups.length - 1 ? PACK_MORE : 0))).join('');
+}
+
+/** The chain's lines as the Mega sends them, without terminators: each program's B lines, then its K line. */
 export function programLines(events: ScanEvent[]): string[] {
   if (events.length === 0) throw new RangeError('a program needs at least one event');
   const lines: string[] = [];
@@ -68,13 +81,13 @@ export function programLines(events: ScanEvent[]): string[] {
     let seq = 0;
     let cur: string | null = null;
     for (const [d, m] of rel) {
-      const pair = `,${d},${m}`;
-      if (cur !== null && cur.length + pair.length > NANO_MAX_LINE) {
+      const word = packWord(d * 16 + m);
+      if (cur !== null && cur.length + word.length > NANO_MAX_LINE) {
         lines.push(cur);
         cur = null;
       }
-      cur ??= `A:${seq++}`;
-      cur += pair;
+      cur ??= `B:${seq++},`;
+      cur += word;
     }
     lines.push(cur!);
     const flags = (start > 0 ? SEAL_CONTINUATION : 0) | (start + PROGRAM_EVENTS < events.length ? SEAL_MORE : 0);
@@ -94,6 +107,25 @@ export function parseAppend(line: string): { seq: number; events: [number, numbe
     events.push([nums[i], nums[i + 1]]);
   }
   return { seq: Number(m[1]), events };
+}
+
+/** A `B:q,<packed>` line's number and events, or null when malformed (nano.md: no leading zero bits, each word below 2³²). */
+export function parsePacked(line: string): { seq: number; events: [number, number][] } | null {
+  const m = /^B:([0-9]{1,5}),([?-~]+)$/.exec(line);
+  if (!m || Number(m[1]) > 65535) return null;
+  const events: [number, number][] = [];
+  let w = 0, first = true;
+  for (const ch of m[2]) {
+    const v = ch.charCodeAt(0) - PACK_BASE;
+    if ((first && v === PACK_MORE) || w >= 2 ** 27) return null;
+    w = w * 32 + (v % 32);
+    first = v < PACK_MORE;
+    if (first) {
+      events.push([Math.floor(w / 16), w % 16]);
+      w = 0;
+    }
+  }
+  return first ? { seq: Number(m[1]), events } : null;
 }
 
 /** A `K:f,n,c` line's fields, or null when malformed. */

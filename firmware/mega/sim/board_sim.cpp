@@ -245,6 +245,8 @@ void BoardSim::onHostOut(avr_irq_t*, uint32_t value, void* param) {
 void BoardSim::onMegaToNano(avr_irq_t*, uint32_t value, void* param) {
   auto* s = static_cast<BoardSim*>(param);
   s->toNano_.pending.push_back(static_cast<char>(value));
+  if (s->nanoPartial_.empty()) s->nanoLineFirst.push_back(s->megaCycle());
+  if (value == '\n') s->nanoLineLast.push_back(s->megaCycle());
   collect(static_cast<char>(value), s->nanoPartial_, s->nanoLines);
 }
 

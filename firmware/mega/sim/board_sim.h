@@ -46,6 +46,8 @@ class BoardSim {
   uint16_t staticEnd() const { return staticEnd_; }
   // Every line the Mega sent the Nano, and every line the Nano answered.
   std::vector<std::string> nanoLines, nanoReplies;
+  // Each line the Mega sent the Nano: the Mega's cycle as its first byte and its '\n' went out.
+  std::vector<uint64_t> nanoLineFirst, nanoLineLast;
 
   // The Mega's longest stretch with the global interrupt flag clear (ISRs included), in cycles,
   // and where it began: an interrupt's vector (bytes: 4 × its number), or the code that cleared it.

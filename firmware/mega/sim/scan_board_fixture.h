@@ -13,6 +13,7 @@
 #include "board_fixture.h"
 #include "job_fixture.h"
 #include "scan_dose.h"
+#include "scan_program.h"
 
 using namespace mega::jobs;
 
@@ -101,6 +102,53 @@ class ScanOnBoard : public BoardTest {
     ASSERT_TRUE(std::regex_search(line, m, std::regex(R"(loop_max_us=(\d+) step_isr_max_us=\d+ underruns=(\d+))"))) << line;
     loopMaxUs = std::stoul(m[1]);
     underruns = std::stoul(m[2]);
+  }
+  // The printhead link in the last pass on the move (planner.md "The printhead link"): for each
+  // program k >= 3 of its chain, the relay (from program k - 2's last event on the Nano's pins, when
+  // its buffer frees, to program k's first byte leaving the Mega) and the slack (from its K line's
+  // newline leaving the Mega to program k - 1's last event, by when it must be armed); the worst of
+  // each, in µs, and how many programs waited for a buffer.
+  struct LinkFigures {
+    int waited = 0;
+    double relayMaxUs = 0, slackMinUs = 1e9;
+  };
+  LinkFigures linkFigures() const {
+    struct Program {
+      size_t first, seal;
+      int events;
+    };
+    std::vector<Program> programs;
+    size_t lastG = 0, first = SIZE_MAX, chain = 0;  // the last G; the last chain's first program
+    for (size_t i = 0; i < sim.nanoLines.size(); i++)
+      if (sim.nanoLines[i] == "G") lastG = i;
+    for (size_t i = 0; i < sim.nanoLines.size(); i++) {
+      const std::string& l = sim.nanoLines[i];
+      if ((l.rfind("B:0,", 0) == 0 || l.rfind("A:0,", 0) == 0)) first = i;
+      if (l.rfind("K:", 0) != 0 || first == SIZE_MAX) continue;
+      if (!((l[2] - '0') & uv::kSealContinuation) && first < lastG) chain = programs.size();
+      programs.push_back({first, i, std::stoi(l.substr(l.find(',') + 1))});
+    }
+    const std::vector<Program> pass(programs.begin() + static_cast<long>(chain), programs.end());
+    std::vector<uint64_t> events;  // the distinct edge times after the G: one port write an event
+    const uint64_t g = sim.nanoLineLast.at(lastG);
+    for (const BoardSim::LedEdge& e : sim.ledEdges)
+      if (e.cycle > g && (events.empty() || events.back() != e.cycle)) events.push_back(e.cycle);
+    LinkFigures f;
+    std::vector<uint64_t> ends;
+    size_t n = 0;
+    for (const Program& p : pass) {
+      n += p.events;
+      ends.push_back(events.at(std::min(n, events.size()) - 1));
+    }
+    for (size_t k = 2; k < pass.size(); k++) {
+      if (getenv("SCAN_LINK_VERBOSE"))
+        for (size_t i = pass[k - 1].seal; i <= pass[k].seal; i++)
+          std::printf("program %zu: %+.0f us .. %+.0f us %s (program k-1 ends %+.0f us)\n", k, (static_cast<double>(sim.nanoLineFirst.at(i)) - ends[k - 2]) / BoardSim::kCyclesPerUs, (static_cast<double>(sim.nanoLineLast.at(i)) - ends[k - 2]) / BoardSim::kCyclesPerUs, sim.nanoLines[i].substr(0, 12).c_str(), (static_cast<double>(ends[k - 1]) - ends[k - 2]) / BoardSim::kCyclesPerUs);
+      f.waited++;
+      f.relayMaxUs = std::max(f.relayMaxUs, (static_cast<double>(sim.nanoLineFirst.at(pass[k].first)) - ends[k - 2]) / BoardSim::kCyclesPerUs);
+      f.slackMinUs = std::min(f.slackMinUs, (static_cast<double>(ends[k - 1]) - sim.nanoLineLast.at(pass[k].seal)) / BoardSim::kCyclesPerUs);
+    }
+    return f;
   }
   // The head's fastest X step, in steps/s.
   double fastestX() const {

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <regex>
 
@@ -78,9 +79,49 @@ TEST_P(ScanBoardTest, AChainOfFourProgramsLoadsEachInTimeAndGivesEveryCellItsDos
   ASSERT_TRUE(planner.nextPass(p));
   const uint32_t windowUs = planner.passMotion().windowUs;
   const scandose::Figures f = expose(h, g, 1, 1, std::vector<double>(h.rows, windowUs));
+  const LinkFigures link = linkFigures();
   std::printf("[scan simavr, four programs] real Mega + Nano images, the Nano's clock %+.1f %%, %d cells (%d lit) in 1 pass at a %u us window "
-              "(the job's 1000): worst dose error %.2f %% of the full dose, worst LED edge %.2f um from its place, worst cell centroid %.2f um\n",
-              (GetParam() - 1) * 100, f.cells, f.lit, windowUs, f.worstDosePct, f.worstEdgeUm, f.worstCentreUm);
+              "(the job's 1000): worst dose error %.2f %% of the full dose, worst LED edge %.2f um from its place, worst cell centroid %.2f um; "
+              "%d programs waited for a buffer: longest relay %.0f us (the planner allows %u), least slack %.0f us\n",
+              (GetParam() - 1) * 100, f.cells, f.lit, windowUs, f.worstDosePct, f.worstEdgeUm, f.worstCentreUm, link.waited, link.relayMaxUs,
+              uv::kProgramRelayUs, link.slackMinUs);
+  EXPECT_EQ(link.waited, 2);
+  EXPECT_LE(link.relayMaxUs, uv::kProgramRelayUs);
+  EXPECT_GT(link.slackMinUs, 0);
+  EXPECT_EQ(f.stray, 0);
+  EXPECT_LE(f.worstDosePct, 2.0);
+  EXPECT_LE(f.worstEdgeUm, 100 / 4.0);
+  EXPECT_LE(f.worstCentreUm, 100 / 4.0);
+}
+
+// A photo's pass (bench P11's photo: a gray that changes from cell to cell and row to row, so every
+// LED switches twice in nearly every cell): some 7 events a cell, a chain of 7 programs that the link
+// caps at a window of its own, near the fastest the relay allows. Each program after the first two
+// must go out within the relay of the Nano freeing its buffer, and be armed before the one before it
+// ends, while both hosts poll the Mega.
+TEST_P(ScanBoardTest, APhotoLikePassLoadsEachProgramWithinTheRelay) {
+  Grid g(4, std::vector<uint8_t>(64));
+  for (size_t r = 0; r < g.size(); r++)
+    for (size_t c = 0; c < g[r].size(); c++) g[r][c] = static_cast<uint8_t>(std::lround(127.5 + 127.5 * std::sin(c / 6.0 + r) * std::cos(r / 3.0 + c / 17.0)));
+  const uv::JobHeader h = scanJob(g, 2000);
+  uvtest::GridCells cells(g);
+  const uv::Machine m{{100000, 100000}, {2000000, 1500000}, 2000, 400, {0, 0}, {80000, 80000}};
+  uv::ScanPlanner planner(h, cells, m);
+  uv::ScanPass p;
+  ASSERT_TRUE(planner.nextPass(p));
+  const uint32_t windowUs = planner.passMotion().windowUs;
+  pollBothHosts = true;  // and the panel redraws: the longest main-loop passes, which the relay waits on
+  const scandose::Figures f = expose(h, g, 1, 1, std::vector<double>(h.rows, windowUs));
+  const LinkFigures link = linkFigures();
+  std::printf("[scan simavr, photo-like] real Mega + Nano images, the Nano's clock %+.1f %%, %d cells (%d lit) in 1 pass at a %u us window "
+              "(the job's 2000, capped for the link): worst dose error %.2f %% of the full dose, worst LED edge %.2f um from its place, "
+              "worst cell centroid %.2f um; %d programs waited for a buffer: longest relay %.0f us (the planner allows %u), least slack %.0f us\n",
+              (GetParam() - 1) * 100, f.cells, f.lit, windowUs, f.worstDosePct, f.worstEdgeUm, f.worstCentreUm, link.waited, link.relayMaxUs,
+              uv::kProgramRelayUs, link.slackMinUs);
+  EXPECT_GT(windowUs, h.fullUs);  // the link, not the light, sets its pace
+  EXPECT_GE(link.waited, 4);
+  EXPECT_LE(link.relayMaxUs, uv::kProgramRelayUs);
+  EXPECT_GT(link.slackMinUs, 0);
   EXPECT_EQ(f.stray, 0);
   EXPECT_LE(f.worstDosePct, 2.0);
   EXPECT_LE(f.worstEdgeUm, 100 / 4.0);

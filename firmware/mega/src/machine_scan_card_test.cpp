@@ -141,7 +141,7 @@ TEST_F(ScanCardTest, AJobWhoseStepTheEngineCannotMakeIsRefusedAtM29BeforeAnyLigh
 
 TEST_F(ScanCardTest, APhotoWhosePassesWouldOutrunThePrintheadLinkRunsSlowerEveryCellItsDose) {
   // A photo: every cell a different gray, so each LED switches twice a window, 2 ms each: some
-  // 30 kB/s of program lines for a link that carries 11.5. The planner slows each pass until its
+  // 13 kB/s of packed program lines (30 in decimal A lines) for a link that carries 11.5. The planner slows each pass until its
   // lines fit (planner.md "The printhead link"), so M29 takes it and every chain runs whole.
   job(200, 8, 2000);
   for (uint16_t r = 0; r < h.rows; r++)
@@ -150,7 +150,7 @@ TEST_F(ScanCardTest, APhotoWhosePassesWouldOutrunThePrintheadLinkRunsSlowerEvery
   ASSERT_TRUE(has(got, "echo:Done saving file.")) << ::testing::PrintToString(got);
   // Each row's pass window, as the planner lays it out.
   const std::vector<double> windows = scandose::passWindows(h, g, plannerMachine(m.config, 0, 0));
-  EXPECT_GT(windows[0], 2000 * 2);  // slowed to under half the speed the dose allows
+  EXPECT_GT(windows[0], 2000 * 2);  // slowed to under half the speed the dose allows (4482 us)
   m.cmd("M23 PHOTO.UVJ");
   m.cmd("G28");
   m.rig.steps.clear();

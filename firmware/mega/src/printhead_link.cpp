@@ -223,7 +223,11 @@ void PrintheadLink::poll(uint32_t nowUs) {
     inFlight_ = 0;
     missed(nowUs);
   }
-  if (inFlight_ || held_) return;
+  if (inFlight_) return;
+  if (held_) {  // a scan pass's own Q alone: it asks none while its G waits, and needs it in time after
+    if (passWanted_ && ask('Q', nowUs)) passWanted_ = false;
+    return;
+  }
   if (fire_ == FireState::Firing) {
     if (fireCheckWanted_) {
       ask('E', nowUs);

@@ -86,7 +86,8 @@ class PrintheadLink {
     passAnswered_ = false;
   }
   bool passAnswered() const { return passAnswered_; }
-  // Asks nothing while held: a scan pass's G must find the UART idle when its step comes.
+  // Asks nothing but a requested Q while held: a scan pass's G must find the UART idle when its step
+  // comes, and a pass loading its chain must hear of a free buffer at once, not after a T's reply.
   void hold(bool quiet) { held_ = quiet; }
   uint8_t passFree() const { return passFree_; }
   uint8_t passArmed() const { return passArmed_; }

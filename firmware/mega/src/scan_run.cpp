@@ -71,6 +71,24 @@ ScanRun::Opened ScanRun::open(Motion& motion, const uv::JobHeader& h) {
   return Opened::Stroke;
 }
 
+bool ScanRun::take() {
+  if (held_) return true;
+  if ((held_ = lines_.next(line_))) return true;
+  written_ = true;
+  if (lines_.failed()) error_ = uv::kScanUnsupported;  // a gap of 2²⁸ µs or more
+  return false;
+}
+
+uint32_t ScanRun::lineStartUs() const {
+  uint32_t t = lines_.lastUs();
+  uv::AppendLine a;
+  uint32_t d;
+  uint8_t m;
+  if (a.begin(line_, static_cast<uint8_t>(held_ - 1)))
+    while (a.next(d, m)) t -= d;
+  return t;
+}
+
 bool ScanRun::sendProgram(PrintheadLink& head, uint32_t nowUs) {
   for (;;) {
     if (sealSent_) {
@@ -82,13 +100,10 @@ bool ScanRun::sendProgram(PrintheadLink& head, uint32_t nowUs) {
       }
       return true;
     }
-    if (!held_ && !(held_ = lines_.next(line_))) {
-      written_ = true;
-      if (lines_.failed()) error_ = uv::kScanUnsupported;  // a gap of 2²⁸ µs or more
-      return false;
-    }
+    if (!take()) return false;
     const bool seal = line_[0] == 'K';
     if (!head.programLine(line_, held_, nowUs)) return false;  // the UART is full or a request waits
+    if (line_[2] == '0' && line_[3] == ',') older_ = lineStartUs();  // a program's first line (B:0,)
     held_ = 0;
     sealSent_ = seal;
   }
@@ -159,8 +174,10 @@ ScanRun::Step ScanRun::poll(Motion& motion, PrintheadLink& head, const uv::JobHe
       asked_ = loading_ = false;
       until_ = 0;
       nextPoll_ = nowUs;
+      start_ = nowUs + kScanStartUs;
       return Step::Busy;
     case Phase::Finish: {
+      head.hold(!written_);  // no T, E or W in the way of the Q while programs wait to go
       if (asked_ && head.passAnswered()) {
         asked_ = false;
         const uint8_t state = head.passState();
@@ -178,7 +195,21 @@ ScanRun::Step ScanRun::poll(Motion& motion, PrintheadLink& head, const uv::JobHe
         if (sendProgram(head, nowUs) || written_) loading_ = false;
         if (error_) return fail(head, error_);
       }
-      if (!asked_ && due(nowUs, nextPoll_)) {
+      // A program waits for a buffer: Q as the one before it ends (not just before, which would
+      // only learn it is not yet free), then again as each answer comes until one is, so the program
+      // goes out within the relay the planner allows (planner.md "The printhead link"); its first
+      // line is made ready meanwhile (the planner takes milliseconds over a line's events).
+      if (!written_ && !loading_ && take()) {
+        const uint32_t at = freeAt();
+        if (!due(nowUs, at)) {
+          if (due(nextPoll_, at - kScanPollUs / 5)) nextPoll_ = at;
+        } else if (!due(nowUs, nextPoll_)) {
+          nextPoll_ = nowUs;
+        }
+      }
+      // No Q while a program goes out: its K would wait behind the answer, and its lines keep the
+      // chain from being cut as silent as the Q does.
+      if (!asked_ && !loading_ && due(nowUs, nextPoll_)) {
         head.requestPass();
         asked_ = true;
         nextPoll_ = nowUs + kScanPollUs;

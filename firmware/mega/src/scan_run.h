@@ -1,8 +1,9 @@
 // Runs a scan job's passes (issue 19; protocol/nano.md "Scan programs"), one at a time as the scan
 // planner opens them: to the pass's start, its first two programs loaded and armed on the Nano, the
 // stroke queued with its G on the marked step, the rest of the chain sent as the Nano's buffers
-// free up (asked by Q every 10 ms, which also keeps the chain from being cut as silent), and the
-// pass confirmed whole by the Nano's Q before the next opens.
+// free up (asked by Q when the program before them is due to end, and every 10 ms, which also keeps
+// the chain from being cut as silent), and the pass confirmed whole by the Nano's Q before the next
+// opens.
 #pragma once
 #include <stdint.h>
 
@@ -16,6 +17,9 @@
 namespace mega {
 
 constexpr uint32_t kScanPollUs = 10000;      // Q while a chain runs: well inside the Nano's 50 ms
+// From the step that writes the G to the chain's time 0: the G and its newline (two bytes at 115200
+// baud), then the Nano's lead.
+constexpr uint32_t kScanStartUs = 174 + uv::kProgramStartLeadUs;
 constexpr uint32_t kScanSettleUs = 50000;    // after the stroke, the chain must have ended by then
 // A pass waits this long at most for the Nano's clock (known 2 s after the Nano answers W): a Nano
 // that never answers W (older firmware) cannot run a scan job, which ends with E29 and no light.
@@ -23,7 +27,8 @@ constexpr uint32_t kScanClockWaitUs = 10000000;
 
 class ScanRun {
  public:
-  explicit ScanRun(uv::ScanPlanner& planner) : planner_(planner), lines_(source, this) {}
+  explicit ScanRun(uv::ScanPlanner& planner)
+      : planner_(planner), lines_(source, this), sealSent_(false), written_(false), asked_(false), loading_(false), moved_(false), clockWaiting_(false) {}
 
   // Stops: a mixed job's pass opened as stops (planner.md "Mixed mode"): the job runner takes them
   // from the planner's nextStop(), and the next poll opens the pass after it.
@@ -50,27 +55,38 @@ class ScanRun {
   Opened open(Motion& motion, const uv::JobHeader& h);
   // Sends the chain's lines up to the end of one program; true once its K is answered 0.
   bool sendProgram(PrintheadLink& head, uint32_t nowUs);
+  // The chain's next line into line_, unless one is held already; false once every line is written.
+  bool take();
+  // The held line's start: the chain's time just before its first event, Nano µs after time 0.
+  uint32_t lineStartUs() const;
+  // When the next buffer frees on the Nano, by this clock: as the program before the newest sent ends.
+  uint32_t freeAt() const { return start_ + NanoClock::toNano(older_, -clockPpm_); }
   Step fail(PrintheadLink& head, uint8_t code);
 
   uv::ScanPlanner& planner_;
   uv::ProgramLines lines_;
   char line_[uv::kNanoMaxLine + 2];
   uint8_t held_ = 0;          // a line taken from lines_, not sent yet
-  bool sealSent_ = false;     // its K went out; its answer is awaited
-  bool written_ = false;      // the chain's every line has gone
+  // One byte for the six (the Mega's static RAM holds a ScanJob twice: card_scan.h, stream_job.h).
+  bool sealSent_ : 1;         // its K went out; its answer is awaited
+  bool written_ : 1;          // the chain's every line has gone
+  bool asked_ : 1;            // a Q is out: its answer is awaited
+  bool loading_ : 1;          // a Q found a buffer free: the next program goes out
+  bool moved_ : 1;            // the move to the pass's start is queued
+  bool clockWaiting_ : 1;     // Open: waiting for the Nano's clock
   uint8_t armed_ = 0;         // programs answered K:0 before the stroke
-  bool asked_ = false;        // a Q is out: its answer is awaited
-  bool loading_ = false;      // a Q found a buffer free: the next program goes out
   Phase phase_ = Phase::Open;
-  bool moved_ = false;        // the move to the pass's start is queued
   uint8_t marks_ = 0, missed_ = 0;  // the step engine's counts before the stroke
   uint8_t error_ = 0;
   uint16_t passes_ = 0;
   uint32_t nextPoll_ = 0, until_ = 0;
   int32_t y_ = 0;
   int32_t clockPpm_ = 0;  // the Nano's clock when the pass opened (nano_clock.h)
-  bool clockWaiting_ = false;
-  uint32_t clockWaitFrom_ = 0;  // when this pass began to wait for it
+  union {
+    uint32_t clockWaitFrom_ = 0;  // Open: when this pass began to wait for the Nano's clock
+    uint32_t start_;              // Finish: the chain's time 0 by this clock (its G seen, so a little late)
+  };
+  uint32_t older_ = 0;  // the end of the program before the newest one sent, Nano µs after time 0
   StrokePlan stroke_ = {};
 };
 

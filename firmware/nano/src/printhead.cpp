@@ -10,7 +10,7 @@ void Printhead::line(const char* text, uint8_t len, bool overflow, uint32_t nowM
   if (len == 0 && !overflow) return;  // empty lines are ignored without a flag
   uv::NanoCommand c;  // not zeroed: parse sets what each command uses (saves ~100 cycles a line)
   bool usable = uv::nanoLineUsable(text, len, overflow);
-  if (usable && len >= 2 && text[1] == ':' && (text[0] == 'A' || text[0] == 'K')) {
+  if (usable && len >= 2 && text[1] == ':' && (text[0] == 'A' || text[0] == 'B' || text[0] == 'K')) {
     if (!program(text, len)) {  // a program line, taken first: a malformed one flashes nothing
       latched_ |= uv::fault::kMalformed;
       return;
@@ -29,12 +29,12 @@ void Printhead::line(const char* text, uint8_t len, bool overflow, uint32_t nowM
     flashUntilMs_ = nowMs + kFlashMs;
     flashing_ = true;
   }
-  if (c.op == 'A' || c.op == 'K') return;
+  if (c.op == 'A' || c.op == 'B' || c.op == 'K') return;
   handle(c, nowMs);
 }
 
 bool Printhead::program(const char* text, uint8_t len) {
-  if (text[0] == 'A') return store_.append(text, len);
+  if (text[0] != 'K') return store_.append(text, len);
   uv::Seal s;
   if (!uv::parseSeal(text, len, s)) return false;
   uv::NanoReply r;

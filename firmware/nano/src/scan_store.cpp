@@ -8,6 +8,7 @@ inline void barrier() { __asm__ __volatile__("" ::: "memory"); }
 }  // namespace
 
 bool ScanStore::append(const char* line, uint8_t len) {
+  if (line[0] == 'B') return appendPacked(line, len);
   // Read whole first, so a malformed line is told even while a load is spoiled, and nothing of it
   // is kept. A 63-byte line holds at most 15 events (",d,m" takes at least 4 bytes).
   constexpr uint8_t kLineEvents = (uv::kNanoMaxLine - 3) / 4;
@@ -20,20 +21,7 @@ bool ScanStore::append(const char* line, uint8_t len) {
     spoil(uv::SealCode::NoLoad);
     return false;
   }
-  if (a.seq() == 0) {
-    if (loading_ != kNone) buf_[loading_].state = Free;
-    loading_ = kNone;
-    for (uint8_t i = 0; i < 2; i++)
-      if (buf_[i].state == Free) loading_ = i;
-    if (loading_ == kNone) {
-      loadError_ = uv::SealCode::NoBuffer;
-    } else {
-      buf_[loading_].state = Loading;
-      buf_[loading_].count = 0;
-      check_ = uv::kCheckInit;
-      nextSeq_ = 0;
-    }
-  }
+  if (a.seq() == 0) openLoad();
   if (loading_ == kNone) return true;  // a spoiled load drops its lines
   if (a.seq() != nextSeq_) {
     spoil(uv::SealCode::NoLoad);
@@ -50,6 +38,61 @@ bool ScanStore::append(const char* line, uint8_t len) {
     check_ = uv::checkEvent(check_, d[i], m[i]);
   }
   return true;
+}
+
+// A B line's words are stored as they come (the word d × 16 + m is pack(d, m)), straight into the
+// loading buffer past its count, in one pass: count and check move on only for a line that is whole,
+// in sequence and fits, so a malformed one still leaves nothing behind.
+bool ScanStore::appendPacked(const char* line, uint8_t len) {
+  uv::AppendLine a;
+  if (!a.begin(line, len)) {
+    spoil(uv::SealCode::NoLoad);
+    return false;
+  }
+  if (a.seq() == 0) openLoad();
+  Buffer* b = loading_ != kNone && a.seq() == nextSeq_ ? &buf_[loading_] : nullptr;
+  uint8_t n = b ? b->count : 0;
+  uint16_t check = check_;
+  uint32_t w;
+  while (a.nextWord(w)) {
+    if (b && n < uv::kProgramEvents) {
+      b->words[n] = w;
+      check = uv::checkWord(check, w);
+    }
+    n++;  // at most 64 + 59
+  }
+  if (a.malformed()) {
+    spoil(uv::SealCode::NoLoad);
+    return false;
+  }
+  if (loading_ == kNone) return true;
+  if (!b) {
+    spoil(uv::SealCode::NoLoad);
+    return true;
+  }
+  nextSeq_++;
+  if (n > uv::kProgramEvents) {
+    spoil(uv::SealCode::TooMany);
+    return true;
+  }
+  b->count = n;
+  check_ = check;
+  return true;
+}
+
+void ScanStore::openLoad() {
+  if (loading_ != kNone) buf_[loading_].state = Free;
+  loading_ = kNone;
+  for (uint8_t i = 0; i < 2; i++)
+    if (buf_[i].state == Free) loading_ = i;
+  if (loading_ == kNone) {
+    loadError_ = uv::SealCode::NoBuffer;
+  } else {
+    buf_[loading_].state = Loading;
+    buf_[loading_].count = 0;
+    check_ = uv::kCheckInit;
+    nextSeq_ = 0;
+  }
 }
 
 void ScanStore::spoil(uv::SealCode why) {

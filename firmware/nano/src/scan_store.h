@@ -1,4 +1,4 @@
-// The printhead's two scan-program buffers (protocol/nano.md "Scan programs"): loading A lines,
+// The printhead's two scan-program buffers (protocol/nano.md "Scan programs"): loading A and B lines,
 // sealing with the check and the cap, and handing the running chain's events to the LED timer.
 // Plain C++, tested on the host; the main loop loads and seals, the timer interrupt calls next().
 #pragma once
@@ -68,6 +68,8 @@ class ScanStore {
     uint8_t count, flags, order;
   };
   void spoil(uv::SealCode why);
+  __attribute__((noinline)) bool appendPacked(const char* line, uint8_t len);
+  void openLoad();  // an A:0 or B:0: a free buffer for the new program (the unsealed one dropped)
   uint8_t oldestArmed() const;  // the armed program sealed first, or kNone
   // The chain's next program, or its end: next() once the running program's events are taken.
   __attribute__((noinline)) Step nextProgram(uint32_t& d, uint8_t& m);

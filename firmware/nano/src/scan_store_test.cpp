@@ -175,3 +175,31 @@ TEST(ScanStore, ArmedProgramsStartInTheOrderSealed) {
   t.s.start();
   EXPECT_EQ(t.drain(), (Events{{0, 2}, {100, 0}}));
 }
+
+// B lines (nano.md "B:q,<packed>") load what A lines do, and a malformed or overfull one leaves
+// nothing behind: the load is spoiled, and the program never arms.
+TEST(ScanStore, PackedLinesLoadLikeAppendLines) {
+  Events ev;
+  for (uint32_t i = 0; i < 64; i++) ev.push_back({i ? 3 + i * 97 % 5000 : 0, static_cast<uint8_t>(i % 16 % 15)});
+  auto packedLine = [&](size_t q, size_t from, size_t to) {
+    std::string l = "B:" + std::to_string(q) + ",";
+    char w[uv::kPackMaxChars];
+    for (size_t i = from; i < to; i++) l.append(w, uv::packWord(ev[i].first << 4 | ev[i].second, w));
+    return l;
+  };
+  Store u;
+  ASSERT_TRUE(u.line(packedLine(0, 0, 30)));
+  ASSERT_TRUE(u.line(packedLine(1, 30, 64)));
+  ASSERT_EQ(u.s.seal({0, 64, checkOf(ev)}), SealCode::Armed);
+  u.s.start();
+  EXPECT_EQ(u.drain(), ev);
+
+  Store bad;
+  bad.line(packedLine(0, 0, 10));
+  EXPECT_FALSE(bad.line("B:1,_?"));  // a leading zero group
+  EXPECT_EQ(bad.s.seal({0, 10, 0}), SealCode::NoLoad);
+  EXPECT_EQ(bad.s.freeBuffers(), 2);
+  bad.line(packedLine(0, 0, 60));
+  EXPECT_TRUE(bad.line(packedLine(1, 0, 5)));  // 65 events
+  EXPECT_EQ(bad.s.seal({0, 64, 0}), SealCode::TooMany);
+}

@@ -25,7 +25,7 @@ Colour flashColour(char op) {
     case 'F': case 'G': return Colour::Purple;
     case 'D': case 'U': case 'X': case 'P': return Colour::Cyan;
     case 'R': return Colour::Orange;
-    default: return Colour::DimWhite;  // S T E V C A K Q W
+    default: return Colour::DimWhite;  // S T E V C A B K Q W
   }
 }
 

@@ -19,17 +19,69 @@ uint16_t checkEvent(uint16_t crc, uint32_t d, uint8_t m) {
   return crc16Update(crc, static_cast<uint8_t>(b3 << 4 | b2 >> 4));
 }
 
+uint16_t checkWord(uint16_t crc, uint32_t w) {
+  crc = crc16Update(crc, static_cast<uint8_t>(w));
+  crc = crc16Update(crc, static_cast<uint8_t>(w >> 8));
+  crc = crc16Update(crc, static_cast<uint8_t>(w >> 16));
+  return crc16Update(crc, static_cast<uint8_t>(w >> 24));
+}
+
+uint8_t packWord(uint32_t w, char* out) {
+  char groups[kPackMaxChars];
+  uint8_t n = 0;
+  do {
+    groups[n++] = static_cast<char>(w & 31);
+    w >>= 5;
+  } while (w);
+  for (uint8_t i = 0; i < n; i++) out[i] = static_cast<char>(kPackBase + groups[n - 1 - i] + (i + 1 < n ? kPackMore : 0));
+  return n;
+}
+
 bool AppendLine::begin(const char* line, uint8_t len) {
-  if (len < 3 || line[0] != 'A' || line[1] != ':') return false;
+  if (len < 3 || (line[0] != 'A' && line[0] != 'B') || line[1] != ':') return false;
+  packed_ = line[0] == 'B';
   end_ = line + len;
   uint32_t q;
   p_ = scanUnsigned(line + 2, end_, 5, 65535, q);
   seq_ = static_cast<uint16_t>(q);
-  bad_ = !p_ || p_ == end_;  // at least one pair
+  bad_ = !p_ || p_ == end_;  // at least one event
+  if (packed_ && !bad_ && (*p_ != ',' || ++p_ == end_)) bad_ = true;
   return p_ != nullptr;
 }
 
+bool AppendLine::nextWord(uint32_t& w) {
+  if (bad_ || p_ == end_) return false;
+  const char* p = p_;
+  uint8_t c = static_cast<uint8_t>(*p++ - kPackBase);
+  bool ok = c != kPackMore && c < 2 * kPackMore;  // no leading zero bits: one way to write a word
+  uint32_t v = c & 31;
+  while (ok && (c & kPackMore)) {
+    // Five more bits must stay below 2³²; the word must end before the line does.
+    if (p == end_ || (v >> 27)) {
+      ok = false;
+      break;
+    }
+    c = static_cast<uint8_t>(*p++ - kPackBase);
+    ok = c < 2 * kPackMore;
+    v = v << 5 | (c & 31);
+  }
+  if (!ok) {
+    bad_ = true;
+    return false;
+  }
+  w = v;
+  p_ = p;
+  return true;
+}
+
 bool AppendLine::next(uint32_t& d, uint8_t& m) {
+  if (packed_) {
+    uint32_t w;
+    if (!nextWord(w)) return false;
+    d = w >> 4;
+    m = static_cast<uint8_t>(w & 0x0F);
+    return true;
+  }
   if (bad_ || p_ == end_) return false;
   uint32_t v;
   const char* p = p_;
@@ -97,19 +149,16 @@ uint8_t ProgramLines::next(char* out) {
   if (events_ && (events_ == kProgramEvents || !more)) return seal(out);
   if (!more) return 0;
   uint8_t n = 0;
-  out[n++] = 'A';
+  out[n++] = 'B';
   out[n++] = ':';
   n = static_cast<uint8_t>(n + putUnsigned(seq_++, out + n));
+  out[n++] = ',';
   while (events_ < kProgramEvents && peek()) {
     const uint32_t d = any_ ? t_ - last_ : t_;
-    char pair[16];
-    size_t p = 0;
-    pair[p++] = ',';
-    p += putUnsigned(d, pair + p);
-    pair[p++] = ',';
-    p += putUnsigned(m_, pair + p);
+    char word[kPackMaxChars];
+    const uint8_t p = packWord(d << 4 | m_, word);
     if (n + p > kNanoMaxLine) break;
-    memcpy(out + n, pair, p);
+    memcpy(out + n, word, p);
     n = static_cast<uint8_t>(n + p);
     check_ = checkEvent(check_, d, m_);
     events_++;
@@ -123,15 +172,21 @@ uint8_t ProgramLines::next(char* out) {
 }
 
 // Program k ≥ 3 goes out only once program k − 2 has played (the Nano holds two) and the Mega has
-// learnt so, and must be armed before program k − 1 ends: its lines, with a fifth of the link left
-// for the Q polls, fit the time k − 1 plays less the relay (5 × l_k + 4 × relay ≤ 4 × (e_k−1 − e_k−2)).
+// learnt so, and must be armed before program k − 1 ends: its lines, a fifth to spare, fit the time
+// k − 1 plays less the relay (5 × s_k + 4 × relay ≤ 4 × (e_k−1 − e_k−2)), s_k the longer of their
+// time on the wire and the planner's time to make their events.
 void LinkLoad::add(const char* line, uint8_t n, uint32_t lastUs) {
   bytes_ += n;
   program_ += n;
-  if (line[0] != 'K') return;
-  if (++sealed_ == 2) ahead_ = bytes_;
+  Seal s;
+  if (line[0] != 'K' || !parseSeal(line, static_cast<uint8_t>(n - 1), s)) return;
+  events_ += s.events;
+  if (++sealed_ == 2) {
+    ahead_ = bytes_;
+    aheadEvents_ = events_;
+  }
   if (sealed_ > 2 && !need_) {
-    const uint64_t need = 5 * linkUs(program_) + 4ull * kProgramRelayUs, have = 4ull * (end1_ - end2_);
+    const uint64_t need = 5 * sendUs(program_, s.events) + 4ull * kProgramRelayUs, have = 4ull * (end1_ - end2_);
     if (need > have) {
       need_ = need;
       have_ = have;
@@ -143,7 +198,7 @@ void LinkLoad::add(const char* line, uint8_t n, uint32_t lastUs) {
 }
 
 bool LinkLoad::fits(uint32_t passUs, uint64_t& need, uint64_t& have) const {
-  need = 5 * linkUs(sealed_ > 2 ? bytes_ - ahead_ : 0);
+  need = sealed_ > 2 ? 5 * sendUs(bytes_ - ahead_, events_ - aheadEvents_) : 0;
   have = 4ull * passUs;
   if (need > have) return false;
   need = need_;

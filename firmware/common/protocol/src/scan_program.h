@@ -1,4 +1,4 @@
-// Scan programs on the printhead link (protocol/nano.md "Scan programs"): events, the A/K lines,
+// Scan programs on the printhead link (protocol/nano.md "Scan programs"): events, the A/B/K lines,
 // the check, and the writer that cuts a pass's events into a chain of programs.
 #pragma once
 #include <stddef.h>
@@ -23,22 +23,35 @@ enum class PassState : uint8_t { None, Running, Whole, CutByReset, CutByFault, U
 
 // The check of a program: CRC-16/CCITT-FALSE over each event's word d × 16 + m, 4 bytes LE.
 uint16_t checkEvent(uint16_t crc, uint32_t d, uint8_t m);
+uint16_t checkWord(uint16_t crc, uint32_t w);  // the same from the word itself
 
-// Reads an `A:q,d,m[,d,m…]` line (without terminator) pair by pair, so nothing is held twice.
+// A B line's packing of one event word d × 16 + m (nano.md "B:q,<packed>"): 5 bits a character,
+// most significant first, each character 63 + the bits, + 32 on every character but the word's last.
+constexpr char kPackBase = '?';
+constexpr uint8_t kPackMore = 32;
+constexpr uint8_t kPackMaxChars = 7;
+// Writes the word's characters into out (at least 7); returns how many (1-7).
+uint8_t packWord(uint32_t w, char* out);
+
+// Reads an `A:q,d,m[,d,m…]` or a `B:q,<packed>` line (without terminator) event by event, so
+// nothing is held twice.
 class AppendLine {
  public:
-  // False when the line is not an A line with a number after it.
+  // False when the line is not an A or B line with a number after it.
   bool begin(const char* line, uint8_t len);
   uint16_t seq() const { return seq_; }
-  // The next pair; false at the end of the line or on a malformed pair (then malformed()).
+  bool packed() const { return packed_; }
+  // The next event; false at the end of the line or on a malformed event (then malformed()).
   bool next(uint32_t& d, uint8_t& m);
+  // The same as the word d × 16 + m, for a B line only (what the Nano stores, unshifted).
+  bool nextWord(uint32_t& w);
   bool malformed() const { return bad_; }
 
  private:
   const char* p_ = nullptr;
   const char* end_ = nullptr;
   uint16_t seq_ = 0;
-  bool bad_ = false;
+  bool bad_ = false, packed_ = false;
 };
 
 struct Seal {
@@ -53,8 +66,8 @@ size_t formatSeal(const Seal& s, char* out);
 
 // Cuts a pass's events into the chain's lines, one line per call, so a sender takes a line only
 // when its UART has room for it (the Mega's ring holds one). Events come from `source` at absolute
-// µs after time 0, in time order; each program holds at most 64 and each A line at most 63 bytes,
-// and each program's K line follows its A lines.
+// µs after time 0, in time order; each program holds at most 64 and each B line at most 63 bytes,
+// and each program's K line follows its B lines (the packed A lines: A stays valid on the Nano).
 class ProgramLines {
  public:
   // The next event; false at the end of the pass.
@@ -100,16 +113,30 @@ class LinkLoad {
 
  private:
   uint32_t bytes_ = 0, ahead_ = 0, program_ = 0;  // all, the first two programs', the open program's
+  uint32_t events_ = 0, aheadEvents_ = 0;         // all sealed, the first two programs'
   uint16_t sealed_ = 0;
   uint32_t end1_ = 0, end2_ = 0;  // the last event of the last program sealed and of the one before
   uint64_t need_ = 0, have_ = 0;  // the first program that would come too late
 };
 
-// What the Mega takes to learn that the Nano freed a buffer and start the next program on its way:
-// its Q poll every 10 ms, the answer, and a main-loop pass or two (mega/src/scan_run.h).
-constexpr uint32_t kProgramRelayUs = 15000;
+// The relay: what the Mega takes from the Nano freeing a buffer to the next program's first byte
+// (it asks Q as the program before ends, mega/src/scan_run.h; the answer; a main-loop pass or two),
+// and what a load loses besides: the gaps while the planner makes the next line, the K's 1.1 ms
+// seal. The simavr scan tests measure relays up to 5.5 ms with both hosts polling the Mega, at the
+// three Nano clocks (mega_sim_tests, "photo-like"); at 8000 that pass underran at ±0.5 %.
+constexpr uint32_t kProgramRelayUs = 10000;
+
+// What the Mega's planner takes over an event as it writes a program's lines: a photo-like pass's
+// B lines of some 25 events took 6.4 to 8 ms each to make in simavr (mega_sim_tests, "photo-like"),
+// more than their 5.5 ms on the wire, so a dense program goes out no faster than its events are made.
+constexpr uint32_t kProgramEventUs = 300;
 
 // µs `bytes` take on the printhead link: 115200 baud, ten bits a byte.
 inline uint64_t linkUs(uint32_t bytes) { return static_cast<uint64_t>(bytes) * 10 * 1000000 / kNanoBaud; }
+// µs lines of `bytes` holding `events` take to go out: the wire's time, or the planner's if longer.
+inline uint64_t sendUs(uint32_t bytes, uint32_t events) {
+  const uint64_t wire = linkUs(bytes), made = static_cast<uint64_t>(events) * kProgramEventUs;
+  return wire > made ? wire : made;
+}
 
 }  // namespace uv

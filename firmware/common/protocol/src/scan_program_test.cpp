@@ -1,5 +1,6 @@
 // Host tests of the scan-program lines against protocol/vectors/nano-program.json: the writer cuts
-// a pass's events into the chain's A and K lines byte for byte, and every bad line is refused.
+// a pass's events into the chain's B and K lines byte for byte, A and B lines parse back to the
+// events, and every bad line is refused.
 #include "scan_program.h"
 
 #include <gtest/gtest.h>
@@ -58,12 +59,14 @@ TEST(ProgramVectors, TheWriterCutsEventsIntoTheChainsLines) {
 }
 
 TEST(ProgramVectors, EveryLineParsesBackToItsEvents) {
-  for (const json& c : V["programs"]) {
+  for (const json& c : V["programs"])
+    for (const char* form : {"lines", "appendLines"}) {
+    SCOPED_TRACE(form);
     std::vector<std::pair<uint32_t, uint8_t>> got;
     uint32_t t = 0;
     uint16_t check = kCheckInit;
     size_t programEvents = 0;
-    for (const json& l : c["lines"]) {
+    for (const json& l : c[form]) {
       std::string line = l;
       if (line[0] == 'K') {
         Seal s;
@@ -93,6 +96,25 @@ TEST(ProgramVectors, EveryLineParsesBackToItsEvents) {
       EXPECT_EQ(got[i].first, c["events"][i][0].get<uint32_t>());
       EXPECT_EQ(got[i].second, c["events"][i][1].get<uint8_t>());
     }
+    }
+}
+
+TEST(ProgramVectors, PackedWordsAtTheEdges) {
+  for (const json& c : V["packedWords"]) {
+    const uint32_t w = c[0];
+    const std::string line = c[1];
+    char out[kPackMaxChars];
+    EXPECT_EQ("B:0," + std::string(out, packWord(w, out)), line);
+    AppendLine a;
+    ASSERT_TRUE(a.begin(line.data(), static_cast<uint8_t>(line.size())));
+    EXPECT_TRUE(a.packed());
+    uint32_t got = 0;
+    EXPECT_TRUE(a.nextWord(got));
+    EXPECT_EQ(got, w);
+    EXPECT_FALSE(a.nextWord(got));
+    EXPECT_FALSE(a.malformed());
+    EXPECT_EQ(checkWord(kCheckInit, w), checkEvent(kCheckInit, w >> 4, w & 15));
+    counted();
   }
 }
 
@@ -159,11 +181,17 @@ static bool chainFits(uint32_t spacing, uint64_t& need, uint64_t& have, uint32_t
 TEST(LinkLoad, EachProgramAfterTheFirstTwoMustFitTheTimeTheOneBeforeItPlays) {
   uint64_t need = 0, have = 0;
   uint32_t third = 0;
-  // At 1 ms an event the whole chain fits the link (its third program's 40 ms within four fifths of
-  // 192 ms), but the third program has only the second's 64 ms, less the 15 ms relay, and needs 5/4 of 40.
-  EXPECT_FALSE(chainFits(1000, need, have, third));
-  EXPECT_EQ(need, 5 * linkUs(third) + 4 * kProgramRelayUs);
-  EXPECT_EQ(have, 4u * 64 * 1000);
-  EXPECT_LE(5 * linkUs(third), 4u * 192 * 1000);
+  // At 300 µs an event the whole chain fits the link (its third program's 20 ms within four fifths
+  // of 58 ms), but the third program has only the second's 19 ms, less the relay, and needs 5/4 of
+  // its 20.
+  EXPECT_FALSE(chainFits(300, need, have, third));
+  EXPECT_EQ(need, 5 * sendUs(third, kProgramEvents) + 4 * kProgramRelayUs);
+  EXPECT_EQ(have, 4u * 64 * 300);
+  EXPECT_LE(5 * sendUs(third, kProgramEvents), 4u * 192 * 300);
   EXPECT_TRUE(chainFits(2000, need, have, third));
+}
+
+TEST(LinkLoad, AProgramGoesOutNoFasterThanTheMegaMakesItsEvents) {
+  EXPECT_EQ(sendUs(100, 64), 64u * kProgramEventUs);  // 8.7 ms on the wire, 64 events to make
+  EXPECT_EQ(sendUs(1000, 1), linkUs(1000));
 }
