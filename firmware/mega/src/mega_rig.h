@@ -93,6 +93,7 @@ class FakeDisplay : public TextDisplay {
 class MegaRig {
  public:
   MegaRig() {
+    nano.wired = true;  // the printhead link takes its time on the wire, both ways
     // The switches: each axis's endstop closes a little way below where the head starts.
     rig.switchAt[0] = -1234;
     rig.switchAt[1] = -2345;
@@ -189,7 +190,7 @@ class MegaRig {
         rig.isrUntil(gAt_ && gAt_ < until ? gAt_ : until);
         if (gAt_ && rig.now >= gAt_) {
           nano.advance(static_cast<uint32_t>(gAt_ / 2));
-          nano.write("G\n", 2);
+          nano.arrived("G\n", 2);
           gAt_ = 0;
         }
         if (rig.now >= until) break;
