@@ -71,6 +71,7 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
       toNano_.pop_front();
       settle(static_cast<uint32_t>((b.atNs + 999) / 1000));
       take(&b.c, 1);
+      midLine_ = b.c != '\n';
     }
     settle(toUs);
   }
@@ -111,6 +112,17 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
     setTemps(temps_);
     toMega_.clear();
     toMegaFreeNs_ = 0;
+    dropFromMega();  // what was on its way found the Nano off
+  }
+  // The Mega restarts: the lines in its transmit ring never leave, but for the end of the one already
+  // going out (kept whole here, so the Nano's next line is not run together with a fragment).
+  void dropFromMega() {
+    auto end = toNano_.begin();
+    if (midLine_)
+      while (end != toNano_.end() && (end++)->c != '\n') {
+      }
+    toNano_.erase(end, toNano_.end());
+    toNanoFreeNs_ = toNano_.empty() ? 0 : toNano_.back().atNs;
   }
 
   // The Nano's clock runs this many parts per million fast: what its W answers say.
@@ -137,11 +149,15 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
     char c;
   };
   static constexpr uint64_t kByteNs = 10ull * 1000000000 / uv::kNanoBaud;
+  // The real Nano lights an F about 180 µs after its newline arrives (its main loop parses the line
+  // and sets the timer; simavr, stop_sim_test.cpp); the rest it answers or does within about 100.
+  static constexpr uint64_t kFireTakenNs = 180000;
   // Queues bytes on one direction of the wire: each starts when the one before it has gone.
   void onWire(std::deque<WireByte>& wire, uint64_t& freeNs, const char* data, uint8_t n) {
     uint64_t t = freeNs > static_cast<uint64_t>(nowUs) * 1000 ? freeNs : static_cast<uint64_t>(nowUs) * 1000;
     for (uint8_t i = 0; i < n; i++) wire.push_back({t += kByteNs, data[i]});
     freeNs = t;
+    if (&wire == &toNano_ && n && data[0] == 'F' && data[n - 1] == '\n') wire.back().atNs += kFireTakenNs;
   }
   // The LEDs' switch-offs and a chain's events up to `atUs`.
   void settle(uint32_t atUs) {
@@ -252,6 +268,7 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
   uv::LineSplitter splitter_;
   std::deque<WireByte> toNano_, toMega_;
   uint64_t toNanoFreeNs_ = 0, toMegaFreeNs_ = 0;  // when each direction's last queued byte ends
+  bool midLine_ = false;  // the Nano has part of a line from the wire
   uint8_t lit_ = 0;
   uint32_t offAt_[4] = {};
   uint32_t startAt_ = 0;

@@ -90,6 +90,10 @@ class FakeDisplay : public TextDisplay {
   int draws = 0;
 };
 
+// From a stop's confirmation (its E answer read) to the next stop's first step, what the real Mega
+// image takes in simavr (StopCycle's timeline, stop_sim_test.cpp): the rig's passes are instant.
+constexpr uint32_t kStopLoadUs = 2100;
+
 class MegaRig {
  public:
   MegaRig() {
@@ -140,6 +144,7 @@ class MegaRig {
   // stays where it physically is, and the switches where they are; the Mega's count starts at 0.
   void reset(uint64_t bootUs, bool powerLost = false) {
     sd.powerCut();
+    nano.dropFromMega();
     if (powerLost) nano.powerCycle();
     int32_t where[3], switches[3];
     for (int a = 0; a < 3; a++) {
@@ -180,7 +185,14 @@ class MegaRig {
   void run(uint64_t us) {
     for (uint64_t end = nowUs + us; nowUs < end; nowUs += 100) {
       nano.advance(static_cast<uint32_t>(nowUs));
+      const bool atRest = rig.engine.idle();
       machine.poll(static_cast<uint32_t>(nowUs));
+      // The first move after an exposure, a job's next stop: the board's CPU plans the stop and
+      // converts, profiles and cuts its move before the first step, which this rig's instant passes do not.
+      if (atRest && !rig.engine.idle() && nano.fired != loadedAfter_) {
+        loadedAfter_ = nano.fired;
+        rig.startDelayTicks = kStopLoadUs * 2;
+      }
       while (firedAt.size() < nano.exposures.size()) {
         std::array<int32_t, 3> p;
         rig.motion.positionSteps(p.data());
@@ -249,6 +261,7 @@ class MegaRig {
  private:
   uint32_t usbN_ = 0, espN_ = 0;
   uint64_t gAt_ = 0;  // a scan pass's G on its way to the Nano: when it arrives (ticks)
+  uint32_t loadedAfter_ = 0;  // nano.fired when the last stop after an exposure was loaded
   bool probeJammed_ = false;
 };
 
