@@ -84,7 +84,7 @@ export function planMixed(job: PlannerJob, machine: Machine): MixedPlan {
     const pass = planScanPass(ctx, ledRows, hy, descending, curX, curY);
     if (pass === null) continue;
     if ('refused' in pass) return empty(pass.refused);
-    const scanUs = passWallUs(pass, machine);
+    const scanUs = passWallUs(pass);
     const stops = passStops(job, tables, ledRows, hy, descending);
     const ySteps = axisSteps(machine, 1, Y(hy));
     let x = curX, y = axisSteps(machine, 1, curY), stopsUs = 0;

@@ -162,7 +162,7 @@ export function forecastScanThermal(scan: ScanPlan, place: PlanPlace, machine: M
   for (s.stop = 0; s.stop < scan.passes.length; s.stop++) {
     const pass = scan.passes[s.stop];
     const stroke = passDurationUs(scan, pass);
-    if (!hold(passWallUs(pass, machine) - stroke, 0)) break; // the move, the overhead, the Q that ends the pass
+    if (!hold(passWallUs(pass) - stroke, 0)) break; // the move, the overhead, the Q that ends the pass
     if (!paceWait() || !exposeStroke(hold, pass)) break;
   }
   return result();
