@@ -3,7 +3,7 @@
 import { durationTables } from './dose';
 import { passRows, type PlannerJob } from './planner';
 import { engineStep, fitsTimer, passWallUs, planScanPass, scanMotion, type ScanPass } from './scan';
-import { axisSteps, MoveTimes, type Machine } from './time-model';
+import { axisSteps, fireLineUs, MoveTimes, type Machine } from './time-model';
 
 interface MixedPassBase {
   hy: number;
@@ -91,7 +91,7 @@ export function planMixed(job: PlannerJob, machine: Machine): MixedPlan {
     for (const [hx, , ...us] of stops) {
       const to = axisSteps(machine, 0, X(hx));
       const move = moves.engine(to - x, ySteps - y);
-      stopsUs += move + (move > 0 ? machine.settleUs : 0) + machine.overheadUs + Math.max(...us);
+      stopsUs += move + (move > 0 ? machine.settleUs : 0) + machine.overheadUs + fireLineUs(us) + Math.max(...us);
       x = to;
       y = ySteps;
     }

@@ -19,7 +19,7 @@ uint64_t ScanPlanner::priceStops(int32_t hy, int32_t& endX) {
       if (us > longest) longest = us;
     const int32_t to = axisSteps(m_, 0, X(s.hx)), dx = to - x, dy = y - from;
     const uint32_t move = engineMoveUs(m_, static_cast<uint32_t>(dx < 0 ? -dx : dx), static_cast<uint32_t>(dy < 0 ? -dy : dy));
-    total += move + (move ? m_.settleUs : 0) + m_.overheadUs + longest;
+    total += move + (move ? m_.settleUs : 0) + m_.overheadUs + fireLineUs(s.us) + longest;
     x = to;
     from = y;
   }
