@@ -49,6 +49,9 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
       take(data, n);
       return true;
     }
+    // The Mega's transmit ring holds kTxRing bytes not yet on the wire: a line that does not fit
+    // waits, as on the board, so what is sent after it (a K awaiting its answer) is not held back.
+    if (toNano_.size() + n > kTxRing) return false;
     onWire(toNano_, toNanoFreeNs_, data, n);
     return true;
   }
@@ -149,6 +152,7 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
     char c;
   };
   static constexpr uint64_t kByteNs = 10ull * 1000000000 / uv::kNanoBaud;
+  static constexpr size_t kTxRing = 64;  // NanoUart::kRing (hw/nano_uart.h)
   // The real Nano lights an F about 180 µs after its newline arrives (its main loop parses the line
   // and sets the timer; simavr, stop_sim_test.cpp); the rest it answers or does within about 100.
   static constexpr uint64_t kFireTakenNs = 180000;
