@@ -11,7 +11,7 @@ export const BENCH_MACHINE: Machine = {
   vmaxUmS: [100_000, 100_000],
   accelUmS2: [2_000_000, 1_500_000],
   settleUs: 2000,
-  overheadUs: 400,
+  overheadUs: 4300, // stop_overhead_us: what the real images spend a stop beyond move, settle, F line and light (StopCycle)
   startUm: [0, 0],
   stepsMilli: [80_000, 80_000],
 };

@@ -17,7 +17,7 @@ host() {
     cmake --build build/host -j"$(nproc)" >/dev/null &&
     (cd build/host && ctest --output-on-failure -E '^(nano_sim_tests|mega_sim_tests|mega_tests)$') &&
     build/host/nano_sim_tests --gtest_brief=1 | grep '^\[nano budget\]' &&
-    build/host/mega_sim_tests --gtest_brief=1 | grep -E '^\[mega budget\]|FAILED|Failure' &&
+    build/host/mega_sim_tests --gtest_brief=1 | grep -E '^\[(mega budget|stop cycle)\]|FAILED|Failure' &&
     build/host/mega_tests --gtest_brief=1 | grep -E '^\[mega |FAILED|Failure' &&
     { build/host/protocol_tests --gtest_brief=1 && build/host/esp_tests --gtest_brief=1; } | grep -E '^\[(vectors|esp )\]|^\[esp |FAILED|Failure'
 }

@@ -126,8 +126,7 @@ export function planMixed(job: PlannerJob, machine: Machine): MixedPlan {
     let us = 0, ys = axisSteps(machine, 1, y);
     for (const [hx, hy, ...t] of stops) {
       const to = xSteps(hx), toY = axisSteps(machine, 1, Y(hy));
-      const move = moves.engine(to - x, toY - ys);
-      us += move + (move > 0 ? machine.settleUs : 0) + machine.overheadUs + Math.max(...t);
+      us += moves.stopSteps(to - x, toY - ys, t);
       x = to;
       ys = toY;
     }
@@ -153,7 +152,7 @@ export function planMixed(job: PlannerJob, machine: Machine): MixedPlan {
       const descending = (opened + byPasses.length) % 2 === 1; // the 2nd, 4th, … pass, whichever way it is exposed
       const pass = planScanPass(ctx, ledRows, hy, descending, x, y)!;
       if ('refused' in pass) return empty(pass.refused);
-      const scanUs = passWallUs(pass, machine);
+      const scanUs = passWallUs(pass);
       const stops = passStops(job, tables, ledRows, hy, descending);
       const asStops = priceStops(stops, x, y);
       const base = { hy, descending, first: pass.first, last: pass.last, scanUs, stopsUs: asStops.us };

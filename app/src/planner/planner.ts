@@ -183,11 +183,9 @@ export function planJob(job: PlannerJob, machine: Machine): Plan {
   let travelY = 0;
   let emitted = 0;
 
-  const longest = (v: Uint8Array, at: number) =>
-    Math.max(tables[0][v[at]], tables[1][v[at + 1]], tables[2][v[at + 2]], tables[3][v[at + 3]]);
   /** The time model's cost of one stop from (x, y); protocol/planner.md "Time model". */
   const stopCost = (x: number, y: number, fromX: number, fromY: number, v: Uint8Array, at: number) =>
-    moves.stop(x, y, fromX, fromY, longest(v, at));
+    moves.stop(x, y, fromX, fromY, [tables[0][v[at]], tables[1][v[at + 1]], tables[2][v[at + 2]], tables[3][v[at + 3]]]);
   const emit = (hx: number, hy: number, v: Uint8Array, at: number) => {
     out.push(hx, hy, tables[0][v[at]], tables[1][v[at + 1]], tables[2][v[at + 2]], tables[3][v[at + 3]]);
     const x = X(hx), y = Y(hy);

@@ -6,7 +6,7 @@ import { GEOMETRIES, MACHINE, randomJob } from './golden';
 import { headerOf } from './job-header';
 import { passRows, planJob } from './planner';
 import { scanGoldenCases, type ScanCase } from './scan-golden';
-import { LINK_BAUD, linkShortfall, MAX_JUMPS, passMotion, planScan, planScanPass, PROGRAM_RELAY_US, scanMotion, SCAN_PASS_END_US, type ScanPlan } from './scan';
+import { LINK_BAUD, linkShortfall, MAX_JUMPS, passMotion, planScan, planScanPass, PROGRAM_RELAY_US, scanMotion, SCAN_PASS_END_US, SCAN_PASS_LOAD_US, type ScanPlan } from './scan';
 import { parsePacked, programLines } from '../protocol/scan-program';
 import { axisSteps, engineMoveUs, MoveTimes, moveTimeUs, type Machine } from './time-model';
 
@@ -129,7 +129,7 @@ describe('scan planner', () => {
     expect(pass.strokeUs).toBe(20772);
     expect(pass.strokeUs).toBeGreaterThan(11 * 500 + 2 * 7500);
     expect(pass.strokeUs).toBeLessThan(11 * 500 + 2 * 8334);
-    expect(p.estimateUs).toBe(pass.moveUs + 1500 + pass.strokeUs + SCAN_PASS_END_US);
+    expect(p.estimateUs).toBe(pass.moveUs + SCAN_PASS_LOAD_US + pass.strokeUs + SCAN_PASS_END_US);
   });
 
   it('writes gray levels as on-time within the window, and merges only runs that fill their windows', () => {
@@ -166,7 +166,7 @@ describe('scan planner', () => {
     expect(pass.jumps).toEqual([]);
     const S4 = 8000, S5 = 10000, S7 = 14000;
     expect(pass.leds).toEqual([[[S4, S4 + 2000]], [[S7, S7 + 2000]], [[0, 2000]], [[S5, S5 + 2000]]]);
-    expect(p.estimateUs).toBe(pass.moveUs + 1500 + pass.strokeUs + SCAN_PASS_END_US);
+    expect(p.estimateUs).toBe(pass.moveUs + SCAN_PASS_LOAD_US + pass.strokeUs + SCAN_PASS_END_US);
     expect(pass.strokeUs - pass.markUs).toBeGreaterThan(S7 + 2000); // the mark, then the windows, then the ramp down
   });
 

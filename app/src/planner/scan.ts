@@ -86,6 +86,8 @@ export function fitsTimer(h: JobHeader, windowUs: number): boolean {
 export const STROKE_MARK_LEAD_US = 1000 + 2 * 85;
 /** After the stroke the Mega waits for the Nano's next Q answer (asked every 10 ms): half a poll on average. */
 export const SCAN_PASS_END_US = 5000;
+/** µs the Mega takes to start a pass once its move is done (planner.md "Scan mode"): not a stop's overhead (`overheadUs`). */
+export const SCAN_PASS_LOAD_US = 400;
 
 /**
  * A pass's step at window W as 16.16 timer ticks, or why the step engine cannot run it: over
@@ -219,7 +221,7 @@ export function planScan(job: PlannerJob, machine: Machine, opts: { neverFly?: b
     const full = planScanPass({ job, tables, motion, machine, moves, neverFly: !!opts.neverFly, noLinkCap: !!opts.noLinkCap }, ledRows, hy, descending, curX, curY);
     if (full === null) continue;
     if ('refused' in full) return { ...motion, passes: [], estimateUs: 0, ...(full.refused ? { refused: full.refused } : {}) };
-    plan.estimateUs += passWallUs(full, machine);
+    plan.estimateUs += passWallUs(full);
     curX = full.stopSteps;
     curY = Y(hy);
     plan.passes.push(full);
@@ -276,8 +278,8 @@ function windowsSpanUs(pass: Pick<ScanPass, 'first' | 'last' | 'windowUs' | 'jum
 }
 
 /** A pass's whole time in the estimate: the move to its stroke, the overhead, the stroke, the Q that confirms it. */
-export function passWallUs(pass: ScanPass, machine: Pick<Machine, 'overheadUs'>): number {
-  return pass.moveUs + machine.overheadUs + pass.strokeUs + SCAN_PASS_END_US;
+export function passWallUs(pass: ScanPass): number {
+  return pass.moveUs + SCAN_PASS_LOAD_US + pass.strokeUs + SCAN_PASS_END_US;
 }
 
 /** A pass's time from its start at rest to its end at rest, as the step engine runs its stroke. */

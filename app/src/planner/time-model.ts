@@ -3,6 +3,20 @@
 
 import { roundDiv } from './dose';
 
+/**
+ * µs the stop's `F:m,d0,d1,d2,d3` line takes on the printhead link at 115200 baud, ten bits a byte,
+ * rounded down (protocol/planner.md "Time model"); 0 for a stop that lights nothing (no F goes).
+ */
+export function fireLineUs(us: ArrayLike<number>): number {
+  let mask = 0;
+  let bytes = 7; // "F:", the four commas, the newline
+  for (let k = 0; k < 4; k++) {
+    if (us[k] > 0) mask |= 1 << k;
+    bytes += String(us[k]).length;
+  }
+  return mask ? Math.floor(((bytes + String(mask).length) * 10_000_000) / 115_200) : 0;
+}
+
 export interface Machine {
   vmaxUmS: [number, number];
   accelUmS2: [number, number];
@@ -156,11 +170,17 @@ export class MoveTimes {
 
   /**
    * The time model's cost of one stop (protocol/planner.md "Time model"): the step engine's move
-   * from (fromX, fromY) to (x, y) in µm, the settle after a move, the per-stop overhead, and its
-   * longest exposure.
+   * from (fromX, fromY) to (x, y) in µm, the settle after a move, the per-stop overhead, its F line
+   * on the wire, and its longest exposure (`us`: its four durations).
    */
-  stop(x: number, y: number, fromX: number, fromY: number, longestUs: number): number {
-    const move = this.move(x, y, fromX, fromY);
-    return move + (move > 0 ? this.machine.settleUs : 0) + this.machine.overheadUs + longestUs;
+  stop(x: number, y: number, fromX: number, fromY: number, us: ArrayLike<number>): number {
+    const m = this.machine;
+    return this.stopSteps(axisSteps(m, 0, x) - axisSteps(m, 0, fromX), axisSteps(m, 1, y) - axisSteps(m, 1, fromY), us);
+  }
+
+  /** The same after a move of (dx, dy) steps: the one rule every planner prices a stop by (stopCostStepsUs in C++). */
+  stopSteps(dx: number, dy: number, us: ArrayLike<number>): number {
+    const move = this.engine(dx, dy);
+    return move + (move > 0 ? this.machine.settleUs : 0) + this.machine.overheadUs + fireLineUs(us) + Math.max(us[0], us[1], us[2], us[3]);
   }
 }

@@ -58,7 +58,7 @@ export function timeline(job: PrintJob, plan: Plan, machine: Machine): Float64Ar
   for (let i = 0; i < plan.count; i++) {
     const nx = job.originUm.x + plan.hx[i] * job.pitchUm.x, ny = job.originUm.y + plan.hy[i] * job.pitchUm.y;
     const d = plan.durations;
-    t += moves.stop(nx, ny, x, y, Math.max(d[i * 4], d[i * 4 + 1], d[i * 4 + 2], d[i * 4 + 3]));
+    t += moves.stop(nx, ny, x, y, d.subarray(i * 4, i * 4 + 4));
     out[i] = t;
     x = nx, y = ny;
   }

@@ -118,11 +118,11 @@ export function scanPreviewGrid(job: PrintJob, doses: ScanDoses, upTo: number, m
 }
 
 /** The clock when each pass ends, µs, as planScan's estimate counts it. */
-export function scanTimeline(_job: PrintJob, scan: ScanPlan, machine: Machine): Float64Array {
+export function scanTimeline(_job: PrintJob, scan: ScanPlan, _machine: Machine): Float64Array {
   const out = new Float64Array(scan.passes.length);
   let t = 0;
   scan.passes.forEach((p, i) => {
-    t += passWallUs(p, machine);
+    t += passWallUs(p);
     out[i] = t;
   });
   return out;

@@ -18,7 +18,7 @@ export const CONFIG_DEFAULTS: Record<string, string> = {
   'accel.y': '1500',
   'accel.z': '200',
   'settle_ms': '2',
-  'stop_overhead_us': '400',
+  'stop_overhead_us': '4300',
   'invert.x': '0',
   'invert.y': '0',
   'invert.z': '0',

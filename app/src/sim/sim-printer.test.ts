@@ -176,8 +176,10 @@ describe('simulated printer: jobs', () => {
     expect(h.waitFor(/^JOB:done/)).toContain(`stop=${total}/${total}`);
     expect(h.sim.module.fires - fires).toBe(total); // every stop lights something, once
     const took = (h.sim.clock.now - start) / 1e6;
+    // The estimate is whole seconds, rounded: this job's 62 stops take about 1.5 s, its estimate
+    // (stop_overhead_us as measured on the real images, StopCycle) within 3 % of that.
     expect(took).toBeLessThanOrEqual(remaining + 1);
-    expect(took).toBeGreaterThan(remaining * 0.8);
+    expect(took).toBeGreaterThan((remaining - 0.5) * 0.9);
   });
 
   it('resumes after a power cycle with every stop exactly once', () => {

@@ -9,7 +9,7 @@ import { passDurationUs, passSwitches } from '../planner/job-plan';
 import type { Plan } from '../planner/planner';
 import type { MixedPlan } from '../planner/mixed';
 import { passWallUs, type ScanPass, type ScanPlan } from '../planner/scan';
-import { axisSteps, MoveTimes, type Machine } from '../planner/time-model';
+import { axisSteps, fireLineUs, MoveTimes, type Machine } from '../planner/time-model';
 import { HEAD_THERMAL, HeadThermal, type HeadThermalModel } from '../sim/head-thermal';
 import { overSoftLimit, paceWaits, READING_PERIOD_US } from '../sim/pacing';
 
@@ -89,7 +89,7 @@ export function forecastThermal(plan: Plan, place: PlanPlace, machine: Machine, 
     const ny = place.originUm[1] + plan.hy[stop] * place.pitchUm[1];
     let longest = 0;
     for (let k = 0; k < 4; k++) longest = Math.max(longest, (d[k] = plan.durations[stop * 4 + k]));
-    if (!hold(moves.stop(nx, ny, x, y, longest) - longest, 0)) break;
+    if (!hold(moves.stop(nx, ny, x, y, d) - longest, 0)) break;
     x = nx, y = ny;
     if (!paceWait() || !exposeStop(hold, d)) break;
   }
@@ -143,7 +143,7 @@ export function forecastMixedThermal(mixed: MixedPlan, place: PlanPlace, machine
     for (const [hx, hy, ...d] of p.stops) {
       const nx = axisSteps(machine, 0, place.originUm[0] + hx * place.pitchUm[0]), ny = axisSteps(machine, 1, place.originUm[1] + hy * place.pitchUm[1]);
       const move = moves.engine(nx - x, ny - y);
-      if (!hold(move + (move > 0 ? machine.settleUs : 0) + machine.overheadUs, 0) || !paceWait() || !exposeStop(hold, d)) return result();
+      if (!hold(move + (move > 0 ? machine.settleUs : 0) + machine.overheadUs + fireLineUs(d), 0) || !paceWait() || !exposeStop(hold, d)) return result();
       x = nx, y = ny;
       s.stop++;
     }
@@ -162,7 +162,7 @@ export function forecastScanThermal(scan: ScanPlan, place: PlanPlace, machine: M
   for (s.stop = 0; s.stop < scan.passes.length; s.stop++) {
     const pass = scan.passes[s.stop];
     const stroke = passDurationUs(scan, pass);
-    if (!hold(passWallUs(pass, machine) - stroke, 0)) break; // the move, the overhead, the Q that ends the pass
+    if (!hold(passWallUs(pass) - stroke, 0)) break; // the move, the overhead, the Q that ends the pass
     if (!paceWait() || !exposeStroke(hold, pass)) break;
   }
   return result();

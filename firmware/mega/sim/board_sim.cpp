@@ -248,12 +248,14 @@ void BoardSim::onMegaToNano(avr_irq_t*, uint32_t value, void* param) {
   if (s->nanoPartial_.empty()) s->nanoLineFirst.push_back(s->megaCycle());
   if (value == '\n') s->nanoLineLast.push_back(s->megaCycle());
   collect(static_cast<char>(value), s->nanoPartial_, s->nanoLines);
+  if (s->logging && value == '\n') s->linkLines.push_back({s->megaCycle(), true, s->nanoLines.back()});
 }
 
 void BoardSim::onNanoToMega(avr_irq_t*, uint32_t value, void* param) {
   auto* s = static_cast<BoardSim*>(param);
   s->toMega_.pending.push_back(static_cast<char>(value));
   collect(static_cast<char>(value), s->replyPartial_, s->nanoReplies);
+  if (s->logging && value == '\n') s->linkLines.push_back({s->megaCycle(), false, s->nanoReplies.back()});
 }
 
 void BoardSim::onRxTaken(avr_irq_t*, uint32_t value, void* param) {

@@ -84,6 +84,14 @@ class BoardSim {
     bool on;
   };
   std::vector<LedEdge> ledEdges;
+  // While `logging`: each line on the printhead link as its newline leaves the sender's UART,
+  // `toNano` for the Mega's, else the Nano's reply (the stop cycle's timeline, stop_sim_test).
+  struct LinkLine {
+    uint64_t cycle;
+    bool toNano;
+    std::string text;
+  };
+  std::vector<LinkLine> linkLines;
 
   int32_t pos[3] = {0, 0, 0};                       // steps counted on the pins
   int32_t switchAt[3] = {INT32_MIN, INT32_MIN, INT32_MIN};  // a switch closes at or below this

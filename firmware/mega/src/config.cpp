@@ -42,7 +42,7 @@ const KeySpec kSpecs[kKeyCount] UV_FLASH = {
     {"accel.y", 1500 * k, 10 * k, 20000 * k, kDecimal},
     {"accel.z", 200 * k, 1 * k, 5000 * k, kDecimal},
     {"settle_ms", 2 * k, 0, 1000 * k, kWhole},
-    {"stop_overhead_us", 400 * k, 0, 100000 * k, kWhole},
+    {"stop_overhead_us", 4300 * k, 0, 100000 * k, kWhole},
     {"invert.x", 0, 0, 1 * k, kWhole},
     {"invert.y", 0, 0, 1 * k, kWhole},
     {"invert.z", 0, 0, 1 * k, kWhole},

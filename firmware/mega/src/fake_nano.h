@@ -1,6 +1,7 @@
 // Host tests' printhead: the real Nano command brain (firmware/nano/src/printhead) behind the
 // Mega's ByteStream, with LEDs that switch off in simulated time and a log of every exposure, so
-// tests can count each cell's light. It can go silent, stick an LED on, or be reset.
+// tests can count each cell's light. It can go silent, stick an LED on, or be reset. With `wired`, each
+// byte takes its ten bit-times at 115200 baud each way (86.8 µs), as on the machine.
 #pragma once
 #include <stdint.h>
 
@@ -11,6 +12,7 @@
 
 #include "byte_stream.h"
 #include "line_splitter.h"
+#include "nano_codec.h"
 #include "printhead.h"
 
 namespace mega {
@@ -36,33 +38,49 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
 
   // --- the Mega's side ---
   int16_t read() override {
-    if (toMega_.empty()) return -1;
-    char c = toMega_.front();
+    if (toMega_.empty() || toMega_.front().atNs > static_cast<uint64_t>(nowUs) * 1000) return -1;
+    char c = toMega_.front().c;
     toMega_.pop_front();
     return static_cast<uint8_t>(c);
   }
   bool write(const char* data, uint8_t n) override {
     if (uartFull) return false;
-    take(data, n);
+    if (!wired) {
+      take(data, n);
+      return true;
+    }
+    // The Mega's transmit ring holds kTxRing bytes not yet on the wire: a line that does not fit
+    // waits, as on the board, so what is sent after it (a K awaiting its answer) is not held back.
+    if (toNano_.size() + n > kTxRing) return false;
+    onWire(toNano_, toNanoFreeNs_, data, n);
     return true;
   }
+  // The Mega's W goes out only on an idle transmitter: its time is when its first bit leaves.
   bool writeNow(char op, uint32_t& atUs) override {
-    if (uartFull) return false;
+    if (uartFull || (wired && toNanoFreeNs_ > static_cast<uint64_t>(nowUs) * 1000)) return false;
     const char line[2] = {op, '\n'};
     atUs = nowUs;
-    take(line, 2);
+    if (wired) onWire(toNano_, toNanoFreeNs_, line, 2);
+    else take(line, 2);
     return true;
   }
 
   // --- the test's side ---
+  // Runs the Nano up to `toUs`: the bytes the wire delivers by then, each when its stop bit ends,
+  // and the LEDs' switch-offs and a scan chain's events in between.
   void advance(uint32_t toUs) {
-    nowUs = toUs;
-    if (!silent) head_.poll(nowUs / 1000);  // the chain the Mega stopped talking to is cut after 50 ms
-    if (program_) return runProgram();  // a scan chain's LEDs follow its events, not an F's offs
-    for (uint8_t i = 0; i < 4; i++) {
-      if ((lit_ & (1 << i)) && !stuck && nowUs >= offAt_[i]) off(i, offAt_[i]);
+    while (!toNano_.empty() && toNano_.front().atNs <= static_cast<uint64_t>(toUs) * 1000) {
+      const WireByte b = toNano_.front();
+      toNano_.pop_front();
+      settle(static_cast<uint32_t>((b.atNs + 999) / 1000));
+      take(&b.c, 1);
+      midLine_ = b.c != '\n';
     }
+    settle(toUs);
   }
+  // A line that has crossed the wire already and ends now (a scan pass's G, which the rig times from
+  // its step).
+  void arrived(const char* data, uint8_t n) { take(data, n); }
   void setTemps(int16_t deciC) {
     int16_t each[uv::kSensorCount];
     for (int16_t& t : each) t = deciC;
@@ -96,6 +114,18 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
     head_.setBoot(++boot_);
     setTemps(temps_);
     toMega_.clear();
+    toMegaFreeNs_ = 0;
+    dropFromMega();  // what was on its way found the Nano off
+  }
+  // The Mega restarts: the lines in its transmit ring never leave, but for the end of the one already
+  // going out (kept whole here, so the Nano's next line is not run together with a fragment).
+  void dropFromMega() {
+    auto end = toNano_.begin();
+    if (midLine_)
+      while (end != toNano_.end() && (end++)->c != '\n') {
+      }
+    toNano_.erase(end, toNano_.end());
+    toNanoFreeNs_ = toNano_.empty() ? 0 : toNano_.back().atNs;
   }
 
   // The Nano's clock runs this many parts per million fast: what its W answers say.
@@ -104,6 +134,7 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
   bool silent = false;   // hears nothing, answers nothing
   bool stuck = false;    // LEDs ignore their off time (a failed timer), only R turns them off
   bool uartFull = false;
+  bool wired = false;  // bytes take their time on the wire (else a line arrives as it is written)
   uint32_t nowUs = 0;
   std::vector<Exposure> exposures;
   std::vector<ScanLight> scanLight;
@@ -116,6 +147,31 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
   bool probe = false;
 
  private:
+  struct WireByte {
+    uint64_t atNs;  // when its stop bit ends at the far side
+    char c;
+  };
+  static constexpr uint64_t kByteNs = 10ull * 1000000000 / uv::kNanoBaud;
+  static constexpr size_t kTxRing = 64;  // NanoUart::kRing (hw/nano_uart.h)
+  // The real Nano lights an F about 180 µs after its newline arrives (its main loop parses the line
+  // and sets the timer; simavr, stop_sim_test.cpp); the rest it answers or does within about 100.
+  static constexpr uint64_t kFireTakenNs = 180000;
+  // Queues bytes on one direction of the wire: each starts when the one before it has gone.
+  void onWire(std::deque<WireByte>& wire, uint64_t& freeNs, const char* data, uint8_t n) {
+    uint64_t t = freeNs > static_cast<uint64_t>(nowUs) * 1000 ? freeNs : static_cast<uint64_t>(nowUs) * 1000;
+    for (uint8_t i = 0; i < n; i++) wire.push_back({t += kByteNs, data[i]});
+    freeNs = t;
+    if (&wire == &toNano_ && n && data[0] == 'F' && data[n - 1] == '\n') wire.back().atNs += kFireTakenNs;
+  }
+  // The LEDs' switch-offs and a chain's events up to `atUs`.
+  void settle(uint32_t atUs) {
+    nowUs = atUs;
+    if (!silent) head_.poll(nowUs / 1000);  // the chain the Mega stopped talking to is cut after 50 ms
+    if (program_) return runProgram();  // a scan chain's LEDs follow its events, not an F's offs
+    for (uint8_t i = 0; i < 4; i++) {
+      if ((lit_ & (1 << i)) && !stuck && nowUs >= offAt_[i]) off(i, offAt_[i]);
+    }
+  }
   void take(const char* data, uint8_t n) {
     for (uint8_t i = 0; i < n; i++) {
       if (!splitter_.push(data[i])) continue;
@@ -205,14 +261,18 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
   void servoPulse(uint16_t us) override { servoUs = us; }
   bool probeTriggered() override { return probe; }
   void reply(const char* text, uint8_t len) override {
-    if (!silent) toMega_.insert(toMega_.end(), text, text + len);
+    if (silent) return;
+    if (wired) return onWire(toMega_, toMegaFreeNs_, text, len);
+    for (uint8_t i = 0; i < len; i++) toMega_.push_back({0, text[i]});
   }
 
   nano::PrintheadConfig config_{10000000, {{600, 600, 600, 600, 600, 600}, 50, 100, 1750}, "0.1.0"};
   nano::Printhead head_;
   char line_[uv::kNanoMaxLine + 2];
   uv::LineSplitter splitter_;
-  std::deque<char> toMega_;
+  std::deque<WireByte> toNano_, toMega_;
+  uint64_t toNanoFreeNs_ = 0, toMegaFreeNs_ = 0;  // when each direction's last queued byte ends
+  bool midLine_ = false;  // the Nano has part of a line from the wire
   uint8_t lit_ = 0;
   uint32_t offAt_[4] = {};
   uint32_t startAt_ = 0;

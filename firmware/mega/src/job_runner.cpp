@@ -158,6 +158,18 @@ void JobRunner::count(uint32_t nowUs) {
   elapsedUs_ %= 1000000;
 }
 
+void JobRunner::confirmed(uint32_t nowUs) {
+  stopInHand_ = false;
+  done_++;
+  progress_.done = done_;
+  if (lit_) progress_.fires++;  // the Nano counted it
+  if (!source_ && !checkpoint_.write(progress_)) return fail(uv::kFileError);
+  phase_ = Phase::Load;
+  // A stream's next stop is loaded in this same pass: a pass is about 200 µs on the board. A card
+  // job's has the checkpoint's write behind it in this one, and waits for the next.
+  if (source_) poll(nowUs);
+}
+
 void JobRunner::poll(uint32_t nowUs) {
   now_ = nowUs;
   if (state_ != RunState::Running) return;
@@ -235,15 +247,18 @@ void JobRunner::poll(uint32_t nowUs) {
         }
       }
       stopInHand_ = true;
+      // In steps, each µm figure converted once: on the board each conversion is a 64-bit division.
       int32_t here[3], to[3];
-      motion_.targetUm(here);
-      to[0] = static_cast<int32_t>(header_.originUm[0]) + stop_.hx * static_cast<int32_t>(header_.pitchUm[0]);
-      to[1] = static_cast<int32_t>(header_.originUm[1]) + stop_.hy * static_cast<int32_t>(header_.pitchUm[1]);
-      to[2] = zBase_ + (mesh_ ? mesh_->offsetAt(to[0], to[1]) : 0);  // the bed's height under the stop
+      motion_.targetSteps(here);
+      const int32_t xUm = static_cast<int32_t>(header_.originUm[0]) + stop_.hx * static_cast<int32_t>(header_.pitchUm[0]);
+      const int32_t yUm = static_cast<int32_t>(header_.originUm[1]) + stop_.hy * static_cast<int32_t>(header_.pitchUm[1]);
+      to[0] = motion_.toSteps(0, xUm);
+      to[1] = motion_.toSteps(1, yUm);
+      to[2] = motion_.toSteps(2, zBase_ + (mesh_ ? mesh_->offsetAt(xUm, yUm) : 0));  // the bed's height under the stop
       bool moves = to[0] != here[0] || to[1] != here[1] || to[2] != here[2];
       // A stop off the bed (any host's job, checked here whatever planned it): the head never goes there.
-      if (!motion_.onBed(0, motion_.toSteps(0, to[0])) || !motion_.onBed(1, motion_.toSteps(1, to[1]))) return fail(uv::kSoftLimit);
-      if (moves && !motion_.moveTo(to, 0)) return;  // the queue is full: next pass
+      if (!motion_.onBed(0, to[0]) || !motion_.onBed(1, to[1])) return fail(uv::kSoftLimit);
+      if (moves && !motion_.moveToSteps(to)) return;  // the queue is full: next pass
       settleUntil_ = moves ? static_cast<uint32_t>(config_.whole(Key::SettleMs)) * 1000 : 0;
       phase_ = Phase::Move;
       return;
@@ -295,17 +310,11 @@ void JobRunner::poll(uint32_t nowUs) {
       }
       head_.clearFire();
       phase_ = Phase::Wait;
-      return;
+      return confirmed(nowUs);
     case Phase::Scan:
       return pollScan(nowUs);
     case Phase::Wait:
-      stopInHand_ = false;
-      done_++;
-      progress_.done = done_;
-      if (lit_) progress_.fires++;  // the Nano counted it
-      if (!source_ && !checkpoint_.write(progress_)) return fail(uv::kFileError);
-      phase_ = Phase::Load;
-      return;
+      return confirmed(nowUs);
   }
 }
 

@@ -92,6 +92,8 @@ class JobRunner {
   // What stops an exposure from starting now (too hot, a printhead fault, the Nano gone): its error code, or 0.
   uint8_t exposureBlocked() const;
   bool paceWaits(bool cooling) const;
+  // The stop under way is exposed (or had nothing to light): counted, and the next loaded.
+  void confirmed(uint32_t nowUs);
   // A scan job's passes (job_runner_scan.cpp).
   void pollScan(uint32_t nowUs);
 

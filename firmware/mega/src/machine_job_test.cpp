@@ -122,8 +122,17 @@ TEST_F(JobTest, PauseWaitsForTheStopContinueGoesOnAbortEndsItDark) {
   EXPECT_EQ(m.nano.exposures.size(), at);
   EXPECT_EQ(payload("M27")[0].rfind("JOB:aborted", 0), 0u);
   EXPECT_FALSE(m.sd.exists(kCheckpointFile));
-  // Every stop exposed so far was one of the plan's, each once, in order.
+  // Every stop exposed so far was one of the plan's, each once, in order; the abort may have come
+  // inside the last one's light, which then ended dark at once, short of its time.
   std::vector<uv::Stop> stops = plan(h, g);
+  const Exposure& last = m.nano.exposures.back();
+  bool cut = false;
+  for (int k = 0; k < 4; k++) cut = cut || last.litUs[k] < last.askedUs[k];
+  if (cut) {
+    m.nano.exposures.pop_back();
+    m.firedAt.pop_back();
+    at--;
+  }
   stops.resize(at);
   expectExposed(h, stops);
 }

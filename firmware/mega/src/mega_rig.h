@@ -90,9 +90,16 @@ class FakeDisplay : public TextDisplay {
   int draws = 0;
 };
 
+// What the real Mega image's CPU adds to a stop that this rig's instant 100 µs passes leave out:
+// from the E answer to the next stop's first step 2130 µs (StopCycle's timeline, stop_sim_test.cpp),
+// and some 500 µs more in the board's ~250 µs passes elsewhere in the cycle (settled, fired, polled).
+// Taken at the move's start, it brings the rig's whole stop to the real images' (StopCycle).
+constexpr uint32_t kStopLoadUs = 2600;
+
 class MegaRig {
  public:
   MegaRig() {
+    nano.wired = true;  // the printhead link takes its time on the wire, both ways
     // The switches: each axis's endstop closes a little way below where the head starts.
     rig.switchAt[0] = -1234;
     rig.switchAt[1] = -2345;
@@ -139,6 +146,7 @@ class MegaRig {
   // stays where it physically is, and the switches where they are; the Mega's count starts at 0.
   void reset(uint64_t bootUs, bool powerLost = false) {
     sd.powerCut();
+    nano.dropFromMega();
     if (powerLost) nano.powerCycle();
     int32_t where[3], switches[3];
     for (int a = 0; a < 3; a++) {
@@ -179,7 +187,14 @@ class MegaRig {
   void run(uint64_t us) {
     for (uint64_t end = nowUs + us; nowUs < end; nowUs += 100) {
       nano.advance(static_cast<uint32_t>(nowUs));
+      const bool atRest = rig.engine.idle();
       machine.poll(static_cast<uint32_t>(nowUs));
+      // The first move after an exposure, a job's next stop: the board's CPU plans the stop and
+      // converts, profiles and cuts its move before the first step, which this rig's instant passes do not.
+      if (atRest && !rig.engine.idle() && nano.fired != loadedAfter_) {
+        loadedAfter_ = nano.fired;
+        rig.startDelayTicks = kStopLoadUs * 2;
+      }
       while (firedAt.size() < nano.exposures.size()) {
         std::array<int32_t, 3> p;
         rig.motion.positionSteps(p.data());
@@ -189,7 +204,7 @@ class MegaRig {
         rig.isrUntil(gAt_ && gAt_ < until ? gAt_ : until);
         if (gAt_ && rig.now >= gAt_) {
           nano.advance(static_cast<uint32_t>(gAt_ / 2));
-          nano.write("G\n", 2);
+          nano.arrived("G\n", 2);
           gAt_ = 0;
         }
         if (rig.now >= until) break;
@@ -248,6 +263,7 @@ class MegaRig {
  private:
   uint32_t usbN_ = 0, espN_ = 0;
   uint64_t gAt_ = 0;  // a scan pass's G on its way to the Nano: when it arrives (ticks)
+  uint32_t loadedAfter_ = 0;  // nano.fired when the last stop after an exposure was loaded
   bool probeJammed_ = false;
 };
 

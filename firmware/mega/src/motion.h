@@ -10,6 +10,10 @@
 
 namespace mega {
 
+// Starts the step interrupt if it stopped and work is queued (hw/stepper_timer.cpp on the board;
+// nothing on the host, whose rig starts it). Motion calls it as soon as a plain move's first segment is in.
+void stepperKick();
+
 class Motion {
  public:
   Motion(StepEngine& engine, const Config& config) : e_(engine), c_(config) {}
@@ -77,7 +81,9 @@ class Motion {
 
  private:
   bool push(const int32_t delta[3], const AxisLimits lim[3], int8_t seekAxis);
-  void feed();
+  // Cuts segments until the queue is full. `kickFirst`: starts the interrupt after the first (not
+  // for a stroke, whose short ramp and flown segments take longer to cut).
+  void feed(bool kickFirst = false);
   Profile strokeProfile(uint32_t steps, uint16_t interval, uint16_t frac) const;
   // A segment of the stroke's middle from planDone_: at the speed (at most `most` steps) up to the
   // next stretch flown, or the flown stretch's next piece.

@@ -41,6 +41,7 @@ class MotionRig {
   std::function<bool(uint64_t)> onMark;  // sends a scan pass's G at its step; false: the UART was busy
   bool record = true;
   bool timerOn = false;   // the step timer runs (kept between runs, like the hardware)
+  uint64_t startDelayTicks = 0;  // the timer's next start comes this much later (the board's CPU still busy)
   uint64_t nextTick = 0;
 
   // Where the head physically is, in steps from where it stood at power-up: the pulses counted as
@@ -78,7 +79,8 @@ class MotionRig {
   void isrUntil(uint64_t ticks) {
     if (!timerOn && !engine.idle()) {
       timerOn = true;
-      nextTick = now;
+      nextTick = now + startDelayTicks;
+      startDelayTicks = 0;
     }
     while (timerOn && nextTick <= ticks) {
       now = nextTick;

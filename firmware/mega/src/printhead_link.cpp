@@ -10,12 +10,12 @@ bool due(uint32_t now, uint32_t at) { return static_cast<int32_t>(now - at) >= 0
 constexpr uint8_t kRefusals = uv::fault::kCapped | uv::fault::kBusy | uv::fault::kRefused;
 }  // namespace
 
-bool PrintheadLink::send(const uv::NanoCommand& c) {
+uint8_t PrintheadLink::send(const uv::NanoCommand& c) {
   char out[uv::kNanoMaxLine + 2];
-  size_t n = uv::formatNanoCommand(c, out, sizeof out);
-  if (!n || !io_.write(out, static_cast<uint8_t>(n))) return false;
+  uint8_t n = static_cast<uint8_t>(uv::formatNanoCommand(c, out, sizeof out));
+  if (!n || !io_.write(out, n)) return 0;
   sent_++;
-  return true;
+  return n;
 }
 
 bool PrintheadLink::ask(char op, uint32_t nowUs) {
@@ -64,11 +64,13 @@ bool PrintheadLink::fire(uint8_t mask, const uint32_t us[uv::kLedCount], uint32_
     f.durations[i] = us[i];
     if ((mask & (1 << i)) && us[i] > longest) longest = us[i];
   }
-  if (!send(f)) return false;
+  const uint8_t n = send(f);
+  if (!n) return false;
   fire_ = FireState::Firing;
   fireError_ = fireFlags_ = 0;
   fireCheckWanted_ = false;
-  fireEndsAt_ = nowUs + longest;
+  // When an S sent then finds the light over: the line's time on the wire counts (a 2 ms F is 1.3 ms).
+  fireEndsAt_ = nowUs + static_cast<uint32_t>(n) * (10u * 1000000u) / uv::kNanoBaud + kFireTakenUs + longest;
   // One early S confirms the Nano took it (a refused F is off at once), the next when it should be over.
   nextStatus_ = longest > kFireFirstCheckUs ? nowUs + kFireFirstCheckUs : fireEndsAt_;
   return true;

@@ -16,8 +16,11 @@ constexpr uint8_t kNanoMissesOffline = 3;
 constexpr uint32_t kThermalPollUs = 500000;
 constexpr uint32_t kFaultPollUs = 500000;
 constexpr uint32_t kFireGraceUs = 100000;  // LEDs still on this long after the longest duration: R
-constexpr uint32_t kFireRepollUs = 1000;
+constexpr uint32_t kFireRepollUs = 250;       // an S that found an LED still on: ask again this soon
 constexpr uint32_t kFireFirstCheckUs = 2000;
+// The F's light starts when its line has crossed the wire (10 bits a byte) and the Nano has taken it
+// (about 200 µs measured in simavr); the S that checks its end needs two byte-times to get there.
+constexpr uint32_t kFireTakenUs = 300;
 constexpr uint32_t kClockPollUs = 250000;    // W until the Nano's clock is known
 constexpr uint32_t kClockRepollUs = 5000000;  // then now and then, to follow its drift
 
@@ -114,7 +117,8 @@ class PrintheadLink {
   uint32_t sent() const { return sent_; }
 
  private:
-  bool send(const uv::NanoCommand& c);
+  // The line's bytes, or 0 if it did not go (the UART full).
+  uint8_t send(const uv::NanoCommand& c);
   bool ask(char op, uint32_t nowUs);
   // A line that asks `op` went out: its reply is awaited, up to kNanoReplyTimeoutUs from now.
   void awaitReply(char op, uint32_t nowUs);

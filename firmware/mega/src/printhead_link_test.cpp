@@ -30,6 +30,7 @@ struct Link : ::testing::Test {
     return n;
   }
   void SetUp() override {
+    nano.wired = true;  // each byte its 86.8 µs: the exposure's checks count the F's time on the wire
     link.begin(now);
     run(600000);
   }
@@ -58,7 +59,7 @@ TEST_F(Link, AnExposureIsFThenSWhenItShouldBeOverThenEAndDone) {
   size_t before = nano.lines.size();
   ASSERT_TRUE(link.fire(0b1011, kUs, now));
   EXPECT_FALSE(link.fire(0b1011, kUs, now));  // one at a time
-  run(5000);
+  run(7000);  // the F's 21 bytes (1.8 ms), its longest light (3 ms), then S and E
   EXPECT_EQ(link.fireState(), FireState::Done);
   ASSERT_EQ(nano.exposures.size(), 1u);
   const Exposure& x = nano.exposures[0];
@@ -172,7 +173,7 @@ TEST_F(Link, AllOffEndsAnExposureAtOnceEvenWhenTheUartWasFull) {
   EXPECT_EQ(link.fireState(), FireState::Failed);
   EXPECT_EQ(nano.lit(), 1);  // not yet: the byte could not go
   nano.uartFull = false;
-  run(100);
+  run(300);  // the next pass sends it: two bytes on the wire
   EXPECT_EQ(nano.lit(), 0);
   EXPECT_EQ(nano.lines.back(), "R");
   EXPECT_LE(nano.exposures[0].litUs[0], 10200u);

@@ -165,7 +165,9 @@ uint64_t Planner::priceRows() {
     Head hx;
     uint8_t v[4];
     while (passNext(q, desc, hx, v)) {
-      total += stopCostUs(m_, x, y, X(hx), Y(p.hy), dose_.longest(v));
+      uint32_t us[4];
+      dose_.each(v, us);
+      total += stopCostUs(m_, x, y, X(hx), Y(p.hy), us);
       x = X(hx);
       y = Y(p.hy);
       p.lit = true;
@@ -235,7 +237,9 @@ uint64_t Planner::priceColumns() {
   while (nextColumn()) {
     for (uint8_t i = 0; i < columnLen_; i++) {
       int32_t x = X(shared_.col.columnStop_[i].hx), y = Y(band_[shared_.col.column_[i]].hy);
-      total += stopCostUs(m_, curX_, curY_, x, y, dose_.longest(shared_.col.columnStop_[i].value));
+      uint32_t us[4];
+      dose_.each(shared_.col.columnStop_[i].value, us);
+      total += stopCostUs(m_, curX_, curY_, x, y, us);
       curX_ = x;
       curY_ = y;
     }

@@ -25,6 +25,10 @@ class Durations {
   explicit Durations(const JobHeader& h);
   uint32_t us(uint8_t led, uint8_t value) const;
   uint32_t longest(const uint8_t value[4]) const;
+  // The four LEDs' durations for a stop's values.
+  void each(const uint8_t value[4], uint32_t out[4]) const {
+    for (uint8_t k = 0; k < 4; k++) out[k] = us(k, value[k]);
+  }
 
  private:
   uint64_t scale_[4];  // full_k × gain_k

@@ -63,6 +63,8 @@ constexpr uint8_t kMixedBand = kShortestBand;
 constexpr uint32_t kStrokeMarkLeadUs = 1000 + 2 * 85;
 // After the stroke the Mega waits for the Nano's next Q answer (asked every 10 ms): half a poll on average.
 constexpr uint32_t kScanPassEndUs = 5000;
+// µs the Mega takes to start a pass once its move is done (planner.md "Scan mode"): not a stop's overheadUs.
+constexpr uint32_t kScanPassLoadUs = 400;
 // The step of a pass at window W, as 16.16 timer ticks; false when the step engine cannot run it
 // (over kEngineMaxRate steps/s, or a step of 2¹⁶ ticks, 32.768 ms, or more).
 bool engineStep(const Machine& m, uint32_t pitchUm, uint32_t windowUs, uint64_t& q16);

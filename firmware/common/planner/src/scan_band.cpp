@@ -143,12 +143,8 @@ uint64_t ScanPlanner::priceBand(uint64_t limit, int32_t& endX, int32_t& endY) {
   uint64_t total = 0;
   Stop s;
   while (bandNextStop(s)) {
-    uint32_t longest = 0;
-    for (uint32_t us : s.us)
-      if (us > longest) longest = us;
     const int32_t to = axisSteps(m_, 0, X(s.hx)), toY = axisSteps(m_, 1, Y(s.hy));
-    const uint32_t move = engineMoveUs(m_, static_cast<uint32_t>(absDiff(to, x)), static_cast<uint32_t>(absDiff(toY, y)));
-    total += move + (move ? m_.settleUs : 0) + m_.overheadUs + longest;
+    total += stopCostStepsUs(m_, to - x, toY - y, s.us);
     x = to;
     y = toY;
     endY = Y(s.hy);

@@ -92,7 +92,7 @@ bool ScanPlanner::planPass(int32_t hy, int32_t first, int32_t last, uint64_t spa
   planStroke(m_, 2 * x0 - dir * pitch, 2 * x1 + dir * pitch, descending_, q16, static_cast<uint32_t>(saved), out);
   const int32_t y = Y(out.hy), dy = axisSteps(m_, 1, y) - axisSteps(m_, 1, curY_), dx = out.startSteps - curX_;
   out.moveUs = engineMoveUs(m_, static_cast<uint32_t>(dx < 0 ? -dx : dx), static_cast<uint32_t>(dy < 0 ? -dy : dy));
-  out.scanUs = static_cast<uint64_t>(out.moveUs) + m_.overheadUs + out.strokeUs + kScanPassEndUs;
+  out.scanUs = static_cast<uint64_t>(out.moveUs) + kScanPassLoadUs + out.strokeUs + kScanPassEndUs;
   out.stopsUs = 0;
   out.stops = false;
   int32_t endX = out.stopSteps;

@@ -14,12 +14,8 @@ uint64_t ScanPlanner::priceStops(int32_t hy, int32_t& endX) {
   uint64_t total = 0;
   Stop s;
   while (nextStop(s)) {
-    uint32_t longest = 0;
-    for (uint32_t us : s.us)
-      if (us > longest) longest = us;
-    const int32_t to = axisSteps(m_, 0, X(s.hx)), dx = to - x, dy = y - from;
-    const uint32_t move = engineMoveUs(m_, static_cast<uint32_t>(dx < 0 ? -dx : dx), static_cast<uint32_t>(dy < 0 ? -dy : dy));
-    total += move + (move ? m_.settleUs : 0) + m_.overheadUs + longest;
+    const int32_t to = axisSteps(m_, 0, X(s.hx));
+    total += stopCostStepsUs(m_, to - x, y - from, s.us);
     x = to;
     from = y;
   }

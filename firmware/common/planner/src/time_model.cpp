@@ -126,18 +126,34 @@ uint32_t moveTimeUs(uint32_t d, uint32_t v, uint32_t a) {
   return static_cast<uint32_t>(2 * isqrt64(static_cast<uint64_t>(d) * 1000000000000ull / a));
 }
 
-uint32_t stopCostUs(const Machine& m, int32_t fromX, int32_t fromY, int32_t toX, int32_t toY, uint32_t longestUs) {
-  const uint32_t move = engineMoveUs(m, fromX, fromY, toX, toY);
-  return move + (move ? m.settleUs : 0) + m.overheadUs + longestUs;
+uint32_t fireLineUs(const uint32_t us[4]) {
+  uint32_t mask = 0, bytes = 7;  // "F:", the four commas, the newline
+  for (uint8_t k = 0; k < 4; k++) {
+    if (us[k]) mask |= 1u << k;
+    uint32_t d = us[k];
+    do bytes++; while (d /= 10);
+  }
+  if (!mask) return 0;
+  bytes += mask >= 10 ? 2 : 1;
+  return bytes * 10000000u / 115200u;
+}
+
+uint32_t stopCostUs(const Machine& m, int32_t fromX, int32_t fromY, int32_t toX, int32_t toY, const uint32_t us[4]) {
+  return stopCostStepsUs(m, axisSteps(m, 0, toX) - axisSteps(m, 0, fromX), axisSteps(m, 1, toY) - axisSteps(m, 1, fromY), us);
+}
+
+uint32_t stopCostStepsUs(const Machine& m, int32_t dx, int32_t dy, const uint32_t us[4]) {
+  const uint32_t move = engineMoveUs(m, static_cast<uint32_t>(dx < 0 ? -dx : dx), static_cast<uint32_t>(dy < 0 ? -dy : dy));
+  uint32_t longest = 0;
+  for (uint8_t k = 0; k < 4; k++)
+    if (us[k] > longest) longest = us[k];
+  return move + (move ? m.settleUs : 0) + m.overheadUs + fireLineUs(us) + longest;
 }
 
 void PlanClock::add(const Stop& s) {
   int32_t x = static_cast<int32_t>(h_.originUm[0]) + s.hx * static_cast<int32_t>(h_.pitchUm[0]);
   int32_t y = static_cast<int32_t>(h_.originUm[1]) + s.hy * static_cast<int32_t>(h_.pitchUm[1]);
-  uint32_t longest = 0;
-  for (uint32_t us : s.us)
-    if (us > longest) longest = us;
-  total_ += stopCostUs(m_, x_, y_, x, y, longest);
+  total_ += stopCostUs(m_, x_, y_, x, y, s.us);
   travel_[0] += absDiff(x, x_);
   travel_[1] += absDiff(y, y_);
   x_ = x;

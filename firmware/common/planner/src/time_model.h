@@ -56,9 +56,14 @@ uint64_t isqrt64(uint64_t n);
 // pass's flown stretch is planned on it: the Mega flies it in exactly that time).
 uint32_t moveTimeUs(uint32_t d, uint32_t v, uint32_t a);
 
+// µs the stop's F:m,d0,d1,d2,d3 line takes on the printhead link at 115200 baud, ten bits a byte,
+// rounded down (planner.md "Time model"); 0 for a stop that lights nothing (no F goes).
+uint32_t fireLineUs(const uint32_t us[4]);
 // One stop's time from the previous head position (bed µm): the step engine's move, settle if
-// it moved, the per-stop overhead and the longest LED duration.
-uint32_t stopCostUs(const Machine& m, int32_t fromX, int32_t fromY, int32_t toX, int32_t toY, uint32_t longestUs);
+// it moved, the per-stop overhead, its F line on the wire and its longest LED duration.
+uint32_t stopCostUs(const Machine& m, int32_t fromX, int32_t fromY, int32_t toX, int32_t toY, const uint32_t us[4]);
+// The same after a move of (dx, dy) steps: the one rule every planner prices a stop by.
+uint32_t stopCostStepsUs(const Machine& m, int32_t dx, int32_t dy, const uint32_t us[4]);
 
 // Adds up the estimate stop by stop, as the planner emits them.
 class PlanClock {
