@@ -40,7 +40,7 @@ describe('scan program vectors', () => {
     }
   });
 
-  it.each(v.packedWords.map((c: [number, string]) => [c[0], c[1]]))('the word %d packs as %s and back', (w, line) => {
+  it.each(v.packedWords as [number, string][])('the word %d packs as %s and back', (w, line) => {
     expect(`B:0,${packWord(w)}`).toBe(line);
     expect(parsePacked(line)).toEqual({ seq: 0, events: [[Math.floor(w / 16), w % 16]] });
     count();
