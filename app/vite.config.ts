@@ -70,6 +70,10 @@ export default defineConfig(({ mode }) => ({
   },
   worker: { format: 'es' },
   server: { port: 5173 },
+  // The dev server's dependency scan starts from index.html and does not follow `new Worker(...)`:
+  // without the workers as entries, the Gerber packages the work worker imports are found only when
+  // it first starts, and Vite reloads the page under the user (a drawing lost, Undo gone).
+  optimizeDeps: { entries: ['index.html', 'src/work/worker.ts', 'src/sim/sim-worker.ts'] },
   preview: { port: 4173 },
   // The Gerber libraries' Node streams give way to stand-ins (STREAM_SHIMS); the ESP's flash image
   // (scripts/build-esp-fs.mjs) also leaves the simulated printer out.
