@@ -73,7 +73,7 @@ test('item 4: paused to cool, Continue stays closed while the head is hot, and s
   const hint = page.getByTestId('cool-hint');
   await expect(hint).toContainText('Paused to cool: the head reached a soft limit', { timeout: 30_000 });
   await expect(page.getByTestId('faults')).toContainText(/E31 over-temperature T4 [\d.]+ \(soft limit\)/);
-  await expect(hint).toContainText(/, and T4 [\d.]+ °C \(limit 20\), T5 [\d.]+ °C \(limit 20\) are still too hot\./);
+  await expect(hint).toContainText(/, and T4 [\d.]+ °C \(limit 20 °C\), T5 [\d.]+ °C \(limit 20 °C\) are still too hot\./);
   const cont = job(page).getByRole('button', { name: 'Continue', exact: true });
   await expect(cont).toBeDisabled();
   await expect(cont).toHaveAttribute('title', /^T4 .*, T5 .* are still too hot$/);
@@ -82,8 +82,8 @@ test('item 4: paused to cool, Continue stays closed while the head is hot, and s
   await page.screenshot({ path: info.outputPath('hot-two-sensors.png'), fullPage: true });
 
   await setLimits(page, { 4: 50 }); // one sensor left over its limit
-  await expect(hint).toContainText(/, and T5 [\d.]+ °C \(limit 20\) is still too hot\./);
-  await expect(cont).toHaveAttribute('title', /^T5 [\d.]+ °C \(limit 20\) is still too hot$/);
+  await expect(hint).toContainText(/, and T5 [\d.]+ °C \(limit 20 °C\) is still too hot\./);
+  await expect(cont).toHaveAttribute('title', /^T5 [\d.]+ °C \(limit 20 °C\) is still too hot$/);
   await hint.screenshot({ path: info.outputPath('hot-one-sensor.png') });
 
   await setLimits(page, { 5: 50 }); // cooled, as far as the limits go

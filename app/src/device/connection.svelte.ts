@@ -15,6 +15,7 @@ import { ThermalHistory } from './thermal-history';
 import { DeviceClock } from './device-clock';
 import type { Mesh } from '../planner/mesh';
 import { linkFor } from './links';
+import { lineWork } from './line-work';
 import { PickerDismissed } from './serial-support';
 export { SIMULATOR_BUILT_IN, loadSimulatorPanel, setSimulatorSpeed, tellSimulator } from './sim-transport';
 import type { TransportKind } from './transport';
@@ -66,6 +67,10 @@ export class Printer {
   homed = $state<boolean | null>(null);
   /** G28 lines sent and not yet answered: a move sent now runs after them, homed. */
   homing = $state(0);
+  /** Probe work in hand (a mesh's M401, G29, M402 as one, or a lone probe line): job/actions.ts closes the rest. */
+  probing = $state(0);
+  /** Settings being written (M850 with a value, M500–M502, and the M503 that reads them back). */
+  configuring = $state(0);
   /** From the click on Resume until the printer runs the job on (M1000 answered): it homes meanwhile. */
   resuming = $state(false);
   /** Printer seconds per wall second of the open link (the simulated printer at ?simSpeed=N runs N×). */
@@ -161,7 +166,9 @@ export class Printer {
     this.log.add(line, 'sent');
     this.logRevision++;
     const homing = /^G28\b/i.test(line);
+    const work = lineWork(line);
     if (homing) this.homing++;
+    if (work) this[work]++;
     try {
       const replies = await this.#link.command(line);
       if (/^(G28|G0|G1)\b/i.test(line)) this.homed = true; // homed, or a move the printer took homed
@@ -172,6 +179,7 @@ export class Printer {
       throw e;
     } finally {
       if (homing) this.homing--;
+      if (work) this[work]--;
     }
   }
 
@@ -269,7 +277,12 @@ export class Printer {
   /** Deploys the probe, maps the bed on n × n points (`G29`), and stows it. */
   async probeMesh(n: number): Promise<void> {
     const before = this.mesh;
-    await this.moves(['M401', `G29 X${n} Y${n}`, 'M402']);
+    this.probing++; // one piece of work: nothing slips in between its lines
+    try {
+      await this.moves(['M401', `G29 X${n} Y${n}`, 'M402']);
+    } finally {
+      this.probing--;
+    }
     if (before && this.mesh !== before) this.previousMesh = before;
   }
 
@@ -290,11 +303,16 @@ export class Printer {
 
   /** Sets each changed setting (`M850`), then reads them all back; `save` keeps them over a restart (`M500`). */
   async writeConfig(changes: Record<string, string>, save: boolean): Promise<void> {
+    this.configuring++;
     try {
       for (const [key, value] of Object.entries(changes)) await this.send(`M850 ${key} ${value}`);
       if (save) await this.send('M500');
     } finally {
-      await this.readConfig();
+      try {
+        await this.readConfig();
+      } finally {
+        this.configuring--;
+      }
     }
   }
 

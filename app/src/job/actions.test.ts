@@ -3,7 +3,7 @@ import { describe, expect, it } from 'vitest';
 import type { JobProgress } from '../device/device-state';
 import { ACTIONS, actionsFor, hotSensors, phaseOf, stillTooHot, type Action, type MachinePhase, type MachineView } from './actions';
 
-const IDLE: MachineView = { connected: true, job: null, homing: false, resuming: false, uploading: false, faults: [], hot: [], interrupted: false };
+const IDLE: MachineView = { connected: true, job: null, homing: false, probing: false, configuring: false, resuming: false, uploading: false, faults: [], hot: [], interrupted: false };
 const job = (state: JobProgress['state'], more: Partial<JobProgress> = {}): JobProgress => ({ state, stop: 3, stops: 10, ...more });
 const E30 = { code: 30, message: 'printhead not responding', atMs: 0 };
 const E31 = { code: 31, message: 'over-temperature T3 56.0 (soft limit)', atMs: 0 };
@@ -13,6 +13,8 @@ const VIEWS: Record<MachinePhase, MachineView> = {
   idle: IDLE,
   faulted: { ...IDLE, faults: [E30] },
   homing: { ...IDLE, homing: true },
+  probing: { ...IDLE, probing: true },
+  configuring: { ...IDLE, configuring: true },
   resuming: { ...IDLE, resuming: true, homing: true, interrupted: true },
   uploading: { ...IDLE, uploading: true },
   running: { ...IDLE, job: job('running') },
@@ -20,13 +22,15 @@ const VIEWS: Record<MachinePhase, MachineView> = {
   paused: { ...IDLE, job: job('paused') },
 };
 
-const MACHINE = ['expose', 'frame', 'home', 'move', 'release', 'selfTest', 'probe', 'mesh', 'settings'] as const;
+const MACHINE = ['expose', 'frame', 'home', 'move', 'release', 'selfTest', 'probe', 'mesh', 'settings', 'flash'] as const;
 /** The actions open in each phase; every other one is closed and says why. */
 const OPEN: Record<MachinePhase, readonly Action[]> = {
-  disconnected: [],
+  disconnected: ['flash'], // no printer to interrupt: any board may be flashed
   idle: MACHINE,
   faulted: MACHINE.filter((a) => a !== 'probe' && a !== 'mesh'),
   homing: [],
+  probing: [],
+  configuring: [],
   resuming: [],
   uploading: [],
   running: ['pause', 'stop'],
@@ -57,6 +61,11 @@ describe('actionsFor', () => {
     expect(actionsFor(VIEWS.idle).continue.why).toBe('no job is paused');
     expect(actionsFor(VIEWS.running).continue.why).toBe('the job is running');
     expect(actionsFor(VIEWS.faulted).probe.why).toBe('the printhead does not answer (E30 printhead not responding)');
+    expect(actionsFor(VIEWS.probing).mesh.why).toBe('the probe is at work (probing the bed takes a while)');
+    expect(actionsFor(VIEWS.probing).expose.why).toBe('the probe is at work (probing the bed takes a while)');
+    expect(actionsFor(VIEWS.running).settings.why).toBe('a job is running');
+    expect(actionsFor(VIEWS.running).flash.why).toBe('a job is running: flashing restarts the board');
+    expect(actionsFor(VIEWS.configuring).expose.why).toBe('settings are being written');
   });
 
   it('offers an interrupted job for resuming only to a machine that is free', () => {
@@ -69,8 +78,8 @@ describe('actionsFor', () => {
 
   it('keeps a job paused to cool from continuing while a sensor is over its limit, and lets it go once cooled', () => {
     const hot = { ...VIEWS.paused, job: job('paused', { reason: 'overtemp' }), faults: [E31] };
-    expect(actionsFor({ ...hot, hot: ['T3 56.0 °C (limit 55)'] }).continue).toEqual({ open: false, why: 'T3 56.0 °C (limit 55) is still too hot' });
-    expect(actionsFor({ ...hot, hot: ['T3 56.0 °C (limit 55)', 'T4 51.0 °C (limit 50)'] }).continuePaced.why).toMatch(/, T4 .* are still too hot$/);
+    expect(actionsFor({ ...hot, hot: ['T3 56.0 °C (limit 55 °C)'] }).continue).toEqual({ open: false, why: 'T3 56.0 °C (limit 55 °C) is still too hot' });
+    expect(actionsFor({ ...hot, hot: ['T3 56.0 °C (limit 55 °C)', 'T4 51.0 °C (limit 50 °C)'] }).continuePaced.why).toMatch(/, T4 .* are still too hot$/);
     expect(actionsFor(hot).continue.open).toBe(true); // E31 stands until the job continues; the readings decide
     expect(actionsFor({ ...hot, faults: [E30] }).continue.why).toBe('the printhead is still faulted: E30 printhead not responding');
     expect(actionsFor({ ...hot, faults: [{ code: 33, message: 'printhead refused an exposure', atMs: 0 }] }).continue.open).toBe(true); // the Mega judges it
@@ -84,9 +93,9 @@ describe('actionsFor', () => {
 
 describe('hotSensors and stillTooHot', () => {
   it('lists the sensors at or over their limit, and agrees in number', () => {
-    expect(hotSensors([550, 400, 300, 300, 300, 300], [55, 55, 55, 55, 50, 50])).toEqual(['T0 55.0 °C (limit 55)']);
+    expect(hotSensors([550, 400, 300, 300, 300, 300], [55, 55, 55, 55, 50, 50])).toEqual(['T0 55.0 °C (limit 55 °C)']);
     expect(hotSensors(null, [55])).toEqual([]);
-    expect(stillTooHot(['T0 55.0 °C (limit 55)'])).toBe('T0 55.0 °C (limit 55) is still too hot');
+    expect(stillTooHot(['T0 55.0 °C (limit 55 °C)'])).toBe('T0 55.0 °C (limit 55 °C) is still too hot');
     expect(stillTooHot(['T0 a', 'T1 b'])).toBe('T0 a, T1 b are still too hot');
   });
 });

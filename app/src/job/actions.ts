@@ -11,6 +11,8 @@ export type MachinePhase =
   | 'idle'
   | 'faulted'
   | 'homing'
+  | 'probing'
+  | 'configuring'
   | 'resuming'
   | 'uploading'
   | 'running'
@@ -22,12 +24,16 @@ export interface MachineView {
   job: JobProgress | null;
   /** G28 lines sent and not answered yet. */
   homing: boolean;
+  /** The probe at work: a mesh being probed (M401, G29, M402), a test touch, a deploy, stow or alarm reset. */
+  probing: boolean;
+  /** Settings being set, saved or reset (M850 with a value, M500, M501, M502), then read back. */
+  configuring: boolean;
   /** An interrupted job being resumed: the machine homes, then runs it on. */
   resuming: boolean;
   uploading: boolean;
   /** The faults the machine still has (DeviceState.activeFaults). */
   faults: readonly Fault[];
-  /** The sensors at or over their soft limit, in words: "T3 56.0 °C (limit 55)". */
+  /** The sensors at or over their soft limit, in words: "T3 56.0 °C (limit 55 °C)". */
   hot: readonly string[];
   /** A job a restart interrupted is offered for resuming. */
   interrupted: boolean;
@@ -42,7 +48,8 @@ export const ACTIONS = [
   'selfTest',
   'probe', // deploy, stow, alarm reset, a test touch
   'mesh', // probe the bed, leveling on and off
-  'settings', // save to the card, factory defaults: an idle machine only
+  'settings', // apply, save to the card, factory defaults: an idle machine only
+  'flash', // the Firmware view's Flash: never under a job, a homing or the probe
   'pause',
   'continue',
   'continuePaced',
@@ -65,10 +72,12 @@ export function phaseOf(v: MachineView): MachinePhase {
   if (v.job?.state === 'running') return v.job.cooling ? 'cooling' : 'running';
   if (v.job?.state === 'paused') return 'paused';
   if (v.homing) return 'homing';
+  if (v.probing) return 'probing';
+  if (v.configuring) return 'configuring';
   return v.faults.length ? 'faulted' : 'idle';
 }
 
-/** "T3 56.0 °C (limit 55) is still too hot", or "… are still too hot" for several. */
+/** "T3 56.0 °C (limit 55 °C) is still too hot", or "… are still too hot" for several. */
 export function stillTooHot(hot: readonly string[]): string {
   return `${hot.join(', ')} ${hot.length > 1 ? 'are' : 'is'} still too hot`;
 }
@@ -85,6 +94,8 @@ function busyWhy(phase: MachinePhase): string | null {
     case 'cooling': return 'a job is running (waiting for the head to cool)';
     case 'paused': return 'a job is paused: continue or stop it first';
     case 'homing': return 'the machine is homing';
+    case 'probing': return 'the probe is at work (probing the bed takes a while)';
+    case 'configuring': return 'settings are being written';
     default: return null;
   }
 }
@@ -98,7 +109,7 @@ export function actionsFor(v: MachineView): Actions {
   // The probe sits on the printhead: a silent printhead cannot deploy it.
   const printhead = v.faults.find((f) => f.code === 30);
   const probe = busy ? free : printhead ? closed(`the printhead does not answer (${faultWords([printhead])})`) : OPEN;
-  const idleish = phase === 'idle' || phase === 'faulted' || phase === 'homing';
+  const idleish = phase === 'idle' || phase === 'faulted' || phase === 'homing' || phase === 'probing' || phase === 'configuring';
   // A paused job continues once the head is below its limits (the readings say when) and the
   // printhead answers (the app asks again until it does), as the Mega refuses it otherwise.
   const goOn = phase === 'paused'
@@ -116,6 +127,9 @@ export function actionsFor(v: MachineView): Actions {
     probe,
     mesh: probe,
     settings: free,
+    // Flashing restarts the board: a job, a homing or the probe would stop where it is. With no
+    // printer connected, every board may be flashed.
+    flash: phase === 'disconnected' ? OPEN : busy ? closed(`${busy}: flashing restarts the board`) : OPEN,
     pause: jobOn ? OPEN : phase === 'paused' ? closed('the job is paused') : noJob,
     continue: goOn,
     continuePaced: goOn,
@@ -128,7 +142,7 @@ export function actionsFor(v: MachineView): Actions {
 /** The sensors at or over their soft limit (settings, °C), in words for the user. */
 export function hotSensors(deciC: readonly number[] | null, limitsC: readonly number[] | null): string[] {
   if (!deciC || !limitsC) return [];
-  return deciC.flatMap((d, i) => (d >= limitsC[i] * 10 ? [`T${i} ${(d / 10).toFixed(1)} °C (limit ${limitsC[i]})`] : []));
+  return deciC.flatMap((d, i) => (d >= limitsC[i] * 10 ? [`T${i} ${(d / 10).toFixed(1)} °C (limit ${limitsC[i]} °C)`] : []));
 }
 
 /** The machine as the rule sees it, from the printer's state (read inside $derived, it follows it). */
@@ -137,6 +151,8 @@ export function viewOf(printer: Printer): MachineView {
     connected: printer.connection.state === 'connected',
     job: printer.device.job,
     homing: printer.homing > 0,
+    probing: printer.probing > 0,
+    configuring: printer.configuring > 0,
     resuming: printer.resuming,
     uploading: printer.upload.state === 'uploading',
     faults: printer.device.activeFaults,

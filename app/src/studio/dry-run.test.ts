@@ -111,7 +111,7 @@ describe("the machine's faults in the dry run", () => {
   });
 
   it('judges an over-temperature by the readings: still hot is an error, cooled is fine', () => {
-    expect(machineFinding({ ...well, faults: [E31], hot: ['T3 56.0 °C (limit 55)'] })).toMatchObject({ level: 'error', message: /^T3 56\.0 °C \(limit 55\) is still too hot\./ });
+    expect(machineFinding({ ...well, faults: [E31], hot: ['T3 56.0 °C (limit 55 °C)'] })).toMatchObject({ level: 'error', message: /^T3 56\.0 °C \(limit 55\) is still too hot\./ });
     expect(machineFinding({ ...well, faults: [E31] }).level).toBe('ok');
   });
 

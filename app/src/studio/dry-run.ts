@@ -216,7 +216,7 @@ export function mixedFinding(mixed: MixedPlan): Finding {
 
 function thermalFinding(run: ThermalRun, paced: ThermalRun | null, stops: number, limitsC: number[], unit: 'stop' | 'pass' | 'step'): Finding {
   const hottest = run.peakC.reduce((best, c, i) => (c - limitsC[i] > run.peakC[best] - limitsC[best] ? i : best), 0);
-  const peak = (r: ThermalRun, i: number) => `T${i} ${r.peakC[i].toFixed(0)} °C (limit ${limitsC[i]})`;
+  const peak = (r: ThermalRun, i: number) => `T${i} ${r.peakC[i].toFixed(0)} °C (limit ${limitsC[i]} °C)`;
   if (!run.pause) return { check: 'thermal', level: 'ok', message: `the hottest sensor stays below its soft limit: ${peak(run, hottest)}` };
   const p = run.pause;
   const where = `T${p.sensor} would reach its ${limitsC[p.sensor]} °C soft limit ${hms(p.atUs)} in, at ${unit} ${p.stop + 1} of ${stops}: the job would pause there to cool`; // p.stop counts from 0, people from 1
