@@ -72,7 +72,7 @@ test('item 4: paused to cool, Continue stays closed while the head is hot, and s
   await setLimits(page, { 4: 20, 5: 20 }); // below the room's 22 °C: T4 and T5 are over at once
   const hint = page.getByTestId('cool-hint');
   await expect(hint).toContainText('Paused to cool: the head reached a soft limit', { timeout: 30_000 });
-  await expect(page.getByTestId('faults')).toContainText(/E31 over-temperature T4 [\d.]+ \(soft limit\)/);
+  await expect(page.getByTestId('faults')).toContainText(/E31 over-temperature T4 [\d.]+ °C \(soft limit\)/);
   await expect(hint).toContainText(/, and T4 [\d.]+ °C \(limit 20 °C\), T5 [\d.]+ °C \(limit 20 °C\) are still too hot\./);
   const cont = job(page).getByRole('button', { name: 'Continue', exact: true });
   await expect(cont).toBeDisabled();

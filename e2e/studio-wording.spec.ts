@@ -33,3 +33,28 @@ test('a scan the printer cannot run says why and what to do, with no empty canva
   await expect(page.getByTestId('preview-at')).toHaveText(/^\d+ of [1-9]\d* (stops|passes)/, { timeout: 30_000 });
   await expect(page.getByTestId('preview-canvas')).toBeVisible();
 });
+
+test('a job that has just started says it is on its way to its first stop, never "stop 0 of"', async ({ page }, info) => {
+  test.setTimeout(90_000);
+  await page.setViewportSize({ width: 1440, height: 900 });
+  await page.goto('/?simSpeed=4');
+  await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected');
+  // Every text the job's line shows, as it changes.
+  await page.evaluate(() => {
+    const seen: string[] = [];
+    (window as unknown as { __jobTexts: string[] }).__jobTexts = seen;
+    new MutationObserver(() => {
+      const t = document.querySelector('[data-testid="job-state"] p')?.textContent?.trim();
+      if (t && seen.at(-1) !== t) seen.push(t);
+    }).observe(document.body, { subtree: true, childList: true, characterData: true });
+  });
+  await page.getByTestId('strategy').selectOption('serpentine');
+  await page.getByRole('button', { name: 'Expose test pattern' }).click();
+  await page.getByRole('dialog').getByRole('button', { name: /Expose (now|anyway)/ }).click();
+  await expect(page.getByTestId('job-state')).toContainText(/running: stop [1-9]\d* of \d+/, { timeout: 60_000 });
+  await page.screenshot({ path: info.outputPath('running.png'), fullPage: true });
+  const texts = await page.evaluate(() => (window as unknown as { __jobTexts: string[] }).__jobTexts);
+  expect(texts.some((t) => /^running: on its way to the first of \d+ stops$/.test(t)), texts.join(' | ')).toBe(true);
+  expect(texts.filter((t) => / 0 of /.test(t))).toEqual([]);
+  await page.getByRole('button', { name: 'Stop', exact: true }).click();
+});

@@ -2,7 +2,7 @@
 // continues or ends, a silent printhead until it answers; the log keeps them all.
 import { describe, expect, it } from 'vitest';
 import { parseReply } from '../protocol/dialect-reply';
-import { applyReport, clearFault, emptyState, type DeviceState } from './device-state';
+import { applyReport, clearFault, emptyState, withUnits, type DeviceState } from './device-state';
 
 function fold(s: DeviceState, ...lines: string[]): DeviceState {
   for (const line of lines) applyReport(s, parseReply(line)!, 0);
@@ -13,7 +13,7 @@ const codes = (s: DeviceState) => s.activeFaults.map((f) => f.code);
 describe('activeFaults', () => {
   it('keeps one of each code, the latest', () => {
     const s = fold(emptyState(), 'FAULT:E31 over-temperature T3 56.0 (soft limit)', 'FAULT:E31 over-temperature T4 51.0 (soft limit)');
-    expect(s.activeFaults.map((f) => f.message)).toEqual(['over-temperature T4 51.0 (soft limit)']);
+    expect(s.activeFaults.map((f) => f.message)).toEqual(['over-temperature T4 51.0 °C (soft limit)']);
     expect(s.faults).toHaveLength(2);
   });
 
@@ -53,5 +53,15 @@ describe('activeFaults', () => {
     expect(clearFault(s, 30)).toBe(true);
     expect(clearFault(s, 30)).toBe(false);
     expect(codes(s)).toEqual([]);
+  });
+});
+
+describe('withUnits', () => {
+  it('gives an over-temperature reading its °C, and leaves other faults as said', () => {
+    expect(withUnits('over-temperature T3 60.2 (soft limit)')).toBe('over-temperature T3 60.2 °C (soft limit)');
+    expect(withUnits('over-temperature T0 -5.0')).toBe('over-temperature T0 -5.0 °C');
+    expect(withUnits('over-temperature')).toBe('over-temperature');
+    expect(withUnits('printhead not responding')).toBe('printhead not responding');
+    expect(withUnits('over-temperature T3 60.2 °C (soft limit)')).toBe('over-temperature T3 60.2 °C (soft limit)'); // once
   });
 });

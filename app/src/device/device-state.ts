@@ -64,6 +64,14 @@ export const OVERTEMP = 31;
 const JOB_FAULTS = new Set([OVERTEMP, 32, 33]);
 const ENDED = new Set(['done', 'aborted', 'failed', 'idle']);
 
+/**
+ * A fault's words with the unit its reading has: the Mega says "over-temperature T3 60.2 (soft
+ * limit)" in °C (mega.md "Pacing"), and a person reads "T3 60.2 °C".
+ */
+export function withUnits(message: string): string {
+  return message.replace(/^(over-temperature T\d) (-?\d+(?:\.\d+)?)(?= \(|$)/, '$1 $2 °C');
+}
+
 /** Drops a fault the machine no longer has (`code`), e.g. E30 once the printhead answers again. */
 export function clearFault(s: DeviceState, code: number): boolean {
   if (!s.activeFaults.some((a) => a.code === code)) return false;
@@ -107,7 +115,7 @@ export function applyReport(s: DeviceState, r: Reply, nowMs: number): boolean {
       return true;
     }
     case 'fault': {
-      const fault = { code: r.code, message: r.message, atMs: nowMs };
+      const fault = { code: r.code, message: withUnits(r.message), atMs: nowMs };
       s.faults = [...s.faults, fault].slice(-MAX_FAULTS);
       if (r.code === PRINTHEAD_SILENT || JOB_FAULTS.has(r.code)) s.activeFaults = [...s.activeFaults.filter((a) => a.code !== r.code), fault];
       return true;
