@@ -30,6 +30,15 @@ test('a tab whose chunk cannot load says so, and so does a device whose link can
   await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected');
   await page.getByTestId('tab-position').click();
   await expect(page.getByTestId('panel-position').getByRole('alert')).toContainText('The position dashboard could not be loaded');
+  // Served by a website (not the printer's hub): the message does not blame the hub.
+  await expect(page.getByTestId('panel-position').getByRole('alert')).toContainText('reload the page for the current version');
+  await expect(page.getByTestId('panel-position').getByRole('alert')).not.toContainText('hub');
+  // The chunk comes back (the network did): trying again shows the panel, with no reload.
+  await page.unroute(PANELS);
+  await page.getByTestId('panel-position').getByTestId('lazy-retry').click();
+  await expect(page.getByTestId('panel-position').getByRole('alert')).toHaveCount(0);
+  await expect(page.getByTestId('panel-position').locator('input, button').first()).toBeVisible();
+  await page.route(PANELS, (route) => route.abort());
 
   // USB's transport loads when it is chosen: without it, the connection says why.
   await page.addInitScript(() => Object.defineProperty(navigator, 'serial', { value: { requestPort: () => Promise.reject(new Error('unused')) } }));
