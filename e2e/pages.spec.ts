@@ -121,11 +121,17 @@ test('a page left open across a deploy still opens a view it had not loaded', as
   await expect.poll(() => page.evaluate(async () => (await navigator.serviceWorker.getRegistration())!.waiting === null)).toBe(true);
   await expect(page.getByTestId('app-version')).toHaveText(builds.a.version); // not reloaded under the person
 
+  // Later than max-age: the browser's HTTP cache no longer holds the old chunk (the worker's install
+  // had put it there), and the server answers 404 for it. Only the worker's kept files can serve it.
+  const cdp = await page.context().newCDPSession(page);
+  await cdp.send('Network.clearBrowserCache');
+  const asked = server.requests.length;
   await page.getByTestId('tab-settings').click();
   const panel = page.getByTestId('panel-settings');
   await expect(panel.getByTestId('lazy-loading')).toHaveCount(0);
   await expect(panel.getByTestId('lazy-failed')).toHaveCount(0);
   await expect(panel.locator('input, button').first()).toBeVisible();
+  expect(server.requests.slice(asked).filter((r) => r.path.endsWith(chunk))).toEqual([]);
   await page.screenshot({ path: info.outputPath('open-across-deploy.png') });
 });
 
