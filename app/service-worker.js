@@ -47,7 +47,8 @@ function updatePages(change) {
 }
 
 async function remember(clientId, entry) {
-  for (const name of await caches.keys()) {
+  // This version first: a deploy that left the entry chunk as it was has it in both caches.
+  for (const name of [CACHE, ...(await caches.keys()).reverse()]) {
     if (!name.startsWith(PREFIX) || name === PAGES) continue;
     if (await (await caches.open(name)).match(entry)) {
       await updatePages((pages) => void (pages[clientId] = name));
