@@ -17,11 +17,16 @@ export interface PagesBuilds {
 function build(name: string): { dir: string; version: string } {
   const dir = join(ROOT, 'dist', `pages-${name}`);
   const version = `deploy-${name}`;
-  execFileSync('npm', ['run', '--silent', 'build:pages', '--', '--outDir', dir, '--emptyOutDir', '--logLevel', 'warn'], {
-    cwd: ROOT,
-    stdio: ['ignore', 'ignore', 'inherit'],
-    env: { ...process.env, VITE_APP_VERSION: version },
-  });
+  try {
+    execFileSync('npm', ['run', '--silent', 'build:pages', '--', '--outDir', dir, '--emptyOutDir', '--logLevel', 'error'], {
+      cwd: ROOT,
+      stdio: ['ignore', 'pipe', 'pipe'],
+      env: { ...process.env, VITE_APP_VERSION: version },
+    });
+  } catch (e) {
+    const { stdout, stderr } = e as { stdout?: Buffer; stderr?: Buffer };
+    throw new Error(`npm run build:pages for ${version} failed:\n${stdout ?? ''}${stderr ?? ''}`);
+  }
   return { dir, version };
 }
 
