@@ -18,6 +18,10 @@ const BLOCK = 4096;
 const APP_BLOCKS = 51;
 
 execFileSync('npx', ['vite', 'build', '--config', 'app/vite.config.ts', '--mode', 'esp', '--outDir', dist, '--emptyOutDir'], { cwd: root, stdio: 'inherit' });
+// The hub serves http://192.168.4.1, not a secure context: no service worker runs there and nothing
+// installs, so the web manifest (public/, copied by Vite) stays off the flash, as the worker does
+// (app/pwa.ts emits none in --mode esp, and leaves the manifest's link out of index.html).
+rmSync(join(dist, 'manifest.webmanifest'), { force: true });
 
 rmSync(www, { recursive: true, force: true });
 let total = 0, blocks = 0;

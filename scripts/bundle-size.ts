@@ -28,7 +28,8 @@ export interface BundleSize {
 
 export function bundleSize(dist: string): BundleSize {
   const html = readFileSync(join(dist, 'index.html'), 'utf8');
-  const named = new Set([...html.matchAll(/(?:src|href)="\/(assets\/[^"]+)"/g)].map((m) => m[1]));
+  // Any base: "/assets/…" (the default), "./assets/…" (--base ./, as Pages gets it), "/REPO/assets/…".
+  const named = new Set([...html.matchAll(/(?:src|href)="(?:[^"]*\/)?(assets\/[^"/]+)"/g)].map((m) => m[1]));
   const files: Sized[] = readdirSync(join(dist, 'assets')).map((f) => ({ file: `assets/${f}`, gzip: gz(join(dist, 'assets', f)) }));
   // index.html, what it names, and the files beside it: the manifest, the icon, the service worker.
   // Not the firmware images (firmware/), which only the Firmware view fetches.

@@ -1,9 +1,5 @@
-// Mounts the app, and registers its service worker.
+// Mounts the app (its service worker is registered by App: pwa-update.svelte.ts).
 import { mount } from 'svelte';
 import App from './App.svelte';
 
 mount(App, { target: document.getElementById('app')! });
-
-// Installable and offline: the service worker keeps the app's files (not in development, where
-// Vite serves them fresh).
-if (import.meta.env.PROD && 'serviceWorker' in navigator) void navigator.serviceWorker.register('/sw.js');

@@ -335,15 +335,3 @@ export class Printer {
     if (this.#link) this.health = { ...this.#link.health };
   }
 }
-
-/** The ESP serves the app and answers GET /status with its snapshot; anything else means no ESP here. */
-export async function servedByEsp(origin = location.origin): Promise<boolean> {
-  try {
-    const r = await fetch(`${origin}/status`, { headers: { accept: 'application/json' } });
-    if (!r.ok || !(r.headers.get('content-type') ?? '').includes('application/json')) return false;
-    const body = await r.json();
-    return typeof body === 'object' && body !== null && 'mega' in body;
-  } catch {
-    return false;
-  }
-}
