@@ -1,6 +1,6 @@
 // Virtual time for the simulated printer: events run in time order as the host advances the clock (µs).
 
-/** What a model needs of time: the simulated Mega gets a scope of the clock, which its reset closes. */
+/** What the simulated printer's timers need of time: the firmware module runs between the events, the host's timers and the faults are events. */
 export interface Clock {
   readonly now: number;
   at(at: number, run: () => void): object;
