@@ -26,7 +26,7 @@ test('a page load asks for no /status and logs no errors; opening Probe & mesh s
   await expect(log.getByText(/echo:E11/)).toBeVisible();
 });
 
-test('at ?simSpeed=20 the thermal watch measures on the printer\'s clock: no false "rising" warning; the legend has current values and the axis minutes', async ({ page }, info) => {
+test('at ?simSpeed=20 the thermal watch measures on the printer\'s clock: no false "rising" warning; one legend (the table of sensors) with the latest values, those under the cursor, and the axis minutes', async ({ page }, info) => {
   await page.setViewportSize({ width: 1440, height: 900 });
   await page.goto('/?simSpeed=20');
   await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected');
@@ -34,19 +34,21 @@ test('at ?simSpeed=20 the thermal watch measures on the printer\'s clock: no fal
   // 90 reports: 90 s of the printer's time, three times the span the watch fits its slope over.
   await expect.poll(async () => Number(await chart.getAttribute('data-samples')), { timeout: 20_000 }).toBeGreaterThanOrEqual(90);
   await expect(page.getByTestId('thermal-warning')).toHaveCount(0);
-  const legend = chart.locator('.u-legend');
-  for (let i = 0; i < 6; i++) {
-    await expect(legend.locator('tr.u-series').nth(i + 1)).toContainText(new RegExp(`T${i} .*\\d+\\.\\d °C`));
-  }
-  await expect(legend).not.toContainText('—');
-  await expect(legend.locator('tr.u-series').first()).toContainText('now');
-  // The time under the cursor, in minutes before now (the axis' ticks use the same words; canvas-drawn).
+  // One legend, the table of sensors: the latest readings while the cursor is away.
+  await expect(chart.locator('.u-legend')).toHaveCount(0);
+  const at = page.getByTestId('temperatures-at');
+  await expect(at).toHaveText('now');
+  for (let i = 0; i < 6; i++) await expect(page.getByTestId(`temp-${i}`)).toHaveText(/^\d+\.\d °C$/);
+  // The time under the cursor, in minutes before now (the axis' ticks use the same words; canvas-drawn),
+  // and the readings there.
   const over = chart.locator('.u-over');
   const box = (await over.boundingBox())!;
   await page.mouse.move(box.x + box.width * 0.1, box.y + box.height / 2);
-  await expect(legend.locator('tr.u-series').first()).toContainText(/-\d+(\.\d)? (min|s)/);
-  await expect(legend).not.toContainText(/:\d\d\.\d{3}/);
+  await expect(at).toHaveText(/^-\d+(\.\d)? (min|s)( \d+ s)?$/);
+  for (let i = 0; i < 6; i++) await expect(page.getByTestId(`temp-${i}`)).toHaveText(/^(\d+\.\d °C|—)$/);
   await chart.screenshot({ path: info.outputPath('thermal-chart-cursor.png') });
+  await page.screenshot({ path: info.outputPath('thermal-cursor.png'), fullPage: true });
   await page.mouse.move(0, 0);
+  await expect(at).toHaveText('now');
   await chart.screenshot({ path: info.outputPath('thermal-chart.png') });
 });

@@ -20,7 +20,17 @@ function addStyles(): void {
   document.head.append(style);
 }
 
-export function thermalChart(el: HTMLElement, names: string[], width: number): ThermalChart {
+/** The readings under the cursor: how long before now, and each sensor's value (null where none). */
+export interface ThermalCursor {
+  ago: string;
+  celsius: (number | null)[];
+}
+
+/**
+ * The chart has no legend of its own: the dashboard's table of sensors is the one legend (colours,
+ * names, limits), and shows the readings under the cursor through `onCursor` (null: the cursor left).
+ */
+export function thermalChart(el: HTMLElement, names: string[], width: number, onCursor: (at: ThermalCursor | null) => void = () => {}): ThermalChart {
   addStyles();
   let limits: number[] | null = null;
   // The time axis is set here, not left to uPlot: its own ticks on a few seconds of samples read
@@ -28,10 +38,11 @@ export function thermalChart(el: HTMLElement, names: string[], width: number): T
   let axis: TimeAxis = timeAxis(0);
   const caption = 'time before now';
   el.dataset.timeCaption = caption; // the canvas draws it: for a test to read
-  // The legend reads like a dashboard: each sensor's latest value, or its value under the cursor.
-  const celsius = (u: uPlot, v: number | null, sidx: number, idx: number | null) => {
-    const shown = idx == null ? (u.data[sidx]?.at(-1) as number | null | undefined) : v;
-    return shown == null || Number.isNaN(shown) ? '—' : `${shown.toFixed(1)} °C`;
+  const cursorMoved = (u: uPlot) => {
+    const idx = u.cursor.idx;
+    const at = idx == null ? undefined : (u.data[0][idx] as number | undefined);
+    if (idx == null || at === undefined) return onCursor(null);
+    onCursor({ ago: agoLabel(at), celsius: names.map((_, i) => { const v = u.data[i + 1][idx]; return v == null || Number.isNaN(v) ? null : v; }) });
   };
   const plot = new uPlot(
     {
@@ -42,8 +53,8 @@ export function thermalChart(el: HTMLElement, names: string[], width: number): T
         y: { range: (_u, lo, hi) => [Math.floor(Math.min(lo, 20)), Math.ceil(Math.max(hi, ...(limits ?? [])) + 2)] },
       },
       series: [
-        { label: 'Time', value: (_u, v, _s, idx) => (idx == null || v == null ? 'now' : agoLabel(v)) },
-        ...names.map((label, i) => ({ label, stroke: SENSOR_COLOURS[i], width: 1.5, value: celsius })),
+        { label: 'Time' },
+        ...names.map((label, i) => ({ label, stroke: SENSOR_COLOURS[i], width: 1.5 })),
       ],
       axes: [
         {
@@ -57,8 +68,9 @@ export function thermalChart(el: HTMLElement, names: string[], width: number): T
         },
         { label: '°C', size: 44 },
       ],
-      legend: { live: true },
+      legend: { show: false },
       hooks: {
+        setCursor: [cursorMoved],
         draw: [
           (u) => {
             if (!limits) return;
@@ -91,7 +103,7 @@ export function thermalChart(el: HTMLElement, names: string[], width: number): T
       const [times, ...sensors] = data;
       axis = timeAxis(times.length ? times[times.length - 1] - times[0] : 0);
       plot.setData([secondsAgo(times), ...sensors]);
-      plot.setLegend({ idx: plot.cursor.idx ?? undefined }); // the latest values while the cursor is away
+      cursorMoved(plot); // new samples move what lies under a cursor held still
     },
     resize: (w) => plot.setSize({ width: w, height: 220 }),
     destroy: () => plot.destroy(),
