@@ -4,7 +4,7 @@
 
 import type { ObjectLayer } from '../objects/object-layer.svelte';
 import { exposes, type StudioObject } from '../objects/objects';
-import { HANDLE_PX, handleCentres } from './handles';
+import { FRAME_PX, HANDLE_PX, handleCentres, selectionFrame } from './handles';
 import type { Raster } from '../objects/raster';
 import { doseColours } from './tile-cache';
 import { madeSprites, spritePixels } from './made-sprites';
@@ -87,10 +87,10 @@ export function drawObjects(ctx: CanvasRenderingContext2D, v: View, layer: Objec
   sprites.keepOnly(layer.objects);
   const s = layer.selected;
   if (!s) return;
-  const at = toScreen(v, s.x, s.y);
   ctx.strokeStyle = ACCENT;
-  ctx.lineWidth = 2;
-  ctx.strokeRect(Math.round(at.x), Math.round(at.y), Math.round(s.w * v.scale), Math.round(s.h * v.scale));
+  ctx.lineWidth = FRAME_PX;
+  const f = selectionFrame(v, s); // outside the box: a line on its edge hid small text's tops and feet
+  ctx.strokeRect(f.x, f.y, f.w, f.h);
   ctx.fillStyle = '#fff';
   const half = HANDLE_PX / 2;
   for (const p of handleCentres(v, s)) {

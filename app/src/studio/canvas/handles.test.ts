@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { HANDLE_PX, handleAt, handleCentres } from './handles';
+import { FRAME_PX, HANDLE_PX, handleAt, handleCentres, selectionFrame } from './handles';
 
 /** The squares the handles cover, on the screen. */
 const squares = (v: { scale: number; x: number; y: number }, r: { x: number; y: number; w: number; h: number }) =>
@@ -32,5 +32,20 @@ describe('the selection\'s handles', () => {
     for (const h of handleCentres(overview, text)) expect(handleAt(overview, text, h.x, h.y)).toBe(h.corner);
     expect(handleAt(overview, text, 120, 120)).toBe('nw');
     expect(handleAt(overview, text, 134, 126)).toBeNull(); // the middle of the text is the text's
+  });
+});
+
+describe('the selection frame', () => {
+  // Issue 41 item 6: new text at the overview's zoom was half hidden by a frame drawn on its edge.
+  it('runs outside the box, its whole line off the object', () => {
+    const overview = { scale: 0.12, x: 7, y: 3 };
+    const text = { x: 1000, y: 1000, w: 240, h: 100 };
+    const f = selectionFrame(overview, text);
+    const box = { x0: (1000 - 7) * 0.12, y0: (1000 - 3) * 0.12, x1: (1240 - 7) * 0.12, y1: (1100 - 3) * 0.12 }; // 28.8 × 12 px
+    // A line of FRAME_PX drawn on f's edges covers f ± FRAME_PX / 2: it ends before the box begins.
+    expect(f.x + FRAME_PX / 2).toBeLessThanOrEqual(box.x0);
+    expect(f.y + FRAME_PX / 2).toBeLessThanOrEqual(box.y0);
+    expect(f.x + f.w - FRAME_PX / 2).toBeGreaterThanOrEqual(box.x1);
+    expect(f.y + f.h - FRAME_PX / 2).toBeGreaterThanOrEqual(box.y1);
   });
 });

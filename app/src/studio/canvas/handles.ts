@@ -19,6 +19,18 @@ export function handleCentres(v: View, r: Rect): { corner: Corner; x: number; y:
   });
 }
 
+/** The selection frame's line width, CSS pixels. */
+export const FRAME_PX = 2;
+
+/**
+ * The rectangle the selection frame's line is drawn on: just outside the object (the line covers 1 to
+ * 3 px off its box), so on a small one, new text at the overview's zoom, it hides none of the glyphs.
+ */
+export function selectionFrame(v: View, r: Rect): { x: number; y: number; w: number; h: number } {
+  const at = toScreen(v, r.x, r.y);
+  return { x: Math.round(at.x) - FRAME_PX, y: Math.round(at.y) - FRAME_PX, w: Math.round(r.w * v.scale) + 2 * FRAME_PX, h: Math.round(r.h * v.scale) + 2 * FRAME_PX };
+}
+
 /** The handle under the screen point (sx, sy), if any: within a handle's side of its middle. */
 export function handleAt(v: View, r: Rect, sx: number, sy: number): Corner | null {
   return handleCentres(v, r).find((h) => Math.abs(h.x - sx) <= HANDLE_PX && Math.abs(h.y - sy) <= HANDLE_PX)?.corner ?? null;
