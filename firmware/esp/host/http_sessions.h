@@ -4,6 +4,7 @@
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
 
+#include <chrono>
 #include <functional>
 #include <memory>
 #include <string>
@@ -25,18 +26,22 @@ class HttpSession;
 // What the hub does with a request. A POST /print is answered later: the hub keeps `later`.
 class Routes {
  public:
-  // Before the body: an answer ends the request there; nothing (false) reads the body on.
-  virtual bool beforeBody(const http::request_parser<http::string_body>& parser, Answer& now) = 0;
+  // Before the body: an answer ends the request there; nothing (false) reads the body on. `body`
+  // is the session's note of the body it reads (NetworkDesk::arriving), handed back below.
+  virtual bool beforeBody(const http::request_parser<http::string_body>& parser, uint32_t& body, Answer& now) = 0;
   // The whole request; false when the answer comes later through `later`.
-  virtual bool handle(const http::request<http::string_body>& req, Answer& now, std::function<void(Answer)> later) = 0;
+  virtual bool handle(const http::request<http::string_body>& req, uint32_t body, Answer& now, std::function<void(Answer)> later) = 0;
+  // A WebSocket handshake: an answer refuses it (true), or the upgrade goes ahead.
+  virtual bool refuseUpgrade(const http::request<http::string_body>& req, Answer& now) = 0;
   virtual void upgrade(beast::tcp_stream&& stream, http::request<http::string_body> req) = 0;
-  // The connection went before its body was whole, or before its later answer.
-  virtual void lost(const http::request_parser<http::string_body>& parser) = 0;
+  // The connection went (or was cut off at its deadline) before its body was whole.
+  virtual void lost(const http::request_parser<http::string_body>& parser, uint32_t body) = 0;
 };
 
 class HttpSession : public std::enable_shared_from_this<HttpSession> {
  public:
-  HttpSession(boost::asio::ip::tcp::socket&& socket, Routes& routes) : stream_(std::move(socket)), routes_(routes) {}
+  HttpSession(boost::asio::ip::tcp::socket&& socket, Routes& routes, std::chrono::milliseconds deadline)
+      : stream_(std::move(socket)), routes_(routes), deadline_(deadline) {}
   void start() { readHeader(); }
 
  private:
@@ -50,6 +55,8 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   std::unique_ptr<http::request_parser<http::string_body>> parser_;
   std::shared_ptr<http::response<http::string_body>> response_;
   Routes& routes_;
+  std::chrono::milliseconds deadline_;  // a request is whole within it (http_rules.h)
+  uint32_t body_ = 0;
 };
 
 }  // namespace hub

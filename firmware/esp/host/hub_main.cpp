@@ -6,7 +6,7 @@
 // end-to-end tests drive the app against it in Chromium, with the app served the way the ESP
 // serves it: gzipped files from the flash image (`npm run build:esp`), with ETags.
 //
-//   esp_host [--port N] [--www DIR] [--speed X]    prints "listening on http://127.0.0.1:PORT"
+//   esp_host [--port N] [--www DIR] [--speed X] [--request-deadline-ms N]    prints "listening on http://127.0.0.1:PORT"
 #include <boost/asio.hpp>
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
@@ -121,7 +121,7 @@ class Hub : public hub::Routes {
 
   // The network's side, as onBody on the ESP: a POST's headers are judged before a byte of its
   // body is kept, by what loop() last said of the Mega and the spool.
-  bool beforeBody(const hub::http::request_parser<hub::http::string_body>& parser, Answer& now) override {
+  bool beforeBody(const hub::http::request_parser<hub::http::string_body>& parser, uint32_t& body, Answer& now) override {
     const auto& req = parser.get();
     std::string path(req.target());
     if (path != "/print" || req.method() != hub::http::verb::post) return false;
@@ -130,14 +130,18 @@ class Hub : public hub::Routes {
     std::string contentType = ct == req.end() ? "" : std::string(ct->value());
     bool hasLength = parser.content_length().has_value();
     uint32_t length = hasLength ? static_cast<uint32_t>(std::min<uint64_t>(*parser.content_length(), 0xffffffffu)) : 0;
-    HttpError e = printHeaderError(contentType.empty() ? nullptr : contentType.c_str(), hasLength, length);
+    HttpError e = foreign(req);
+    if (!e.status) e = printHeaderError(contentType.empty() ? nullptr : contentType.c_str(), hasLength, length);
     if (!e.status) e = admissionError(desk_.admitBody());
-    if (!e.status) return false;  // the body is arriving: the spool is this request's
+    if (!e.status) {  // the body is arriving: the spool is this request's
+      body = desk_.arriving();
+      return false;
+    }
     now = error(e.status, e.code, e.message);
     return true;
   }
 
-  bool handle(const hub::http::request<hub::http::string_body>& req, Answer& now, std::function<void(Answer)> later) override {
+  bool handle(const hub::http::request<hub::http::string_body>& req, uint32_t body, Answer& now, std::function<void(Answer)> later) override {
     std::string path(req.target());
     std::string host(req[hub::http::field::host]);
     if (isForeignHost(host.c_str(), "192.168.4.1", "uvprinter") && host.rfind("127.0.0.1", 0) != 0 && host.rfind("localhost", 0) != 0) {
@@ -148,9 +152,14 @@ class Hub : public hub::Routes {
     if (m.status) return now = error(m.status, m.code, m.message), true;
     if (path == "/status") return handOver(Ask::Status, now, std::move(later));
     if (path == "/print" && req.method() == hub::http::verb::post) {
+      if (desk_.bodyCancelled(body) || desk_.arriving() != body) return now = error(409, kCancelledCode, kCancelledMessage), true;  // a DELETE came first
       std::ofstream(body_.path(), std::ios::binary) << req.body();  // the whole body: onBody's writes
-      if (desk_.bodyCancelled()) return now = error(409, kCancelledCode, kCancelledMessage), true;  // a DELETE came first
       return handOver(Ask::CheckBody, now, std::move(later));
+    }
+    if (req.method() == hub::http::verb::post || req.method() == hub::http::verb::delete_) {
+      HttpError e = foreign(req);
+      if (!e.status && req.method() == hub::http::verb::post) e = jsonBodyError(contentTypeOf(req).c_str());
+      if (e.status) return now = error(e.status, e.code, e.message), true;
     }
     if (path == "/print" && desk_.cancelArriving()) return now = {200, "application/json", kCancelledJson, {}}, true;  // DELETE, a body arriving
     if (path == "/print") return handOver(Ask::Cancel, now, std::move(later));  // DELETE
@@ -160,8 +169,15 @@ class Hub : public hub::Routes {
   }
 
   // As the ESP's onDisconnect: a POST /print body cut short frees the spool.
-  void lost(const hub::http::request_parser<hub::http::string_body>& parser) override {
-    if (parser.get().target() == "/print" && parser.get().method() == hub::http::verb::post) desk_.bodyAbandoned();
+  void lost(const hub::http::request_parser<hub::http::string_body>&, uint32_t body) override {
+    if (body) desk_.bodyAbandoned(body);
+  }
+
+  // /ws drives the Mega: only the hub's own pages may open it.
+  bool refuseUpgrade(const hub::http::request<hub::http::string_body>& req, Answer& now) override {
+    HttpError e = foreign(req);
+    if (e.status) now = error(e.status, e.code, e.message);
+    return e.status != 0;
   }
 
   void upgrade(boost::beast::tcp_stream&& stream, hub::http::request<hub::http::string_body> req) override {
@@ -170,6 +186,18 @@ class Hub : public hub::Routes {
   }
 
  private:
+  // The Origin rule (http_rules.h originError), as the ESP applies it.
+  static HttpError foreign(const hub::http::request<hub::http::string_body>& req) {
+    auto o = req.find(hub::http::field::origin);
+    std::string origin = o == req.end() ? "" : std::string(o->value());
+    std::string host(req[hub::http::field::host]);
+    return originError(origin.c_str(), host.c_str(), "192.168.4.1", "uvprinter");
+  }
+  static std::string contentTypeOf(const hub::http::request<hub::http::string_body>& req) {
+    auto ct = req.find(hub::http::field::content_type);
+    return ct == req.end() ? "" : std::string(ct->value());
+  }
+
   // A request handed to loop(), answered later; with no room, 503 now (true).
   bool handOver(Ask ask, Answer& now, Later later) {
     pump();
@@ -231,9 +259,11 @@ class Hub : public hub::Routes {
   double budget_ = 0;
 };
 
+std::chrono::milliseconds requestDeadline{kRequestDeadlineMs};
+
 void accept(tcp::acceptor& acceptor, Hub& hub) {
   acceptor.async_accept([&acceptor, &hub](boost::beast::error_code ec, tcp::socket socket) {
-    if (!ec) std::make_shared<hub::HttpSession>(std::move(socket), hub)->start();
+    if (!ec) std::make_shared<hub::HttpSession>(std::move(socket), hub, requestDeadline)->start();
     accept(acceptor, hub);
   });
 }
@@ -249,6 +279,7 @@ int main(int argc, char** argv) {
     if (a == "--port") port = static_cast<unsigned short>(std::stoi(argv[i + 1]));
     else if (a == "--www") www = argv[i + 1];
     else if (a == "--speed") speed = std::stod(argv[i + 1]);
+    else if (a == "--request-deadline-ms") requestDeadline = std::chrono::milliseconds(std::stoul(argv[i + 1]));  // tests: the rule's 60 s, shorter
   }
   std::filesystem::path state = std::filesystem::temp_directory_path() / ("uv-esp-host-" + std::to_string(::getpid()));
   std::filesystem::create_directories(state);

@@ -137,6 +137,19 @@ TEST(Bridge, GreetsAClientAndReportsTheMegaItIdentified) {
   EXPECT_GE(h.clients.of(1, "status").size() - before, 3u);
 }
 
+TEST(Bridge, TheApKeyGoesToTheOledAndNeverOnTheLiveChannel) {
+  Hub h;
+  ASSERT_TRUE(h.live.join(1));  // there before the ESP sends its first line
+  h.mega.begin();
+  h.bridge.begin(h.nowMs(), "key:abcdefghjkmn");
+  h.run(3000000);
+  bool shown = false;
+  for (const std::string& r : h.mega.display.rows) shown |= r.find("abcdefghjkmn") != std::string::npos;
+  EXPECT_TRUE(shown);
+  ASSERT_FALSE(h.clients.of(1, "sent").empty());  // the ESP's other lines are echoed
+  for (const json& f : h.clients.frames[1]) EXPECT_EQ(f.dump().find("abcdefghjkmn"), std::string::npos) << f;
+}
+
 TEST(Bridge, EachConsoleLineIsAnsweredToItsOwnClientAndEchoedToAll) {
   Hub h;
   h.start();

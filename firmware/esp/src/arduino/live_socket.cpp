@@ -3,7 +3,9 @@
 
 #include <ArduinoJson.h>
 
+#include "http_rules.h"
 #include "json_view.h"
+#include "network.h"
 
 #if defined(ESP32)
 #include <freertos/FreeRTOS.h>
@@ -94,6 +96,17 @@ void LiveSocket::begin(Bridge& b, LiveChannel& l) {
   bridge = &b;
   live = &l;
   ws_.onEvent(onEvent);
+  // /ws drives the Mega and has no CORS preflight: a handshake from a foreign page is refused
+  // before the upgrade (protocol/esp.md "Who may drive it"). A handler's middleware runs before
+  // its handleRequest, which answers 101.
+  ws_.addMiddleware([](AsyncWebServerRequest* r, ArMiddlewareNext next) {
+    HttpError e = foreignRequest(r);
+    if (!e.status) return next();
+    static char refusal[kErrorJsonBytes];  // network task only; off its small stack
+    JsonWriter w(refusal, sizeof refusal);
+    writeError(w, e.code, e.message);
+    r->send(e.status, "application/json", w.text());
+  });
 }
 
 void LiveSocket::drain() {
