@@ -41,9 +41,9 @@ void HttpSession::dispatch() {
   Answer now;
   if (boost::beast::websocket::is_upgrade(req)) {
     if (routes_.refuseUpgrade(req, now)) return send(std::move(now), false);
-    return routes_.upgrade(std::move(stream_), std::move(req));
+    return routes_.upgrade(std::move(stream_), std::move(req), std::move(slot_));
   }
-  bool keepAlive = req.keep_alive();
+  bool keepAlive = false;  // as ESPAsyncWebServer: every answer says Connection: close, and closes
   auto self = shared_from_this();
   if (routes_.handle(req, body_, now, [self, keepAlive](Answer a) { self->send(std::move(a), keepAlive); })) send(std::move(now), keepAlive);
 }

@@ -23,6 +23,26 @@ struct Answer {
 
 class HttpSession;
 
+// One of the board's TCP sockets (lwIP's PCBs), held by a connection until it closes: the host hub
+// takes no more connections than the board has sockets (they wait, as SYNs an ESP8266 cannot
+// answer are sent again). `open` counts them; a WebSocket takes its HTTP session's over.
+class SocketSlot {
+ public:
+  static inline int open = 0;
+  static inline void (*freed)() = nullptr;  // a socket came free: accept the next connection
+  SocketSlot() : held_(true) { open++; }
+  SocketSlot(SocketSlot&& o) noexcept : held_(o.held_) { o.held_ = false; }
+  SocketSlot& operator=(SocketSlot&&) = delete;
+  ~SocketSlot() {
+    if (!held_) return;
+    open--;
+    if (freed) freed();
+  }
+
+ private:
+  bool held_;
+};
+
 // What the hub does with a request. A POST /print is answered later: the hub keeps `later`.
 class Routes {
  public:
@@ -33,7 +53,7 @@ class Routes {
   virtual bool handle(const http::request<http::string_body>& req, uint32_t body, Answer& now, std::function<void(Answer)> later) = 0;
   // A WebSocket handshake: an answer refuses it (true), or the upgrade goes ahead.
   virtual bool refuseUpgrade(const http::request<http::string_body>& req, Answer& now) = 0;
-  virtual void upgrade(beast::tcp_stream&& stream, http::request<http::string_body> req) = 0;
+  virtual void upgrade(beast::tcp_stream&& stream, http::request<http::string_body> req, SocketSlot slot) = 0;
   // The connection went (or was cut off at its deadline) before its body was whole.
   virtual void lost(const http::request_parser<http::string_body>& parser, uint32_t body) = 0;
 };
@@ -57,6 +77,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   Routes& routes_;
   std::chrono::milliseconds deadline_;  // a request is whole within it (http_rules.h)
   uint32_t body_ = 0;
+  SocketSlot slot_;
 };
 
 }  // namespace hub

@@ -6,7 +6,7 @@
 // end-to-end tests drive the app against it in Chromium, with the app served the way the ESP
 // serves it: gzipped files from the flash image (`npm run build:esp`), with ETags.
 //
-//   esp_host [--port N] [--www DIR] [--speed X] [--request-deadline-ms N]    prints "listening on http://127.0.0.1:PORT"
+//   esp_host [--port N] [--www DIR] [--speed X] [--board esp8266|esp32] [--request-deadline-ms N]    prints "listening on http://127.0.0.1:PORT"
 #include <boost/asio.hpp>
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
@@ -26,6 +26,7 @@
 #include "host_body.h"
 #include "http_rules.h"
 #include "http_sessions.h"
+#include "board.h"
 #include "live_sessions.h"
 #include "loop_desk.h"
 #include "mega_rig.h"
@@ -91,8 +92,8 @@ struct LaterHandle {
 
 class Hub : public hub::Routes {
  public:
-  Hub(net::io_context& io, std::filesystem::path www, std::filesystem::path state)
-      : io_(io), www_(std::move(www)), state_(std::move(state)), body_((state_ / "job.json").string()) {
+  Hub(net::io_context& io, std::filesystem::path www, std::filesystem::path state, const Board& board)
+      : io_(io), www_(std::move(www)), state_(std::move(state)), sessions_(board), body_((state_ / "job.json").string()) {
     rigPtr = &rig_;
     sessions_.attach(bridge_, live_, virtualMs);
     defaultWifi(0x5EED01, [] { return static_cast<uint32_t>(std::random_device{}()); }, wifi_);
@@ -112,7 +113,9 @@ class Hub : public hub::Routes {
       rig_.run(1000);
       for (; fed_ < rig_.espLines.size(); fed_++)
         for (char c : rig_.espLines[fed_] + "\n") bridge_.received(c, virtualMs());
+      sessions_.drain();  // loop()'s side of /ws: who joined and left, and their messages
       bridge_.poll(virtualMs());
+      live_.pump();  // the network side's: the live channel to the WebSocket sessions
       loopDesk_.poll(virtualMs(), [this] { return ++jobs_; });
       pump();     // as the ESP8266's loop() ends: its answers go out at once
       io_.poll();  // the network gets its turn every millisecond of the hub's time, as in the ESP's loop
@@ -180,9 +183,9 @@ class Hub : public hub::Routes {
     return e.status != 0;
   }
 
-  void upgrade(boost::beast::tcp_stream&& stream, hub::http::request<hub::http::string_body> req) override {
+  void upgrade(boost::beast::tcp_stream&& stream, hub::http::request<hub::http::string_body> req, hub::SocketSlot slot) override {
     if (req.target() != "/ws") return;
-    std::make_shared<hub::WsSession>(std::move(stream), sessions_)->start(std::move(req));
+    std::make_shared<hub::WsSession>(std::move(stream), sessions_, std::move(slot))->start(std::move(req));
   }
 
  private:
@@ -261,10 +264,20 @@ class Hub : public hub::Routes {
 
 std::chrono::milliseconds requestDeadline{kRequestDeadlineMs};
 
-void accept(tcp::acceptor& acceptor, Hub& hub) {
-  acceptor.async_accept([&acceptor, &hub](boost::beast::error_code ec, tcp::socket socket) {
-    if (!ec) std::make_shared<hub::HttpSession>(std::move(socket), hub, requestDeadline)->start();
-    accept(acceptor, hub);
+Board board = kEsp8266;
+bool accepting = false;
+tcp::acceptor* acceptorPtr = nullptr;
+Hub* hubPtr = nullptr;
+
+// A connection is taken only while the board has a socket for it; the others wait in the
+// backlog until one comes free, as an ESP8266's lwIP leaves a SYN unanswered without a free PCB.
+void accept() {
+  if (accepting || hub::SocketSlot::open >= board.tcpSockets) return;
+  accepting = true;
+  acceptorPtr->async_accept([](boost::beast::error_code ec, tcp::socket socket) {
+    accepting = false;
+    if (!ec) std::make_shared<hub::HttpSession>(std::move(socket), *hubPtr, requestDeadline)->start();
+    accept();
   });
 }
 
@@ -279,6 +292,7 @@ int main(int argc, char** argv) {
     if (a == "--port") port = static_cast<unsigned short>(std::stoi(argv[i + 1]));
     else if (a == "--www") www = argv[i + 1];
     else if (a == "--speed") speed = std::stod(argv[i + 1]);
+    else if (a == "--board") board = std::string(argv[i + 1]) == "esp32" ? kEsp32 : kEsp8266;  // its sockets and /ws limits
     else if (a == "--request-deadline-ms") requestDeadline = std::chrono::milliseconds(std::stoul(argv[i + 1]));  // tests: the rule's 60 s, shorter
   }
   std::filesystem::path state = std::filesystem::temp_directory_path() / ("uv-esp-host-" + std::to_string(::getpid()));
@@ -310,9 +324,12 @@ int main(int argc, char** argv) {
     leave();
   }).detach();
   net::io_context io;
-  Hub hub(io, www, state);
+  Hub hub(io, www, state, board);
   tcp::acceptor acceptor(io, {net::ip::make_address("127.0.0.1"), port});
-  accept(acceptor, hub);
+  acceptorPtr = &acceptor;
+  hubPtr = &hub;
+  hub::SocketSlot::freed = [] { net::post(acceptorPtr->get_executor(), [] { accept(); }); };
+  accept();
   hub.begin();
   std::printf("listening on http://127.0.0.1:%u\n", acceptor.local_endpoint().port());
   std::fflush(stdout);

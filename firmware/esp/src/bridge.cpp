@@ -54,7 +54,6 @@ void Bridge::poll(uint32_t nowMs) {
     bool progressed = upload_.changes() != uploadChanges_;
     if (stateChanged || (upload_.active() && progressed && nowMs - uploadSentMs_ >= kUploadMs)) sendUpload();
   }
-  live_.pump();
 }
 
 void Bridge::sendStatus(uint8_t to, uint32_t nowMs) {

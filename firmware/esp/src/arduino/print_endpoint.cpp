@@ -19,6 +19,7 @@
 #include "loop_desk.h"
 #include "network.h"
 #include "network_desk.h"
+#include "network_wake.h"
 #include "print_intake.h"
 
 namespace uv {
@@ -88,11 +89,11 @@ void handOver(AsyncWebServerRequest* r, Ask ask, bool failed = false) {
   uint16_t ticket = desk.hand(r->pause(), ask, failed);
   if (!ticket) return sendError(r, 503, "overloaded", "too many requests are waiting for the ESP; try again");
   r->onDisconnect([ticket] { desk.left(ticket); });
-  // Its connection's poll (on the network task on both chips; every 500 ms with AsyncTCP) sends the
-  // answer once loop() has given it. It stands in for the request's own poll, which only pushes the rest of a
+  // Its connection's poll (on the network task on both chips; every 500 ms with AsyncTCP, and at
+  // once when loop() wakes the task: network_wake.h) sends the answer once loop() has given it. It stands in for the request's own poll, which only pushes the rest of a
   // response too large for the connection's send buffer: ours (at most 2 KB) are written whole by
   // send(), and the rest of a larger one would still follow the client's acks.
-  r->client()->onPoll([](void*, AsyncClient*) { pump(); }, nullptr);
+  r->client()->onPoll([](void*, AsyncClient*) { pumpNetwork(); }, nullptr);
 }
 
 // loop(): the job's id, kept on flash across restarts.
@@ -206,12 +207,10 @@ void beginPrintEndpoint(AsyncWebServer& server, Bridge& bridge, void (*serviceFn
 
 void pollPrintEndpoint() {
   loopDesk->poll(millis(), nextJobId);
-#if defined(ESP8266)
-  // The ESP8266's network callbacks run only between loop()'s passes, never beside it: the
-  // answers may go out here at once, instead of at their connection's next poll.
-  pump();
-#endif
+  if (rings.answers.room() < 2) wakeNetwork();  // an answer waits for the network task
 }
+
+void pumpPrintEndpoint() { pump(); }
 
 }  // namespace esp
 }  // namespace uv
