@@ -6,12 +6,14 @@
 // end-to-end tests drive the app against it in Chromium, with the app served the way the ESP
 // serves it: gzipped files from the flash image (`npm run build:esp`), with ETags.
 //
-//   esp_host [--port N] [--www DIR] [--speed X] [--board esp8266|esp32] [--request-deadline-ms N]    prints "listening on http://127.0.0.1:PORT"
+//   esp_host [--port N] [--www DIR] [--speed X] [--board esp8266|esp32] [--turn each-pass|poll|wake]
+//            [--request-deadline-ms N]    prints "listening on http://127.0.0.1:PORT"
 #include <boost/asio.hpp>
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
 #include <boost/beast/websocket.hpp>
 
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -115,12 +117,36 @@ class Hub : public hub::Routes {
         for (char c : rig_.espLines[fed_] + "\n") bridge_.received(c, virtualMs());
       sessions_.drain();  // loop()'s side of /ws: who joined and left, and their messages
       bridge_.poll(virtualMs());
-      live_.pump();  // the network side's: the live channel to the WebSocket sessions
       loopDesk_.poll(virtualMs(), [this] { return ++jobs_; });
-      pump();     // as the ESP8266's loop() ends: its answers go out at once
+      passes.fetch_add(1, std::memory_order_relaxed);
+      if (turn_ == Turn::EachPass) {
+        networkTurn();  // as the ESP8266's loop() ends: its answers and live messages go out at once
+      } else if (turn_ == Turn::Poll) {
+        live_.pump();  // as the ESP32's loop() did before issue 36, on the wrong task; answers wait for the poll
+      } else if (turn_ == Turn::Woken && !wakePending_ &&
+                 (rings_.answers.room() < 2 || live_.written() != woken_ || (live_.backlogged() && virtualMs() - backlogMs_ >= 10))) {
+        // As the ESP32's loop() (main.cpp, arduino/network_wake.cpp): the network task is woken to send.
+        wakePending_ = true;
+        woken_ = live_.written();
+        if (live_.backlogged()) backlogMs_ = virtualMs();
+        net::post(io_, [this] {
+          wakePending_ = false;
+          networkTurn();
+        });
+      }
       io_.poll();  // the network gets its turn every millisecond of the hub's time, as in the ESP's loop
     }
   }
+
+  // When the network side sends what loop() published: after each pass (the ESP8266); the live
+  // channel from loop() and the answers at AsyncTCP's poll of their connection every 500 ms (the
+  // ESP32 before issue 36); or both at that poll and when loop() wakes the network task (the ESP32 now).
+  enum class Turn { EachPass, Poll, Woken };
+  void setTurn(Turn t) {
+    turn_ = t;
+    if (t != Turn::EachPass) poll();
+  }
+  static inline std::atomic<uint64_t> passes{0};
 
   // The network's side, as onBody on the ESP: a POST's headers are judged before a byte of its
   // body is kept, by what loop() last said of the Mega and the spool.
@@ -208,6 +234,20 @@ class Hub : public hub::Routes {
     now = error(503, "overloaded", "too many requests are waiting for the ESP; try again");
     return true;
   }
+  // The network side's turn: loop()'s answers and the live channel's messages.
+  void networkTurn() {
+    pump();
+    live_.pump();
+  }
+  // AsyncTCP's poll of each connection, every 500 ms (CONFIG_ASYNC_TCP_POLL_TIMER, lwIP's slow timer).
+  void poll() {
+    pollTimer_.expires_after(std::chrono::milliseconds(500));
+    pollTimer_.async_wait([this](boost::beast::error_code ec) {
+      if (ec) return;
+      networkTurn();
+      poll();
+    });
+  }
   // loop()'s answers, each to its request.
   void pump() {
     desk_.pump([](Later& later, const uv::esp::Answer& a) {
@@ -259,6 +299,10 @@ class Hub : public hub::Routes {
   WifiSettings wifi_{};
   uint32_t jobs_ = 0;
   size_t fed_ = 0;
+  Turn turn_ = Turn::EachPass;
+  bool wakePending_ = false;
+  uint32_t woken_ = 0, backlogMs_ = 0;
+  net::steady_timer pollTimer_{io_};
   double budget_ = 0;
 };
 
@@ -287,12 +331,14 @@ int main(int argc, char** argv) {
   unsigned short port = 0;
   std::filesystem::path www = "firmware/esp/data/www";
   double speed = 1;
+  std::string turn = "each-pass";
   for (int i = 1; i + 1 < argc; i += 2) {
     std::string a = argv[i];
     if (a == "--port") port = static_cast<unsigned short>(std::stoi(argv[i + 1]));
     else if (a == "--www") www = argv[i + 1];
     else if (a == "--speed") speed = std::stod(argv[i + 1]);
     else if (a == "--board") board = std::string(argv[i + 1]) == "esp32" ? kEsp32 : kEsp8266;  // its sockets and /ws limits
+    else if (a == "--turn") turn = argv[i + 1];  // each-pass (the ESP8266), poll, wake (the ESP32's network task)
     else if (a == "--request-deadline-ms") requestDeadline = std::chrono::milliseconds(std::stoul(argv[i + 1]));  // tests: the rule's 60 s, shorter
   }
   std::filesystem::path state = std::filesystem::temp_directory_path() / ("uv-esp-host-" + std::to_string(::getpid()));
@@ -303,7 +349,12 @@ int main(int argc, char** argv) {
   // one thread alone, so nothing else is cut short in the middle of a write.
   static std::filesystem::path flash;
   flash = state;
-  auto leave = [] {
+  auto started = std::chrono::steady_clock::now();
+  auto leave = [started] {
+    // How long one loop pass took, for the benchmarks' ratios (bench/hub.bench.ts).
+    double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started).count();
+    std::printf("loop passes: %llu in %.0f ms\n", static_cast<unsigned long long>(Hub::passes.load()), ms);
+    std::fflush(stdout);
     std::error_code ignored;
     std::filesystem::remove_all(flash, ignored);
     std::_Exit(0);
@@ -325,6 +376,7 @@ int main(int argc, char** argv) {
   }).detach();
   net::io_context io;
   Hub hub(io, www, state, board);
+  hub.setTurn(turn == "poll" ? Hub::Turn::Poll : turn == "wake" ? Hub::Turn::Woken : Hub::Turn::EachPass);
   tcp::acceptor acceptor(io, {net::ip::make_address("127.0.0.1"), port});
   acceptorPtr = &acceptor;
   hubPtr = &hub;

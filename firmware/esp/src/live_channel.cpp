@@ -85,6 +85,7 @@ void LiveChannel::evict(Reader& r) {
 
 void LiveChannel::pump() {
   uint32_t head = head_.load(std::memory_order_acquire);
+  bool blocked = false;
   for (Reader& r : readers_) {
     while (r.used.load(std::memory_order_relaxed)) {
       if (head - r.at > kRing) {  // the writer has passed it: what it has not read is gone
@@ -111,11 +112,13 @@ void LiveChannel::pump() {
       }
       if (mine && !clients_.trySend(r.id, copy_, len)) {
         r.at = at;  // its connection is full: the message waits in the ring
+        blocked = true;
         break;
       }
       r.at = at + kHeader + len;
     }
   }
+  backlog_.store(blocked, std::memory_order_relaxed);
 }
 
 }  // namespace esp

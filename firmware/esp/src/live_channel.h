@@ -53,6 +53,9 @@ class LiveChannel {
   uint8_t count() const;
   // How much has been put in so far (bytes, wrapping): changed means there is news to send.
   uint32_t written() const { return head_.load(std::memory_order_relaxed); }
+  // A client had a message waiting when its connection could take none (its queue not yet
+  // empty) at the last pump: the readers' side needs another turn soon, news or not.
+  bool backlogged() const { return backlog_.load(std::memory_order_relaxed); }
 
   // Either side.
   uint32_t closedSlow() const { return closedSlow_.load(std::memory_order_relaxed); }
@@ -80,6 +83,7 @@ class LiveChannel {
   Reader readers_[kMaxClients];
   char copy_[kMaxMessage];  // the readers' side's copy of the message being sent
   std::atomic<uint32_t> closedSlow_{0};
+  std::atomic<bool> backlog_{false};
 };
 
 }  // namespace esp

@@ -55,9 +55,14 @@ void handToNetwork() {
 #if defined(ESP8266)
   uv::esp::pumpNetwork();
 #else
-  static uint32_t written = 0;
-  if (live.written() == written) return;
+  // News, or a client whose queue was full at the last turn: its next message goes once the
+  // library has sent the last (nothing tells us when; every 10 ms is soon enough).
+  static uint32_t written = 0, backlogMs = 0;
+  bool news = live.written() != written;
+  bool backlog = live.backlogged() && millis() - backlogMs >= 10;
+  if (!news && !backlog) return;
   written = live.written();
+  if (backlog) backlogMs = millis();
   uv::esp::wakeNetwork();
 #endif
 }
