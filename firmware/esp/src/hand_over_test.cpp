@@ -361,3 +361,43 @@ TEST(HandOver, ARequestGoneWithoutANoticeIsCountedAsLeft) {
   EXPECT_EQ(rig.network.waiting(), 0);
   EXPECT_EQ(rig.network.admitBody(), Admission::Accepted);
 }
+
+// A client that leaves once its job was accepted but before the 202 reached it: the upload it
+// started is cancelled, whether it left before the network task took the answer or the library
+// had let go of its request by then.
+TEST(HandOver, AClientGoneBeforeIts202HasItsUploadCancelled) {
+  for (bool noticed : {true, false}) {
+    Rig rig;
+    rig.settle();
+    uint16_t t;
+    auto r = rig.post("{}", t);
+    ASSERT_TRUE(r);
+    rig.pass();
+    while (rig.loop.checking()) rig.pass();  // the 202 is in the ring, not yet sent
+    ASSERT_TRUE(rig.hub.uploading());
+    if (noticed) rig.network.left(t);  // its onDisconnect
+    r.reset();                         // the library lets go of the request either way
+    rig.pump();
+    rig.pass();
+    EXPECT_FALSE(rig.hub.uploading()) << noticed;
+    EXPECT_EQ(rig.hub.uploadsStarted, 1);
+    rig.settle();
+    EXPECT_EQ(rig.network.admitBody(), Admission::Accepted);  // the spool came back
+  }
+}
+
+// One that got its 202 and then closed, as every client does: the upload goes on.
+TEST(HandOver, AClientThatGotIts202MayLeave) {
+  Rig rig;
+  rig.settle();
+  uint16_t t;
+  auto r = rig.post("{}", t);
+  rig.pass();
+  while (rig.loop.checking()) rig.pass();
+  rig.pump();
+  EXPECT_EQ(r->status, 202);
+  rig.network.left(t);
+  r.reset();
+  rig.pass();
+  EXPECT_TRUE(rig.hub.uploading());
+}

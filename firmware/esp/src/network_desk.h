@@ -105,8 +105,14 @@ class NetworkDesk {
       Handle request = std::move(w->request);
       w->request = Handle{};
       w->ticket = 0;
-      if (leftOwed_ == a->ticket) leftOwed_ = 0;
-      if (auto r = request.lock()) deliver(*r, *a);
+      auto r = request.lock();
+      if (leftOwed_ == a->ticket) {
+        // A job accepted for a client that has gone: loop() is told, so an upload nobody heard of
+        // is cancelled (the place for this Left was kept by hand()).
+        if (!r && a->status == 202) rings_.work.push(Work{a->ticket, Ask::Left, false});
+        leftOwed_ = 0;
+      }
+      if (r) deliver(*r, *a);
     }
     // A request the library let go of without an onDisconnect counts as left.
     for (Waiting& w : waiting_)
