@@ -10,6 +10,7 @@ const WWW = join(ROOT, 'firmware', 'esp', 'data', 'www');
 
 export interface EspHost {
   url: string;
+  pid: number;
   stop(): void;
 }
 
@@ -35,6 +36,7 @@ export async function startEspHost(speed: number, args: string[] = []): Promise<
   });
   return {
     url,
+    pid: child.pid ?? 0,
     stop: () => {
       process.off('exit', kill);
       child.kill();

@@ -115,6 +115,11 @@ class Hub : public hub::Routes {
       rig_.run(1000);
       for (; fed_ < rig_.espLines.size(); fed_++)
         for (char c : rig_.espLines[fed_] + "\n") bridge_.received(c, virtualMs());
+      // The rig keeps every line its hosts read; the hub has taken them (a long soak stays flat).
+      rig_.espLines.clear();
+      rig_.usbLines.clear();
+      rig_.firedAt.clear();
+      fed_ = 0;
       sessions_.drain();  // loop()'s side of /ws: who joined and left, and their messages
       bridge_.poll(virtualMs());
       loopDesk_.poll(virtualMs(), [this] { return ++jobs_; });
