@@ -84,6 +84,8 @@ for (const which of ['mock', 'firmware'] as const) {
       const weak = await call(page, 'POST', '/wifi', JSON.stringify({ apPassword: 'short' }));
       expect(weak.status).toBe(400);
       expect(weak.json.error.path).toBe('/apPassword');
+      // A text body, which a foreign page may send without a preflight, changes nothing.
+      expect((await call(page, 'POST', '/wifi', JSON.stringify({ staSsid: 'x' }), 'text/plain')).status).toBe(415);
       const unknown = await call(page, 'POST', '/wifi', JSON.stringify({ colour: 'red' }));
       expect(unknown.json.error.path).toBe('/colour');
       const ok = await call(page, 'POST', '/wifi', JSON.stringify({ apPassword: 'a good long one', staSsid: 'workshop', staPassword: 'hunter22' }));

@@ -10,17 +10,19 @@ const WWW = join(ROOT, 'firmware', 'esp', 'data', 'www');
 
 export interface EspHost {
   url: string;
+  pid: number;
   stop(): void;
 }
 
-export async function startEspHost(speed: number): Promise<EspHost> {
+/** `args`: more of esp_host's options, e.g. a shorter request deadline. */
+export async function startEspHost(speed: number, args: string[] = []): Promise<EspHost> {
   if (!existsSync(BINARY)) {
     execFileSync('cmake', ['-S', 'firmware', '-B', 'build/host'], { cwd: ROOT, stdio: 'ignore' });
     execFileSync('cmake', ['--build', 'build/host', '--target', 'esp_host', '-j4'], { cwd: ROOT, stdio: 'ignore' });
   }
   if (!existsSync(join(WWW, 'index.html.gz'))) execFileSync('node', ['scripts/build-esp-fs.mjs'], { cwd: ROOT, stdio: 'ignore' });
   // stdin is a pipe the hub watches: when this process goes, however it goes, so does the hub.
-  const child = spawn(BINARY, ['--port', '0', '--www', WWW, '--speed', String(speed)], { cwd: ROOT, stdio: ['pipe', 'pipe', 'inherit'] });
+  const child = spawn(BINARY, ['--port', '0', '--www', WWW, '--speed', String(speed), ...args], { cwd: ROOT, stdio: ['pipe', 'pipe', 'inherit'] });
   const kill = () => child.kill();
   process.once('exit', kill);
   const url = await new Promise<string>((resolve, reject) => {
@@ -34,6 +36,7 @@ export async function startEspHost(speed: number): Promise<EspHost> {
   });
   return {
     url,
+    pid: child.pid ?? 0,
     stop: () => {
       process.off('exit', kill);
       child.kill();

@@ -153,6 +153,9 @@ export class MockEsp {
     const bad = (message: string, path: string) => json(400, { error: { code: 'bad_job', message, path } });
     if (req.method() === 'GET') return json(200, { apSsid: this.#wifi.apSsid, staSsid: this.#wifi.staSsid });
     if (req.method() !== 'POST') return json(405, { error: { code: 'method_not_allowed', message: 'wrong method for this path' } });
+    if (!/^application\/json\s*(;|$)/i.test(req.headers()['content-type'] ?? '')) {
+      return json(415, { error: { code: 'unsupported_media_type', message: 'send the body as application/json' } });
+    }
     let body: Record<string, unknown>;
     try {
       body = JSON.parse(req.postData() ?? '');

@@ -3,6 +3,9 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 npm run --silent build >/dev/null  # the editor benchmark runs the built app
+# P12 runs the ESP's hub built for the host
+cmake -S firmware -B build/host -DCMAKE_BUILD_TYPE=Debug >/dev/null
+cmake --build build/host -j"$(nproc)" --target esp_host >/dev/null
 npx tsx bench/run.ts
 echo
 bash scripts/build-avr.sh

@@ -71,6 +71,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       }
     }
     bridge.poll(nowMs);
+    live.pump();  // the network side's turn
     for (const std::string& l : fuzz::takeLines(wire.sent))
       FUZZ_REQUIRE(fuzz::printable(l) && l.size() <= 96, ("a line to the Mega out of form: " + l).c_str());
   }

@@ -6,12 +6,14 @@
 // end-to-end tests drive the app against it in Chromium, with the app served the way the ESP
 // serves it: gzipped files from the flash image (`npm run build:esp`), with ETags.
 //
-//   esp_host [--port N] [--www DIR] [--speed X]    prints "listening on http://127.0.0.1:PORT"
+//   esp_host [--port N] [--www DIR] [--speed X] [--board esp8266|esp32] [--turn each-pass|poll|wake]
+//            [--request-deadline-ms N]    prints "listening on http://127.0.0.1:PORT"
 #include <boost/asio.hpp>
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
 #include <boost/beast/websocket.hpp>
 
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -26,6 +28,7 @@
 #include "host_body.h"
 #include "http_rules.h"
 #include "http_sessions.h"
+#include "board.h"
 #include "live_sessions.h"
 #include "loop_desk.h"
 #include "mega_rig.h"
@@ -91,8 +94,8 @@ struct LaterHandle {
 
 class Hub : public hub::Routes {
  public:
-  Hub(net::io_context& io, std::filesystem::path www, std::filesystem::path state)
-      : io_(io), www_(std::move(www)), state_(std::move(state)), body_((state_ / "job.json").string()) {
+  Hub(net::io_context& io, std::filesystem::path www, std::filesystem::path state, const Board& board)
+      : io_(io), www_(std::move(www)), state_(std::move(state)), sessions_(board), body_((state_ / "job.json").string()) {
     rigPtr = &rig_;
     sessions_.attach(bridge_, live_, virtualMs);
     defaultWifi(0x5EED01, [] { return static_cast<uint32_t>(std::random_device{}()); }, wifi_);
@@ -112,16 +115,47 @@ class Hub : public hub::Routes {
       rig_.run(1000);
       for (; fed_ < rig_.espLines.size(); fed_++)
         for (char c : rig_.espLines[fed_] + "\n") bridge_.received(c, virtualMs());
+      // The rig keeps every line its hosts read; the hub has taken them (a long soak stays flat).
+      rig_.espLines.clear();
+      rig_.usbLines.clear();
+      rig_.firedAt.clear();
+      fed_ = 0;
+      sessions_.drain();  // loop()'s side of /ws: who joined and left, and their messages
       bridge_.poll(virtualMs());
       loopDesk_.poll(virtualMs(), [this] { return ++jobs_; });
-      pump();     // as the ESP8266's loop() ends: its answers go out at once
+      passes.fetch_add(1, std::memory_order_relaxed);
+      if (turn_ == Turn::EachPass) {
+        networkTurn();  // as the ESP8266's loop() ends: its answers and live messages go out at once
+      } else if (turn_ == Turn::Poll) {
+        live_.pump();  // as the ESP32's loop() did before issue 36, on the wrong task; answers wait for the poll
+      } else if (turn_ == Turn::Woken && !wakePending_ &&
+                 (rings_.answers.room() < 2 || live_.written() != woken_ || (live_.backlogged() && virtualMs() - backlogMs_ >= 10))) {
+        // As the ESP32's loop() (main.cpp, arduino/network_wake.cpp): the network task is woken to send.
+        wakePending_ = true;
+        woken_ = live_.written();
+        if (live_.backlogged()) backlogMs_ = virtualMs();
+        net::post(io_, [this] {
+          wakePending_ = false;
+          networkTurn();
+        });
+      }
       io_.poll();  // the network gets its turn every millisecond of the hub's time, as in the ESP's loop
     }
   }
 
+  // When the network side sends what loop() published: after each pass (the ESP8266); the live
+  // channel from loop() and the answers at AsyncTCP's poll of their connection every 500 ms (the
+  // ESP32 before issue 36); or both at that poll and when loop() wakes the network task (the ESP32 now).
+  enum class Turn { EachPass, Poll, Woken };
+  void setTurn(Turn t) {
+    turn_ = t;
+    if (t != Turn::EachPass) poll();
+  }
+  static inline std::atomic<uint64_t> passes{0};
+
   // The network's side, as onBody on the ESP: a POST's headers are judged before a byte of its
   // body is kept, by what loop() last said of the Mega and the spool.
-  bool beforeBody(const hub::http::request_parser<hub::http::string_body>& parser, Answer& now) override {
+  bool beforeBody(const hub::http::request_parser<hub::http::string_body>& parser, uint32_t& body, Answer& now) override {
     const auto& req = parser.get();
     std::string path(req.target());
     if (path != "/print" || req.method() != hub::http::verb::post) return false;
@@ -130,14 +164,18 @@ class Hub : public hub::Routes {
     std::string contentType = ct == req.end() ? "" : std::string(ct->value());
     bool hasLength = parser.content_length().has_value();
     uint32_t length = hasLength ? static_cast<uint32_t>(std::min<uint64_t>(*parser.content_length(), 0xffffffffu)) : 0;
-    HttpError e = printHeaderError(contentType.empty() ? nullptr : contentType.c_str(), hasLength, length);
+    HttpError e = foreign(req);
+    if (!e.status) e = printHeaderError(contentType.empty() ? nullptr : contentType.c_str(), hasLength, length);
     if (!e.status) e = admissionError(desk_.admitBody());
-    if (!e.status) return false;  // the body is arriving: the spool is this request's
+    if (!e.status) {  // the body is arriving: the spool is this request's
+      body = desk_.arriving();
+      return false;
+    }
     now = error(e.status, e.code, e.message);
     return true;
   }
 
-  bool handle(const hub::http::request<hub::http::string_body>& req, Answer& now, std::function<void(Answer)> later) override {
+  bool handle(const hub::http::request<hub::http::string_body>& req, uint32_t body, Answer& now, std::function<void(Answer)> later) override {
     std::string path(req.target());
     std::string host(req[hub::http::field::host]);
     if (isForeignHost(host.c_str(), "192.168.4.1", "uvprinter") && host.rfind("127.0.0.1", 0) != 0 && host.rfind("localhost", 0) != 0) {
@@ -148,9 +186,14 @@ class Hub : public hub::Routes {
     if (m.status) return now = error(m.status, m.code, m.message), true;
     if (path == "/status") return handOver(Ask::Status, now, std::move(later));
     if (path == "/print" && req.method() == hub::http::verb::post) {
+      if (desk_.bodyCancelled(body) || desk_.arriving() != body) return now = error(409, kCancelledCode, kCancelledMessage), true;  // a DELETE came first
       std::ofstream(body_.path(), std::ios::binary) << req.body();  // the whole body: onBody's writes
-      if (desk_.bodyCancelled()) return now = error(409, kCancelledCode, kCancelledMessage), true;  // a DELETE came first
       return handOver(Ask::CheckBody, now, std::move(later));
+    }
+    if (req.method() == hub::http::verb::post || req.method() == hub::http::verb::delete_) {
+      HttpError e = foreign(req);
+      if (!e.status && req.method() == hub::http::verb::post) e = jsonBodyError(contentTypeOf(req).c_str());
+      if (e.status) return now = error(e.status, e.code, e.message), true;
     }
     if (path == "/print" && desk_.cancelArriving()) return now = {200, "application/json", kCancelledJson, {}}, true;  // DELETE, a body arriving
     if (path == "/print") return handOver(Ask::Cancel, now, std::move(later));  // DELETE
@@ -160,22 +203,55 @@ class Hub : public hub::Routes {
   }
 
   // As the ESP's onDisconnect: a POST /print body cut short frees the spool.
-  void lost(const hub::http::request_parser<hub::http::string_body>& parser) override {
-    if (parser.get().target() == "/print" && parser.get().method() == hub::http::verb::post) desk_.bodyAbandoned();
+  void lost(const hub::http::request_parser<hub::http::string_body>&, uint32_t body) override {
+    if (body) desk_.bodyAbandoned(body);
   }
 
-  void upgrade(boost::beast::tcp_stream&& stream, hub::http::request<hub::http::string_body> req) override {
+  // /ws drives the Mega: only the hub's own pages may open it.
+  bool refuseUpgrade(const hub::http::request<hub::http::string_body>& req, Answer& now) override {
+    HttpError e = foreign(req);
+    if (e.status) now = error(e.status, e.code, e.message);
+    return e.status != 0;
+  }
+
+  void upgrade(boost::beast::tcp_stream&& stream, hub::http::request<hub::http::string_body> req, hub::SocketSlot slot) override {
     if (req.target() != "/ws") return;
-    std::make_shared<hub::WsSession>(std::move(stream), sessions_)->start(std::move(req));
+    std::make_shared<hub::WsSession>(std::move(stream), sessions_, std::move(slot))->start(std::move(req));
   }
 
  private:
+  // The Origin rule (http_rules.h originError), as the ESP applies it.
+  static HttpError foreign(const hub::http::request<hub::http::string_body>& req) {
+    auto o = req.find(hub::http::field::origin);
+    std::string origin = o == req.end() ? "" : std::string(o->value());
+    std::string host(req[hub::http::field::host]);
+    return originError(origin.c_str(), host.c_str(), "192.168.4.1", "uvprinter");
+  }
+  static std::string contentTypeOf(const hub::http::request<hub::http::string_body>& req) {
+    auto ct = req.find(hub::http::field::content_type);
+    return ct == req.end() ? "" : std::string(ct->value());
+  }
+
   // A request handed to loop(), answered later; with no room, 503 now (true).
   bool handOver(Ask ask, Answer& now, Later later) {
     pump();
     if (desk_.hand(LaterHandle{std::make_shared<Later>(std::move(later))}, ask)) return false;
     now = error(503, "overloaded", "too many requests are waiting for the ESP; try again");
     return true;
+  }
+  // The network side's turn: loop()'s answers and the live channel's messages.
+  void networkTurn() {
+    pump();
+    live_.pump();
+  }
+  // AsyncTCP's poll of each connection, every 500 ms (CONFIG_ASYNC_TCP_POLL_TIMER, lwIP's slow timer).
+  void poll() {
+    pollTimer_.expires_after(std::chrono::milliseconds(500));
+    pollTimer_.async_wait([this](boost::beast::error_code ec) {
+      if (ec) return;
+      networkTurn();
+      poll();
+    });
   }
   // loop()'s answers, each to its request.
   void pump() {
@@ -228,13 +304,29 @@ class Hub : public hub::Routes {
   WifiSettings wifi_{};
   uint32_t jobs_ = 0;
   size_t fed_ = 0;
+  Turn turn_ = Turn::EachPass;
+  bool wakePending_ = false;
+  uint32_t woken_ = 0, backlogMs_ = 0;
+  net::steady_timer pollTimer_{io_};
   double budget_ = 0;
 };
 
-void accept(tcp::acceptor& acceptor, Hub& hub) {
-  acceptor.async_accept([&acceptor, &hub](boost::beast::error_code ec, tcp::socket socket) {
-    if (!ec) std::make_shared<hub::HttpSession>(std::move(socket), hub)->start();
-    accept(acceptor, hub);
+std::chrono::milliseconds requestDeadline{kRequestDeadlineMs};
+
+Board board = kEsp8266;
+bool accepting = false;
+tcp::acceptor* acceptorPtr = nullptr;
+Hub* hubPtr = nullptr;
+
+// A connection is taken only while the board has a socket for it; the others wait in the
+// backlog until one comes free, as an ESP8266's lwIP leaves a SYN unanswered without a free PCB.
+void accept() {
+  if (accepting || hub::SocketSlot::open >= board.tcpSockets) return;
+  accepting = true;
+  acceptorPtr->async_accept([](boost::beast::error_code ec, tcp::socket socket) {
+    accepting = false;
+    if (!ec) std::make_shared<hub::HttpSession>(std::move(socket), *hubPtr, requestDeadline)->start();
+    accept();
   });
 }
 
@@ -244,11 +336,15 @@ int main(int argc, char** argv) {
   unsigned short port = 0;
   std::filesystem::path www = "firmware/esp/data/www";
   double speed = 1;
+  std::string turn = "each-pass";
   for (int i = 1; i + 1 < argc; i += 2) {
     std::string a = argv[i];
     if (a == "--port") port = static_cast<unsigned short>(std::stoi(argv[i + 1]));
     else if (a == "--www") www = argv[i + 1];
     else if (a == "--speed") speed = std::stod(argv[i + 1]);
+    else if (a == "--board") board = std::string(argv[i + 1]) == "esp32" ? kEsp32 : kEsp8266;  // its sockets and /ws limits
+    else if (a == "--turn") turn = argv[i + 1];  // each-pass (the ESP8266), poll, wake (the ESP32's network task)
+    else if (a == "--request-deadline-ms") requestDeadline = std::chrono::milliseconds(std::stoul(argv[i + 1]));  // tests: the rule's 60 s, shorter
   }
   std::filesystem::path state = std::filesystem::temp_directory_path() / ("uv-esp-host-" + std::to_string(::getpid()));
   std::filesystem::create_directories(state);
@@ -258,7 +354,12 @@ int main(int argc, char** argv) {
   // one thread alone, so nothing else is cut short in the middle of a write.
   static std::filesystem::path flash;
   flash = state;
-  auto leave = [] {
+  auto started = std::chrono::steady_clock::now();
+  auto leave = [started] {
+    // How long one loop pass took, for the benchmarks' ratios (bench/hub.bench.ts).
+    double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started).count();
+    std::printf("loop passes: %llu in %.0f ms\n", static_cast<unsigned long long>(Hub::passes.load()), ms);
+    std::fflush(stdout);
     std::error_code ignored;
     std::filesystem::remove_all(flash, ignored);
     std::_Exit(0);
@@ -279,9 +380,13 @@ int main(int argc, char** argv) {
     leave();
   }).detach();
   net::io_context io;
-  Hub hub(io, www, state);
+  Hub hub(io, www, state, board);
+  hub.setTurn(turn == "poll" ? Hub::Turn::Poll : turn == "wake" ? Hub::Turn::Woken : Hub::Turn::EachPass);
   tcp::acceptor acceptor(io, {net::ip::make_address("127.0.0.1"), port});
-  accept(acceptor, hub);
+  acceptorPtr = &acceptor;
+  hubPtr = &hub;
+  hub::SocketSlot::freed = [] { net::post(acceptorPtr->get_executor(), [] { accept(); }); };
+  accept();
   hub.begin();
   std::printf("listening on http://127.0.0.1:%u\n", acceptor.local_endpoint().port());
   std::fflush(stdout);

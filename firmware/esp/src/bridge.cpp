@@ -27,7 +27,7 @@ void Bridge::begin(uint32_t nowMs, const char* panel) {
 void Bridge::initMega() {
   static const char* const kInit[] = {"M115", "M155 S1", "M154 S1", "M27 S1", "M503"};
   for (const char* l : kInit) sender_.send(l, kTagInit);
-  if (panel_[0]) sender_.send(panel_, kTagInit);
+  if (panel_[0]) sender_.send(panel_, kTagPanel);
 }
 
 void Bridge::emit(uint8_t to, const JsonWriter& w) {
@@ -54,7 +54,6 @@ void Bridge::poll(uint32_t nowMs) {
     bool progressed = upload_.changes() != uploadChanges_;
     if (stateChanged || (upload_.active() && progressed && nowMs - uploadSentMs_ >= kUploadMs)) sendUpload();
   }
-  live_.pump();
 }
 
 void Bridge::sendStatus(uint8_t to, uint32_t nowMs) {
@@ -125,6 +124,9 @@ void Bridge::line(const char* text, uint8_t len) {
 
 void Bridge::sent(const char* body, uint8_t len, uint16_t tag) {
   if (tag == JobUpload::kRecordTag) return;  // records: the upload message counts them
+  // The AP's key goes to the OLED, where the user reads it, and nowhere else: a /ws client may be
+  // anyone who is on the home network, or a page the user opened.
+  if (tag == kTagPanel) return;
   JsonWriter w(message, sizeof message);
   w.beginObject().key("type").string("sent").key("line").ascii(body, len);
   w.key("from").string(tag < kTagInit ? "ws" : "esp").endObject();

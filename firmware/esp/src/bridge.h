@@ -68,7 +68,8 @@ class Bridge : public MegaListener {
   bool uploading() const { return upload_.active(); }
 
  private:
-  enum : uint16_t { kTagInit = 0xfe00, kTagAbort = 0xfe01 };
+  // kTagPanel: the M117 that shows the AP's key on the OLED; its echo is never sent on /ws.
+  enum : uint16_t { kTagInit = 0xfe00, kTagAbort = 0xfe01, kTagPanel = 0xfe02 };
   struct Pending {
     bool used;
     uint8_t client;

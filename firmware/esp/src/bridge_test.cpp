@@ -79,7 +79,10 @@ struct Hub : esptest::NoisyMega {
         [&](char c, uint32_t ms) {
           if (!megaSilent) bridge.received(c, ms);
         },
-        [&](uint32_t ms) { bridge.poll(ms); });
+        [&](uint32_t ms) {
+          bridge.poll(ms);
+          live.pump();  // the network side's turn
+        });
   }
   bool runUntil(const std::function<bool()>& done, uint64_t maxUs = 300000000) {
     for (uint64_t t = 0; t < maxUs; t += 10000) {
@@ -135,6 +138,19 @@ TEST(Bridge, GreetsAClientAndReportsTheMegaItIdentified) {
   size_t before = h.clients.of(1, "status").size();
   h.run(3000000);
   EXPECT_GE(h.clients.of(1, "status").size() - before, 3u);
+}
+
+TEST(Bridge, TheApKeyGoesToTheOledAndNeverOnTheLiveChannel) {
+  Hub h;
+  ASSERT_TRUE(h.live.join(1));  // there before the ESP sends its first line
+  h.mega.begin();
+  h.bridge.begin(h.nowMs(), "key:abcdefghjkmn");
+  h.run(3000000);
+  bool shown = false;
+  for (const std::string& r : h.mega.display.rows) shown |= r.find("abcdefghjkmn") != std::string::npos;
+  EXPECT_TRUE(shown);
+  ASSERT_FALSE(h.clients.of(1, "sent").empty());  // the ESP's other lines are echoed
+  for (const json& f : h.clients.frames[1]) EXPECT_EQ(f.dump().find("abcdefghjkmn"), std::string::npos) << f;
 }
 
 TEST(Bridge, EachConsoleLineIsAnsweredToItsOwnClientAndEchoedToAll) {
@@ -276,6 +292,8 @@ TEST(Bridge, TheRingHoldsEightKilobytesPerClientAndDeliversInOrder) {
   live.pump();
   EXPECT_EQ(static_cast<int>(c.frames[2].size()), n);
   live.broadcast(m.c_str(), static_cast<uint16_t>(m.size()));  // one more: client 1 is a ring behind
+  EXPECT_TRUE(c.closed.empty());  // the writer never looks at the readers
+  live.pump();  // the readers' side finds it a ring behind
   EXPECT_EQ(c.closed[1], 1008);
   EXPECT_EQ(c.closed.count(2), 0u);
   live.pump();

@@ -8,6 +8,7 @@
 #include "bridge.h"
 #include "host_body.h"
 #include "live_channel.h"
+#include "live_inbox.h"
 #include "loop_desk.h"
 #include "network_desk.h"
 #include "print_intake.h"
@@ -16,7 +17,7 @@
 using namespace uv::esp;
 
 TEST(HubBudget, TheFixedBuffersFitAnEsp8266) {
-  constexpr size_t kInbox = 8 * (4 + 257);      // arduino/live_socket.cpp: 8 queued client frames
+  constexpr size_t kInbox = sizeof(LiveInbox);  // arduino/live_socket.cpp: /ws's messages on their way to loop()
   constexpr size_t kNetworkReply = kErrorJsonBytes;  // arduino/print_endpoint.cpp: answers the network task makes itself
   constexpr size_t kLiveMessage = LiveChannel::kMaxMessage + 1;  // bridge.cpp: one live message
   using Intake = PrintIntake<uvtest::HostBody, uvtest::HostHeaderParse>;

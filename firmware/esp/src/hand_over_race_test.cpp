@@ -26,6 +26,7 @@ struct Client {
   Ask ask = Ask::Status;
   uint16_t ticket = 0;
   int chunksLeft = 0;  // a POST's body still arriving
+  uint32_t body = 0;   // its number (NetworkDesk::arriving)
   long leaveAt = -1;   // the network thread's pass at which its client goes; -1: it stays
 };
 
@@ -70,7 +71,7 @@ TEST(HandOverRace, EveryRequestIsAnsweredOnceOnTheNetworkThreadWhileClientsLeave
     std::vector<Client> clients;
     auto leave = [&](Client& c) {
       if (c.chunksLeft) {
-        network.bodyAbandoned();
+        network.bodyAbandoned(c.body);
         tally.leftWhileArriving++;
       } else if (rng() % 16) {
         network.left(c.ticket);  // else the library lets it go without a word
@@ -104,7 +105,7 @@ TEST(HandOverRace, EveryRequestIsAnsweredOnceOnTheNetworkThreadWhileClientsLeave
           if (!c.chunksLeft) tally.leftWhileWaiting++;  // in the ring, being checked, or answered but not sent
           leave(c);
         } else if (c.chunksLeft && --c.chunksLeft == 0) {
-          if (network.bodyCancelled()) {  // a DELETE came while it arrived: 409 at once, never handed
+          if (network.bodyCancelled(c.body) || network.arriving() != c.body) {  // a DELETE came while it arrived: 409 at once, never handed
             c.request.reset();
             tally.cancelledWhileArriving++;
             continue;
@@ -114,7 +115,7 @@ TEST(HandOverRace, EveryRequestIsAnsweredOnceOnTheNetworkThreadWhileClientsLeave
             c.request.reset();  // answered 503 at once
             tally.overloaded++;
           }
-        } else if (c.chunksLeft) {
+        } else if (c.chunksLeft && network.arriving() == c.body) {  // a cancelled body's bytes are not kept
           spool.text += "[0,255,255,0],";  // the network thread owns the spool while a body arrives
         }
       }
@@ -130,6 +131,7 @@ TEST(HandOverRace, EveryRequestIsAnsweredOnceOnTheNetworkThreadWhileClientsLeave
             tally.refusedAtHeaders++;  // 409 or 503 before a byte is kept
             continue;
           }
+          c.body = network.arriving();
           spool.text = rng() % 5 ? "{" : "bad";
           c.ask = Ask::CheckBody;
           c.chunksLeft = 1 + static_cast<int>(rng() % 20);

@@ -144,7 +144,7 @@ TEST(HandOver, APostsClientMayLeaveAtEveryStep) {
     uint16_t t = 0;
     if (step == WhileArriving) {
       ASSERT_EQ(rig.network.admitBody(), Admission::Accepted);
-      rig.network.bodyAbandoned();  // the request goes with its client; nothing was handed
+      rig.network.bodyAbandoned(rig.network.arriving());  // the request goes with its client; nothing was handed
     } else {
       r = rig.post("{}", t);
       ASSERT_TRUE(r);
@@ -268,14 +268,35 @@ TEST(HandOver, ADeleteWhileTheBodyArrivesCancelsItsPost) {
   Rig rig;
   rig.settle();
   ASSERT_EQ(rig.network.admitBody(), Admission::Accepted);
-  EXPECT_TRUE(rig.network.cancelArriving());   // the DELETE, answered by the network task
-  EXPECT_TRUE(rig.network.bodyCancelled());    // the body whole: its POST is answered 409, not handed
-  EXPECT_FALSE(rig.network.bodyCancelled());   // once
-  EXPECT_FALSE(rig.network.cancelArriving());  // nothing arrives now: the next DELETE is loop()'s
+  uint32_t body = rig.network.arriving();
+  EXPECT_TRUE(rig.network.cancelArriving());     // the DELETE, answered by the network task
+  EXPECT_EQ(rig.network.arriving(), 0u);         // the spool is free at once, the body still on its way
+  EXPECT_TRUE(rig.network.bodyCancelled(body));  // the body whole: its POST is answered 409, not handed
+  EXPECT_FALSE(rig.network.bodyCancelled(body));  // once
+  EXPECT_FALSE(rig.network.cancelArriving());     // nothing arrives now: the next DELETE is loop()'s
   rig.settle();
   EXPECT_EQ(rig.hub.uploadsStarted, 0);
   ASSERT_EQ(rig.network.admitBody(), Admission::Accepted);  // the next body may come
-  EXPECT_FALSE(rig.network.bodyCancelled());  // and it is not the cancelled one
+  EXPECT_FALSE(rig.network.bodyCancelled(rig.network.arriving()));  // and it is not the cancelled one
+}
+
+// A client that stalls mid-body (a byte every 2.9 s, under the library's 3 s idle timeout) holds
+// the only spool until a DELETE frees it, at once; its own late end changes nothing.
+TEST(HandOver, ADeleteFreesTheSpoolAStalledBodyHolds) {
+  Rig rig;
+  rig.settle();
+  ASSERT_EQ(rig.network.admitBody(), Admission::Accepted);
+  uint32_t stalled = rig.network.arriving();
+  EXPECT_EQ(rig.network.admitBody(), Admission::Busy);  // the spool is held
+  EXPECT_TRUE(rig.network.cancelArriving());
+  ASSERT_EQ(rig.network.admitBody(), Admission::Accepted);  // a new body, at once
+  uint32_t next = rig.network.arriving();
+  EXPECT_NE(next, stalled);
+  rig.network.bodyAbandoned(stalled);  // cut off at its deadline later: the new body keeps the spool
+  EXPECT_EQ(rig.network.arriving(), next);
+  EXPECT_EQ(rig.network.admitBody(), Admission::Busy);
+  rig.network.bodyAbandoned(next);
+  EXPECT_EQ(rig.network.admitBody(), Admission::Accepted);
 }
 
 // A client that leaves after its body was cancelled: the next body is judged afresh.
@@ -283,11 +304,11 @@ TEST(HandOver, ACancelledBodysClientMayLeave) {
   Rig rig;
   rig.settle();
   ASSERT_EQ(rig.network.admitBody(), Admission::Accepted);
+  uint32_t body = rig.network.arriving();
   EXPECT_TRUE(rig.network.cancelArriving());
-  rig.network.bodyAbandoned();
-  EXPECT_FALSE(rig.network.bodyCancelled());
+  rig.network.bodyAbandoned(body);
   ASSERT_EQ(rig.network.admitBody(), Admission::Accepted);
-  EXPECT_FALSE(rig.network.bodyCancelled());
+  EXPECT_FALSE(rig.network.bodyCancelled(rig.network.arriving()));
 }
 
 // The check's Left has its place kept: requests that fill the ring never crowd it out.
@@ -339,4 +360,44 @@ TEST(HandOver, ARequestGoneWithoutANoticeIsCountedAsLeft) {
   EXPECT_EQ(rig.hub.uploadsStarted, 0);
   EXPECT_EQ(rig.network.waiting(), 0);
   EXPECT_EQ(rig.network.admitBody(), Admission::Accepted);
+}
+
+// A client that leaves once its job was accepted but before the 202 reached it: the upload it
+// started is cancelled, whether it left before the network task took the answer or the library
+// had let go of its request by then.
+TEST(HandOver, AClientGoneBeforeIts202HasItsUploadCancelled) {
+  for (bool noticed : {true, false}) {
+    Rig rig;
+    rig.settle();
+    uint16_t t;
+    auto r = rig.post("{}", t);
+    ASSERT_TRUE(r);
+    rig.pass();
+    while (rig.loop.checking()) rig.pass();  // the 202 is in the ring, not yet sent
+    ASSERT_TRUE(rig.hub.uploading());
+    if (noticed) rig.network.left(t);  // its onDisconnect
+    r.reset();                         // the library lets go of the request either way
+    rig.pump();
+    rig.pass();
+    EXPECT_FALSE(rig.hub.uploading()) << noticed;
+    EXPECT_EQ(rig.hub.uploadsStarted, 1);
+    rig.settle();
+    EXPECT_EQ(rig.network.admitBody(), Admission::Accepted);  // the spool came back
+  }
+}
+
+// One that got its 202 and then closed, as every client does: the upload goes on.
+TEST(HandOver, AClientThatGotIts202MayLeave) {
+  Rig rig;
+  rig.settle();
+  uint16_t t;
+  auto r = rig.post("{}", t);
+  rig.pass();
+  while (rig.loop.checking()) rig.pass();
+  rig.pump();
+  EXPECT_EQ(r->status, 202);
+  rig.network.left(t);
+  r.reset();
+  rig.pass();
+  EXPECT_TRUE(rig.hub.uploading());
 }

@@ -8,11 +8,40 @@
 namespace uv {
 namespace esp {
 
-HttpError printHeaderError(const char* contentType, bool hasLength, uint32_t contentLength) {
+HttpError jsonBodyError(const char* contentType) {
   size_t n = strlen("application/json");
   if (!contentType || strncasecmp(contentType, "application/json", n) != 0 || (contentType[n] && contentType[n] != ';' && contentType[n] != ' ')) {
-    return {415, "unsupported_media_type", "send the job as application/json"};
+    return {415, "unsupported_media_type", "send the body as application/json"};
   }
+  return {0, "", ""};
+}
+
+namespace {
+// "host[:port]" without a default ":80", lower case, into out; false if it does not fit.
+bool hostPort(const char* from, size_t n, char* out, size_t size) {
+  if (n >= size) return false;
+  for (size_t i = 0; i < n; i++) out[i] = static_cast<char>(from[i] >= 'A' && from[i] <= 'Z' ? from[i] + 32 : from[i]);
+  out[n] = 0;
+  if (n > 3 && strcmp(out + n - 3, ":80") == 0) out[n - 3] = 0;
+  return true;
+}
+}  // namespace
+
+HttpError originError(const char* origin, const char* host, const char* apIp, const char* mdnsName) {
+  if (!origin || !origin[0]) return {0, "", ""};  // not a browser's cross-site request
+  const HttpError refused{403, kForeignOriginCode, "only the hub's own pages may drive the printer"};
+  static const char kScheme[] = "http://";  // the hub serves plain HTTP; "null" and https:// are foreign
+  if (strncasecmp(origin, kScheme, sizeof kScheme - 1) != 0 || !host || !host[0]) return refused;
+  const char* from = origin + sizeof kScheme - 1;
+  char o[72], h[72];
+  if (!hostPort(from, strcspn(from, "/"), o, sizeof o) || !hostPort(host, strlen(host), h, sizeof h)) return refused;
+  if (strcmp(o, h) != 0 || isForeignHost(h, apIp, mdnsName)) return refused;
+  return {0, "", ""};
+}
+
+HttpError printHeaderError(const char* contentType, bool hasLength, uint32_t contentLength) {
+  HttpError type = jsonBodyError(contentType);
+  if (type.status) return {415, "unsupported_media_type", "send the job as application/json"};
   if (!hasLength) return {411, "length_required", "send a Content-Length"};
   RequestError e{};
   if (bodyTooLarge(contentLength, e)) return {413, "too_large", "the body is over 1200000 bytes; send larger jobs over USB"};

@@ -35,6 +35,30 @@ HttpError admitPrintRequest(const char* contentType, bool hasLength, uint32_t co
 HttpError printHeaderError(const char* contentType, bool hasLength, uint32_t contentLength);
 HttpError admissionError(Admission a);
 
+// Who may drive the machine (protocol/esp.md "Who may drive it"). A page on any other site can
+// make the user's browser send a request to the hub: a POST whose type needs no preflight
+// (text/plain), or a WebSocket, which has no preflight at all. The browser always names that
+// page's origin (`Origin`), so a request that names one must come from the hub itself: the origin's
+// host and port equal to the request's Host, and that Host one of the hub's own names (its
+// addresses, `uvprinter.local`; a rebound DNS name is not). A request without Origin is not
+// a browser's cross-site request (curl, OctoPrint-like tools) and goes ahead. 403 otherwise.
+HttpError originError(const char* origin, const char* host, const char* apIp, const char* mdnsName);
+constexpr const char* kForeignOriginCode = "foreign_origin";
+
+// A body that is not JSON is refused before it is read: 415. A text/plain body is what a foreign
+// page may send without a preflight; POST /print and POST /wifi take application/json only.
+HttpError jsonBodyError(const char* contentType);
+
+// A slow client must not hold the hub: its one spool, or one of its few sockets.
+// The request line and each header line are at most kHeaderLineMax bytes, and the headers at
+// most kHeaderBytesMax; a request is whole within kRequestDeadlineMs of its first byte (1.2 MB at
+// 20 KB/s; Wi-Fi carries ten times that), or its connection is closed and nothing of it kept.
+constexpr uint16_t kHeaderLineMax = 1024;
+constexpr uint16_t kHeaderBytesMax = 4096;
+constexpr uint32_t kRequestDeadlineMs = 60000;
+// True once a request that began at startMs has run out of time at nowMs (wraps with millis()).
+inline bool pastDeadline(uint32_t startMs, uint32_t nowMs) { return nowMs - startMs > kRequestDeadlineMs; }
+
 // A method the path does not take.
 HttpError methodNotAllowed(const char* path, Method m);
 

@@ -90,3 +90,43 @@ TEST(HttpRules, CaptivePortalProbesAreSentToTheApp) {
   EXPECT_FALSE(isForeignHost("UVPRINTER.local:80", "192.168.4.1", "uvprinter"));
   EXPECT_FALSE(isForeignHost("10.0.0.23", "192.168.4.1", "uvprinter"));  // its address on a joined network
 }
+
+TEST(HttpRules, OnlyTheHubsOwnPagesMayDriveIt) {
+  auto code = [](const char* origin, const char* host) { return originError(origin, host, "192.168.4.1", "uvprinter").status; };
+  // Its own pages, however it was reached.
+  EXPECT_EQ(code("http://192.168.4.1", "192.168.4.1"), 0);
+  EXPECT_EQ(code("http://uvprinter.local", "uvprinter.local"), 0);
+  EXPECT_EQ(code("http://UVPrinter.local:80", "uvprinter.local"), 0);
+  EXPECT_EQ(code("http://10.0.0.23", "10.0.0.23:80"), 0);  // its address on a joined network
+  EXPECT_EQ(code("http://127.0.0.1:5000", "127.0.0.1:5000"), 0);
+  // Not a browser's cross-site request: curl, OctoPrint-like tools.
+  EXPECT_EQ(code(nullptr, "192.168.4.1"), 0);
+  EXPECT_EQ(code("", "192.168.4.1"), 0);
+  // Any other page.
+  EXPECT_EQ(code("http://evil.example", "192.168.4.1"), 403);
+  EXPECT_EQ(code("https://192.168.4.1", "192.168.4.1"), 403);
+  EXPECT_EQ(code("null", "192.168.4.1"), 403);                     // a sandboxed frame, a file:// page
+  EXPECT_EQ(code("http://127.0.0.1:5001", "127.0.0.1:5000"), 403);  // another port is another site
+  EXPECT_EQ(code("http://192.168.4.1.evil.example", "192.168.4.1"), 403);
+  EXPECT_EQ(code("http://evil.example", "evil.example"), 403);  // a DNS name rebound to the hub
+  EXPECT_EQ(code("http://192.168.4.1", nullptr), 403);
+  EXPECT_EQ(code("http://192.168.4.1", ""), 403);
+  std::string longOrigin = "http://" + std::string(100, '1');
+  EXPECT_EQ(code(longOrigin.c_str(), longOrigin.c_str() + 7), 403);  // too long to be ours
+  HttpError e = originError("http://evil.example", "192.168.4.1", "192.168.4.1", "uvprinter");
+  EXPECT_STREQ(e.code, "foreign_origin");
+}
+
+TEST(HttpRules, ABodyThatIsNotJsonIsRefusedBeforeItIsRead) {
+  EXPECT_EQ(jsonBodyError("application/json").status, 0);
+  EXPECT_EQ(jsonBodyError("Application/JSON; charset=utf-8").status, 0);
+  for (const char* t : {"text/plain", "text/plain;charset=UTF-8", "application/x-www-form-urlencoded", "multipart/form-data", "application/jsonp", ""})
+    EXPECT_EQ(jsonBodyError(t).status, 415) << t;
+  EXPECT_EQ(jsonBodyError(nullptr).status, 415);
+}
+
+TEST(HttpRules, ARequestHasADeadlineFromItsFirstByte) {
+  EXPECT_FALSE(pastDeadline(1000, 1000 + kRequestDeadlineMs));
+  EXPECT_TRUE(pastDeadline(1000, 1001 + kRequestDeadlineMs));
+  EXPECT_TRUE(pastDeadline(0xfffff000u, 0xfffff000u + kRequestDeadlineMs + 1));  // across millis()'s wrap
+}

@@ -29,6 +29,7 @@ class LoopDesk {
       if (!serve(*w, nowMs)) break;  // no room for its answer yet: it waits, and those behind it
     // A step only when its verdict has somewhere to go; the body is read a share at a time.
     if (checking_ && rings_.answers.room() > 0 && check_.step(nextId) != Intake::Working) {
+      accepted_ = check_.status() == 202 ? checking_ : 0;
       answer(checking_, check_.status(), check_.response());
       checking_ = 0;
     }
@@ -75,6 +76,12 @@ class LoopDesk {
         if (checking_ == w.ticket) {  // a job nobody was told about does not start
           check_.cancel();
           checking_ = 0;
+        }
+        // Gone before its 202 reached it: the upload it started is cancelled (the Mega keeps
+        // nothing), and `upload` on /ws says so to whoever listens.
+        if (accepted_ == w.ticket) {
+          if (hub_.uploading()) hub_.cancel();
+          accepted_ = 0;
         }
         return true;
     }
@@ -133,6 +140,7 @@ class LoopDesk {
   Hub& hub_;
   Check& check_;
   uint16_t checking_ = 0;  // the ticket of the POST whose body is being checked
+  uint16_t accepted_ = 0;  // the ticket of the last POST answered 202, until its answer is delivered or its client gone
   bool spoolHeld_ = false;
   bool told_ = false;
   Admission admission_ = Admission::MegaOffline;

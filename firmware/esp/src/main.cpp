@@ -8,6 +8,7 @@
 #include "arduino/app_files.h"
 #include "arduino/live_socket.h"
 #include "arduino/network.h"
+#include "arduino/network_wake.h"
 #include "arduino/print_endpoint.h"
 #include "bridge.h"
 
@@ -47,7 +48,24 @@ uv::esp::LiveSocket socketClients(ws);
 uv::esp::LiveChannel live(socketClients);
 uv::esp::Bridge bridge(wire, live);
 uv::esp::WifiSettings wifi;
-uint32_t cleanupMs = 0;
+
+// What loop() published goes to the network task: on the ESP8266 it is sent here (the network
+// callbacks never run beside loop()); on the ESP32 the network task is woken to send it.
+void handToNetwork() {
+#if defined(ESP8266)
+  uv::esp::pumpNetwork();
+#else
+  // News, or a client whose queue was full at the last turn: its next message goes once the
+  // library has sent the last (nothing tells us when; every 10 ms is soon enough).
+  static uint32_t written = 0, backlogMs = 0;
+  bool news = live.written() != written;
+  bool backlog = live.backlogged() && millis() - backlogMs >= 10;
+  if (!news && !backlog) return;
+  written = live.written();
+  if (backlog) backlogMs = millis();
+  uv::esp::wakeNetwork();
+#endif
+}
 
 // Everything that must not wait: the Mega's bytes, the clients' messages, the live channel. It
 // also runs from inside the intake's and the upload's reads of a long body (FileBody's refill);
@@ -60,6 +78,7 @@ void service() {
   while (mega.available()) bridge.received(static_cast<char>(mega.read()), millis());
   socketClients.drain();
   bridge.poll(millis());
+  handToNetwork();
   running = false;
   yield();  // the ESP8266 runs its network callbacks here, with the bridge between operations
 }
@@ -76,6 +95,7 @@ void setup() {
   }
   uv::esp::beginNetwork(server, logPort, wifi);
   socketClients.begin(bridge, live);
+  uv::esp::onNetworkPump(uv::esp::pumpPrintEndpoint, [] { socketClients.pump(); });
   server.addHandler(&ws);
   uv::esp::beginPrintEndpoint(server, bridge, service);
   uv::esp::beginAppFiles(server);
@@ -91,8 +111,7 @@ void loop() {
   service();
   uv::esp::pollPrintEndpoint();
   uv::esp::pollNetwork();
-  if (millis() - cleanupMs > 1000) {
-    cleanupMs = millis();
-    ws.cleanupClients(uv::esp::LiveChannel::kMaxClients);
-  }
+  handToNetwork();
+  // No ws.cleanupClients() here: it closes clients, which belongs to the network task; /ws lets in
+  // only the board's number of clients (live_socket.cpp).
 }

@@ -22,28 +22,36 @@ class NetworkDesk {
 
   // A POST /print whose headers passed their own rules (printHeaderError): may its body be kept?
   // Busy while another body arrives or loop() has the spool; otherwise what loop() last said of
-  // the Mega, which it decides again once the body is whole. Accepted: the body is arriving now.
+  // the Mega, which it decides again once the body is whole. Accepted: the body is arriving now,
+  // under the number arriving() gives, by which the calls below name it.
   Admission admitBody() {
     Admission a = admission();
-    if (a == Admission::Accepted) arriving_ = true, cancelled_ = false;
+    if (a == Admission::Accepted) arriving_ = true, body_++;
     return a;
   }
   // The same judgement for a POST that has no body to keep.
   Admission admission() const { return arriving_ || spoolLent_ ? Admission::Busy : admission_; }
-  // The arriving body's client left before it was whole: the spool is free again.
-  void bodyAbandoned() { arriving_ = false; }
-  // DELETE /print while a body arrives: that POST is cancelled, and the DELETE is answered at
-  // once (kCancelledJson). False: no body arrives, and loop() has the cancel to judge.
+  // The number of the body arriving now; 0 when none is.
+  uint32_t arriving() const { return arriving_ ? body_ : 0; }
+  // That body's client left, or was cut off at its deadline, before it was whole: the spool is
+  // free again. A body already cancelled or handed is not the arriving one: nothing changes.
+  void bodyAbandoned(uint32_t body) {
+    if (arriving_ && body == body_) arriving_ = false;
+  }
+  // DELETE /print while a body arrives: that POST is cancelled, the DELETE is answered at once
+  // (kCancelledJson), and the spool is free at once, so a client that stalls mid-body holds nothing.
+  // Its POST is answered 409 (kCancelledCode) if its body ever comes whole, and its bytes are no
+  // longer kept. False: no body arrives, and loop() has the cancel to judge.
   bool cancelArriving() {
     if (!arriving_) return false;
-    cancelled_ = true;
+    arriving_ = false;
+    cancelled_ = body_;
     return true;
   }
-  // The arriving body is whole. True if a DELETE cancelled it: its POST is answered 409
-  // (kCancelledCode) by the caller, none of it is checked, and the spool is free again.
-  bool bodyCancelled() {
-    if (!arriving_ || !cancelled_) return false;
-    arriving_ = cancelled_ = false;
+  // The body numbered `body` is whole: true (once) if a DELETE cancelled it while it arrived.
+  bool bodyCancelled(uint32_t body) {
+    if (!body || body != cancelled_) return false;
+    cancelled_ = 0;
     return true;
   }
 
@@ -97,8 +105,14 @@ class NetworkDesk {
       Handle request = std::move(w->request);
       w->request = Handle{};
       w->ticket = 0;
-      if (leftOwed_ == a->ticket) leftOwed_ = 0;
-      if (auto r = request.lock()) deliver(*r, *a);
+      auto r = request.lock();
+      if (leftOwed_ == a->ticket) {
+        // A job accepted for a client that has gone: loop() is told, so an upload nobody heard of
+        // is cancelled (the place for this Left was kept by hand()).
+        if (!r && a->status == 202) rings_.work.push(Work{a->ticket, Ask::Left, false});
+        leftOwed_ = 0;
+      }
+      if (r) deliver(*r, *a);
     }
     // A request the library let go of without an onDisconnect counts as left.
     for (Waiting& w : waiting_)
@@ -137,7 +151,8 @@ class NetworkDesk {
   uint16_t ticket_ = 0;
   uint16_t leftOwed_ = 0;  // the check whose client may still leave: its Left has a place kept
   Admission admission_ = Admission::MegaOffline;  // until loop() says otherwise
-  bool arriving_ = false, cancelled_ = false, spoolLent_ = false, pumping_ = false;
+  uint32_t body_ = 0, cancelled_ = 0;  // the last body admitted; the one a DELETE cancelled
+  bool arriving_ = false, spoolLent_ = false, pumping_ = false;
 };
 
 }  // namespace esp

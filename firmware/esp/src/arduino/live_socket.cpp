@@ -1,91 +1,91 @@
-// /ws: client events queued from the network task, handed to the bridge in loop().
+// /ws: the library's events and sends on the network task, the bridge's side in loop().
 #include "live_socket.h"
 
 #include <ArduinoJson.h>
 
+#include "board.h"
+#include "http_rules.h"
 #include "json_view.h"
-
-#if defined(ESP32)
-#include <freertos/FreeRTOS.h>
-static portMUX_TYPE inboxLock = portMUX_INITIALIZER_UNLOCKED;
-#define INBOX_LOCK() portENTER_CRITICAL(&inboxLock)
-#define INBOX_UNLOCK() portEXIT_CRITICAL(&inboxLock)
-#else  // ESP8266: network callbacks never preempt loop()
-#define INBOX_LOCK()
-#define INBOX_UNLOCK()
-#endif
+#include "live_inbox.h"
+#include "network.h"
+#include "network_wake.h"
 
 namespace uv {
 namespace esp {
 
 namespace {
 
-constexpr uint16_t kMaxFrame = 256;  // a `send` is under 150 bytes of JSON
-constexpr uint8_t kInbox = 8;
-
-enum class Kind : uint8_t { Joined, Left, Text, TooLarge };
-struct Event {
-  Kind kind;
-  uint8_t client;
-  uint16_t len;
-  char text[kMaxFrame + 1];
-};
-
-Event inbox[kInbox];
-uint8_t inHead = 0, inCount = 0;
-uint32_t inboxDropped = 0;
+LiveInbox inbox;  // network task in, loop() out
 Bridge* bridge = nullptr;
 LiveChannel* live = nullptr;
-// The live channel names clients by a byte; the library's ids are 32-bit and never reused.
-uint32_t ids[LiveChannel::kMaxClients + 1];
 
-void push(Kind kind, uint8_t client, const uint8_t* data, size_t len) {
-  INBOX_LOCK();
-  if (inCount < kInbox) {
-    Event& e = inbox[(inHead + inCount) % kInbox];
-    e.kind = kind;
-    e.client = client;
-    e.len = static_cast<uint16_t>(len);
-    if (data) memcpy(e.text, data, len);
-    e.text[len] = 0;
-    inCount++;
-  } else {
-    inboxDropped++;
-  }
-  INBOX_UNLOCK();
+// --- the network task's ---
+// The library's client ids (32-bit, never reused) by the name the live channel knows them by.
+struct Named {
+  uint8_t name;  // 0: a free place
+  uint32_t id;
+};
+Named named[LiveChannel::kMaxClients] = {};
+bool pumping = false;
+
+Named* byName(uint8_t name) {
+  for (Named& n : named)
+    if (n.name && n.name == name) return &n;
+  return nullptr;
+}
+Named* byId(uint32_t id) {
+  for (Named& n : named)
+    if (n.name && n.id == id) return &n;
+  return nullptr;
 }
 
-int8_t slotOf(uint32_t id) {
-  for (uint8_t i = 1; i <= LiveChannel::kMaxClients; i++)
-    if (ids[i] == id) return static_cast<int8_t>(i);
-  return -1;
+// A whole message with no room in the inbox: the client is told at once, with its send's id.
+void answerBusy(AsyncWebSocketClient* c) {
+  JsonDocument doc;
+  bool parsed = !deserializeJson(doc, inbox.busyText(), inbox.busyLength());
+  JsonVariantConst id = doc["id"];
+  bool hasId = parsed && id.is<int64_t>();
+  char text[160];
+  JsonWriter w(text, sizeof text);
+  writeBusy(w, hasId, hasId ? id.as<int64_t>() : 0);
+  if (w.ok()) c->text(w.text(), w.length());
 }
 
 void onEvent(AsyncWebSocket*, AsyncWebSocketClient* c, AwsEventType type, void* arg, uint8_t* data, size_t len) {
   if (type == WS_EVT_CONNECT) {
-    int8_t slot = slotOf(0);
-    if (slot < 0) {
+    Named* place = nullptr;
+    for (Named& n : named)
+      if (!n.name && !place) place = &n;
+    uint8_t name = place ? inbox.join(kBoard.wsClients) : 0;
+    if (!name || !live->join(name)) {
+      if (name) inbox.leave(name);
       c->close(1013, "too many clients");
       return;
     }
-    ids[slot] = c->id();
-    push(Kind::Joined, static_cast<uint8_t>(slot), nullptr, 0);
+    *place = Named{name, c->id()};
+#if defined(ESP32)
+    // The live channel is pumped from this connection's poll, on AsyncTCP's task, and at once when
+    // loop() wakes the task (network_wake.h). It stands in for the library's own poll, which only
+    // sends its queue (also sent at each ack and each text()) and pings when a keep-alive is set
+    // (none is).
+    c->client()->onPoll([](void*, AsyncClient*) { pumpNetwork(); }, nullptr);
+#endif
   } else if (type == WS_EVT_DISCONNECT) {
-    int8_t slot = slotOf(c->id());
-    if (slot < 0) return;
-    ids[slot] = 0;
-    push(Kind::Left, static_cast<uint8_t>(slot), nullptr, 0);
+    Named* n = byId(c->id());
+    if (!n) return;
+    live->leave(n->name);
+    inbox.leave(n->name);
+    *n = Named{0, 0};
   } else if (type == WS_EVT_DATA) {
-    int8_t slot = slotOf(c->id());
+    Named* n = byId(c->id());
     AwsFrameInfo* info = static_cast<AwsFrameInfo*>(arg);
-    if (slot < 0 || info->opcode != WS_TEXT) return;
-    // Only whole frames; a message in pieces or over kMaxFrame is refused, not reassembled.
-    if (!info->final || info->index != 0 || info->len != len || len > kMaxFrame) {
-      if (info->index == 0) push(Kind::TooLarge, static_cast<uint8_t>(slot), nullptr, 0);
-      return;
-    }
-    push(Kind::Text, static_cast<uint8_t>(slot), data, len);
+    if (!n || info->message_opcode != WS_TEXT) return;
+    // The message in pieces: its frames (num), and each frame in TCP segments (index).
+    bool first = info->num == 0 && info->index == 0;
+    bool last = info->final && info->index + len == info->len;
+    if (inbox.received(n->name, reinterpret_cast<const char*>(data), len, first, last) == LiveInbox::Piece::Busy) answerBusy(c);
   }
+  pumpNetwork();  // a join's greeting, a freed queue: whatever the channel holds for them
 }
 
 }  // namespace
@@ -94,54 +94,54 @@ void LiveSocket::begin(Bridge& b, LiveChannel& l) {
   bridge = &b;
   live = &l;
   ws_.onEvent(onEvent);
+  // /ws drives the Mega and has no CORS preflight: a handshake from a foreign page is refused
+  // before the upgrade (protocol/esp.md "Who may drive it"). A handler's middleware runs before
+  // its handleRequest, which answers 101.
+  ws_.addMiddleware([](AsyncWebServerRequest* r, ArMiddlewareNext next) {
+    HttpError e = foreignRequest(r);
+    if (!e.status) return next();
+    static char refusal[kErrorJsonBytes];  // network task only; off its small stack
+    JsonWriter w(refusal, sizeof refusal);
+    writeError(w, e.code, e.message);
+    r->send(e.status, "application/json", w.text());
+  });
 }
 
 void LiveSocket::drain() {
-  for (;;) {
-    Event e;
-    INBOX_LOCK();
-    bool any = inCount > 0;
-    if (any) {
-      e = inbox[inHead];
-      inHead = static_cast<uint8_t>((inHead + 1) % kInbox);
-      inCount--;
-    }
-    INBOX_UNLOCK();
-    if (!any) return;
-    switch (e.kind) {
-      case Kind::Joined:
-        if (live->join(e.client)) bridge->clientJoined(e.client, millis());
-        break;
-      case Kind::Left:
-        live->leave(e.client);
-        bridge->clientLeft(e.client);
-        break;
-      case Kind::TooLarge: bridge->clientRefused(e.client, "too_large", "a message is at most 256 bytes, in one frame"); break;
-      case Kind::Text: {
+  inbox.drain(
+      [](const LiveInbox::Member& m) {
+        if (m.kind == LiveInbox::Kind::Joined) bridge->clientJoined(m.client, millis());
+        else bridge->clientLeft(m.client);
+      },
+      [](const LiveInbox::Message& m) {
+        if (m.kind == LiveInbox::Kind::TooLarge) return bridge->clientRefused(m.client, "too_large", "a message is at most 256 bytes");
         JsonDocument doc;
-        if (deserializeJson(doc, e.text, e.len)) {
-          bridge->clientRefused(e.client, "bad_json", "not JSON");
-          break;
-        }
-        bridge->clientMessage(e.client, JsonView{doc.as<JsonVariantConst>()});
-        break;
-      }
-    }
-  }
+        if (deserializeJson(doc, m.text, m.len)) return bridge->clientRefused(m.client, "bad_json", "not JSON");
+        bridge->clientMessage(m.client, JsonView{doc.as<JsonVariantConst>()});
+      });
 }
 
+void LiveSocket::pump() {
+  if (pumping) return;  // reached again from a send or a close that ran the library's callbacks
+  pumping = true;
+  live->pump();
+  pumping = false;
+}
+
+// Only when the client's queue is empty: each client holds at most one heap copy of a message,
+// and the ring keeps the rest (the library would keep up to WS_MAX_QUEUED_MESSAGES copies).
 bool LiveSocket::trySend(uint8_t client, const char* text, uint16_t len) {
-  if (client > LiveChannel::kMaxClients || !ids[client]) return true;  // gone: nothing to hold for it
-  AsyncWebSocketClient* c = ws_.client(ids[client]);
+  Named* n = byName(client);
+  if (!n) return true;  // gone: nothing to hold for it
+  AsyncWebSocketClient* c = ws_.client(n->id);  // on the network task: not freed meanwhile
   if (!c) return true;
-  if (!c->canSend()) return false;  // its queue is full: the live channel keeps the message
-  c->text(text, len);
-  return true;
+  if (c->queueLen() > 0) return false;
+  return c->text(text, len);  // false only if it is closing: held, until its disconnect
 }
 
 void LiveSocket::close(uint8_t client, uint16_t code, const char* reason) {
-  if (client > LiveChannel::kMaxClients || !ids[client]) return;
-  AsyncWebSocketClient* c = ws_.client(ids[client]);
+  Named* n = byName(client);
+  AsyncWebSocketClient* c = n ? ws_.client(n->id) : nullptr;
   if (c) c->close(code, reason);
 }
 

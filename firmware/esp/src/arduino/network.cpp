@@ -9,12 +9,14 @@
 #include <ESP8266WiFi.h>
 #include <ESP8266mDNS.h>
 static uint32_t chipId() { return ESP.getChipId(); }
-static uint32_t hardwareRandom() { return RANDOM_REG32; }  // the ESP8266's hardware RNG
+// The hardware generator, read with the radio on (beginNetwork): with Wi-Fi off, as core 3.x
+// starts, it gives pseudo-random numbers (the core's note in EspClass::random).
+static uint32_t hardwareRandom() { return ESP.random(); }
 #else
 #include <ESPmDNS.h>
 #include <WiFi.h>
 static uint32_t chipId() { return static_cast<uint32_t>(ESP.getEfuseMac() >> 24); }
-static uint32_t hardwareRandom() { return esp_random(); }
+static uint32_t hardwareRandom() { return esp_random(); }  // true random only with the radio on
 #endif
 
 #include "http_rules.h"
@@ -74,7 +76,6 @@ void load(WifiSettings& s) {
 }
 
 void startRadio(const WifiSettings& s) {
-  WiFi.persistent(false);  // the settings live in /wifi.json, not in the SDK's flash area
   WiFi.mode(s.staSsid[0] ? WIFI_AP_STA : WIFI_AP);
   WiFi.softAP(s.apSsid, s.apPassword);  // WPA2-PSK: the password is never empty (applyWifi)
   snprintf(apIp, sizeof apIp, "%s", WiFi.softAPIP().toString().c_str());
@@ -100,17 +101,29 @@ void onGetWifi(AsyncWebServerRequest* r) {
 
 // The body is gathered (it is under 1 KB) and judged once whole, in onPostWifi.
 struct Gathered {
+  HttpError refused;  // a foreign origin or a body that is not JSON: nothing of it is kept
   size_t len;
   bool tooLarge;
   char data[1024];
 };
 
+// A POST /wifi from a foreign page, or with a body that is not JSON, is refused on its headers.
+HttpError wifiHeaderError(AsyncWebServerRequest* r) {
+  HttpError e = foreignRequest(r);
+  return e.status ? e : jsonBodyError(r->contentType().c_str());
+}
+
 void onWifiBody(AsyncWebServerRequest* r, uint8_t* data, size_t len, size_t index, size_t total) {
   if (index == 0) {
     r->_tempObject = calloc(1, sizeof(Gathered));  // freed with the request by the library
-    if (r->_tempObject) static_cast<Gathered*>(r->_tempObject)->tooLarge = total > sizeof(Gathered::data);
+    Gathered* g = static_cast<Gathered*>(r->_tempObject);
+    if (g) {
+      g->tooLarge = total > sizeof(Gathered::data);
+      g->refused = wifiHeaderError(r);
+    }
   }
   Gathered* g = static_cast<Gathered*>(r->_tempObject);
+  if (g && g->refused.status) return;
   if (!g || g->tooLarge || g->len + len > sizeof g->data) {
     if (g) g->tooLarge = true;
     return;
@@ -122,6 +135,11 @@ void onWifiBody(AsyncWebServerRequest* r, uint8_t* data, size_t len, size_t inde
 void onPostWifi(AsyncWebServerRequest* r) {
   JsonWriter w(answer, sizeof answer);
   const Gathered* g = static_cast<const Gathered*>(r->_tempObject);
+  HttpError refused = g ? g->refused : wifiHeaderError(r);  // no body: judged on its headers here
+  if (refused.status) {
+    writeError(w, refused.code, refused.message);
+    return r->send(refused.status, "application/json", w.text());
+  }
   JsonDocument doc;
   if (!g || g->tooLarge || deserializeJson(doc, g->data, g->len)) {
     writeError(w, "bad_json", "send {apPassword?, staSsid?, staPassword?} as JSON, under 1 KB");
@@ -146,9 +164,16 @@ void onPostWifi(AsyncWebServerRequest* r) {
 
 const char* apAddress() { return apIp; }
 
+HttpError foreignRequest(AsyncWebServerRequest* r) {
+  const char* origin = r->hasHeader("Origin") ? r->header("Origin").c_str() : nullptr;
+  return originError(origin, r->host().c_str(), apIp, kMdnsName);
+}
+
 void beginNetwork(AsyncWebServer& server, Print& log, WifiSettings& s) {
   settings = &s;
   logOut = &log;
+  WiFi.persistent(false);  // the settings live in /wifi.json, not in the SDK's flash area
+  WiFi.mode(WIFI_AP);      // the radio on before the password is drawn (hardwareRandom)
   load(s);
   startRadio(s);
   log.printf("echo:Wi-Fi %s password %s at http://%s/ (http://%s.local/)\n", s.apSsid, s.apPassword, apIp, kMdnsName);

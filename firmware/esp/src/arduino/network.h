@@ -4,6 +4,7 @@
 #pragma once
 #include <ESPAsyncWebServer.h>
 
+#include "http_rules.h"
 #include "wifi_settings.h"
 
 namespace uv {
@@ -15,6 +16,8 @@ constexpr char kMdnsName[] = "uvprinter";
 void beginNetwork(AsyncWebServer& server, Print& log, WifiSettings& settings);
 void pollNetwork();
 const char* apAddress();
+// protocol/esp.md "Who may drive it": 403 for a request that names a page other than the hub's own.
+HttpError foreignRequest(AsyncWebServerRequest* r);
 
 }  // namespace esp
 }  // namespace uv

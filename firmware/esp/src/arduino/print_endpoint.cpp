@@ -17,7 +17,9 @@
 #include "http_rules.h"
 #include "json_view.h"
 #include "loop_desk.h"
+#include "network.h"
 #include "network_desk.h"
+#include "network_wake.h"
 #include "print_intake.h"
 
 namespace uv {
@@ -61,6 +63,8 @@ HandOver rings;  // the only thing both tasks touch
 // --- the network task's ---
 NetworkDesk<AsyncWebServerRequestPtr> desk(rings);
 AsyncWebServerRequest* receiving = nullptr;  // the POST whose body is arriving (identity only)
+uint32_t receivingBody = 0;                   // its number (NetworkDesk::arriving)
+uint32_t receivingSinceMs = 0;                // its body's first byte: the request's deadline counts from here
 fs::File spool;
 bool spoolFailed = false;
 char netReply[kErrorJsonBytes];  // answers the network task makes itself (off its small stack)
@@ -85,11 +89,11 @@ void handOver(AsyncWebServerRequest* r, Ask ask, bool failed = false) {
   uint16_t ticket = desk.hand(r->pause(), ask, failed);
   if (!ticket) return sendError(r, 503, "overloaded", "too many requests are waiting for the ESP; try again");
   r->onDisconnect([ticket] { desk.left(ticket); });
-  // Its connection's poll (on the network task on both chips; every 500 ms with AsyncTCP) sends the
-  // answer once loop() has given it. It stands in for the request's own poll, which only pushes the rest of a
+  // Its connection's poll (on the network task on both chips; every 500 ms with AsyncTCP, and at
+  // once when loop() wakes the task: network_wake.h) sends the answer once loop() has given it. It stands in for the request's own poll, which only pushes the rest of a
   // response too large for the connection's send buffer: ours (at most 2 KB) are written whole by
   // send(), and the rest of a larger one would still follow the client's acks.
-  r->client()->onPoll([](void*, AsyncClient*) { pump(); }, nullptr);
+  r->client()->onPoll([](void*, AsyncClient*) { pumpNetwork(); }, nullptr);
 }
 
 // loop(): the job's id, kept on flash across restarts.
@@ -109,6 +113,18 @@ uint32_t nextJobId() {
   return id;
 }
 
+// Network task: the arriving body is let go of; nothing of it is kept, and the spool is free.
+void dropArriving() {
+  receiving = nullptr;
+  spool.close();
+}
+
+// Network task: a request answered by its _tempObject once whole (the library frees it with the request).
+void answerLater(AsyncWebServerRequest* r, const HttpError& e) {
+  if (!r->_tempObject) r->_tempObject = malloc(sizeof(HttpError));
+  if (r->_tempObject) memcpy(r->_tempObject, &e, sizeof e);
+}
+
 // Network task: the POST's headers are judged before a byte of its body is kept, by what loop()
 // last said of the Mega and the spool (loop() admits the Mega for real once the body is whole).
 void onBody(AsyncWebServerRequest* r, uint8_t* data, size_t len, size_t index, size_t total) {
@@ -116,23 +132,27 @@ void onBody(AsyncWebServerRequest* r, uint8_t* data, size_t len, size_t index, s
     pump();  // loop()'s latest notes first
     // A chunked body has no length to judge it by before it is read: 411.
     bool hasLength = !r->hasHeader("Transfer-Encoding");
-    HttpError e = printHeaderError(r->contentType().c_str(), hasLength, static_cast<uint32_t>(total));
+    HttpError e = foreignRequest(r);
+    if (!e.status) e = printHeaderError(r->contentType().c_str(), hasLength, static_cast<uint32_t>(total));
     if (!e.status) e = admissionError(desk.admitBody());
-    if (e.status) {  // answered once the body has gone by; none of it is kept
-      r->_tempObject = malloc(sizeof(HttpError));  // the library frees it with the request
-      if (r->_tempObject) memcpy(r->_tempObject, &e, sizeof e);
-      return;
-    }
+    if (e.status) return answerLater(r, e);  // answered once the body has gone by; none of it is kept
     spool = LittleFS.open(kSpool, "w");
     spoolFailed = !spool;
     receiving = r;
+    receivingBody = desk.arriving();
+    receivingSinceMs = millis();
     r->onDisconnect([r] {
       // A client gone before its body was whole: what came is dropped, the spool is free again.
       if (r != receiving) return;
-      receiving = nullptr;
-      spool.close();
-      desk.bodyAbandoned();
+      dropArriving();
+      desk.bodyAbandoned(receivingBody);
     });
+    // A body that comes a byte every 2.9 s (under the library's 3 s idle time-out) is cut off at
+    // its deadline (http_rules.h); the close runs the onDisconnect above. Before the body, the
+    // library gives the glue nothing to time.
+    r->client()->onPoll([r](void*, AsyncClient* c) {
+      if (r == receiving && pastDeadline(receivingSinceMs, millis())) c->close();
+    }, nullptr);
   }
   if (r != receiving) return;
   if (!spoolFailed && spool.write(data, len) != len) spoolFailed = true;
@@ -146,20 +166,25 @@ void onPost(AsyncWebServerRequest* r) {
     return sendError(r, e->status, e->code, e->message);
   }
   if (r != receiving) {  // no body at all: what the headers say, or 400
-    HttpError e = printHeaderError(r->contentType().c_str(), true, 0);
+    HttpError e = foreignRequest(r);
+    if (!e.status) e = printHeaderError(r->contentType().c_str(), true, 0);
     if (!e.status) e = admissionError(desk.admission());
     if (e.status) return sendError(r, e.status, e.code, e.message);
     return sendError(r, 400, "bad_json", "the body is empty");
   }
-  receiving = nullptr;
-  spool.close();
-  if (desk.bodyCancelled()) return sendError(r, 409, kCancelledCode, kCancelledMessage);  // a DELETE came first
+  dropArriving();
   handOver(r, Ask::CheckBody, spoolFailed);  // the spool goes with it; loop() checks it and answers
 }
 
 void onDelete(AsyncWebServerRequest* r) {
   pump();
-  if (desk.cancelArriving()) return r->send(200, "application/json", kCancelledJson);  // the body arriving
+  HttpError e = foreignRequest(r);
+  if (e.status) return sendError(r, e.status, e.code, e.message);
+  if (desk.cancelArriving()) {  // the body arriving: the spool is free at once, its POST told once whole
+    answerLater(receiving, HttpError{409, kCancelledCode, kCancelledMessage});
+    dropArriving();
+    return r->send(200, "application/json", kCancelledJson);
+  }
   handOver(r, Ask::Cancel);
 }
 
@@ -182,12 +207,10 @@ void beginPrintEndpoint(AsyncWebServer& server, Bridge& bridge, void (*serviceFn
 
 void pollPrintEndpoint() {
   loopDesk->poll(millis(), nextJobId);
-#if defined(ESP8266)
-  // The ESP8266's network callbacks run only between loop()'s passes, never beside it: the
-  // answers may go out here at once, instead of at their connection's next poll.
-  pump();
-#endif
+  if (rings.answers.room() < 2) wakeNetwork();  // an answer waits for the network task
 }
+
+void pumpPrintEndpoint() { pump(); }
 
 }  // namespace esp
 }  // namespace uv

@@ -14,6 +14,8 @@ namespace esp {
 void beginPrintEndpoint(AsyncWebServer& server, Bridge& bridge, void (*service)());
 // loop()'s side: the requests handed over, one step of a POST's check; call every loop pass.
 void pollPrintEndpoint();
+// The network task: loop()'s answers to their requests (network_wake.h).
+void pumpPrintEndpoint();
 
 }  // namespace esp
 }  // namespace uv

@@ -1,0 +1,160 @@
+// The hub under a bounded soak (issue 36), the ESP's core on the host with an ESP32's limits: four
+// /ws clients, one of them slow (it reads a little every few seconds), while jobs are posted,
+// some cancelled while they upload or run, some left to finish. No job is lost: every job the hub
+// accepted (202) is reported to the clients by an `upload` message that ends it (`started` or
+// `failed`), and the process's memory grows by no more than the simulated card's files. SOAK_MS
+// sets its length (default 2 minutes). The slow client reads little, but the host's socket buffers
+// are large, so the hub rarely sees it fall behind: closing a client a ring behind is tested in
+// live_race_test.cpp and bridge_test.cpp.
+import { expect, test } from '@playwright/test';
+import { readFileSync } from 'node:fs';
+import { request } from 'node:http';
+import { connect, type Socket } from 'node:net';
+import { startEspHost } from './esp-host';
+
+const SOAK_MS = Number(process.env.SOAK_MS ?? 120_000);
+
+function call(base: string, method: string, path: string, body?: string): Promise<{ status: number; body: string }> {
+  return new Promise((resolve, reject) => {
+    const r = request(new URL(path, base), { method, headers: body ? { 'content-type': 'application/json' } : {} }, (res) => {
+      let text = '';
+      res.on('data', (d: Buffer) => (text += d.toString()));
+      res.on('end', () => resolve({ status: res.statusCode ?? 0, body: text }));
+    });
+    r.on('error', reject);
+    r.end(body);
+  });
+}
+
+// A /ws client over a raw socket: it reads frames as they come, or (slow) only now and then.
+class Client {
+  socket: Socket;
+  buf = Buffer.alloc(0);
+  messages: Record<string, unknown>[] = [];
+  closedWith = 0;
+  open = false;
+  constructor(base: string, slow: boolean) {
+    const { port } = new URL(base);
+    this.socket = connect(Number(port), '127.0.0.1', () =>
+      this.socket.write(`GET /ws HTTP/1.1\r\nHost: 127.0.0.1:${port}\r\nUpgrade: websocket\r\nConnection: Upgrade\r\nSec-WebSocket-Version: 13\r\nSec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\n\r\n`),
+    );
+    this.socket.setNoDelay(true);
+    this.socket.on('error', () => {});
+    this.socket.on('data', (d: Buffer) => this.#read(d));
+    if (slow) {
+      // Its TCP window fills: it takes a few reads every 3 s.
+      const tick = setInterval(() => {
+        if (this.socket.destroyed) return clearInterval(tick);
+        this.socket.resume();
+        setTimeout(() => this.socket.pause(), 20);
+      }, 3000);
+      this.socket.once('data', () => this.socket.pause());
+    }
+  }
+  #read(d: Buffer): void {
+    this.buf = Buffer.concat([this.buf, d]);
+    if (!this.open) {
+      const end = this.buf.indexOf('\r\n\r\n');
+      if (end < 0) return;
+      this.open = true;
+      this.buf = this.buf.subarray(end + 4);
+    }
+    for (;;) {
+      if (this.buf.length < 2) return;
+      const op = this.buf[0] & 0x0f;
+      let len = this.buf[1] & 0x7f;
+      let at = 2;
+      if (len === 126) (len = this.buf.readUInt16BE(2)), (at = 4);
+      if (this.buf.length < at + len) return;
+      const payload = this.buf.subarray(at, at + len);
+      this.buf = this.buf.subarray(at + len);
+      if (op === 8) this.closedWith = payload.length >= 2 ? payload.readUInt16BE(0) : 1005;
+      else if (op === 1) this.messages.push(JSON.parse(payload.toString()));
+    }
+  }
+}
+
+const job = JSON.stringify({
+  grid: { cols: 8, rows: 4 },
+  pitchUm: { x: 100, y: 100 },
+  originUm: { x: 10000, y: 10000 },
+  dose: { map: 'linear', fullUs: 100 },
+  leds: { offsets: [[0, 0], [0, 1], [0, 2], [0, 3]] },
+  strategy: { name: 'raster' },
+  gridData: Array.from({ length: 4 }, (_, r) => Array.from({ length: 8 }, (_, c) => ((r + c) % 3) * 100)),
+});
+
+function rssKb(pid: number): number {
+  return Number(/VmRSS:\s+(\d+)/.exec(readFileSync(`/proc/${pid}/status`, 'utf8'))?.[1] ?? 0);
+}
+
+test('four /ws clients, one slow, uploads and cancels for a bounded soak: no job lost, memory bounded', async () => {
+  test.setTimeout(SOAK_MS + 120_000);
+  const hub = await startEspHost(20, ['--board', 'esp32', '--turn', 'wake']);
+  try {
+    await expect.poll(async () => JSON.parse((await call(hub.url, 'GET', '/status')).body).mega, { timeout: 10000 }).toBe('online');
+    const clients = [new Client(hub.url, false), new Client(hub.url, false), new Client(hub.url, false), new Client(hub.url, true)];
+    await expect.poll(() => clients.every((c) => c.open)).toBe(true);
+    // Homed, so a job that uploads whole also starts (M24 needs it).
+    const home = Buffer.from(JSON.stringify({ type: 'send', line: 'G28', id: 1 }));
+    const mask = Buffer.from([9, 8, 7, 6]);
+    clients[0].socket.write(Buffer.concat([Buffer.from([0x81, 0x80 | home.length]), mask, Buffer.from(home.map((b, i) => b ^ mask[i % 4]))]));
+    await expect.poll(() => clients[0].messages.some((m) => m.type === 'reply' && m.id === 1), { timeout: 60000 }).toBe(true);
+    const accepted: number[] = [];
+    const refused: Record<number, number> = {};
+    let cancels = 0;
+    let rssStart = 0;
+    let acceptedAtStart = 0;
+    const t0 = Date.now();
+    for (let round = 0; Date.now() - t0 < SOAK_MS; round++) {
+      // A quarter in: the heap has grown to what the traffic needs; from there it must stay.
+      if (!rssStart && Date.now() - t0 > SOAK_MS / 4) (rssStart = rssKb(hub.pid)), (acceptedAtStart = accepted.length);
+      const r = await call(hub.url, 'POST', '/print', job);
+      if (r.status !== 202) {
+        refused[r.status] = (refused[r.status] ?? 0) + 1;
+        await new Promise((res) => setTimeout(res, 200));
+        continue;
+      }
+      accepted.push(JSON.parse(r.body).job.id);
+      // Cancel a third while they upload or run; let the others end on their own.
+      if (round % 3 === 0) {
+        await new Promise((res) => setTimeout(res, round % 2 ? 0 : 300));
+        if ((await call(hub.url, 'DELETE', '/print')).status === 200) cancels++;
+      }
+      // The next job once this one is over (the Mega takes one at a time).
+      await expect
+        .poll(async () => {
+          const s = JSON.parse((await call(hub.url, 'GET', '/status')).body);
+          return s.job?.upload !== 'uploading' && s.job?.state !== 'running';
+        }, { timeout: 60000 })
+        .toBe(true);
+    }
+    const rssEnd = rssKb(hub.pid);
+    await new Promise((res) => setTimeout(res, 1500)); // the last upload messages
+    // Every accepted job was ended on the live channel, to each client that kept up.
+    for (const c of clients.slice(0, 3)) {
+      const ended = new Set(c.messages.filter((m) => m.type === 'upload' && (m.state === 'started' || m.state === 'failed')).map((m) => m.id as number));
+      for (const id of accepted) expect(ended.has(id), `job ${id}`).toBe(true);
+      expect(c.closedWith).toBe(0);
+    }
+    const slow = clients[3];
+    const ends = clients[0].messages.filter((m) => m.type === 'upload' && (m.state === 'started' || m.state === 'failed'));
+    const started = ends.filter((m) => m.state === 'started').length;
+    console.log(
+      `[esp soak] ${Math.round((Date.now() - t0) / 1000)} s: ${accepted.length} jobs accepted (${started} started, ${ends.length - started} failed), ${cancels} cancelled, refused ${JSON.stringify(refused)}; ` +
+        `the slow client ${slow.closedWith ? `closed ${slow.closedWith}` : 'kept up'} after ${slow.messages.length} messages; hub RSS ${rssStart} -> ${rssEnd} kB over the last ${accepted.length - acceptedAtStart} jobs`,
+    );
+    expect(accepted.length).toBeGreaterThan(5);
+    expect(cancels).toBeGreaterThan(0);
+    expect([0, 1008]).toContain(slow.closedWith);
+    // The process holds the hub and the whole simulated Mega, whose SD card keeps every job's file
+    // (JOB<n>.UVJ) as a real card does, so its size is not the hub's alone: measured about 4 kB a
+    // job over the soak. A leak in the hub's handling of messages or requests (thousands of each)
+    // would go far past this bound; that it is flat is not shown here.
+    const jobsSince = accepted.length - acceptedAtStart;
+    expect(rssEnd - rssStart).toBeLessThan(512 + 8 * jobsSince);
+    clients.forEach((c) => c.socket.destroy());
+  } finally {
+    hub.stop();
+  }
+});
