@@ -1,6 +1,6 @@
-// Paced jobs (protocol/mega.md "Pacing"): before each stop the Mega looks at its latest temperature
-// reading and, when a sensor is near its soft limit, waits with the LEDs off until the head has
-// cooled. The rule and its constants, shared by the simulated Mega and the dry run's forecast; the
+// Paced jobs (protocol/mega.md "Pacing"): before each stop, and before each pass on the move, the
+// Mega looks at its latest temperature reading and, when a sensor is near its soft limit, waits with
+// the LEDs off until the head has cooled. The rule and its constants, shared by the simulated Mega and the dry run's forecast; the
 // firmware has the same numbers (firmware/mega/src/job_runner.h).
 
 /** The Mega reads the printhead's temperatures this often (T), µs. */
