@@ -5,7 +5,7 @@
 
 /** The Mega reads the printhead's temperatures this often (T), µs. */
 export const READING_PERIOD_US = 500_000;
-/** A paced job waits before a stop when a sensor reads this close to its soft limit, 0.1 °C. */
+/** A paced job waits before a stop or a pass when a sensor reads this close to its soft limit, 0.1 °C. */
 export const PACE_AT_DECIC = 20;
 /** …and goes on once every sensor reads at least this far below it, 0.1 °C. */
 export const PACE_UNTIL_DECIC = 30;
