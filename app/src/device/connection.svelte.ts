@@ -318,7 +318,7 @@ export class Printer {
 
   pause = () => this.send('M25');
   resume = () => this.send('M24');
-  /** Continues paced (mega.md "Pacing"): the printer waits to cool before a stop instead of pausing again. */
+  /** Continues paced (mega.md "Pacing"): the printer waits to cool before a stop or a pass instead of pausing again. */
   resumePaced = () => this.send('M24 P1');
   abort = () => this.send('M524');
 

@@ -26,6 +26,6 @@ export interface PrinterLink {
 }
 
 export interface StartOptions {
-  /** Run paced: the printer waits to cool before a stop rather than pause at a soft limit. */
+  /** Run paced: the printer waits to cool before a stop or a pass rather than pause at a soft limit. */
   paced?: boolean;
 }

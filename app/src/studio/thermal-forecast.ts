@@ -1,9 +1,10 @@
 // The dry run's thermal forecast: the plan's stops played through the shared head model
 // (sim/head-thermal.ts) in the planner's time model, with the Mega's temperature readings every
 // 500 ms and its rules for them (sim/pacing.ts): an unpaced job pauses when a reading reaches a soft
-// limit; a paced one waits before a stop while a reading is near one. The simulated printer runs the
-// same model and rules, so the forecast is what it then does (thermal-forecast.test.ts). A scan job
-// is played pass by pass with its LEDs' switch times, a mixed job pass by pass either way.
+// limit; a paced one waits before a stop, or before a pass on the move and its move, while a reading
+// is near one. The simulated printer runs the same model and rules, so the forecast is what it then
+// does (thermal-forecast.test.ts, paced-scan.test.ts). A scan job is played pass by pass with its
+// LEDs' switch times, a mixed job pass by pass either way.
 
 import { passDurationUs, passSwitches } from '../planner/job-plan';
 import type { Plan } from '../planner/planner';
@@ -134,7 +135,7 @@ export function forecastMixedThermal(mixed: MixedPlan, place: PlanPlace, machine
   s.stop = 0;
   for (const p of mixed.passes) {
     if (p.scan) {
-      if (!hold(p.scanUs - p.pass.strokeUs, 0) || !paceWait() || !exposeStroke(hold, p.pass)) break;
+      if (!paceWait() || !hold(p.scanUs - p.pass.strokeUs, 0) || !exposeStroke(hold, p.pass)) break; // the Mega paces before the pass's move
       x = p.pass.stopSteps;
       y = axisSteps(machine, 1, place.originUm[1] + p.hy * place.pitchUm[1]);
       s.stop++;
@@ -162,8 +163,9 @@ export function forecastScanThermal(scan: ScanPlan, place: PlanPlace, machine: M
   for (s.stop = 0; s.stop < scan.passes.length; s.stop++) {
     const pass = scan.passes[s.stop];
     const stroke = passDurationUs(scan, pass);
+    if (!paceWait()) break; // the Mega paces between passes, before the move to the next
     if (!hold(passWallUs(pass) - stroke, 0)) break; // the move, the overhead, the Q that ends the pass
-    if (!paceWait() || !exposeStroke(hold, pass)) break;
+    if (!exposeStroke(hold, pass)) break;
   }
   return result();
 }

@@ -297,7 +297,9 @@ void JobRunner::poll(uint32_t nowUs) {
         return;
       }
       if (paceWaits(true)) return;
-      phase_ = Phase::Settle;  // due at once: the checks again, then the exposure
+      // A stop in hand waited after its move: due at once, the checks again, then the exposure. A
+      // scan job waited between passes: the checks again, then the pass.
+      phase_ = stopInHand_ ? Phase::Settle : Phase::Scan;
       settleUntil_ = nowUs;
       changed_ = true;
       return;

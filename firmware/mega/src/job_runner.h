@@ -18,8 +18,9 @@ namespace mega {
 
 enum class RunState : uint8_t { Running, Paused, Done, Aborted, Failed };
 
-// Pacing (protocol/mega.md "Pacing"): before a stop, a paced job waits with the LEDs off while a
-// sensor reads within kPaceAtDeciC of its soft limit, until every one reads kPaceUntilDeciC below it.
+// Pacing (protocol/mega.md "Pacing"): before a stop, or a pass on the move, a paced job waits with the
+// LEDs off while a sensor reads within kPaceAtDeciC of its soft limit, until every one reads
+// kPaceUntilDeciC below it.
 // The app's dry run and simulated printer use the same numbers (app/src/sim/pacing.ts).
 constexpr int16_t kPaceAtDeciC = 20;
 constexpr int16_t kPaceUntilDeciC = 30;

@@ -1,8 +1,8 @@
 // A scan job's passes in the job runner (issue 19): the planner opens each pass (the stream's, or
 // the card job's own, card_scan.h) and ScanRun exposes it on the move; a mixed job's stop pass
 // (issue 28) goes back to the stop-by-stop phases, its stops from the stream's planner. Passes count as the job's
-// stops, and a card job checkpoints after each. A pause, and the checks that come before every
-// exposure, take effect between passes. A pass the Nano cut short is exposed again on continue
+// stops, and a card job checkpoints after each. A pause, the checks that come before every
+// exposure and a paced job's wait to cool (mega.md "Pacing") take effect between passes. A pass the Nano cut short is exposed again on continue
 // from the card; a stream cannot (its rows are gone), so it ends failed, dark and stopped.
 #include "error_codes.h"
 #include "job_runner.h"
@@ -18,6 +18,11 @@ void JobRunner::pollScan(uint32_t nowUs) {
       return halt(RunState::Paused, pauseReason_);
     }
     if (uint8_t why = exposureBlocked()) return fail(why);
+    if (paced_ && paceWaits(false)) {
+      phase_ = Phase::Cool;  // before the pass and its move, LEDs off, until the readings show it cool
+      changed_ = true;
+      return;
+    }
     stopInHand_ = true;
   }
   StopSource& passes = card_ ? *static_cast<StopSource*>(card_) : *source_;
