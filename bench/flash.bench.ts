@@ -16,7 +16,7 @@ const RIG = new URL('../build/host/bootloader_rig', import.meta.url).pathname;
 /** A ByteLink over the rig's stdio, as e2e/bootloader-rig.ts frames it. */
 function rigLink(bootloader: keyof typeof BOOTLOADERS, baud: number): ByteLink & { stop(): void } {
   const b = BOOTLOADERS[bootloader];
-  const child = spawn(RIG, ['--mcu', b.mcu, '--boot', b.hex], { stdio: ['pipe', 'pipe', 'inherit'] });
+  const child = spawn(RIG, ['--board', b.board, '--boot', b.hex], { stdio: ['pipe', 'pipe', 'inherit'] });
   const queue = new ByteQueue();
   child.stdout.on('data', (d: Buffer) => queue.push(new Uint8Array(d)));
   const baudFrame = Buffer.alloc(5);
