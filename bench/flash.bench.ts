@@ -9,6 +9,7 @@ import { ByteQueue, type ByteLink } from '../app/src/firmware/byte-link';
 import { AVR_BOARDS, type AvrBoardId } from '../app/src/firmware/chips';
 import { flashAvr } from '../app/src/firmware/flash-avr';
 import { parseIntelHex } from '../app/src/firmware/intel-hex';
+import { RESET_SETTLE_MS } from '../app/src/firmware/serial-link';
 import { BOOTLOADERS, IMAGES, buildRig } from '../e2e/bootloader-rig';
 
 const RIG = new URL('../build/host/bootloader_rig', import.meta.url).pathname;
@@ -34,7 +35,7 @@ function rigLink(bootloader: keyof typeof BOOTLOADERS, baud: number): ByteLink &
     async reset() {
       child.stdin.write(baudFrame);
       child.stdin.write('R');
-      await new Promise((r) => setTimeout(r, 50));
+      await new Promise((r) => setTimeout(r, RESET_SETTLE_MS));
       queue.discard();
     },
     stop: () => child.kill(),

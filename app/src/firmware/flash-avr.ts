@@ -2,7 +2,7 @@
 // every page back. Each way it can fail is a FlashError saying what happened and what to do.
 
 import { LinkLost, LinkTimeout, type ByteLink } from './byte-link';
-import { chipBySignature, chipOfImage, flashLimit, hexBytes, type AvrBoard } from './chips';
+import { bootSectionBytes, chipBySignature, flashLimit, hexBytes, imageMismatch, type AvrBoard } from './chips';
 import { ProtocolError, Stk500v1 } from './stk500v1';
 import { Stk500v2 } from './stk500v2';
 
@@ -45,11 +45,11 @@ async function chipOfOtherBootloader(link: ByteLink, board: AvrBoard): Promise<U
     await link.reset();
     if (board.protocol === 'stk500v2') {
       const v1 = new Stk500v1(link, 300);
-      await v1.sync(4);
+      await v1.sync(800);
       return await v1.signature();
     }
     const v2 = new Stk500v2(link, 300);
-    await v2.signOn();
+    await v2.signOn(800);
     return await v2.signature();
   } catch {
     return null;
@@ -64,13 +64,15 @@ function wrongChip(board: AvrBoard, signature: Uint8Array): FlashError {
 
 /** Refuses an image that cannot go on this board, before the port is even opened. */
 export function checkImage(board: AvrBoard, bytes: Uint8Array): void {
-  const built = chipOfImage(bytes);
-  if (built && built !== board.chip) {
-    throw new FlashError('image-for-other-chip', `This image is built for the ${built.name}, and the ${board.name} has an ${board.chip.name}. Pick the image built for this board.`);
+  const mismatch = imageMismatch(board.chip, bytes);
+  if (mismatch) {
+    throw new FlashError('image-for-other-chip', `${mismatch}, and the ${board.name} has an ${board.chip.name}. Nothing was written. Pick the image built for this board.`);
   }
   const limit = flashLimit(board);
   if (bytes.length > limit) {
-    throw new FlashError('image-too-big', `The image is ${bytes.length} B; the ${board.chip.name} has ${limit} B of flash beside its ${board.bootBytes} B bootloader. Pick the image built for this board.`);
+    // A real Nano's fuses keep 2 KB for the boot section whatever bootloader it has, and its lock bits
+    // refuse writes there: past the limit, the flash would fail its read-back (boards.txt's maximum_size).
+    throw new FlashError('image-too-big', `The image is ${bytes.length} B; the ${board.chip.name} takes ${limit} B below its ${bootSectionBytes(board)} B boot section. Pick the image built for this board.`);
   }
 }
 
