@@ -69,6 +69,19 @@ struct Rig {
   bool held = false;
   uint8_t heldCause = 0;  // what MCUSR says once the chip starts
   avr_io_t spmGuard{};
+  // What the host did, in order, each at a chip time: as it arrives, except in the seconds after a reset,
+  // when it keeps its wall-clock distance from that reset. A rig running behind the wall clock (a loaded
+  // machine) so still sees a byte sent 100 ms after a reset 100 ms after it, not inside the start-up
+  // time-out; and elsewhere it does not pile its lag onto every answer.
+  struct HostEvent {
+    uint64_t at;
+    char kind;  // 'D' one byte, 'B' baud, 'R' reset
+    uint32_t value;
+  };
+  std::deque<HostEvent> events;
+  uint64_t lastEventAt = 0;
+  double resetWall = -1e9;  // when the last reset arrived, by the wall clock
+  uint64_t resetAt = 0;     // and the chip time it was given
   avr_io_t* flash = nullptr;  // simavr's own self-programming module
 };
 
@@ -109,6 +122,39 @@ void onXoff(avr_irq_t*, uint32_t, void*) { rig.xon = false; }
 uint64_t msCycles(double ms) { return static_cast<uint64_t>(rig.avr->frequency * ms / 1000.0); }
 
 // The DTR# edge: RESET low for the pulse, then the start-up time-out; the chip starts after both.
+double wallSeconds();
+
+// The chip time for an event arriving now (see HostEvent).
+uint64_t arrivalCycle(bool reset) {
+  constexpr double kKeepDistanceS = 2.0;  // past Optiboot's 1 s and stk500boot's wait for a first message
+  const double wall = wallSeconds();
+  uint64_t at = std::max(rig.lastEventAt, now());
+  if (wall - rig.resetWall < kKeepDistanceS)
+    at = std::max(at, rig.resetAt + static_cast<uint64_t>((wall - rig.resetWall) * rig.avr->frequency));
+  if (reset) {
+    rig.resetWall = wall;
+    rig.resetAt = at;
+  }
+  return rig.lastEventAt = at;
+}
+
+void holdInReset(uint8_t cause, bool pulse);
+
+void applyDueEvents() {
+  while (!rig.events.empty() && rig.events.front().at <= now()) {
+    const auto e = rig.events.front();
+    rig.events.pop_front();
+    if (e.kind == 'D') {
+      if (rig.wire.empty() && rig.nextRxCycle < now()) rig.nextRxCycle = now() + byteCycles();
+      rig.wire.push_back(static_cast<uint8_t>(e.value));
+    } else if (e.kind == 'B') {
+      rig.hostBaud = e.value;
+    } else {
+      holdInReset(kExtrf, true);
+    }
+  }
+}
+
 void holdInReset(uint8_t cause, bool pulse) {
   const auto delay = uv::resetDelay(rig.board.fuses);
   rig.held = true;
@@ -256,9 +302,11 @@ int main(int argc, char** argv) {
   for (;;) {
     uint64_t end = now() + slice;
     while (now() < end) {
+      applyDueEvents();
       if (rig.held) {
         // In reset: time passes, the chip does not run, and what crosses the wire meanwhile is lost.
         uint64_t until = std::min(end, rig.heldUntil);
+        if (!rig.events.empty()) until = std::min(until, std::max(now(), rig.events.front().at));
         while (!rig.wire.empty() && rig.nextRxCycle <= until) {
           rig.wire.pop_front();
           rig.nextRxCycle += byteCycles();
@@ -307,14 +355,11 @@ int main(int argc, char** argv) {
       ssize_t n = read(0, in, sizeof in);
       if (n <= 0) return 0;  // the host closed the port for good
       frames.feed(in, static_cast<size_t>(n), [](const uv::RigFrame& f) {
-        if (f.kind == 'D') {
-          if (rig.wire.empty() && rig.nextRxCycle < now()) rig.nextRxCycle = now() + byteCycles();
-          rig.wire.insert(rig.wire.end(), f.bytes.begin(), f.bytes.end());
-        } else if (f.kind == 'B') {
-          rig.hostBaud = f.baud;
-        } else if (f.kind == 'R') {
-          holdInReset(kExtrf, true);
-        }
+        const uint64_t at = arrivalCycle(f.kind == 'R');
+        if (f.kind == 'D')
+          for (uint8_t b : f.bytes) rig.events.push_back({at, 'D', b});
+        else
+          rig.events.push_back({at, f.kind, f.kind == 'B' ? f.baud : 0});
       });
       if (ahead <= 0) break;
     }
