@@ -69,10 +69,11 @@ struct Rig {
   bool held = false;
   uint8_t heldCause = 0;  // what MCUSR says once the chip starts
   avr_io_t spmGuard{};
-  // What the host did, in order, each at a chip time: as it arrives, except in the seconds after a reset,
-  // when it keeps its wall-clock distance from that reset. A rig running behind the wall clock (a loaded
-  // machine) so still sees a byte sent 100 ms after a reset 100 ms after it, not inside the start-up
-  // time-out; and elsewhere it does not pile its lag onto every answer.
+  // What the host did, in order, each at a chip time: as it arrives, except that what the host sent
+  // after a reset's time-out is never put inside it. A rig running behind the wall clock (a loaded
+  // machine) would otherwise squeeze a byte sent 100 ms after a reset into the 65 ms the chip is deaf;
+  // a byte sent within them keeps its distance and is lost, as on a board. No event is delayed more,
+  // so the rig's lag is never piled onto its answers.
   struct HostEvent {
     uint64_t at;
     char kind;  // 'D' one byte, 'B' baud, 'R' reset
@@ -124,13 +125,17 @@ uint64_t msCycles(double ms) { return static_cast<uint64_t>(rig.avr->frequency *
 // The DTR# edge: RESET low for the pulse, then the start-up time-out; the chip starts after both.
 double wallSeconds();
 
+uint64_t resetHoldCycles(bool pulse) {
+  const auto delay = uv::resetDelay(rig.board.fuses);
+  return msCycles((pulse ? uv::autoResetPulseMs(rig.board.capacitorNf, rig.board.pullUpOhms) : 0) + delay.ms) + delay.clocks;
+}
+
 // The chip time for an event arriving now (see HostEvent).
 uint64_t arrivalCycle(bool reset) {
-  constexpr double kKeepDistanceS = 2.0;  // past Optiboot's 1 s and stk500boot's wait for a first message
   const double wall = wallSeconds();
   uint64_t at = std::max(rig.lastEventAt, now());
-  if (wall - rig.resetWall < kKeepDistanceS)
-    at = std::max(at, rig.resetAt + static_cast<uint64_t>((wall - rig.resetWall) * rig.avr->frequency));
+  const auto distance = static_cast<uint64_t>((wall - rig.resetWall) * rig.avr->frequency);
+  at = std::max(at, rig.resetAt + std::min(distance, resetHoldCycles(true) + msCycles(1)));
   if (reset) {
     rig.resetWall = wall;
     rig.resetAt = at;
@@ -156,10 +161,9 @@ void applyDueEvents() {
 }
 
 void holdInReset(uint8_t cause, bool pulse) {
-  const auto delay = uv::resetDelay(rig.board.fuses);
   rig.held = true;
   rig.heldCause = cause;
-  rig.heldUntil = now() + msCycles((pulse ? uv::autoResetPulseMs(rig.board.capacitorNf, rig.board.pullUpOhms) : 0) + delay.ms) + delay.clocks;
+  rig.heldUntil = now() + resetHoldCycles(pulse);
 }
 
 avr_cycle_count_t spmDone(avr_t* avr, avr_cycle_count_t, void*) {

@@ -93,9 +93,17 @@ export async function flashAvr(link: ByteLink, board: AvrBoard, bytes: Uint8Arra
     try {
       await boot.hello();
     } catch (e) {
-      if (!(e instanceof LinkTimeout || e instanceof ProtocolError)) throw e;
-      const other = await chipOfOtherBootloader(link, board);
-      throw other ? wrongChip(board, other) : e;
+      if (!(e instanceof LinkTimeout || e instanceof ProtocolError) || !link.reset) throw e;
+      // Once more after another reset: a bootloader that met a broken message before it was in step
+      // leaves for the application (Optiboot through its watchdog), and only a reset brings it back.
+      try {
+        await link.reset();
+        await boot.hello();
+      } catch (again) {
+        if (!(again instanceof LinkTimeout || again instanceof ProtocolError)) throw again;
+        const other = await chipOfOtherBootloader(link, board);
+        throw other ? wrongChip(board, other) : again;
+      }
     }
     const signature = await boot.signature();
     if (chipBySignature(signature) !== board.chip) throw wrongChip(board, signature);

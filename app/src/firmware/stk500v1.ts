@@ -28,8 +28,12 @@ export class Stk500v1 {
       if (await this.#inSync(Math.min(200, Math.max(1, until - Date.now())))) {
         await new Promise((r) => setTimeout(r, 250));
         this.link.discard();
-        await this.#command([STK.GET_SYNC], 0);
-        return;
+        try {
+          await this.#command([STK.GET_SYNC], 0);
+          return;
+        } catch (e) {
+          if (!(e instanceof LinkTimeout || e instanceof ProtocolError)) throw e;
+        }
       }
       this.link.discard();
     }
