@@ -61,8 +61,8 @@ def ask(port, board_id, seconds=8):
                 asked = time.time()
             if select.select([fd], [], [], 0.05)[0]:
                 heard += os.read(fd, 4096)
-            if re.search(rb"FIRMWARE_NAME:[^\n]*\n|V:\d+,[^\n]*\n", heard):
-                break
+            if re.search(rb"FIRMWARE_NAME:[^\n]*\n|V:\d+,[^\n]*\n", heard) and until - time.time() > 1.5:
+                until = time.time() + 1.5  # and a while longer: a halt would follow the answer
         return heard.decode("latin1")
     finally:
         os.close(fd)
@@ -72,7 +72,8 @@ def flash_one(board_id, rig_board, boot, part, programmer, baud, hex_path, extra
     rig = RigPty(rig_board, os.path.join(BOOT, boot))
     try:
         rc, seconds, log = avrdude(rig.path, part, programmer, baud, hex_path, extra)
-        answer = ask(rig.path, board_id) if rc == 0 else ""
+        # Asked twice, each open a reset: the second start must find its pull-ups as the first did.
+        answer = ask(rig.path, board_id) + ask(rig.path, board_id) if rc == 0 else ""
         return rc, seconds, log, answer
     finally:
         rig.close()

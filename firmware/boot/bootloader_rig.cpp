@@ -9,7 +9,7 @@
 // the 100 nF capacitor and then the start-up time-out (14 CK + 65 ms), and drops what arrives meanwhile;
 // the lock bits refuse SPM page erases and writes into the boot section; each page erase and write keeps
 // SPMEN busy for its programming time. Internal pull-ups are simavr's own (an input pin whose PORT bit is
-// set reads high).
+// set reads high, once the rig has cleared simavr's memory of the pins at each reset).
 //
 // stdin carries framed messages from the host, since a cable carries more than bytes:
 //   'D' n b1..bn   n bytes (1..255) on the wire to the chip's RX, at the host's baud
@@ -20,6 +20,7 @@
 #include <poll.h>
 #include <simavr/avr_adc.h>
 #include <simavr/avr_flash.h>
+#include <simavr/avr_ioport.h>
 #include <simavr/avr_uart.h>
 #include <simavr/sim_avr.h>
 #include <time.h>
@@ -193,6 +194,14 @@ void resetChip(uint8_t cause) {
   now();
   avr_reset(rig.avr);
   now();
+  // A reset makes every pin an input without its pull-up (PORTx and DDRx 0). simavr clears the
+  // registers but its pin IRQs keep the values they last had, and it passes on only changes: a
+  // firmware setting the same pull-ups as before the reset (INPUT_PULLUP on the Mega's stop button)
+  // would leave the pin reading low, the button pressed, the machine halted (E13). Each start sets
+  // them afresh, as the chip does.
+  for (avr_io_t* io = rig.avr->io_port; io; io = io->next)
+    if (io->kind && std::strcmp(io->kind, "port") == 0)
+      for (int i = 0; i < IOPORT_IRQ_COUNT; i++) io->irq[i].value = 0;
   rig.avr->pc = rig.bootStart;
   rig.avr->data[kMcusr] = cause;
   avr_cycle_timer_cancel(rig.avr, spmDone, nullptr);
