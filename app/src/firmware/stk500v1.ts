@@ -13,7 +13,11 @@ const STK = { OK: 0x10, INSYNC: 0x14, CRC_EOP: 0x20, GET_SYNC: 0x30, ENTER_PROGM
 export class ProtocolError extends Error {}
 
 export class Stk500v1 {
-  constructor(private readonly link: ByteLink, private readonly timeoutMs = 500) {}
+  /**
+   * `timeoutMs`: how long a command's answer may take, avrdude's (its serial_recv_timeout, 5 s). A board
+   * answers in a millisecond; a loaded host, its USB stack or a browser's event loop can take far longer.
+   */
+  constructor(private readonly link: ByteLink, private readonly timeoutMs = 5000) {}
 
   /**
    * Gets in step with a bootloader that may have seen line noise or still be starting, as avrdude's

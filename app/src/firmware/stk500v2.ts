@@ -24,7 +24,8 @@ export class Stk500v2 {
   /** Where the bootloader's address points: it moves on past each page written or read. */
   #next = -1;
 
-  constructor(private readonly link: ByteLink, private readonly timeoutMs = 1000) {}
+  /** `timeoutMs`: how long an answer may take, avrdude's for STK500 v2 (stk500v2.c's SERIAL_TIMEOUT, 2 s). */
+  constructor(private readonly link: ByteLink, private readonly timeoutMs = 2000) {}
 
   /**
    * The bootloader's name: "AVRISP_2" for the Mega's. Asked again and again for `withinMs`, as avrdude
