@@ -44,12 +44,12 @@ async function chipOfOtherBootloader(link: ByteLink, board: AvrBoard): Promise<U
   try {
     await link.reset();
     if (board.protocol === 'stk500v2') {
-      const v1 = new Stk500v1(link, 300);
-      await v1.sync(800);
+      const v1 = new Stk500v1(link);
+      await v1.sync();
       return await v1.signature();
     }
-    const v2 = new Stk500v2(link, 300);
-    await v2.signOn(800);
+    const v2 = new Stk500v2(link);
+    await v2.signOn();
     return await v2.signature();
   } catch {
     return null;
