@@ -97,6 +97,11 @@ def main():
     for board in BOARDS:
         board_id = board[0]
         rc, seconds, log, answer = flash_one(*board)
+        if "--times" in sys.argv and rc != 0 and "initialization failed" in log:
+            # Timing only: on a loaded machine the rig can answer a sync later than avrdude's 250 ms
+            # drain expects, and avrdude gives up before writing. Timed again, and said so.
+            print(f"{board_id}: avrdude did not get in sync; timed on a second try", file=sys.stderr)
+            rc, seconds, log, answer = flash_one(*board)
         times[board_id] = round(seconds, 2)
         if "--times" in sys.argv:
             if rc != 0:
@@ -123,7 +128,7 @@ def main():
     finally:
         rig.close()
     refused = rc != 0 and re.search(r"verification error|mismatch", log, re.I) and re.search(r"0x78[0-9a-f]{2}", log)
-    print(f"{'PASS' if refused else 'FAIL'}  an image 256 B past 30720 fails avrdude's verify in the locked boot section")
+    print(f"{'PASS' if refused else 'FAIL'}  an image with 16 B at 0x78F0, past 30720, fails avrdude's verify there: the locked boot section")
     if not refused:
         print(log)
     failures += not refused

@@ -38,22 +38,27 @@ function bootloaderOn(link: ByteLink, board: AvrBoard): Bootloader {
 /**
  * Who is there when the board's bootloader did not answer: the other protocol's bootloader, asked for
  * its chip after a reset (the Optiboot a Mega's first message threw out has started the application).
+ * Twice, each after its own reset, as avrdude resets before each sync attempt: on a slow host the first
+ * question can come after Optiboot's second has run out.
  */
 async function chipOfOtherBootloader(link: ByteLink, board: AvrBoard): Promise<Uint8Array | null> {
   if (!link.reset) return null;
-  try {
-    await link.reset();
-    if (board.protocol === 'stk500v2') {
-      const v1 = new Stk500v1(link);
-      await v1.sync();
-      return await v1.signature();
+  for (let attempt = 0; attempt < 2; attempt++) {
+    try {
+      await link.reset();
+      if (board.protocol === 'stk500v2') {
+        const v1 = new Stk500v1(link);
+        await v1.sync();
+        return await v1.signature();
+      }
+      const v2 = new Stk500v2(link);
+      await v2.signOn();
+      return await v2.signature();
+    } catch (e) {
+      if (!(e instanceof LinkTimeout || e instanceof ProtocolError)) return null;
     }
-    const v2 = new Stk500v2(link);
-    await v2.signOn();
-    return await v2.signature();
-  } catch {
-    return null;
   }
+  return null;
 }
 
 function wrongChip(board: AvrBoard, signature: Uint8Array): FlashError {
