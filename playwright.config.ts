@@ -2,7 +2,7 @@
 import { defineConfig } from '@playwright/test';
 
 // E2E_PORT: another checkout on the same machine may already serve its own build on 4173.
-const PORT = Number(process.env.E2E_PORT ?? 4173);
+const PORT = Number(process.env.E2E_PORT ?? 4274);
 
 export default defineConfig({
   testDir: 'e2e',

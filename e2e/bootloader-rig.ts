@@ -9,9 +9,9 @@ import type { FakeSerial, SerialPeer } from './fake-serial';
 const ROOT = join(import.meta.dirname, '..');
 const RIG = join(ROOT, 'build', 'host', 'bootloader_rig');
 export const BOOTLOADERS = {
-  optiboot: { mcu: 'atmega328p', hex: join(ROOT, 'build', 'boot', 'optiboot_atmega328.hex') },
-  atmegaboot: { mcu: 'atmega328p', hex: join(ROOT, 'build', 'boot', 'atmegaboot_atmega328.hex') },
-  stk500v2: { mcu: 'atmega2560', hex: join(ROOT, 'build', 'boot', 'stk500v2_atmega2560.hex') },
+  optiboot: { board: 'nano', hex: join(ROOT, 'build', 'boot', 'optiboot_atmega328.hex') },
+  atmegaboot: { board: 'nano', hex: join(ROOT, 'build', 'boot', 'atmegaboot_atmega328.hex') },
+  stk500v2: { board: 'mega', hex: join(ROOT, 'build', 'boot', 'stk500v2_atmega2560.hex') },
 } as const;
 export const IMAGES = { nano: join(ROOT, 'build', 'avr', 'nano.hex'), mega: join(ROOT, 'build', 'avr', 'mega.hex') };
 
@@ -39,7 +39,7 @@ export class SimulatedBoard implements SerialPeer {
   constructor(readonly bootloader: keyof typeof BOOTLOADERS, app?: string) {
     buildRig();
     const b = BOOTLOADERS[bootloader];
-    const args = ['--mcu', b.mcu, '--boot', b.hex, ...(app ? ['--app', app] : [])];
+    const args = ['--board', b.board, '--boot', b.hex, ...(app ? ['--app', app] : [])];
     // stdin is the rig's lifeline: when this process goes, however it goes, so does the rig.
     this.#child = spawn(RIG, args, { stdio: ['pipe', 'pipe', 'inherit'] });
     this.#child.stdout!.on('data', (d: Buffer) => {

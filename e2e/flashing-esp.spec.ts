@@ -4,6 +4,7 @@
 import { createHash } from 'node:crypto';
 import { writeFileSync } from 'node:fs';
 import { expect, test } from '@playwright/test';
+import { DEFAULT_CSV } from '../app/src/firmware/esp-partitions.test-helper';
 import { installFakeSerial } from './fake-serial';
 
 const firmware = Buffer.alloc(4096, 0xe9);
@@ -65,12 +66,17 @@ test("an ESP32's own files go to esptool-js at their places; a file that is not 
   await expect(page.getByTestId('firmware-own-parts')).toContainText('firmware.bin at 0x10000 (up to 1310720 B)');
   await expect(page.getByTestId('firmware-flash')).toBeDisabled(); // nothing picked yet
 
-  // A LittleFS image picked where the firmware goes.
+  // A LittleFS image picked where the firmware goes, first without the partition table its places come from.
   const fs = Buffer.alloc(8192);
   fs.write('littlefs', 8, 'latin1');
   const fsPath = info.outputPath('littlefs.bin');
   writeFileSync(fsPath, fs);
   await page.getByTestId('firmware-esp-file-firmware.bin').setInputFiles(fsPath);
+  await page.getByTestId('firmware-flash').click();
+  await expect(page.getByTestId('firmware-image-error')).toContainText('Pick the partitions.bin your build produced too');
+  const tablePath = info.outputPath('partitions.bin');
+  writeFileSync(tablePath, DEFAULT_CSV);
+  await page.getByTestId('firmware-esp-file-partitions.bin').setInputFiles(tablePath);
   await page.getByTestId('firmware-flash').click();
   await expect(page.getByTestId('firmware-image-error')).toContainText('littlefs.bin is no ESP firmware image (those begin with the byte 0xE9)');
   expect(opened).toBe(0);

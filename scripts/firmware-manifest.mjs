@@ -3,8 +3,9 @@
 //
 //   node scripts/firmware-manifest.mjs             this machine's images (build/avr: the Nano's, and the
 //                                                   Mega's without its SD card), when they are built
-//   node scripts/firmware-manifest.mjs --pio DIR   the images PlatformIO built, collected in DIR/<env>/ by the
-//                                                   public workflow (.github/workflows/firmware.yml)
+//   npx tsx scripts/firmware-manifest.mjs --pio DIR   the images PlatformIO built, collected in DIR/<env>/ by
+//                                                   the public workflow (.github/workflows/firmware.yml); the
+//                                                   ESP32's offsets are read from the partitions.bin it built
 import { createHash } from 'node:crypto';
 import { copyFileSync, existsSync, mkdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
@@ -36,9 +37,15 @@ if (pio > 0) {
     const hex = join(dir, env, 'firmware.hex');
     if (existsSync(hex)) images.push({ board, version: versionOf[board](), built: 'PlatformIO', parts: [part(hex, `${board}.hex`, 0)] });
   }
-  // Where each file goes (app/src/firmware/esp-layout.json, which the Firmware view checks a person's own files by).
+  // Where each file goes: the ESP8266's by its linker script (app/src/firmware/esp-layout.json, which the
+  // Firmware view checks a person's own files by), the ESP32's by the partition table its build wrote.
   const layout = JSON.parse(readFileSync(join(root, 'app/src/firmware/esp-layout.json'), 'utf8'));
-  const esp = [['esp12e', 'esp8266'], ['esp32dev', 'esp32']].map(([env, board]) => [env, board, layout[board].map((r) => [r.file, r.offset])]);
+  const { esp32Layout } = await import('../app/src/firmware/esp-layout.ts'); // run under tsx
+  const regions = (env, board) => {
+    const table = join(dir, env, 'partitions.bin');
+    return board === 'esp32' && existsSync(table) ? esp32Layout(new Uint8Array(readFileSync(table))) : layout[board];
+  };
+  const esp = [['esp12e', 'esp8266'], ['esp32dev', 'esp32']].map(([env, board]) => [env, board, regions(env, board).map((r) => [r.file, r.offset])]);
   for (const [env, board, files] of esp) {
     if (!files.every(([f]) => existsSync(join(dir, env, f)))) continue;
     images.push({ board, version: espVersion, built: 'PlatformIO', parts: files.map(([f, offset]) => part(join(dir, env, f), `${board}-${f}`, offset)) });

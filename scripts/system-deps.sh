@@ -10,6 +10,7 @@ PACKAGES=(
   lld wasi-libc libc++-dev-wasm32 libclang-rt-dev-wasm32  # the firmware's cores as WebAssembly (scripts/build-wasm.sh)
   libboost-dev                              # the ESP hub on the host: HTTP and WebSocket (Boost.Beast)
   simavr libsimavr-dev libelf-dev           # running the AVR images in simulation
+  avrdude                                   # the referee of the bootloader rig (scripts/avrdude-referee.py)
   python3 python3-venv                      # vector authoring, the vector-binding check, printcore's venv
   socat                                     # `npm run sim -- --pty`
   gerbv                                     # Gerber import: reference rasters of its example boards (app/src/pcb)

@@ -30,6 +30,7 @@ stage "TypeScript unit tests (Vitest)" npm run --silent test:unit
 stage "Type check (svelte-check)" npm run --silent check
 stage "AVR firmware images and budgets" bash scripts/test-firmware.sh images
 stage "C++ host and simavr tests (CMake, GoogleTest)" bash scripts/test-firmware.sh host
+stage "avrdude flashes and verifies each board through the bootloader rig (the rig's referee)" bash scripts/test-firmware.sh avrdude
 stage "C++ tests under ASan and UBSan (clang)" bash scripts/fuzz.sh --tests
 stage "The ESP's hand-over between two threads under ThreadSanitizer (clang)" bash scripts/tsan.sh
 stage "Fuzzers, 20 s each on their kept corpus (libFuzzer, ASan, UBSan)" bash scripts/fuzz.sh 20

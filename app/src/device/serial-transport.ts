@@ -1,7 +1,7 @@
 // Transport over Web Serial (Chromium's navigator.serial): USB straight to the Mega.
 
 import { bytesToLatin1, latin1ToBytes } from '../protocol/bytes';
-import { PickerDismissed } from './serial-support';
+import { NoSerialApi, PickerDismissed } from './serial-support';
 import type { Transport } from './transport';
 
 export { PickerDismissed };
@@ -23,7 +23,7 @@ export async function serialApi(): Promise<SerialApi> {
     const { serial } = await import('web-serial-polyfill'); // only loaded where it is needed
     return serial as unknown as SerialApi;
   }
-  throw new Error('this browser has neither Web Serial nor WebUSB: use Chrome or Edge');
+  throw new NoSerialApi();
 }
 
 export class SerialTransport implements Transport {

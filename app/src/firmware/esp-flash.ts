@@ -1,17 +1,20 @@
 // Flashing the ESP8266 or ESP32 (the Wi-Fi hub) through Espressif's esptool-js: its ROM bootloader's
 // SLIP protocol, the stub flasher and compressed writes are the library's; this file picks the files
-// and their offsets from the manifest, refuses the other ESP chip, reads every file back, and resets.
+// and their offsets from the manifest, refuses the other ESP chip, checks every region by the MD5 the
+// ESP computes of its flash (as esptool and esp-web-tools do, not by reading it all back), and resets.
 // esptool-js loads only when an ESP is flashed (its own chunk).
 
 import { FlashError, type FlashProgress } from './flash-avr';
 import type { ImagePart } from './manifest';
+import { md5Hex } from './md5';
 
 /** The part of esptool-js's ESPLoader used here (a fake in the tests). */
 export interface EspLoader {
   chip: { CHIP_NAME: string };
   main(): Promise<string>;
   writeFlash(options: { fileArray: { data: Uint8Array; address: number }[]; flashMode: 'keep'; flashFreq: 'keep'; flashSize: 'keep'; eraseAll: boolean; compress: boolean; reportProgress?: (file: number, written: number, total: number) => void }): Promise<void>;
-  readFlash(address: number, size: number): Promise<Uint8Array>;
+  /** SPI_FLASH_MD5: the ROM's or the stub's MD5 of a flash region, as hex. */
+  flashMd5sum(address: number, size: number): Promise<string>;
   after(mode?: 'hard_reset'): Promise<void>;
 }
 
@@ -59,13 +62,15 @@ export async function flashEsp(port: SerialPort, board: EspBoard, parts: EspPart
     await loader.writeFlash({
       fileArray: parts.map((p) => ({ data: p.data, address: p.part.offset })),
       flashMode: 'keep', flashFreq: 'keep', flashSize: 'keep', eraseAll: false, compress: true,
-      reportProgress: (file, written) => progress({ phase: 'writing', done: before(file) + written, total }),
+      // esptool-js counts a file's compressed bytes sent of its compressed size: that fraction of the
+      // file's own size is what the bar adds, in the same unit as its total.
+      reportProgress: (file, sent, compressed) => progress({ phase: 'writing', done: before(file) + Math.round((parts[file].data.length * sent) / Math.max(compressed, 1)), total }),
     });
+    progress({ phase: 'verifying', done: 0, total });
     for (const [i, p] of parts.entries()) {
-      const back = await loader.readFlash(p.part.offset, p.data.length);
-      const at = p.data.findIndex((b, k) => back[k] !== b);
-      if (at >= 0 || back.length < p.data.length) {
-        throw new FlashError('verify-failed', `Reading ${p.part.file} back, byte 0x${(p.part.offset + Math.max(at, 0)).toString(16)} differs. The ESP's ROM bootloader cannot be overwritten: flash again.`);
+      const onChip = await loader.flashMd5sum(p.part.offset, p.data.length);
+      if (onChip.toLowerCase() !== md5Hex(p.data)) {
+        throw new FlashError('verify-failed', `The flash at 0x${p.part.offset.toString(16)} does not hold ${p.part.file} (its MD5 is ${onChip}, the file's ${md5Hex(p.data)}). The ESP's ROM bootloader cannot be overwritten: flash again.`);
       }
       progress({ phase: 'verifying', done: before(i + 1), total });
     }

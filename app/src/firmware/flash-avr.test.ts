@@ -1,18 +1,11 @@
 import { describe, expect, it } from 'vitest';
 import { ATMEGA2560, ATMEGA328P, AVR_BOARDS, chipOfImage } from './chips';
+import { avrImage as image } from './avr-image.test-helper';
 import { FakeOptiboot, FakeStk500v2 } from './fake-bootloaders';
 import { FlashError, flashAvr } from './flash-avr';
 import { Stk500v2 } from './stk500v2';
 
 const board = (id: string) => AVR_BOARDS.find((b) => b.id === id)!;
-
-/** An image as avr-gcc lays one out: the chip's vector table of jmps, then code. */
-function image(vectors: number, size: number): Uint8Array {
-  const bytes = Uint8Array.from({ length: size }, (_, i) => (i * 31 + 7) & 0xff);
-  for (let v = 0; v < vectors; v++) bytes.set([0x0c, 0x94, 0x34, 0x00], v * 4);
-  bytes[vectors * 4] = 0x11; // eor r1, r1: not a jmp
-  return bytes;
-}
 
 async function failure(p: Promise<unknown>): Promise<FlashError> {
   const e = await p.then(() => null, (x) => x);
@@ -46,7 +39,7 @@ describe('flashing over the bootloader', () => {
 
   it('refuses another chip before writing anything', async () => {
     const mega = new FakeStk500v2(ATMEGA2560);
-    const e = await failure(flashAvr(mega, { ...board('mega'), chip: ATMEGA328P }, image(0, 1000)));
+    const e = await failure(flashAvr(mega, { ...board('mega'), chip: ATMEGA328P }, image(26, 1000)));
     expect(e.failure).toBe('wrong-chip');
     expect(e.message).toContain('has an ATmega2560');
     expect(mega.pagesWritten).toBe(0);
@@ -56,10 +49,15 @@ describe('flashing over the bootloader', () => {
     expect(chipOfImage(image(57, 2000))).toBe(ATMEGA2560);
     expect(chipOfImage(image(26, 2000))).toBe(ATMEGA328P);
     expect((await failure(flashAvr(new FakeOptiboot(ATMEGA328P), board('nano'), image(57, 2000)))).failure).toBe('image-for-other-chip');
-    const big = await failure(flashAvr(new FakeOptiboot(ATMEGA328P), board('nano'), image(26, 32257)));
+    // boards.txt's maximum_size for both Nanos: Optiboot's Nano is fused for a 2 KB boot section too.
+    const big = await failure(flashAvr(new FakeOptiboot(ATMEGA328P), board('nano'), image(26, 30721)));
     expect(big.failure).toBe('image-too-big');
-    expect(big.message).toContain('32256 B');
+    expect(big.message).toContain('takes 30720 B below its 2048 B boot section');
+    const optiboot = new FakeOptiboot(ATMEGA328P);
+    await flashAvr(optiboot, board('nano'), image(26, 30720));
+    expect(optiboot.pagesWritten).toBe(240);
     expect((await failure(flashAvr(new FakeOptiboot(ATMEGA328P), board('nano-old'), image(26, 31000)))).message).toContain('30720 B');
+    expect((await failure(flashAvr(new FakeStk500v2(ATMEGA2560), board('mega'), image(57, 253953)))).message).toContain('takes 253952 B below its 8192 B boot section');
   });
 
   it('says the bootloader is still there when the cable is pulled mid-write', async () => {

@@ -2,7 +2,7 @@
 // every page back. Each way it can fail is a FlashError saying what happened and what to do.
 
 import { LinkLost, LinkTimeout, type ByteLink } from './byte-link';
-import { chipBySignature, chipOfImage, flashLimit, hexBytes, type AvrBoard } from './chips';
+import { bootSectionBytes, chipBySignature, flashLimit, hexBytes, imageMismatch, type AvrBoard } from './chips';
 import { ProtocolError, Stk500v1 } from './stk500v1';
 import { Stk500v2 } from './stk500v2';
 
@@ -38,22 +38,27 @@ function bootloaderOn(link: ByteLink, board: AvrBoard): Bootloader {
 /**
  * Who is there when the board's bootloader did not answer: the other protocol's bootloader, asked for
  * its chip after a reset (the Optiboot a Mega's first message threw out has started the application).
+ * Twice, each after its own reset, as avrdude resets before each sync attempt: on a slow host the first
+ * question can come after Optiboot's second has run out.
  */
 async function chipOfOtherBootloader(link: ByteLink, board: AvrBoard): Promise<Uint8Array | null> {
   if (!link.reset) return null;
-  try {
-    await link.reset();
-    if (board.protocol === 'stk500v2') {
-      const v1 = new Stk500v1(link, 300);
-      await v1.sync(4);
-      return await v1.signature();
+  for (let attempt = 0; attempt < 2; attempt++) {
+    try {
+      await link.reset();
+      if (board.protocol === 'stk500v2') {
+        const v1 = new Stk500v1(link);
+        await v1.sync();
+        return await v1.signature();
+      }
+      const v2 = new Stk500v2(link);
+      await v2.signOn();
+      return await v2.signature();
+    } catch (e) {
+      if (!(e instanceof LinkTimeout || e instanceof ProtocolError)) return null;
     }
-    const v2 = new Stk500v2(link, 300);
-    await v2.signOn();
-    return await v2.signature();
-  } catch {
-    return null;
   }
+  return null;
 }
 
 function wrongChip(board: AvrBoard, signature: Uint8Array): FlashError {
@@ -64,13 +69,15 @@ function wrongChip(board: AvrBoard, signature: Uint8Array): FlashError {
 
 /** Refuses an image that cannot go on this board, before the port is even opened. */
 export function checkImage(board: AvrBoard, bytes: Uint8Array): void {
-  const built = chipOfImage(bytes);
-  if (built && built !== board.chip) {
-    throw new FlashError('image-for-other-chip', `This image is built for the ${built.name}, and the ${board.name} has an ${board.chip.name}. Pick the image built for this board.`);
+  const mismatch = imageMismatch(board.chip, bytes);
+  if (mismatch) {
+    throw new FlashError('image-for-other-chip', `${mismatch}, and the ${board.name} has an ${board.chip.name}. Nothing was written. Pick the image built for this board.`);
   }
   const limit = flashLimit(board);
   if (bytes.length > limit) {
-    throw new FlashError('image-too-big', `The image is ${bytes.length} B; the ${board.chip.name} has ${limit} B of flash beside its ${board.bootBytes} B bootloader. Pick the image built for this board.`);
+    // A real Nano's fuses keep 2 KB for the boot section whatever bootloader it has, and its lock bits
+    // refuse writes there: past the limit, the flash would fail its read-back (boards.txt's maximum_size).
+    throw new FlashError('image-too-big', `The image is ${bytes.length} B; the ${board.chip.name} takes ${limit} B below its ${bootSectionBytes(board)} B boot section. Pick the image built for this board.`);
   }
 }
 
@@ -91,9 +98,17 @@ export async function flashAvr(link: ByteLink, board: AvrBoard, bytes: Uint8Arra
     try {
       await boot.hello();
     } catch (e) {
-      if (!(e instanceof LinkTimeout || e instanceof ProtocolError)) throw e;
-      const other = await chipOfOtherBootloader(link, board);
-      throw other ? wrongChip(board, other) : e;
+      if (!(e instanceof LinkTimeout || e instanceof ProtocolError) || !link.reset) throw e;
+      // Once more after another reset: a bootloader that met a broken message before it was in step
+      // leaves for the application (Optiboot through its watchdog), and only a reset brings it back.
+      try {
+        await link.reset();
+        await boot.hello();
+      } catch (again) {
+        if (!(again instanceof LinkTimeout || again instanceof ProtocolError)) throw again;
+        const other = await chipOfOtherBootloader(link, board);
+        throw other ? wrongChip(board, other) : again;
+      }
     }
     const signature = await boot.signature();
     if (chipBySignature(signature) !== board.chip) throw wrongChip(board, signature);

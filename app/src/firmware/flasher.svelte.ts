@@ -1,5 +1,6 @@
 // The Firmware view's state: one flash at a time, from picking the port to the new firmware's answer.
 
+import { NoSerialApi } from '../device/serial-support';
 import { PickerDismissed, serialApi } from '../device/serial-transport';
 import type { AvrBoard } from './chips';
 import { FlashError, checkImage, flashAvr, type FlashFailure, type FlashProgress } from './flash-avr';
@@ -12,8 +13,9 @@ export type FlashState =
   | { state: 'flashing'; progress: FlashProgress }
   | { state: 'starting' }
   | { state: 'done'; version: string; also: string[] }
+  | { state: 'answered'; summary: string; lines: string[] }
   | { state: 'silent' }
-  | { state: 'failed'; failure: FlashFailure | 'port'; message: string };
+  | { state: 'failed'; failure: FlashFailure | 'port' | 'browser'; message: string };
 
 export class Flasher {
   state = $state<FlashState>({ state: 'idle' });
@@ -47,7 +49,7 @@ export class Flasher {
       link = await SerialLink.open(port, board.firmwareBaud);
       await link.reset();
       const answer = await askVersion(link, board);
-      this.state = answer ? { state: 'done', ...answer } : { state: 'silent' };
+      this.state = !answer ? { state: 'silent' } : 'version' in answer ? { state: 'done', ...answer } : { state: 'answered', ...answer };
     } catch (e) {
       this.#fail(e);
     } finally {
@@ -75,9 +77,13 @@ export class Flasher {
     }
   }
 
+  /** One message per cause: a flash that failed, a browser without serial access, a port in use. */
   #fail(e: unknown): void {
-    this.state = e instanceof FlashError
-      ? { state: 'failed', failure: e.failure, message: e.message }
-      : { state: 'failed', failure: 'port', message: `The port could not be used: ${(e as Error).message}. Close any other program using it (Arduino IDE, a serial monitor, this app's own connection) and try again.` };
+    if (e instanceof FlashError) this.state = { state: 'failed', failure: e.failure, message: e.message };
+    else if (e instanceof NoSerialApi) this.state = { state: 'failed', failure: 'browser', message: e.message };
+    else {
+      const why = (e as Error).message.replace(/\.$/, '');
+      this.state = { state: 'failed', failure: 'port', message: `The port could not be used (${why}). Close any other program using it (Arduino IDE, a serial monitor, this app's own connection) and try again.` };
+    }
   }
 }

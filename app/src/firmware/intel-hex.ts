@@ -8,7 +8,14 @@ export interface FlashImage {
   bytes: Uint8Array;
 }
 
-export function parseIntelHex(text: string): FlashImage {
+/** The largest flash any board here has (the ATmega2560's): no image reaches past it. */
+export const LARGEST_FLASH = 262144;
+
+/**
+ * Reads a HEX file. Every record's address is checked against `maxBytes` as it is read, before anything
+ * is laid out: a record at 0xFFFF0000 is refused at once, not after allocating 4 GiB.
+ */
+export function parseIntelHex(text: string, maxBytes = LARGEST_FLASH): FlashImage {
   const chunks: { at: number; data: number[] }[] = [];
   let base = 0;
   let ended = false;
@@ -27,6 +34,9 @@ export function parseIntelHex(text: string): FlashImage {
     const data = b.slice(4, 4 + count);
     switch (b[3]) {
       case 0:
+        if (base + offset + count > maxBytes) {
+          throw new HexError(`${where} puts data at 0x${(base + offset).toString(16).toUpperCase()}, past the ${maxBytes / 1024} KB of flash: this is not an image for these boards`);
+        }
         chunks.push({ at: base + offset, data });
         end = Math.max(end, base + offset + count);
         break;

@@ -4,6 +4,9 @@ import { ByteQueue, LinkLost, type ByteLink } from './byte-link';
 
 const sleep = (ms: number) => new Promise((r) => setTimeout(r, ms));
 
+/** From the reset to the first byte: past the 65 ms the chip spends in reset after the pulse. */
+export const RESET_SETTLE_MS = 100;
+
 export class SerialLink implements ByteLink {
   #queue = new ByteQueue();
   #reader: ReadableStreamDefaultReader<Uint8Array> | null = null;
@@ -37,14 +40,16 @@ export class SerialLink implements ByteLink {
   }
 
   /**
-   * DTR (and RTS) low then high: through the board's 100 nF capacitor, a reset pulse, so the
-   * bootloader starts and listens for its first second (avrdude's "arduino" programmer does the same).
+   * DTR (and RTS) low then high: the rising DTR reaches RESET through the board's 100 nF capacitor as a
+   * pulse. The chip then stays in reset for its start-up time-out (14 CK + 65 ms with Arduino's low fuse
+   * 0xFF) and loses whatever arrives meanwhile: the first byte goes 100 ms after, as avrdude's does, and
+   * what came before (a running firmware's last words) is dropped.
    */
   async reset(): Promise<void> {
     await this.port.setSignals({ dataTerminalReady: false, requestToSend: false });
     await sleep(250);
     await this.port.setSignals({ dataTerminalReady: true, requestToSend: true });
-    await sleep(50);
+    await sleep(RESET_SETTLE_MS);
     this.#queue.discard();
   }
 

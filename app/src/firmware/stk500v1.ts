@@ -13,30 +13,51 @@ const STK = { OK: 0x10, INSYNC: 0x14, CRC_EOP: 0x20, GET_SYNC: 0x30, ENTER_PROGM
 export class ProtocolError extends Error {}
 
 export class Stk500v1 {
-  constructor(private readonly link: ByteLink, private readonly timeoutMs = 500) {}
+  /**
+   * `timeoutMs`: how long a command's answer may take, avrdude's (its serial_recv_timeout, 5 s). A board
+   * answers in a millisecond; a loaded host, its USB stack or a browser's event loop can take far longer.
+   */
+  constructor(private readonly link: ByteLink, private readonly timeoutMs = 5000) {}
 
   /**
-   * Gets in step with a bootloader that may have seen line noise or still be starting: GET_SYNC until
-   * one is answered, then, once the answers to the earlier ones have come and been dropped, one more
-   * that must be answered alone.
+   * Gets in step with a bootloader that may have seen line noise or still be starting, as avrdude's
+   * arduino programmer does: GET_SYNC again and again for `withinMs`, stray bytes before an answer
+   * skipped, until one is answered; then, once the answers to the earlier ones have come and been
+   * dropped, one more that must be answered alone.
    */
-  async sync(attempts = 10): Promise<void> {
-    for (let i = 0; i < attempts; i++) {
+  async sync(withinMs = 1500): Promise<void> {
+    const until = Date.now() + withinMs;
+    while (Date.now() < until) {
       await this.link.write(Uint8Array.of(STK.GET_SYNC, STK.CRC_EOP));
-      try {
-        const reply = await this.link.read(2, 250);
-        if (reply[0] === STK.INSYNC && reply[1] === STK.OK) {
-          await new Promise((r) => setTimeout(r, 250));
-          this.link.discard();
+      if (await this.#inSync(Math.min(200, Math.max(1, until - Date.now())))) {
+        await new Promise((r) => setTimeout(r, 250));
+        this.link.discard();
+        try {
           await this.#command([STK.GET_SYNC], 0);
           return;
+        } catch (e) {
+          if (!(e instanceof LinkTimeout || e instanceof ProtocolError)) throw e;
         }
-      } catch (e) {
-        if (!(e instanceof LinkTimeout) && !(e instanceof ProtocolError)) throw e;
       }
       this.link.discard();
     }
     throw new LinkTimeout('the bootloader did not answer');
+  }
+
+  /** Whether INSYNC, OK arrives within `ms`, whatever comes before it. */
+  async #inSync(ms: number): Promise<boolean> {
+    const until = Date.now() + ms;
+    let previous = -1;
+    try {
+      while (Date.now() < until) {
+        const [b] = await this.link.read(1, Math.max(1, until - Date.now()));
+        if (previous === STK.INSYNC && b === STK.OK) return true;
+        previous = b;
+      }
+    } catch (e) {
+      if (!(e instanceof LinkTimeout)) throw e;
+    }
+    return false;
   }
 
   async signature(): Promise<Uint8Array> {
@@ -69,8 +90,15 @@ export class Stk500v1 {
 
   async #command(body: number[], answerBytes: number): Promise<Uint8Array> {
     await this.link.write(Uint8Array.from([...body, STK.CRC_EOP]));
-    const reply = await this.link.read(answerBytes + 2, this.timeoutMs);
-    if (reply[0] !== STK.INSYNC || reply[reply.length - 1] !== STK.OK) {
+    // Stray bytes before INSYNC (noise, a late answer to an earlier sync) are skipped, within the time-out.
+    const until = Date.now() + this.timeoutMs;
+    let first: number;
+    do {
+      if (Date.now() >= until) throw new LinkTimeout(`no answer within ${this.timeoutMs} ms`);
+      [first] = await this.link.read(1, until - Date.now());
+    } while (first !== STK.INSYNC);
+    const reply = Uint8Array.from([first, ...(await this.link.read(answerBytes + 1, this.timeoutMs))]);
+    if (reply[reply.length - 1] !== STK.OK) {
       throw new ProtocolError(`command 0x${body[0].toString(16)} was answered ${Array.from(reply, (b) => b.toString(16)).join(' ')}`);
     }
     return reply.subarray(1, reply.length - 1);

@@ -4,7 +4,7 @@
 // Written here rather than taken from npm: the `stk500-v2` package (1.0.4) drives a Node serialport
 // stream with Node's Buffer and callbacks (async 0.9), and has nothing for Web Serial.
 
-import type { ByteLink } from './byte-link';
+import { LinkTimeout, type ByteLink } from './byte-link';
 import { ProtocolError } from './stk500v1';
 
 const MESSAGE_START = 0x1b;
@@ -24,12 +24,25 @@ export class Stk500v2 {
   /** Where the bootloader's address points: it moves on past each page written or read. */
   #next = -1;
 
-  constructor(private readonly link: ByteLink, private readonly timeoutMs = 1000) {}
+  /** `timeoutMs`: how long an answer may take, avrdude's for STK500 v2 (stk500v2.c's SERIAL_TIMEOUT, 2 s). */
+  constructor(private readonly link: ByteLink, private readonly timeoutMs = 2000) {}
 
-  /** The bootloader's name: "AVRISP_2" for the Mega's. */
-  async signOn(): Promise<string> {
-    const answer = await this.#command([CMD.SIGN_ON]);
-    return String.fromCharCode(...answer.subarray(3, 3 + answer[2]));
+  /**
+   * The bootloader's name: "AVRISP_2" for the Mega's. Asked again and again for `withinMs`, as avrdude
+   * does: a chip still in its start-up time-out drops the first, and a late answer to an earlier one,
+   * or line noise, is skipped.
+   */
+  async signOn(withinMs = 1500): Promise<string> {
+    const until = Date.now() + withinMs;
+    for (;;) {
+      try {
+        const answer = await this.#command([CMD.SIGN_ON], Math.min(this.timeoutMs, 300));
+        return String.fromCharCode(...answer.subarray(3, 3 + answer[2]));
+      } catch (e) {
+        if (!(e instanceof LinkTimeout || e instanceof ProtocolError) || Date.now() >= until) throw e;
+        this.link.discard();
+      }
+    }
   }
 
   async signature(): Promise<Uint8Array> {
@@ -73,15 +86,22 @@ export class Stk500v2 {
     await this.#command([CMD.LOAD_ADDRESS, top, (word >> 16) & 0xff, (word >> 8) & 0xff, word & 0xff]);
   }
 
-  async #command(body: number[]): Promise<Uint8Array> {
+  async #command(body: number[], timeoutMs = this.timeoutMs): Promise<Uint8Array> {
     this.#next = body[0] === CMD.PROGRAM_FLASH_ISP || body[0] === CMD.READ_FLASH_ISP || body[0] === CMD.LOAD_ADDRESS ? this.#next : -1;
     const sequence = (this.#sequence = (this.#sequence + 1) & 0xff);
     await this.link.write(frame(sequence, body));
-    const head = await this.link.read(5, this.timeoutMs);
-    if (head[0] !== MESSAGE_START || head[4] !== TOKEN) throw new ProtocolError('the answer does not start as an STK500 v2 message');
+    // Stray bytes before the answer (noise, the rest of an answer given up on) are skipped to its start.
+    const until = Date.now() + timeoutMs;
+    const left = () => {
+      if (Date.now() >= until) throw new LinkTimeout(`no answer within ${timeoutMs} ms`);
+      return until - Date.now();
+    };
+    while ((await this.link.read(1, left()))[0] !== MESSAGE_START);
+    const head = [MESSAGE_START, ...(await this.link.read(4, left()))];
+    if (head[4] !== TOKEN) throw new ProtocolError('the answer does not start as an STK500 v2 message');
     if (head[1] !== sequence) throw new ProtocolError(`the answer is to message ${head[1]}, not ${sequence}`);
     const size = (head[2] << 8) | head[3];
-    const rest = await this.link.read(size + 1, this.timeoutMs);
+    const rest = await this.link.read(size + 1, timeoutMs);
     const all = [...head, ...rest];
     if (all.reduce((x, b) => x ^ b, 0) !== 0) throw new ProtocolError('the answer fails its checksum');
     const answer = rest.subarray(0, size);
