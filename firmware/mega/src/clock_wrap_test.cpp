@@ -76,3 +76,13 @@ TEST_F(ClockWrapTest, AScanJobRunsAcrossTheWrapOfMicrosEveryCellItsDose) {
   EXPECT_LE(f.worstEdgeUm, 100 / 4.0);
   expectPrintheadUp();
 }
+
+// A host that opens the port (DTR resets the Mega) on a printer past the wrap: its first M105 reads
+// the sensors. (Before the rig kept its wire on 64-bit time, printcore printed E30 right after opening.)
+TEST_F(ClockWrapTest, AHostThatOpensThePortAfterTheWrapFindsThePrinthead) {
+  m.run(kLeadUs + 1000000);
+  ASSERT_GT(m.nowUs, kWrapUs);
+  m.reset(100000);
+  EXPECT_TRUE(has(m.cmd("M105"), "T:25.0 /0.0 S0:25.0"));
+  EXPECT_EQ(e30s(), 0u);
+}
