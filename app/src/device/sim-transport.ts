@@ -29,6 +29,7 @@ function hear(m: FromSimulator): void {
     listener = onLost = null;
     lost?.(new Error("the simulated printer's USB cable was pulled"));
   } else if (m.type === 'panel') simulator.panel = { frame: m.frame, rows: m.rows };
+  else if (m.type === 'clock') simulator.printerUs = m.us;
   else Object.assign(simulator, { keeping: m.keeping, note: m.note, faults: m.faults });
 }
 

@@ -28,4 +28,6 @@ export type FromSimulator =
   /** How the printer is kept, and what the store's reading found wrong, if anything. */
   | { type: 'kept'; keeping: Keeping; note: string | null; faults: SimFaults }
   /** The Mega's OLED as its firmware last drew it: the SSD1306's 1024 bytes (8 pages × 128 columns). */
-  | { type: 'panel'; frame: Uint8Array; rows: string[] };
+  | { type: 'panel'; frame: Uint8Array; rows: string[] }
+  /** The printer's own time since it was powered up, µs (each quarter second of the page's). */
+  | { type: 'clock'; us: number };

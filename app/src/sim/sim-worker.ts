@@ -70,6 +70,9 @@ async function read(): Promise<{ kept: Kept; keeping: Keeping }> {
 }
 
 let drawn = -1; // the OLED's draws the page has seen
+let toldClockAt = -Infinity;
+/** How often the page hears the printer's own time, ms of the page's. */
+const CLOCK_EVERY_MS = 250;
 /** The most of the machine's time one tick runs, in wall ms: a machine slower than asked falls behind rather than freeze its worker. */
 const TICK_BUDGET_MS = 40;
 
@@ -96,6 +99,10 @@ async function boot(): Promise<void> {
     while (p.clock.now < target && performance.now() - began < TICK_BUDGET_MS) p.advanceTo(Math.min(target, p.clock.now + 20_000 * speed));
     if (p.clock.now < target) start = performance.now() - p.clock.now / 1000 / speed;
     void keeper?.keep();
+    if (performance.now() - toldClockAt >= CLOCK_EVERY_MS) {
+      toldClockAt = performance.now();
+      say({ type: 'clock', us: p.clock.now });
+    }
     if (p.module.displayDraws !== drawn) {
       drawn = p.module.displayDraws;
       say({ type: 'panel', frame: p.module.displayFrame(), rows: p.module.display() });

@@ -2,6 +2,8 @@
 // Mega's ByteStream, with LEDs that switch off in simulated time and a log of every exposure, so
 // tests can count each cell's light. It can go silent, stick an LED on, or be reset. With `wired`, each
 // byte takes its ten bit-times at 115200 baud each way (86.8 µs), as on the machine.
+// Its own time is 64-bit: a simulated printer runs for hours, past the 71.6 minutes in which a
+// 32-bit µs count wraps. The Nano's logic sees millis() and micros() as the board's, which wrap.
 #pragma once
 #include <stdint.h>
 
@@ -19,11 +21,11 @@ namespace mega {
 
 struct ScanLight {
   uint8_t led;
-  uint32_t onUs, offUs;
+  uint64_t onUs, offUs;
 };
 
 struct Exposure {
-  uint32_t startUs;
+  uint64_t startUs;
   uint8_t mask;
   uint32_t askedUs[4];
   uint32_t litUs[4];  // how long each LED actually shone (less if cut off by R or a fault)
@@ -38,7 +40,7 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
 
   // --- the Mega's side ---
   int16_t read() override {
-    if (toMega_.empty() || toMega_.front().atNs > static_cast<uint64_t>(nowUs) * 1000) return -1;
+    if (toMega_.empty() || toMega_.front().atNs > nowUs * 1000) return -1;
     char c = toMega_.front().c;
     toMega_.pop_front();
     return static_cast<uint8_t>(c);
@@ -57,9 +59,9 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
   }
   // The Mega's W goes out only on an idle transmitter: its time is when its first bit leaves.
   bool writeNow(char op, uint32_t& atUs) override {
-    if (uartFull || (wired && toNanoFreeNs_ > static_cast<uint64_t>(nowUs) * 1000)) return false;
+    if (uartFull || (wired && toNanoFreeNs_ > nowUs * 1000)) return false;
     const char line[2] = {op, '\n'};
-    atUs = nowUs;
+    atUs = static_cast<uint32_t>(nowUs);  // the Mega's micros(), which wraps
     if (wired) onWire(toNano_, toNanoFreeNs_, line, 2);
     else take(line, 2);
     return true;
@@ -68,11 +70,11 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
   // --- the test's side ---
   // Runs the Nano up to `toUs`: the bytes the wire delivers by then, each when its stop bit ends,
   // and the LEDs' switch-offs and a scan chain's events in between.
-  void advance(uint32_t toUs) {
-    while (!toNano_.empty() && toNano_.front().atNs <= static_cast<uint64_t>(toUs) * 1000) {
+  void advance(uint64_t toUs) {
+    while (!toNano_.empty() && toNano_.front().atNs <= toUs * 1000) {
       const WireByte b = toNano_.front();
       toNano_.pop_front();
-      settle(static_cast<uint32_t>((b.atNs + 999) / 1000));
+      settle((b.atNs + 999) / 1000);
       take(&b.c, 1);
       midLine_ = b.c != '\n';
     }
@@ -135,7 +137,7 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
   bool stuck = false;    // LEDs ignore their off time (a failed timer), only R turns them off
   bool uartFull = false;
   bool wired = false;  // bytes take their time on the wire (else a line arrives as it is written)
-  uint32_t nowUs = 0;
+  uint64_t nowUs = 0;
   std::vector<Exposure> exposures;
   std::vector<ScanLight> scanLight;
   std::vector<std::string> lines;  // every line the Mega sent
@@ -158,15 +160,15 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
   static constexpr uint64_t kFireTakenNs = 180000;
   // Queues bytes on one direction of the wire: each starts when the one before it has gone.
   void onWire(std::deque<WireByte>& wire, uint64_t& freeNs, const char* data, uint8_t n) {
-    uint64_t t = freeNs > static_cast<uint64_t>(nowUs) * 1000 ? freeNs : static_cast<uint64_t>(nowUs) * 1000;
+    uint64_t t = freeNs > nowUs * 1000 ? freeNs : nowUs * 1000;
     for (uint8_t i = 0; i < n; i++) wire.push_back({t += kByteNs, data[i]});
     freeNs = t;
     if (&wire == &toNano_ && n && data[0] == 'F' && data[n - 1] == '\n') wire.back().atNs += kFireTakenNs;
   }
   // The LEDs' switch-offs and a chain's events up to `atUs`.
-  void settle(uint32_t atUs) {
+  void settle(uint64_t atUs) {
     nowUs = atUs;
-    if (!silent) head_.poll(nowUs / 1000);  // the chain the Mega stopped talking to is cut after 50 ms
+    if (!silent) head_.poll(millis());  // the chain the Mega stopped talking to is cut after 50 ms
     if (program_) return runProgram();  // a scan chain's LEDs follow its events, not an F's offs
     for (uint8_t i = 0; i < 4; i++) {
       if ((lit_ & (1 << i)) && !stuck && nowUs >= offAt_[i]) off(i, offAt_[i]);
@@ -178,9 +180,11 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
       std::string l(splitter_.text(), splitter_.length());
       if (logging) lines.push_back(l);
       if (silent || (noClock && l == "W")) continue;
-      head_.line(splitter_.text(), splitter_.length(), splitter_.overflow(), nowUs / 1000);
+      head_.line(splitter_.text(), splitter_.length(), splitter_.overflow(), millis());
     }
   }
+  // The board's millis() and micros(): 32 bits, so they wrap (micros() every 71.6 minutes).
+  uint32_t millis() const { return static_cast<uint32_t>(nowUs / 1000); }
   uint32_t clockLineUs() override {
     return static_cast<uint32_t>(nowUs + static_cast<int64_t>(nowUs) * clockPpm / 1000000);
   }
@@ -200,10 +204,10 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
     if (logging) exposures.push_back(e);
     startAt_ = nowUs;
   }
-  void off(uint8_t i, uint32_t atUs) {
+  void off(uint8_t i, uint64_t atUs) {
     if (lit_ >> i & 1) onTotal_[i] += atUs - onSince_[i];
     lit_ = static_cast<uint8_t>(lit_ & ~(1 << i));
-    if (logging && !exposures.empty()) exposures.back().litUs[i] = atUs - startAt_;
+    if (logging && !exposures.empty()) exposures.back().litUs[i] = static_cast<uint32_t>(atUs - startAt_);
   }
   void allOff() override {
     if (program_) {
@@ -231,7 +235,7 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
       return false;
     }
     chainUs_ += d;  // the Nano's µs since the G, and the same moment on the test's clock:
-    eventAt_ = chainAt_ + static_cast<uint32_t>(static_cast<int64_t>(chainUs_) * 1000000 / (1000000 + clockPpm));
+    eventAt_ = chainAt_ + static_cast<uint64_t>(static_cast<int64_t>(chainUs_) * 1000000 / (1000000 + clockPpm));
     nextMask_ = m;
     return true;
   }
@@ -242,7 +246,7 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
     }
   }
   // Scan light is logged per LED as [on, off) µs intervals.
-  void setLit(uint8_t m, uint32_t atUs) {
+  void setLit(uint8_t m, uint64_t atUs) {
     for (uint8_t i = 0; i < 4; i++) {
       bool was = lit_ >> i & 1, is = m >> i & 1;
       if (!was && is) onSince_[i] = atUs;
@@ -274,16 +278,17 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
   uint64_t toNanoFreeNs_ = 0, toMegaFreeNs_ = 0;  // when each direction's last queued byte ends
   bool midLine_ = false;  // the Nano has part of a line from the wire
   uint8_t lit_ = 0;
-  uint32_t offAt_[4] = {};
-  uint32_t startAt_ = 0;
+  uint64_t offAt_[4] = {};
+  uint64_t startAt_ = 0;
   nano::ScanStore* program_ = nullptr;
-  uint32_t eventAt_ = 0;
-  uint32_t chainAt_ = 0, chainUs_ = 0;  // when the chain's G came, and its time so far in the Nano's µs
+  uint64_t eventAt_ = 0;
+  uint64_t chainAt_ = 0;  // when the chain's G came
+  uint32_t chainUs_ = 0;  // the chain's time so far, in the Nano's µs
   uint8_t nextMask_ = 0;
   uint16_t boot_ = 7;
   int16_t temps_[uv::kSensorCount] = {250, 250, 250, 250, 250, 250};
   uint64_t onTotal_[4] = {};   // each LED's on-time up to its last switch-off, µs
-  uint32_t onSince_[4] = {};   // when each lit LED came on
+  uint64_t onSince_[4] = {};   // when each lit LED came on
 };
 
 }  // namespace mega

@@ -72,7 +72,7 @@ TEST(HostLink, AnM112FromTheOtherPortWaitsForRoomAndAFaultWaitsToo) {
   // halted reply and the FAULT both find the ring too full.
   for (int pass = 0; pass < 10000; pass++) {
     m.nowUs += 100;
-    m.nano.advance(static_cast<uint32_t>(m.nowUs));
+    m.nano.advance(m.nowUs);
     m.machine.poll(static_cast<uint32_t>(m.nowUs));
     ASSERT_LT(m.usbLink.room(), 35);  // less than the halted reply or the FAULT needs: the test means something
   }

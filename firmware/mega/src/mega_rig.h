@@ -161,7 +161,7 @@ class MegaRig {
     head.~PrintheadLink();
     store.~ConfigStore();
     config.~Config();
-    for (uint64_t end = nowUs + bootUs; nowUs < end; nowUs += 100) nano.advance(static_cast<uint32_t>(nowUs));
+    for (uint64_t end = nowUs + bootUs; nowUs < end; nowUs += 100) nano.advance(nowUs);
     new (&config) Config();
     new (&store) ConfigStore(config, sd, eeprom);
     new (&head) PrintheadLink(nano);
@@ -186,7 +186,7 @@ class MegaRig {
   // Advances simulated time in 100 µs main-loop passes, the step interrupt in between.
   void run(uint64_t us) {
     for (uint64_t end = nowUs + us; nowUs < end; nowUs += 100) {
-      nano.advance(static_cast<uint32_t>(nowUs));
+      nano.advance(nowUs);
       const bool atRest = rig.engine.idle();
       machine.poll(static_cast<uint32_t>(nowUs));
       // The first move after an exposure, a job's next stop: the board's CPU plans the stop and
@@ -203,7 +203,7 @@ class MegaRig {
       for (const uint64_t until = (nowUs + 100) * 2;;) {
         rig.isrUntil(gAt_ && gAt_ < until ? gAt_ : until);
         if (gAt_ && rig.now >= gAt_) {
-          nano.advance(static_cast<uint32_t>(gAt_ / 2));
+          nano.advance(gAt_ / 2);
           nano.arrived("G\n", 2);
           gAt_ = 0;
         }

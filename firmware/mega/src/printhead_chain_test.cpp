@@ -130,7 +130,7 @@ TEST_F(Chain, LoadsTwoProgramsThenTheRestWhileItRunsAndTheLightFollowsTheEvents)
   EXPECT_GE(sealed, 5);
   // Every LED's light against the events.
   for (uint8_t k = 0; k < 4; k++) {
-    std::vector<std::pair<uint32_t, uint32_t>> want, got;
+    std::vector<std::pair<uint64_t, uint64_t>> want, got;
     bool on = false;
     uint32_t since = 0;
     for (auto& e : events) {
