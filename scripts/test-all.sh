@@ -26,9 +26,10 @@ stage() {
 }
 
 stage "The simulated printer's module (printer.wasm) is what the firmware's sources build, byte for byte" bash scripts/build-wasm.sh --check
+# The AVR images first: Vitest reads them too (the flasher's chip and HEX checks on the real images).
+stage "AVR firmware images and budgets" bash scripts/test-firmware.sh images
 stage "TypeScript unit tests (Vitest)" npm run --silent test:unit
 stage "Type check (svelte-check)" npm run --silent check
-stage "AVR firmware images and budgets" bash scripts/test-firmware.sh images
 stage "C++ host and simavr tests (CMake, GoogleTest)" bash scripts/test-firmware.sh host
 stage "avrdude flashes and verifies each board through the bootloader rig (the rig's referee)" bash scripts/test-firmware.sh avrdude
 stage "C++ tests under ASan and UBSan (clang)" bash scripts/fuzz.sh --tests
