@@ -165,9 +165,7 @@ export class Printer {
     if (!this.#link) throw new Error('not connected');
     this.log.add(line, 'sent');
     this.logRevision++;
-    const homing = /^G28\b/i.test(line);
     const work = lineWork(line);
-    if (homing) this.homing++;
     if (work) this[work]++;
     try {
       const replies = await this.#link.command(line);
@@ -178,7 +176,6 @@ export class Printer {
       if (e instanceof CommandError && e.code === 14) this.homed = false;
       throw e;
     } finally {
-      if (homing) this.homing--;
       if (work) this[work]--;
     }
   }

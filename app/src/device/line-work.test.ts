@@ -1,9 +1,11 @@
-// The lines that count as the probe's work or as changing settings, and those that do not.
+// The lines that count as homing, the probe's work or changing settings, and those that do not.
 import { describe, expect, it } from 'vitest';
 import { lineWork } from './line-work';
 
 describe('lineWork', () => {
   it.each([
+    ['G28', 'homing'],
+    ['g28 X', 'homing'],
     ['G29 X3 Y3', 'probing'],
     ['g30', 'probing'],
     ['M401', 'probing'],
@@ -15,5 +17,5 @@ describe('lineWork', () => {
     ['M502', 'configuring'],
   ] as const)('%s is %s', (line, work) => expect(lineWork(line)).toBe(work));
 
-  it.each(['M850 speed.travel', 'M503', 'G28', 'G1 X10', 'M4010', 'G290', 'M105', 'M5000'])('%s is neither', (line) => expect(lineWork(line)).toBeNull());
+  it.each(['M850 speed.travel', 'M503', 'G280', 'G1 X10', 'M4010', 'G290', 'M105', 'M5000'])('%s is neither', (line) => expect(lineWork(line)).toBeNull());
 });
