@@ -24,3 +24,12 @@ describe('MD5', () => {
     expect(md5Hex(big)).toBe(createHash('md5').update(big).digest('hex'));
   });
 });
+
+describe('MD5 of a part of a larger buffer', () => {
+  it('hashes only the view, not the buffer behind it', () => {
+    const bundle = Uint8Array.from({ length: 4096 }, (_, i) => (i * 13) & 0xff);
+    const part = bundle.subarray(1000, 3000);
+    expect(md5Hex(part)).toBe(createHash('md5').update(part).digest('hex'));
+    expect(md5Hex(part)).not.toBe(md5Hex(bundle));
+  });
+});
