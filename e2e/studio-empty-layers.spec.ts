@@ -34,7 +34,7 @@ test('a copper layer that draws nothing stays a problem, with the normal empty l
   ]);
   const problems = page.getByRole('status', { name: 'Import problems' });
   await expect(problems.getByRole('listitem')).toHaveText(['demo-In1_Cu.gbr: the Gerber file draws nothing'], { timeout: 20_000 });
-  await expect(problems).toContainText('Empty, as is normal for their kind: demo-NPTH.drl (no holes).');
+  await expect(problems).toContainText('Empty, as is normal for its kind: demo-NPTH.drl (no holes).');
   expect(await problems.evaluate((e) => getComputedStyle(e).color)).toBe('rgb(179, 38, 30)');
   await page.screenshot({ path: info.outputPath('empty-copper-problem.png') });
 });
