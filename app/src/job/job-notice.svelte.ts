@@ -1,5 +1,5 @@
 // Follows the printer's job and tells its end where a person away from the screen sees it: the
-// page's title (until the page is looked at again) and a desktop notification, if allowed.
+// page's title (as long as the job's line shows the end) and a desktop notification, if allowed.
 
 import type { Printer } from '../device/connection.svelte';
 import type { JobProgress } from '../device/device-state';

@@ -11,9 +11,14 @@ describe('the end of a job', () => {
     expect(jobEnd({ state: 'done' }, { state: 'done' })).toBeNull(); // a report repeated
     expect(jobEnd(null, { state: 'done' })).toBeNull(); // connecting to a printer that finished earlier
   });
-  it('names the page: progress, then the end until seen', () => {
+  it('names the page: progress, then the end while the job shows it, seen or not', () => {
     expect(pageTitle(running, null)).toBe('25 % exposing · UV Exposure');
     expect(pageTitle({ state: 'done' }, 'Job done')).toBe('Job done · UV Exposure');
+    expect(pageTitle({ state: 'done' }, null)).toBe('Job done · UV Exposure'); // looked at: still said, as the job's line says it
+    expect(pageTitle({ state: 'aborted', stop: 3, stops: 8 }, null)).toBe('Job stopped · UV Exposure');
+    expect(pageTitle({ state: 'failed', reason: 'thermal' }, null)).toBe('Job failed · UV Exposure');
+    expect(pageTitle(null, 'Job done')).toBe('Job done · UV Exposure'); // disconnected before it was seen
+    expect(pageTitle({ state: 'paused', stop: 3, stops: 8 }, null)).toBe('Paused · UV Exposure');
     expect(pageTitle(null, null)).toBe('UV Exposure');
   });
 });

@@ -15,8 +15,12 @@ export function jobEnd(prev: JobProgress | null, next: JobProgress | null): { ti
   return { title: ENDED[next.state], body: `${next.file ?? 'The job'}: ${next.state}${why}${where ? `, ${where}` : ''}.` };
 }
 
-/** The page's title: progress while a job runs, its end until the user looks, else the app's name. */
+/**
+ * The page's title: progress while a job runs; its end as long as the job's line shows it (until the
+ * next job), or, with the job gone (the printer disconnected), until the user looks; else the app's name.
+ */
 export function pageTitle(job: JobProgress | null, ended: string | null): string {
+  if (job && job.state in ENDED) return `${ENDED[job.state]} · ${APP_TITLE}`;
   if (ended) return `${ended} · ${APP_TITLE}`;
   if (job?.state === 'running' && job.stops) return `${Math.floor(((job.stop ?? 0) / job.stops) * 100)} % exposing · ${APP_TITLE}`;
   if (job?.state === 'paused') return `Paused · ${APP_TITLE}`;

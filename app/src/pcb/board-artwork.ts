@@ -61,7 +61,7 @@ export function boardArtwork(src: string): BoardArtwork {
   const files = boardFiles(src);
   const set = readBoard(files);
   const windowMm = boardBounds(set);
-  if (isEmptyBox(windowMm)) throw new BoardUnreadable(problemsByFile(set.problems));
+  if (isEmptyBox(windowMm)) throw new BoardUnreadable(problemsByFile([...set.problems, ...set.notes]));
   const kept = new Map<string, Uint8Array>();
   const names = files.map((f) => f.name);
   return {
@@ -90,7 +90,7 @@ function coverOf(set: BoardSet, names: string[], windowMm: BoxMm, w: number, h: 
     expose.push(MARKS_FILE);
   }
   const pitchUm = { x: ((windowMm.x1 - windowMm.x0) * 1000) / w, y: ((windowMm.y1 - windowMm.y0) * 1000) / h };
-  const r = rasteriseBoard({ layers, problems: set.problems }, { expose, pitchUm, windowMm, drillClear: look.drillClear });
+  const r = rasteriseBoard({ layers, problems: set.problems, notes: set.notes }, { expose, pitchUm, windowMm, drillClear: look.drillClear });
   const values = new Uint8Array(w * h).fill(255);
   // Rounding may give a column or row more than asked: it lies past the window and is left out.
   for (let y = 0; y < Math.min(h, r.rows); y++)

@@ -47,7 +47,7 @@ describe('orienting a board before rasterising', () => {
   it('turns drill holes with the copper, so the dots stay on the pads', () => {
     const drill = 'M48\nMETRIC\nT1C0.8\n%\nT1\nX1.0Y2.0\nM30\n';
     const pad = gerber(`%ADD10C,1.6*%\nD10*\n${at(1, 2)}D03*`);
-    const set = { layers: [...boardOf(pad, 'b-F_Cu.gbr').layers, ...boardOf(drill, 'b.drl').layers], problems: [] };
+    const set = { layers: [...boardOf(pad, 'b-F_Cu.gbr').layers, ...boardOf(drill, 'b.drl').layers], problems: [], notes: [] };
     const r = rasteriseBoard(set, { expose: ['copper-top'], pitchUm: { x: 50, y: 50 }, threshold: 0.5, drillClear: 'unexposed-dot', drillDotMm: 0.3, orient: { rotateDeg: 37 } });
     // The pad's centre after the turn is where the window's middle is: unexposed there, exposed beside.
     const mid = Math.floor(r.rows / 2) * r.cols + Math.floor(r.cols / 2);

@@ -234,7 +234,7 @@ describe('the grid', () => {
     const set = boardOf(gerber(`%ADD10R,1X1*%\nD10*\n${at(0.5, 0.5)}D03*`), 'board-F_Cu.gbr');
     expect(count(rasteriseBoard(set, { expose: ['copper-bottom'], pitchUm: { x: 100, y: 100 }, threshold: 0.5 }))).toBe(0);
     expect(count(rasteriseBoard(set, { expose: ['board-F_Cu.gbr'], pitchUm: { x: 100, y: 100 }, threshold: 0.5 }))).toBe(100);
-    expect(rasteriseBoard({ layers: [], problems: [] }, { expose: [], pitchUm: { x: 50, y: 50 }, threshold: 0.5 }).cells.length).toBe(0);
+    expect(rasteriseBoard({ layers: [], problems: [], notes: [] }, { expose: [], pitchUm: { x: 50, y: 50 }, threshold: 0.5 }).cells.length).toBe(0);
     expect(() => rasteriseBoard(set, { expose: [], pitchUm: { x: 0, y: 50 }, threshold: 0.5 })).toThrow(RangeError);
   });
 

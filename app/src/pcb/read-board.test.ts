@@ -155,13 +155,34 @@ describe('what cannot be used is a problem, never a throw or a silent empty laye
     ['prose', 'Hello,\nthis is a README.\n', 'not a Gerber or Excellon drill file'],
     ['a binary file', '\x00\x01\x02PK\x03\x04 zip', 'not a Gerber or Excellon drill file: it is not text'],
     ['a Gerber file of comments only', gerber('G04 nothing here*'), 'the Gerber file draws nothing'],
-    ['a drill file with tools and no holes', 'M48\nMETRIC\nT1C0.8\n%\nM30\n', 'the drill file has no holes'],
     ['a macro primitive the library does not know', gerber(`%AMODD*\n99,1,2*%\n%ADD10ODD,1*%\nD10*\n${at(0, 0)}D03*`), 'could not be read: '],
   ])('%s', (_, text, message) => {
     const set = one(text);
     expect(set.layers).toEqual([]);
     expect(set.problems).toHaveLength(1);
     expect(set.problems[0].message).toContain(message);
+  });
+
+  it('a layer that draws nothing, as is normal for its kind, is a quiet note; copper or an outline that draws nothing is a problem', () => {
+    const emptyPaste = gerber('%TF.FileFunction,Paste,Bot*%\nG04 APERTURE LIST*\nG04 APERTURE END LIST*');
+    for (const [name, text] of [
+      ['board-B_Paste.gbr', emptyPaste],
+      ['board-B_Silkscreen.gbr', gerber('G04 nothing here*')],
+      ['board-NPTH.drl', 'M48\nMETRIC\nT1C0.8\n%\nM30\n'],
+      ['board.gbr', emptyPaste], // the attribute says paste, whatever the name
+    ]) {
+      const set = one(text, name);
+      expect([set.layers, set.problems], name).toEqual([[], []]);
+      expect(set.notes.map((n) => n.message), name).toEqual([name.endsWith('.drl') ? 'the drill file has no holes' : 'the Gerber file draws nothing']);
+    }
+    for (const name of ['board-F_Cu.gbr', 'board-Edge_Cuts.gbr', 'board.gbr']) {
+      const set = one(gerber('G04 nothing here*'), name);
+      expect([set.problems.map((p) => p.message), set.notes], name).toEqual([['the Gerber file draws nothing'], []]);
+    }
+    // Something there that could not be drawn is a problem whatever the kind.
+    const lost = one(gerber('%ADD11NOSUCHMACRO*%\nD11*\nX0Y0D03*'), 'board-B_Paste.gbr');
+    expect(lost.notes).toEqual([]);
+    expect(lost.problems.map((p) => p.message)).toContain('the Gerber file draws nothing');
   });
 
   it('keeps a layer but says what was left out or not applied', () => {
@@ -189,7 +210,7 @@ describe('what cannot be used is a problem, never a throw or a silent empty laye
       fc.property(fc.array(fc.constantFrom(...pieces), { maxLength: 30 }), fc.string(), (lines, noise) => {
         const set = one(lines.join('\n') + noise);
         for (const l of set.layers) expect(l.paints.length).toBeGreaterThan(0);
-        expect(set.layers.length + set.problems.length).toBeGreaterThan(0);
+        expect(set.layers.length + set.problems.length + set.notes.length).toBeGreaterThan(0);
       }),
       { numRuns: 300 },
     );

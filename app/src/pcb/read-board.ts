@@ -32,6 +32,8 @@ export interface BoardProblem {
 export interface BoardSet {
   layers: BoardLayer[];
   problems: BoardProblem[];
+  /** Files that draw nothing, as is normal for their kind (KiCad writes an empty paste layer or NPTH.drl): said quietly, not as problems. */
+  notes: BoardProblem[];
 }
 
 export interface BoardFile {
@@ -62,9 +64,11 @@ export function readBoard(files: readonly BoardFile[]): BoardSet {
   const kinds = guessKinds(files);
   const read: { layer: BoardLayer; copperLike: boolean }[] = [];
   const problems: BoardProblem[] = [];
+  const notes: BoardProblem[] = [];
   files.forEach((f, i) => {
     const said = (message: string) => problems.push({ file: f.name, message });
-    const layer = readLayer(f, kinds[i], said);
+    const noted = (message: string) => notes.push({ file: f.name, message });
+    const layer = readLayer(f, kinds[i], said, noted);
     if (layer) read.push(layer);
   });
   // No file says it is copper: the first that draws as copper does is taken for the top copper.
@@ -72,10 +76,10 @@ export function readBoard(files: readonly BoardFile[]): BoardSet {
     const copper = read.find((r) => r.copperLike && r.layer.kindFrom === 'none');
     if (copper) Object.assign(copper.layer, { kind: 'copper-top', kindFrom: 'content' });
   }
-  return { layers: read.map((r) => r.layer), problems };
+  return { layers: read.map((r) => r.layer), problems, notes };
 }
 
-function readLayer(f: BoardFile, guess: KindGuess, problem: (message: string) => void): { layer: BoardLayer; copperLike: boolean } | null {
+function readLayer(f: BoardFile, guess: KindGuess, problem: (message: string) => void, note: (message: string) => void): { layer: BoardLayer; copperLike: boolean } | null {
   if (f.text.trim() === '') return problem('the file is empty'), null;
   if (/[\0-\x08\x0e-\x1f]/.test(f.text.slice(0, 4096))) return problem('not a Gerber or Excellon drill file: it is not text'), null;
   const type = fileType(f.text);
@@ -90,7 +94,8 @@ function readLayer(f: BoardFile, guess: KindGuess, problem: (message: string) =>
     if (art.malformed) lost.push(`${art.malformed} shape${art.malformed > 1 ? 's' : ''} with a size or place that is not a number left out`);
     if (art.paints.length === 0 || isEmptyBox(art.boundsMm)) {
       for (const message of lost) problem(message);
-      return problem(format === 'excellon' ? 'the drill file has no holes' : 'the Gerber file draws nothing'), null;
+      const empty = format === 'excellon' ? 'the drill file has no holes' : 'the Gerber file draws nothing';
+      return (lost.length === 0 && emptyIsNormal(format === 'excellon' ? 'drill' : guess.kind) ? note : problem)(empty), null;
     }
     const notes: string[] = [];
     if (art.hairlines) notes.push(`${art.hairlines} draw${art.hairlines > 1 ? 's' : ''} with a zero-width aperture: hairlines expose nothing`);
@@ -117,6 +122,13 @@ function readLayer(f: BoardFile, guess: KindGuess, problem: (message: string) =>
     return problem(`could not be read: ${e instanceof Error ? e.message : String(e)}`), null;
   }
 }
+
+/**
+ * A CAD tool writes every layer it is asked for, drawn or not: a board with no parts underneath has an
+ * empty bottom paste, silk or mask, one with no unplated holes an empty NPTH drill file. A copper layer,
+ * an outline or a file of no known kind that draws nothing is a real problem.
+ */
+const emptyIsNormal = (kind: LayerKind): boolean => kind === 'drill' || /^(paste|silk|mask)-/.test(kind);
 
 /** The library counts lines from 0. */
 const lineOf = (w: LibraryWarning) => `line ${w.line + 1}: ${w.message}`;

@@ -23,6 +23,8 @@ export type Tool = 'brush' | 'eraser' | 'line' | 'rect' | 'rect-filled' | 'fill'
 
 /** How near a corner handle, in screen pixels, a press takes it. */
 const HANDLE = 8;
+/** How far apart an import is placed from the objects already there, where the bed has room: two outlines edge to edge read as one. */
+const PLACED_APART_MM = 2;
 
 export interface Machine {
   bedMm: { x: number; y: number };
@@ -102,7 +104,7 @@ export class GridEditor {
   freeBox(w: number, h: number): Rect {
     const a = toCell(this.view, RULER, RULER), b = toCell(this.view, this.screen.width, this.screen.height);
     const visible = { x: Math.ceil(a.x), y: Math.ceil(a.y), w: Math.floor(b.x - a.x), h: Math.floor(b.y - a.y) };
-    const box = freePlace(this.layer.objects, w, h, visible, this.grid.cols, this.grid.rows);
+    const box = freePlace(this.layer.objects, w, h, visible, this.grid.cols, this.grid.rows, { x: this.cells(PLACED_APART_MM, 'x'), y: this.cells(PLACED_APART_MM, 'y') });
     const shown = box.x >= visible.x && box.y >= visible.y && box.x + box.w <= visible.x + visible.w && box.y + box.h <= visible.y + visible.h;
     if (!shown) {
       const at = toScreen(this.view, box.x + box.w / 2, box.y + box.h / 2);

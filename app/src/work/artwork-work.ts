@@ -44,7 +44,7 @@ function boardOf(src: string, report: Report) {
     const layer = board.set.layers.find((l) => l.file === file);
     return { file, kind: layer?.kind ?? 'other', from: layer?.kindFrom ?? ('unread' as const) };
   });
-  return keep(src, { artwork, lineArt: true, board: { src, pixels: artwork.pixels, kinds, problems: problemsByFile(board.set.problems) } });
+  return keep(src, { artwork, lineArt: true, board: { src, pixels: artwork.pixels, kinds, problems: problemsByFile(board.set.problems), notes: problemsByFile(board.set.notes) } });
 }
 
 export async function readPicture(src: string, report: Report): Promise<PictureRead> {

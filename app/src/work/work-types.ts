@@ -56,6 +56,8 @@ export interface BoardRead {
   /** Each file's kind as guessed, in the files' order; a file with nothing read is 'other', 'unread'. */
   kinds: { file: string; kind: LayerKind; from: KindSource | 'unread' }[];
   problems: FileProblems[];
+  /** Files that draw nothing, as is normal for their kind (an empty paste layer, an NPTH.drl with no holes). */
+  notes: FileProblems[];
 }
 
 export interface DryRunSummary {

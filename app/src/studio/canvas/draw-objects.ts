@@ -81,7 +81,8 @@ export function drawObjects(ctx: CanvasRenderingContext2D, v: View, layer: Objec
       ctx.strokeStyle = '#2b1d4f44';
       ctx.setLineDash([2, 3]);
     }
-    ctx.strokeRect(Math.round(at.x) + 0.5, Math.round(at.y) + 0.5, Math.round(w), Math.round(h));
+    // On the box's own outermost pixels, all four sides: two boxes edge to edge show two lines, not one on their shared edge.
+    ctx.strokeRect(Math.round(at.x) + 0.5, Math.round(at.y) + 0.5, Math.max(0, Math.round(w) - 1), Math.max(0, Math.round(h) - 1));
     ctx.restore();
   }
   sprites.keepOnly(layer.objects);

@@ -31,6 +31,8 @@ export interface ImportedArtwork {
   board?: NewBoardFields;
   /** A board's files that could not be read, or not wholly, and why, one entry a file: the rest is placed. */
   problems?: FileProblems[];
+  /** A board's files that draw nothing, as is normal for their kind: said quietly, one entry a file. */
+  notes?: FileProblems[];
 }
 
 const INCH_MM = 25.4;
@@ -54,7 +56,7 @@ export async function importBoard(files: readonly File[], opts?: CallOptions): P
   const texts = await Promise.all(files.map(async (f) => ({ name: f.name, text: await f.text() })));
   const board = await readBoard({ files: texts }, opts); // refused when nothing in the files draws
   const mm = { x: board.pixels.width / 1000, y: board.pixels.height / 1000 };
-  return { kind: 'board', name: boardName(texts.map((t) => t.name)), src: board.src, artwork: remoteArtwork(board.pixels), sizeMm: mm, dpi: null, lineArt: true, board: newBoardFields(board.kinds), problems: board.problems };
+  return { kind: 'board', name: boardName(texts.map((t) => t.name)), src: board.src, artwork: remoteArtwork(board.pixels), sizeMm: mm, dpi: null, lineArt: true, board: newBoardFields(board.kinds), problems: board.problems, notes: board.notes };
 }
 
 /** What the files' names share (KiCad's "board-F_Cu.gbr", "board-PTH.drl": "board"), else the first name. */

@@ -22,6 +22,16 @@ describe('where a new object goes', () => {
       taken.push(r);
     }
   });
+  it('keeps a gap from the others where there is room, and goes edge to edge only where there is not', () => {
+    const gap = { x: 40, y: 40 };
+    const first = freePlace([], 400, 300, view, bed.cols, bed.rows, gap);
+    const second = freePlace([first], 400, 300, view, bed.cols, bed.rows, gap);
+    const apart = Math.max(second.x - (first.x + first.w), first.x - (second.x + second.w), second.y - (first.y + first.h), first.y - (second.y + second.h));
+    expect(apart).toBe(40);
+    // A bed with room for the box only edge to edge beside the one there: it goes there.
+    const narrow = { x: 0, y: 0, w: 700, h: 300 };
+    expect(freePlace([{ x: 0, y: 0, w: 300, h: 300 }], 400, 300, narrow, 700, 300, gap)).toEqual({ x: 300, y: 0, w: 400, h: 300 });
+  });
   it('with no room left, covers the least and starts on no other object', () => {
     const full = [{ x: 0, y: 0, w: 4000, h: 4000 }];
     const first = freePlace(full, 400, 300, view, bed.cols, bed.rows);

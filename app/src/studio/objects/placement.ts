@@ -1,5 +1,5 @@
 // Where a new object goes when the pointer did not say (an imported picture): in view and free of
-// every object already there; else free elsewhere on the bed; else where it covers the least of them.
+// every object already there, a gap apart where there is room; else free elsewhere on the bed; else where it covers the least of them.
 
 import type { Rect } from './objects';
 
@@ -32,9 +32,10 @@ function starts(taken: readonly Rect[], w: number, h: number, area: Rect, middle
  * A w × h box on the cols × rows bed, nearest the middle of `visible` (what the canvas shows, in
  * cells): free of every object in `taken` and in view; else free anywhere on the bed; else, with
  * no free room left, in view where it covers the least of the others and starts on none of them,
- * so no two lie exactly one on the other.
+ * so no two lie exactly one on the other. Where there is room it keeps `gap` cells from the others:
+ * two boxes edge to edge drew their outlines as one line, and which board ended where was lost.
  */
-export function freePlace(taken: readonly Rect[], w: number, h: number, visible: Rect, cols: number, rows: number): Rect {
+export function freePlace(taken: readonly Rect[], w: number, h: number, visible: Rect, cols: number, rows: number, gap = { x: 0, y: 0 }): Rect {
   w = Math.min(w, cols);
   h = Math.min(h, rows);
   const clampX = (x: number) => Math.max(0, Math.min(cols - w, Math.round(x)));
@@ -49,10 +50,14 @@ export function freePlace(taken: readonly Rect[], w: number, h: number, visible:
   const dist = (r: Rect) => (r.x + w / 2 - cx) ** 2 + (r.y + h / 2 - cy) ** 2;
   const nearest = (rs: Rect[]) => rs.reduce<Rect | null>((best, r) => (!best || dist(r) < dist(best) ? r : best), null);
 
-  const inView = [middle, ...starts(taken, w, h, view, middle)];
-  const free = (r: Rect) => !taken.some((t) => overlaps(r, t));
-  const place = nearest(inView.filter(free)) ?? nearest(starts(taken, w, h, bed, middle).filter(free));
+  const freeOf = (around: readonly Rect[]) => {
+    const free = (r: Rect) => !around.some((t) => overlaps(r, t));
+    return nearest([middle, ...starts(around, w, h, view, middle)].filter(free)) ?? nearest(starts(around, w, h, bed, middle).filter(free));
+  };
+  const apart = taken.map((t) => ({ x: t.x - gap.x, y: t.y - gap.y, w: t.w + 2 * gap.x, h: t.h + 2 * gap.y }));
+  const place = freeOf(apart) ?? freeOf(taken);
   if (place) return place;
+  const inView = [middle, ...starts(taken, w, h, view, middle)];
   // No free room: in view, covering the least, and never starting where another object starts.
   const cover = (r: Rect) => taken.reduce((sum, t) => sum + overlapArea(r, t), 0);
   const startsOnOne = (r: Rect) => taken.some((t) => t.x === r.x && t.y === r.y);
