@@ -177,10 +177,14 @@ describe('what cannot be used is a problem, never a throw or a silent empty laye
     expect(one(gerber(`%OFA1.0B0*%\n%ADD10C,1*%\nD10*\n${at(0, 0)}D03*`)).problems.map((p) => p.message)).toEqual(['image offset (%OF) is not applied']);
   });
 
-  it('notes draws with a zero-width aperture, which expose nothing', () => {
-    const set = one(gerber(`%ADD10C,0*%\n%ADD11C,1*%\nD10*\n${at(0, 0)}D02*\n${at(5, 0)}D01*\nD11*\n${at(0, 0)}D03*`));
-    expect(set.problems).toEqual([]);
-    expect(set.layers[0].notes).toContain('1 draw with a zero-width aperture: hairlines expose nothing');
+  it('draws a zero-width aperture’s draws 0.1 mm wide, bounded by their centre line, and says so but of an outline', () => {
+    const text = gerber(`%ADD10C,0*%\n%ADD11C,1*%\nD10*\n${at(0, 0)}D02*\n${at(5, 0)}D01*\nD11*\n${at(0, 0)}D03*`);
+    const set = one(text);
+    expect(set.problems.map((p) => p.message)).toEqual(['1 draw with a zero-width aperture, drawn 0.1 mm wide']);
+    expect(set.layers[0].boundsMm).toEqual({ x0: -0.5, y0: -0.5, x1: 5, y1: 0.5 });
+    const outline = one(text, 'board-Edge_Cuts.gbr');
+    expect(outline.problems).toEqual([]);
+    expect(outline.layers[0].notes).toContain('1 draw with a zero-width aperture, drawn 0.1 mm wide');
   });
 
   it('never throws, whatever the text', () => {
