@@ -21,6 +21,8 @@ export interface BoardTruth {
   kinds: Record<string, LayerKind>;
   /** Files that draw nothing (an empty silk or paste layer), and what they would have been. */
   empty: Record<string, LayerKind>;
+  /** Files the studio must say something of (a part of them it draws differently from the file), and a phrase its words hold. */
+  said: Record<string, string>;
   /** The outline file, and its size as gerbv draws it (stroke included). */
   outline: { file: string; widthMm: number; heightMm: number };
   /**
