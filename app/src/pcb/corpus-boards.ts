@@ -75,8 +75,13 @@ export function namesSayingNothing(files: readonly BoardFile[]): { files: BoardF
   return { files: renamed, realName };
 }
 
-/** Our cells of one layer against gerbv's, on a 0.1 mm grid half a millimetre around the layer's artwork. */
-export function copperAgainstGerbv(set: BoardSet, layer: BoardLayer, path: string, pitchUm: number): Agreement & { cols: number; rows: number } {
+/**
+ * Our cells of one layer against gerbv's, on a 0.1 mm grid half a millimetre around the layer's artwork.
+ * `acrossOurEdge`: cells that differ away from gerbv's edges although an edge of the artwork crosses them (our
+ * coverage is partial): a notch or gap narrower than a cell that gerbv, lighting whole pixels, fills or drops.
+ * `unexplained`: cells that differ with no edge near, gerbv's or the artwork's.
+ */
+export function copperAgainstGerbv(set: BoardSet, layer: BoardLayer, path: string, pitchUm: number): Agreement & { cols: number; rows: number; acrossOurEdge: number; unexplained: number } {
   const p = pitchUm / 1000;
   const x0 = Math.floor(layer.boundsMm.x0 * 10) / 10 - 0.5;
   const y0 = Math.floor(layer.boundsMm.y0 * 10) / 10 - 0.5;
@@ -84,7 +89,38 @@ export function copperAgainstGerbv(set: BoardSet, layer: BoardLayer, path: strin
   const rows = Math.ceil((layer.boundsMm.y1 + 0.5 - y0) / p);
   const ours = rasteriseBoard(set, { expose: [layer.file], pitchUm: { x: pitchUm, y: pitchUm }, threshold: 0.5, windowMm: { x0, y0, x1: x0 + cols * p, y1: y0 + rows * p } });
   const theirs = gerbvCells(path, { cols, rows, x0, y0, pitchMm: p });
-  return { ...agreement(ours.cells, theirs, cols, rows), cols, rows };
+  let acrossOurEdge = 0;
+  let unexplained = 0;
+  for (const i of differingOffEdges(ours.cells, theirs, cols, rows)) {
+    const c = ours.coverage[i];
+    if (c > PARTIAL && c < 1 - PARTIAL) acrossOurEdge++;
+    else unexplained++;
+  }
+  return { ...agreement(ours.cells, theirs, cols, rows), cols, rows, acrossOurEdge, unexplained };
+}
+
+/** Coverage this far from 0 or 1 means an edge of the artwork crosses the cell, not rounding. */
+const PARTIAL = 0.01;
+
+/** Cells that differ whose 3 × 3 neighbourhood in gerbv's picture is all one value (as `agreement` counts them). */
+function differingOffEdges(ours: Uint8Array, theirs: Uint8Array, cols: number, rows: number): number[] {
+  const found: number[] = [];
+  for (let r = 0; r < rows; r++) {
+    for (let c = 0; c < cols; c++) {
+      const i = r * cols + c;
+      if (ours[i] === theirs[i]) continue;
+      let edge = false;
+      for (let dr = -1; dr <= 1 && !edge; dr++) {
+        for (let dc = -1; dc <= 1 && !edge; dc++) {
+          const rr = r + dr;
+          const cc = c + dc;
+          if (rr >= 0 && rr < rows && cc >= 0 && cc < cols && theirs[rr * cols + cc] !== theirs[i]) edge = true;
+        }
+      }
+      if (!edge) found.push(i);
+    }
+  }
+  return found;
 }
 
 /** gerbv's holes of every drill file in the set, against ours. */
