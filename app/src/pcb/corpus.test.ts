@@ -2,13 +2,14 @@
 import { afterAll, describe, expect, it } from 'vitest';
 import { boardArtwork, boardSrc } from './board-artwork';
 import { copperAgainstGerbv, copperFile, corpusBoards, dotsPastHoles, holesAgainstGerbv, holesBySize, namesSayingNothing, onPad } from './corpus-boards';
+import { BOARD_EXTENSIONS } from '../studio/objects/import-accept';
 import { hasGerbv } from './gerbv-reference';
 import { readBoard } from './read-board';
 
 const PITCH_UM = 50;
 /** The object's size against the outline's. */
 const SIZE_TOLERANCE_MM = 0.05;
-/** Cells agreeing with gerbv over the copper's window; the rest must all lie on gerbv's edges. */
+/** Cells agreeing with gerbv over the copper's window; the rest must all lie on an edge, gerbv's or the artwork's. */
 const MIN_AGREEMENT = 0.96;
 /** gerbv writes holes to four decimals of an inch (2.5 µm) and tool sizes to three (12.7 µm). */
 const HOLE_TOLERANCE_MM = 0.005;
@@ -50,6 +51,11 @@ describe('the corpus of real boards', () => {
       const said = set.problems.filter((p) => !(p.file in truth.empty));
       expect([...new Set(said.map((p) => p.file))].sort(), 'files the studio says something of').toEqual(Object.keys(truth.said).sort());
       for (const p of said) expect(p.message, p.file).toContain(truth.said[p.file]);
+    });
+
+    it('is offered whole by the import’s file picker', () => {
+      const hidden = files.map((f) => f.name).filter((name) => !BOARD_EXTENSIONS.includes(name.split('.').pop()!.toLowerCase()));
+      expect(hidden, 'files the picker hides until the user asks for all files').toEqual([]);
     });
 
     it('makes an object the size of the board’s outline', () => {
