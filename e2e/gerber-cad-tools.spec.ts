@@ -1,5 +1,5 @@
 // Issue 40: board sets as EasyEDA Pro, DipTrace and Eagle write them, a set whose heads contradict its names,
-// numbered files and a Gerber 2016 block aperture (hand-written in e2e/fixtures/pcb/cad-tools/, modelled on
+// numbered files and Gerber 2016 block apertures (hand-written in e2e/fixtures/pcb/cad-tools/, modelled on
 // each tool's output), picked through the file picker. The panel shows the board's true size (from its outline,
 // never from drawing layers), the layer exposed, the outline offered as a cutting guide, and what was guessed.
 import { expect, test, type Page } from '@playwright/test';
@@ -79,12 +79,12 @@ test('a file’s head beats its name; numbered files find their top copper and s
   await page.screenshot({ path: info.outputPath('numbered.png') });
 });
 
-test('a Gerber 2016 block aperture is refused by name, and the rest of the board placed', async ({ page }, info) => {
+test('a Gerber 2016 block aperture is drawn where it is flashed, with nothing to say', async ({ page }, info) => {
   test.setTimeout(120_000);
   await openStudio(page);
   await pick(page, 'block-aperture', 'panel');
-  await expect(problems(page)).toContainText('panel-F_Cu.gbr: block apertures (%AB, Gerber 2016) are not supported');
-  await expect(problems(page)).not.toContainText('RangeError');
+  await expectLayers(page, { 'panel-F_Cu.gbr': ['copper-top', true], 'panel-Edge_Cuts.gbr': ['outline', false] });
+  await expect(problems(page)).toHaveCount(0); // no "tool 12 is not defined", no RangeError
   expect(await sizeShown(page)).toEqual({ w: 15.1, h: 15.1 });
-  await problems(page).screenshot({ path: info.outputPath('block-aperture.png') });
+  await page.getByRole('region', { name: 'Drawing' }).screenshot({ path: info.outputPath('block-aperture.png') });
 });

@@ -1,11 +1,13 @@
 // Issue 40: board sets as each CAD tool writes them (hand-written in e2e/fixtures/pcb/cad-tools/, modelled on
 // the tools' own output): the window comes from the outline, zero-width outlines are drawn, a file's head beats
 // its name, numbered files find their top copper, block apertures are refused by name, impossible arcs are said.
-import { readdirSync, readFileSync } from 'node:fs';
+import { mkdtempSync, readdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { describe, expect, it } from 'vitest';
 import { boardArtwork, boardSrc, boardWindow } from './board-artwork';
 import { HAIRLINE_MM } from './plot-to-artwork';
+import { agreement, gerbvCells, hasGerbv } from './gerbv-reference';
 import { rasteriseBoard } from './rasterise';
 import { readBoard } from './read-board';
 import { at, gerber } from './test-boards';
@@ -107,11 +109,34 @@ describe('numbered files that say nothing', () => {
 });
 
 describe('block apertures (%AB)', () => {
-  it('are refused by name, the file left out, never a throw', () => {
+  // gerbv 2.9 does not read %AB either (it draws the block's contents once, where they are written): its referee
+  // is the same artwork written out flat, each block's pads and track moved to where it is flashed.
+  const FLAT = gerber(['%ADD10C,0.5*%', '%ADD11R,1.0X1.0*%', ...[5, 10].flatMap((y) => ['D11*', `${at(5, y)}D03*`, `${at(7, y)}D03*`, 'D10*', `${at(5, y)}D02*`, `${at(7, y)}D01*`])].join('\n'));
+
+  it('are drawn where each is flashed, as gerbv draws the same artwork written flat', () => {
     const read = readBoard(set('block-aperture'));
-    expect(read.layers.map((l) => l.file)).toEqual(['panel-Edge_Cuts.gbr']);
-    expect(read.problems).toEqual([{ file: 'panel-F_Cu.gbr', message: expect.stringContaining('block apertures (%AB, Gerber 2016) are not supported') }]);
-    expect(() => boardArtwork(boardSrc(set('block-aperture')))).not.toThrow();
+    expect(read.problems).toEqual([]);
+    const copper = read.layers.find((l) => l.file === 'panel-F_Cu.gbr')!;
+    expect(copper.kind).toBe('copper-top');
+    expect(copper.boundsMm).toEqual({ x0: 4.5, y0: 4.5, x1: 7.5, y1: 10.5 }); // two blocks, each two pads and a track
+    expect(hasGerbv(), 'gerbv is not installed: apt-get install gerbv').toBe(true);
+    const [x0, y0, p, cols, rows] = [0, 0, 0.05, 300, 300];
+    const ours = rasteriseBoard(read, { expose: ['panel-F_Cu.gbr'], pitchUm: { x: 50, y: 50 }, windowMm: { x0, y0, x1: x0 + cols * p, y1: y0 + rows * p } });
+    const dir = mkdtempSync(join(tmpdir(), 'flat-'));
+    writeFileSync(join(dir, 'flat.gbr'), FLAT);
+    const theirs = gerbvCells(join(dir, 'flat.gbr'), { cols, rows, x0, y0, pitchMm: p });
+    rmSync(dir, { recursive: true });
+    const a = agreement(ours.cells, theirs, cols, rows);
+    expect(theirs.reduce((n, v) => n + v, 0)).toBeGreaterThan(1000); // gerbv drew the blocks
+    expect(a.interiorAgree).toBe(a.interior); // every difference lies on an edge
+    expect(a.allAgree / a.all).toBeGreaterThan(0.99);
+  });
+
+  it('a block inside a block is refused by name, never a throw', () => {
+    const nested = gerber(`%ADD10C,1*%\n%ABD12*%\n%ABD13*%\nD10*\n${at(0, 0)}D03*\n%AB*%\n%AB*%\nD12*\n${at(5, 5)}D03*`);
+    const read = readBoard([{ name: 'x-F_Cu.gbr', text: nested }]);
+    expect(read.layers).toEqual([]);
+    expect(read.problems[0].message).toMatch(/block aperture \(%AB\) inside another is not supported/);
   });
 });
 

@@ -78,7 +78,9 @@ export function plotToArtwork(plot: Plot): Artwork {
   for (const o of plot.objects) {
     switch (o.type) {
       case 'shape': {
-        pads.set(o.tool, padShape(o.shape, k));
+        const block = plot.blocks?.get(o.tool);
+        // A block aperture's flash lays its artwork down: its parts dark or clear as the block drew them.
+        pads.set(o.tool, block ? { kind: 'stack', parts: plotToArtwork(block).paints.map((p) => ({ shape: p.shape, clear: p.clear })) } : padShape(o.shape, k));
         const first = o.shape[0];
         if (first?.type === 'circle') diameters.set(o.tool, 2 * first.r * k);
         break;

@@ -42,8 +42,6 @@ export interface BoardFile {
 // Library warnings that mean something in the file was not drawn or was drawn differently from what it says.
 // Selecting tool 0 is how drill files put the tool away (KiCad ends with T0): not a loss.
 const DRAWING_LOST = /not defined|unknown tool|impossible arc|not strokable|cannot draw arc|unrecognized primitive|cannot change tool|flash in region/;
-// Gerber 2016's block apertures: the library skips %AB and draws the block's contents once, where they are not.
-const BLOCK_APERTURE = /%AB/;
 const TOOL_PUT_AWAY = /^tool 0+ is not defined$/;
 // Gerber X2 attributes (%TF, %TA, %TO, %TD) describe, they do not draw: the library skips them, and so do the notes.
 const ATTRIBUTE = /^block "%T[FAOD]\b/;
@@ -129,7 +127,6 @@ function padsWithoutHole(flashes: Float64Array, holes: Set<string>): number {
 
 function readLayer(f: BoardFile, guess: KindGuess, problem: (message: string) => void): Read | null {
   if (f.text.trim() === '') return problem('the file is empty'), null;
-  if (BLOCK_APERTURE.test(f.text)) return problem('block apertures (%AB, Gerber 2016) are not supported: the file is left out, as its pads cannot be drawn where it puts them'), null;
   if (/[\0-\x08\x0e-\x1f]/.test(f.text.slice(0, 4096))) return problem('not a Gerber or Excellon drill file: it is not text'), null;
   const type = fileType(f.text);
   if (!type) return problem('not a Gerber or Excellon drill file: it has no Gerber format or aperture commands, no drill header and no drill coordinates'), null;
