@@ -96,11 +96,13 @@ describe('the corpus of real boards', () => {
       }
     }, 60_000);
 
-    it('with names that say nothing (f01.gbr…), never takes the bottom copper for the top, and believes the files’ headers', () => {
+    it('with names that say nothing (f01.gbr…), takes nothing but the top copper for it, says why when it guessed, and believes the files’ headers', () => {
       const { files: renamed, realName } = namesSayingNothing(files);
       const guessed = readBoard(renamed);
-      const tops = guessed.layers.filter((l) => l.kind === 'copper-top').map((l) => realName.get(l.file));
-      expect(tops, 'taken for the top copper').not.toContain(copperFile(truth, 'bottom'));
+      const tops = guessed.layers.filter((l) => l.kind === 'copper-top');
+      // Exposing the bottom copper unmirrored, or a silk or mask layer, as the top copper spoils a board.
+      expect(tops.map((l) => realName.get(l.file)), 'taken for the top copper').toEqual(tops.length ? [copperFile(truth, 'top')] : []);
+      for (const top of tops.filter((l) => l.kindFrom === 'content')) expect(guessed.problems.map((p) => p.file), 'a guess from what the file draws is said').toContain(top.file);
       if (truth.kindsInHeaders) expect(Object.fromEntries(guessed.layers.map((l) => [realName.get(l.file), l.kind]))).toEqual(truth.kinds);
     });
 
