@@ -5,8 +5,12 @@ import { expect, test } from '@playwright/test';
 import { exposeOf, importBoard, kindOf, openStudio, selected, sizeShown } from './boards';
 import { bedPoint } from './canvas';
 
-/** The assembly drawing's frame, 0.05 to 1.75 in by 0.05 to 1.05 in, drawn 0.005 in wide: all the rest lies inside. */
-const BOARD_MM = { w: 1.705 * 25.4, h: 1.005 * 25.4 };
+/**
+ * The copper's extent, 2.19 to 41.47 mm by 2.19 to 23.69 mm (boardWindow in app/src/pcb/board-artwork.ts prints
+ * it): with no outline, the board is what may be exposed. The assembly drawing's frame (1.705 × 1.005 in) is a
+ * drawing, never exposed, and since issue 40 it no longer sets the size.
+ */
+const BOARD_MM = { w: 41.4655 - 2.19456, h: 23.6855 - 2.19456 };
 
 test('a Veribest board: the drill file adds no hole at the origin, so the board is its copper’s size; its problems one entry a file', async ({ page }, info) => {
   test.setTimeout(90_000);
@@ -22,7 +26,7 @@ test('a Veribest board: the drill file adds no hole at the origin, so the board 
   await problems.screenshot({ path: info.outputPath('import-problems-one-per-file.png') });
   await problems.getByRole('button', { name: 'OK' }).click();
 
-  // 43.3 × 25.5 mm, as gerbv reads it: with a hole at the origin it was 45.5 × 27.7.
+  // 39.3 × 21.5 mm: with a hole at the origin it was 45.5 × 27.7, and with the assembly drawing 43.3 × 25.5.
   const size = await sizeShown(page);
   expect(Math.abs(size.w - BOARD_MM.w), `width ${size.w} mm`).toBeLessThanOrEqual(0.1);
   expect(Math.abs(size.h - BOARD_MM.h), `height ${size.h} mm`).toBeLessThanOrEqual(0.1);

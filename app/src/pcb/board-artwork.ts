@@ -50,17 +50,43 @@ export interface BoardArtwork {
   set: BoardSet;
   /** The files' names in `src` order (a file with a problem has no layer). */
   files: string[];
-  /** Every layer's artwork together: what the object's box shows, at its true size. */
+  /** The board's window (boardWindow): what the object's box shows, at its true size. */
   windowMm: BoxMm;
   /** w × h cells over the window, row 0 at the top: 0 all covered … 255 bare. */
   cover(w: number, h: number, look: BoardLook): { width: number; height: number; values: Uint8Array };
+}
+
+/** How far copper may reach past an outline that still bounds the board (a pad's edge on the board's edge). */
+const OUTLINE_SLACK_MM = 0.5;
+
+const within = (inner: BoxMm, outer: BoxMm, slack: number) =>
+  inner.x0 >= outer.x0 - slack && inner.y0 >= outer.y0 - slack && inner.x1 <= outer.x1 + slack && inner.y1 <= outer.y1 + slack;
+const area = (b: BoxMm) => (b.x1 - b.x0) * (b.y1 - b.y0);
+
+/**
+ * The board's window: what the object spans, is clipped to and measures its marks from. The outline's when
+ * there is one; else what may be exposed (every layer but drawings, kind 'other', which are never exposed
+ * and would stretch it: EasyEDA's drill drawing, DipTrace's dimensions). Of several outlines (an Eagle
+ * dimension layer beside a milling layer, DipTrace's dimensions), the smallest that holds the copper.
+ */
+export function boardWindow(set: BoardSet): BoxMm {
+  const layers = set.layers.filter((l) => !isEmptyBox(l.boundsMm));
+  const boxOf = (ls: readonly BoardLayer[]) => ls.reduce((b, l) => unionBox(b, l.boundsMm), EMPTY_BOX);
+  const exposable = layers.filter((l) => l.kind !== 'other' && l.kind !== 'outline');
+  const copper = boxOf(exposable.filter((l) => l.kind === 'copper-top' || l.kind === 'copper-bottom'));
+  const inside = isEmptyBox(copper) ? boxOf(exposable) : copper;
+  const outlines = layers.filter((l) => l.kind === 'outline').map((l) => l.boundsMm);
+  const holding = isEmptyBox(inside) ? outlines : outlines.filter((o) => within(inside, o, OUTLINE_SLACK_MM));
+  if (holding.length) return holding.reduce((a, b) => (area(b) < area(a) ? b : a));
+  if (outlines.length) return outlines.reduce(unionBox);
+  return isEmptyBox(inside) ? boardBounds(set) : inside;
 }
 
 /** Reads the embedded files; the last few looks are kept, so a change of tone or threshold does not draw the board again. */
 export function boardArtwork(src: string): BoardArtwork {
   const files = boardFiles(src);
   const set = readBoard(files);
-  const windowMm = boardBounds(set);
+  const windowMm = boardWindow(set);
   if (isEmptyBox(windowMm)) throw new BoardUnreadable(problemsByFile([...set.problems, ...set.notes]));
   const kept = new Map<string, Uint8Array>();
   const names = files.map((f) => f.name);

@@ -82,9 +82,10 @@ export function kindFromWords(text: string): LayerKind | null {
   if (DRAWING.test(words)) return 'other';
   const side = sideOf(words);
   // Without a side these are still not copper: 'other', so no guess from what they draw takes them for it.
+  // Paste before mask: EasyEDA calls its paste layer "TopPasteMaskLayer".
+  if (/\b(?:paste|cream|stencil)\b/.test(words)) return side ? `paste-${side}` : 'other';
   if (/\b(?:mask|stop|resist)\b/.test(words)) return side ? `mask-${side}` : 'other';
   if (/\b(?:silk|legend|overlay|sieb)\b/.test(words)) return side ? `silk-${side}` : 'other';
-  if (/\b(?:paste|cream|stencil)\b/.test(words)) return side ? `paste-${side}` : 'other';
   if (/\b(?:outline|profile|edge|edges|contour|dimension)\b/.test(words)) return 'outline';
   if (INNER.test(words)) return 'other';
   if (/\b(?:copper|cop|cu|etch|signal|conductor)\b/.test(words)) return side ? `copper-${side}` : null;
@@ -92,7 +93,10 @@ export function kindFromWords(text: string): LayerKind | null {
   return side ? `copper-${side}` : null;
 }
 
-/** What old CAD tools say of the layer in the file's head: gEDA's title and layer name, Veribest's layer. */
+/**
+ * What CAD tools say of the layer in the file's head: gEDA's title and layer name (%LN), Veribest's, EasyEDA's
+ * and Copper Connection's "G04 Layer: TopSilkscreenLayer".
+ */
 export function kindFromComments(text: string): LayerKind | null {
   const head = text.slice(0, HEAD_CHARS);
   const said = [
@@ -112,9 +116,10 @@ export function kindFromComments(text: string): LayerKind | null {
 const stem = (name: string) => name.replace(/\.[^.]*$/, '');
 
 /**
- * Every file's kind and how it was found: its X2 attribute; a drawing named as such; whats-that-gerber's
- * reading of the whole set's names (KiCad, Protel, Altium, Eagle, OrCAD extensions); the name's words; the
- * CAD tool's comments.
+ * Every file's kind and how it was found: its X2 attribute; the layer its CAD tool names in its head (%LN,
+ * "G04 Layer:"): what a file says of itself beats what it is called ("top.grb" whose head says "top silk");
+ * a drawing named as such; whats-that-gerber's reading of the whole set's names (KiCad, Protel, Altium,
+ * Eagle, OrCAD extensions); the name's words.
  */
 export function guessKinds(files: readonly { name: string; text: string }[]): KindGuess[] {
   let byName: LayerKind[];
@@ -126,12 +131,12 @@ export function guessKinds(files: readonly { name: string; text: string }[]): Ki
   return files.map((f, i) => {
     const attribute = kindFromAttributes(f.text);
     if (attribute) return { kind: attribute, from: 'attribute' };
+    const comment = kindFromComments(f.text);
+    if (comment) return { kind: comment, from: 'comment' };
     if (isDrawingName(f.name)) return { kind: 'other', from: 'name' };
     if (byName[i] !== 'other') return { kind: byName[i], from: 'name' };
     const words = kindFromWords(stem(f.name));
     if (words) return { kind: words, from: 'name' };
-    const comment = kindFromComments(f.text);
-    if (comment) return { kind: comment, from: 'comment' };
     return { kind: 'other', from: 'none' };
   });
 }

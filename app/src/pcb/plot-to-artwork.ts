@@ -4,6 +4,14 @@ import type { PadPrimitive, Plot, Point, Segment } from './tracespace';
 
 /** Arcs become chords no further than this from the true arc: 0.1 µm, far below a cell. */
 export const ARC_TOLERANCE_MM = 1e-4;
+/**
+ * A draw with a zero-width aperture is drawn this wide. Eagle draws its outline so (%ADD10C,0.0000*%), and gerbv
+ * shows such lines a pixel wide: left at no width they would expose nothing and offer no cutting guide.
+ * Two cells at the machine's 50 µm, so a 50 % threshold keeps the line wherever it lies.
+ */
+export const HAIRLINE_MM = 0.1;
+/** An arc whose end lies further than this from the circle its start and centre make cannot be drawn as written. */
+export const ARC_MISMATCH_MM = 0.01;
 
 /** A flash in a drill file: where the drill goes, and its size. */
 export interface Hole {
@@ -23,8 +31,10 @@ export interface Artwork {
   shapelessTools: string[];
   /** Shapes left out because a size or place in them is not a number (a macro short of parameters). */
   malformed: number;
-  /** Draws with a zero-width aperture: hairlines, which expose nothing. */
+  /** Draws with a zero-width aperture: drawn HAIRLINE_MM wide, and bounded by their centre lines (a hairline has no width of its own). */
   hairlines: number;
+  /** Arcs whose start and end lie at different distances from their centre (the plotter draws them all the same). */
+  impossibleArcs: number;
 }
 
 const MM_PER_INCH = 25.4;
@@ -39,17 +49,28 @@ export function plotToArtwork(plot: Plot): Artwork {
   const shapelessTools = new Set<string>();
   let malformed = 0;
   let hairlines = 0;
+  let impossibleArcs = 0;
   let clear = false;
+  // Hairline paints, bounded by their centre lines rather than by the width they are drawn with.
+  const hairline = new Set<Paint>();
   // Step and repeat: what is drawn while a repeat is on is gathered and laid down once per offset when it ends.
   let offsets: Point[] = [];
   let block: Paint[] = [];
-  const add = (shape: Shape) => {
+  const add = (shape: Shape, hair = false) => {
     const p = paint(shape, clear);
     if ([p.box.x0, p.box.y0, p.box.x1, p.box.y1].some((v) => Number.isNaN(v))) malformed++;
-    else (offsets.length ? block : paints).push(p);
+    else {
+      (offsets.length ? block : paints).push(p);
+      if (hair) hairline.add(p);
+    }
   };
   const endRepeat = () => {
-    for (const [dx, dy] of offsets) for (const p of block) paints.push(dx === 0 && dy === 0 ? p : translatePaint(p, dx * k, dy * k));
+    for (const [dx, dy] of offsets)
+      for (const p of block) {
+        const copy = dx === 0 && dy === 0 ? p : translatePaint(p, dx * k, dy * k);
+        if (hairline.has(p)) hairline.add(copy);
+        paints.push(copy);
+      }
     block = [];
     offsets = [];
   };
@@ -57,7 +78,9 @@ export function plotToArtwork(plot: Plot): Artwork {
   for (const o of plot.objects) {
     switch (o.type) {
       case 'shape': {
-        pads.set(o.tool, padShape(o.shape, k));
+        const block = plot.blocks?.get(o.tool);
+        // A block aperture's flash lays its artwork down: its parts dark or clear as the block drew them.
+        pads.set(o.tool, block ? { kind: 'stack', parts: plotToArtwork(block).paints.map((p) => ({ shape: p.shape, clear: p.clear })) } : padShape(o.shape, k));
         const first = o.shape[0];
         if (first?.type === 'circle') diameters.set(o.tool, 2 * first.r * k);
         break;
@@ -78,11 +101,15 @@ export function plotToArtwork(plot: Plot): Artwork {
         if (plot.filetype === 'drill') holes.push({ x, y, diameterMm: diameters.get(o.tool) ?? 0 });
         break;
       }
-      case 'stroke':
-        if (o.width > 0) for (const s of strokeShapes(o.path, (o.width / 2) * k, k)) add(s);
-        else hairlines++;
+      case 'stroke': {
+        const hair = !(o.width > 0);
+        if (hair) hairlines++;
+        impossibleArcs += o.path.filter((s) => arcMismatch(s) * k > ARC_MISMATCH_MM).length;
+        for (const s of strokeShapes(o.path, hair ? HAIRLINE_MM / 2 : (o.width / 2) * k, k)) add(s, hair);
         break;
+      }
       case 'fill':
+        impossibleArcs += o.path.filter((s) => arcMismatch(s) * k > ARC_MISMATCH_MM).length;
         add({ kind: 'polygon', rings: contours(o.path, k) });
         break;
       case 'polarity':
@@ -98,8 +125,19 @@ export function plotToArtwork(plot: Plot): Artwork {
   }
   endRepeat();
 
-  const boundsMm = paints.reduce((b, p) => (p.clear ? b : unionBox(b, p.box)), EMPTY_BOX);
-  return { paints, holes, boundsMm, unknownTools: [...unknownTools], shapelessTools: [...shapelessTools], malformed, hairlines };
+  const h = HAIRLINE_MM / 2;
+  const boundsMm = paints.reduce((b, p) => (p.clear ? b : unionBox(b, hairline.has(p) ? { x0: p.box.x0 + h, y0: p.box.y0 + h, x1: p.box.x1 - h, y1: p.box.y1 - h } : p.box)), EMPTY_BOX);
+  return { paints, holes, boundsMm, unknownTools: [...unknownTools], shapelessTools: [...shapelessTools], malformed, hairlines, impossibleArcs };
+}
+
+/**
+ * How much further from an arc's centre its end lies than its start, in the file's units. In multi-quadrant
+ * mode the plotter takes the centre the file gives without checking it, and the arc ends with a jump.
+ */
+export function arcMismatch(s: Segment): number {
+  if (s.type !== 'arc' || s.sweep >= 2 * Math.PI) return 0;
+  const [cx, cy] = s.center;
+  return Math.abs(Math.hypot(s.end[0] - cx, s.end[1] - cy) - Math.hypot(s.start[0] - cx, s.start[1] - cy));
 }
 
 function moveShape(s: Shape, x: number, y: number): Shape {

@@ -15,6 +15,10 @@ import { spanSource, type SpanSource } from './spans';
 
 export const LINES_PER_CELL = 15;
 export const DEFAULT_THRESHOLD = 0.5;
+/**
+ * The widest drill dot: each hole's dot is as wide as the hole up to this. A dot wider than its hole eats the
+ * pad's ring (a 0.2 mm via in a 0.45 mm pad), and a pit wider than this centres the bit no better.
+ */
 export const DEFAULT_DRILL_DOT_MM = 0.4;
 /**
  * Ties (an edge exactly on a cell's centre line, or covering exactly the threshold) are settled as if the
@@ -40,6 +44,7 @@ export interface RasteriseOptions {
   threshold?: number;
   /** A dot at each drill hole's centre in the copper layers, forced unexposed or exposed so the drill finds the centre. */
   drillClear?: DrillClear;
+  /** Every dot this wide; by default as wide as its hole, up to DEFAULT_DRILL_DOT_MM. */
   drillDotMm?: number;
   /** Board millimetres the grid covers (after `orient`); by default every layer's artwork, so all exposures of a board line up. */
   windowMm?: BoxMm;
@@ -96,7 +101,7 @@ export function rasteriseBoard(board: BoardSet, opts: RasteriseOptions): BoardRa
   const copper = exposed.filter((l) => isCopper(l.kind)).map((l) => compile(l.paints, grid));
   const others = exposed.filter((l) => !isCopper(l.kind)).map((l) => compile(l.paints, grid));
   const clearing = opts.drillClear ?? 'none';
-  const dots = clearing !== 'none' && copper.length > 0 ? compile(drillDots(set.layers, opts.drillDotMm ?? DEFAULT_DRILL_DOT_MM), grid) : null;
+  const dots = clearing !== 'none' && copper.length > 0 ? compile(drillDots(set.layers, opts.drillDotMm), grid) : null;
 
   const L = LINES_PER_CELL;
   const acc = new Float64Array(cols);
@@ -141,12 +146,15 @@ export function rasteriseBoard(board: BoardSet, opts: RasteriseOptions): BoardRa
 }
 
 /** Dots of the given diameter at the holes of every drill layer, exposed or not. */
-function drillDots(layers: readonly BoardLayer[], diameterMm: number): Paint[] {
-  const r = diameterMm / 2;
+function drillDots(layers: readonly BoardLayer[], diameterMm: number | undefined): Paint[] {
   return layers
     .filter((l) => l.kind === 'drill')
     .flatMap((l) => l.holes)
-    .map((h) => ({ shape: { kind: 'circle', cx: h.x, cy: h.y, r }, clear: false, box: { x0: h.x - r, y0: h.y - r, x1: h.x + r, y1: h.y + r } }));
+    .map((h) => {
+      // A hole of a tool the file never sized (0) gets the widest dot.
+      const r = (diameterMm ?? (h.diameterMm > 0 ? Math.min(h.diameterMm, DEFAULT_DRILL_DOT_MM) : DEFAULT_DRILL_DOT_MM)) / 2;
+      return { shape: { kind: 'circle', cx: h.x, cy: h.y, r }, clear: false, box: { x0: h.x - r, y0: h.y - r, x1: h.x + r, y1: h.y + r } };
+    });
 }
 
 function compile(paints: readonly Paint[], g: { top: number; py: number; rows: number; left: number; right: number }): Compiled {

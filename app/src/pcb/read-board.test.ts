@@ -198,14 +198,18 @@ describe('what cannot be used is a problem, never a throw or a silent empty laye
     expect(one(gerber(`%OFA1.0B0*%\n%ADD10C,1*%\nD10*\n${at(0, 0)}D03*`)).problems.map((p) => p.message)).toEqual(['image offset (%OF) is not applied']);
   });
 
-  it('notes draws with a zero-width aperture, which expose nothing', () => {
-    const set = one(gerber(`%ADD10C,0*%\n%ADD11C,1*%\nD10*\n${at(0, 0)}D02*\n${at(5, 0)}D01*\nD11*\n${at(0, 0)}D03*`));
-    expect(set.problems).toEqual([]);
-    expect(set.layers[0].notes).toContain('1 draw with a zero-width aperture: hairlines expose nothing');
+  it('draws a zero-width aperture’s draws 0.1 mm wide, bounded by their centre line, and says so but of an outline', () => {
+    const text = gerber(`%ADD10C,0*%\n%ADD11C,1*%\nD10*\n${at(0, 0)}D02*\n${at(5, 0)}D01*\nD11*\n${at(0, 0)}D03*`);
+    const set = one(text);
+    expect(set.problems.map((p) => p.message)).toEqual(['1 draw with a zero-width aperture, drawn 0.1 mm wide']);
+    expect(set.layers[0].boundsMm).toEqual({ x0: -0.5, y0: -0.5, x1: 5, y1: 0.5 });
+    const outline = one(text, 'board-Edge_Cuts.gbr');
+    expect(outline.problems).toEqual([]);
+    expect(outline.layers[0].notes).toContain('1 draw with a zero-width aperture, drawn 0.1 mm wide');
   });
 
   it('never throws, whatever the text', () => {
-    const pieces = ['%FSLAX46Y46*%', '%MOMM*%', '%MOIN*%', '%ADD10C,0.5*%', '%ADD11R,1X2*%', '%AMX*1,1,$1,0,0*%', '%ADD12X,0.3*%', 'D10*', 'D11*', 'D12*', 'D13*', 'G36*', 'G37*', 'G75*', 'G74*', 'G02*', 'G03*', '%LPC*%', '%LPD*%', '%SRX2Y2I1J1*%', '%SR*%', 'X100Y200D01*', 'X-5I3J4D01*', 'X0Y0D02*', 'X5Y5D03*', 'M48', 'INCH,TZ', 'METRIC', 'T1C0.8', 'T1', 'X1.5Y2', '%', 'M30', 'M02*', '*', 'X', '%AM', 'ÿ'];
+    const pieces = ['%FSLAX46Y46*%', '%MOMM*%', '%MOIN*%', '%ADD10C,0.5*%', '%ADD11R,1X2*%', '%AMX*1,1,$1,0,0*%', '%ADD12X,0.3*%', 'D10*', 'D11*', 'D12*', 'D13*', 'G36*', 'G37*', 'G75*', 'G74*', 'G02*', 'G03*', '%LPC*%', '%LPD*%', '%SRX2Y2I1J1*%', '%SR*%', 'X100Y200D01*', 'X-5I3J4D01*', 'X0Y0D02*', 'X5Y5D03*', 'M48', 'INCH,TZ', 'METRIC', 'T1C0.8', 'T1', 'X1.5Y2', '%', 'M30', 'M02*', '*', 'X', '%AM', '%ABD12*%', '%AB*%', 'ÿ'];
     fc.assert(
       fc.property(fc.array(fc.constantFrom(...pieces), { maxLength: 30 }), fc.string(), (lines, noise) => {
         const set = one(lines.join('\n') + noise);

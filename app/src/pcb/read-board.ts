@@ -2,8 +2,8 @@
 import { isEmptyBox, type BoxMm, type Paint } from './artwork';
 import { drawingMix, guessKinds, looksLikeCopper, type KindGuess, type KindSource } from './layer-content';
 import { isCopper, type LayerKind } from './layer-kind';
-import { plotToArtwork, type Hole } from './plot-to-artwork';
-import { fileType, plotFile, zeroSetOffset, type LibraryWarning, type Units } from './tracespace';
+import { ARC_MISMATCH_MM, HAIRLINE_MM, plotToArtwork, type Hole } from './plot-to-artwork';
+import { fileType, plotFile, zeroSetOffset, type LibraryWarning, type PlotObject, type Units } from './tracespace';
 
 export interface BoardLayer {
   file: string;
@@ -62,7 +62,7 @@ const NOT_APPLIED: [RegExp, string][] = [
 /** Reads every file; a file that cannot be used is left out with a problem saying why. Never throws. */
 export function readBoard(files: readonly BoardFile[]): BoardSet {
   const kinds = guessKinds(files);
-  const read: { layer: BoardLayer; copperLike: boolean }[] = [];
+  const read: Read[] = [];
   const problems: BoardProblem[] = [];
   const notes: BoardProblem[] = [];
   files.forEach((f, i) => {
@@ -71,15 +71,65 @@ export function readBoard(files: readonly BoardFile[]): BoardSet {
     const layer = readLayer(f, kinds[i], said, noted);
     if (layer) read.push(layer);
   });
-  // No file says it is copper: the first that draws as copper does is taken for the top copper.
-  if (!read.some((r) => isCopper(r.layer.kind))) {
-    const copper = read.find((r) => r.copperLike && r.layer.kindFrom === 'none');
-    if (copper) Object.assign(copper.layer, { kind: 'copper-top', kindFrom: 'content' });
-  }
+  if (!read.some((r) => isCopper(r.layer.kind))) problems.push(...takeCopper(read));
   return { layers: read.map((r) => r.layer), problems, notes };
 }
 
-function readLayer(f: BoardFile, guess: KindGuess, problem: (message: string) => void, note: (message: string) => void): { layer: BoardLayer; copperLike: boolean } | null {
+interface Read {
+  layer: BoardLayer;
+  copperLike: boolean;
+  /** Where the file flashes its apertures, mm: its pads. */
+  flashes: Float64Array;
+}
+
+/**
+ * No file says it is copper: of those that draw as copper does, the one with the most pads where no hole is
+ * drilled is taken for the top copper (surface-mount parts sit on top), and with exactly two, the other for
+ * the bottom. Named files sort "bottom" before "top" as often as not, so the order says nothing. The choice
+ * and its reason are said, as the person must check it.
+ */
+function takeCopper(read: Read[]): BoardProblem[] {
+  const candidates = read.filter((r) => r.copperLike && r.layer.kindFrom === 'none');
+  if (candidates.length === 0) return [];
+  const holes = holeKeys(read.flatMap((r) => r.layer.holes));
+  const surface = candidates.map((c) => padsWithoutHole(c.flashes, holes));
+  const most = Math.max(...surface);
+  const top = surface.indexOf(most);
+  Object.assign(candidates[top].layer, { kind: 'copper-top', kindFrom: 'content' });
+  const file = candidates[top].layer.file;
+  if (candidates.length === 1) return [];
+  if (candidates.length === 2) Object.assign(candidates[1 - top].layer, { kind: 'copper-bottom', kindFrom: 'content' });
+  const others = candidates.filter((_, i) => i !== top).map((c, i) => `${c.layer.file} ${surface[i >= top ? i + 1 : i]}`);
+  const clear = surface.filter((n) => n === most).length === 1;
+  return [
+    {
+      file,
+      message: clear
+        ? `taken for the top copper from what it draws: ${most} pads without a hole, where surface-mount parts sit (against ${others.join(', ')}); check it`
+        : `taken for the top copper only because it comes first: ${candidates.length} files draw as copper does and nothing tells their sides apart (pads without a hole: ${most} each); check which is the top`,
+    },
+  ];
+}
+
+/** Holes by their place to the nearest 0.05 mm. */
+const holeKey = (x: number, y: number) => `${Math.round(x * 20)},${Math.round(y * 20)}`;
+
+function holeKeys(holes: readonly Hole[]): Set<string> {
+  return new Set(holes.map((h) => holeKey(h.x, h.y)));
+}
+
+function padsWithoutHole(flashes: Float64Array, holes: Set<string>): number {
+  let n = 0;
+  for (let i = 0; i < flashes.length; i += 2) {
+    const [kx, ky] = [Math.round(flashes[i] * 20), Math.round(flashes[i + 1] * 20)];
+    let drilled = false;
+    for (let dx = -1; dx <= 1 && !drilled; dx++) for (let dy = -1; dy <= 1 && !drilled; dy++) drilled = holes.has(`${kx + dx},${ky + dy}`);
+    if (!drilled) n++;
+  }
+  return n;
+}
+
+function readLayer(f: BoardFile, guess: KindGuess, problem: (message: string) => void, note: (message: string) => void): Read | null {
   if (f.text.trim() === '') return problem('the file is empty'), null;
   if (/[\0-\x08\x0e-\x1f]/.test(f.text.slice(0, 4096))) return problem('not a Gerber or Excellon drill file: it is not text'), null;
   const type = fileType(f.text);
@@ -98,7 +148,13 @@ function readLayer(f: BoardFile, guess: KindGuess, problem: (message: string) =>
       return (lost.length === 0 && emptyIsNormal(format === 'excellon' ? 'drill' : guess.kind) ? note : problem)(empty), null;
     }
     const notes: string[] = [];
-    if (art.hairlines) notes.push(`${art.hairlines} draw${art.hairlines > 1 ? 's' : ''} with a zero-width aperture: hairlines expose nothing`);
+    if (art.hairlines) {
+      // An outline drawn so is usual (Eagle): a note. Elsewhere the width drawn is the studio's, so it is said.
+      const said = `${art.hairlines} draw${art.hairlines > 1 ? 's' : ''} with a zero-width aperture, drawn ${HAIRLINE_MM} mm wide`;
+      if (guess.kind === 'outline') notes.push(said);
+      else lost.push(said);
+    }
+    if (art.impossibleArcs) lost.push(`${art.impossibleArcs} impossible arc${art.impossibleArcs > 1 ? 's' : ''}, whose end lies more than ${ARC_MISMATCH_MM} mm nearer to or further from the centre than the start: drawn as written, with a jump at the end`);
     for (const w of plot.warnings) {
       if (DRAWING_LOST.test(w.message) && !TOOL_PUT_AWAY.test(w.message)) problem(lineOf(w));
       else if (!ATTRIBUTE.test(w.message)) notes.push(lineOf(w));
@@ -117,7 +173,8 @@ function readLayer(f: BoardFile, guess: KindGuess, problem: (message: string) =>
       holes: art.holes,
       notes,
     };
-    return { layer, copperLike: format === 'gerber' && looksLikeCopper(drawingMix(plot.objects)) };
+    const flashes = format === 'gerber' ? flashPlaces(plot.objects, plot.units === 'in' ? 25.4 : 1) : new Float64Array(0);
+    return { layer, copperLike: format === 'gerber' && looksLikeCopper(drawingMix(plot.objects)), flashes };
   } catch (e) {
     return problem(`could not be read: ${e instanceof Error ? e.message : String(e)}`), null;
   }
@@ -129,6 +186,12 @@ function readLayer(f: BoardFile, guess: KindGuess, problem: (message: string) =>
  * an outline or a file of no known kind that draws nothing is a real problem.
  */
 const emptyIsNormal = (kind: LayerKind): boolean => kind === 'drill' || /^(paste|silk|mask)-/.test(kind);
+
+function flashPlaces(objects: readonly PlotObject[], k: number): Float64Array {
+  const out: number[] = [];
+  for (const o of objects) if (o.type === 'pad') out.push(o.x * k, o.y * k);
+  return Float64Array.from(out);
+}
 
 /** The library counts lines from 0. */
 const lineOf = (w: LibraryWarning) => `line ${w.line + 1}: ${w.message}`;

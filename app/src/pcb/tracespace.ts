@@ -11,6 +11,7 @@
 // directly, its push caught. Both still construct a stream, so the bundle carries the npm 'events' and
 // 'buffer' packages (dependencies of ours for that reason).
 import gerberParser from 'gerber-parser';
+import { cutBlocks } from './block-apertures';
 import gerberPlotter from 'gerber-plotter';
 
 export type Point = [number, number];
@@ -51,6 +52,8 @@ export interface Plot {
   /** How many commands the parser found: 0 means the text was not a Gerber or drill file at all. */
   commands: number;
   warnings: LibraryWarning[];
+  /** Block apertures (%AB) by tool: each block plotted on its own, in the same units (block-apertures.ts). */
+  blocks?: Map<string, Plot>;
 }
 
 interface ParserInternals {
@@ -102,6 +105,19 @@ export const zeroSetOffset = (text: string): boolean => /^[ \t]*G93(?!\d)[^\r\n]
 
 /** Parses and plots one file of the given type. May throw whatever the library throws; the caller makes that a problem. */
 export function plotFile(text: string, filetype: 'gerber' | 'drill'): Plot {
+  const cut = filetype === 'gerber' ? cutBlocks(text) : null;
+  if (!cut) return plotText(text, filetype);
+  const plot = plotText(cut.text, filetype);
+  plot.blocks = new Map();
+  for (const [tool, block] of cut.blocks) {
+    const inner = plotFile(block.text, 'gerber');
+    plot.blocks.set(tool, inner);
+    for (const w of inner.warnings) plot.warnings.push({ line: block.line, message: `in block aperture D${tool}: ${w.message}` });
+  }
+  return plot;
+}
+
+function plotText(text: string, filetype: 'gerber' | 'drill'): Plot {
   const warnings: LibraryWarning[] = [];
   const parser = gerberParser({}) as unknown as ParserInternals;
   parser.on('warning', (w) => warnings.push(w));

@@ -32,6 +32,11 @@ describe('a new board', () => {
     expect(b).toMatchObject({ layers: [{ expose: true }, { expose: false }], copperGuessed: 'artwork_1.grb', drillClear: 'unexposed-dot' });
     expect(hasCopper(b)).toBe(true);
   });
+
+  it('names the copper it exposes when both sides were taken from what they draw (numbered files)', () => {
+    const b = newBoardFields([{ file: 'f01.gbr', kind: 'copper-bottom', from: 'content' }, { file: 'f02.gbr', kind: 'copper-top', from: 'content' }]);
+    expect(b).toMatchObject({ layers: [{ expose: false }, { expose: true }], copperGuessed: 'f02.gbr' });
+  });
 });
 
 describe('a side left out of the job', () => {

@@ -27,7 +27,8 @@ export function newBoardFields(files: readonly { file: string; kind: BoardLayerK
   const first = copper ? -1 : artwork >= 0 ? artwork : kinds.findIndex((_, i) => drawn(i));
   const exposed = (i: number) => (copper ? kinds[i] === copper : i === first);
   const drillClear: DrillClear = kinds.includes('drill') ? 'unexposed-dot' : 'none';
-  const guessed = files.find((f) => f.from === 'content' && (f.kind === 'copper-top' || f.kind === 'copper-bottom'));
+  // The copper exposed, when it was taken from what it draws (numbered files may give a bottom copper too).
+  const guessed = copper && files.find((f) => f.from === 'content' && f.kind === copper);
   return { layers: files.map(({ file, kind }, i) => ({ file, kind, expose: exposed(i) })), drillClear, marks: [], ...(guessed && { copperGuessed: guessed.file }) };
 }
 

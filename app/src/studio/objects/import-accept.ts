@@ -3,13 +3,13 @@
 /**
  * Gerber and Excellon extensions by the tools that write them: generic (gbr ger gbx grb pho art), KiCad and
  * Protel/Altium (gtl gbl gts gbs gto gbo gtp gbp gko gm1… gd1 gg1 gp1 g1…), Eagle (cmp sol stc sts plc pls crc
- * crs), OrCAD (top bot smt smb sst ssb spt spb drd tap), gEDA (cnc), Veribest and Mentor (gdo ncd), drill files
- * (drl xln exc nc txt) and Visula (off).
+ * crs mil), OrCAD (top bot smt smb sst ssb spt spb drd tap), gEDA (cnc), Veribest and Mentor (gdo ncd), EasyEDA
+ * Pro's drawings (gdd gdl), drill files (drl xln exc nc txt) and Visula (off).
  */
 export const BOARD_EXTENSIONS: readonly string[] = (
   'gbr ger gbx grb pho art gdo ' +
   'gtl gbl gts gbs gto gbo gtp gbp gko gml gm1 gm2 gm3 gd1 gg1 gp1 gp2 gpt gpb g1 g2 g3 g4 ' +
-  'cmp sol stc sts plc pls crc crs ' +
+  'cmp sol stc sts plc pls crc crs mil gdd gdl ' +
   'top bot smt smb sst ssb spt spb drd tap ' +
   'cnc ncd drl xln exc nc txt off'
 ).split(' ');

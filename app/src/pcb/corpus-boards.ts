@@ -1,0 +1,181 @@
+// Test support: the real boards in corpus/, each with the truth written down beside it (truth.json), and gerbv's judgement of them (Node only).
+import { readdirSync, readFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { agreement, gerbvCells, gerbvHoles, matchHoles, type Agreement, type HoleMatch } from './gerbv-reference';
+import type { LayerKind } from './layer-kind';
+import type { Hole } from './plot-to-artwork';
+import { rasteriseBoard } from './rasterise';
+import type { BoardFile, BoardLayer, BoardSet } from './read-board';
+
+export const CORPUS = join(import.meta.dirname, 'corpus');
+
+/** What truth.json says of a board: written down from the files' headers, the tool's naming, and gerbv. */
+export interface BoardTruth {
+  /** The CAD tool's family, for counting how many the corpus covers. */
+  cad: string;
+  /** The tool and version that wrote the files. */
+  tool: string;
+  /** Every file's own header says what it is (Gerber X2 file functions, EasyEDA's "G04 Layer:"), drill files aside. */
+  kindsInHeaders: boolean;
+  /** Each file that draws something, and its true kind. */
+  kinds: Record<string, LayerKind>;
+  /** Files that draw nothing (an empty silk or paste layer), and what they would have been. */
+  empty: Record<string, LayerKind>;
+  /** Files the studio must say something of (a part of them it draws differently from the file), and a phrase its words hold. */
+  said: Record<string, string>;
+  /** The outline file, and its size as gerbv draws it (stroke included). */
+  outline: { file: string; widthMm: number; heightMm: number };
+  /**
+   * The drill files' holes: how many, how many of each diameter (mm, to 0.001 in), as gerbv reads them or, where
+   * gerbv misreads some (`gerbvMisreads` of them, off every pad), as the tool's own listing says.
+   */
+  holes: { count: number; diametersMm: Record<string, number>; gerbvMisreads?: number; listing?: string };
+  /** The defects of issue 40 this board shows (1 to 7). */
+  defects: string[];
+}
+
+export interface CorpusBoard {
+  name: string;
+  truth: BoardTruth;
+  files: BoardFile[];
+  /** Where gerbv can read each file. */
+  path(file: string): string;
+}
+
+const NOT_A_LAYER = /^(LICENSE|SOURCE\.md|truth\.json)$/;
+
+export function corpusBoards(): CorpusBoard[] {
+  return readdirSync(CORPUS, { withFileTypes: true })
+    .filter((d) => d.isDirectory())
+    .map((d) => {
+      const dir = join(CORPUS, d.name);
+      const truth = JSON.parse(readFileSync(join(dir, 'truth.json'), 'utf8')) as BoardTruth;
+      const files = readdirSync(dir)
+        .filter((f) => !NOT_A_LAYER.test(f))
+        .sort()
+        .map((name) => ({ name, text: readFileSync(join(dir, name), 'latin1') }));
+      return { name: d.name, truth, files, path: (file: string) => join(dir, file) };
+    })
+    .sort((a, b) => a.name.localeCompare(b.name));
+}
+
+/** The file truth.json calls top (or bottom) copper. */
+export function copperFile(truth: BoardTruth, side: 'top' | 'bottom'): string | undefined {
+  return Object.keys(truth.kinds).find((f) => truth.kinds[f] === `copper-${side}`);
+}
+
+/** The same files under names that say nothing (f01.gbr, f02.gbr…, in the order of their real names). */
+export function namesSayingNothing(files: readonly BoardFile[]): { files: BoardFile[]; realName: Map<string, string> } {
+  const realName = new Map<string, string>();
+  const renamed = files.map((f, i) => {
+    const name = `f${String(i + 1).padStart(2, '0')}.gbr`;
+    realName.set(name, f.name);
+    return { name, text: f.text };
+  });
+  return { files: renamed, realName };
+}
+
+/**
+ * Our cells of one layer against gerbv's, on a 0.1 mm grid half a millimetre around the layer's artwork.
+ * `acrossOurEdge`: cells that differ away from gerbv's edges although an edge of the artwork crosses them (our
+ * coverage is partial): a notch or gap narrower than a cell that gerbv, lighting whole pixels, fills or drops.
+ * `unexplained`: cells that differ with no edge near, gerbv's or the artwork's.
+ */
+export function copperAgainstGerbv(set: BoardSet, layer: BoardLayer, path: string, pitchUm: number): Agreement & { cols: number; rows: number; acrossOurEdge: number; unexplained: number } {
+  const p = pitchUm / 1000;
+  const x0 = Math.floor(layer.boundsMm.x0 * 10) / 10 - 0.5;
+  const y0 = Math.floor(layer.boundsMm.y0 * 10) / 10 - 0.5;
+  const cols = Math.ceil((layer.boundsMm.x1 + 0.5 - x0) / p);
+  const rows = Math.ceil((layer.boundsMm.y1 + 0.5 - y0) / p);
+  const ours = rasteriseBoard(set, { expose: [layer.file], pitchUm: { x: pitchUm, y: pitchUm }, threshold: 0.5, windowMm: { x0, y0, x1: x0 + cols * p, y1: y0 + rows * p } });
+  const theirs = gerbvCells(path, { cols, rows, x0, y0, pitchMm: p });
+  let acrossOurEdge = 0;
+  let unexplained = 0;
+  for (const i of differingOffEdges(ours.cells, theirs, cols, rows)) {
+    const c = ours.coverage[i];
+    if (c > PARTIAL && c < 1 - PARTIAL) acrossOurEdge++;
+    else unexplained++;
+  }
+  return { ...agreement(ours.cells, theirs, cols, rows), cols, rows, acrossOurEdge, unexplained };
+}
+
+/** Coverage this far from 0 or 1 means an edge of the artwork crosses the cell, not rounding. */
+const PARTIAL = 0.01;
+
+/** Cells that differ whose 3 × 3 neighbourhood in gerbv's picture is all one value (as `agreement` counts them). */
+function differingOffEdges(ours: Uint8Array, theirs: Uint8Array, cols: number, rows: number): number[] {
+  const found: number[] = [];
+  for (let r = 0; r < rows; r++) {
+    for (let c = 0; c < cols; c++) {
+      const i = r * cols + c;
+      if (ours[i] === theirs[i]) continue;
+      let edge = false;
+      for (let dr = -1; dr <= 1 && !edge; dr++) {
+        for (let dc = -1; dc <= 1 && !edge; dc++) {
+          const rr = r + dr;
+          const cc = c + dc;
+          if (rr >= 0 && rr < rows && cc >= 0 && cc < cols && theirs[rr * cols + cc] !== theirs[i]) edge = true;
+        }
+      }
+      if (!edge) found.push(i);
+    }
+  }
+  return found;
+}
+
+/** gerbv's holes of every drill file in the set, against ours. */
+export function holesAgainstGerbv(set: BoardSet, path: (file: string) => string, toleranceMm: number, diameterToleranceMm: number): { ours: Hole[]; theirs: Hole[]; match: HoleMatch } {
+  const drills = set.layers.filter((l) => l.kind === 'drill');
+  const ours = drills.flatMap((l) => l.holes);
+  const theirs = drills.flatMap((l) => gerbvHoles(path(l.file)));
+  return { ours, theirs, match: matchHoles(ours, theirs, toleranceMm, diameterToleranceMm) };
+}
+
+/** Whether a hole's centre lies on a flashed pad of a copper layer (not a track or a pour). */
+export function onPad(copper: BoardLayer, h: Hole): boolean {
+  return copper.paints.some((p) => !p.clear && p.shape.kind !== 'stadium' && p.shape.kind !== 'polygon' && p.box.x0 <= h.x && h.x <= p.box.x1 && p.box.y0 <= h.y && h.y <= p.box.y1);
+}
+
+/** How many holes have each of the given diameters (the nearest, within the tolerance); holes of none of them under 'other'. */
+export function holesBySize(holes: readonly Hole[], diametersMm: readonly string[], toleranceMm: number): Record<string, number> {
+  const counts: Record<string, number> = Object.fromEntries(diametersMm.map((d) => [d, 0]));
+  for (const h of holes) {
+    const off = (d: string) => Math.abs(Number(d) - h.diameterMm);
+    const d = diametersMm.reduce((a, b) => (off(b) < off(a) ? b : a), diametersMm[0]);
+    if (d !== undefined && off(d) <= toleranceMm) counts[d]++;
+    else counts.other = (counts.other ?? 0) + 1;
+  }
+  return counts;
+}
+
+/**
+ * Where the studio's default drill dots change the exposed copper: each changed cell with the hole it belongs to
+ * and how far its centre lies from that hole's centre, past the hole's edge (mm; ≤ 0 inside the hole).
+ */
+export function dotsPastHoles(set: BoardSet, topCopper: string, pitchUm: number): { changed: number; worstPastEdgeMm: number; worstHoleMm: number } {
+  const holes = set.layers.filter((l) => l.kind === 'drill').flatMap((l) => l.holes);
+  const opts = { expose: [topCopper], pitchUm: { x: pitchUm, y: pitchUm }, threshold: 0.5 } as const;
+  const bare = rasteriseBoard(set, { ...opts, drillClear: 'none' });
+  const dotted = rasteriseBoard(set, { ...opts, drillClear: 'unexposed-dot', windowMm: bare.windowMm });
+  const p = pitchUm / 1000;
+  let changed = 0;
+  let worstPastEdgeMm = -Infinity;
+  let worstHoleMm = 0;
+  for (let r = 0; r < bare.rows; r++) {
+    for (let c = 0; c < bare.cols; c++) {
+      const i = r * bare.cols + c;
+      if (bare.cells[i] === dotted.cells[i]) continue;
+      changed++;
+      const x = bare.windowMm.x0 + (c + 0.5) * p;
+      const y = bare.windowMm.y1 - (r + 0.5) * p;
+      let best = Infinity;
+      let hole = 0;
+      for (const h of holes) {
+        const past = Math.hypot(h.x - x, h.y - y) - h.diameterMm / 2;
+        if (past < best) (best = past), (hole = h.diameterMm);
+      }
+      if (best > worstPastEdgeMm) (worstPastEdgeMm = best), (worstHoleMm = hole);
+    }
+  }
+  return { changed, worstPastEdgeMm, worstHoleMm };
+}
