@@ -85,13 +85,18 @@ interface Read {
 /**
  * No file says it is copper: of those that draw as copper does, the one with the most pads where no hole is
  * drilled is taken for the top copper (surface-mount parts sit on top), and with exactly two, the other for
- * the bottom. Named files sort "bottom" before "top" as often as not, so the order says nothing. The choice
- * and its reason are said, as the person must check it.
+ * the bottom. Where the board has holes, only files that flash a pad on at least half of them are copper: a
+ * legend's or a mask's few flashes (fiducials, logos) are not pads, though they lie where no hole is. Named
+ * files sort "bottom" before "top" as often as not, so the order says nothing. The choice and its reason are
+ * said, as the person must check it.
  */
 function takeCopper(read: Read[]): BoardProblem[] {
-  const candidates = read.filter((r) => r.copperLike && r.layer.kindFrom === 'none');
-  if (candidates.length === 0) return [];
+  const copperLike = read.filter((r) => r.copperLike && r.layer.kindFrom === 'none');
+  if (copperLike.length === 0) return [];
   const holes = holeKeys(read.flatMap((r) => r.layer.holes));
+  const padsOnHoles = (r: Read) => r.flashes.length / 2 - padsWithoutHole(r.flashes, holes);
+  const padded = holes.size >= MIN_HOLES_TO_TELL ? copperLike.filter((r) => padsOnHoles(r) >= holes.size / 2) : [];
+  const candidates = padded.length > 0 ? padded : copperLike;
   const surface = candidates.map((c) => padsWithoutHole(c.flashes, holes));
   const most = Math.max(...surface);
   const top = surface.indexOf(most);
@@ -110,6 +115,9 @@ function takeCopper(read: Read[]): BoardProblem[] {
     },
   ];
 }
+
+/** Below this many holes, pads on holes tell copper from a legend no better than chance. */
+const MIN_HOLES_TO_TELL = 10;
 
 /** Holes by their place to the nearest 0.05 mm. */
 const holeKey = (x: number, y: number) => `${Math.round(x * 20)},${Math.round(y * 20)}`;
