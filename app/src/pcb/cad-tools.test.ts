@@ -149,8 +149,13 @@ describe('an impossible arc', () => {
     expect(read.problems).toEqual([{ file: 'x-F_Cu.gbr', message: expect.stringMatching(/^1 impossible arc, whose end lies more than 0\.01 mm/) }]);
   });
 
-  it('is not said of a true one', () => {
+  it('is not said of a true one, nor of one its file’s coordinates round (Protel’s %FSLAX23: 0.001 in)', () => {
     expect(readBoard([{ name: 'x-F_Cu.gbr', text: region(10) }]).problems).toEqual([]);
+    // Centre (0, 0), start (1, 0) in, end (0, 1.001) in: 25 µm off its circle, within three steps of 0.001 in.
+    const protel = `%FSLAX23Y23*%\n%MOIN*%\n%ADD10C,0.010*%\nG75*\nD10*\nX1000Y0D02*\nG03X0Y1001I-1000J0D01*\nM02*\n`;
+    expect(readBoard([{ name: 'x.GTL', text: protel }]).problems).toEqual([]);
+    const far = protel.replace('Y1001I', 'Y1004I'); // 0.004 in, past three steps
+    expect(readBoard([{ name: 'x.GTL', text: far }]).problems.map((p) => p.message)).toEqual([expect.stringMatching(/^1 impossible arc, whose end lies more than 0\.076 mm/)]);
   });
 });
 

@@ -10,7 +10,10 @@ export const ARC_TOLERANCE_MM = 1e-4;
  * Two cells at the machine's 50 µm, so a 50 % threshold keeps the line wherever it lies.
  */
 export const HAIRLINE_MM = 0.1;
-/** An arc whose end lies further than this from the circle its start and centre make cannot be drawn as written. */
+/**
+ * An arc whose end lies further than this from the circle its start and centre make cannot be drawn as written
+ * (or three steps of the file's coordinates, if more: rounding to them moves the ends and the centre).
+ */
 export const ARC_MISMATCH_MM = 0.01;
 
 /** A flash in a drill file: where the drill goes, and its size. */
@@ -39,7 +42,7 @@ export interface Artwork {
 
 const MM_PER_INCH = 25.4;
 
-export function plotToArtwork(plot: Plot): Artwork {
+export function plotToArtwork(plot: Plot, arcSlackMm = ARC_MISMATCH_MM): Artwork {
   const k = plot.units === 'in' ? MM_PER_INCH : 1;
   const pads = new Map<string, Shape>();
   const diameters = new Map<string, number>();
@@ -104,12 +107,12 @@ export function plotToArtwork(plot: Plot): Artwork {
       case 'stroke': {
         const hair = !(o.width > 0);
         if (hair) hairlines++;
-        impossibleArcs += o.path.filter((s) => arcMismatch(s) * k > ARC_MISMATCH_MM).length;
+        impossibleArcs += o.path.filter((s) => arcMismatch(s) * k > arcSlackMm).length;
         for (const s of strokeShapes(o.path, hair ? HAIRLINE_MM / 2 : (o.width / 2) * k, k)) add(s, hair);
         break;
       }
       case 'fill':
-        impossibleArcs += o.path.filter((s) => arcMismatch(s) * k > ARC_MISMATCH_MM).length;
+        impossibleArcs += o.path.filter((s) => arcMismatch(s) * k > arcSlackMm).length;
         add({ kind: 'polygon', rings: contours(o.path, k) });
         break;
       case 'polarity':
