@@ -45,7 +45,7 @@ describe('the board’s window: its outline, never a drawing', () => {
       { name: 'b.gko', text: rect(5, 4, 7, 6) },
     ]);
     expect(read.layers.map((l) => l.kind)).toEqual(['copper-top', 'outline', 'outline']);
-    expect(size(boardWindow(read))).toEqual([20.1, 10.1]);
+    expect(size(boardWindow(read))).toEqual([20, 10]);
   });
 });
 
@@ -70,6 +70,12 @@ describe('zero-width draws (Eagle’s %ADD10C,0.0000*%)', () => {
     const lit = Array.from({ length: 60 }, (_, c) => guide.cells[row * guide.cols + c]).reduce((a, v) => a + v, 0);
     expect(lit).toBe(2);
     expect(read.problems).toEqual([{ file: 'blinky.GTO', message: `1 draw with a zero-width aperture, drawn ${HAIRLINE_MM} mm wide` }]);
+    // On the board's own window (the outline's centre line), the line's inner half: one cell along each edge.
+    const board = boardArtwork(boardSrc(eagle));
+    const look = { layers: eagle.map((f) => ({ kind: f.name.endsWith('.GKO') ? ('outline' as const) : ('other' as const), expose: f.name.endsWith('.GKO') })), drillClear: 'none' as const, marks: [] };
+    const v = board.cover(762, 508, look); // 1.5 × 1 in at 50 µm
+    const mid = 254 * 762;
+    expect([v.values[mid], v.values[mid + 1], v.values[mid + 760], v.values[mid + 761]]).toEqual([0, 255, 255, 0]);
   });
 });
 

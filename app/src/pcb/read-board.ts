@@ -16,6 +16,8 @@ export interface BoardLayer {
   units: Units;
   /** What the layer draws, in board millimetres, Y up as in the file. */
   boundsMm: BoxMm;
+  /** The same with draws taken by their centre lines (an outline's board edge); as boundsMm when not given. */
+  lineBoundsMm?: BoxMm;
   /** The artwork in drawing order. */
   paints: Paint[];
   /** Flash centres of a drill file: the holes. Empty for other files. */
@@ -165,6 +167,7 @@ function readLayer(f: BoardFile, guess: KindGuess, problem: (message: string) =>
       format,
       units: plot.units,
       boundsMm: art.boundsMm,
+      lineBoundsMm: art.lineBoundsMm,
       paints: art.paints,
       holes: art.holes,
       notes,
