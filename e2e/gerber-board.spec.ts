@@ -12,8 +12,8 @@ import { bedPoint, isDose, pixel } from './canvas';
 
 const DEMO = join(import.meta.dirname, 'fixtures/pcb');
 const FILES = ['demo-B_Cu.gbr', 'demo-Edge_Cuts.gbr', 'demo-F_Cu.gbr', 'demo-F_Mask.gbr', 'demo-PTH.drl'];
-/** The window: the outline's 0.1 mm line reaches 0.05 mm past the 30 × 20 mm board. */
-const WIN = { x0: -0.05, y1: 20.05 };
+/** The window: the outline's centre line, the 30 × 20 mm board (its 0.1 mm line's outer half lies outside). */
+const WIN = { x0: 0, y1: 20 };
 
 const panel = (page: Page) => page.getByRole('region', { name: 'Selected object' });
 const layer = (page: Page, file: string) => page.locator(`[data-testid="board-layer"][data-file="${file}"]`);
@@ -44,7 +44,7 @@ test('a two-sided board: layers chosen, drill dots, positive resist, the bottom 
   await page.goto('/?simSpeed=40');
   await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected', { timeout: 20_000 });
 
-  // The five files picked together, and a stray one: one object, at the board's window, 30.1 × 20.1 mm; the stray file named.
+  // The five files picked together, and a stray one: one object, at the board's window, 30 × 20 mm; the stray file named.
   const stray = { name: 'demo-notes.gbr', mimeType: 'application/octet-stream', buffer: Buffer.from('ordered from the fab on Monday') };
   await page.getByLabel('Import artwork (SVG, PNG, JPG, BMP, GIF)').setInputFiles([...FILES.map((f) => ({ name: f, mimeType: 'application/octet-stream', buffer: readFileSync(join(DEMO, f)) })), stray]);
   await expect(panel(page)).toContainText('Board demo', { timeout: 20_000 });
@@ -53,7 +53,7 @@ test('a two-sided board: layers chosen, drill dots, positive resist, the bottom 
   await expect(page.getByTestId('import-problems')).toHaveCount(0);
   await expect(layer(page, 'demo-notes.gbr').getByTestId('board-layer-kind')).toHaveValue('other');
   let box = await placed(page);
-  expect([box.w, box.h]).toEqual([30.1, 20.1]);
+  expect([box.w, box.h]).toEqual([30, 20]);
   const kinds = { 'demo-B_Cu.gbr': 'copper-bottom', 'demo-Edge_Cuts.gbr': 'outline', 'demo-F_Cu.gbr': 'copper-top', 'demo-F_Mask.gbr': 'mask-top', 'demo-PTH.drl': 'drill' };
   for (const [file, kind] of Object.entries(kinds)) {
     await expect(layer(page, file).getByTestId('board-layer-kind')).toHaveValue(kind);
@@ -100,7 +100,7 @@ test('a two-sided board: layers chosen, drill dots, positive resist, the bottom 
   await expect(layer(page, 'demo-F_Cu.gbr').getByTestId('board-layer-expose')).not.toBeChecked();
   await expect(page.getByTestId('board-mark-x')).toHaveValue('3'); // the mark is the board's, on both sides
   const bottom = await placed(page);
-  expect(bottom.x).toBeCloseTo(box.x - 30.1, 1);
+  expect(bottom.x).toBeCloseTo(box.x - 30, 1);
   await expect(panel(page).getByTestId('object-off-bed')).toContainText('past the left edge');
   await expect(panel(page).getByTestId('object-off-bed')).toContainText('This side is left out of the job: that stops nothing');
   await page.getByRole('region', { name: 'Drawing' }).screenshot({ path: info.outputPath('board-both-sides.png') });

@@ -85,6 +85,6 @@ test('a Gerber 2016 block aperture is drawn where it is flashed, with nothing to
   await pick(page, 'block-aperture', 'panel');
   await expectLayers(page, { 'panel-F_Cu.gbr': ['copper-top', true], 'panel-Edge_Cuts.gbr': ['outline', false] });
   await expect(problems(page)).toHaveCount(0); // no "tool 12 is not defined", no RangeError
-  expect(await sizeShown(page)).toEqual({ w: 15.1, h: 15.1 });
+  expect(await sizeShown(page)).toEqual({ w: 15, h: 15 });
   await page.getByRole('region', { name: 'Drawing' }).screenshot({ path: info.outputPath('block-aperture.png') });
 });

@@ -65,7 +65,8 @@ const area = (b: BoxMm) => (b.x1 - b.x0) * (b.y1 - b.y0);
 
 /**
  * The board's window: what the object spans, is clipped to and measures its marks from. The outline's when
- * there is one; else what may be exposed (every layer but drawings, kind 'other', which are never exposed
+ * there is one, taken by its centre line, where the board is cut (a KiCad Edge.Cuts line 0.1 mm wide around
+ * 30 × 20 mm gives 30 × 20 mm; the outer half of the line lies outside); else what may be exposed (every layer but drawings, kind 'other', which are never exposed
  * and would stretch it: EasyEDA's drill drawing, DipTrace's dimensions). Of several outlines (an Eagle
  * dimension layer beside a milling layer, DipTrace's dimensions), the smallest that holds the copper.
  */
@@ -75,7 +76,7 @@ export function boardWindow(set: BoardSet): BoxMm {
   const exposable = layers.filter((l) => l.kind !== 'other' && l.kind !== 'outline');
   const copper = boxOf(exposable.filter((l) => l.kind === 'copper-top' || l.kind === 'copper-bottom'));
   const inside = isEmptyBox(copper) ? boxOf(exposable) : copper;
-  const outlines = layers.filter((l) => l.kind === 'outline').map((l) => l.boundsMm);
+  const outlines = layers.filter((l) => l.kind === 'outline').map((l) => l.lineBoundsMm ?? l.boundsMm);
   const holding = isEmptyBox(inside) ? outlines : outlines.filter((o) => within(inside, o, OUTLINE_SLACK_MM));
   if (holding.length) return holding.reduce((a, b) => (area(b) < area(a) ? b : a));
   if (outlines.length) return outlines.reduce(unionBox);

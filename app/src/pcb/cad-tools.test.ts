@@ -45,7 +45,7 @@ describe('the board’s window: its outline, never a drawing', () => {
       { name: 'b.gko', text: rect(5, 4, 7, 6) },
     ]);
     expect(read.layers.map((l) => l.kind)).toEqual(['copper-top', 'outline', 'outline']);
-    expect(size(boardWindow(read))).toEqual([20.1, 10.1]);
+    expect(size(boardWindow(read))).toEqual([20, 10]);
   });
 });
 
@@ -70,6 +70,12 @@ describe('zero-width draws (Eagle’s %ADD10C,0.0000*%)', () => {
     const lit = Array.from({ length: 60 }, (_, c) => guide.cells[row * guide.cols + c]).reduce((a, v) => a + v, 0);
     expect(lit).toBe(2);
     expect(read.problems).toEqual([{ file: 'blinky.GTO', message: `1 draw with a zero-width aperture, drawn ${HAIRLINE_MM} mm wide` }]);
+    // On the board's own window (the outline's centre line), the line's inner half: one cell along each edge.
+    const board = boardArtwork(boardSrc(eagle));
+    const look = { layers: eagle.map((f) => ({ kind: f.name.endsWith('.GKO') ? ('outline' as const) : ('other' as const), expose: f.name.endsWith('.GKO') })), drillClear: 'none' as const, marks: [] };
+    const v = board.cover(762, 508, look); // 1.5 × 1 in at 50 µm
+    const mid = 254 * 762;
+    expect([v.values[mid], v.values[mid + 1], v.values[mid + 760], v.values[mid + 761]]).toEqual([0, 255, 255, 0]);
   });
 });
 
@@ -149,8 +155,13 @@ describe('an impossible arc', () => {
     expect(read.problems).toEqual([{ file: 'x-F_Cu.gbr', message: expect.stringMatching(/^1 impossible arc, whose end lies more than 0\.01 mm/) }]);
   });
 
-  it('is not said of a true one', () => {
+  it('is not said of a true one, nor of one its file’s coordinates round (Protel’s %FSLAX23: 0.001 in)', () => {
     expect(readBoard([{ name: 'x-F_Cu.gbr', text: region(10) }]).problems).toEqual([]);
+    // Centre (0, 0), start (1, 0) in, end (0, 1.001) in: 25 µm off its circle, within three steps of 0.001 in.
+    const protel = `%FSLAX23Y23*%\n%MOIN*%\n%ADD10C,0.010*%\nG75*\nD10*\nX1000Y0D02*\nG03X0Y1001I-1000J0D01*\nM02*\n`;
+    expect(readBoard([{ name: 'x.GTL', text: protel }]).problems).toEqual([]);
+    const far = protel.replace('Y1001I', 'Y1004I'); // 0.004 in, past three steps
+    expect(readBoard([{ name: 'x.GTL', text: far }]).problems.map((p) => p.message)).toEqual([expect.stringMatching(/^1 impossible arc, whose end lies more than 0\.076 mm/)]);
   });
 });
 

@@ -23,8 +23,12 @@ export interface BoardTruth {
   empty: Record<string, LayerKind>;
   /** Files the studio must say something of (a part of them it draws differently from the file), and a phrase its words hold. */
   said: Record<string, string>;
-  /** The outline file, and its size as gerbv draws it (stroke included). */
-  outline: { file: string; widthMm: number; heightMm: number };
+  /**
+   * The outline file, its size as gerbv draws it (stroke included), and the width of the line it is drawn
+   * with (from the file's aperture list). The board is cut along the line's centre: its size is the drawn
+   * size less one line width.
+   */
+  outline: { file: string; widthMm: number; heightMm: number; lineWidthMm: number };
   /**
    * The drill files' holes: how many, how many of each diameter (mm, to 0.001 in), as gerbv reads them or, where
    * gerbv misreads some (`gerbvMisreads` of them, off every pad), as the tool's own listing says.

@@ -16,4 +16,4 @@ export {
 export type { BoxMm, Paint, Shape } from './artwork';
 export type { Orientation } from './orient';
 export type { Hole } from './plot-to-artwork';
-export { boardArtwork, boardFiles, boardSrc, markLayer, BOARD_SRC_PREFIX, MARK_HOLE_MM, MARK_OUTER_MM, type BoardArtwork, type BoardLook } from './board-artwork';
+export { boardArtwork, boardFiles, boardSrc, boardWindow, markLayer, BOARD_SRC_PREFIX, MARK_HOLE_MM, MARK_OUTER_MM, type BoardArtwork, type BoardLook } from './board-artwork';

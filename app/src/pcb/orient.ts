@@ -31,7 +31,7 @@ export function orientLayer(l: BoardLayer, o: Orientation): BoardLayer {
     return { x, y, diameterMm: h.diameterMm };
   });
   const boundsMm = paints.reduce((b, p) => (p.clear ? b : unionBox(b, p.box)), EMPTY_BOX);
-  return { ...l, paints, holes, boundsMm };
+  return { ...l, paints, holes, boundsMm, ...(l.lineBoundsMm && { lineBoundsMm: orientBox(l.lineBoundsMm, o) }) };
 }
 
 export function orientBox(b: BoxMm, o: Orientation): BoxMm {

@@ -10,7 +10,10 @@ export const ARC_TOLERANCE_MM = 1e-4;
  * Two cells at the machine's 50 µm, so a 50 % threshold keeps the line wherever it lies.
  */
 export const HAIRLINE_MM = 0.1;
-/** An arc whose end lies further than this from the circle its start and centre make cannot be drawn as written. */
+/**
+ * An arc whose end lies further than this from the circle its start and centre make cannot be drawn as written
+ * (or three steps of the file's coordinates, if more: rounding to them moves the ends and the centre).
+ */
 export const ARC_MISMATCH_MM = 0.01;
 
 /** A flash in a drill file: where the drill goes, and its size. */
@@ -25,6 +28,8 @@ export interface Artwork {
   holes: Hole[];
   /** What the dark paints cover; EMPTY_BOX when nothing is drawn. */
   boundsMm: BoxMm;
+  /** The same with draws taken by their centre lines: an outline's board edge, whatever width it is drawn with. */
+  lineBoundsMm: BoxMm;
   /** Pads flashed with a tool the file never defined, which the plotter skips. */
   unknownTools: string[];
   /** Apertures with no shape at all (a macro that is not defined or draws nothing): their flashes are left out. */
@@ -39,7 +44,7 @@ export interface Artwork {
 
 const MM_PER_INCH = 25.4;
 
-export function plotToArtwork(plot: Plot): Artwork {
+export function plotToArtwork(plot: Plot, arcSlackMm = ARC_MISMATCH_MM): Artwork {
   const k = plot.units === 'in' ? MM_PER_INCH : 1;
   const pads = new Map<string, Shape>();
   const diameters = new Map<string, number>();
@@ -51,24 +56,24 @@ export function plotToArtwork(plot: Plot): Artwork {
   let hairlines = 0;
   let impossibleArcs = 0;
   let clear = false;
-  // Hairline paints, bounded by their centre lines rather than by the width they are drawn with.
-  const hairline = new Set<Paint>();
+  // Draws' paints and their half widths: bounded by their centre lines where the board's edge is asked for.
+  const drawn = new Map<Paint, { r: number; hair: boolean }>();
   // Step and repeat: what is drawn while a repeat is on is gathered and laid down once per offset when it ends.
   let offsets: Point[] = [];
   let block: Paint[] = [];
-  const add = (shape: Shape, hair = false) => {
+  const add = (shape: Shape, line?: { r: number; hair: boolean }) => {
     const p = paint(shape, clear);
     if ([p.box.x0, p.box.y0, p.box.x1, p.box.y1].some((v) => Number.isNaN(v))) malformed++;
     else {
       (offsets.length ? block : paints).push(p);
-      if (hair) hairline.add(p);
+      if (line) drawn.set(p, line);
     }
   };
   const endRepeat = () => {
     for (const [dx, dy] of offsets)
       for (const p of block) {
         const copy = dx === 0 && dy === 0 ? p : translatePaint(p, dx * k, dy * k);
-        if (hairline.has(p)) hairline.add(copy);
+        if (drawn.has(p)) drawn.set(copy, drawn.get(p)!);
         paints.push(copy);
       }
     block = [];
@@ -104,12 +109,13 @@ export function plotToArtwork(plot: Plot): Artwork {
       case 'stroke': {
         const hair = !(o.width > 0);
         if (hair) hairlines++;
-        impossibleArcs += o.path.filter((s) => arcMismatch(s) * k > ARC_MISMATCH_MM).length;
-        for (const s of strokeShapes(o.path, hair ? HAIRLINE_MM / 2 : (o.width / 2) * k, k)) add(s, hair);
+        impossibleArcs += o.path.filter((s) => arcMismatch(s) * k > arcSlackMm).length;
+        const r = hair ? HAIRLINE_MM / 2 : (o.width / 2) * k;
+        for (const s of strokeShapes(o.path, r, k)) add(s, { r, hair });
         break;
       }
       case 'fill':
-        impossibleArcs += o.path.filter((s) => arcMismatch(s) * k > ARC_MISMATCH_MM).length;
+        impossibleArcs += o.path.filter((s) => arcMismatch(s) * k > arcSlackMm).length;
         add({ kind: 'polygon', rings: contours(o.path, k) });
         break;
       case 'polarity':
@@ -125,9 +131,17 @@ export function plotToArtwork(plot: Plot): Artwork {
   }
   endRepeat();
 
-  const h = HAIRLINE_MM / 2;
-  const boundsMm = paints.reduce((b, p) => (p.clear ? b : unionBox(b, hairline.has(p) ? { x0: p.box.x0 + h, y0: p.box.y0 + h, x1: p.box.x1 - h, y1: p.box.y1 - h } : p.box)), EMPTY_BOX);
-  return { paints, holes, boundsMm, unknownTools: [...unknownTools], shapelessTools: [...shapelessTools], malformed, hairlines, impossibleArcs };
+  const centre = (p: Paint, r: number) => ({ x0: p.box.x0 + r, y0: p.box.y0 + r, x1: p.box.x1 - r, y1: p.box.y1 - r });
+  let boundsMm = EMPTY_BOX;
+  let lineBoundsMm = EMPTY_BOX;
+  for (const p of paints) {
+    if (p.clear) continue;
+    const line = drawn.get(p);
+    // A hairline has no width of its own: it is bounded by its centre line even as drawn.
+    boundsMm = unionBox(boundsMm, line?.hair ? centre(p, line.r) : p.box);
+    lineBoundsMm = unionBox(lineBoundsMm, line ? centre(p, line.r) : p.box);
+  }
+  return { paints, holes, boundsMm, lineBoundsMm, unknownTools: [...unknownTools], shapelessTools: [...shapelessTools], malformed, hairlines, impossibleArcs };
 }
 
 /**

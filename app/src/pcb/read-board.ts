@@ -16,6 +16,8 @@ export interface BoardLayer {
   units: Units;
   /** What the layer draws, in board millimetres, Y up as in the file. */
   boundsMm: BoxMm;
+  /** The same with draws taken by their centre lines (an outline's board edge); as boundsMm when not given. */
+  lineBoundsMm?: BoxMm;
   /** The artwork in drawing order. */
   paints: Paint[];
   /** Flash centres of a drill file: the holes. Empty for other files. */
@@ -144,7 +146,8 @@ function readLayer(f: BoardFile, guess: KindGuess, problem: (message: string) =>
   if (!type) return problem('not a Gerber or Excellon drill file: it has no Gerber format or aperture commands, no drill header and no drill coordinates'), null;
   try {
     const plot = plotFile(f.text, type);
-    const art = plotToArtwork(plot);
+    const arcSlackMm = arcSlack(f.text, plot.units);
+    const art = plotToArtwork(plot, arcSlackMm);
     const format = plot.filetype === 'drill' ? 'excellon' : 'gerber';
     const lost: string[] = [];
     for (const tool of art.unknownTools) lost.push(`tool ${tool} is flashed but never defined: those flashes are left out`);
@@ -162,7 +165,7 @@ function readLayer(f: BoardFile, guess: KindGuess, problem: (message: string) =>
       if (guess.kind === 'outline') notes.push(said);
       else lost.push(said);
     }
-    if (art.impossibleArcs) lost.push(`${art.impossibleArcs} impossible arc${art.impossibleArcs > 1 ? 's' : ''}, whose end lies more than ${ARC_MISMATCH_MM} mm nearer to or further from the centre than the start: drawn as written, with a jump at the end`);
+    if (art.impossibleArcs) lost.push(`${art.impossibleArcs} impossible arc${art.impossibleArcs > 1 ? 's' : ''}, whose end lies more than ${+arcSlackMm.toFixed(3)} mm nearer to or further from the centre than the start: drawn as written, with a jump at the end`);
     for (const w of plot.warnings) {
       if (DRAWING_LOST.test(w.message) && !TOOL_PUT_AWAY.test(w.message)) problem(lineOf(w));
       else if (!ATTRIBUTE.test(w.message)) notes.push(lineOf(w));
@@ -177,6 +180,7 @@ function readLayer(f: BoardFile, guess: KindGuess, problem: (message: string) =>
       format,
       units: plot.units,
       boundsMm: art.boundsMm,
+      lineBoundsMm: art.lineBoundsMm,
       paints: art.paints,
       holes: art.holes,
       notes,
@@ -194,6 +198,13 @@ function readLayer(f: BoardFile, guess: KindGuess, problem: (message: string) =>
  * an outline or a file of no known kind that draws nothing is a real problem.
  */
 const emptyIsNormal = (kind: LayerKind): boolean => kind === 'drill' || /^(paste|silk|mask)-/.test(kind);
+
+/** How far an arc's end may stray from its circle: ARC_MISMATCH_MM, or three steps of the file's coordinates (%FSLAX23: 0.001 in). */
+function arcSlack(text: string, units: Units): number {
+  const decimals = /%FS[LTD]?[AI]?X\d(\d)/.exec(text);
+  const step = decimals ? 10 ** -Number(decimals[1]) * (units === 'in' ? 25.4 : 1) : 0;
+  return Math.max(ARC_MISMATCH_MM, 3 * step);
+}
 
 function flashPlaces(objects: readonly PlotObject[], k: number): Float64Array {
   const out: number[] = [];

@@ -4,6 +4,18 @@
 /** Bytes fed to the stream between the page's other tasks: a whole bed's 16 MB in one go held the page for 0.2 s. */
 const CHUNK = 256 * 1024;
 
+/**
+ * Whether no cell is painted. Read four cells a word: a byte at a time, a whole bed's 16 M cells held the page
+ * for 70 ms at every autosave on a busy machine (issue 40's long tasks), a word at a time 14 ms.
+ */
+export function isBlank(cells: Uint8Array): boolean {
+  const aligned = cells.byteOffset % 4 === 0;
+  const words = aligned ? new Uint32Array(cells.buffer, cells.byteOffset, cells.length >> 2) : new Uint32Array(0);
+  for (let i = 0; i < words.length; i++) if (words[i] !== 0) return false;
+  for (let i = words.length << 2; i < cells.length; i++) if (cells[i] !== 0) return false;
+  return true;
+}
+
 async function pipe(bytes: Uint8Array, stream: CompressionStream | DecompressionStream): Promise<Uint8Array> {
   const out = new Response(stream.readable).arrayBuffer();
   const writer = stream.writable.getWriter();

@@ -1,6 +1,7 @@
 import { describe, expect, it } from 'vitest';
 import { NEUTRAL_TONE } from '../studio/image/adjust';
 import { decodeProject, encodeProject, ProjectError, type Project } from './project-file';
+import { isBlank } from './cells-codec';
 
 const PNG = 'data:image/png;base64,iVBORw0KGgo=';
 const BOARD = `data:application/vnd.uv-exposure.board+json;base64,${btoa('{"files":[]}')}`;
@@ -59,6 +60,17 @@ describe('project files', () => {
     const text = await encodeProject({ ...project(), paint: { cols: 4096, rows: 4096, cells }, objects: [] });
     expect(text.length).toBeLessThan(40_000);
     expect(Buffer.compare((await decodeProject(text)).paint.cells, cells)).toBe(0); // toEqual takes seconds over 16 M cells
+  });
+
+  it('tell a blank painting by every cell, whatever its length or where its bytes start', () => {
+    const cells = new Uint8Array(4099);
+    expect(isBlank(cells)).toBe(true);
+    for (const at of [0, 3, 2048, 4095, 4096, 4098]) {
+      cells[at] = 1;
+      expect(isBlank(cells), `a cell at ${at}`).toBe(false);
+      expect(isBlank(cells.subarray(1)), `a cell at ${at}, read from byte 1`).toBe(at === 0);
+      cells[at] = 0;
+    }
   });
 
   it('keep an empty painting as no cells at all', async () => {

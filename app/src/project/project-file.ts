@@ -11,7 +11,7 @@ import type { Tone } from '../studio/image/adjust';
 import { BOARD_LAYER_KINDS, DRILL_CLEARS, type BoardLayerKind, type DrillClear, type StudioObject, type Turn } from '../studio/objects/objects';
 import type { Polarity } from '../studio/objects/raster';
 import { STRATEGY_NAMES, type StrategyName } from '../protocol/job-types';
-import { packCells, unpackCells } from './cells-codec';
+import { isBlank, packCells, unpackCells } from './cells-codec';
 import { MAX_PROJECT_BYTES, ProjectError } from './project-error';
 
 export { MAX_PROJECT_BYTES, ProjectError };
@@ -35,8 +35,7 @@ export interface Project {
 }
 
 export async function encodeProject(p: Project, savedAt = new Date()): Promise<string> {
-  let empty = true;
-  for (let i = 0; i < p.paint.cells.length && empty; i++) empty = p.paint.cells[i] === 0;
+  const empty = isBlank(p.paint.cells);
   return JSON.stringify({
     format: PROJECT_FORMAT,
     version: PROJECT_VERSION,

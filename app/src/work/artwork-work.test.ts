@@ -20,14 +20,14 @@ describe('a board in a project', () => {
     expect(stages.map((p) => p.stage)).toEqual(['reading the board']);
     const kinds = ['copper-bottom', 'outline', 'copper-top', 'mask-top', 'drill'] as const;
     const o: BoardObject = {
-      id: 1, kind: 'board', name: 'demo', src, x: 0, y: 0, w: 301, h: 201, halftone: 'threshold', threshold: 50, tone: { ...NEUTRAL_TONE },
+      id: 1, kind: 'board', name: 'demo', src, x: 0, y: 0, w: 300, h: 200, halftone: 'threshold', threshold: 50, tone: { ...NEUTRAL_TONE },
       ...newBoardFields(FILES.map((f, i) => ({ file: f.name, kind: kinds[i] }))),
     };
-    expect(read.pixels).toEqual({ width: 30100, height: 20100 }); // the window in µm
+    expect(read.pixels).toEqual({ width: 30000, height: 20000 }); // the window in µm: the outline's centre line
     expect(readBoard({ src }, () => stages.push({ stage: 'again' })).pixels).toEqual(read.pixels); // kept: not read again
     expect(stages).toHaveLength(1);
     const top = await rasterInWorker(o, 'negative', () => {});
-    const at = (d: Uint8Array, x: number, y: number) => d[Math.floor((20.05 - y) / 0.1) * 301 + Math.floor((x + 0.05) / 0.1)];
+    const at = (d: Uint8Array, x: number, y: number) => d[Math.floor((20 - y) / 0.1) * 300 + Math.floor(x / 0.1)];
     expect(at(top, 5.6, 5)).toBe(255); // the square pad's copper, exposed
     expect(at(top, 27, 2)).toBe(0);
     const none = await rasterInWorker({ ...o, layers: o.layers.map((l) => ({ ...l, expose: false })) }, 'negative', () => {});

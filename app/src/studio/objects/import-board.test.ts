@@ -33,8 +33,8 @@ describe('a board imported', () => {
     const a = await importBoard(files);
     expect(a.kind).toBe('board');
     expect(a.name).toBe('demo');
-    expect(a.sizeMm!.x).toBeCloseTo(30.1, 6);
-    expect(a.sizeMm!.y).toBeCloseTo(20.1, 6);
+    expect(a.sizeMm!.x).toBeCloseTo(30, 6); // the outline's centre line
+    expect(a.sizeMm!.y).toBeCloseTo(20, 6);
     expect(a.problems).toEqual([{ file: 'demo-notes.gbr', messages: [expect.stringMatching(/^not a Gerber or Excellon drill file/)] }]);
     expect(a.board!.layers.map((l) => [l.file, l.kind, l.expose])).toEqual([
       ['demo-B_Cu.gbr', 'copper-bottom', false],
