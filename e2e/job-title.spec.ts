@@ -25,8 +25,8 @@ test('the title shows a scan job’s progress, then its end, while the page is l
   await page.getByLabel('Full dose').fill('20');
   await page.getByRole('button', { name: 'Expose test pattern' }).click(); // automatic: a scan on the move
   await page.getByRole('dialog').getByRole('button', { name: /Expose (now|anyway)/ }).click();
-  await expect(page.getByTestId('job-state')).toContainText(/running: pass [1-9]\d* of \d+/, { timeout: 30_000 });
-  await expect(page).toHaveTitle(/^\d+ % exposing · UV Exposure$/);
+  // The progress is read from the titles recorded all along: a loaded machine may run the short job
+  // between two polls of the page.
   await expect(page.getByTestId('job-state')).toHaveAttribute('data-state', 'done', { timeout: 60_000 });
   expect(await page.evaluate(() => document.hasFocus() && document.visibilityState === 'visible')).toBe(true);
   await expect(page).toHaveTitle('Job done · UV Exposure');
