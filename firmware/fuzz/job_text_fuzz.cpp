@@ -15,11 +15,11 @@ namespace {
 struct Cells : uv::SegmentSink {
   uint16_t cols = 0;
   std::vector<uint8_t> grid;
-  void segment(uint16_t row, uint16_t col, const char* hex, uint8_t n) override {
+  void segment(uint16_t row, uint16_t col, const uint8_t* cells, uint8_t n) override {
     for (uint8_t i = 0; i < n; i++) {
       size_t at = static_cast<size_t>(row) * cols + col + i;
       FUZZ_REQUIRE(at < grid.size(), "a segment outside the grid the header declared");
-      grid[at] = uv::hexCell(hex, i);
+      grid[at] = cells[i];
     }
   }
 };
