@@ -65,3 +65,15 @@ test('the question and the progress name the upload, at the line rate and then a
   await dialog.screenshot({ path: info.outputPath('question-measured-rate.png') });
   await dialog.getByRole('button', { name: 'Cancel' }).click();
 });
+
+test('a small job says its upload takes under a second', async ({ page }, info) => {
+  await page.setViewportSize({ width: 1440, height: 900 });
+  await page.goto('/?simSpeed=40');
+  await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected');
+  await page.getByRole('button', { name: 'Expose test pattern' }).click();
+  const dialog = page.getByRole('dialog', { name: 'Expose the test pattern?' });
+  await expect(dialog).toContainText(/First the job is uploaded: in under a second for [\d.]+ (KB|bytes) at 11\.5 KB\/s, the line's rate \(no upload measured yet\)/);
+  await expect(dialog).toContainText(/About \d:\d\d:\d\d in all\./);
+  await dialog.screenshot({ path: info.outputPath('test-pattern-question.png') });
+  await dialog.getByRole('button', { name: 'Cancel' }).click();
+});

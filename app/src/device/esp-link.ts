@@ -133,7 +133,7 @@ export class EspLink implements PrinterLink {
         const s = (now - first.ms) / 1000;
         const bytesPerS = s >= 0.5 && m.bytesSent > first.sent ? (m.bytesSent - first.sent) / s : undefined;
         onProgress({ bytesSent: m.bytesSent, bytesVerified: m.bytesVerified, bytesTotal: m.bytesTotal, bytesPerS });
-        if (m.state === 'started' && bytesPerS) this.uploadRate = { bytesPerS, measured: true };
+        if (m.state === 'started' && bytesPerS) this.uploadRate = { bytesPerS, measured: true, counts: 'text' }; // the hub counts job text
         if (m.state === 'started') resolve();
         if (m.state === 'failed') reject(new Error(m.error ?? 'upload failed'));
       };

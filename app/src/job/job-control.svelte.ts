@@ -19,7 +19,7 @@ import { calibrationOf, doseOf, msFor, type Calibration } from './dose-units';
 import { actionsFor, hotSensors, viewOf, type Action, type Actions } from './actions';
 import { estimateUsFor, type JobEstimate } from './job-times';
 import { limitsOf } from '../studio/machine-config';
-import { uploadUs, type LinkRate } from './link-rate';
+import { uploadBytes, uploadUs, type LinkRate } from './link-rate';
 import type { UploadSize } from './upload-time';
 
 /** Lets the page draw and answer between two steps that each take a while. */
@@ -282,7 +282,7 @@ export class JobControl {
       x0: mm(job.originUm.x), y0: mm(job.originUm.y),
       x1: mm(job.originUm.x + job.grid.cols * job.pitchUm.x), y1: mm(job.originUm.y + job.grid.rows * job.pitchUm.y),
     };
-    this.pending = { kind: 'expose', what, job, findings, duty, estimateUs, pacedUs, upload, rate, uploadUs: uploadUs(upload.wireBytes, rate), areaMm, cuts: cuts ?? [], accepted: false, boards };
+    this.pending = { kind: 'expose', what, job, findings, duty, estimateUs, pacedUs, upload, rate, uploadUs: uploadUs(uploadBytes(upload, rate), rate), areaMm, cuts: cuts ?? [], accepted: false, boards };
   }
 
   async #run(job: PrintJob, duty: number[] | null, paced: boolean): Promise<void> {

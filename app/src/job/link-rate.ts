@@ -7,9 +7,15 @@ export const LINE_RATE_BPS = 115200 / 10;
 export interface LinkRate {
   bytesPerS: number;
   measured: boolean;
+  /** What its bytes count: whole lines on the wire (the app's own sender), or job text (what the ESP's hub reports). */
+  counts?: 'wire' | 'text';
 }
 
 export const LINE_RATE: LinkRate = { bytesPerS: LINE_RATE_BPS, measured: false };
+
+/** The upload's bytes in the unit `rate` counts. */
+export const uploadBytes = (size: { wireBytes: number; textBytes: number }, rate: LinkRate): number =>
+  rate.counts === 'text' ? size.textBytes : size.wireBytes;
 
 /** The upload's time at `rate`, µs. */
 export const uploadUs = (wireBytes: number, rate: LinkRate): number => Math.round((wireBytes / rate.bytesPerS) * 1e6);

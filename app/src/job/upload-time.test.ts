@@ -3,7 +3,7 @@ import { describe, expect, it } from 'vitest';
 import { encodeFrame } from '../protocol/dialect-frame';
 import { encodeJob } from '../protocol/job-encode';
 import type { PrintJob } from '../protocol/job-types';
-import { bytesText, LINE_RATE, rateText, uploadLeftS, uploadUs } from './link-rate';
+import { bytesText, LINE_RATE, rateText, uploadBytes, uploadLeftS, uploadUs } from './link-rate';
 import { uploadSize } from './upload-time';
 
 const filled = (cols: number, rows: number): PrintJob => ({
@@ -40,5 +40,15 @@ describe('upload size and time', () => {
     expect(bytesText(9663)).toBe('9.7 KB');
     expect(uploadLeftS({ bytesSent: 0, bytesTotal: 10 })).toBeNull();
     expect(uploadLeftS({ bytesSent: 500, bytesTotal: 1000, wireSent: 1000, wireTotal: 21_000, bytesPerS: 10_000 })).toBe(2);
+  });
+});
+
+describe('the rate the ESP measures', () => {
+  it('counts job text, as the hub reports it, so the time is the text over that rate', () => {
+    const size = uploadSize(filled(600, 10), 1);
+    const rate = { bytesPerS: 10_000, measured: true, counts: 'text' as const };
+    expect(uploadBytes(size, rate)).toBe(size.textBytes);
+    expect(uploadBytes(size, LINE_RATE)).toBe(size.wireBytes);
+    expect(uploadUs(uploadBytes(size, rate), rate)).toBe(Math.round((size.textBytes / 10_000) * 1e6));
   });
 });
