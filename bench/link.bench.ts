@@ -24,6 +24,7 @@ async function utilisation(window: number, latencyUs: number, job: PrintJob): Pr
   const link = new DialectLink(wire.host, { ...wire.clientOptions, maxWindow: window });
   await settle(wire, link.open(() => {}, () => {}));
   await settle(wire, link.command('G28'));
+  link.jobFormat = 1; // hex rows, as P1 has always measured them: P13 sets format 2 beside it
   const t0 = wire.printer.clock.now;
   const b0 = wire.carried.toPrinter;
   let uploaded = 0;

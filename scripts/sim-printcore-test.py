@@ -84,6 +84,15 @@ try:
     check("no errors during the print", len([l for l in received if l.startswith("Error")]) == errors_before, received[-10:])
     ok, lines = reply("M20", r"^PRINTCORE\.UVJ \d+$")
     check("the job is on the SD card, byte for byte", ok and lines[0] == f"PRINTCORE.UVJ {len(job)}", lines)
+    # A job in format 2 (job.md "Run-length rows") goes the same way: its `rl` lines are job records too.
+    job2 = next(j for j in json.load(open(os.path.join(ROOT, "protocol", "vectors", "job.json")))["jobs"] if j.get("format") == 2)["text"]
+    records2 = job2.strip().split("\n")
+    saved = len([l for l in received if "Done saving file." in l])
+    p.startprint(gcoder.LightGCode(["M28 PRINTCORE2.UVJ"] + records2 + ["M29"]))
+    done = wait(lambda: not p.printing and len([l for l in received if "Done saving file." in l]) > saved, 60)
+    check("streams a format 2 job (run-length rows) and the Mega verifies it", done, received[-10:])
+    ok, lines = reply("M20", r"^PRINTCORE2\.UVJ \d+$")
+    check("the format 2 job is on the SD card, byte for byte", ok and lines[0] == f"PRINTCORE2.UVJ {len(job2)}", lines)
     p.send_now("M23 PRINTCORE.UVJ")
     ok, lines = reply("M24", r"^JOB:(running|done)")
     check("exposes it (M23, M24)", ok, received[-5:])

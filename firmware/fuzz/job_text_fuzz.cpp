@@ -1,6 +1,7 @@
 // Fuzzes the job verifier with job text as an upload delivers it, a record a line. Holds: a job
-// that verifies, encoded again from the cells it describes, verifies to the same header and the
-// same cells, and encoding that again gives the same text (the encoder's form is a fixed point).
+// that verifies, encoded again from the cells it describes (in format 1, and in format 2 with its
+// run-length rows), verifies to the same header and the same cells, and encoding that again gives
+// the same text (the encoder's form is a fixed point).
 #include <fuzzer/FuzzedDataProvider.h>
 
 #include <string>
@@ -15,11 +16,11 @@ namespace {
 struct Cells : uv::SegmentSink {
   uint16_t cols = 0;
   std::vector<uint8_t> grid;
-  void segment(uint16_t row, uint16_t col, const char* hex, uint8_t n) override {
+  void segment(uint16_t row, uint16_t col, const uint8_t* cells, uint8_t n) override {
     for (uint8_t i = 0; i < n; i++) {
       size_t at = static_cast<size_t>(row) * cols + col + i;
       FUZZ_REQUIRE(at < grid.size(), "a segment outside the grid the header declared");
-      grid[at] = uv::hexCell(hex, i);
+      grid[at] = cells[i];
     }
   }
 };
@@ -62,9 +63,9 @@ bool sameHeader(const uv::JobHeader& a, const uv::JobHeader& b) {
   return same;
 }
 
-std::string encode(const uv::JobHeader& h, const std::vector<uint8_t>& grid) {
+std::string encode(const uv::JobHeader& h, const std::vector<uint8_t>& grid, uint8_t format = 1) {
   Text out;
-  uv::JobEncoder enc(out);
+  uv::JobEncoder enc(out, format);
   enc.header(h);
   for (uint16_t r = 0; r < h.rows; r++) enc.row(r, grid.data() + static_cast<size_t>(r) * h.cols, h.cols);
   enc.finish();
@@ -85,5 +86,13 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   FUZZ_REQUIRE(sameHeader(h, h2), "a verified job's header changed on encoding again");
   FUZZ_REQUIRE(first.grid == second.grid, "a verified job's cells changed on encoding again");
   FUZZ_REQUIRE(encode(h2, second.grid) == again, "the encoder's text is not a fixed point");
+  // Format 2 (run-length rows) holds the same: the same cells, a fixed point, never longer than format 1.
+  std::string runs = encode(h, first.grid, 2);
+  Cells third;
+  uv::JobHeader h3{};
+  FUZZ_REQUIRE(verify(runs, third, h3) == 0, "a verified job, encoded in format 2, does not verify");
+  FUZZ_REQUIRE(sameHeader(h, h3) && first.grid == third.grid, "a verified job changed on encoding in format 2");
+  FUZZ_REQUIRE(encode(h3, third.grid, 2) == runs, "the format 2 encoder's text is not a fixed point");
+  FUZZ_REQUIRE(runs.size() <= again.size(), "format 2 is longer than format 1");
   return 0;
 }

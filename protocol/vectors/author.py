@@ -390,9 +390,70 @@ def segments(row):
     return out
 
 
-def job_text(job):
+def run_tokens(row):
+    """Maximal runs of equal cells from the first to the last non-zero cell: runs of 4 or more are
+    (col, n, value) run tokens, shorter ones join into (col, [cells]) literal tokens."""
+    nz = [i for i, v in enumerate(row) if v]
+    if not nz:
+        return []
+    out, c, last = [], nz[0], nz[-1]
+    while c <= last:
+        e = c
+        while e + 1 <= last and row[e + 1] == row[c]:
+            e += 1
+        if e - c + 1 >= 4:
+            out.append((c, e - c + 1, row[c]))
+        elif out and len(out[-1]) == 2:
+            out[-1][1].extend(row[c:e + 1])
+        else:
+            out.append((c, list(row[c:e + 1])))
+        c = e + 1
+    return out
+
+
+def run_records(r, row, limit=76):
+    """Format 2's `rl` records of a row (job.md "Run-length rows"), filled greedily to `limit` bytes."""
+    text = lambda t: f"{t[1]}x{t[2]:02x}" if len(t) == 3 else "".join(f"{v:02x}" for v in t[1])
+    zero_run = lambda t: len(t) == 3 and t[2] == 0
+    out, parts = [], []
+
+    def close():
+        while parts and zero_run(parts[-1]):
+            parts.pop()
+        if parts:
+            out.append(f"rl {r} {parts[0][0]} " + " ".join(text(t) for t in parts))
+        parts.clear()
+
+    for t in run_tokens(row):
+        while True:
+            if not parts and zero_run(t):
+                break
+            head = f"rl {r} {(parts[0] if parts else t)[0]}"
+            used = len(head + "".join(" " + text(p) for p in parts))
+            if used + 1 + len(text(t)) <= limit:
+                parts.append(t)
+                break
+            room = (limit - used - 1) // 2
+            if len(t) == 2 and room >= 1:
+                parts.append((t[0], t[1][:room]))
+                t = (t[0] + room, t[1][room:])
+            close()
+    close()
+    return out
+
+
+def row_records(r, row, fmt):
+    seg = [f"r {r} {col} " + "".join(f"{v:02x}" for v in cells) for col, cells in segments(row)]
+    if fmt == 1 or not seg:
+        return seg
+    runs = run_records(r, row)
+    size = lambda recs: sum(len(x) + 1 for x in recs)
+    return runs if size(runs) < size(seg) else seg
+
+
+def job_text(job, fmt=1):
     d, l = job["dose"], job["leds"]
-    lines = ["uvj 1",
+    lines = [f"uvj {fmt}",
              f"grid {job['grid']['cols']} {job['grid']['rows']}",
              f"pitch {job['pitchUm']['x']} {job['pitchUm']['y']}",
              f"origin {job['originUm']['x']} {job['originUm']['y']}",
@@ -404,8 +465,7 @@ def job_text(job):
              "leds " + " ".join(f"{dx} {dy}" for dx, dy in l["offsets"]),
              f"strategy {job['strategy']['name']} {job['strategy'].get('seed', 0) if job['strategy']['name'] == 'random' else 0}"]
     for r, row in enumerate(job["gridData"]):
-        for col, cells in segments(row):
-            lines.append(f"r {r} {col} " + "".join(f"{v:02x}" for v in cells))
+        lines.extend(row_records(r, row, fmt))
     body = "".join(x + "\n" for x in lines)
     crc = zlib.crc32(body.encode("ascii")) & 0xFFFFFFFF
     return body + f"end {crc:08x}\n", f"{crc:08x}"
@@ -454,8 +514,28 @@ jobs = [
                                [0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0],
                                [255, 255, 255, 255, 0, 64, 0, 0, 200, 200, 0, 1]])},
 ]
+# Format 2 (job.md "Run-length rows"): rows written as `rl` records where those are shorter.
+def pcb_row(cols, seed):
+    row, x = [0] * cols, seed
+    for c in range(cols):
+        x = (x * 1103515245 + 12345) & 0x7FFFFFFF
+        row[c] = 255 if (c // (6 + (x >> 20) % 9)) % 3 == 0 else 0
+    return row
+
+
+jobs += [
+    {"name": "format 2: a filled row as one run, a gray ramp stays r", "format": 2,
+     "job": base_job(grid={"cols": 600, "rows": 3}, gridData=[[255] * 600, [0] * 10 + [255] * 590, [(c * 7) % 256 for c in range(600)]])},
+    {"name": "format 2: runs, zero runs inside, literals split at 76 bytes", "format": 2,
+     "job": base_job(grid={"cols": 300, "rows": 2}, dose={"map": "linear", "fullUs": 4000},
+                     gridData=[[0] * 3 + [200] * 4 + [1, 2, 3] + [0] * 50 + [9] * 3 + [0] * 4 + [7] + [(c * 13) % 251 + 1 for c in range(60)] + [0] * 171 + [255],
+                               [0] * 300])},
+    {"name": "format 2: PCB-like rows, equal lengths keep r", "format": 2,
+     "job": base_job(grid={"cols": 120, "rows": 3}, strategy={"name": "raster"},
+                     gridData=[pcb_row(120, 1), pcb_row(120, 2), [0] * 5 + [255, 0, 255] + [0] * 112])},
+]
 for j in jobs:
-    j["text"], j["crc"] = job_text(j["job"])
+    j["text"], j["crc"] = job_text(j["job"], j.get("format", 1))
 
 good = jobs[0]["text"]
 good_lines = good.split("\n")[:-1]
@@ -485,7 +565,9 @@ invalid_jobs = [
     {"why": "missing end", "text": "".join(x + "\n" for x in good_lines[:-1]), "error": 25},
     {"why": "bytes after end", "text": good + "r 0 0 ff\n", "error": 25},
     {"why": "unterminated last line", "text": good[:-1], "error": 25},
-    {"why": "wrong version", "text": replace(0, "uvj 2"), "error": 23},
+    {"why": "wrong version", "text": replace(0, "uvj 3"), "error": 23},
+    {"why": "version 0", "text": replace(0, "uvj 0"), "error": 23},
+    {"why": "rl record in a format 1 job", "text": replace(10, "rl 0 1 ffff"), "error": 23},
     {"why": "header out of order", "text": rebuild([good_lines[0], good_lines[2], good_lines[1]] + good_lines[3:]), "error": 23},
     {"why": "missing header record", "text": drop(6), "error": 23},
     {"why": "grid too large", "text": replace(1, "grid 4097 2"), "error": 23},
@@ -513,6 +595,38 @@ invalid_jobs = [
     {"why": "unknown record", "text": rebuild(good_lines[:10] + ["z 1"] + good_lines[10:]), "error": 23},
     {"why": "header after data", "text": rebuild(good_lines[:11] + ["gain 1000 1000 1000 1000"] + good_lines[11:]), "error": 23},
     {"why": "crc not 8 hex digits", "text": "".join(x + "\n" for x in good_lines[:-1]) + "end 1234\n", "error": 23},
+]
+v2_lines = ["uvj 2"] + good_lines[1:10] + ["rl 0 1 ffff", "r 1 2 80"]
+
+
+def v2(i, new):
+    ls = list(v2_lines)
+    if new is None:
+        del ls[i]
+    else:
+        ls[i] = new
+    return rebuild(ls)
+
+
+invalid_jobs += [
+    {"why": "format 2 job with a run and a literal verifies", "text": v2(10, "rl 0 0 00ff ff"), "error": 0},
+    {"why": "rl run of 3 (a run token holds 4 or more)", "text": v2(10, "rl 0 0 3xff"), "error": 23},
+    {"why": "rl run past the grid", "text": v2(10, "rl 0 1 4xff"), "error": 23},
+    {"why": "rl run with a leading zero", "text": rebuild(["uvj 2", "grid 9 2"] + v2_lines[2:10] + ["rl 0 0 04xff"]), "error": 23},
+    {"why": "rl run with a count over 4096", "text": rebuild(["uvj 2", "grid 4096 2"] + v2_lines[2:10] + ["rl 0 0 4097xff"]), "error": 23},
+    {"why": "rl run value of one digit", "text": v2(10, "rl 0 0 4xf"), "error": 23},
+    {"why": "rl run value upper-case", "text": v2(10, "rl 0 0 4xFF"), "error": 23},
+    {"why": "rl run without a count", "text": v2(10, "rl 0 0 xff"), "error": 23},
+    {"why": "rl odd literal", "text": v2(10, "rl 0 0 fff"), "error": 23},
+    {"why": "rl without tokens", "text": v2(10, "rl 0 0"), "error": 23},
+    {"why": "rl double space between tokens", "text": v2(10, "rl 0 0 ff  ff"), "error": 23},
+    {"why": "rl trailing space", "text": v2(10, "rl 0 0 ffff "), "error": 23},
+    {"why": "rl over 76 bytes", "text": rebuild(["uvj 2", "grid 100 2"] + v2_lines[2:10] + ["rl 0 0 " + "ff" * 35]), "error": 23},
+    {"why": "rl of 76 bytes verifies", "text": rebuild(["uvj 2", "grid 100 2"] + v2_lines[2:10] + ["rl 0 10 " + "ff" * 34]), "error": 0},
+    {"why": "rl overlapping an r record", "text": v2(11, "rl 0 3 4x80"), "error": 23},
+    {"why": "rl out of order", "text": rebuild(v2_lines[:10] + ["r 1 2 80", "rl 0 1 ffff"]), "error": 23},
+    {"why": "format 2 truncated inside rl records", "text": "".join(x + "\n" for x in v2_lines[:11]), "error": 25},
+    {"why": "format 2 hash over the rl record", "text": v2(10, "rl 0 1 ffff")[:-3] + "00\n", "error": 24},
 ]
 write("job.json", {"version": 1, "maxCellsPerRecord": 32, "maxGap": 4, "jobs": jobs, "invalid": invalid_jobs})
 

@@ -1,6 +1,8 @@
 // The app's one view of the printer: the connection lifecycle as a discriminated union, the device state
 // folded from every report, link health, and the job and machine actions the UI calls.
 
+import { LINE_RATE, type LinkRate } from '../job/link-rate';
+import type { JobFormat } from '../protocol/job-types';
 import { ConsoleLog, type Entry } from '../console/console-log';
 import type { Reply } from '../protocol/dialect-reply';
 import { formatReply } from '../protocol/reply-format';
@@ -215,6 +217,16 @@ export class Printer {
     this.log.markReplies(entries);
     this.logRevision++;
     return replies;
+  }
+
+  /** The job format the connected printer reads (job.md), 1 when none is connected. */
+  get jobFormat(): JobFormat {
+    return this.#link?.jobFormat ?? 1;
+  }
+
+  /** The connected link's upload rate: measured on its last upload, else the line's. */
+  get uploadRate(): LinkRate {
+    return this.#link?.uploadRate ?? LINE_RATE;
   }
 
   async startJob(job: PrintJob, opts: StartOptions = {}): Promise<void> {

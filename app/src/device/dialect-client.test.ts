@@ -59,10 +59,11 @@ describe('dialect client over a simulated 115200-baud wire', () => {
     const progress: number[] = [];
     await settle(r.wire, r.dl.startJob(j, (p) => progress.push(p.bytesVerified)));
     const stored = r.wire.printer.module.card().map(([, text]) => text);
-    expect(stored).toContain(encodeJob(j));
+    expect(r.dl.jobFormat).toBe(2); // the printer says Cap:JOB_FORMAT:2: run-length rows where shorter
+    expect(stored).toContain(encodeJob(j, 2));
     expect(r.dl.health.resends + r.dl.health.timeouts).toBeGreaterThan(0);
     expect(r.dl.health.bytesRetransmitted).toBeGreaterThan(0);
-    expect(progress.at(-1)).toBe(encodeJob(j).length);
+    expect(progress.at(-1)).toBe(encodeJob(j, 2).length);
     expect(r.wire.printer.module.cardJob()).not.toBeNull(); // running
   });
 
@@ -79,12 +80,17 @@ describe('dialect client over a simulated 115200-baud wire', () => {
     await settle(r.wire, r.opened);
     await settle(r.wire, r.dl.command('G28'));
     const j = job(7);
-    const text = encodeJob(j);
+    r.dl.jobFormat = 1; // hex rows: 20 kB of them, where run-length rows would be a few
+    const text = encodeJob(j, 1);
     const start = r.wire.printer.clock.now;
     await settle(r.wire, r.dl.startJob({ ...j, gridData: j.gridData }, () => {}));
     const seconds = (r.wire.printer.clock.now - start) / 1e6;
     expect(r.dl.health.resends).toBe(0);
     expect(text.length / seconds).toBeGreaterThan(0.8 * 11520 * (text.length / r.wire.carried.toPrinter));
+    // The rate the next question uses: measured on this upload, in the printer's time, at most the line's.
+    expect(r.dl.uploadRate.measured).toBe(true);
+    expect(r.dl.uploadRate.bytesPerS).toBeGreaterThan(0.8 * 11520);
+    expect(r.dl.uploadRate.bytesPerS).toBeLessThanOrEqual(11520);
   });
 
   it('streams with M828 on a Mega without SD, held back by its buffer, with no time-out and every stop once', async () => {

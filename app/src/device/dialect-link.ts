@@ -2,8 +2,10 @@
 // job upload of protocol/mega.md (M28 … M29, then M23 and M24).
 
 import type { Reply } from '../protocol/dialect-reply';
-import type { PrintJob } from '../protocol/job-types';
+import type { JobFormat, PrintJob } from '../protocol/job-types';
 import { CommandError } from './command-error';
+import { encodeFrame } from '../protocol/dialect-frame';
+import { LINE_RATE, type LinkRate } from '../job/link-rate';
 import { DialectClient, type ClientOptions, type LinkHealth } from './dialect-client';
 import type { PrinterLink, StartOptions, UploadProgress } from './link';
 import type { Transport } from './transport';
@@ -22,6 +24,10 @@ export class DialectLink implements PrinterLink {
   #client: DialectClient;
   #jobs = 0;
   #heartbeat: unknown = null;
+  /** The newest job format the printer reads (`Cap:JOB_FORMAT`, mega.md); 1 for firmware that does not say. */
+  jobFormat: JobFormat = 1;
+  /** Wire bytes per second of the printer's time on the last whole upload through this link. */
+  uploadRate: LinkRate = LINE_RATE;
 
   constructor(private readonly transport: Transport, private readonly clientOptions: ClientOptions = {}) {
     this.kind = transport.kind;
@@ -45,7 +51,9 @@ export class DialectLink implements PrinterLink {
       this.transport.onRescaled = null;
       onClosed(error);
     });
-    await this.#client.command('M115'); // learns the receive window
+    const info = await this.#client.command('M115'); // learns the receive window and the job format
+    const cap = info.find((r) => r.kind === 'cap' && r.name === 'JOB_FORMAT');
+    this.jobFormat = cap?.kind === 'cap' && cap.value >= 2 ? 2 : 1;
     this.#beat();
     this.transport.onRescaled = () => { // the next heartbeat at the new speed's period, from now
       this.#stopHeartbeat();
@@ -76,24 +84,37 @@ export class DialectLink implements PrinterLink {
   async startJob(job: PrintJob, onProgress: (p: UploadProgress) => void, opts: StartOptions = {}): Promise<void> {
     const pace = opts.paced ? ' P1' : '';
     const { encodeJob } = await import('../protocol/job-encode'); // loaded with the first job
-    const text = encodeJob(job);
+    const text = encodeJob(job, this.jobFormat);
     const records = text.trimEnd().split('\n');
     const total = records.reduce((n, r) => n + r.length + 1, 0);
+    const wireTotal = records.reduce((n, r, i) => n + encodeFrame(i + 1, r).length + 1, 0);
+    const now = this.clientOptions.now ?? (() => performance.now());
+    // The printer's seconds since `t0`: the client's clock is the page's, the printer runs timeScale of them a second.
+    const since = (t0: number) => ((now() - t0) / 1000) * (this.clientOptions.now ? 1 : this.timeScale);
     let sentBefore = 0;
     let streaming = false;
     for (let attempt = 1; ; attempt++) {
       const file = `${(job.name ?? 'job').replace(/[^A-Za-z0-9_-]/g, '').slice(0, 20) || 'job'}-${++this.#jobs}.uvj`;
       try {
-        onProgress({ bytesSent: sentBefore, bytesVerified: 0, bytesTotal: total });
+        onProgress({ bytesSent: sentBefore, bytesVerified: 0, bytesTotal: total, wireSent: 0, wireTotal });
         streaming = await this.#openUpload(file, pace);
         let sent = 0;
+        const t0 = now();
+        const w0 = this.#client.health.bytesSent; // whole lines, resends included
+        const wire = () => this.#client.health.bytesSent - w0;
+        const rate = () => {
+          const s = since(t0);
+          return s > 0.25 ? wire() / s : undefined;
+        };
         await this.#client.stream(records, (s, accepted) => {
           sent = s;
-          onProgress({ bytesSent: sentBefore + s, bytesVerified: accepted, bytesTotal: total });
+          onProgress({ bytesSent: sentBefore + s, bytesVerified: accepted, bytesTotal: total, wireSent: wire(), wireTotal, bytesPerS: rate() });
         });
         sentBefore += sent;
+        const bytesPerS = rate(); // to the last record's ok: M29's checking and planning are the printer's, not the link's
         await this.#client.command('M29'); // the Mega checks every record and the whole-job CRC
-        onProgress({ bytesSent: sentBefore, bytesVerified: total, bytesTotal: total });
+        if (bytesPerS) this.uploadRate = { bytesPerS, measured: true };
+        onProgress({ bytesSent: sentBefore, bytesVerified: total, bytesTotal: total, wireSent: wireTotal, wireTotal, bytesPerS });
         if (streaming) return; // a stream is already exposing
         await this.#client.command(`M23 ${file}`);
         await this.#client.command(`M24${pace}`);

@@ -1,5 +1,6 @@
 // PrinterLink to the ESP (protocol/esp.md): jobs by POST /print, everything else over the /ws WebSocket.
 
+import { LINE_RATE, type LinkRate } from '../job/link-rate';
 import { parseReply, type Reply } from '../protocol/dialect-reply';
 import type { PrintJob } from '../protocol/job-types';
 import { CommandError } from './command-error';
@@ -28,6 +29,9 @@ export class EspLink implements PrinterLink {
   #pending = new Map<number, { resolve: (r: Reply[]) => void; reject: (e: Error) => void; sentMs: number; timer: ReturnType<typeof setTimeout> }>();
   #upload: ((m: Extract<FromEsp, { type: 'upload' }>) => void) | null = null;
   #closing = false;
+  /** The hub builds the job text itself, in format 1 (esp.md). */
+  readonly jobFormat = 1 as const;
+  uploadRate: LinkRate = LINE_RATE;
 
   constructor(private readonly origin: string) {}
 
@@ -120,9 +124,16 @@ export class EspLink implements PrinterLink {
 
   async startJob(job: PrintJob, onProgress: (p: UploadProgress) => void, opts: StartOptions = {}): Promise<void> {
     const body = JSON.stringify({ ...job, ...(opts.paced ? { paced: true } : {}), gridData: job.gridData.map((row) => Array.from(row)) });
+    let first: { ms: number; sent: number } | null = null;
     const done = new Promise<void>((resolve, reject) => {
       this.#upload = (m) => {
-        onProgress({ bytesSent: m.bytesSent, bytesVerified: m.bytesVerified, bytesTotal: m.bytesTotal });
+        // The rate from what the hub says it has sent to the Mega, between its first word and its last.
+        const now = performance.now();
+        first ??= { ms: now, sent: m.bytesSent };
+        const s = (now - first.ms) / 1000;
+        const bytesPerS = s >= 0.5 && m.bytesSent > first.sent ? (m.bytesSent - first.sent) / s : undefined;
+        onProgress({ bytesSent: m.bytesSent, bytesVerified: m.bytesVerified, bytesTotal: m.bytesTotal, bytesPerS });
+        if (m.state === 'started' && bytesPerS) this.uploadRate = { bytesPerS, measured: true, counts: 'text' }; // the hub counts job text
         if (m.state === 'started') resolve();
         if (m.state === 'failed') reject(new Error(m.error ?? 'upload failed'));
       };

@@ -4,11 +4,18 @@ import type { Reply } from '../protocol/dialect-reply';
 import type { PrintJob } from '../protocol/job-types';
 import type { LinkHealth } from './dialect-client';
 import type { TransportKind } from './transport';
+import type { JobFormat } from '../protocol/job-types';
+import type { LinkRate } from '../job/link-rate';
 
 export interface UploadProgress {
   bytesSent: number;
   bytesVerified: number;
   bytesTotal: number;
+  /** The upload's wire bytes sent so far and in all (numbered lines with their checks), where the link counts them. */
+  wireSent?: number;
+  wireTotal?: number;
+  /** The wire bytes per second of the printer's time so far in this upload, once measurable. */
+  bytesPerS?: number;
 }
 
 export interface PrinterLink {
@@ -20,6 +27,10 @@ export interface PrinterLink {
   open(onReply: (r: Reply, line: string) => void, onClosed: (error?: Error) => void): Promise<void>;
   /** One dialect line; resolves with its reply block, rejects with a CommandError. */
   command(line: string): Promise<Reply[]>;
+  /** The newest job format (job.md) the printer reads through this link. */
+  readonly jobFormat: JobFormat;
+  /** The upload rate: measured on the last upload through this link, else the line's. */
+  readonly uploadRate: LinkRate;
   /** Uploads the job, verifies it on the printer, selects and starts it; `paced`: mega.md "Pacing". */
   startJob(job: PrintJob, onProgress: (p: UploadProgress) => void, opts?: StartOptions): Promise<void>;
   close(): Promise<void>;

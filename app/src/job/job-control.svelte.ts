@@ -19,6 +19,8 @@ import { calibrationOf, doseOf, msFor, type Calibration } from './dose-units';
 import { actionsFor, hotSensors, viewOf, type Action, type Actions } from './actions';
 import { estimateUsFor, type JobEstimate } from './job-times';
 import { limitsOf } from '../studio/machine-config';
+import { uploadBytes, uploadUs, type LinkRate } from './link-rate';
+import type { UploadSize } from './upload-time';
 
 /** Lets the page draw and answer between two steps that each take a while. */
 const nextTask = () => new Promise((r) => setTimeout(r));
@@ -34,6 +36,10 @@ export type Pending =
       estimateUs: number;
       /** When the job would pause to cool: its time run paced (mega.md "Pacing"), which the user may choose. */
       pacedUs: number | null;
+      /** The upload before the exposure: its bytes, the link's rate and its time, µs. */
+      upload: UploadSize;
+      rate: LinkRate;
+      uploadUs: number;
       /** Where the job's cells lie on the bed, mm. */
       areaMm: { x0: number; y0: number; x1: number; y1: number };
       /** The drawing's objects cut by the bed's edge, and whether the user accepted the cut. */
@@ -257,7 +263,7 @@ export class JobControl {
     try {
       // In the worker: for `auto`, the fastest order for exactly this job (of those on the bed), whatever the preview last saw; then the dry run.
       summary = await checkJob(
-        { job: asked, config: $state.snapshot(this.config), auto: this.strategy === 'auto', opts: $state.snapshot({ leveling: leveling.on, mesh: leveling.mesh, startC, cuts, boards, machine }) },
+        { job: asked, config: $state.snapshot(this.config), auto: this.strategy === 'auto', jobFormat: this.printer.jobFormat, opts: $state.snapshot({ leveling: leveling.on, mesh: leveling.mesh, startC, cuts, boards, machine }) },
         { signal: stop.signal, onProgress: (p) => (this.checking = { what, stage: p.stage }) },
       );
     } catch (e) {
@@ -267,7 +273,8 @@ export class JobControl {
       this.checking = null;
       this.#stopCheck = null;
     }
-    const { findings, duty, estimateUs, pacedUs } = summary;
+    const { findings, duty, estimateUs, pacedUs, upload } = summary;
+    const rate = this.printer.uploadRate;
     const job = { ...asked, strategy: { name: summary.order } };
     this.check = { findings, job, duty };
     const mm = (um: number) => Math.round(um) / 1000;
@@ -275,7 +282,7 @@ export class JobControl {
       x0: mm(job.originUm.x), y0: mm(job.originUm.y),
       x1: mm(job.originUm.x + job.grid.cols * job.pitchUm.x), y1: mm(job.originUm.y + job.grid.rows * job.pitchUm.y),
     };
-    this.pending = { kind: 'expose', what, job, findings, duty, estimateUs, pacedUs, areaMm, cuts: cuts ?? [], accepted: false, boards };
+    this.pending = { kind: 'expose', what, job, findings, duty, estimateUs, pacedUs, upload, rate, uploadUs: uploadUs(uploadBytes(upload, rate), rate), areaMm, cuts: cuts ?? [], accepted: false, boards };
   }
 
   async #run(job: PrintJob, duty: number[] | null, paced: boolean): Promise<void> {

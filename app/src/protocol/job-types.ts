@@ -44,4 +44,11 @@ export const JOB_LIMITS = {
   maxSide: 4096,
   maxCellsPerRecord: 32,
   maxGap: 4,
+  /** Format 2: equal cells from this many on are a run token of an `rl` record (job.md "Run-length rows"). */
+  minRun: 4,
+  /** Format 2: the longest `rl` record, as long as the longest `r` record, so it fits a dialect line. */
+  maxRecordBytes: 76,
 } as const;
+
+/** The job formats: 1 has `r` records only; 2 adds `rl`, run-length rows. */
+export type JobFormat = 1 | 2;

@@ -1,7 +1,8 @@
 // Streaming verifier of job text (protocol/job.md): record syntax, order, bounds and the whole-job CRC.
 
 import { crc32Hex, crc32Update } from './crc32';
-import { JOB_LIMITS, STRATEGY_NAMES, type JobHeader, type StrategyName } from './job-types';
+import { parseRunTokens } from './job-runs';
+import { JOB_LIMITS, STRATEGY_NAMES, type JobFormat, type JobHeader, type StrategyName } from './job-types';
 
 export type JobError = { code: 23 | 24 | 25; line: number; message: string };
 
@@ -39,6 +40,7 @@ export class JobVerifier {
   #error: JobError | null = null;
   #prevRow = -1;
   #prevEnd = 0;
+  #format: JobFormat = 1;
   #header: JobHeader = {
     cols: 0, rows: 0, pitchUm: [0, 0], originUm: [0, 0], map: 'linear', level: 0,
     gainPermille: [], thermal: [0, 250], offsets: [], strategy: 'raster', seed: 0,
@@ -98,7 +100,10 @@ export class JobVerifier {
     const rest = w.slice(1);
     let ok = true;
     switch (key) {
-      case 'uvj': ok = rest.length === 1 && rest[0] === '1'; break;
+      case 'uvj':
+        ok = rest.length === 1 && (rest[0] === '1' || rest[0] === '2');
+        if (ok) this.#format = Number(rest[0]) as JobFormat;
+        break;
       case 'grid': {
         const v = ints(rest, 2, 1, JOB_LIMITS.maxSide);
         if ((ok = !!v)) [h.cols, h.rows] = v!;
@@ -165,7 +170,13 @@ export class JobVerifier {
     return null;
   }
 
+  /** The format's version, 1 or 2, once `uvj` has been read. */
+  get format(): JobFormat {
+    return this.#format;
+  }
+
   #segment(w: string[]): string | null {
+    if (w[0] === 'rl' && this.#format >= 2) return this.#runs(w);
     if (w[0] !== 'r') return `unknown record ${w[0]}`;
     const h = this.#header;
     const row = int(w[1], 0, h.rows - 1);
@@ -181,6 +192,27 @@ export class JobVerifier {
     if (this.onSegment) {
       const cells = new Uint8Array(n);
       for (let i = 0; i < n; i++) cells[i] = parseInt(hex.substr(i * 2, 2), 16);
+      this.onSegment({ row, col, cells });
+    }
+    return null;
+  }
+
+  /** `rl <row> <col> <token>…` (job.md "Run-length rows"). */
+  #runs(w: string[]): string | null {
+    const h = this.#header;
+    const row = int(w[1], 0, h.rows - 1);
+    const col = int(w[2], 0, h.cols - 1);
+    if (w.length < 4 || row === null || col === null) return 'bad rl record';
+    if (w.join(' ').length > JOB_LIMITS.maxRecordBytes) return 'rl record over 76 bytes';
+    const n = parseRunTokens(w.slice(3));
+    if (n === null) return 'bad rl token';
+    if (col + n > h.cols) return 'segment past the grid';
+    if (row < this.#prevRow || (row === this.#prevRow && col < this.#prevEnd)) return 'segment out of order or overlapping';
+    this.#prevRow = row;
+    this.#prevEnd = col + n;
+    if (this.onSegment) {
+      const cells = new Uint8Array(n);
+      parseRunTokens(w.slice(3), (at, value, count) => cells.fill(value, at, at + count));
       this.onSegment({ row, col, cells });
     }
     return null;

@@ -4,6 +4,7 @@
 import { headerOf } from '../planner/job-header';
 import { fastestOrder, orderEstimates } from '../planner/job-plan';
 import { dryRun } from '../studio/dry-run';
+import { uploadSize } from '../job/upload-time';
 import { bedOf, motionOf } from '../studio/machine-config';
 import type { DryRunSummary, Progress, WorkRequest } from './work-types';
 
@@ -16,5 +17,7 @@ export function dryRunSummary(req: Extract<WorkRequest, { kind: 'dry-run' }>, re
     job = { ...job, strategy: { name: fastestOrder(orders) } };
   }
   const { findings, duty, plan, paced } = dryRun(job, req.config, { ...req.opts, onStage: (stage) => report({ stage }) });
-  return { order: job.strategy.name, findings, duty, estimateUs: plan.estimateUs, pacedUs: paced && !paced.pause ? paced.totalUs : null };
+  report({ stage: 'counting the upload' });
+  const upload = uploadSize(job, req.jobFormat ?? 1);
+  return { order: job.strategy.name, findings, duty, estimateUs: plan.estimateUs, pacedUs: paced && !paced.pause ? paced.totalUs : null, upload };
 }

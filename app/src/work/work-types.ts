@@ -6,8 +6,9 @@ import type { LayerKind } from '../pcb/layer-kind';
 import type { KindSource } from '../pcb/layer-content';
 import type { Mesh } from '../planner/mesh';
 import type { Machine } from '../planner/time-model';
-import type { PrintJob, StrategyName } from '../protocol/job-types';
+import type { JobFormat, PrintJob, StrategyName } from '../protocol/job-types';
 import type { Finding, MachineCheck } from '../studio/dry-run';
+import type { UploadSize } from '../job/upload-time';
 import type { MachineConfig } from '../studio/machine-config';
 import type { Cut } from '../studio/objects/clipping';
 import type { TwoSided } from '../studio/objects/board-object';
@@ -33,7 +34,7 @@ export type WorkRequest =
    * The check before an exposure (studio/dry-run.ts); `auto`: in its fastest order, of those that
    * stay on the config's bed. `boards`: the drawing's two-sided boards, one side a job.
    */
-  | { kind: 'dry-run'; job: PrintJob; config: MachineConfig; auto: boolean; opts: { mesh?: Mesh | null; leveling?: boolean | null; startC?: number[] | null; cuts?: Cut[]; boards?: TwoSided[]; machine?: MachineCheck } }
+  | { kind: 'dry-run'; job: PrintJob; config: MachineConfig; auto: boolean; jobFormat?: JobFormat; opts: { mesh?: Mesh | null; leveling?: boolean | null; startC?: number[] | null; cuts?: Cut[]; boards?: TwoSided[]; machine?: MachineCheck } }
   /** A picture embedded as a data: URL, decoded and kept. */
   | { kind: 'read-picture'; src: string }
   /** A board's files, as picked or embedded as a data: URL (pcb/board-artwork.ts), read and kept. */
@@ -67,4 +68,6 @@ export interface DryRunSummary {
   estimateUs: number;
   /** The paced forecast's time when pacing avoids every pause, else null. */
   pacedUs: number | null;
+  /** The job's bytes as the printer's job format writes them, and on the wire. */
+  upload: UploadSize;
 }

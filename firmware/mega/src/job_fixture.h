@@ -50,9 +50,22 @@ inline Grid pattern(uint16_t cols, uint16_t rows, uint32_t seed) {
   return g;
 }
 
-inline Lines encode(const uv::JobHeader& h, const Grid& g) {
+// Bands of equal cells, gaps of zeros and a few short runs: rows that format 2 writes as `rl` records.
+inline Grid runs(uint16_t cols, uint16_t rows, uint32_t seed) {
+  Grid g(rows, std::vector<uint8_t>(cols, 0));
+  for (uint16_t r = 0; r < rows; r++)
+    for (uint16_t c = 0; c < cols;) {
+      seed = seed * 1103515245u + 12345u;
+      uint16_t n = static_cast<uint16_t>(1 + (seed >> 16) % 12);
+      uint8_t v = (seed >> 8) % 3 == 0 ? 0 : static_cast<uint8_t>((seed >> 4) % 2 ? 255 : 90);
+      for (uint16_t i = 0; i < n && c < cols; i++) g[r][c++] = v;
+    }
+  return g;
+}
+
+inline Lines encode(const uv::JobHeader& h, const Grid& g, uint8_t format = 1) {
   Records out;
-  uv::JobEncoder enc(out);
+  uv::JobEncoder enc(out, format);
   enc.header(h);
   for (uint16_t r = 0; r < h.rows; r++) enc.row(r, g[r].data(), h.cols);
   enc.finish();

@@ -103,19 +103,16 @@ bool JobSpool::writeIndex(uint16_t upTo) {
   return true;
 }
 
-void JobSpool::segment(uint16_t row, uint16_t col, const char* hex, uint8_t cells) {
+void JobSpool::segment(uint16_t row, uint16_t col, const uint8_t* buf, uint8_t cells) {
   if (error_) return;
   if (static_cast<int32_t>(row) != row_) {
     if (!writeIndex(row)) return fail(uv::kFileError);  // rows before this one are complete
     row_ = row;
     started_ = false;
   }
-  char buf[uv::kJobMaxCellsPerRecord];
   uint8_t s = 0;
-  for (uint8_t i = 0; i < cells; i++) {
-    buf[i] = static_cast<char>(uv::hexCell(hex, i));
+  for (uint8_t i = 0; i < cells; i++)
     if (buf[i]) last_ = static_cast<uint16_t>(col + i);
-  }
   if (!started_) {
     // A row's cells start at its first non-zero one (a non-canonical upload may lead with zeros).
     while (s < cells && !buf[s]) s++;
@@ -126,7 +123,7 @@ void JobSpool::segment(uint16_t row, uint16_t col, const char* hex, uint8_t cell
   }
   uint16_t at = static_cast<uint16_t>(col + s);
   if (at > next_ && !zeros(static_cast<uint16_t>(at - next_))) return fail(uv::kFileError);
-  if (!sd_.write(cells_, buf + s, static_cast<uint16_t>(cells - s))) return fail(uv::kFileError);
+  if (!sd_.write(cells_, reinterpret_cast<const char*>(buf + s), static_cast<uint16_t>(cells - s))) return fail(uv::kFileError);
   cellBytes_ += cells - s;
   next_ = static_cast<uint16_t>(col + cells);
 }

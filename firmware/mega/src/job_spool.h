@@ -37,7 +37,7 @@ class JobSpool : private uv::SegmentSink {
   uint32_t bytes() const { return bytes_; }
 
  private:
-  void segment(uint16_t row, uint16_t col, const char* hex, uint8_t cells) override;
+  void segment(uint16_t row, uint16_t col, const uint8_t* cells, uint8_t n) override;
   bool closeRow();
   bool writeIndex(uint16_t upTo);
   bool zeros(uint16_t n);

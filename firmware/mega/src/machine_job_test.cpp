@@ -40,6 +40,18 @@ TEST_F(JobTest, UploadedPlannedAndRunStopByStopExactlyAsThePlannerSays) {
   }());
 }
 
+TEST_F(JobTest, AFormat2JobOfRunLengthRowsIsSpooledAndExposedAsPlanned) {
+  uv::JobHeader h = header(60, 9, uv::Strategy::Serpentine);
+  Grid g = runs(60, 9, 5);
+  Lines records = encode(h, g, 2);
+  EXPECT_EQ(records[0], "uvj 2");
+  EXPECT_TRUE(std::any_of(records.begin(), records.end(), [](const std::string& r) { return r.rfind("rl ", 0) == 0; }));
+  EXPECT_LT(records.size(), encode(h, g).size());
+  ASSERT_TRUE(has(uploadAndStart("RL.UVJ", records), "echo:Done saving file."));
+  ASSERT_NE(runUntilJob({"done"}), "(none)");
+  expectExposed(h, plan(h, g));
+}
+
 TEST_F(JobTest, EveryStrategyRunsAsPlanned) {
   for (uv::Strategy s : {uv::Strategy::Raster, uv::Strategy::Serpentine, uv::Strategy::Random}) {
     uv::JobHeader h = header(11, 7, s);

@@ -64,6 +64,18 @@ TEST_F(StreamTest, AJobWiderThanItsBufferStreamsAndEachStopIsExposedOnceAsPlanne
   EXPECT_EQ(payload("M1000 S"), (Lines{"JOB:idle"}));  // no checkpoint: a stream cannot resume
 }
 
+TEST_F(StreamTest, AFormat2StreamOfRunLengthRowsIsExposedAsPlanned) {
+  uv::JobHeader h = header(60, 24, uv::Strategy::Serpentine);
+  Grid g = runs(60, 24, 9);
+  Lines records = encode(h, g, 2);
+  EXPECT_TRUE(std::any_of(records.begin(), records.end(), [](const std::string& r) { return r.rfind("rl ", 0) == 0; }));
+  Lines got = stream(records);
+  EXPECT_TRUE(has(got, "echo:Stream complete."));
+  EXPECT_FALSE(has(got, "Error:") || has(got, "echo:E"));
+  ASSERT_TRUE(runUntil("JOB:done"));
+  expectExposed(plan(h, g));
+}
+
 TEST_F(StreamTest, ShortestStreamsWhenItsBandsFit) {
   uv::JobHeader h = header(6, 40, uv::Strategy::Shortest);
   Grid g = pattern(6, 40, 11);

@@ -9,13 +9,6 @@
 namespace mega {
 
 namespace {
-// The cells a record brings: `r <row> <col> <hex>` carries hex/2 of them; others none.
-uint8_t recordCells(const char* text, uint8_t len) {
-  if (len < 2 || text[0] != 'r' || text[1] != ' ') return 0;
-  uint8_t spaces = 0, i = 0;
-  while (i < len && spaces < 3) spaces = static_cast<uint8_t>(spaces + (text[i++] == ' '));
-  return static_cast<uint8_t>((len - i) / 2);
-}
 constexpr uint8_t kSegmentHead = 5;
 }  // namespace
 
@@ -24,19 +17,21 @@ StreamJob::~StreamJob() {
   if (scan_) scan_->~ScanJob();
 }
 
-void StreamJob::segment(uint16_t row, uint16_t col, const char* hex, uint8_t cells) {
-  uint8_t buf[uv::kJobMaxCellsPerRecord];
-  for (uint8_t i = 0; i < cells; i++) buf[i] = uv::hexCell(hex, i);
-  cells_.add(row, col, buf, cells);  // room was made before the record was taken
+void StreamJob::segment(uint16_t row, uint16_t col, const uint8_t* cells, uint8_t n) {
+  // A piece of a zero run is left out (a cell no segment holds reads 0); room was made before the
+  // record was taken, for every other piece.
+  bool zero = true;
+  for (uint8_t i = 0; i < n && zero; i++) zero = cells[i] == 0;
+  if (!zero) cells_.add(row, col, cells, n);
   if (row > known_) known_ = row;     // a record of a later row: every row below it has arrived
 }
 
 uint8_t StreamJob::record(const char* text, uint8_t len) {
   if (error_) return error_;  // after a failure the rest is only read
-  uint8_t n = recordCells(text, len);
-  if (n && cells_.used() + kSegmentHead + n > cells_.size()) {
+  const uint16_t room = uv::recordPieceBytes(text, len, kSegmentHead);
+  if (room && static_cast<uint32_t>(cells_.used()) + room > cells_.size()) {
     if (planner_ || scan_) freeRows(lowestRowNeeded());
-    if (cells_.used() + kSegmentHead + n > cells_.size()) {
+    if (static_cast<uint32_t>(cells_.used()) + room > cells_.size()) {
       // Full. If the planner waits for rows to plan the next stop, they can never come: E28.
       return starved_ ? fail(uv::kStreamOverflow) : kRecordWaits;
     }

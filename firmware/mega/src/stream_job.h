@@ -38,7 +38,7 @@ class StreamJob : public StopSource, private uv::SegmentSink {
   uint8_t scanError() const override { return error_ ? error_ : scan_ ? scan_->run.error() : 0; }
 
  private:
-  void segment(uint16_t row, uint16_t col, const char* hex, uint8_t cells) override;
+  void segment(uint16_t row, uint16_t col, const uint8_t* cells, uint8_t n) override;
   uint8_t fail(uint8_t code) { return error_ ? error_ : (error_ = code); }
 
   uv::JobVerifier verifier_;

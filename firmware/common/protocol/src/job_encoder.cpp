@@ -33,6 +33,10 @@ struct Record {
 }  // namespace
 
 void JobEncoder::emit(const char* text, uint8_t len) {
+  if (measuring_) {
+    measured_ += static_cast<uint32_t>(len) + 1;
+    return;
+  }
   crc_ = crc32Update(crc_, text, len);
   crc_ = crc32Update(crc_, "\n", 1);
   sink_.record(text, len);
@@ -47,7 +51,7 @@ void JobEncoder::header(const JobHeader& h) {
     r.n = 0;
   };
   r.word("uvj");
-  r.num(1);
+  r.num(format_);
   flush();
   r.word("grid");
   r.num(h.cols);
@@ -96,8 +100,106 @@ void JobEncoder::header(const JobHeader& h) {
 
 void JobEncoder::row(uint16_t rowIndex, const uint8_t* cells, uint16_t cols) {
   uint16_t column = 0;
+  if (format_ >= 2) {
+    measuring_ = true;
+    measured_ = 0;
+    while (nextRecord(rowIndex, cells, cols, column)) {
+    }
+    const uint32_t segments = measured_;
+    measured_ = 0;
+    runRecords(rowIndex, cells, cols);
+    const uint32_t runs = measured_;
+    measuring_ = false;
+    column = 0;
+    if (segments && runs < segments) return runRecords(rowIndex, cells, cols);
+  }
   while (nextRecord(rowIndex, cells, cols, column)) {
   }
+}
+
+namespace {
+
+// A token of an `rl` record: cells [col, end), a run of one value when `run`, else literal.
+struct Token {
+  uint16_t col, end;
+  bool run;
+};
+
+// The token at `c`: a run of kJobMinRun or more equal cells, or the short runs that follow up to `last`.
+Token tokenAt(const uint8_t* cells, uint16_t c, uint16_t last) {
+  auto runEnd = [&](uint16_t at) {
+    uint16_t e = static_cast<uint16_t>(at + 1);
+    while (e <= last && cells[e] == cells[at]) e++;
+    return e;
+  };
+  uint16_t e = runEnd(c);
+  if (e - c >= kJobMinRun) return {c, e, true};
+  while (e <= last) {
+    uint16_t next = runEnd(e);
+    if (next - e >= kJobMinRun) break;
+    e = next;
+  }
+  return {c, e, false};
+}
+
+}  // namespace
+
+void JobEncoder::runRecords(uint16_t rowIndex, const uint8_t* cells, uint16_t cols) {
+  int32_t first = 0, last = static_cast<int32_t>(cols) - 1;
+  while (first < cols && cells[first] == 0) first++;
+  while (last >= first && cells[last] == 0) last--;
+  Record rec;
+  bool open = false;
+  uint8_t keep = 0;  // the record's length without the zero runs at its end
+  auto close = [&]() {
+    if (open && keep) {
+      rec.buf[keep] = '\0';
+      emit(rec.buf, keep);
+    }
+    open = false;
+  };
+  for (int32_t c = first; c <= last;) {
+    Token t = tokenAt(cells, static_cast<uint16_t>(c), static_cast<uint16_t>(last));
+    c = t.end;
+    const bool zeroRun = t.run && cells[t.col] == 0;
+    for (;;) {
+      if (!open) {
+        if (zeroRun) break;  // a record never starts, nor ends, with zeros of a run
+        rec.n = 0;
+        rec.word("rl");
+        rec.num(rowIndex);
+        rec.num(t.col);
+        open = true;
+        keep = 0;
+      }
+      char count[6];
+      const uint8_t countLen = static_cast<uint8_t>(t.run ? putUnsigned(t.end - t.col, count) : 0);
+      const uint16_t len = t.run ? static_cast<uint16_t>(countLen + 3) : static_cast<uint16_t>(2 * (t.end - t.col));
+      if (rec.n + 1 + len <= kJobMaxRecordBytes) {
+        rec.buf[rec.n++] = ' ';
+        if (t.run) {
+          memcpy(rec.buf + rec.n, count, countLen);
+          rec.n = static_cast<uint8_t>(rec.n + countLen);
+          rec.buf[rec.n++] = 'x';
+          putHex(cells[t.col], 2, rec.buf + rec.n);
+          rec.n = static_cast<uint8_t>(rec.n + 2);
+        } else {
+          for (uint16_t i = t.col; i < t.end; i++, rec.n += 2) putHex(cells[i], 2, rec.buf + rec.n);
+        }
+        if (!zeroRun) keep = rec.n;
+        break;
+      }
+      const int room = (kJobMaxRecordBytes - rec.n - 1) / 2;
+      if (!t.run && room >= 1) {
+        rec.buf[rec.n++] = ' ';
+        for (int i = 0; i < room; i++, rec.n += 2) putHex(cells[t.col + i], 2, rec.buf + rec.n);
+        keep = rec.n;
+        t.col = static_cast<uint16_t>(t.col + room);
+      }
+      close();
+    }
+  }
+  close();
 }
 
 bool JobEncoder::nextRecord(uint16_t rowIndex, const uint8_t* cells, uint16_t cols, uint16_t& column) {

@@ -13,22 +13,27 @@ class RecordSink {
 };
 
 // Feed the header, then every row in order, then finish(). Only one row is held by the caller.
+// Format 2 (job.md "Run-length rows") writes a row as `rl` records where they are shorter.
 class JobEncoder {
  public:
-  explicit JobEncoder(RecordSink& sink) : sink_(sink) {}
+  explicit JobEncoder(RecordSink& sink, uint8_t format = 1) : sink_(sink), format_(format) {}
 
   void header(const JobHeader& h);
   void row(uint16_t rowIndex, const uint8_t* cells, uint16_t cols);
-  // One record of a row at a time, for a reader that pulls records: emits the record that
+  // One `r` record of a row at a time, for a reader that pulls records: emits the record that
   // starts at or after `column` and moves `column` past it; false when the row has no more.
   bool nextRecord(uint16_t rowIndex, const uint8_t* cells, uint16_t cols, uint16_t& column);
   void finish();
 
  private:
   void emit(const char* text, uint8_t len);
+  void runRecords(uint16_t rowIndex, const uint8_t* cells, uint16_t cols);
 
   RecordSink& sink_;
   uint32_t crc_ = 0;
+  uint8_t format_;
+  bool measuring_ = false;  // emit() only counts the bytes, into measured_
+  uint32_t measured_ = 0;
 };
 
 }  // namespace uv

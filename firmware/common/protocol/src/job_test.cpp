@@ -23,8 +23,8 @@ struct Text : RecordSink {
 
 struct Cells : SegmentSink {
   std::vector<std::vector<int>> grid;
-  void segment(uint16_t row, uint16_t col, const char* hex, uint8_t n) override {
-    for (uint8_t i = 0; i < n; i++) grid[row][col + i] = hexCell(hex, i);
+  void segment(uint16_t row, uint16_t col, const uint8_t* cells, uint8_t n) override {
+    for (uint8_t i = 0; i < n; i++) grid[row][col + i] = cells[i];
   }
 };
 
@@ -47,7 +47,7 @@ TEST(JobVectors, EncodeByteExactAndVerify) {
   for (const json& c : V["jobs"]) {
     const json& job = c["job"];
     Text out;
-    JobEncoder enc(out);
+    JobEncoder enc(out, c.value("format", 1));
     enc.header(headerFrom(job));
     std::vector<uint8_t> row;
     for (size_t r = 0; r < job["gridData"].size(); r++) {

@@ -7,6 +7,10 @@ namespace uv {
 constexpr uint16_t kJobMaxSide = 4096;
 constexpr uint8_t kJobMaxCellsPerRecord = 32;
 constexpr uint8_t kJobMaxGap = 4;
+// Format 2 (job.md "Run-length rows"): a run token holds this many equal cells or more; an `rl` record
+// is at most as long as the longest `r` record.
+constexpr uint8_t kJobMinRun = 4;
+constexpr uint8_t kJobMaxRecordBytes = 76;
 
 enum class DoseMap : uint8_t { Linear, Threshold };
 // Scan exposes each pass on the move (protocol/planner.md "Scan mode"); the others stop and fire.

@@ -113,7 +113,8 @@ bool JobVerifier::headerRecord(const char* p, const char* end) {
   int32_t a = 0, b = 0;
   switch (index_) {
     case 0:
-      if (!w.is(UV_P("uvj")) || !w.is(UV_P("1"))) return false;
+      if (!w.is(UV_P("uvj")) || !w.integer(1, 2, a)) return false;
+      format_ = static_cast<uint8_t>(a);
       break;
     case 1:
       if (!w.is(UV_P("grid")) || !w.integer(1, kJobMaxSide, a) || !w.integer(1, kJobMaxSide, b)) return false;
@@ -193,7 +194,16 @@ bool JobVerifier::headerRecord(const char* p, const char* end) {
   return true;
 }
 
+bool JobVerifier::claim(int32_t row, int32_t col, uint16_t cells) {
+  if (col + cells > h_.cols) return false;
+  if (row < prevRow_ || (row == prevRow_ && col < prevEnd_)) return false;
+  prevRow_ = row;
+  prevEnd_ = static_cast<uint16_t>(col + cells);
+  return true;
+}
+
 bool JobVerifier::segment(const char* p, const char* end) {
+  if (format_ >= 2 && end - p >= 3 && uvMemcmpP(p, UV_P("rl "), 3) == 0) return runs(p + 3, end);
   Words w{p, end};
   int32_t row = 0, col = 0;
   const char *hex, *hexEnd;
@@ -205,11 +215,99 @@ bool JobVerifier::segment(const char* p, const char* end) {
   for (const char* q = hex; q < hexEnd; q++)
     if (hexDigit(*q) < 0) return false;
   uint8_t cells = static_cast<uint8_t>(digits / 2);
-  if (col + cells > h_.cols) return false;
-  if (row < prevRow_ || (row == prevRow_ && col < prevEnd_)) return false;
-  prevRow_ = row;
-  prevEnd_ = static_cast<uint16_t>(col + cells);
-  if (sink_) sink_->segment(static_cast<uint16_t>(row), static_cast<uint16_t>(col), hex, cells);
+  if (!claim(row, col, cells)) return false;
+  if (sink_) {
+    uint8_t buf[kJobMaxCellsPerRecord];
+    for (uint8_t i = 0; i < cells; i++) buf[i] = hexCell(hex, i);
+    sink_->segment(static_cast<uint16_t>(row), static_cast<uint16_t>(col), buf, cells);
+  }
+  return true;
+}
+
+namespace {
+
+// One token of an `rl` record: literal cells (`hex` set, `count` cells) or a run (`value` `count` times).
+struct RunToken {
+  const char* hex = nullptr;
+  uint16_t count = 0;
+  uint8_t value = 0;
+};
+
+// Parses [w, e) as a token; false when it is neither 1+ pairs of lower-case hex digits nor `<n>x<hh>`
+// with n in kJobMinRun..kJobMaxSide, written without leading zeros.
+bool parseToken(const char* w, const char* e, RunToken& t) {
+  const char* x = w;
+  while (x < e && *x != 'x') x++;
+  if (x == e) {
+    if ((e - w) % 2) return false;
+    for (const char* q = w; q < e; q++)
+      if (hexDigit(*q) < 0) return false;
+    t.hex = w;
+    t.count = static_cast<uint16_t>((e - w) / 2);
+    return true;
+  }
+  uint32_t n = 0;
+  if (x == w || *w == '0' || scanUnsigned(w, x, 4, kJobMaxSide, n) != x || n < kJobMinRun) return false;
+  if (e - x != 3 || hexDigit(x[1]) < 0 || hexDigit(x[2]) < 0) return false;
+  t.hex = nullptr;
+  t.count = static_cast<uint16_t>(n);
+  t.value = hexCell(x + 1, 0);
+  return true;
+}
+
+}  // namespace
+
+uint16_t recordPieceBytes(const char* record, uint8_t len, uint8_t head) {
+  const char* end = record + len;
+  if (len < 2 || record[0] != 'r' || (record[1] != ' ' && record[1] != 'l')) return 0;
+  const bool runs = record[1] == 'l';
+  uint8_t spaces = 0;
+  const char* p = record;
+  while (p < end && spaces < 3) spaces = static_cast<uint8_t>(spaces + (*p++ == ' '));
+  if (!runs) return static_cast<uint16_t>(head + (end - p) / 2);
+  uint32_t bytes = 0;
+  while (p < end) {
+    const char* w = p;
+    while (p < end && *p != ' ') p++;
+    RunToken t;
+    if (parseToken(w, p, t) && !(t.hex == nullptr && t.value == 0))
+      bytes += t.count + static_cast<uint32_t>(head) * ((t.count + kJobMaxCellsPerRecord - 1) / kJobMaxCellsPerRecord);
+    if (p < end) p++;
+  }
+  return bytes > 0xFFFF ? 0xFFFF : static_cast<uint16_t>(bytes);
+}
+
+bool JobVerifier::runs(const char* p, const char* end) {
+  if (end - p + 3 > kJobMaxRecordBytes) return false;
+  Words w{p, end};
+  int32_t row = 0, col = 0;
+  if (!w.integer(0, h_.rows - 1, row) || !w.integer(0, h_.cols - 1, col)) return false;
+  const char* tokens = w.p;
+  uint32_t cells = 0;
+  const char *t, *te;
+  while (w.next(t, te)) {
+    RunToken tok;
+    if (!parseToken(t, te, tok)) return false;
+    cells += tok.count;
+  }
+  if (!w.done() || cells == 0 || cells > h_.cols) return false;
+  if (!claim(row, col, static_cast<uint16_t>(cells))) return false;
+  if (!sink_) return true;
+  // Every token checked: the cells go out in pieces of at most 32.
+  Words again{tokens, end};
+  uint8_t buf[kJobMaxCellsPerRecord];
+  uint16_t at = static_cast<uint16_t>(col);
+  while (again.next(t, te)) {
+    RunToken tok;
+    parseToken(t, te, tok);
+    for (uint16_t done = 0; done < tok.count;) {
+      uint8_t n = static_cast<uint8_t>(tok.count - done > kJobMaxCellsPerRecord ? kJobMaxCellsPerRecord : tok.count - done);
+      for (uint8_t i = 0; i < n; i++) buf[i] = tok.hex ? hexCell(tok.hex, static_cast<uint8_t>(done + i)) : tok.value;
+      sink_->segment(static_cast<uint16_t>(row), at, buf, n);
+      at = static_cast<uint16_t>(at + n);
+      done = static_cast<uint16_t>(done + n);
+    }
+  }
   return true;
 }
 

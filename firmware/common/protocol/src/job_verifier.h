@@ -6,13 +6,18 @@
 
 namespace uv {
 
-// Receives each cell segment as it is verified (hex still encoded; decode with hexCell).
+// Receives the cells of each record once the whole record has verified, decoded, as pieces of at
+// most kJobMaxCellsPerRecord cells in column order (an `rl` record of format 2 may give several).
 class SegmentSink {
  public:
-  virtual void segment(uint16_t row, uint16_t col, const char* hex, uint8_t cells) = 0;
+  virtual void segment(uint16_t row, uint16_t col, const uint8_t* cells, uint8_t n) = 0;
 };
 
 uint8_t hexCell(const char* hex, uint8_t index);
+
+// The bytes the pieces of a record take in a store that keeps `head` bytes and the cells of each
+// piece, leaving out the pieces of a zero run: an upper bound for a record that is malformed.
+uint16_t recordPieceBytes(const char* record, uint8_t len, uint8_t head);
 
 // Feed records one at a time, without '\n'. The first error sticks. RAM: sizeof(JobVerifier).
 class JobVerifier {
@@ -28,11 +33,14 @@ class JobVerifier {
   bool complete() const { return ended_ && !error_; }
   bool headerDone() const { return index_ >= 10; }
   const JobHeader& header() const { return h_; }
+  uint8_t format() const { return format_; }
 
  private:
   uint8_t fail(uint8_t code) { return error_ = code; }
   bool headerRecord(const char* p, const char* end);
   bool segment(const char* p, const char* end);
+  bool runs(const char* p, const char* end);
+  bool claim(int32_t row, int32_t col, uint16_t cells);
   uint8_t endRecord(const char* p, const char* end);
 
   SegmentSink* sink_;
@@ -42,6 +50,7 @@ class JobVerifier {
   int32_t prevRow_ = -1;
   uint16_t prevEnd_ = 0;
   uint8_t index_ = 0;
+  uint8_t format_ = 1;  // `uvj 1` or `uvj 2`: 2 may carry `rl` records
   uint8_t error_ = 0;
   bool ended_ = false;
 };
