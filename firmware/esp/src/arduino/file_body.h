@@ -28,7 +28,10 @@ class FileBody {
     if (file_) file_.close();
   }
   bool rewind() { return open(); }
-  size_t size() { return file_ ? file_.size() : 0; }
+  size_t size() {
+    FlashGate::Hold hold(gate_);
+    return file_ ? file_.size() : 0;
+  }
 
   int read() {
     if (at_ == len_ && !refill()) return -1;

@@ -83,9 +83,13 @@ void sendError(AsyncWebServerRequest* r, uint16_t status, const char* code, cons
 }
 
 // Network task: the spool closed, now or (loop() inside a file operation) at the next callback.
+// On the ESP8266 loop() reaches it too (pumpNetwork at the end of a pass), where the close may
+// yield to the network callbacks: so the gate is held across it.
 void closeSpool() {
   closeLater = flashBusy();
-  if (!closeLater) spool.close();
+  if (closeLater) return;
+  FlashGate::Hold hold(fileSystemGate);
+  spool.close();
 }
 
 // Network task: loop()'s answers go out, each to its request if the client is still there.
