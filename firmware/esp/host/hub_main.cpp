@@ -22,7 +22,6 @@
 #include <string>
 #include <thread>
 
-#include <signal.h>
 #include <unistd.h>
 
 #include "flash_gate.h"
@@ -31,6 +30,7 @@
 #include "host_flash.h"
 #include "http_rules.h"
 #include "http_sessions.h"
+#include "lifeline.h"
 #include "board.h"
 #include "live_sessions.h"
 #include "loop_desk.h"
@@ -378,14 +378,11 @@ int main(int argc, char** argv) {
   }
   std::filesystem::path state = std::filesystem::temp_directory_path() / ("uv-esp-host-" + std::to_string(::getpid()));
   std::filesystem::create_directories(state);
-  // The hub lives as long as whoever started it: when its stdin closes (the test runner ended,
-  // however it ended) or it is told to stop (SIGTERM, SIGINT, SIGHUP), it takes its flash with it
-  // and exits. Run by hand, it reads the terminal and ends at Ctrl-D. The signals are taken by
-  // one thread alone, so nothing else is cut short in the middle of a write.
+  // The hub lives as long as whoever started it (lifeline.h): then it takes its flash with it.
   static std::filesystem::path flash;
   flash = state;
   auto started = std::chrono::steady_clock::now();
-  auto leave = [started] {
+  hub::holdLifeline([started] {
     // How long one loop pass took, for the benchmarks' ratios (bench/hub.bench.ts).
     double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started).count();
     std::printf("loop passes: %llu in %.0f ms\n", static_cast<unsigned long long>(Hub::passes.load()), ms);
@@ -393,35 +390,7 @@ int main(int argc, char** argv) {
     std::error_code ignored;
     std::filesystem::remove_all(flash, ignored);
     std::_Exit(0);
-  };
-  sigset_t stops;
-  sigemptyset(&stops);
-  for (int sig : {SIGTERM, SIGINT, SIGHUP}) sigaddset(&stops, sig);
-  pthread_sigmask(SIG_BLOCK, &stops, nullptr);  // every thread started from here on inherits it
-  std::thread([stops, leave] {
-    int sig;
-    sigwait(&stops, &sig);
-    leave();
-  }).detach();
-  std::thread([leave] {
-    // Test-only: a line `heap` on stdin prints the hub's live heap apart from the rig's (heap_count.h).
-    std::string line;
-    char c;
-    while (::read(0, &c, 1) > 0) {
-      if (c != '\n') {
-        line += c;
-        continue;
-      }
-      if (line == "heap") {
-        hub::heap::Live h = hub::heap::live(hub::heap::Owner::Hub), r = hub::heap::live(hub::heap::Owner::Rig);
-        std::printf("heap: hub %lld B in %lld blocks, rig %lld B in %lld blocks\n", static_cast<long long>(h.bytes), static_cast<long long>(h.blocks),
-                    static_cast<long long>(r.bytes), static_cast<long long>(r.blocks));
-        std::fflush(stdout);
-      }
-      line.clear();
-    }
-    leave();
-  }).detach();
+  });
   net::io_context io;
   Hub hub(io, www, state, board);
   hub.setTurn(turn == "poll" ? Hub::Turn::Poll : turn == "wake" ? Hub::Turn::Woken : Hub::Turn::EachPass);
