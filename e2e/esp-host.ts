@@ -11,6 +11,8 @@ const WWW = join(ROOT, 'firmware', 'esp', 'data', 'www');
 export interface EspHost {
   url: string;
   pid: number;
+  /** The hub's own live heap (operator new), apart from the simulated Mega's (heap_count.h). */
+  heap(): Promise<{ hubBytes: number; hubBlocks: number; rigBytes: number }>;
   stop(): void;
 }
 
@@ -34,9 +36,27 @@ export async function startEspHost(speed: number, args: string[] = []): Promise<
     });
     child.on('exit', (code) => reject(new Error(`esp_host exited with ${code}`)));
   });
+  const heapWaiters: ((line: string) => void)[] = [];
+  let lines = '';
+  child.stdout.on('data', (d: Buffer) => {
+    lines += d.toString();
+    for (let nl = lines.indexOf('\n'); nl >= 0; nl = lines.indexOf('\n')) {
+      const line = lines.slice(0, nl);
+      lines = lines.slice(nl + 1);
+      if (line.startsWith('heap:')) heapWaiters.shift()?.(line);
+    }
+  });
   return {
     url,
     pid: child.pid ?? 0,
+    heap: () =>
+      new Promise((resolve) => {
+        heapWaiters.push((line) => {
+          const m = /hub (\d+) B in (\d+) blocks, rig (\d+) B/.exec(line) ?? [];
+          resolve({ hubBytes: Number(m[1]), hubBlocks: Number(m[2]), rigBytes: Number(m[3]) });
+        });
+        child.stdin.write('heap\n');
+      }),
     stop: () => {
       process.off('exit', kill);
       child.kill();

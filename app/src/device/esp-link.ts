@@ -4,6 +4,7 @@ import { LINE_RATE, type LinkRate } from '../job/link-rate';
 import { parseReply, type Reply } from '../protocol/dialect-reply';
 import type { PrintJob } from '../protocol/job-types';
 import { CommandError } from './command-error';
+import { postJob } from './esp-post';
 import type { LinkHealth } from './dialect-client';
 import type { PrinterLink, StartOptions, UploadProgress } from './link';
 
@@ -138,7 +139,7 @@ export class EspLink implements PrinterLink {
         if (m.state === 'failed') reject(new Error(m.error ?? 'upload failed'));
       };
     });
-    const r = await fetch(`${this.origin}/print`, { method: 'POST', headers: { 'content-type': 'application/json' }, body });
+    const r = await postJob(`${this.origin}/print`, body);
     if (r.status !== 202) {
       this.#upload = null;
       let message = `HTTP ${r.status}`;

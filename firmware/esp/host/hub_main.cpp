@@ -22,12 +22,15 @@
 #include <string>
 #include <thread>
 
-#include <signal.h>
 #include <unistd.h>
 
+#include "flash_gate.h"
+#include "heap_count.h"
 #include "host_body.h"
+#include "host_flash.h"
 #include "http_rules.h"
 #include "http_sessions.h"
+#include "lifeline.h"
 #include "board.h"
 #include "live_sessions.h"
 #include "loop_desk.h"
@@ -95,13 +98,17 @@ struct LaterHandle {
 class Hub : public hub::Routes {
  public:
   Hub(net::io_context& io, std::filesystem::path www, std::filesystem::path state, const Board& board)
-      : io_(io), www_(std::move(www)), state_(std::move(state)), sessions_(board), body_((state_ / "job.json").string()) {
+      : io_(io), www_(std::move(www)), state_(std::move(state)), sessions_(board), body_((state_ / "job.json").string(), &flash_, &gate_) {
     rigPtr = &rig_;
+    // The ESP8266's flash yields inside loop()'s file operations, and the yield runs the network
+    // callbacks that are ready (host_flash.h): here, the io_context's handlers.
+    flash_.yield = [this] { io_.poll(); };
     sessions_.attach(bridge_, live_, virtualMs);
     defaultWifi(0x5EED01, [] { return static_cast<uint32_t>(std::random_device{}()); }, wifi_);
   }
 
   void begin() {
+    hub::heap::RigScope rig;  // the simulated Mega's memory is not the hub's
     rig_.begin();
     char panel[17];
     panelLine(wifi_, panel);
@@ -112,7 +119,10 @@ class Hub : public hub::Routes {
   void tick(double speed) {
     budget_ += speed;
     for (; budget_ >= 1; budget_ -= 1) {
-      rig_.run(1000);
+      {
+        hub::heap::RigScope rig;
+        rig_.run(1000);
+      }
       for (; fed_ < rig_.espLines.size(); fed_++)
         for (char c : rig_.espLines[fed_] + "\n") bridge_.received(c, virtualMs());
       // The rig keeps every line its hosts read; the hub has taken them (a long soak stays flat).
@@ -140,6 +150,10 @@ class Hub : public hub::Routes {
         });
       }
       io_.poll();  // the network gets its turn every millisecond of the hub's time, as in the ESP's loop
+      if (flash_.reentered()) {  // what corrupts LittleFS on the ESP8266: the gate was not asked
+        std::fprintf(stderr, "esp_host: the flash was re-entered by a network callback inside a file operation of loop()'s\n");
+        std::abort();
+      }
     }
   }
 
@@ -187,7 +201,11 @@ class Hub : public hub::Routes {
     if (path == "/status") return handOver(Ask::Status, now, std::move(later));
     if (path == "/print" && req.method() == hub::http::verb::post) {
       if (desk_.bodyCancelled(body) || desk_.arriving() != body) return now = error(409, kCancelledCode, kCancelledMessage), true;  // a DELETE came first
-      std::ofstream(body_.path(), std::ios::binary) << req.body();  // the whole body: onBody's writes
+      if (gate_.held()) {  // loop() is inside a file operation (flash_gate.h): nothing of the body is kept
+        desk_.bodyAbandoned(body);
+        return now = flashBusy(), true;
+      }
+      flash_.callbackOperation([&] { return static_cast<bool>(std::ofstream(body_.path(), std::ios::binary) << req.body()); });  // onBody's writes
       return handOver(Ask::CheckBody, now, std::move(later));
     }
     if (req.method() == hub::http::verb::post || req.method() == hub::http::verb::delete_) {
@@ -264,10 +282,12 @@ class Hub : public hub::Routes {
     char buf[256];
     JsonWriter w(buf, sizeof buf);
     if (req.method() == hub::http::verb::post) {
+      if (gate_.held()) return flashBusy();  // the ESP stores the settings on its flash
       nlohmann::json body = nlohmann::json::parse(req.body(), nullptr, false);
       if (body.is_discarded() || req.body().size() > 1024) return error(400, "bad_json", "send {apPassword?, staSsid?, staPassword?} as JSON, under 1 KB");
       RequestError e{};
       if (!applyWifi(uvtest::View{&body}, wifi_, e)) return error(400, e.code, e.message, e.path);
+      flash_.callbackOperation([] { return true; });  // the ESP writes /wifi.json here
     }
     writeWifi(w, wifi_, false);
     return {200, "application/json", w.text(), {}};
@@ -275,17 +295,25 @@ class Hub : public hub::Routes {
 
   // As app_files.cpp on the ESP: <path>.gz with its type, an ETag from the gzip trailer, 304.
   Answer appFile(const hub::http::request<hub::http::string_body>& req, const std::string& url) {
+    if (gate_.held()) return flashBusy();  // the app's files are on the flash too
     char path[256];
     AppFile found = uv::esp::appFile(url.c_str(), path, sizeof path, [this](const char* p) { return std::filesystem::exists(www_ / (std::string(p + 1) + ".gz")); });
     if (found == AppFile::NotFound) return error(404, "not_found", "no such path");
     if (found == AppFile::NoApp) return error(404, "not_found", "the app is not on this hub: npm run build:esp");
     std::filesystem::path file = www_ / (std::string(path + 1) + ".gz");
-    std::string gz = readFile(file);
+    std::string gz = flash_.callbackOperation([&] { return readFile(file); });
     char etag[24] = "";
     if (gz.size() >= 8) gzipEtag(reinterpret_cast<const uint8_t*>(gz.data() + gz.size() - 8), etag);
     auto inm = req.find(hub::http::field::if_none_match);
     if (etag[0] && inm != req.end() && inm->value() == etag) return {304, "", "", {{"ETag", etag}}};
     return {200, contentType(path), std::move(gz), {{"Content-Encoding", "gzip"}, {"ETag", etag}, {"Cache-Control", cacheControl(path)}}};
+  }
+
+  // A request that would touch the flash while loop() is inside a file operation.
+  static Answer flashBusy() {
+    Answer a = error(kFlashBusyStatus, kFlashBusyCode, kFlashBusyMessage);
+    a.headers.push_back({"Retry-After", kFlashRetryAfter});
+    return a;
   }
 
   net::io_context& io_;
@@ -295,6 +323,8 @@ class Hub : public hub::Routes {
   hub::LiveSessions sessions_;
   LiveChannel live_{sessions_};
   Bridge bridge_{wire_, live_};
+  uvtest::HostFlash flash_;
+  FlashGate gate_;
   uvtest::HostBody body_;
   using BodyCheck = PrintIntake<uvtest::HostBody, uvtest::HostHeaderParse>;
   BodyCheck intake_{body_, bridge_, uvtest::HostHeaderParse{}};
@@ -348,14 +378,11 @@ int main(int argc, char** argv) {
   }
   std::filesystem::path state = std::filesystem::temp_directory_path() / ("uv-esp-host-" + std::to_string(::getpid()));
   std::filesystem::create_directories(state);
-  // The hub lives as long as whoever started it: when its stdin closes (the test runner ended,
-  // however it ended) or it is told to stop (SIGTERM, SIGINT, SIGHUP), it takes its flash with it
-  // and exits. Run by hand, it reads the terminal and ends at Ctrl-D. The signals are taken by
-  // one thread alone, so nothing else is cut short in the middle of a write.
+  // The hub lives as long as whoever started it (lifeline.h): then it takes its flash with it.
   static std::filesystem::path flash;
   flash = state;
   auto started = std::chrono::steady_clock::now();
-  auto leave = [started] {
+  hub::holdLifeline([started] {
     // How long one loop pass took, for the benchmarks' ratios (bench/hub.bench.ts).
     double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started).count();
     std::printf("loop passes: %llu in %.0f ms\n", static_cast<unsigned long long>(Hub::passes.load()), ms);
@@ -363,22 +390,7 @@ int main(int argc, char** argv) {
     std::error_code ignored;
     std::filesystem::remove_all(flash, ignored);
     std::_Exit(0);
-  };
-  sigset_t stops;
-  sigemptyset(&stops);
-  for (int sig : {SIGTERM, SIGINT, SIGHUP}) sigaddset(&stops, sig);
-  pthread_sigmask(SIG_BLOCK, &stops, nullptr);  // every thread started from here on inherits it
-  std::thread([stops, leave] {
-    int sig;
-    sigwait(&stops, &sig);
-    leave();
-  }).detach();
-  std::thread([leave] {
-    char c;
-    while (::read(0, &c, 1) > 0) {
-    }
-    leave();
-  }).detach();
+  });
   net::io_context io;
   Hub hub(io, www, state, board);
   hub.setTurn(turn == "poll" ? Hub::Turn::Poll : turn == "wake" ? Hub::Turn::Woken : Hub::Turn::EachPass);

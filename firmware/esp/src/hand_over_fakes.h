@@ -6,6 +6,7 @@
 #pragma once
 #include <stdint.h>
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <thread>
@@ -84,8 +85,12 @@ struct Check {
     left = steps;
   }
   bool busy() const { return busy_; }
+  // The ESP8266's flash yields inside loop()'s reads of the spool, to the network callbacks.
+  std::function<void()> yield;
+
   template <class NextId>
   Intake step(NextId nextId) {
+    if (yield) yield();
     bytesRead += spool.text.size();  // loop() reads the body here: the network task must not write it
     if (--left > 0) return Intake::Working;
     busy_ = false;

@@ -5,29 +5,53 @@
 
 #include <string>
 
+#include "flash_gate.h"
+#include "host_flash.h"
 #include "nlohmann_view.h"
 
 namespace uvtest {
 
+// Read a block at a time, as FileBody is; with a flash model (the host hub), each open, block and
+// close is one flash operation of loop()'s, made with the gate held (flash_gate.h), and it yields.
 class HostBody {
  public:
-  explicit HostBody(std::string path) : path_(std::move(path)) {}
+  explicit HostBody(std::string path, HostFlash* flash = nullptr, uv::esp::FlashGate* gate = nullptr)
+      : path_(std::move(path)), flash_(flash), gate_(gate) {}
   ~HostBody() { close(); }
   bool rewind() {
     close();
-    f_ = fopen(path_.c_str(), "rb");
-    return f_ != nullptr;
+    return onFlash([&] { return (f_ = fopen(path_.c_str(), "rb")) != nullptr; });
   }
   void close() {
-    if (f_) fclose(f_);
+    if (f_) onFlash([&] { return fclose(f_); });
     f_ = nullptr;
+    at_ = len_ = 0;
   }
-  int read() { return f_ ? fgetc(f_) : -1; }
+  int read() {
+    if (at_ == len_) {
+      if (!f_) return -1;
+      len_ = onFlash([&] { return fread(buf_, 1, sizeof buf_, f_); });
+      at_ = 0;
+      if (!len_) return -1;
+    }
+    return buf_[at_++];
+  }
   const std::string& path() const { return path_; }
 
  private:
+  template <class F>
+  auto onFlash(F f) -> decltype(f()) {
+    if (!flash_) return f();
+    uv::esp::FlashGate::Hold hold(*gate_);
+    return flash_->loopOperation(f);
+  }
+
   std::string path_;
+  HostFlash* flash_;
+  uv::esp::FlashGate* gate_;
   FILE* f_ = nullptr;
+  unsigned char buf_[512];
+  size_t at_ = 0, len_ = 0;
 };
 
 // Parses the whole body without gridData's contents, as ArduinoJson's filtered parse does.

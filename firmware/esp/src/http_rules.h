@@ -50,14 +50,43 @@ constexpr const char* kForeignOriginCode = "foreign_origin";
 HttpError jsonBodyError(const char* contentType);
 
 // A slow client must not hold the hub: its one spool, or one of its few sockets.
-// The request line and each header line are at most kHeaderLineMax bytes, and the headers at
-// most kHeaderBytesMax; a request is whole within kRequestDeadlineMs of its first byte (1.2 MB at
-// 20 KB/s; Wi-Fi carries ten times that), or its connection is closed and nothing of it kept.
-constexpr uint16_t kHeaderLineMax = 1024;
+// The request line and headers are at most kHeaderBytesMax bytes; a request is whole within
+// kRequestDeadlineMs of its first byte (1.2 MB at 20 KB/s; Wi-Fi carries ten times that), or its
+// connection is closed and nothing of it kept.
 constexpr uint16_t kHeaderBytesMax = 4096;
 constexpr uint32_t kRequestDeadlineMs = 60000;
 // True once a request that began at startMs has run out of time at nowMs (wraps with millis()).
 inline bool pastDeadline(uint32_t startMs, uint32_t nowMs) { return nowMs - startMs > kRequestDeadlineMs; }
+
+// A connection's request line and headers, counted as their bytes arrive, before the web library
+// parses them (ESPAsyncWebServer keeps a header line whole, however long it grows, until its heap
+// runs short). take() is false once they are over kHeaderBytesMax without the blank line that
+// ends them, or past the deadline: the connection is to be cut. From the blank line on, every
+// byte is the body's, and passes.
+class HeaderBudget {
+ public:
+  explicit HeaderBudget(uint32_t startMs) : startMs_(startMs) {}
+  bool take(const uint8_t* data, size_t len, uint32_t nowMs) {
+    if (done_) return true;
+    if (pastDeadline(startMs_, nowMs)) return false;
+    for (size_t i = 0; i < len && !done_; i++) {
+      if (++bytes_ > kHeaderBytesMax) return false;
+      if (data[i] == '\n') {
+        done_ = lineBytes_ == 0;  // an empty line (CR LF, or LF alone) ends the headers
+        lineBytes_ = 0;
+      } else if (data[i] != '\r') {
+        lineBytes_++;
+      }
+    }
+    return true;
+  }
+  bool done() const { return done_; }
+
+ private:
+  uint32_t startMs_;
+  uint16_t bytes_ = 0, lineBytes_ = 0;
+  bool done_ = false;
+};
 
 // A method the path does not take.
 HttpError methodNotAllowed(const char* path, Method m);

@@ -130,3 +130,37 @@ TEST(HttpRules, ARequestHasADeadlineFromItsFirstByte) {
   EXPECT_TRUE(pastDeadline(1000, 1001 + kRequestDeadlineMs));
   EXPECT_TRUE(pastDeadline(0xfffff000u, 0xfffff000u + kRequestDeadlineMs + 1));  // across millis()'s wrap
 }
+
+namespace {
+bool feed(HeaderBudget& b, const std::string& text, uint32_t nowMs = 0) {
+  return b.take(reinterpret_cast<const uint8_t*>(text.data()), text.size(), nowMs);
+}
+}  // namespace
+
+TEST(HttpRules, HeadersEndAtTheBlankLineAndTheBodyPassesUncounted) {
+  HeaderBudget b(0);
+  EXPECT_TRUE(feed(b, "POST /print HTTP/1.1\r\nHost: 192.168.4.1\r\nContent-Length: 9000\r\n"));
+  EXPECT_FALSE(b.done());
+  EXPECT_TRUE(feed(b, "\r\n" + std::string(8000, '{')));  // the body, in the same packet
+  EXPECT_TRUE(b.done());
+  EXPECT_TRUE(feed(b, std::string(kHeaderBytesMax, 'x'), kRequestDeadlineMs + 5000));  // the body's deadline is the glue's
+}
+
+TEST(HttpRules, AHeaderLineThatNeverEndsIsCutAtTheLimitWhateverThePackets) {
+  HeaderBudget b(0);
+  EXPECT_TRUE(feed(b, "GET / HTTP/1.1\r\nX-Slow: "));
+  bool open = true;
+  for (int i = 0; i < kHeaderBytesMax && open; i++) open = feed(b, "a", i);
+  EXPECT_FALSE(open);
+  HeaderBudget whole(0);
+  EXPECT_TRUE(feed(whole, "GET / HTTP/1.1\r\n" + std::string(kHeaderBytesMax - 20, 'h') + "\r\n\r\n"));  // 4096 B exactly, with the blank line
+  HeaderBudget over(0);
+  EXPECT_FALSE(feed(over, "GET / HTTP/1.1\r\n" + std::string(kHeaderBytesMax - 19, 'h') + "\r\n\r\n"));
+}
+
+TEST(HttpRules, HeadersStillArrivingAtTheDeadlineAreCut) {
+  HeaderBudget b(1000);
+  EXPECT_TRUE(feed(b, "GET / HTTP/1.1\r\n", 1000));
+  EXPECT_TRUE(feed(b, "Host: a\r\n", 1000 + kRequestDeadlineMs));
+  EXPECT_FALSE(feed(b, "X", 1001 + kRequestDeadlineMs));
+}

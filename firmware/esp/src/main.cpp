@@ -6,6 +6,7 @@
 #include <LittleFS.h>
 
 #include "arduino/app_files.h"
+#include "arduino/hub_server.h"
 #include "arduino/live_socket.h"
 #include "arduino/network.h"
 #include "arduino/network_wake.h"
@@ -42,7 +43,7 @@ struct MegaUart : uv::esp::MegaWire {
   }
 } wire;
 
-AsyncWebServer server(80);
+uv::esp::HubServer server(80);  // ESPAsyncWebServer with a limit on the request's headers
 AsyncWebSocket ws("/ws");
 uv::esp::LiveSocket socketClients(ws);
 uv::esp::LiveChannel live(socketClients);

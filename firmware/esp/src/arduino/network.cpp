@@ -19,6 +19,7 @@ static uint32_t chipId() { return static_cast<uint32_t>(ESP.getEfuseMac() >> 24)
 static uint32_t hardwareRandom() { return esp_random(); }  // true random only with the radio on
 #endif
 
+#include "flash_guard.h"
 #include "http_rules.h"
 #include "json_view.h"
 
@@ -151,6 +152,7 @@ void onPostWifi(AsyncWebServerRequest* r) {
     writeError(w, e.code, e.message, e.path);
     return r->send(400, "application/json", w.text());
   }
+  if (flashBusy()) return sendFlashBusy(r);  // loop() is inside a file operation: nothing is stored
   if (!save(next)) {
     writeError(w, "spool_failed", "the ESP could not store the settings");
     return r->send(503, "application/json", w.text());

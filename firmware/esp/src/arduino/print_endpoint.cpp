@@ -14,6 +14,7 @@
 #include <LittleFS.h>
 
 #include "file_body.h"
+#include "flash_guard.h"
 #include "http_rules.h"
 #include "json_view.h"
 #include "loop_desk.h"
@@ -34,7 +35,7 @@ void (*service)() = nullptr;
 void serviceHook() {
   if (service) service();
 }
-FileBody body(LittleFS, kSpool, serviceHook);
+FileBody body(LittleFS, kSpool, serviceHook, fileSystemGate);
 
 // The header: the whole body through ArduinoJson with gridData's contents filtered out, which
 // also checks the body's syntax, in at most 8 KB of heap. It runs in loop() and holds nothing the
@@ -67,6 +68,8 @@ uint32_t receivingBody = 0;                   // its number (NetworkDesk::arrivi
 uint32_t receivingSinceMs = 0;                // its body's first byte: the request's deadline counts from here
 fs::File spool;
 bool spoolFailed = false;
+bool spoolFlashBusy = false;  // a part of the body came while loop() was inside a file operation
+bool closeLater = false;      // the spool to close once loop() is out of the file system
 char netReply[kErrorJsonBytes];  // answers the network task makes itself (off its small stack)
 
 // --- loop()'s ---
@@ -79,8 +82,19 @@ void sendError(AsyncWebServerRequest* r, uint16_t status, const char* code, cons
   r->send(status, "application/json", w.text());
 }
 
+// Network task: the spool closed, now or (loop() inside a file operation) at the next callback.
+// On the ESP8266 loop() reaches it too (pumpNetwork at the end of a pass), where the close may
+// yield to the network callbacks: so the gate is held across it.
+void closeSpool() {
+  closeLater = flashBusy();
+  if (closeLater) return;
+  FlashGate::Hold hold(fileSystemGate);
+  spool.close();
+}
+
 // Network task: loop()'s answers go out, each to its request if the client is still there.
 void pump() {
+  if (closeLater) closeSpool();
   desk.pump([](AsyncWebServerRequest& r, const Answer& a) { r.send(a.status, a.plainText ? "text/plain" : "application/json", a.body); });
 }
 
@@ -98,6 +112,7 @@ void handOver(AsyncWebServerRequest* r, Ask ask, bool failed = false) {
 
 // loop(): the job's id, kept on flash across restarts.
 uint32_t nextJobId() {
+  FlashGate::Hold hold(fileSystemGate);
   uint32_t id = 0;
   fs::File f = LittleFS.open(kJobIdFile, "r");
   if (f) {
@@ -116,7 +131,7 @@ uint32_t nextJobId() {
 // Network task: the arriving body is let go of; nothing of it is kept, and the spool is free.
 void dropArriving() {
   receiving = nullptr;
-  spool.close();
+  closeSpool();
 }
 
 // Network task: a request answered by its _tempObject once whole (the library frees it with the request).
@@ -134,10 +149,13 @@ void onBody(AsyncWebServerRequest* r, uint8_t* data, size_t len, size_t index, s
     bool hasLength = !r->hasHeader("Transfer-Encoding");
     HttpError e = foreignRequest(r);
     if (!e.status) e = printHeaderError(r->contentType().c_str(), hasLength, static_cast<uint32_t>(total));
+    if (!e.status && flashBusy()) e = HttpError{kFlashBusyStatus, kFlashBusyCode, kFlashBusyMessage};
     if (!e.status) e = admissionError(desk.admitBody());
     if (e.status) return answerLater(r, e);  // answered once the body has gone by; none of it is kept
+    if (closeLater) closeSpool();  // not held: flashBusy() was false
     spool = LittleFS.open(kSpool, "w");
     spoolFailed = !spool;
+    spoolFlashBusy = false;
     receiving = r;
     receivingBody = desk.arriving();
     receivingSinceMs = millis();
@@ -155,7 +173,8 @@ void onBody(AsyncWebServerRequest* r, uint8_t* data, size_t len, size_t index, s
     }, nullptr);
   }
   if (r != receiving) return;
-  if (!spoolFailed && spool.write(data, len) != len) spoolFailed = true;
+  if (flashBusy()) spoolFlashBusy = true;  // not written now, so the body cannot be whole: 503 flash_busy
+  if (!spoolFailed && !spoolFlashBusy && spool.write(data, len) != len) spoolFailed = true;
 }
 
 // Network task: the whole request is in.
@@ -163,6 +182,7 @@ void onPost(AsyncWebServerRequest* r) {
   pump();
   if (r->_tempObject) {
     const HttpError* e = static_cast<const HttpError*>(r->_tempObject);
+    if (strcmp(e->code, kFlashBusyCode) == 0) return sendFlashBusy(r);  // with its Retry-After
     return sendError(r, e->status, e->code, e->message);
   }
   if (r != receiving) {  // no body at all: what the headers say, or 400
@@ -173,6 +193,10 @@ void onPost(AsyncWebServerRequest* r) {
     return sendError(r, 400, "bad_json", "the body is empty");
   }
   dropArriving();
+  if (spoolFlashBusy || closeLater) {  // a part of it was not kept, or the spool is not yet closed
+    desk.bodyAbandoned(receivingBody);
+    return sendFlashBusy(r);
+  }
   handOver(r, Ask::CheckBody, spoolFailed);  // the spool goes with it; loop() checks it and answers
 }
 
