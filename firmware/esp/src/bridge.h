@@ -65,6 +65,8 @@ class Bridge : public MegaListener {
 
   const UploadProgress* lastUpload() const { return uploads_ ? &upload_.progress() : nullptr; }
   const SenderHealth& health() const { return sender_.health(); }
+  // The job format the hub writes for the Mega: the newest both read (its M115's Cap:JOB_FORMAT).
+  uint8_t jobFormat() const { return sender_.jobFormat(); }
   bool uploading() const { return upload_.active(); }
 
  private:

@@ -33,8 +33,9 @@ enum class ConversionStep : uint8_t { More, Done, Failed };
 template <class Reader>
 class JobConversion {
  public:
-  // `cells` holds one row: kJobMaxSide bytes.
-  JobConversion(Reader& body, RecordSink& out, uint8_t* cells) : rows_(body), sink_(out), encoder_(sink_), cells_(cells) {}
+  // `cells` holds one row: kJobMaxSide bytes; `format` is the job format written (job.md).
+  JobConversion(Reader& body, RecordSink& out, uint8_t* cells, uint8_t format = 1)
+      : rows_(body), sink_(out), encoder_(sink_, format), cells_(cells) {}
 
   // `root` is the body parsed without gridData's contents; `body` must be at the file's start.
   template <class J>
@@ -65,6 +66,7 @@ class JobConversion {
   uint32_t textBytes() const { return sink_.bytes(); }
   uint32_t textLines() const { return sink_.lines(); }
   uint16_t rowsDone() const { return next_; }
+  uint8_t format() const { return encoder_.format(); }
 
  private:
   GridRows<Reader> rows_;

@@ -37,6 +37,7 @@ bool MegaSender::send(const char* body, uint16_t tag) {
 }
 
 void MegaSender::restart() {
+  jobFormat_ = 1;  // until its M115 says again
   next_ = 0;
   lastAccepted_ = -1;
   inflight_ = 0;
@@ -127,6 +128,11 @@ void MegaSender::received(char c, uint32_t nowMs) {
   if (r.kind == ReplyKind::Busy) busySinceOk_ = true;
   if (r.kind == ReplyKind::Cap && r.textLen == 9 && strncmp(r.text, "RX_WINDOW", 9) == 0) {
     window_ = static_cast<uint8_t>(r.value < 1 ? 1 : r.value > 8 ? 8 : r.value);
+  }
+  // An M115 answer starts with FIRMWARE_NAME: a Mega that then says no Cap:JOB_FORMAT reads format 1.
+  if (r.kind == ReplyKind::Firmware) jobFormat_ = 1;
+  if (r.kind == ReplyKind::Cap && r.textLen == 10 && strncmp(r.text, "JOB_FORMAT", 10) == 0) {
+    jobFormat_ = static_cast<uint8_t>(r.value >= 2 ? 2 : 1);
   }
   if (r.kind == ReplyKind::Ok) {
     busySinceOk_ = false;

@@ -64,6 +64,9 @@ class MegaSender {
   uint8_t withdraw(uint16_t lo, uint16_t hi);
 
   uint8_t window() const { return window_; }
+  // The newest job format (protocol/job.md) the Mega reads: 2 once its M115 said Cap:JOB_FORMAT:2,
+  // else 1 (no answer yet, an older Mega, or one that restarted since).
+  uint8_t jobFormat() const { return jobFormat_; }
   // The tag of the oldest line that has been on the wire, which the next ok answers (0xffff: none).
   uint16_t oldestSentTag() const;
   const SenderHealth& health() const { return health_; }
@@ -92,6 +95,7 @@ class MegaSender {
   uint8_t head_ = 0, count_ = 0;
   uint8_t inflight_ = 0;
   uint8_t window_ = 1;          // until M115 says Cap:RX_WINDOW
+  uint8_t jobFormat_ = 1;       // until M115 says Cap:JOB_FORMAT
   uint32_t next_ = 1;
   int64_t lastAccepted_ = 0;
   uint16_t blockError_ = 0;

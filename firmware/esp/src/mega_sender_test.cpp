@@ -202,3 +202,19 @@ TEST(MegaSender, ATimeOutInsideALinesReplyKeepsItsError) {
   ASSERT_EQ(m.ears.errors.count(7), 1u);
   EXPECT_EQ(m.ears.errors[7], 23);
 }
+
+// Issue 41: the job format the Mega reads comes from its M115 (Cap:JOB_FORMAT); an answer without
+// it (an older Mega), or a Mega that restarted and has not answered again, means format 1.
+TEST(MegaSender, LearnsTheJobFormatFromM115AndFallsBackToFormat1) {
+  Bench b;
+  b.mega.begin();
+  EXPECT_EQ(b.sender.jobFormat(), 1);  // nothing said yet
+  ASSERT_TRUE(b.sendAll({"M115"}, 1));
+  EXPECT_EQ(b.sender.jobFormat(), 2);
+  for (char c : std::string("FIRMWARE_NAME:UVExposure 0.0.9 (Mega) PROTOCOL_VERSION:1\nCap:RX_WINDOW:2\n")) b.sender.received(c, b.nowMs());
+  EXPECT_EQ(b.sender.jobFormat(), 1);  // an older Mega's answer
+  for (char c : std::string("Cap:JOB_FORMAT:3\n")) b.sender.received(c, b.nowMs());
+  EXPECT_EQ(b.sender.jobFormat(), 2);  // the newest the hub writes
+  b.sender.restart();
+  EXPECT_EQ(b.sender.jobFormat(), 1);
+}

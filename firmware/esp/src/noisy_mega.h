@@ -17,8 +17,10 @@ struct NoisyMega : uv::esp::MegaWire {
   std::mt19937 rng{1};
   double corrupt = 0, drop = 0;  // per byte, each way
   size_t fed = 0;                // the Mega's lines already handed to the ESP
+  uint64_t written = 0;          // bytes the ESP wrote to the Mega, before any noise
 
   bool write(const char* data, uint16_t n) override {
+    written += n;
     for (uint16_t i = 0; i < n; i++) mega.esp.toMega += noisy(data[i]);
     return true;
   }

@@ -49,10 +49,11 @@ class PrintIntake {
       JobHeader h = conversion().header();
       uint32_t bytes = conversion().textBytes();
       bool paced = conversion().paced();
+      uint8_t format = conversion().format();
       conversion().~JobConversion();
       uint32_t id = nextId();
       if (textMade_) text().~StreamedJobText();
-      new (textMem_) StreamedJobText<Body>(body_, h, cells_);
+      new (textMem_) StreamedJobText<Body>(body_, h, cells_, format);
       textMade_ = true;
       JsonWriter w(response_, sizeof response_);
       w.beginObject().key("job").beginObject().key("id").number(id).key("state").string("uploading");
@@ -85,7 +86,9 @@ class PrintIntake {
 
   Intake header() {
     if (!body_.rewind()) return refuse({503, "spool_failed", "", "the hub could not read the job back"});
-    new (conversionMem_) JobConversion<Body>(body_, nothing_, cells_);
+    // The format the Mega reads, fixed for the job: its size is counted in it (the upload's
+    // bytesTotal) and its text made in it again at each attempt.
+    new (conversionMem_) JobConversion<Body>(body_, nothing_, cells_, bridge_.jobFormat());
     bool accepted = false;
     int err = parse_(body_, [&](const auto& view) {
       if (!body_.rewind()) return;

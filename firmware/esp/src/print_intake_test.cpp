@@ -180,3 +180,68 @@ TEST(PrintIntake, ANumberBeyondAnyIntegerIsOutOfRange) {
     EXPECT_EQ(answer["error"]["path"], "/grid/cols") << cols;
   }
 }
+
+namespace {
+
+// A filled job as its body, at 60 µm.
+std::string filledBody(int cols, int rows) {
+  std::string row = "[255";
+  for (int c = 1; c < cols; c++) row += ",255";
+  row += "]";
+  std::string body = "{\"grid\":{\"cols\":" + std::to_string(cols) + ",\"rows\":" + std::to_string(rows) +
+                     "},\"pitchUm\":{\"x\":60,\"y\":60},\"originUm\":{\"x\":10000,\"y\":10000},"
+                     "\"dose\":{\"map\":\"threshold\",\"level\":128,\"fullUs\":4000},\"leds\":{\"offsets\":[[0,0],[0,1],[0,2],[0,3]]},"
+                     "\"strategy\":{\"name\":\"serpentine\"},\"gridData\":[";
+  for (int r = 0; r < rows; r++) body += (r ? "," : "") + row;
+  return body + "]}";
+}
+
+}  // namespace
+
+// Issue 41: a Mega whose M115 says Cap:JOB_FORMAT:2 gets format 2 (run-length rows where shorter),
+// and the upload's bytes count that text; one whose M115 says no such cap gets format 1.
+TEST(PrintIntake, TheHubWritesTheJobFormatTheMegaSaysItReads) {
+  for (bool older : {false, true}) {
+    Hub h;
+    h.start();
+    if (older) {  // an older Mega's M115 answer: its name and no Cap:JOB_FORMAT
+      for (char c : std::string("FIRMWARE_NAME:UVExposure 0.0.9 (Mega) PROTOCOL_VERSION:1\n")) h.bridge.received(c, h.nowMs());
+    }
+    EXPECT_EQ(h.bridge.jobFormat(), older ? 1 : 2);
+    h.mega.cmd("G28");
+    ASSERT_EQ(h.post(filledBody(120, 40)), Intake::Accepted) << h.intake.response();
+    for (int i = 0; i < 30000 && h.bridge.uploading(); i++) h.run(10000);
+    const UploadProgress* p = h.bridge.lastUpload();
+    ASSERT_EQ(p->state, UploadState::Started) << p->message;
+    const std::string card = h.mega.sd.contents("JOB1.UVJ");
+    EXPECT_EQ(card.rfind(older ? "uvj 1\n" : "uvj 2\n", 0), 0u);
+    EXPECT_EQ(card.find("\nrl 0 0 120xff\n") != std::string::npos, !older);
+    EXPECT_EQ(p->bytesTotal, card.size());
+    EXPECT_EQ(p->bytesSent, card.size());
+    EXPECT_EQ(p->bytesVerified, card.size());
+  }
+}
+
+// The bytes the hub sends the Mega for a filled 30 x 30 mm job, in each format: the job text
+// (bytesTotal) and every byte on the UART (line numbers, checksums, M28/M29). At 60 µm: 500 x 500
+// cells, as 50 µm's 600 x 600 is over the hub's 262 144 cells.
+TEST(PrintIntake, AFilled30mmJobInEachFormat) {
+  uint64_t wire[2] = {};
+  for (bool older : {true, false}) {
+    Hub h;
+    h.start();
+    if (older) {
+      for (char c : std::string("FIRMWARE_NAME:UVExposure 0.0.9 (Mega) PROTOCOL_VERSION:1\n")) h.bridge.received(c, h.nowMs());
+    }
+    h.mega.cmd("G28");
+    ASSERT_EQ(h.post(filledBody(500, 500)), Intake::Accepted) << h.intake.response();
+    const uint64_t before = h.written;
+        for (int i = 0; i < 200000 && h.bridge.uploading(); i++) h.run(10000);
+    const UploadProgress* p = h.bridge.lastUpload();
+    ASSERT_EQ(p->state, UploadState::Started) << p->message;
+    std::printf("[esp upload] filled 30 x 30 mm at 60 um (500 x 500 cells), format %u: %u bytes of job text, %llu bytes on the UART\n",
+                older ? 1u : 2u, p->bytesTotal, static_cast<unsigned long long>(h.written - before));
+    wire[older ? 0 : 1] = h.written - before;
+  }
+  EXPECT_LT(wire[1] * 20, wire[0]);  // a filled row is one `rl` record in place of 16 `r` records
+}

@@ -18,8 +18,11 @@ namespace esp {
 template <class Reader>
 class StreamedJobText : public JobText, private RecordSink {
  public:
-  // `cells` holds one row (kJobMaxSide bytes); `h` is the header the body was accepted with.
-  StreamedJobText(Reader& body, const JobHeader& h, uint8_t* cells) : body_(body), rows_(body), header_(h), encoder_(*this), cells_(cells) {}
+  // `cells` holds one row (kJobMaxSide bytes); `h` is the header the body was accepted with, and
+  // `format` the job format it was counted in (job.md): in format 2 a row goes as `rl` records
+  // where they are shorter, still one record at a time.
+  StreamedJobText(Reader& body, const JobHeader& h, uint8_t* cells, uint8_t format = 1)
+      : body_(body), rows_(body), header_(h), encoder_(*this, format), cells_(cells) {}
 
   bool rewind() override {
     ok_ = body_.rewind();
@@ -40,7 +43,7 @@ class StreamedJobText : public JobText, private RecordSink {
     while (taken_ == held_) {  // make the next record
       taken_ = held_ = 0;
       if (ended_) return -1;
-      if (column_ < header_.cols && encoder_.nextRecord(static_cast<uint16_t>(row_ - 1), cells_, header_.cols, column_)) break;
+      if (column_ < header_.cols && nextRecord()) break;
       if (row_ == header_.rows) {
         RequestError e{};
         ok_ = rows_.finish(e);
@@ -54,6 +57,7 @@ class StreamedJobText : public JobText, private RecordSink {
       if (!ok_) return -1;
       row_++;
       column_ = 0;
+      runs_ = encoder_.runsShorter(static_cast<uint16_t>(row_ - 1), cells_, header_.cols);
     }
     // One record out of what is held, NUL-terminated.
     const char* text = held(taken_);
@@ -70,6 +74,10 @@ class StreamedJobText : public JobText, private RecordSink {
   bool ok() const override { return ok_; }
 
  private:
+  bool nextRecord() {
+    const uint16_t row = static_cast<uint16_t>(row_ - 1);
+    return runs_ ? encoder_.nextRunRecord(row, cells_, header_.cols, column_) : encoder_.nextRecord(row, cells_, header_.cols, column_);
+  }
   // The encoder's records: the header's ten at once, else one at a time.
   void record(const char* text, uint8_t len) override {
     if (held_ == kHeld) return;
@@ -89,6 +97,7 @@ class StreamedJobText : public JobText, private RecordSink {
   uint8_t held_ = 0, taken_ = 0;
   uint16_t row_ = 0;      // rows read so far
   uint16_t column_ = 0;   // where the next record of the current row starts
+  bool runs_ = false;     // the current row goes as `rl` records
   bool ended_ = false;
   bool ok_ = false;
 };

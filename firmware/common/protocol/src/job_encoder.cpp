@@ -98,20 +98,29 @@ void JobEncoder::header(const JobHeader& h) {
   flush();
 }
 
+bool JobEncoder::runsShorter(uint16_t rowIndex, const uint8_t* cells, uint16_t cols) {
+  if (format_ < 2) return false;
+  measuring_ = true;
+  measured_ = 0;
+  uint16_t column = 0;
+  while (nextRecord(rowIndex, cells, cols, column)) {
+  }
+  const uint32_t segments = measured_;
+  measured_ = 0;
+  column = 0;
+  while (nextRunRecord(rowIndex, cells, cols, column)) {
+  }
+  const uint32_t runs = measured_;
+  measuring_ = false;
+  return segments && runs < segments;
+}
+
 void JobEncoder::row(uint16_t rowIndex, const uint8_t* cells, uint16_t cols) {
   uint16_t column = 0;
-  if (format_ >= 2) {
-    measuring_ = true;
-    measured_ = 0;
-    while (nextRecord(rowIndex, cells, cols, column)) {
+  if (runsShorter(rowIndex, cells, cols)) {
+    while (nextRunRecord(rowIndex, cells, cols, column)) {
     }
-    const uint32_t segments = measured_;
-    measured_ = 0;
-    runRecords(rowIndex, cells, cols);
-    const uint32_t runs = measured_;
-    measuring_ = false;
-    column = 0;
-    if (segments && runs < segments) return runRecords(rowIndex, cells, cols);
+    return;
   }
   while (nextRecord(rowIndex, cells, cols, column)) {
   }
@@ -125,7 +134,8 @@ struct Token {
   bool run;
 };
 
-// The token at `c`: a run of kJobMinRun or more equal cells, or the short runs that follow up to `last`.
+// The token at `c`: a run of kJobMinRun or more equal cells, or the short runs that follow up to
+// `last`. From inside a literal token (where the previous record split it) it is that token's rest.
 Token tokenAt(const uint8_t* cells, uint16_t c, uint16_t last) {
   auto runEnd = [&](uint16_t at) {
     uint16_t e = static_cast<uint16_t>(at + 1);
@@ -144,62 +154,63 @@ Token tokenAt(const uint8_t* cells, uint16_t c, uint16_t last) {
 
 }  // namespace
 
-void JobEncoder::runRecords(uint16_t rowIndex, const uint8_t* cells, uint16_t cols) {
-  int32_t first = 0, last = static_cast<int32_t>(cols) - 1;
-  while (first < cols && cells[first] == 0) first++;
-  while (last >= first && cells[last] == 0) last--;
+bool JobEncoder::nextRunRecord(uint16_t rowIndex, const uint8_t* cells, uint16_t cols, uint16_t& column) {
+  int32_t last = static_cast<int32_t>(cols) - 1;
+  while (last >= column && cells[last] == 0) last--;
+  int32_t c = column;
+  if (c == 0) {  // the row's tokens start at its first non-zero cell
+    while (c <= last && cells[c] == 0) c++;
+  }
   Record rec;
   bool open = false;
   uint8_t keep = 0;  // the record's length without the zero runs at its end
-  auto close = [&]() {
-    if (open && keep) {
-      rec.buf[keep] = '\0';
-      emit(rec.buf, keep);
-    }
-    open = false;
-  };
-  for (int32_t c = first; c <= last;) {
+  while (c <= last) {
     Token t = tokenAt(cells, static_cast<uint16_t>(c), static_cast<uint16_t>(last));
-    c = t.end;
     const bool zeroRun = t.run && cells[t.col] == 0;
-    for (;;) {
-      if (!open) {
-        if (zeroRun) break;  // a record never starts, nor ends, with zeros of a run
-        rec.n = 0;
-        rec.word("rl");
-        rec.num(rowIndex);
-        rec.num(t.col);
-        open = true;
-        keep = 0;
+    if (!open) {
+      if (zeroRun) {  // a record never starts, nor ends, with zeros of a run
+        c = t.end;
+        continue;
       }
-      char count[6];
-      const uint8_t countLen = static_cast<uint8_t>(t.run ? putUnsigned(t.end - t.col, count) : 0);
-      const uint16_t len = t.run ? static_cast<uint16_t>(countLen + 3) : static_cast<uint16_t>(2 * (t.end - t.col));
-      if (rec.n + 1 + len <= kJobMaxRecordBytes) {
-        rec.buf[rec.n++] = ' ';
-        if (t.run) {
-          memcpy(rec.buf + rec.n, count, countLen);
-          rec.n = static_cast<uint8_t>(rec.n + countLen);
-          rec.buf[rec.n++] = 'x';
-          putHex(cells[t.col], 2, rec.buf + rec.n);
-          rec.n = static_cast<uint8_t>(rec.n + 2);
-        } else {
-          for (uint16_t i = t.col; i < t.end; i++, rec.n += 2) putHex(cells[i], 2, rec.buf + rec.n);
-        }
-        if (!zeroRun) keep = rec.n;
-        break;
-      }
-      const int room = (kJobMaxRecordBytes - rec.n - 1) / 2;
-      if (!t.run && room >= 1) {
-        rec.buf[rec.n++] = ' ';
-        for (int i = 0; i < room; i++, rec.n += 2) putHex(cells[t.col + i], 2, rec.buf + rec.n);
-        keep = rec.n;
-        t.col = static_cast<uint16_t>(t.col + room);
-      }
-      close();
+      rec.word("rl");
+      rec.num(rowIndex);
+      rec.num(t.col);
+      open = true;
     }
+    char count[6];
+    const uint8_t countLen = static_cast<uint8_t>(t.run ? putUnsigned(t.end - t.col, count) : 0);
+    const uint16_t len = t.run ? static_cast<uint16_t>(countLen + 3) : static_cast<uint16_t>(2 * (t.end - t.col));
+    if (rec.n + 1 + len <= kJobMaxRecordBytes) {
+      rec.buf[rec.n++] = ' ';
+      if (t.run) {
+        memcpy(rec.buf + rec.n, count, countLen);
+        rec.n = static_cast<uint8_t>(rec.n + countLen);
+        rec.buf[rec.n++] = 'x';
+        putHex(cells[t.col], 2, rec.buf + rec.n);
+        rec.n = static_cast<uint8_t>(rec.n + 2);
+      } else {
+        for (uint16_t i = t.col; i < t.end; i++, rec.n += 2) putHex(cells[i], 2, rec.buf + rec.n);
+      }
+      if (!zeroRun) keep = rec.n;
+      c = t.end;
+      continue;
+    }
+    // It does not fit: a literal puts what fits here (the next record takes its rest), a run goes
+    // whole into the next record.
+    const int room = (kJobMaxRecordBytes - rec.n - 1) / 2;
+    if (!t.run && room >= 1) {
+      rec.buf[rec.n++] = ' ';
+      for (int i = 0; i < room; i++, rec.n += 2) putHex(cells[t.col + i], 2, rec.buf + rec.n);
+      keep = rec.n;
+      c = t.col + room;
+    }
+    break;
   }
-  close();
+  column = static_cast<uint16_t>(c > last ? cols : c);
+  if (!open) return false;
+  rec.buf[keep] = '\0';
+  emit(rec.buf, keep);
+  return true;
 }
 
 bool JobEncoder::nextRecord(uint16_t rowIndex, const uint8_t* cells, uint16_t cols, uint16_t& column) {

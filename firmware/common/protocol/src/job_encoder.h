@@ -17,17 +17,21 @@ class RecordSink {
 class JobEncoder {
  public:
   explicit JobEncoder(RecordSink& sink, uint8_t format = 1) : sink_(sink), format_(format) {}
+  uint8_t format() const { return format_; }
 
   void header(const JobHeader& h);
   void row(uint16_t rowIndex, const uint8_t* cells, uint16_t cols);
   // One `r` record of a row at a time, for a reader that pulls records: emits the record that
   // starts at or after `column` and moves `column` past it; false when the row has no more.
   bool nextRecord(uint16_t rowIndex, const uint8_t* cells, uint16_t cols, uint16_t& column);
+  // Format 2: whether row() writes this row as `rl` records (they are shorter than its `r` ones).
+  bool runsShorter(uint16_t rowIndex, const uint8_t* cells, uint16_t cols);
+  // One `rl` record of a row at a time, as nextRecord: `column` starts at 0 and is moved past each.
+  bool nextRunRecord(uint16_t rowIndex, const uint8_t* cells, uint16_t cols, uint16_t& column);
   void finish();
 
  private:
   void emit(const char* text, uint8_t len);
-  void runRecords(uint16_t rowIndex, const uint8_t* cells, uint16_t cols);
 
   RecordSink& sink_;
   uint32_t crc_ = 0;
