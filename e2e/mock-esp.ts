@@ -23,6 +23,8 @@ export class MockEsp {
   #heartbeat: ReturnType<typeof setInterval>;
   #cancelled = false;
   /** What the hub last heard of the Mega, as the real one keeps it from the Mega's reports. */
+  /** The job format the Mega's M115 says it reads (`Cap:JOB_FORMAT`), which the hub writes. */
+  #jobFormat: 1 | 2 = 1;
   #heard: { firmware: string; temps: number[]; pos: number[]; job: Extract<Reply, { kind: 'job' }> | null; probe: string | null; limits: number[] } = {
     firmware: '', temps: [], pos: [0, 0, 0], job: null, probe: null, limits: [],
   };
@@ -50,7 +52,8 @@ export class MockEsp {
 
   #hear(r: Reply): void {
     const h = this.#heard;
-    if (r.kind === 'firmware') h.firmware = r.name;
+    if (r.kind === 'firmware') (h.firmware = r.name), (this.#jobFormat = 1); // an M115 answer: format 1 unless it says more
+    else if (r.kind === 'cap' && r.name === 'JOB_FORMAT') this.#jobFormat = r.value >= 2 ? 2 : 1;
     else if (r.kind === 'temps') h.temps = r.deciC.map((d) => d / 10);
     else if (r.kind === 'position') h.pos = r.um.map((u) => u / 1000);
     else if (r.kind === 'job') h.job = r;
@@ -100,7 +103,7 @@ export class MockEsp {
         return route.fulfill({ status: v.status, contentType: 'application/json', body: JSON.stringify({ error: { code: v.error, message: v.message, ...(v.path !== undefined ? { path: v.path } : {}) } }) });
       }
       const id = ++this.#jobs;
-      const text = encodeJob(v.job);
+      const text = encodeJob(v.job, this.#jobFormat); // as the hub: the newest format its Mega reads
       this.#job = { id, state: 'uploading', bytesSent: 0, bytesVerified: 0, bytesTotal: text.length };
       this.#cancelled = false;
       void this.#upload(id, text, v.paced);

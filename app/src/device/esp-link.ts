@@ -2,7 +2,7 @@
 
 import { LINE_RATE, type LinkRate } from '../job/link-rate';
 import { parseReply, type Reply } from '../protocol/dialect-reply';
-import type { PrintJob } from '../protocol/job-types';
+import type { JobFormat, PrintJob } from '../protocol/job-types';
 import { CommandError } from './command-error';
 import { postJob } from './esp-post';
 import type { LinkHealth } from './dialect-client';
@@ -30,15 +30,17 @@ export class EspLink implements PrinterLink {
   #pending = new Map<number, { resolve: (r: Reply[]) => void; reject: (e: Error) => void; sentMs: number; timer: ReturnType<typeof setTimeout> }>();
   #upload: ((m: Extract<FromEsp, { type: 'upload' }>) => void) | null = null;
   #closing = false;
-  /** The hub builds the job text itself, in format 1 (esp.md). */
-  readonly jobFormat = 1 as const;
+  /** The hub builds the job text itself, in the newest format its Mega reads (`Cap:JOB_FORMAT` in the M115 reply, esp.md): its bytes are what the estimate counts. */
+  jobFormat: JobFormat = 1;
   uploadRate: LinkRate = LINE_RATE;
 
   constructor(private readonly origin: string) {}
 
   async open(onReply: (r: Reply, line: string) => void, onClosed: (error?: Error) => void): Promise<void> {
     await this.#connect(onReply, onClosed);
-    await this.command('M115'); // the Mega's identity reaches us as relayed lines
+    const info = await this.command('M115'); // the Mega's identity reaches us as relayed lines
+    const cap = info.find((r) => r.kind === 'cap' && r.name === 'JOB_FORMAT');
+    this.jobFormat = cap?.kind === 'cap' && cap.value >= 2 ? 2 : 1; // as the hub reads the same answer
   }
 
   #connect(onReply: (r: Reply, line: string) => void, onClosed: (error?: Error) => void): Promise<void> {
