@@ -18,6 +18,14 @@ export function doseColours(): Uint32Array {
   return lut;
 }
 
+/** Whether any cell has a dose, four cells a word where the cells start on a word. */
+function hasDose(cells: Uint8Array): boolean {
+  const words = cells.byteOffset % 4 === 0 ? new Uint32Array(cells.buffer, cells.byteOffset, cells.length >> 2) : new Uint32Array(0);
+  for (let i = 0; i < words.length; i++) if (words[i] !== 0) return true;
+  for (let i = words.length << 2; i < cells.length; i++) if (cells[i] !== 0) return true;
+  return false;
+}
+
 export class LevelGrid {
   readonly cols: number;
   readonly rows: number;
@@ -47,7 +55,8 @@ export class TileCache<T> {
       rows = Math.ceil(rows / 2);
       this.levels.push(new LevelGrid(cols, rows));
     }
-    this.refresh(0, 0, grid.cols - 1, grid.rows - 1);
+    // The coarser levels start blank: a blank grid (the page's first load) has nothing to make them from.
+    if (hasDose(grid.cells)) this.refresh(0, 0, grid.cols - 1, grid.rows - 1);
   }
 
   /** After an edit of the cells in [x0, x1] × [y0, y1]: the coarser levels and the tiles over it. */
