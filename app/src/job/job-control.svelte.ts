@@ -122,7 +122,7 @@ export class JobControl {
 
   /** The same, each step a task of its own: a whole bed composed, then bounded, takes tens of ms each. */
   async jobSoon(): Promise<PrintJob | null> {
-    const composed = this.editor().composed();
+    const composed = await this.editor().composedSoon(nextTask);
     await nextTask();
     return this.#jobOf(composed);
   }

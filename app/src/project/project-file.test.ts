@@ -62,13 +62,15 @@ describe('project files', () => {
     expect(Buffer.compare((await decodeProject(text)).paint.cells, cells)).toBe(0); // toEqual takes seconds over 16 M cells
   });
 
-  it('tell a blank painting by every cell, whatever its length or where its bytes start', () => {
+  it('tell a blank painting by every cell, whatever its length, where its bytes start or how it is sliced', async () => {
     const cells = new Uint8Array(4099);
-    expect(isBlank(cells)).toBe(true);
+    expect(await isBlank(cells)).toBe(true);
+    expect(await isBlank(cells, 3)).toBe(true);
     for (const at of [0, 3, 2048, 4095, 4096, 4098]) {
       cells[at] = 1;
-      expect(isBlank(cells), `a cell at ${at}`).toBe(false);
-      expect(isBlank(cells.subarray(1)), `a cell at ${at}, read from byte 1`).toBe(at === 0);
+      expect(await isBlank(cells), `a cell at ${at}`).toBe(false);
+      expect(await isBlank(cells, 3), `a cell at ${at}, three words a slice`).toBe(false);
+      expect(await isBlank(cells.subarray(1)), `a cell at ${at}, read from byte 1`).toBe(at === 0);
       cells[at] = 0;
     }
   });

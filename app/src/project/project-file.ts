@@ -35,7 +35,7 @@ export interface Project {
 }
 
 export async function encodeProject(p: Project, savedAt = new Date()): Promise<string> {
-  const empty = isBlank(p.paint.cells);
+  const empty = await isBlank(p.paint.cells);
   return JSON.stringify({
     format: PROJECT_FORMAT,
     version: PROJECT_VERSION,

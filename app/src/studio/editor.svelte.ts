@@ -84,6 +84,11 @@ export class GridEditor {
     return this.layer.composed(this.grid);
   }
 
+  /** The same, the page's other tasks let run between its steps. */
+  composedSoon(pause: () => Promise<unknown>): Promise<DoseGrid> {
+    return this.layer.composedSoon(this.grid, pause);
+  }
+
   /** Millimetres to cells across (x) or down (y). */
   cells(mm: number, axis: 'x' | 'y' = 'x'): number {
     return Math.max(1, Math.round((mm * 1000) / this.machine.pitchUm[axis]));

@@ -58,4 +58,26 @@ describe('tile cache', () => {
     cache.tile(4, 0, 0);
     expect(painted).toBe(before + 1);
   });
+
+  it('holds in each coarser cell the darkest of the four below it, odd sizes and partial edits included', () => {
+    let seed = 7;
+    const rnd = (n: number) => ((seed = (seed * 1103515245 + 12345) >>> 0) >>> 8) % n;
+    const darkest = (src: { cols: number; rows: number; cells: Uint8Array }, x: number, y: number) =>
+      Math.max(...[[0, 0], [1, 0], [0, 1], [1, 1]].filter(([dx, dy]) => 2 * x + dx < src.cols && 2 * y + dy < src.rows).map(([dx, dy]) => src.cells[(2 * y + dy) * src.cols + 2 * x + dx]));
+    for (const [cols, rows] of [[513, 301], [600, 777], [257, 257]]) {
+      const g = new DoseGrid(cols, rows);
+      for (let i = 0; i < g.cells.length; i++) g.cells[i] = rnd(256);
+      const cache = new TileCache(g, () => 0, () => {});
+      for (let n = 0; n < 10; n++) {
+        const x0 = rnd(cols), y0 = rnd(rows), x1 = x0 + rnd(40), y1 = y0 + rnd(40);
+        for (let y = y0; y <= Math.min(y1, rows - 1); y++) for (let x = x0; x <= Math.min(x1, cols - 1); x++) g.cells[y * cols + x] = rnd(256);
+        cache.refresh(x0, y0, x1, y1);
+      }
+      for (let k = 1; k < cache.levels.length; k++) {
+        const src = cache.levels[k - 1], dst = cache.levels[k];
+        const wrong = Array.from({ length: dst.rows * dst.cols }, (_, i) => i).filter((i) => dst.cells[i] !== darkest(src, i % dst.cols, Math.floor(i / dst.cols)));
+        expect(wrong, `${cols} x ${rows}, level ${k}`).toEqual([]);
+      }
+    }
+  });
 });

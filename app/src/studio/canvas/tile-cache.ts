@@ -18,6 +18,14 @@ export function doseColours(): Uint32Array {
   return lut;
 }
 
+/** Whether any cell has a dose, four cells a word where the cells start on a word. */
+function hasDose(cells: Uint8Array): boolean {
+  const words = cells.byteOffset % 4 === 0 ? new Uint32Array(cells.buffer, cells.byteOffset, cells.length >> 2) : new Uint32Array(0);
+  for (let i = 0; i < words.length; i++) if (words[i] !== 0) return true;
+  for (let i = words.length << 2; i < cells.length; i++) if (cells[i] !== 0) return true;
+  return false;
+}
+
 export class LevelGrid {
   readonly cols: number;
   readonly rows: number;
@@ -30,8 +38,13 @@ export class LevelGrid {
 }
 
 export class TileCache<T> {
-  /** Level 0 is the grid itself; level k has ceil(cols / 2^k) cells across. */
-  readonly levels: (DoseGrid | LevelGrid)[];
+  readonly #levels: (DoseGrid | LevelGrid)[];
+  /**
+   * The boxes edited since the coarser levels were last made: they are made when a level is next read,
+   * in the frame that draws, not in the edit's own task (a whole-bed fill's edit and its levels were
+   * one task of 106 ms on a busy machine, issue 40). Past 64 boxes, they are merged into one.
+   */
+  #edited: { x0: number; y0: number; x1: number; y1: number }[] = [];
   #tiles = new Map<string, { tile: T; dirty: boolean }>();
   readonly #lut = doseColours();
 
@@ -40,21 +53,40 @@ export class TileCache<T> {
     private readonly makeTile: (w: number, h: number) => T,
     private readonly paint: (tile: T, pixels: Uint32Array, w: number, h: number) => void,
   ) {
-    this.levels = [grid];
+    this.#levels = [grid];
     let cols = grid.cols, rows = grid.rows;
     while (cols > TILE || rows > TILE) {
       cols = Math.ceil(cols / 2);
       rows = Math.ceil(rows / 2);
-      this.levels.push(new LevelGrid(cols, rows));
+      this.#levels.push(new LevelGrid(cols, rows));
     }
-    this.refresh(0, 0, grid.cols - 1, grid.rows - 1);
+    // The coarser levels start blank: a blank grid (the page's first load) has nothing to make them from.
+    if (hasDose(grid.cells)) this.refresh(0, 0, grid.cols - 1, grid.rows - 1);
   }
 
-  /** After an edit of the cells in [x0, x1] × [y0, y1]: the coarser levels and the tiles over it. */
+  /** Level 0 is the grid itself; level k has ceil(cols / 2^k) cells across, made up to date when read. */
+  get levels(): readonly (DoseGrid | LevelGrid)[] {
+    const edited = this.#edited;
+    if (edited.length) {
+      this.#edited = [];
+      for (const b of edited) this.#remake(b.x0, b.y0, b.x1, b.y1);
+    }
+    return this.#levels;
+  }
+
+  /** After an edit of the cells in [x0, x1] × [y0, y1]: the coarser levels and the tiles over it, remade when next read. */
   refresh(x0: number, y0: number, x1: number, y1: number): void {
     x0 = Math.max(0, x0), y0 = Math.max(0, y0);
     x1 = Math.min(this.grid.cols - 1, x1), y1 = Math.min(this.grid.rows - 1, y1);
-    for (let k = 0; k < this.levels.length; k++) {
+    if (x0 > x1 || y0 > y1) return;
+    const edited = this.#edited;
+    edited.push({ x0, y0, x1, y1 });
+    if (edited.length > 64)
+      this.#edited = [edited.reduce((a, b) => ({ x0: Math.min(a.x0, b.x0), y0: Math.min(a.y0, b.y0), x1: Math.max(a.x1, b.x1), y1: Math.max(a.y1, b.y1) }))];
+  }
+
+  #remake(x0: number, y0: number, x1: number, y1: number): void {
+    for (let k = 0; k < this.#levels.length; k++) {
       if (k > 0) {
         this.#downsample(k, x0, y0, x1, y1); // from level k-1's box
         x0 >>= 1, y0 >>= 1, x1 >>= 1, y1 >>= 1;
@@ -67,19 +99,31 @@ export class TileCache<T> {
     }
   }
 
+  /**
+   * Level k's cells over level k-1's box [x0, x1] × [y0, y1]: each the darkest of the four below it. A
+   * row at a time with plain compares, a missing second row or column read as the first: with a
+   * bounds check and Math.max per cell, a whole 4000² bed took 100 ms of the page's thread at load and
+   * after a whole-bed fill on a busy machine (issue 40's long tasks).
+   */
   #downsample(k: number, x0: number, y0: number, x1: number, y1: number): void {
-    const src = this.levels[k - 1], dst = this.levels[k];
-    for (let y = y0 >> 1; y <= y1 >> 1 && y < dst.rows; y++)
-      for (let x = x0 >> 1; x <= x1 >> 1 && x < dst.cols; x++) {
-        const sx = 2 * x, sy = 2 * y;
-        let m = src.cells[sy * src.cols + sx];
-        if (sx + 1 < src.cols) m = Math.max(m, src.cells[sy * src.cols + sx + 1]);
-        if (sy + 1 < src.rows) {
-          m = Math.max(m, src.cells[(sy + 1) * src.cols + sx]);
-          if (sx + 1 < src.cols) m = Math.max(m, src.cells[(sy + 1) * src.cols + sx + 1]);
-        }
-        dst.cells[y * dst.cols + x] = m;
+    const src = this.#levels[k - 1], dst = this.#levels[k];
+    const s = src.cells, d = dst.cells, sc = src.cols;
+    const xa = x0 >> 1, xb = Math.min(x1 >> 1, dst.cols - 1), ya = y0 >> 1, yb = Math.min(y1 >> 1, dst.rows - 1);
+    const pairs = Math.min(xb, (sc >> 1) - 1); // the last column with two cells below it
+    for (let y = ya; y <= yb; y++) {
+      const a = 2 * y * sc, b = 2 * y + 1 < src.rows ? a + sc : a, o = y * dst.cols;
+      for (let x = xa; x <= pairs; x++) {
+        const i = 2 * x;
+        let m = s[a + i], v = s[a + i + 1];
+        if (v > m) m = v;
+        v = s[b + i];
+        if (v > m) m = v;
+        v = s[b + i + 1];
+        if (v > m) m = v;
+        d[o + x] = m;
       }
+      if (xb > pairs) d[o + xb] = Math.max(s[a + 2 * xb], s[b + 2 * xb]); // an odd last column
+    }
   }
 
   /** The level to draw at `scale` screen pixels per cell: the coarsest whose cells are still ≥ 1 pixel. */

@@ -91,6 +91,27 @@ describe('raster tools', () => {
     expect(h.canRedo).toBe(false);
   });
 
+  it('keeps blank tiles as no bytes, and undoes a fill over blank and painted tiles alike', () => {
+    const g = new DoseGrid(300, 200); // edge tiles narrower and shorter than 64
+    const h = new History(g);
+    const dot = h.begin('dot');
+    dot.set(290, 190, 9);
+    h.commit(dot);
+    const before = g.cells.slice();
+    const fill = h.begin('fill');
+    rectangle(g, fill, 0, 0, 299, 199, true, 1, 200);
+    h.commit(fill);
+    expect([...fill.tiles.values()].filter((t) => t.length > 0)).toHaveLength(1); // only the dot's tile holds bytes
+    const filled = g.cells.slice();
+    h.undo();
+    expect(Buffer.compare(g.cells, before)).toBe(0);
+    h.redo();
+    expect(Buffer.compare(g.cells, filled)).toBe(0);
+    h.undo();
+    h.undo();
+    expect(g.cells.every((d) => d === 0)).toBe(true);
+  });
+
   it('says which cells an undo rewrote: the tiles its edit saved, not the grid', () => {
     const g = new DoseGrid(4096, 4096);
     const h = new History(g);

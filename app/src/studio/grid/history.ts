@@ -75,10 +75,24 @@ export class Edit {
   }
 }
 
+/** A saved tile with no dose in it, kept as no bytes: a whole-bed fill of a blank bed saved 16 MB in 4 000 tiles (issue 40's long tasks). */
+const BLANK = new Uint8Array(0);
+
 function copyTile(g: DoseGrid, tx: number, ty: number): Uint8Array {
   const w = Math.min(TILE, g.cols - tx * TILE), h = Math.min(TILE, g.rows - ty * TILE);
+  const cells = g.cells;
+  let blank = true;
+  for (let y = 0; y < h && blank; y++) {
+    const row = (ty * TILE + y) * g.cols + tx * TILE;
+    for (let x = 0; x < w; x++)
+      if (cells[row + x] !== 0) {
+        blank = false;
+        break;
+      }
+  }
+  if (blank) return BLANK;
   const out = new Uint8Array(w * h);
-  for (let y = 0; y < h; y++) out.set(g.cells.subarray((ty * TILE + y) * g.cols + tx * TILE, (ty * TILE + y) * g.cols + tx * TILE + w), y * w);
+  for (let y = 0; y < h; y++) out.set(cells.subarray((ty * TILE + y) * g.cols + tx * TILE, (ty * TILE + y) * g.cols + tx * TILE + w), y * w);
   return out;
 }
 
@@ -88,8 +102,12 @@ function swap(g: DoseGrid, tiles: Map<number, Uint8Array>): void {
   for (const [key, saved] of tiles) {
     const tx = key % tilesX, ty = Math.floor(key / tilesX);
     const now = copyTile(g, tx, ty);
-    const w = Math.min(TILE, g.cols - tx * TILE), h = saved.length / w;
-    for (let y = 0; y < h; y++) g.cells.set(saved.subarray(y * w, (y + 1) * w), (ty * TILE + y) * g.cols + tx * TILE);
+    const w = Math.min(TILE, g.cols - tx * TILE), h = Math.min(TILE, g.rows - ty * TILE);
+    for (let y = 0; y < h; y++) {
+      const at = (ty * TILE + y) * g.cols + tx * TILE;
+      if (saved === BLANK) g.cells.fill(0, at, at + w);
+      else g.cells.set(saved.subarray(y * w, (y + 1) * w), at);
+    }
     tiles.set(key, now);
   }
 }

@@ -6,7 +6,7 @@ import type { History } from '../grid/history';
 import type { DoseGrid } from '../grid/grid';
 import { centredAt, exposes, keepsAspect, moved, objectAt, resized, type Corner, type Rect, type StudioObject } from './objects';
 import { mirrored, turned } from './orientation';
-import { compose, rasterOf, type Polarity, type Raster, type ReadyArtwork } from './raster';
+import { compose, composeSoon, rasterOf, type Polarity, type Raster, type ReadyArtwork } from './raster';
 import { textRaster } from './text-raster';
 
 /** An object before it has its id. */
@@ -179,6 +179,11 @@ export class ObjectLayer {
 
   composed(paint: DoseGrid): DoseGrid {
     return compose(paint, this.objects, (o) => this.raster(o), this.polarity);
+  }
+
+  /** The same, the page's other tasks let run between its steps. */
+  composedSoon(paint: DoseGrid, pause: () => Promise<unknown>): Promise<DoseGrid> {
+    return composeSoon(paint, this.objects, (o) => this.raster(o), this.polarity, pause);
   }
 
   #change(label: string, next: StudioObject[]): void {

@@ -2,7 +2,7 @@ import { describe, expect, it } from 'vitest';
 import { DoseGrid } from '../grid/grid';
 import { NEUTRAL_TONE } from '../image/adjust';
 import { centredAt, exposes, moved, objectAt, resized, type FrameObject, type ImageObject, type StudioObject, type TextObject } from './objects';
-import { compose, frameRaster, layOver, rasterOf, type Polarity, type RasterSources } from './raster';
+import { compose, composeSoon, frameRaster, layOver, rasterOf, type Polarity, type RasterSources } from './raster';
 import { bitmapArtwork, cutOf, ready } from './artwork';
 import type { Gray } from '../image/gray';
 import { cssFont, linesOf } from './text-raster';
@@ -115,6 +115,20 @@ describe('rasters', () => {
     const exposure = (o: StudioObject) => new Uint8Array(o.id === 1 ? [255, 255, 0, 255] : [255, 0, 255]);
     expect(Array.from(compose(paint, [a, b], exposure, 'positive').cells)).toEqual([255, 255, 0, 0, 255, 80]);
     expect(Array.from(compose(paint, [a, b], exposure, 'negative').cells)).toEqual([255, 255, 255, 255, 255, 80]);
+  });
+
+  it('composes the same in steps, letting the page run after the copy and after each object', async () => {
+    const paint = new DoseGrid(6, 1);
+    paint.cells[5] = 80;
+    const a = picture({ id: 1, x: 0, y: 0, w: 4, h: 1 }), b = picture({ id: 2, x: 2, y: 0, w: 3, h: 1 });
+    const exposure = (o: StudioObject) => new Uint8Array(o.id === 1 ? [255, 255, 0, 255] : [255, 0, 255]);
+    for (const polarity of ['positive', 'negative'] as const) {
+      let pauses = 0;
+      const soon = await composeSoon(paint, [a, b], exposure, polarity, async () => pauses++);
+      expect(Array.from(soon.cells), polarity).toEqual(Array.from(compose(paint, [a, b], exposure, polarity).cells));
+      expect(pauses, polarity).toBe(polarity === 'negative' ? 2 : 3);
+    }
+    expect(await composeSoon(paint, [], exposure, 'negative', async () => {})).toBe(paint);
   });
 
   it('composes objects over the painted cells: the greater dose wins, the bed clips', () => {
