@@ -9,6 +9,9 @@ constexpr uint8_t kNanoMaxLine = 63;
 constexpr uint32_t kNanoBaud = 115200;  // 8N1: ten bits a byte; the power-on speed, and the one to fall back to
 // The speeds an `L` may ask for (protocol/nano.md "Link speed"): 115200 and the three that are exact
 // at 16 MHz with U2X (UBRR 7, 3 and 1). Any other is refused, never rounded to one of these.
+// One byte's ten bits, in whole µs, at the divisor a 16 MHz AVR with U2X takes for `baud` (UBRR
+// (F/4/baud − 1)/2, as Arduino rounds it): 85 at 115200 (117647 baud), 40 at 250000.
+constexpr uint32_t linkByteUs(uint32_t baud) { return 5 * ((16000000 / 4 / baud - 1) / 2 + 1); }
 inline bool nanoLinkBaud(uint32_t baud) { return baud == 115200 || baud == 250000 || baud == 500000 || baud == 1000000; }
 constexpr uint8_t kLedCount = 4;
 constexpr uint8_t kSensorCount = 6;
