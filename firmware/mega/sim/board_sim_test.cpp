@@ -8,6 +8,7 @@
 #include <regex>
 
 #include "board_fixture.h"
+#include "printhead_link.h"
 
 TEST_F(BoardTest, IdentifiesItselfAndReadsTheRealNanosTemperatures) {
   std::vector<std::string> info = cmd("M115");
@@ -20,11 +21,15 @@ TEST_F(BoardTest, IdentifiesItselfAndReadsTheRealNanosTemperatures) {
   EXPECT_TRUE(said(t, "T:24.7 /0.0 S0:24.7 /0.0 S1:24.7 /0.0 S2:24.7 /0.0 S3:24.7 /0.0 S4:24.7 /0.0 S5:24.7 /0.0"))
       << (t.empty() ? "" : t[0]);
   ASSERT_GE(sim.nanoLines.size(), 3u);
-  // First a 0x00 and, 2 ms later, its newline: they take a Nano still at a raised speed back to
-  // 115200 (protocol/nano.md "Link speed"). Then the LEDs are off before anything else is said.
-  EXPECT_EQ(sim.nanoLines[0], std::string(1, '\0'));
-  EXPECT_EQ(sim.nanoLines[1], "R");
-  EXPECT_EQ(sim.nanoLines[2], "V");
+  // A board that raises the link first sends a 0x00 and, 2 ms later, its newline: they take a Nano
+  // still at a raised speed back to 115200 (protocol/nano.md "Link speed"). Then the LEDs are off
+  // before anything else is said.
+  const size_t first = mega::kRaiseNanoLink ? 1 : 0;
+  if (mega::kRaiseNanoLink) {
+    EXPECT_EQ(sim.nanoLines[0], std::string(1, '\0'));
+  }
+  EXPECT_EQ(sim.nanoLines[first], "R");
+  EXPECT_EQ(sim.nanoLines[first + 1], "V");
 }
 
 TEST_F(BoardTest, HomesOnTheSwitchesAndStepsExactlyWhereItIsSent) {

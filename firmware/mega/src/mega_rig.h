@@ -100,7 +100,7 @@ class MegaRig {
  public:
   MegaRig() {
     nano.wired = true;  // the printhead link takes its time on the wire, both ways
-    head.raiseSpeed(true);  // as the board does: to kNanoFastBaud once the Nano is known, each side its own speed
+    head.raiseSpeed(kRaiseNanoLink);  // as the board does (each side keeps its own speed in the fake)
     // The switches: each axis's endstop closes a little way below where the head starts.
     rig.switchAt[0] = -1234;
     rig.switchAt[1] = -2345;
@@ -167,7 +167,7 @@ class MegaRig {
     new (&config) Config();
     new (&store) ConfigStore(config, sd, eeprom);
     new (&head) PrintheadLink(nano);
-    head.raiseSpeed(true);
+    head.raiseSpeed(kRaiseNanoLink);
     new (&rig) MotionRig(config);
     for (int a = 0; a < 3; a++) {
       rig.switchAt[a] = switches[a];
