@@ -42,6 +42,7 @@ struct Io : nano::PrintheadIo {
   void servoPulse(uint16_t us) override { FUZZ_REQUIRE(us >= 500 && us <= 2500, "a servo pulse no CR Touch takes"); }
   bool probeTriggered() override { return false; }
   void reply(const char* t, uint8_t n) override { out.append(t, n); }
+  void linkSpeed(uint32_t, bool) override {}
 };
 
 const nano::PrintheadConfig kConfig = {NANO_MAX_EXPOSURE_US, {NANO_TEMP_LIMITS_DC, NANO_TEMP_HYSTERESIS_DC, 100, 1750}, NANO_FIRMWARE_VERSION};

@@ -36,6 +36,7 @@ struct Board : nano::PrintheadIo {
   void servoPulse(uint16_t) override {}
   bool probeTriggered() override { return false; }
   void reply(const char* t, uint8_t n) override { out.append(t, n); }
+  void linkSpeed(uint32_t, bool) override {}
   // The timer's work: up to `events` of the running chain; an F's LEDs (a changed byte can make
   // one) go off in their own time.
   void play(uint16_t events) {

@@ -31,6 +31,7 @@ struct Uart : mega::ByteStream {
     atUs = ++clockUs;
     return true;
   }
+  bool setBaud(uint32_t) override { return tx.empty(); }  // the transmitter idle
   uint32_t clockUs = 0;
 };
 

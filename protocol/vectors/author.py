@@ -65,11 +65,17 @@ nano_commands = [
     {"line": "G\n", "command": {"op": "G"}, "flash": "purple"},
     {"line": "Q\n", "command": {"op": "Q"}, "flash": "dim_white"},
     {"line": "W\n", "command": {"op": "W"}, "flash": "dim_white"},
+    # L: the link speed, 115200 (power-on) or one exact at 16 MHz with U2X (nano.md "Link speed").
+    {"line": "L:1000000\n", "command": {"op": "L", "baud": 1000000}, "flash": "dim_white"},
+    {"line": "L:500000\n", "command": {"op": "L", "baud": 500000}, "flash": "dim_white"},
+    {"line": "L:250000\n", "command": {"op": "L", "baud": 250000}, "flash": "dim_white"},
+    {"line": "L:115200\n", "command": {"op": "L", "baud": 115200}, "flash": "dim_white"},
 ]
 nano_parse_only = [
     {"line": "S\r\n", "command": {"op": "S"}},
     {"line": "F:015,0100,0,00,0\r\n", "command": {"op": "F", "mask": 15, "durations": [100, 0, 0, 0]}},
     {"line": "F:8,0,0,0,10000000\n", "command": {"op": "F", "mask": 8, "durations": [0, 0, 0, 10000000]}},
+    {"line": "L:0001000000\r\n", "command": {"op": "L", "baud": 1000000}},
 ]
 nano_malformed = [
     {"line": "s\n", "why": "lower case"},
@@ -92,6 +98,17 @@ nano_malformed = [
     {"line": "F:\n", "why": "no fields"},
     {"line": "T\u00ff\n", "why": "byte outside 0x20-0x7E"},
     {"line": "S\r\r\n", "why": "two carriage returns"},
+    {"line": "L\n", "why": "L without a speed"},
+    {"line": "L:\n", "why": "L with an empty speed"},
+    {"line": "L:9600\n", "why": "a speed not in the table"},
+    {"line": "L:1000001\n", "why": "a speed one off the table"},
+    {"line": "L:2000000\n", "why": "a speed above the table"},
+    # 4295967296 is 2^32 + 1000000: refused, never wrapped to 1000000.
+    {"line": "L:4295967296\n", "why": "a speed past 32 bits"},
+    {"line": "L:00001000000\n", "why": "eleven digits"},
+    {"line": "L:+500000\n", "why": "a signed speed"},
+    {"line": "L:500000,1\n", "why": "a field after the speed"},
+    {"line": "L:500 000\n", "why": "a space inside the speed"},
 ]
 nano_replies = [
     {"line": "S:0\n", "reply": {"op": "S", "mask": 0}},
@@ -116,6 +133,9 @@ nano_replies = [
     {"line": "W:0\n", "reply": {"op": "W", "us": 0}},
     {"line": "W:1024000\n", "reply": {"op": "W", "us": 1024000}},
     {"line": "W:4294967295\n", "reply": {"op": "W", "us": 4294967295}},
+    # L: the Nano took the speed; both sides change once this reply has gone out (nano.md "Link speed").
+    {"line": "L:1000000\n", "reply": {"op": "L", "baud": 1000000}},
+    {"line": "L:115200\n", "reply": {"op": "L", "baud": 115200}},
 ]
 nano_bad_replies = [
     {"line": "S:16\n"}, {"line": "S:\n"}, {"line": "S15\n"}, {"line": "P:2\n"},
@@ -127,6 +147,8 @@ nano_bad_replies = [
     {"line": "Q:0,0,8\n"}, {"line": "Q:0,0\n"}, {"line": "Q:0,0,0,0\n"},
     {"line": "W:4294967296\n"}, {"line": "W:\n"}, {"line": "W:-1\n"}, {"line": "W:12345678901\n"}, {"line": "W:1,2\n"},
     {"line": "C:65536,0,1\n"}, {"line": "C:1,4294967296,1\n"}, {"line": "C:1,2,3\n"}, {"line": "C:1,2\n"}, {"line": "C:1,2,1,0\n"},
+    # L: a speed not in the table is refused, as the Nano refuses it.
+    {"line": "L:\n"}, {"line": "L:9600\n"}, {"line": "L:4295467296\n"}, {"line": "L:1000000,1\n"},
 ]
 nano_streams = [
     {"name": "lines split anywhere", "bytes": "S\nT\r\n\nP\n", "lines": ["S", "T", "P"], "dropped": 0},

@@ -72,3 +72,12 @@ describe('formatting an F', () => {
     expect(formatNanoCommand({ op: 'F', mask: 15, durations: [0xffffffff, 0, 0, 0] })).toBe('F:15,4294967295,0,0,0\n');
   });
 });
+
+describe('formatting an L', () => {
+  it('refuses a speed not in the table, as the C++ codec does', () => {
+    for (const baud of [0, 9600, 115201, 999999, 2000000, 2 ** 32 + 1000000]) {
+      expect(() => formatNanoCommand({ op: 'L', baud })).toThrow(RangeError);
+    }
+    expect(formatNanoCommand({ op: 'L', baud: 1000000 })).toBe('L:1000000\n');
+  });
+});

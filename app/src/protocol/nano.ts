@@ -9,7 +9,14 @@ export const SENSOR_COUNT = 6;
 
 export type NanoCommand =
   | { op: 'S' | 'D' | 'U' | 'X' | 'P' | 'T' | 'R' | 'E' | 'V' | 'C' | 'G' | 'Q' | 'W' }
-  | { op: 'F'; mask: number; durations: [number, number, number, number] };
+  | { op: 'F'; mask: number; durations: [number, number, number, number] }
+  /** Link speed: both sides take `baud` once the Nano's `L` reply has gone out (protocol/nano.md "Link speed"). */
+  | { op: 'L'; baud: number };
+
+/** The power-on speed of the printhead link, and the one both sides fall back to. */
+export const NANO_BAUD = 115200;
+/** The speeds an `L` may ask for: 115200 and the three exact at 16 MHz with U2X. Any other is refused. */
+export const NANO_LINK_BAUDS: readonly number[] = [115200, 250000, 500000, 1000000];
 
 export type NanoReply =
   | { op: 'S'; mask: number }
@@ -24,7 +31,9 @@ export type NanoReply =
   /** Buffers free to load, programs armed, and what became of the last chain started. */
   | { op: 'Q'; free: number; armed: number; pass: number }
   /** The Nano's micros() when the W's newline arrived: the Mega measures the Nano's clock by it. */
-  | { op: 'W'; us: number };
+  | { op: 'W'; us: number }
+  /** The speed both sides take once this reply has gone out. */
+  | { op: 'L'; baud: number };
 
 export type Colour = 'green' | 'dim_white' | 'purple' | 'cyan' | 'orange' | 'red';
 
@@ -51,7 +60,7 @@ export const FAULT = {
 const FLASH: Record<NanoCommand['op'], Colour> = {
   S: 'dim_white', T: 'dim_white', E: 'dim_white', V: 'dim_white', C: 'dim_white',
   F: 'purple', D: 'cyan', U: 'cyan', X: 'cyan', P: 'cyan', R: 'orange',
-  G: 'purple', Q: 'dim_white', W: 'dim_white',
+  G: 'purple', Q: 'dim_white', W: 'dim_white', L: 'dim_white',
 };
 
 export function flashColour(op: NanoCommand['op']): Colour {
@@ -77,6 +86,11 @@ export function parseNanoCommand(line: string): NanoCommand | null {
   if (line.length === 1 && 'SDUXPTREVCGQW'.includes(line)) {
     return { op: line as 'S' };
   }
+  if (line.startsWith('L:')) {
+    // A speed not in the table is malformed: refused, never rounded or wrapped.
+    const baud = parseU32(line.slice(2));
+    return baud !== null && NANO_LINK_BAUDS.includes(baud) ? { op: 'L', baud } : null;
+  }
   if (!line.startsWith('F:')) return null;
   const fields = line.slice(2).split(',');
   if (fields.length !== 5) return null;
@@ -93,6 +107,10 @@ export function formatNanoCommand(cmd: NanoCommand): string {
     const uint32 = (v: number) => Number.isInteger(v) && v >= 0 && v <= 0xffffffff;
     if (!uint32(cmd.mask) || cmd.mask > 15 || !cmd.durations.every(uint32)) throw new RangeError(`F out of range: mask ${cmd.mask}, durations ${cmd.durations.join(',')}`);
     return `F:${cmd.mask},${cmd.durations.join(',')}\n`;
+  }
+  if (cmd.op === 'L') {
+    if (!NANO_LINK_BAUDS.includes(cmd.baud)) throw new RangeError(`L: no such link speed ${cmd.baud}`);
+    return `L:${cmd.baud}\n`;
   }
   return `${cmd.op}\n`;
 }
@@ -122,6 +140,7 @@ export function formatNanoReply(r: NanoReply): string {
     case 'K': return `K:${r.code}\n`;
     case 'Q': return `Q:${r.free},${r.armed},${r.pass}\n`;
     case 'W': return `W:${r.us}\n`;
+    case 'L': return `L:${r.baud}\n`;
   }
 }
 
@@ -129,7 +148,7 @@ export function formatNanoReply(r: NanoReply): string {
 export function parseNanoReply(raw: string): NanoReply | null {
   if (!raw.endsWith('\n')) return null;
   const line = raw.slice(0, -1);
-  const m = /^([SPTEVCKQW]):(.*)$/.exec(line);
+  const m = /^([SPTEVCKQWL]):(.*)$/.exec(line);
   if (!m) return null;
   const body = m[2];
   switch (m[1]) {
@@ -167,6 +186,10 @@ export function parseNanoReply(raw: string): NanoReply | null {
     case 'W': {
       const us = parseU32(body);
       return us === null ? null : { op: 'W', us };
+    }
+    case 'L': {
+      const baud = parseU32(body);
+      return baud !== null && NANO_LINK_BAUDS.includes(baud) ? { op: 'L', baud } : null;
     }
   }
   return null;

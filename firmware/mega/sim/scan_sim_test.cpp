@@ -10,6 +10,7 @@
 #include <regex>
 
 #include "grid_cells.h"
+#include "printhead_link.h"
 #include "scan.h"
 #include "scan_board_fixture.h"
 
@@ -113,12 +114,28 @@ TEST_P(ScanBoardTest, APhotoLikePassLoadsEachProgramWithinTheRelay) {
   pollBothHosts = true;  // and the panel redraws: the longest main-loop passes, which the relay waits on
   const scandose::Figures f = expose(h, g, 1, 1, std::vector<double>(h.rows, windowUs));
   const LinkFigures link = linkFigures();
-  std::printf("[scan simavr, photo-like] real Mega + Nano images, the Nano's clock %+.1f %%, %d cells (%d lit) in 1 pass at a %u us window "
+  std::printf("[scan simavr, photo-like] real Mega + Nano images, the link at %u baud, the Nano's clock %+.1f %%, %d cells (%d lit) in 1 pass at a %u us window "
               "(the job's 2000, capped for the link): worst dose error %.2f %% of the full dose, worst LED edge %.2f um from its place, "
               "worst cell centroid %.2f um; %d programs waited for a buffer: longest relay %.0f us (the planner allows %u), least slack %.0f us\n",
-              (GetParam() - 1) * 100, f.cells, f.lit, windowUs, f.worstDosePct, f.worstEdgeUm, f.worstCentreUm, link.waited, link.relayMaxUs,
+              mega::kRaiseNanoLink ? mega::kNanoFastBaud : uv::kNanoBaud, (GetParam() - 1) * 100, f.cells, f.lit, windowUs, f.worstDosePct, f.worstEdgeUm, f.worstCentreUm, link.waited, link.relayMaxUs,
               uv::kProgramRelayUs, link.slackMinUs);
   EXPECT_GT(windowUs, h.fullUs);  // the link, not the light, sets its pace
+  // At the raised speed (protocol/nano.md "Link speed"): the Mega asked it, the Nano took it, and it
+  // never fell back (a fall-back drops the programs, and the pass would have failed). While the board
+  // does not raise (mega::kRaiseNanoLink, until the planners cost the raised link), no L goes at all.
+  const auto& toNano = sim.nanoLines;
+  const auto& fromNano = sim.nanoReplies;
+  const std::string raise = "L:" + std::to_string(mega::kNanoFastBaud);
+  const auto asked = std::find(toNano.begin(), toNano.end(), raise);
+  if (!mega::kRaiseNanoLink) {
+    EXPECT_EQ(asked, toNano.end());
+  } else {
+    ASSERT_NE(asked, toNano.end());
+    ASSERT_NE(asked + 1, toNano.end());
+    EXPECT_EQ(*(asked + 1), "V");  // the probe at the new speed
+    EXPECT_EQ(std::count(fromNano.begin(), fromNano.end(), raise), std::count(toNano.begin(), toNano.end(), raise));
+    EXPECT_GE(std::count(fromNano.begin(), fromNano.end(), raise), 1);
+  }
   EXPECT_GE(link.waited, 4);
   EXPECT_LE(link.relayMaxUs, uv::kProgramRelayUs);
   EXPECT_GT(link.slackMinUs, 0);

@@ -15,6 +15,9 @@ class ByteStream {
   // gives the micros() at which `op` went into the transmitter; false, sending nothing, when busy.
   // The printhead link times its `W` by it (nano_clock.h).
   virtual bool writeNow(char op, uint32_t& atUs) = 0;
+  // The port's speed, changed now if nothing is going out (the transmitter idle, the last stop bit
+  // gone); false, changing nothing, while something is (protocol/nano.md "Link speed").
+  virtual bool setBaud(uint32_t baud) = 0;
 };
 
 }  // namespace mega

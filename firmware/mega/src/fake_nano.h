@@ -1,7 +1,9 @@
 // Host tests' printhead: the real Nano command brain (firmware/nano/src/printhead) behind the
 // Mega's ByteStream, with LEDs that switch off in simulated time and a log of every exposure, so
 // tests can count each cell's light. It can go silent, stick an LED on, or be reset. With `wired`, each
-// byte takes its ten bit-times at 115200 baud each way (86.8 µs), as on the machine.
+// byte takes its ten bit-times at the sender's speed (86.8 µs at 115200), as on the machine. Each side
+// has its own speed (protocol/nano.md "Link speed"): a byte sent at a speed its receiver is not at
+// arrives as noise, a 0x00 (what a receiver at 250000 or more reads of a 115200 byte's start bit).
 // Its own time is 64-bit: a simulated printer runs for hours, past the 71.6 minutes in which a
 // 32-bit µs count wraps. The Nano's logic sees millis() and micros() as the board's, which wrap.
 #pragma once
@@ -41,20 +43,28 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
   // --- the Mega's side ---
   int16_t read() override {
     if (toMega_.empty() || toMega_.front().atNs > nowUs * 1000) return -1;
-    char c = toMega_.front().c;
+    char c = toMega_.front().baud == megaBaud_ ? toMega_.front().c : '\0';
     toMega_.pop_front();
     return static_cast<uint8_t>(c);
   }
+  bool setBaud(uint32_t baud) override {
+    if (wired && toNanoFreeNs_ > nowUs * 1000) return false;  // a byte still going out
+    megaBaud_ = baud;
+    return true;
+  }
+  uint32_t megaBaud() const { return megaBaud_; }
+  uint32_t nanoBaud() { return nanoBaudAt(nowUs * 1000); }
   bool write(const char* data, uint8_t n) override {
     if (uartFull) return false;
     if (!wired) {
+      if (megaBaud_ != nanoBaudAt(nowUs * 1000)) return noise(n), true;
       take(data, n);
       return true;
     }
     // The Mega's transmit ring holds kTxRing bytes not yet on the wire: a line that does not fit
     // waits, as on the board, so what is sent after it (a K awaiting its answer) is not held back.
     if (toNano_.size() + n > kTxRing) return false;
-    onWire(toNano_, toNanoFreeNs_, data, n);
+    onWire(toNano_, toNanoFreeNs_, data, n, megaBaud_);
     return true;
   }
   // The Mega's W goes out only on an idle transmitter: its time is when its first bit leaves.
@@ -62,7 +72,8 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
     if (uartFull || (wired && toNanoFreeNs_ > nowUs * 1000)) return false;
     const char line[2] = {op, '\n'};
     atUs = static_cast<uint32_t>(nowUs);  // the Mega's micros(), which wraps
-    if (wired) onWire(toNano_, toNanoFreeNs_, line, 2);
+    if (wired) onWire(toNano_, toNanoFreeNs_, line, 2, megaBaud_);
+    else if (megaBaud_ != nanoBaudAt(nowUs * 1000)) noise(2);
     else take(line, 2);
     return true;
   }
@@ -75,14 +86,18 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
       const WireByte b = toNano_.front();
       toNano_.pop_front();
       settle((b.atNs + 999) / 1000);
-      take(&b.c, 1);
+      if (b.baud != nanoBaudAt(b.atNs)) noise(1);
+      else take(&b.c, 1);
       midLine_ = b.c != '\n';
     }
     settle(toUs);
   }
   // A line that has crossed the wire already and ends now (a scan pass's G, which the rig times from
   // its step).
-  void arrived(const char* data, uint8_t n) { take(data, n); }
+  void arrived(const char* data, uint8_t n) {
+    if (megaBaud_ != nanoBaudAt(nowUs * 1000)) return noise(n);
+    take(data, n);
+  }
   void setTemps(int16_t deciC) {
     int16_t each[uv::kSensorCount];
     for (int16_t& t : each) t = deciC;
@@ -115,6 +130,8 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
     new (&head_) nano::Printhead(*this, config_);
     head_.setBoot(++boot_);
     setTemps(temps_);
+    nanoBaud_ = uv::kNanoBaud;  // it starts at 115200
+    nanoNextAtNs_ = 0;
     toMega_.clear();
     toMegaFreeNs_ = 0;
     dropFromMega();  // what was on its way found the Nano off
@@ -129,6 +146,9 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
     toNano_.erase(end, toNano_.end());
     toNanoFreeNs_ = toNano_.empty() ? 0 : toNano_.back().atNs;
   }
+
+  // The Mega's UART starts again, at 115200 (a Mega restart; the Nano may still be at a raised speed).
+  void megaUartStarts() { megaBaud_ = uv::kNanoBaud; }
 
   // The Nano's clock runs this many parts per million fast: what its W answers say.
   int32_t clockPpm = 0;
@@ -152,16 +172,41 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
   struct WireByte {
     uint64_t atNs;  // when its stop bit ends at the far side
     char c;
+    uint32_t baud;  // the speed it was sent at
   };
-  static constexpr uint64_t kByteNs = 10ull * 1000000000 / uv::kNanoBaud;
+  // The Nano's speed at a moment: a change asked for after a reply takes effect as its last byte ends.
+  uint32_t nanoBaudAt(uint64_t ns) {
+    if (nanoNextAtNs_ && ns >= nanoNextAtNs_) {
+      nanoBaud_ = nanoNextBaud_;
+      nanoNextAtNs_ = 0;
+    }
+    return nanoBaud_;
+  }
+  // Bytes the Nano cannot read: each a 0x00, which its main loop takes as noise, and which spoils its line.
+  void noise(uint8_t n) {
+    for (uint8_t i = 0; i < n; i++) {
+      if (!silent) head_.noise();
+      take("\0", 1);
+    }
+  }
+  void linkSpeed(uint32_t baud, bool afterReply) override {
+    if (afterReply && wired && toMegaFreeNs_ > nowUs * 1000) {
+      nanoNextBaud_ = baud;
+      nanoNextAtNs_ = toMegaFreeNs_;
+    } else {
+      nanoBaud_ = baud;
+      nanoNextAtNs_ = 0;
+    }
+  }
   static constexpr size_t kTxRing = 64;  // NanoUart::kRing (hw/nano_uart.h)
   // The real Nano lights an F about 180 µs after its newline arrives (its main loop parses the line
   // and sets the timer; simavr, stop_sim_test.cpp); the rest it answers or does within about 100.
   static constexpr uint64_t kFireTakenNs = 180000;
   // Queues bytes on one direction of the wire: each starts when the one before it has gone.
-  void onWire(std::deque<WireByte>& wire, uint64_t& freeNs, const char* data, uint8_t n) {
+  void onWire(std::deque<WireByte>& wire, uint64_t& freeNs, const char* data, uint8_t n, uint32_t baud) {
+    const uint64_t byteNs = 10ull * 1000000000 / baud;
     uint64_t t = freeNs > nowUs * 1000 ? freeNs : nowUs * 1000;
-    for (uint8_t i = 0; i < n; i++) wire.push_back({t += kByteNs, data[i]});
+    for (uint8_t i = 0; i < n; i++) wire.push_back({t += byteNs, data[i], baud});
     freeNs = t;
     if (&wire == &toNano_ && n && data[0] == 'F' && data[n - 1] == '\n') wire.back().atNs += kFireTakenNs;
   }
@@ -266,8 +311,9 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
   bool probeTriggered() override { return probe; }
   void reply(const char* text, uint8_t len) override {
     if (silent) return;
-    if (wired) return onWire(toMega_, toMegaFreeNs_, text, len);
-    for (uint8_t i = 0; i < len; i++) toMega_.push_back({0, text[i]});
+    const uint32_t baud = nanoBaudAt(nowUs * 1000);
+    if (wired) return onWire(toMega_, toMegaFreeNs_, text, len, baud);
+    for (uint8_t i = 0; i < len; i++) toMega_.push_back({0, text[i], baud});
   }
 
   nano::PrintheadConfig config_{10000000, {{600, 600, 600, 600, 600, 600}, 50, 100, 1750}, "0.1.0"};
@@ -277,6 +323,8 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
   std::deque<WireByte> toNano_, toMega_;
   uint64_t toNanoFreeNs_ = 0, toMegaFreeNs_ = 0;  // when each direction's last queued byte ends
   bool midLine_ = false;  // the Nano has part of a line from the wire
+  uint32_t megaBaud_ = uv::kNanoBaud, nanoBaud_ = uv::kNanoBaud, nanoNextBaud_ = uv::kNanoBaud;
+  uint64_t nanoNextAtNs_ = 0;  // when nanoNextBaud_ takes over, or 0
   uint8_t lit_ = 0;
   uint64_t offAt_[4] = {};
   uint64_t startAt_ = 0;

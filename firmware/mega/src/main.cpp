@@ -48,6 +48,7 @@ void setup() {
   board.begin();
   stepperBegin();
   nanoSerial.begin(uv::kNanoBaud);
+  head.raiseSpeed(mega::kRaiseNanoLink);  // to kNanoFastBaud once the Nano is known and the link idle (protocol/nano.md "Link speed")
   sd.begin(PIN_SD_CS);
   store.load();  // for esp.port and invert.*, before anything talks
   usbUart.begin(usb, 115200);

@@ -100,6 +100,7 @@ class MegaRig {
  public:
   MegaRig() {
     nano.wired = true;  // the printhead link takes its time on the wire, both ways
+    head.raiseSpeed(kRaiseNanoLink);  // as the board does (each side keeps its own speed in the fake)
     // The switches: each axis's endstop closes a little way below where the head starts.
     rig.switchAt[0] = -1234;
     rig.switchAt[1] = -2345;
@@ -133,7 +134,7 @@ class MegaRig {
     // A scan pass's G leaves on its step (the board's step interrupt writes it to the Nano's UART)
     // and its newline reaches the Nano two byte-times later.
     rig.onMark = [this](uint64_t ticks) {
-      gAt_ = ticks + 2 * 170;
+      gAt_ = ticks + 2 * (markLeadUs(head.baud()) - uv::kProgramStartLeadUs);  // 2 byte-times at the link's speed
       return true;
     };
     machine.begin(static_cast<uint32_t>(nowUs));
@@ -147,6 +148,7 @@ class MegaRig {
   void reset(uint64_t bootUs, bool powerLost = false) {
     sd.powerCut();
     nano.dropFromMega();
+    nano.megaUartStarts();
     if (powerLost) nano.powerCycle();
     int32_t where[3], switches[3];
     for (int a = 0; a < 3; a++) {
@@ -165,6 +167,7 @@ class MegaRig {
     new (&config) Config();
     new (&store) ConfigStore(config, sd, eeprom);
     new (&head) PrintheadLink(nano);
+    head.raiseSpeed(kRaiseNanoLink);
     new (&rig) MotionRig(config);
     for (int a = 0; a < 3; a++) {
       rig.switchAt[a] = switches[a];

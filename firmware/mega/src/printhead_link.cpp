@@ -11,6 +11,8 @@ constexpr uint8_t kRefusals = uv::fault::kCapped | uv::fault::kBusy | uv::fault:
 }  // namespace
 
 uint8_t PrintheadLink::send(const uv::NanoCommand& c) {
+  // The speed is not settled: only the link's own L, V and R go (and nothing before the R after a start).
+  if (switching() && (speed_ == Speed::Waking || (c.op != 'L' && c.op != 'V' && c.op != 'R'))) return 0;
   char out[uv::kNanoMaxLine + 2];
   uint8_t n = static_cast<uint8_t>(uv::formatNanoCommand(c, out, sizeof out));
   if (!n || !io_.write(out, n)) return 0;
@@ -32,7 +34,17 @@ void PrintheadLink::awaitReply(char op, uint32_t nowUs) {
 }
 
 void PrintheadLink::begin(uint32_t nowUs) {
-  allOff();
+  if (raise_) {
+    // This side restarted at 115200; the Nano may still be at a raised speed. A 0x00 is a framing
+    // error at any raised speed (its nine low bits outlast a fast frame), so it takes the Nano back to
+    // 115200 at once; after a quiet 2 ms, a newline ends the line that noise began, then the R.
+    const char nul = 0;
+    io_.write(&nul, 1);
+    speed_ = Speed::Waking;
+    nextSpeed_ = nowUs + kWakeGapUs;
+  } else {
+    allOff();
+  }
   identityWanted_ = true;
   clock_.forget();
   nextClock_ = nowUs;  // the first W right away
@@ -45,7 +57,51 @@ void PrintheadLink::allOff(uint8_t why) {
   r.op = 'R';
   held_ = false;  // whatever a scan pass was waiting for, it is over
   offPending_ = !send(r);  // a full UART: poll() sends it before anything else
+  // The Nano takes 115200 as the R ends; so does this side, once the R has gone out at the old speed.
+  if (!offPending_ && speed_ != Speed::Start) {
+    lowerSpeed(nextSpeed_);
+    raiseSoon_ = true;  // no doubt about the speed: raised again at the next idle moment
+  }
   if (fire_ == FireState::Firing) fireFailed(why);
+}
+
+void PrintheadLink::lowerSpeed(uint32_t retryAtUs) {
+  raiseSoon_ = false;
+  if (speed_ != Speed::Start && speed_ != Speed::Asked) speed_ = Speed::Lowering;
+  else speed_ = Speed::Start;  // an L unanswered: this side never left 115200
+  nextSpeed_ = retryAtUs;
+  if (speed_ == Speed::Lowering && io_.setBaud(uv::kNanoBaud)) speed_ = Speed::Start;
+}
+
+bool PrintheadLink::speedStep(uint32_t nowUs) {
+  if (speed_ == Speed::Waking) {
+    if (!due(nowUs, nextSpeed_) || !io_.write("\n", 1)) return true;
+    speed_ = Speed::Start;
+    raiseSoon_ = true;
+    allOff();
+    return true;
+  }
+  if (speed_ == Speed::Lowering) {
+    if (io_.setBaud(uv::kNanoBaud)) speed_ = Speed::Start;
+    return speed_ == Speed::Lowering;  // nothing else goes meanwhile
+  }
+  if (speed_ == Speed::Probing) {  // both sides changed: a V must come back at the new speed
+    ask('V', nowUs);
+    return true;
+  }
+  // Raised only when idle: no exposure, no pass, nothing asked, the Nano known.
+  if (!raise_ || speed_ != Speed::Start || held_ || !online_ || identityWanted_ || fire_ == FireState::Firing) return false;
+  if (!raiseSoon_ && !due(nowUs, nextSpeed_)) return false;
+  if (due(nowUs, nextClock_)) return false;  // a W due goes first: its exchange needs the line idle
+  uv::NanoCommand l{};
+  l.op = 'L';
+  l.baud = kNanoFastBaud;
+  if (!send(l)) return false;
+  awaitReply('L', nowUs);
+  speed_ = Speed::Asked;
+  raiseSoon_ = false;
+  nextSpeed_ = nowUs + kSpeedRetryUs;  // if this one fails
+  return true;
 }
 
 void PrintheadLink::fireFailed(uint8_t code) {
@@ -55,7 +111,7 @@ void PrintheadLink::fireFailed(uint8_t code) {
 }
 
 bool PrintheadLink::fire(uint8_t mask, const uint32_t us[uv::kLedCount], uint32_t nowUs) {
-  if (fire_ == FireState::Firing || !online_ || offPending_) return false;
+  if (fire_ == FireState::Firing || !online_ || offPending_ || switching()) return false;
   uv::NanoCommand f{};
   f.op = 'F';
   f.mask = mask;
@@ -70,7 +126,7 @@ bool PrintheadLink::fire(uint8_t mask, const uint32_t us[uv::kLedCount], uint32_
   fireError_ = fireFlags_ = 0;
   fireCheckWanted_ = false;
   // When an S sent then finds the light over: the line's time on the wire counts (a 2 ms F is 1.3 ms).
-  fireEndsAt_ = nowUs + static_cast<uint32_t>(n) * (10u * 1000000u) / uv::kNanoBaud + kFireTakenUs + longest;
+  fireEndsAt_ = nowUs + static_cast<uint32_t>(n) * (10u * 1000000u) / baud() + kFireTakenUs + longest;
   // One early S confirms the Nano took it (a refused F is off at once), the next when it should be over.
   nextStatus_ = longest > kFireFirstCheckUs ? nowUs + kFireFirstCheckUs : fireEndsAt_;
   return true;
@@ -78,8 +134,9 @@ bool PrintheadLink::fire(uint8_t mask, const uint32_t us[uv::kLedCount], uint32_
 
 bool PrintheadLink::programLine(const char* line, uint8_t len, uint32_t nowUs) {
   const bool seal = line[0] == 'K';
-  if ((seal && inFlight_) || offPending_ || !io_.write(line, len)) return false;
+  if ((seal && inFlight_) || offPending_ || switching() || !io_.write(line, len)) return false;
   sent_++;
+  nextSpeed_ = nowUs + kSpeedRetryUs;  // programs flow: a job runs, and the speed is raised only after it
   if (seal) {
     awaitReply('K', nowUs);
     sealAnswered_ = false;
@@ -110,6 +167,7 @@ void PrintheadLink::flagsSeen(uint8_t flags, uint32_t nowUs) {
   if (flags & uv::fault::kWatchdog) {
     events_ |= kNanoReset;
     forgetClock(nowUs);  // its micros() began again
+    if (speed_ != Speed::Start) lowerSpeed(nowUs + kSpeedRetryUs);  // and it is at 115200
   }
   flags_ = flags;
 }
@@ -173,6 +231,7 @@ void PrintheadLink::handle(const uv::NanoReply& r, uint32_t nowUs) {
       probeAnswered_ = true;
       break;
     case 'C':
+      if (countersAnswered_ && r.boot != boot_ && speed_ != Speed::Start) lowerSpeed(nowUs + kSpeedRetryUs);  // it restarted
       boot_ = r.boot;
       fires_ = r.fires;
       whole_ = r.whole;
@@ -191,7 +250,16 @@ void PrintheadLink::handle(const uv::NanoReply& r, uint32_t nowUs) {
     case 'W':
       clock_.sample(clockSentUs_, r.us);
       break;
+    case 'L':  // the Nano takes the speed as this reply ends: this side now, nothing having gone since
+      if (speed_ != Speed::Asked) break;
+      if (r.baud == kNanoFastBaud && io_.setBaud(kNanoFastBaud)) {
+        speed_ = Speed::Probing;
+      } else {
+        speed_ = Speed::Start;  // the Nano, unconfirmed, returns to 115200 within 100 ms
+      }
+      break;
     case 'V':
+      if (speed_ == Speed::Probing) speed_ = Speed::Raised;  // heard both ways at the new speed
       memcpy(firmware_, r.firmware, sizeof firmware_ - 1);
       firmware_[sizeof firmware_ - 1] = 0;
       identityWanted_ = false;
@@ -202,7 +270,7 @@ void PrintheadLink::handle(const uv::NanoReply& r, uint32_t nowUs) {
 }
 
 void PrintheadLink::poll(uint32_t nowUs) {
-  if (offPending_) allOff();
+  if (offPending_ && speed_ != Speed::Waking) allOff();
   for (uint8_t budget = 64; budget; budget--) {  // bounded: a chattering line cannot hold the loop
     int16_t b = io_.read();
     if (b < 0) break;
@@ -223,9 +291,11 @@ void PrintheadLink::poll(uint32_t nowUs) {
       sealAnswered_ = true;
     }
     inFlight_ = 0;
+    if (speed_ != Speed::Start) lowerSpeed(nowUs + kSpeedRetryUs);  // a reply missed above 115200: any doubt lowers it
     missed(nowUs);
   }
   if (inFlight_) return;
+  if (speedStep(nowUs)) return;
   if (held_) {  // a scan pass's own Q alone: it asks none while its G waits, and needs it in time after
     if (passWanted_ && ask('Q', nowUs)) passWanted_ = false;
     return;
@@ -259,6 +329,9 @@ void PrintheadLink::poll(uint32_t nowUs) {
   }
   // The clock's W must find the transmitter idle; when it does not, the next pass tries again.
   if (fire_ != FireState::Firing && due(nowUs, nextClock_) && io_.writeNow('W', clockSentUs_)) {
+    // The Nano notes the W as its newline arrives, two byte-times on: timed from then, a sample taken
+    // at one speed compares with one taken at another.
+    clockSentUs_ += 2 * uv::linkByteUs(baud());
     sent_++;
     awaitReply('W', nowUs);
     nextClock_ = nowUs + (clock_.known() ? kClockRepollUs : kClockPollUs);

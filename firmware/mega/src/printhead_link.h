@@ -23,6 +23,16 @@ constexpr uint32_t kFireFirstCheckUs = 2000;
 constexpr uint32_t kFireTakenUs = 300;
 constexpr uint32_t kClockPollUs = 250000;    // W until the Nano's clock is known
 constexpr uint32_t kClockRepollUs = 5000000;  // then now and then, to follow its drift
+// The raised link speed (protocol/nano.md "Link speed", "Which speed"): the Nano's interrupts-off
+// stretches fit three byte-times at 250000, not at 500000.
+constexpr uint32_t kNanoFastBaud = 250000;
+// Whether the board raises the link. Not yet: the time model and the link rule of both planners still
+// cost the link at 115200 (planner.md "The printhead link"), so a raised link would run passes the
+// forecast does not know of. The speed change itself is whole and tested on the host
+// (printhead_link_speed_test.cpp, the Nano's printhead_test.cpp); issue 39 turns this on with the planners.
+constexpr bool kRaiseNanoLink = false;
+constexpr uint32_t kWakeGapUs = 2000;  // after begin()'s 0x00, quiet so long before the R
+constexpr uint32_t kSpeedRetryUs = 5000000;  // after a fall-back or an L unanswered, asked again so late
 
 enum class FireState : uint8_t { Idle, Firing, Done, Failed };
 
@@ -100,6 +110,14 @@ class PrintheadLink {
   // when the Nano restarts or falls silent.
   const NanoClock& nanoClock() const { return clock_; }
   bool online() const { return online_; }
+  // Whether to raise the link to kNanoFastBaud when idle (the board does; a test may not).
+  void raiseSpeed(bool on) { raise_ = on; }
+  // The link's speed now: 115200, or kNanoFastBaud once raised (or while the raise is being proved).
+  uint32_t baud() const { return speed_ == Speed::Probing || speed_ == Speed::Raised ? kNanoFastBaud : uv::kNanoBaud; }
+  // Raised and proved both ways.
+  bool raised() const { return speed_ == Speed::Raised; }
+  // Between the L and a proved speed, and while lowering, nothing but the link's own L, V and R goes.
+  bool switching() const { return speed_ != Speed::Start && speed_ != Speed::Raised; }
   bool tempsKnown() const { return tempsKnown_; }
   // Since this start no temperature has come yet, and the Nano is not yet given up: the first
   // reading is on its way (M105 waits for it rather than answer E30 to a host that asks at once).
@@ -128,6 +146,9 @@ class PrintheadLink {
   void flagsSeen(uint8_t flags, uint32_t nowUs);
   // A Nano that restarted or fell silent: its clock is measured again, from soon.
   void forgetClock(uint32_t nowUs);
+  // Any doubt about the speed: back to 115200 once nothing is going out, raised again from retryAtUs.
+  void lowerSpeed(uint32_t retryAtUs);
+  bool speedStep(uint32_t nowUs);  // the raise's next step; true when it sent something
 
   ByteStream& io_;
   // The longest reply, T:, is 41 bytes at the sensors' widest (-40.0 to 125.0); a longer line is noise.
@@ -160,6 +181,13 @@ class PrintheadLink {
   uint8_t sealCode_ = 0, passFree_ = 0, passArmed_ = 0, passState_ = 0;
   NanoClock clock_;
   uint32_t nextClock_ = 0, clockSentUs_ = 0;  // the next W; this clock's micros() as the last went out
+  // Start: 115200; Asked: L sent at 115200; Probing: both changed, V sent at the new speed; Raised:
+  // proved; Lowering: back to 115200 as soon as the transmitter is idle; Waking: begin()'s 0x00 sent,
+  // the R to follow.
+  enum class Speed : uint8_t { Start, Asked, Probing, Raised, Lowering, Waking };
+  Speed speed_ = Speed::Start;
+  bool raise_ = false, raiseSoon_ = false;
+  uint32_t nextSpeed_ = 0;  // when an L may next go
 };
 
 }  // namespace mega

@@ -34,7 +34,7 @@ ScanRun::Step ScanRun::fail(PrintheadLink& head, uint8_t code) {
   return Step::Failed;
 }
 
-ScanRun::Opened ScanRun::open(Motion& motion, const uv::JobHeader& h) {
+ScanRun::Opened ScanRun::open(Motion& motion, const uv::JobHeader& h, uint32_t linkBaud) {
   uv::ScanPass p;
   if (!planner_.nextPass(p)) {
     if (planner_.refused()) error_ = uv::kScanUnsupported;  // a window the step engine cannot run
@@ -53,6 +53,7 @@ ScanRun::Opened ScanRun::open(Motion& motion, const uv::JobHeader& h) {
   in.windowUs = planner_.passMotion().windowUs;  // the pass's own: the link cap may slow it
   in.pitchUm = h.pitchUm[0];
   in.stepsMilli = motion.stepsMilli(0);
+  in.linkBaud = linkBaud;  // the G's two bytes take their time at it
   uint16_t interval = 0, frac = 0;
   if (!strokeInterval(in.windowUs, in.pitchUm, in.stepsMilli, interval, frac)) {
     error_ = uv::kScanUnsupported;
@@ -123,8 +124,9 @@ ScanRun::Step ScanRun::poll(Motion& motion, PrintheadLink& head, const uv::JobHe
         return due(nowUs, clockWaitFrom_ + kScanClockWaitUs) ? fail(head, uv::kScanUnsupported) : Step::Busy;
       }
       clockWaiting_ = false;
+      if (head.switching()) return Step::Busy;  // the link's speed is settling: it times the G
       clockPpm_ = head.nanoClock().ppm();
-      const Opened opened = open(motion, h);
+      const Opened opened = open(motion, h, head.baud());
       if (opened == Opened::None && planner_.pricing()) return Step::Busy;  // a band priced a pass at a time: open again
       if (opened == Opened::None) return planner_.starved() ? Step::Starved : Step::End;
       if (error_) return fail(head, error_);
@@ -174,7 +176,7 @@ ScanRun::Step ScanRun::poll(Motion& motion, PrintheadLink& head, const uv::JobHe
       asked_ = loading_ = false;
       until_ = 0;
       nextPoll_ = nowUs;
-      start_ = nowUs + kScanStartUs;
+      start_ = nowUs + kScanStartUs - kMarkLeadUs + stroke_.leadUs;
       return Step::Busy;
     case Phase::Finish: {
       head.hold(!written_);  // no T, E or W in the way of the Q while programs wait to go

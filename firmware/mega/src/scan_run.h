@@ -52,7 +52,7 @@ class ScanRun {
   static bool jumpAt(void* ctx, uint8_t i, Motion::StrokeJump& out);
   // What open() found: no pass (starved, or the end), a pass on the move, or a mixed job's stop pass.
   enum class Opened : uint8_t { None, Stroke, Stops };
-  Opened open(Motion& motion, const uv::JobHeader& h);
+  Opened open(Motion& motion, const uv::JobHeader& h, uint32_t linkBaud);
   // Sends the chain's lines up to the end of one program; true once its K is answered 0.
   bool sendProgram(PrintheadLink& head, uint32_t nowUs);
   // The chain's next line into line_, unless one is held already; false once every line is written.

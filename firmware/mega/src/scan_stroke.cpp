@@ -30,8 +30,9 @@ bool planStroke(const StrokeInput& in, StrokePlan& out) {
   const int64_t sign = in.descending ? -1 : 1;
   const int64_t mark = sign * in.markX2Um * static_cast<int64_t>(in.stepsMilli);  // steps × kStepDen
   const int64_t end = sign * in.endX2Um * static_cast<int64_t>(in.stepsMilli);
-  const int64_t leadTicks16 = static_cast<int64_t>(2 * kMarkLeadUs) << 16;
-  // The G step: at least kMarkLeadUs before the mark at the exact speed; one step more in hand.
+  out.leadUs = static_cast<uint16_t>(markLeadUs(in.linkBaud));
+  const int64_t leadTicks16 = static_cast<int64_t>(2 * out.leadUs) << 16;
+  // The G step: at least the lead before the mark at the exact speed; one step more in hand.
   const int64_t leadSteps = ceilDiv(leadTicks16, static_cast<int64_t>(i16)) + 1;
   const int64_t gAt = floorDiv(mark, kStepDen) - leadSteps;  // where the G step leaves the head
   out.markStep = in.rampSteps + 2;                             // in the middle: after the ramp's last
@@ -50,9 +51,9 @@ bool planStroke(const StrokeInput& in, StrokePlan& out) {
 void strokeJump(const StrokePlan& k, uint32_t windowUs, uint32_t window, uint32_t windows, uint32_t flyUs, uint32_t& from,
                 uint32_t& steps, uint32_t& savedTicks) {
   // Step markStep − 1 + n comes n × i16 / 65536 ticks after the G's step, were nothing flown, and the
-  // plan's time 0 is kMarkLeadUs + shiftUs after it: window w starts 2 × (that + w × W) ticks after.
+  // plan's time 0 is leadUs + shiftUs after it: window w starts 2 × (that + w × W) ticks after.
   const uint64_t i16 = (static_cast<uint64_t>(k.interval) << 16) | k.frac;
-  const uint64_t lead = kMarkLeadUs + k.shiftUs;
+  const uint64_t lead = k.leadUs + k.shiftUs;
   const uint64_t t0 = 2 * (lead + static_cast<uint64_t>(window) * windowUs) << 16;
   const uint64_t t1 = 2 * (lead + static_cast<uint64_t>(window + windows) * windowUs) << 16;
   from = k.markStep - 1 + static_cast<uint32_t>(t0 / i16);

@@ -8,11 +8,17 @@
 #pragma once
 #include <stdint.h>
 
+#include "nano_codec.h"
+#include "scan_program.h"
+
 namespace mega {
 
-// The G and its newline at 115200 (85 µs a byte with the Mega's U2X divisor), then the Nano's
-// kProgramStartLeadUs: from the step that sends G to the Nano's time 0.
-constexpr uint32_t kMarkLeadUs = 1000 + 2 * 85;
+// From the step that sends G to the Nano's time 0: the G and its newline at the link's speed, two
+// byte-times at the Mega's U2X divisor (UBRR (F/4/baud − 1)/2: 5 × (UBRR + 1) µs a byte at 16 MHz,
+// 85 at 115200, 40 at 250000), then the Nano's kProgramStartLeadUs (protocol/nano.md "G: start").
+constexpr uint32_t markLeadUs(uint32_t baud) { return uv::kProgramStartLeadUs + 2 * uv::linkByteUs(baud); }
+constexpr uint32_t kMarkLeadUs = markLeadUs(115200);
+static_assert(kMarkLeadUs == 1170 && markLeadUs(250000) == 1080, "two byte-times and the Nano's lead");
 
 struct StrokePlan {
   int32_t startSteps;   // X at rest before the stroke
@@ -21,6 +27,7 @@ struct StrokePlan {
   uint16_t frac;
   uint32_t markStep;    // 1-based: the step that sends G
   uint32_t shiftUs;     // the plan's time 0 is this long after the Nano's
+  uint16_t leadUs;      // markLeadUs at the link's speed when the stroke was planned
 };
 
 struct StrokeInput {
@@ -31,6 +38,7 @@ struct StrokeInput {
   uint32_t pitchUm;
   uint32_t stepsMilli;  // X steps per mm × 1000
   uint32_t rampSteps;   // the stroke's ramp at its interval (Motion::strokeRampSteps)
+  uint32_t linkBaud = 115200;  // the printhead link's speed, which times the G (markLeadUs)
 };
 
 // The interval of a step at the pass's speed, as 16.16 ticks; false if outside what the step engine

@@ -64,6 +64,7 @@ class Board : public nano::PrintheadIo {
     // Never block: a reply that finds no room is dropped, and the Mega's time-out asks again.
     nano::uart::write(text, len);
   }
+  void linkSpeed(uint32_t baud, bool afterReply) override { nano::uart::setBaud(baud, afterReply); }
 };
 
 const nano::PrintheadConfig kConfig = {
@@ -119,6 +120,10 @@ void loop() {
   int budget = 64;  // bytes per pass, so the pixel and the watchdog are served under a flood
   int16_t c;
   while (budget-- > 0 && (c = nano::uart::read()) >= 0) {
+    // A byte no line holds (the receive interrupt marks one with a framing or overrun error as 0x01):
+    // above 115200 the Mega may be at another speed, and the link falls back (the interrupt already
+    // took 115200 and switched the LEDs off; the brain drops the programs).
+    if ((c < 0x20 && c != '\n' && c != '\r') || c > 0x7E) head.noise();
     if (splitter.push(static_cast<char>(c))) {
       head.line(splitter.text(), splitter.length(), splitter.overflow(), now);
     }

@@ -13,13 +13,17 @@ void Printhead::line(const char* text, uint8_t len, bool overflow, uint32_t nowM
   if (usable && len >= 2 && text[1] == ':' && (text[0] == 'A' || text[0] == 'B' || text[0] == 'K')) {
     if (!program(text, len)) {  // a program line, taken first: a malformed one flashes nothing
       latched_ |= uv::fault::kMalformed;
+      if (raised_) fallBack();
       return;
     }
+    confirming_ = false;
     c.op = text[0];  // then it flashes dim white, like a poll
   } else if (!usable || !uv::parseNanoCommand(text, len, c)) {
     latched_ |= uv::fault::kMalformed;
+    if (raised_) fallBack();  // a line misread: maybe the Mega is at another speed
     return;
   }
+  confirming_ = false;  // a correct line: the speed, raised or not, is heard
   uv::Colour flash = uv::flashColour(c.op);
   // A status poll (S, T, E, V, C: dim white) comes right after every F in a job: it must not hide
   // the exposure's purple, which would then never be seen (the pixel is written between edges).
@@ -64,7 +68,7 @@ void Printhead::start() {
   store_.refuse();
 }
 
-void Printhead::handle(const uv::NanoCommand& c, uint32_t) {
+void Printhead::handle(const uv::NanoCommand& c, uint32_t nowMs) {
   uv::NanoReply r;  // not zeroed: each case sets the one field formatNanoReply reads for it
   r.op = c.op;
   switch (c.op) {
@@ -86,7 +90,20 @@ void Printhead::handle(const uv::NanoCommand& c, uint32_t) {
     case 'R':
       if (exposing() || io_.cutByReset()) whole_ = false;  // an exposure cut short
       io_.allOff();
+      if (raised_) {  // back to 115200: the receive interrupt already did, as the line ended
+        io_.linkSpeed(uv::kNanoBaud, false);
+        raised_ = false;
+        confirming_ = false;
+      }
       return store_.discard(uv::PassState::CutByReset);
+    case 'L':
+      if (exposing() || store_.armed()) {  // a speed change is for an idle link
+        latched_ |= uv::fault::kBusy;
+        return;
+      }
+      r.baud = c.baud;
+      send(r);
+      return speed(c.baud, nowMs);
     case 'D':
       return io_.servoPulse(kServoDeployUs);
     case 'U':
@@ -141,10 +158,30 @@ void Printhead::fire(const uv::NanoCommand& c) {
 // a hang), so does the head, and the chain would go on lighting one place: a Mega that runs a pass
 // sends a line at least every 20 ms, and a chain that hears none for 50 ms is cut.
 void Printhead::poll(uint32_t nowMs) {
+  if (confirming_ && static_cast<uint16_t>(nowMs - switchedMs_) > kLinkConfirmMs) fallBack();  // never heard at the new speed
   if (!store_.running() || nowMs - lastLineMs_ <= uv::kChainSilenceMs) return;
   io_.allOff();
   store_.discard(uv::PassState::CutBySilence);
   whole_ = false;
+}
+
+// The reply that names the new speed goes out at the old one; the UART changes after its stop bit.
+void Printhead::speed(uint32_t baud, uint32_t nowMs) {
+  io_.linkSpeed(baud, true);
+  raised_ = confirming_ = baud != uv::kNanoBaud;
+  switchedMs_ = static_cast<uint16_t>(nowMs);
+}
+
+void Printhead::noise() {
+  if (raised_) fallBack();
+}
+
+void Printhead::fallBack() {
+  if (exposing() || io_.cutByReset()) whole_ = false;  // the receive interrupt may have cut it already
+  io_.allOff();
+  store_.discard(uv::PassState::CutByReset);
+  io_.linkSpeed(uv::kNanoBaud, false);
+  raised_ = confirming_ = false;
 }
 
 void Printhead::readings(const uint16_t mv[uv::kSensorCount]) {

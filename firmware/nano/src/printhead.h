@@ -34,7 +34,13 @@ class PrintheadIo {
   virtual void servoPulse(uint16_t us) = 0;     // 50 Hz train of this width from now on
   virtual bool probeTriggered() = 0;            // level now, or a latched pulse since the last call
   virtual void reply(const char* text, uint8_t len) = 0;
+  // The link's speed (protocol/nano.md "Link speed"): from the moment the reply just queued has
+  // gone out when `afterReply`, else at once.
+  virtual void linkSpeed(uint32_t baud, bool afterReply) = 0;
 };
+
+// A switch to a raised speed holds only if a correct line arrives at it within this long.
+constexpr uint32_t kLinkConfirmMs = 100;
 
 struct PrintheadConfig {
   uint32_t capUs;
@@ -50,6 +56,11 @@ class Printhead {
   void line(const char* text, uint8_t len, bool overflow, uint32_t nowMs);
   // Every pass of the main loop: a running chain whose Mega has fallen silent is cut.
   void poll(uint32_t nowMs);
+  // A received byte that cannot be in a line (a framing or overrun error, or outside 0x20-0x7E, \r
+  // and \n): above 115200 it is a doubt about the speed, and the link falls back.
+  void noise();
+  // Above 115200 (an L raised it, and no doubt has lowered it since).
+  bool linkRaised() const { return raised_; }
   // A fresh set of oversampled readings, in mV. Cuts the LEDs on a fault.
   void readings(const uint16_t mv[uv::kSensorCount]);
   void watchdogReset() { latched_ |= uv::fault::kWatchdog; }
@@ -69,6 +80,9 @@ class Printhead {
   void start();
   bool exposing() const { return io_.litMask() || store_.running(); }
   void send(const uv::NanoReply& r);
+  void speed(uint32_t baud, uint32_t nowMs);
+  // Back to 115200 at once, and, as an R would, every LED off and every program dropped.
+  void fallBack();
 
   PrintheadIo& io_;
   const PrintheadConfig& cfg_;
@@ -85,6 +99,10 @@ class Printhead {
   bool whole_ = true;      // the last one was not cut short by R or a fault
   bool programLast_ = false;  // the last one was a scan chain: an underrun also cuts it short
   uint32_t lastLineMs_ = 0;   // when the last complete line arrived
+  // RAM is short (the 50 % budget): the speed as whether it is raised, and its time in 16 bits.
+  bool raised_ = false;
+  bool confirming_ = false;   // raised, and no correct line heard at the new speed yet
+  uint16_t switchedMs_ = 0;   // when it was raised (low bits of millis(): the window is 100 ms)
 };
 
 }  // namespace nano

@@ -34,6 +34,7 @@ struct Board : PrintheadIo {
   void servoPulse(uint16_t) override {}
   bool probeTriggered() override { return false; }
   void reply(const char* t, uint8_t n) override { out.append(t, n); }
+  void linkSpeed(uint32_t, bool) override {}
   void run() {
     uint32_t d;
     uint8_t m;

@@ -38,6 +38,9 @@ struct FakeIo : PrintheadIo {
   void servoPulse(uint16_t us) override { servo = us; }
   bool probeTriggered() override { return probe; }
   void reply(const char* t, uint8_t n) override { out.append(t, n); }
+  // Every speed change the brain asked the UART for: baud, and whether after the queued reply.
+  std::vector<std::pair<uint32_t, bool>> speeds;
+  void linkSpeed(uint32_t baud, bool afterReply) override { speeds.emplace_back(baud, afterReply); }
 };
 
 const PrintheadConfig kConfig = {10000000, {{600, 600, 600, 600, 550, 550}, 50, 100, 1750}, "0.2.0"};
@@ -348,4 +351,83 @@ TEST(PrintheadScan, AChainWhoseMegaFallsSilentIsCut) {
   EXPECT_EQ(h.take(), "Q:2,0,7\n");
   h.send("C");
   EXPECT_EQ(h.take(), "C:0,1,0\n");
+}
+
+// protocol/nano.md "Link speed": L is answered at the old speed, the UART changes after that reply,
+// and the raised speed holds only once a correct line is heard at it within 100 ms.
+TEST(PrintheadLinkSpeed, RaisedAfterTheReplyAndHeldOnceConfirmed) {
+  Head h;
+  h.send("L:250000", 1000);
+  EXPECT_EQ(h.take(), "L:250000\n");
+  ASSERT_EQ(h.io.speeds.size(), 1u);
+  EXPECT_EQ(h.io.speeds[0], std::make_pair(250000u, true));
+  EXPECT_TRUE(h.ph.linkRaised());
+  h.send("V", 1010);  // the Mega's probe at the new speed
+  EXPECT_EQ(h.take(), "V:1,0.2.0\n");
+  h.ph.poll(1500);  // long past the 100 ms: confirmed, so it holds
+  EXPECT_TRUE(h.ph.linkRaised());
+  EXPECT_EQ(h.io.speeds.size(), 1u);
+}
+
+TEST(PrintheadLinkSpeed, NoLineHeardAtTheNewSpeedFallsBack) {
+  Head h;
+  h.send("L:1000000", 1000);
+  h.take();
+  h.ph.poll(1100);  // 100 ms: not yet
+  EXPECT_TRUE(h.ph.linkRaised());
+  h.ph.poll(1101);
+  EXPECT_FALSE(h.ph.linkRaised());
+  EXPECT_EQ(h.io.speeds.back(), std::make_pair(115200u, false));  // at once: nothing to answer
+}
+
+TEST(PrintheadLinkSpeed, NoiseOrAMalformedLineAboveTheStartSpeedFallsBackAndCutsTheLight) {
+  for (int how = 0; how < 2; how++) {
+    Head h;
+    h.send("L:500000", 0);
+    h.send("V", 1);
+    h.send("F:1,5000000,0,0,0", 2);
+    ASSERT_EQ(h.io.lit, 1);
+    int offs = h.io.allOffs;
+    if (how == 0) h.ph.noise();  // a byte with a framing error: the Mega is at another speed
+    else h.send("S\x01", 3);     // a line that arrived misread
+    EXPECT_FALSE(h.ph.linkRaised()) << how;
+    EXPECT_EQ(h.io.lit, 0) << how;  // any doubt is an R: every LED off
+    EXPECT_GT(h.io.allOffs, offs);
+    h.take();
+    h.send("C", 4);
+    EXPECT_EQ(h.take(), "C:0,1,0\n") << "the exposure was cut";
+  }
+  Head h;  // at 115200 noise is only a malformed line's, and changes no speed
+  h.ph.noise();
+  h.send("S\x01");
+  EXPECT_TRUE(h.io.speeds.empty());
+}
+
+TEST(PrintheadLinkSpeed, AnRReturnsTo115200AtOnce) {
+  Head h;
+  h.send("L:250000", 0);
+  h.send("V", 1);
+  h.send("R", 2);
+  EXPECT_FALSE(h.ph.linkRaised());
+  EXPECT_EQ(h.io.speeds.back(), std::make_pair(115200u, false));
+}
+
+TEST(PrintheadLinkSpeed, RefusedWhileExposingOrArmedAndOutOfTheTable) {
+  Head h;
+  h.send("F:1,5000000,0,0,0");
+  h.send("E");
+  h.take();
+  h.send("L:250000");
+  EXPECT_EQ(h.take(), "");  // no reply, no change: BUSY
+  EXPECT_TRUE(h.io.speeds.empty());
+  h.send("E");
+  EXPECT_EQ(h.take(), "E:8\n");
+  h.send("R");
+  for (const char* bad : {"L:9600", "L:250001", "L:4295217296", "L:"}) {
+    h.send(bad);
+    EXPECT_EQ(h.take(), "") << bad;
+  }
+  EXPECT_TRUE(h.io.speeds.empty());
+  h.send("E");
+  EXPECT_EQ(h.take(), "E:32\n");
 }

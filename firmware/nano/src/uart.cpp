@@ -4,6 +4,7 @@
 #include "uart.h"
 
 #include "led_timer.h"
+#include "nano_codec.h"
 
 #include <Arduino.h>
 #include <avr/interrupt.h>
@@ -29,14 +30,34 @@ volatile uint16_t startTick;
 volatile uint32_t startUs;
 volatile uint32_t clockUs;  // the latest W's, apart from the G's: a G may follow a W before it is answered
 volatile bool resetCut = false;
+volatile uint8_t nextUbrr;  // the divisor the transmit-complete interrupt sets (16 at most)
+
+// As Arduino rounds it with U2X: 16 at 115200 (2.1 % fast), 7, 3 and 1 at 250000, 500000 and
+// 1000000 (exact).
+constexpr uint16_t ubrrFor(uint32_t baud) { return static_cast<uint16_t>((F_CPU / 4 / baud - 1) / 2); }
+constexpr uint16_t kStartUbrr = ubrrFor(uv::kNanoBaud);
 
 }  // namespace
 
 void begin(uint32_t baud) {
   UCSR0A = 1 << U2X0;
-  UBRR0 = static_cast<uint16_t>((F_CPU / 4 / baud - 1) / 2);  // as Arduino rounds it: 16 at 115200
-  UCSR0C = (1 << UCSZ01) | (1 << UCSZ00);                      // 8N1
+  UBRR0 = ubrrFor(baud);
+  UCSR0C = (1 << UCSZ01) | (1 << UCSZ00);  // 8N1
   UCSR0B = (1 << RXEN0) | (1 << TXEN0) | (1 << RXCIE0);
+}
+
+void setBaud(uint32_t baud, bool afterTx) {
+  uint8_t ubrr = static_cast<uint8_t>(ubrrFor(baud));
+  uint8_t sreg = SREG;
+  cli();
+  if (afterTx && (tx.used() || !(UCSR0A & (1 << UDRE0)) || !(UCSR0A & (1 << TXC0)))) {
+    nextUbrr = ubrr;  // something is still going out: change once it all has
+    UCSR0B |= 1 << TXCIE0;
+  } else {
+    UCSR0B &= static_cast<uint8_t>(~(1 << TXCIE0));
+    UBRR0 = ubrr;
+  }
+  SREG = sreg;
 }
 
 int16_t read() {
@@ -52,6 +73,7 @@ bool write(const char* data, uint8_t n) {
   if (n > kRing - tx.used()) return false;
   if (n && tx.used() == 0 && (UCSR0A & (1 << UDRE0))) {  // idle: the first byte goes out now
     UDR0 = static_cast<uint8_t>(*data++);
+    UCSR0A = (1 << U2X0) | (1 << TXC0);  // TXC0 clears by a 1: set again once this has all gone
     n--;
   }
   uint8_t in = tx.in;
@@ -102,6 +124,14 @@ ISR(USART_RX_vect) {
   // Never a silently shortened line: the last free slot takes a mark in place of the byte that
   // does not fit, so the line that lost bytes is malformed (a line lost whole never runs at all).
   // Noise, too, makes its line malformed. The G and R patterns read what the splitter will read.
+  // Above 115200 a byte no line holds is a doubt about the speed (protocol/nano.md "Link speed"):
+  // back to 115200 and every LED off here, before the next byte; the main loop does the rest by the mark.
+  if (UBRR0L != kStartUbrr && (bad || (static_cast<uint8_t>(c) < 0x20 && c != '\n' && c != '\r') || static_cast<uint8_t>(c) > 0x7E)) {
+    if (nano::led_timer::allOff()) resetCut = true;
+    UCSR0B &= static_cast<uint8_t>(~(1 << TXCIE0));
+    UBRR0 = kStartUbrr;
+    bad = true;
+  }
   uint8_t used = rx.used();
   if (bad || used >= kRing - 1) c = '\x01';
   if (used < kRing) {
@@ -117,6 +147,8 @@ ISR(USART_RX_vect) {
       clockUs = micros();
     } else if (shortLine == 'R' || shortLine == 'r') {
       if (nano::led_timer::allOff()) resetCut = true;  // the main loop's R handler does the rest
+      UCSR0B &= static_cast<uint8_t>(~(1 << TXCIE0));  // and back to 115200 (protocol/nano.md "Link speed")
+      UBRR0 = kStartUbrr;
     }
     shortLine = 1;
   } else if (shortLine == 1 && (c == 'G' || c == 'R' || c == 'W')) {
@@ -135,5 +167,14 @@ ISR(USART_UDRE_vect) {
     return;
   }
   UDR0 = static_cast<uint8_t>(tx.buf[tx.out % kRing]);
+  UCSR0A = (1 << U2X0) | (1 << TXC0);
   tx.out = static_cast<uint8_t>(tx.out + 1);
+}
+
+// The last byte queued before a speed change has left, stop bit and all: the new divisor.
+ISR(USART_TX_vect) {
+  using namespace nano::uart;
+  if (tx.used()) return;  // more was queued since (not by the protocol): wait for that too
+  UBRR0 = nextUbrr;
+  UCSR0B &= static_cast<uint8_t>(~(1 << TXCIE0));
 }

@@ -25,7 +25,7 @@ Colour flashColour(char op) {
     case 'F': case 'G': return Colour::Purple;
     case 'D': case 'U': case 'X': case 'P': return Colour::Cyan;
     case 'R': return Colour::Orange;
-    default: return Colour::DimWhite;  // S T E V C A B K Q W
+    default: return Colour::DimWhite;  // S T E V C A B K Q W L
   }
 }
 
@@ -44,9 +44,16 @@ bool parseNanoCommand(const char* line, uint8_t len, NanoCommand& out) {
         return false;
     }
   }
-  if (len < 2 || line[0] != 'F' || line[1] != ':') return false;
+  if (len < 2 || line[1] != ':') return false;
   const char* p = line + 2;
   const char* end = line + len;
+  if (line[0] == 'L') {  // a speed not in the table is malformed: refused, never rounded or wrapped
+    p = scanUnsigned(p, end, 10, 0xFFFFFFFFu, out.baud);
+    if (p != end || !nanoLinkBaud(out.baud)) return false;
+    out.op = 'L';
+    return true;
+  }
+  if (line[0] != 'F') return false;
   uint32_t fields[5];
   for (uint8_t i = 0; i < 5; i++) {
     if (i > 0) {
@@ -65,6 +72,7 @@ bool parseNanoCommand(const char* line, uint8_t len, NanoCommand& out) {
 
 size_t formatNanoCommand(const NanoCommand& cmd, char* out, size_t size) {
   if (cmd.op == 'F' && cmd.mask > 15) return 0;  // no such LEDs: refused, not sent for the Nano to reject
+  if (cmd.op == 'L' && !nanoLinkBaud(cmd.baud)) return 0;  // no such speed: likewise
   char tmp[64];
   size_t n = 0;
   tmp[n++] = cmd.op;
@@ -75,6 +83,9 @@ size_t formatNanoCommand(const NanoCommand& cmd, char* out, size_t size) {
       tmp[n++] = ',';
       n += putUnsigned(cmd.durations[i], tmp + n);
     }
+  } else if (cmd.op == 'L') {
+    tmp[n++] = ':';
+    n += putUnsigned(cmd.baud, tmp + n);
   }
   tmp[n++] = '\n';
   if (n + 1 > size) return 0;
@@ -132,6 +143,7 @@ size_t formatNanoReply(const NanoReply& r, char* out, size_t size) {
       break;
     case 'K': n += putUnsigned(r.code, out + n); break;
     case 'W': n += putUnsigned(r.us, out + n); break;
+    case 'L': n += putUnsigned(r.baud, out + n); break;
     case 'Q':
       n += putUnsigned(r.free, out + n);
       out[n++] = ',';
@@ -184,6 +196,9 @@ bool parseNanoReply(const char* line, size_t len, NanoReply& r) {
     case 'W':
       p = scanUnsigned(p, end, 10, 0xFFFFFFFFu, r.us);
       return p == end;
+    case 'L':
+      p = scanUnsigned(p, end, 10, 0xFFFFFFFFu, r.baud);
+      return p == end && nanoLinkBaud(r.baud);
     case 'Q': {
       uint32_t q[3];  // free, armed, pass
       for (uint8_t i = 0; i < 3; i++) {

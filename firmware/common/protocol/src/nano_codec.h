@@ -6,18 +6,25 @@
 namespace uv {
 
 constexpr uint8_t kNanoMaxLine = 63;
-constexpr uint32_t kNanoBaud = 115200;  // 8N1: ten bits a byte
+constexpr uint32_t kNanoBaud = 115200;  // 8N1: ten bits a byte; the power-on speed, and the one to fall back to
+// The speeds an `L` may ask for (protocol/nano.md "Link speed"): 115200 and the three that are exact
+// at 16 MHz with U2X (UBRR 7, 3 and 1). Any other is refused, never rounded to one of these.
+// One byte's ten bits, in whole µs, at the divisor a 16 MHz AVR with U2X takes for `baud` (UBRR
+// (F/4/baud − 1)/2, as Arduino rounds it): 85 at 115200 (117647 baud), 40 at 250000.
+constexpr uint32_t linkByteUs(uint32_t baud) { return 5 * ((16000000 / 4 / baud - 1) / 2 + 1); }
+inline bool nanoLinkBaud(uint32_t baud) { return baud == 115200 || baud == 250000 || baud == 500000 || baud == 1000000; }
 constexpr uint8_t kLedCount = 4;
 constexpr uint8_t kSensorCount = 6;
 
 struct NanoCommand {
-  char op;  // one of S F D U X P T R E V C G Q W (A and K lines: scan_program.h)
+  char op;  // one of S F D U X P T R E V C G Q W L (A and K lines: scan_program.h)
   uint8_t mask;
   uint32_t durations[kLedCount];
+  uint32_t baud;  // L: the link speed asked for (nanoLinkBaud)
 };
 
 struct NanoReply {
-  char op;  // one of S P T E V C K Q W
+  char op;  // one of S P T E V C K Q W L
   uint8_t mask;
   bool triggered;
   int16_t deciC[kSensorCount];
@@ -30,6 +37,7 @@ struct NanoReply {
   uint8_t code;    // K: the seal's SealCode
   uint8_t free, armed, pass;  // Q: buffers free to load, programs armed, the last chain's PassState
   uint32_t us;     // W: the Nano's micros() when the W's newline arrived
+  uint32_t baud;   // L: the speed both sides take once this reply has gone out
 };
 
 enum class Colour : uint8_t { Green, DimWhite, Purple, Cyan, Orange, Red };

@@ -38,6 +38,7 @@ Received receive(const std::string& bytes) {
 json commandJson(const NanoCommand& c) {
   json j = {{"op", std::string(1, c.op)}};
   if (c.op == 'F') j.update({{"mask", c.mask}, {"durations", {c.durations[0], c.durations[1], c.durations[2], c.durations[3]}}});
+  if (c.op == 'L') j["baud"] = c.baud;
   return j;
 }
 
@@ -74,6 +75,7 @@ json replyJson(const NanoReply& r) {
     case 'K': j["code"] = r.code; break;
     case 'Q': j["free"] = r.free; j["armed"] = r.armed; j["pass"] = r.pass; break;
     case 'W': j["us"] = r.us; break;
+    case 'L': j["baud"] = r.baud; break;
   }
   return j;
 }
@@ -95,6 +97,7 @@ NanoReply replyFrom(const json& j) {
   if (j.contains("armed")) r.armed = j["armed"];
   if (j.contains("pass")) r.pass = j["pass"];
   if (j.contains("us")) r.us = j["us"];
+  if (j.contains("baud")) r.baud = j["baud"];
   if (j.contains("firmware")) snprintf(r.firmware, sizeof r.firmware, "%s", j["firmware"].get<std::string>().c_str());
   return r;
 }
@@ -122,6 +125,7 @@ TEST(NanoVectors, CommandsEncodeParseAndFlash) {
       cmd.mask = c["command"]["mask"];
       for (int i = 0; i < 4; i++) cmd.durations[i] = c["command"]["durations"][i];
     }
+    if (cmd.op == 'L') cmd.baud = c["command"]["baud"];
     char out[80];
     formatNanoCommand(cmd, out, sizeof out);
     EXPECT_EQ(std::string(out), line);
@@ -187,4 +191,17 @@ TEST(NanoCodec, AMaskPastTheFourLedsIsNotFormatted) {
   EXPECT_EQ(formatNanoCommand(f, out, sizeof out), 0u);
   f.mask = 15;
   EXPECT_GT(formatNanoCommand(f, out, sizeof out), 0u);
+}
+
+TEST(NanoCodec, ASpeedNotInTheTableIsNotFormatted) {
+  NanoCommand l{};
+  l.op = 'L';
+  char out[kNanoMaxLine + 2];
+  for (uint32_t baud : {0u, 9600u, 115201u, 999999u, 2000000u, 0xFFFFFFFFu}) {
+    l.baud = baud;
+    EXPECT_EQ(formatNanoCommand(l, out, sizeof out), 0u) << baud;
+  }
+  l.baud = 1000000;
+  EXPECT_EQ(formatNanoCommand(l, out, sizeof out), 10u);
+  EXPECT_STREQ(out, "L:1000000\n");
 }

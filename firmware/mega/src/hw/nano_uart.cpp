@@ -49,9 +49,21 @@ bool NanoUart::writeNow(char op, uint32_t& atUs) {
   return sent;
 }
 
+// As Arduino rounds it with U2X: 16 at 115200, 7 at 250000 (exact).
+static uint16_t ubrrFor(uint32_t baud) { return static_cast<uint16_t>((F_CPU / 4 / baud - 1) / 2); }
+
+bool NanoUart::setBaud(uint32_t baud) {
+  uint8_t sreg = SREG;
+  cli();
+  bool idle = !tx.used() && !markNewline && (UCSR1A & (1 << TXC1));
+  if (idle) UBRR1 = ubrrFor(baud);
+  SREG = sreg;
+  return idle;
+}
+
 void NanoUart::begin(uint32_t baud) {
   UCSR1A = 1 << U2X1;
-  UBRR1 = static_cast<uint16_t>((F_CPU / 4 / baud - 1) / 2);  // as Arduino rounds it: 16 at 115200
+  UBRR1 = ubrrFor(baud);
   UCSR1C = (1 << UCSZ11) | (1 << UCSZ10);                      // 8N1
   UCSR1B = (1 << RXEN1) | (1 << TXEN1) | (1 << RXCIE1);
 }

@@ -18,6 +18,7 @@ class NanoUart : public ByteStream {
   int16_t read() override;
   bool write(const char* data, uint8_t n) override;
   bool writeNow(char op, uint32_t& atUs) override;
+  bool setBaud(uint32_t baud) override;
 };
 
 // For the step interrupt only: a scan pass's G (protocol/nano.md "Scan programs"), "G\n" now, when
