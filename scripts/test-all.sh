@@ -34,7 +34,7 @@ stage "C++ host and simavr tests (CMake, GoogleTest)" bash scripts/test-firmware
 stage "avrdude flashes and verifies each board through the bootloader rig (the rig's referee)" bash scripts/test-firmware.sh avrdude
 stage "C++ tests under ASan and UBSan (clang)" bash scripts/fuzz.sh --tests
 stage "The ESP's hand-over between two threads under ThreadSanitizer (clang)" bash scripts/tsan.sh
-stage "Fuzzers, 20 s each on their kept corpus (libFuzzer, ASan, UBSan)" bash scripts/fuzz.sh 20
+stage "Fuzzers, 20 s each on their seeds and grown corpus (libFuzzer, ASan, UBSan)" bash scripts/fuzz.sh 20
 stage "The app for the ESP's flash (gzipped, within its budget)" npm run --silent build:esp
 stage "Vectors bind both implementations" python3 scripts/check-vectors-bind.py build/host
 printcore_test() {
