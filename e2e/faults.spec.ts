@@ -14,7 +14,8 @@ test('a job arrives bit-exact through 1 % byte corruption with drops', async ({ 
   await page.getByRole('dialog').getByRole('button', { name: 'Expose now' }).click(); // the one confirmation (issue 17, item 4)
   await expect(page.getByTestId('job-state')).toHaveAttribute('data-state', /running|done/, { timeout: 90_000 });
   const stored = app.sim!.printer.module.card().map(([, text]) => text);
-  expect(stored).toContain(encodeJob(testPattern(4000))); // the Job panel's full dose, 4 ms
+  // The Job panel's full dose, 4 ms, in job format 2: this firmware's M115 says Cap:JOB_FORMAT:2.
+  expect(stored).toContain(encodeJob(testPattern(4000), 2));
   await page.getByTestId('tab-link').click();
   await expect(page.getByTestId('link-health')).toContainText(/[1-9]\d* resends|[1-9]\d* time-outs/);
   await page.screenshot({ path: info.outputPath('corrupted-link.png'), fullPage: true });
