@@ -26,7 +26,7 @@ function report(what: string, r: { longestMs: number; count: number }) {
   test.info().annotations.push({ type: 'longest task', description: `${what}: ${r.longestMs} ms` });
 }
 
-test('a whole-bed dry run: the question comes with no long task on the page', async ({ page }, info) => {
+test('a whole-bed dry run: the question comes, the page’s longest task printed', async ({ page }, info) => {
   test.setTimeout(120_000);
   await studio(page);
   await paintWholeBed(page);
@@ -39,7 +39,7 @@ test('a whole-bed dry run: the question comes with no long task on the page', as
   await page.screenshot({ path: info.outputPath('dry-run.png') });
 });
 
-test('a 36-megapixel PNG: read and placed with no long task on the page', async ({ page }, info) => {
+test('a 36-megapixel PNG: read and placed, the page’s longest task printed', async ({ page }, info) => {
   test.setTimeout(120_000);
   await studio(page);
   // 152.4 mm square at 1000 DPI; picked from a file, as a person picks it (a buffer would be decoded in the page by the test itself)
@@ -54,7 +54,7 @@ test('a 36-megapixel PNG: read and placed with no long task on the page', async 
   await page.screenshot({ path: info.outputPath('big-png.png') });
 });
 
-test('a busy 100 × 80 mm Gerber board: imported and exposed with no long task on the page', async ({ page }, info) => {
+test('a busy 100 × 80 mm Gerber board: imported and exposed, the page’s longest tasks printed', async ({ page }, info) => {
   test.setTimeout(120_000);
   await studio(page);
   const path = info.outputPath('busy-F_Cu.gbr'); // 41 600 shapes; picked from a file, as the PNG is
@@ -74,7 +74,7 @@ test('a busy 100 × 80 mm Gerber board: imported and exposed with no long task o
   await page.screenshot({ path: info.outputPath('busy-board-question.png') });
 });
 
-test('a whole-bed preview: shown with no long task on the page', async ({ page }, info) => {
+test('a whole-bed preview: shown, the page’s longest task printed', async ({ page }, info) => {
   test.setTimeout(120_000);
   await studio(page);
   await paintWholeBed(page);
