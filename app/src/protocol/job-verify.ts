@@ -185,13 +185,20 @@ export class JobVerifier {
     if (w.length !== 4 || row === null || col === null) return 'bad r record';
     if (!/^(?:[0-9a-f]{2})+$/.test(hex) || hex.length > JOB_LIMITS.maxCellsPerRecord * 2) return 'bad cell hex';
     const n = hex.length / 2;
-    if (col + n > h.cols) return 'segment past the grid';
+    return this.#place(row, col, n, (cells) => {
+      for (let i = 0; i < n; i++) cells[i] = parseInt(hex.substr(i * 2, 2), 16);
+    });
+  }
+
+  /** A segment of `n` cells at (`row`, `col`): on the grid, after the last one; `fill` writes its cells. */
+  #place(row: number, col: number, n: number, fill: (cells: Uint8Array) => void): string | null {
+    if (col + n > this.#header.cols) return 'segment past the grid';
     if (row < this.#prevRow || (row === this.#prevRow && col < this.#prevEnd)) return 'segment out of order or overlapping';
     this.#prevRow = row;
     this.#prevEnd = col + n;
     if (this.onSegment) {
       const cells = new Uint8Array(n);
-      for (let i = 0; i < n; i++) cells[i] = parseInt(hex.substr(i * 2, 2), 16);
+      fill(cells);
       this.onSegment({ row, col, cells });
     }
     return null;
@@ -206,16 +213,7 @@ export class JobVerifier {
     if (w.join(' ').length > JOB_LIMITS.maxRecordBytes) return 'rl record over 76 bytes';
     const n = parseRunTokens(w.slice(3));
     if (n === null) return 'bad rl token';
-    if (col + n > h.cols) return 'segment past the grid';
-    if (row < this.#prevRow || (row === this.#prevRow && col < this.#prevEnd)) return 'segment out of order or overlapping';
-    this.#prevRow = row;
-    this.#prevEnd = col + n;
-    if (this.onSegment) {
-      const cells = new Uint8Array(n);
-      parseRunTokens(w.slice(3), (at, value, count) => cells.fill(value, at, at + count));
-      this.onSegment({ row, col, cells });
-    }
-    return null;
+    return this.#place(row, col, n, (cells) => parseRunTokens(w.slice(3), (at, value, count) => cells.fill(value, at, at + count)));
   }
 }
 
