@@ -131,4 +131,43 @@ struct Desks {
   Loop loop{rings, hub, check};
 };
 
+// One thread playing both sides in turn: the network task's part of a request (handed, answered by
+// its client's poll) and loop()'s passes, as hand_over_test and hand_over_yield_test drive them.
+struct Rig : Desks {
+  uint32_t ids = 0, ms = 0;
+
+  // The network task's whole side of one request: paused, handed, its client's poll pumping.
+  std::shared_ptr<Request> ask(Ask a, uint16_t& ticket) {
+    auto r = std::make_shared<Request>();
+    ticket = network.hand(r, a);
+    return r;
+  }
+  // A POST whose headers passed: its body is stored, then handed with the spool.
+  std::shared_ptr<Request> post(const std::string& body, uint16_t& ticket) {
+    if (network.admitBody() != Admission::Accepted) return nullptr;
+    spool.text = body;
+    auto r = std::make_shared<Request>();
+    ticket = network.hand(r, Ask::CheckBody);
+    return r;
+  }
+  void pump() {
+    network.pump([](Request& r, const Answer& a) {
+      r.sends++;
+      r.status = a.status;
+      r.body = a.body;
+    });
+  }
+  void pass() {
+    loop.poll(ms += 10, [this] { return ++ids; });
+    hub.poll();
+  }
+  // Both sides until nothing moves: every answer out, the upload over, the spool back.
+  void settle() {
+    for (int i = 0; i < 50; i++) {
+      pass();
+      pump();
+    }
+  }
+};
+
 }  // namespace handover
