@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { HEAD_THERMAL } from '../sim/head-thermal';
+import { HEAD_THERMAL } from '../machine/head-thermal';
 import { rateWarnings, type Sample } from './thermal-watch';
 
 /** 30 s of reports, sensor k rising at rates[k] °C/s from the room's 23 °C. */

@@ -1,7 +1,7 @@
 // Warnings for a sensor warming faster than the LEDs' duty explains: a fan that stopped, a heatsink
 // come loose, a driver running hot. The expected rate comes from the same thermal model as the dry run.
 
-import type { HeadThermalModel } from '../sim/head-thermal';
+import type { HeadThermalModel } from '../machine/head-thermal';
 
 export interface Sample {
   tS: number;

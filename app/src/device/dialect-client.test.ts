@@ -9,7 +9,7 @@ import { SimPrinter } from '../sim/sim-printer';
 import { DialectLink } from './dialect-link';
 import { formatOk } from '../protocol/reply-format';
 import type { LinkFaults } from '../sim/link-faults';
-import { CONFIG_DEFAULTS, motionOf } from '../sim/config';
+import { CONFIG_DEFAULTS, motionOf } from '../machine/config';
 
 function rig(link: LinkFaults = {}, noSd = false) {
   const wire = new SimWire({ link, noSd });

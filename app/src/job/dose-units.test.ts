@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { CONFIG_DEFAULTS } from '../sim/config';
+import { CONFIG_DEFAULTS } from '../machine/config';
 import { calibrationOf, doseOf, mJcm2For, msFor, msWords } from './dose-units';
 
 const calibrated = { ...CONFIG_DEFAULTS, 'led.irradiance.0': '2000000', 'led.irradiance.1': '1950000', 'led.irradiance.2': '2000000', 'led.irradiance.3': '2050000' };

@@ -5,7 +5,7 @@
 
 import type { Dose } from '../protocol/job-types';
 import { roundDiv } from '../planner/dose';
-import { CONFIG_DEFAULTS } from '../sim/config';
+import { CONFIG_DEFAULTS } from '../machine/config';
 
 export type Calibration = { irradianceUWcm2: number[] } | { missing: string };
 

@@ -6,7 +6,7 @@
 import type { Printer } from '../device/connection.svelte';
 import type { PrintJob, StrategyName } from '../protocol/job-types';
 import type { OrderChoice } from '../planner/job-plan';
-import { num } from '../sim/config';
+import { num } from '../machine/config';
 import type { Finding } from '../studio/dry-run';
 import type { Cut } from '../studio/objects/clipping';
 import type { TwoSided } from '../studio/objects/board-object';

@@ -3,7 +3,7 @@ import { describe, expect, it } from 'vitest';
 import { fastestOrder, ORDERS, orderEstimates, passDurationUs, passSwitches, planAnyJob, strokeOnBed, strokeSpanUm } from './job-plan';
 import { planJob } from './planner';
 import { GEOMETRIES, randomJob } from './golden';
-import { CONFIG_DEFAULTS, motionOf } from '../sim/config';
+import { CONFIG_DEFAULTS, motionOf } from '../machine/config';
 import type { ScanPass, ScanPlan } from './scan';
 import { headerOf } from './job-header';
 import type { Machine } from './time-model';

@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { CONFIG_DEFAULTS } from '../sim/config';
+import { CONFIG_DEFAULTS } from '../machine/config';
 import { settingGroups } from './setting-groups';
 
 describe('settingGroups', () => {

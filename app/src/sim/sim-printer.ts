@@ -8,7 +8,7 @@
 
 import { bedZ, DEFAULT_BED, type BedShape } from './bed';
 import { VirtualClock } from './clock';
-import { HEAD_THERMAL, HeadThermal, type HeadThermalModel } from './head-thermal';
+import { HEAD_THERMAL, HeadThermal, type HeadThermalModel } from '../machine/head-thermal';
 import { FaultyLink, type LinkFaults } from './link-faults';
 import { saneFaults, withLinkFaults, type SimFaults } from './sim-faults';
 import { firmwareModule } from './wasm/firmware-module';

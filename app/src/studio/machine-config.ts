@@ -1,9 +1,9 @@
 // The machine as the studio sees it, from the Mega's settings (firmware/mega/CONFIG.md keys):
 // the bed, the cell pitch, the motion the planner times, the LEDs and the thermal limits.
 
-import { CONFIG_DEFAULTS, num } from '../sim/config';
+import { CONFIG_DEFAULTS, num } from '../machine/config';
 
-export { motionOf } from '../sim/config';
+export { motionOf } from '../machine/config';
 
 export type MachineConfig = Record<string, string>;
 

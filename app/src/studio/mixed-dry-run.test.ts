@@ -8,7 +8,7 @@ import { headerOf } from '../planner/job-header';
 import { planMixed } from '../planner/mixed';
 import { encodeJob } from '../protocol/job-encode';
 import type { PrintJob } from '../protocol/job-types';
-import { CONFIG_DEFAULTS, motionOf } from '../sim/config';
+import { CONFIG_DEFAULTS, motionOf } from '../machine/config';
 import { SimHost } from '../sim/sim-host.fixture';
 import { dryRun } from './dry-run';
 import { DEFAULT_CONFIG, limitsOf } from './machine-config';

@@ -8,7 +8,7 @@ import { planMixed } from '../planner/mixed';
 import { planScan } from '../planner/scan';
 import { encodeJob } from '../protocol/job-encode';
 import type { PrintJob } from '../protocol/job-types';
-import { CONFIG_DEFAULTS, motionOf } from '../sim/config';
+import { CONFIG_DEFAULTS, motionOf } from '../machine/config';
 import { cooledUs, SimHost } from '../sim/sim-host.fixture';
 import { blockJob } from './block-job.fixture';
 import { limitsOf } from './machine-config';

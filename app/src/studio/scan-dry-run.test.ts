@@ -6,7 +6,7 @@ import { headerOf } from '../planner/job-header';
 import { planScan } from '../planner/scan';
 import { encodeJob } from '../protocol/job-encode';
 import type { PrintJob } from '../protocol/job-types';
-import { CONFIG_DEFAULTS, motionOf } from '../sim/config';
+import { CONFIG_DEFAULTS, motionOf } from '../machine/config';
 import { SimHost } from '../sim/sim-host.fixture';
 import { blockJob } from './block-job.fixture';
 import { dryRun } from './dry-run';

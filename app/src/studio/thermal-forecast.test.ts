@@ -7,7 +7,7 @@ import { headerOf } from '../planner/job-header';
 import { planJob } from '../planner/planner';
 import { encodeJob } from '../protocol/job-encode';
 import type { PrintJob } from '../protocol/job-types';
-import { CONFIG_DEFAULTS, motionOf } from '../sim/config';
+import { CONFIG_DEFAULTS, motionOf } from '../machine/config';
 import { cooledUs, SimHost } from '../sim/sim-host.fixture';
 import { blockJob } from './block-job.fixture';
 import { forecastThermal } from './thermal-forecast';

@@ -1,6 +1,6 @@
 // The dry run's thermal forecast: the plan's stops played through the shared head model
-// (sim/head-thermal.ts) in the planner's time model, with the Mega's temperature readings every
-// 500 ms and its rules for them (sim/pacing.ts): an unpaced job pauses when a reading reaches a soft
+// (machine/head-thermal.ts) in the planner's time model, with the Mega's temperature readings every
+// 500 ms and its rules for them (machine/pacing.ts): an unpaced job pauses when a reading reaches a soft
 // limit; a paced one waits before a stop, or before a pass on the move and its move, while a reading
 // is near one. The simulated printer runs the same model and rules, so the forecast is what it then
 // does (thermal-forecast.test.ts, paced-scan.test.ts). A scan job is played pass by pass with its
@@ -11,8 +11,8 @@ import type { Plan } from '../planner/planner';
 import type { MixedPlan } from '../planner/mixed';
 import { passWallUs, type ScanPass, type ScanPlan } from '../planner/scan';
 import { axisSteps, fireLineUs, MoveTimes, type Machine } from '../planner/time-model';
-import { HEAD_THERMAL, HeadThermal, type HeadThermalModel } from '../sim/head-thermal';
-import { overSoftLimit, paceWaits, READING_PERIOD_US } from '../sim/pacing';
+import { HEAD_THERMAL, HeadThermal, type HeadThermalModel } from '../machine/head-thermal';
+import { overSoftLimit, paceWaits, READING_PERIOD_US } from '../machine/pacing';
 
 export interface ThermalRun {
   /** The hottest each sensor gets, °C (up to the pause, for a job that pauses). */

@@ -19,7 +19,6 @@ struct KeySpec {
   uint8_t flags;
 };
 
-constexpr int32_t k = 1000;
 constexpr int32_t pair(int16_t dx, int16_t dy) {
   return static_cast<int32_t>((static_cast<uint32_t>(static_cast<uint16_t>(dx)) << 16) | static_cast<uint16_t>(dy));
 }
@@ -27,52 +26,7 @@ constexpr int32_t pair(int16_t dx, int16_t dy) {
 // The ranges keep the machine safe whatever a file or a host says: a zero steps/mm or speed would
 // divide by zero, and no soft thermal limit may sit above the Nano's 60 °C hard limit.
 const KeySpec kSpecs[kKeyCount] UV_FLASH = {
-    {"steps_per_mm.x", 80 * k, 1 * k, 2000 * k, kDecimal},
-    {"steps_per_mm.y", 80 * k, 1 * k, 2000 * k, kDecimal},
-    {"steps_per_mm.z", 400 * k, 1 * k, 10000 * k, kDecimal},
-    {"bed.x", 200 * k, 1 * k, 2000 * k, kDecimal},
-    {"bed.y", 200 * k, 1 * k, 2000 * k, kDecimal},
-    {"bed.z", 40 * k, 1 * k, 500 * k, kDecimal},
-    {"speed.travel", 100 * k, 1 * k, 500 * k, kDecimal},
-    {"speed.z", 10 * k, k / 10, 100 * k, kDecimal},
-    {"speed.jog_slow", 5 * k, k / 10, 100 * k, kDecimal},
-    {"speed.jog_fast", 50 * k, 1 * k, 500 * k, kDecimal},
-    {"speed.home", 40 * k, 1 * k, 200 * k, kDecimal},
-    {"accel.x", 2000 * k, 10 * k, 20000 * k, kDecimal},
-    {"accel.y", 1500 * k, 10 * k, 20000 * k, kDecimal},
-    {"accel.z", 200 * k, 1 * k, 5000 * k, kDecimal},
-    {"settle_ms", 2 * k, 0, 1000 * k, kWhole},
-    {"stop_overhead_us", 4300 * k, 0, 100000 * k, kWhole},
-    {"invert.x", 0, 0, 1 * k, kWhole},
-    {"invert.y", 0, 0, 1 * k, kWhole},
-    {"invert.z", 0, 0, 1 * k, kWhole},
-    {"pitch.x", 50 * k, 1 * k, 100000 * k, kWhole},
-    {"pitch.y", 50 * k, 1 * k, 100000 * k, kWhole},
-    {"led.offset.0", pair(0, 0), -4096, 4096, kPair},
-    {"led.offset.1", pair(0, 1), -4096, 4096, kPair},
-    {"led.offset.2", pair(0, 2), -4096, 4096, kPair},
-    {"led.offset.3", pair(0, 3), -4096, 4096, kPair},
-    {"led.irradiance.0", 30000 * k, 1 * k, 2000000 * k, kWhole},
-    {"led.irradiance.1", 30000 * k, 1 * k, 2000000 * k, kWhole},
-    {"led.irradiance.2", 30000 * k, 1 * k, 2000000 * k, kWhole},
-    {"led.irradiance.3", 30000 * k, 1 * k, 2000000 * k, kWhole},
-    {"led.gain.0", 1000 * k, 1 * k, 10000 * k, kWhole},
-    {"led.gain.1", 1000 * k, 1 * k, 10000 * k, kWhole},
-    {"led.gain.2", 1000 * k, 1 * k, 10000 * k, kWhole},
-    {"led.gain.3", 1000 * k, 1 * k, 10000 * k, kWhole},
-    {"thermal.limit.0", 55 * k, 0, 60 * k, kDecimal},
-    {"thermal.limit.1", 55 * k, 0, 60 * k, kDecimal},
-    {"thermal.limit.2", 55 * k, 0, 60 * k, kDecimal},
-    {"thermal.limit.3", 55 * k, 0, 60 * k, kDecimal},
-    {"thermal.limit.4", 50 * k, 0, 60 * k, kDecimal},
-    {"thermal.limit.5", 50 * k, 0, 60 * k, kDecimal},
-    {"thermal.coeff", 0, -1000 * k, 1000 * k, kWhole},
-    {"esp.port", 2 * k, 2 * k, 3 * k, kWhole},
-    {"light.pin", 57 * k, 0, 69 * k, kWhole},
-    {"mesh.nx", 3 * k, 3 * k, 9 * k, kWhole},
-    {"mesh.ny", 3 * k, 3 * k, 9 * k, kWhole},
-    {"mesh.margin", 10 * k, 0, 100 * k, kDecimal},
-    {"report.position_ms", 0, 0, 60000 * k, kWhole},
+#include "config_specs.inc"  // generated from firmware/mega/settings.toml (scripts/settings.py)
 };
 
 const KeySpec& spec(Key key) { return kSpecs[static_cast<uint8_t>(key)]; }

@@ -3,23 +3,10 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "config_keys.h"  // Key, kKeyCount, kKeyNameMax: generated from firmware/mega/settings.toml
+
 namespace mega {
 
-// In the order of CONFIG.md's table, which is also the order M500 writes and M503 reports.
-enum class Key : uint8_t {
-  StepsX, StepsY, StepsZ, BedX, BedY, BedZ,
-  SpeedTravel, SpeedZ, SpeedJogSlow, SpeedJogFast, SpeedHome,
-  AccelX, AccelY, AccelZ, SettleMs, StopOverheadUs,
-  InvertX, InvertY, InvertZ, PitchX, PitchY,
-  LedOffset0, LedOffset1, LedOffset2, LedOffset3,
-  LedIrradiance0, LedIrradiance1, LedIrradiance2, LedIrradiance3,
-  LedGain0, LedGain1, LedGain2, LedGain3,
-  ThermalLimit0, ThermalLimit1, ThermalLimit2, ThermalLimit3, ThermalLimit4, ThermalLimit5,
-  ThermalCoeff, EspPort, LightPin, MeshNx, MeshNy, MeshMargin, ReportPositionMs,
-  Count
-};
-constexpr uint8_t kKeyCount = static_cast<uint8_t>(Key::Count);
-constexpr uint8_t kKeyNameMax = 19;  // longest key name
 // Longest text form of one value: "-2000000.000" or "-4096,-4096".
 constexpr uint8_t kValueTextMax = 12;
 

@@ -1,34 +1,14 @@
-import { readFileSync } from 'node:fs';
+import { execFileSync } from 'node:child_process';
+import { fileURLToPath } from 'node:url';
 import { expect, it } from 'vitest';
-import { CONFIG_DEFAULTS, CONFIG_RANGES, MAX_STEP_RATE, motionOf, topSpeedUmS, validConfig } from './config';
-import { SimHost } from './sim-host.fixture';
+import { SimHost } from '../sim/sim-host.fixture';
+import { CONFIG_DEFAULTS, MAX_STEP_RATE, motionOf, topSpeedUmS } from './config';
 
-it('firmware/mega/CONFIG.md lists exactly the keys and defaults of the simulated Mega, in order', () => {
-  const doc = readFileSync(new URL('../../../firmware/mega/CONFIG.md', import.meta.url), 'utf8');
-  const rows = doc.split('\n').map((l) => /^\| `([a-z0-9_.]+)` \| [^|]+ \| ([^|]+) \|/.exec(l)).filter((m) => m !== null);
-  expect(rows.map((m) => [m[1], m[2].trim()])).toEqual(Object.entries(CONFIG_DEFAULTS));
-});
+const ROOT = fileURLToPath(new URL('../../..', import.meta.url));
 
-it('has the ranges of firmware/mega/CONFIG.md', () => {
-  const doc = readFileSync(new URL('../../../firmware/mega/CONFIG.md', import.meta.url), 'utf8');
-  const rows = doc.split('\n').map((l) => /^\| `([a-z0-9_.]+)` \| [^|]+ \| [^|]+ \| (-?[\d.]+) to (-?[\d.]+)( whole| each)? \|/.exec(l)).filter((m) => m !== null);
-  const kinds = { ' whole': 'whole', ' each': 'pair', '': 'decimal' } as const;
-  expect(rows.map((m) => [m[1], [Number(m[2]), Number(m[3]), kinds[(m[4] ?? '') as keyof typeof kinds]]])).toEqual(Object.entries(CONFIG_RANGES));
-});
-
-it('takes well-formed values of known keys inside their ranges only', () => {
-  expect(validConfig('accel.x', '0')).toBe(false);
-  expect(validConfig('thermal.limit.0', '60')).toBe(true);
-  expect(validConfig('thermal.limit.0', '60.001')).toBe(false);
-  expect(validConfig('mesh.nx', '4.5')).toBe(false);
-  expect(validConfig('led.offset.0', '0,4097')).toBe(false);
-  expect(validConfig('accel.x', '2500')).toBe(true);
-  expect(validConfig('speed.z', '2.5')).toBe(true);
-  expect(validConfig('led.offset.1', '-1,3')).toBe(true);
-  expect(validConfig('led.offset.1', '3')).toBe(false);
-  expect(validConfig('accel.x', '1,2')).toBe(false);
-  expect(validConfig('accel.x', 'fast')).toBe(false);
-  expect(validConfig('accel.w', '1')).toBe(false);
+it('settings-table.ts, the C++ keys and CONFIG.md are what firmware/mega/settings.toml generates', () => {
+  // scripts/settings.py --check names each generated file that differs, and fails.
+  expect(() => execFileSync('python3', ['scripts/settings.py', '--check'], { cwd: ROOT, encoding: 'utf8', stdio: 'pipe' })).not.toThrow();
 });
 
 it('loads CONFIG.TXT as CONFIG.md says: good lines taken, every other line skipped', () => {
