@@ -222,19 +222,20 @@ export function agreement(ours: Uint8Array, theirs: Uint8Array, cols: number, ro
       const i = r * cols + c;
       const same = ours[i] === theirs[i];
       if (same) a.allAgree++;
-      let edge = false;
-      for (let dr = -1; dr <= 1 && !edge; dr++) {
-        for (let dc = -1; dc <= 1 && !edge; dc++) {
-          const rr = r + dr;
-          const cc = c + dc;
-          if (rr >= 0 && rr < rows && cc >= 0 && cc < cols && theirs[rr * cols + cc] !== theirs[i]) edge = true;
-        }
-      }
-      if (!edge) {
+      if (!onEdge(theirs, cols, rows, r, c)) {
         a.interior++;
         if (same) a.interiorAgree++;
       }
     }
   }
   return a;
+}
+
+/** Whether the cell at row r, column c lies on an edge of a picture: its 3 × 3 neighbourhood is not all one value. */
+export function onEdge(picture: Uint8Array, cols: number, rows: number, r: number, c: number): boolean {
+  const v = picture[r * cols + c];
+  for (let rr = Math.max(0, r - 1); rr <= Math.min(rows - 1, r + 1); rr++) {
+    for (let cc = Math.max(0, c - 1); cc <= Math.min(cols - 1, c + 1); cc++) if (picture[rr * cols + cc] !== v) return true;
+  }
+  return false;
 }
