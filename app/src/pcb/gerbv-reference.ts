@@ -4,7 +4,7 @@ import { existsSync, mkdtempSync, readdirSync, readFileSync, rmSync, writeFileSy
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { gunzipSync, inflateSync } from 'node:zlib';
-import type { Hole } from './plot-to-artwork';
+import type { Hole, Slot } from './plot-to-artwork';
 
 /** Debian's copy of gerbv's example boards (package gerbv). */
 export const EXAMPLES = '/usr/share/doc/gerbv/examples';
@@ -97,6 +97,11 @@ function gerbvTile(path: string, g: Grid): Uint8Array {
  * ("INCH,TZ", X015945Y002469), each tool's diameter in its header. Millimetres here, as ours.
  */
 export function gerbvHoles(path: string): Hole[] {
+  return gerbvDrill(path).holes;
+}
+
+/** gerbv's holes and slots (G85) of a drill file, from its Excellon export. */
+export function gerbvDrill(path: string): { holes: Hole[]; slots: Slot[] } {
   const dir = mkdtempSync(join(tmpdir(), 'gerbv-'));
   try {
     const out = join(dir, 'holes.drl');
@@ -105,7 +110,8 @@ export function gerbvHoles(path: string): Hole[] {
     } catch (e) {
       if (!existsPng(out)) throw e;
     }
-    return readGerbvDrill(readFileSync(out, 'latin1'));
+    const text = readFileSync(out, 'latin1');
+    return { holes: readGerbvDrill(text), slots: readGerbvSlots(text) };
   } finally {
     rmSync(dir, { recursive: true, force: true });
   }
@@ -125,6 +131,22 @@ export function readGerbvDrill(text: string): Hole[] {
     else if ((m = /^X([-+]?[\d.]+)Y([-+]?[\d.]+)$/.exec(line))) holes.push({ x: inch(m[1]), y: inch(m[2]), diameterMm: tools.get(tool) ?? 0 });
   }
   return holes;
+}
+
+/** The slots in gerbv's Excellon export: "X001001Y003903G85X001237Y003903", the tool's diameter from its header. */
+export function readGerbvSlots(text: string): Slot[] {
+  const tools = new Map<string, number>();
+  const slots: Slot[] = [];
+  let tool = '';
+  const inch = (v: string) => (v.includes('.') ? Number(v) : Number(v) / 1e4) * 25.4;
+  for (const line of text.split(/\r?\n/)) {
+    let m: RegExpExecArray | null;
+    if ((m = /^T(\d+)C([\d.]+)/.exec(line))) tools.set(m[1], Number(m[2]) * 25.4);
+    else if ((m = /^T(\d+)$/.exec(line))) tool = m[1];
+    else if ((m = /^X([-+]?[\d.]+)Y([-+]?[\d.]+)G85X([-+]?[\d.]+)Y([-+]?[\d.]+)$/.exec(line)))
+      slots.push({ x0: inch(m[1]), y0: inch(m[2]), x1: inch(m[3]), y1: inch(m[4]), diameterMm: tools.get(tool) ?? 0 });
+  }
+  return slots;
 }
 
 export interface HoleMatch {
