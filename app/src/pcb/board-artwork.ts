@@ -43,7 +43,7 @@ export function markLayer(marks: BoardLook['marks'], window: BoxMm): BoardLayer 
     const box = { x0: cx - R, y0: cy - R, x1: cx + R, y1: cy + R };
     return { shape: { kind: 'stack', parts: [{ shape: { kind: 'circle', cx, cy, r: R }, clear: false }, { shape: { kind: 'circle', cx, cy, r }, clear: true }] }, clear: false, box };
   });
-  return { file: MARKS_FILE, kind: 'other', kindFrom: 'none', format: 'gerber', units: 'mm', boundsMm: paints.reduce((b, p) => unionBox(b, p.box), EMPTY_BOX), paints, holes: [], notes: [] };
+  return { file: MARKS_FILE, kind: 'other', kindFrom: 'none', format: 'gerber', units: 'mm', boundsMm: paints.reduce((b, p) => unionBox(b, p.box), EMPTY_BOX), paints, holes: [], slots: [], notes: [] };
 }
 
 export interface BoardArtwork {

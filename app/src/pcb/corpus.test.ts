@@ -74,25 +74,33 @@ describe('the corpus of real boards', () => {
       const file = copperFile(truth, 'top')!;
       const top = layer(file);
       expect(top, `${file} was not read`).toBeDefined();
-      const a = copperAgainstGerbv(set, top!, board.path(file), PITCH_UM);
+      const a = copperAgainstGerbv(set, top!, board.path(file), PITCH_UM, MIN_AGREEMENT);
       const all = a.allAgree / a.all;
       const notches = a.acrossOurEdge ? ` (${a.acrossOurEdge} off gerbv's edges but on ours)` : '';
-      results.push(`  ${board.name.padEnd(24)} ${`${a.cols} × ${a.rows}`.padStart(11)} cells  ${pct(all).padStart(8)} agree, ${a.unexplained} differ away from any edge${notches}`);
+      const moved = a.shifted ? ', gerbv moved ¼ cell' : '';
+      results.push(`  ${board.name.padEnd(24)} ${`${a.cols} × ${a.rows}`.padStart(11)} cells  ${pct(all).padStart(8)} agree, ${a.unexplained} differ away from any edge${notches}${moved}`);
       expect(all, `${pct(all)} of cells agree`).toBeGreaterThanOrEqual(MIN_AGREEMENT);
       // Every difference lies on an edge: gerbv's, or one of the artwork's crossing the cell (gerbv fills or drops a notch narrower than a pixel).
       expect(a.unexplained, 'cells that differ away from gerbv’s edges and the artwork’s').toBe(0);
     }, 120_000);
 
     it('reads the holes as gerbv does', () => {
-      const { ours, theirs, match } = holesAgainstGerbv(set, board.path, HOLE_TOLERANCE_MM, DIAMETER_TOLERANCE_MM);
+      const { ours, theirs, match, slots } = holesAgainstGerbv(set, board.path, HOLE_TOLERANCE_MM, DIAMETER_TOLERANCE_MM);
       const misread = truth.holes.gerbvMisreads ?? 0;
       const alike = misread ? `alike ${match.matched} (gerbv misplaces ${misread} off the pads)` : `alike ${match.matched}, furthest ${(match.worstMm * 1000).toFixed(1)} µm`;
-      results.push(`  ${board.name.padEnd(24)} holes: gerbv ${theirs.length}, ours ${ours.length}, ${alike}`);
+      const slotsSaid = slots.theirs.length || slots.ours.length ? `; slots: gerbv ${slots.theirs.length}, ours ${slots.ours.length}, alike ${slots.matched}` : '';
+      results.push(`  ${board.name.padEnd(24)} holes: gerbv ${theirs.length}, ours ${ours.length}, ${alike}${slotsSaid}`);
       expect(theirs).toHaveLength(truth.holes.count);
       expect(ours).toHaveLength(truth.holes.count);
       expect(match.matched, 'holes where gerbv has one').toBe(truth.holes.count - misread);
       expect(match.diametersDiffering).toEqual([]);
       expect(holesBySize(ours, Object.keys(truth.holes.diametersMm), LISTED_DIAMETER_TOLERANCE_MM), 'holes of each diameter').toEqual(truth.holes.diametersMm);
+      // Slots (G85): each of gerbv's has one of ours with both ends and the diameter alike, and truth's count of each diameter.
+      const slotCount = truth.slots?.count ?? 0;
+      expect(slots.theirs, 'gerbv’s slots').toHaveLength(slotCount);
+      expect(slots.ours, 'our slots').toHaveLength(slotCount);
+      expect(slots.matched, 'slots where gerbv has one').toBe(slotCount);
+      if (truth.slots) expect(holesBySize(slots.ours, Object.keys(truth.slots.diametersMm), LISTED_DIAMETER_TOLERANCE_MM), 'slots of each diameter').toEqual(truth.slots.diametersMm);
       if (misread) {
         // gerbv misplaces some holes of this file: ours must all lie on pads, where gerbv's misread ones do not.
         const copper = layer(copperFile(truth, 'top')!)!;

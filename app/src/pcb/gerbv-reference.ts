@@ -4,7 +4,7 @@ import { existsSync, mkdtempSync, readdirSync, readFileSync, rmSync, writeFileSy
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { gunzipSync, inflateSync } from 'node:zlib';
-import type { Hole } from './plot-to-artwork';
+import type { Hole, Slot } from './plot-to-artwork';
 
 /** Debian's copy of gerbv's example boards (package gerbv). */
 export const EXAMPLES = '/usr/share/doc/gerbv/examples';
@@ -97,6 +97,11 @@ function gerbvTile(path: string, g: Grid): Uint8Array {
  * ("INCH,TZ", X015945Y002469), each tool's diameter in its header. Millimetres here, as ours.
  */
 export function gerbvHoles(path: string): Hole[] {
+  return gerbvDrill(path).holes;
+}
+
+/** gerbv's holes and slots (G85) of a drill file, from its Excellon export. */
+export function gerbvDrill(path: string): { holes: Hole[]; slots: Slot[] } {
   const dir = mkdtempSync(join(tmpdir(), 'gerbv-'));
   try {
     const out = join(dir, 'holes.drl');
@@ -105,7 +110,8 @@ export function gerbvHoles(path: string): Hole[] {
     } catch (e) {
       if (!existsPng(out)) throw e;
     }
-    return readGerbvDrill(readFileSync(out, 'latin1'));
+    const text = readFileSync(out, 'latin1');
+    return { holes: readGerbvDrill(text), slots: readGerbvSlots(text) };
   } finally {
     rmSync(dir, { recursive: true, force: true });
   }
@@ -125,6 +131,22 @@ export function readGerbvDrill(text: string): Hole[] {
     else if ((m = /^X([-+]?[\d.]+)Y([-+]?[\d.]+)$/.exec(line))) holes.push({ x: inch(m[1]), y: inch(m[2]), diameterMm: tools.get(tool) ?? 0 });
   }
   return holes;
+}
+
+/** The slots in gerbv's Excellon export: "X001001Y003903G85X001237Y003903", the tool's diameter from its header. */
+export function readGerbvSlots(text: string): Slot[] {
+  const tools = new Map<string, number>();
+  const slots: Slot[] = [];
+  let tool = '';
+  const inch = (v: string) => (v.includes('.') ? Number(v) : Number(v) / 1e4) * 25.4;
+  for (const line of text.split(/\r?\n/)) {
+    let m: RegExpExecArray | null;
+    if ((m = /^T(\d+)C([\d.]+)/.exec(line))) tools.set(m[1], Number(m[2]) * 25.4);
+    else if ((m = /^T(\d+)$/.exec(line))) tool = m[1];
+    else if ((m = /^X([-+]?[\d.]+)Y([-+]?[\d.]+)G85X([-+]?[\d.]+)Y([-+]?[\d.]+)$/.exec(line)))
+      slots.push({ x0: inch(m[1]), y0: inch(m[2]), x1: inch(m[3]), y1: inch(m[4]), diameterMm: tools.get(tool) ?? 0 });
+  }
+  return slots;
 }
 
 export interface HoleMatch {
@@ -222,19 +244,20 @@ export function agreement(ours: Uint8Array, theirs: Uint8Array, cols: number, ro
       const i = r * cols + c;
       const same = ours[i] === theirs[i];
       if (same) a.allAgree++;
-      let edge = false;
-      for (let dr = -1; dr <= 1 && !edge; dr++) {
-        for (let dc = -1; dc <= 1 && !edge; dc++) {
-          const rr = r + dr;
-          const cc = c + dc;
-          if (rr >= 0 && rr < rows && cc >= 0 && cc < cols && theirs[rr * cols + cc] !== theirs[i]) edge = true;
-        }
-      }
-      if (!edge) {
+      if (!onEdge(theirs, cols, rows, r, c)) {
         a.interior++;
         if (same) a.interiorAgree++;
       }
     }
   }
   return a;
+}
+
+/** Whether the cell at row r, column c lies on an edge of a picture: its 3 × 3 neighbourhood is not all one value. */
+export function onEdge(picture: Uint8Array, cols: number, rows: number, r: number, c: number): boolean {
+  const v = picture[r * cols + c];
+  for (let rr = Math.max(0, r - 1); rr <= Math.min(rows - 1, r + 1); rr++) {
+    for (let cc = Math.max(0, c - 1); cc <= Math.min(cols - 1, c + 1); cc++) if (picture[rr * cols + cc] !== v) return true;
+  }
+  return false;
 }

@@ -2,6 +2,7 @@
 // the comments old CAD tools write (gEDA's title, Veribest's layer name), and, failing those, whether it
 // draws as copper does (pads flashed and tracks drawn between them).
 import { guessLayerKinds, type LayerKind } from './layer-kind';
+import { padsKinds } from './pads-names';
 import type { PlotObject } from './tracespace';
 
 /** How a kind was found, strongest first. 'content': from what the file is (Excellon) or draws (copper's pads and tracks). */
@@ -118,8 +119,8 @@ const stem = (name: string) => name.replace(/\.[^.]*$/, '');
 /**
  * Every file's kind and how it was found: its X2 attribute; the layer its CAD tool names in its head (%LN,
  * "G04 Layer:"): what a file says of itself beats what it is called ("top.grb" whose head says "top silk");
- * a drawing named as such; whats-that-gerber's reading of the whole set's names (KiCad, Protel, Altium,
- * Eagle, OrCAD extensions); the name's words.
+ * a drawing named as such; PADS's CAM names (art001.pho, sm001021.pho); whats-that-gerber's reading of the
+ * whole set's names (KiCad, Protel, Altium, Eagle, OrCAD extensions); the name's words.
  */
 export function guessKinds(files: readonly { name: string; text: string }[]): KindGuess[] {
   let byName: LayerKind[];
@@ -128,12 +129,15 @@ export function guessKinds(files: readonly { name: string; text: string }[]): Ki
   } catch {
     byName = files.map(() => 'other'); // a name whats-that-gerber chokes on says nothing about the file
   }
+  const pads = padsKinds(files.map((f) => f.name));
   return files.map((f, i) => {
     const attribute = kindFromAttributes(f.text);
     if (attribute) return { kind: attribute, from: 'attribute' };
     const comment = kindFromComments(f.text);
     if (comment) return { kind: comment, from: 'comment' };
     if (isDrawingName(f.name)) return { kind: 'other', from: 'name' };
+    const padsKind = pads[i];
+    if (padsKind) return { kind: padsKind, from: 'name' };
     if (byName[i] !== 'other') return { kind: byName[i], from: 'name' };
     const words = kindFromWords(stem(f.name));
     if (words) return { kind: words, from: 'name' };

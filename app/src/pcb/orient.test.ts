@@ -54,4 +54,17 @@ describe('orienting a board before rasterising', () => {
     expect(r.cells[mid]).toBe(0);
     expect(r.cells[mid + 8]).toBe(1);
   });
+
+  it('turns drilled slots with the copper, so the dot runs along the slot', () => {
+    // A 4 × 1.6 mm pad with a slot from (2, 1) to (4, 1); turned a quarter, the dot runs up the window's middle.
+    const drill = 'M48\nMETRIC\nT1C0.8\n%\nT1\nX2.0Y1.0G85X4.0Y1.0\nM30\n';
+    const pad = gerber(`%ADD10R,4X1.6*%\nD10*\n${at(3, 1)}D03*`);
+    const set = { layers: [...boardOf(pad, 'b-F_Cu.gbr').layers, ...boardOf(drill, 'b.drl').layers], problems: [], notes: [] };
+    const r = rasteriseBoard(set, { expose: ['copper-top'], pitchUm: { x: 50, y: 50 }, threshold: 0.5, drillClear: 'unexposed-dot', drillDotMm: 0.3, orient: { rotateDeg: 90 } });
+    expect([r.cols, r.rows]).toEqual([32, 80]);
+    const midCol = (row: number) => r.cells[row * r.cols + 16];
+    // Down the middle column: copper at the pad's ends, the dot from 1 mm to 3 mm along it (rows 20 to 60, the dot's round ends beyond).
+    expect([5, 15, 20, 40, 59, 65, 75].map(midCol)).toEqual([1, 1, 0, 0, 0, 1, 1]);
+    expect(r.cells[40 * r.cols + 4]).toBe(1); // beside the dot
+  });
 });

@@ -30,8 +30,13 @@ export function orientLayer(l: BoardLayer, o: Orientation): BoardLayer {
     const [x, y] = map(h.x, h.y);
     return { x, y, diameterMm: h.diameterMm };
   });
+  const slots = l.slots.map((s) => {
+    const [x0, y0] = map(s.x0, s.y0);
+    const [x1, y1] = map(s.x1, s.y1);
+    return { x0, y0, x1, y1, diameterMm: s.diameterMm };
+  });
   const boundsMm = paints.reduce((b, p) => (p.clear ? b : unionBox(b, p.box)), EMPTY_BOX);
-  return { ...l, paints, holes, boundsMm, ...(l.lineBoundsMm && { lineBoundsMm: orientBox(l.lineBoundsMm, o) }) };
+  return { ...l, paints, holes, slots, boundsMm, ...(l.lineBoundsMm && { lineBoundsMm: orientBox(l.lineBoundsMm, o) }) };
 }
 
 export function orientBox(b: BoxMm, o: Orientation): BoxMm {

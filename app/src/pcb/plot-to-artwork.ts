@@ -23,9 +23,23 @@ export interface Hole {
   diameterMm: number;
 }
 
+/**
+ * A slot a drill file cuts along a straight run with one tool (Excellon's G85 between two holes, or a
+ * routed path): its ends and the tool's diameter. A routed arc comes as chords along it.
+ */
+export interface Slot {
+  x0: number;
+  y0: number;
+  x1: number;
+  y1: number;
+  diameterMm: number;
+}
+
 export interface Artwork {
   paints: Paint[];
   holes: Hole[];
+  /** The slots of a drill file (drawn in paints too, as strokes the tool's width). Empty for other files. */
+  slots: Slot[];
   /** What the dark paints cover; EMPTY_BOX when nothing is drawn. */
   boundsMm: BoxMm;
   /** The same with draws taken by their centre lines: an outline's board edge, whatever width it is drawn with. */
@@ -50,6 +64,7 @@ export function plotToArtwork(plot: Plot, arcSlackMm = ARC_MISMATCH_MM): Artwork
   const diameters = new Map<string, number>();
   const paints: Paint[] = [];
   const holes: Hole[] = [];
+  const slots: Slot[] = [];
   const unknownTools = new Set<string>();
   const shapelessTools = new Set<string>();
   let malformed = 0;
@@ -112,6 +127,7 @@ export function plotToArtwork(plot: Plot, arcSlackMm = ARC_MISMATCH_MM): Artwork
         impossibleArcs += o.path.filter((s) => arcMismatch(s) * k > arcSlackMm).length;
         const r = hair ? HAIRLINE_MM / 2 : (o.width / 2) * k;
         for (const s of strokeShapes(o.path, r, k)) add(s, { r, hair });
+        if (plot.filetype === 'drill') slots.push(...slotRuns(o.path, o.width * k, k));
         break;
       }
       case 'fill':
@@ -141,7 +157,7 @@ export function plotToArtwork(plot: Plot, arcSlackMm = ARC_MISMATCH_MM): Artwork
     boundsMm = unionBox(boundsMm, line?.hair ? centre(p, line.r) : p.box);
     lineBoundsMm = unionBox(lineBoundsMm, line ? centre(p, line.r) : p.box);
   }
-  return { paints, holes, boundsMm, lineBoundsMm, unknownTools: [...unknownTools], shapelessTools: [...shapelessTools], malformed, hairlines, impossibleArcs };
+  return { paints, holes, slots, boundsMm, lineBoundsMm, unknownTools: [...unknownTools], shapelessTools: [...shapelessTools], malformed, hairlines, impossibleArcs };
 }
 
 /**
@@ -241,4 +257,15 @@ function contours(path: Segment[], k: number): Float64Array[] {
   }
   close();
   return rings;
+}
+
+/** A drill file's stroke (a G85 slot, a routed path) as straight runs of the tool, in mm; arcs as chords. */
+function slotRuns(path: readonly Segment[], diameterMm: number, k: number): Slot[] {
+  const runs: Slot[] = [];
+  for (const s of path) {
+    const points = [s.start[0] * k, s.start[1] * k];
+    segmentPoints(s, k, points);
+    for (let i = 2; i < points.length; i += 2) runs.push({ x0: points[i - 2], y0: points[i - 1], x1: points[i], y1: points[i + 1], diameterMm });
+  }
+  return runs;
 }

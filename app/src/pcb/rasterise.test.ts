@@ -296,3 +296,51 @@ describe('drill holes in copper', () => {
     expect(count(outline)).toBe(count(rasteriseBoard(set, opts('none', ['drill']))));
   });
 });
+
+describe('drilled slots in copper (Excellon G85, as EasyEDA writes them)', () => {
+  // A 4 × 1.6 mm pad at (1..5, 0.2..1.8), with a 0.8 mm slot drilled through it from (2, 1) to (4, 1),
+  // in EasyEDA's 3.3 millimetre format with leading zeros and signs.
+  const copper = gerber(`%ADD10R,4X1.6*%\nD10*\n${at(3, 1)}D03*`);
+  const drill = 'M48\nMETRIC,LZ,000.000\nT02C0.800\n%\nG05\nG90\nT02\nX+002000Y+001000G85X+004000Y+001000\nM30\n';
+  const set = readBoard([
+    { name: 'Gerber_TopLayer.GTL', text: copper },
+    { name: 'Gerber_Drill_PTH.DRL', text: drill },
+  ]);
+  const opts = (drillClear: RasteriseOptions['drillClear'], drillDotMm?: number): RasteriseOptions => ({
+    expose: ['copper-top'],
+    pitchUm: { x: 50, y: 50 },
+    threshold: 0.5,
+    drillClear,
+    drillDotMm,
+    windowMm: { x0: 0, y0: 0, x1: 6, y1: 2 },
+  });
+
+  it('reads the slot: its two ends and its tool, no hole', () => {
+    const drillLayer = set.layers.find((l) => l.kind === 'drill')!;
+    expect(drillLayer.holes).toEqual([]);
+    expect(drillLayer.slots).toHaveLength(1);
+    const [slot] = drillLayer.slots;
+    expect([slot.x0, slot.y0, slot.x1, slot.y1, slot.diameterMm].map((v) => +v.toFixed(6))).toEqual([2, 1, 4, 1, 0.8]);
+    expect(set.problems).toEqual([]);
+  });
+
+  it('reads a routed path as slots too: a straight run, and an arc as chords on it', () => {
+    const routed = 'M48\nMETRIC\nT1C1.0\n%\nT1\nG00X1.0Y1.0\nM15\nG01X3.0Y1.0\nG03X4.0Y0.0I1.0J0.0\nM16\nG05\nM30\n';
+    const [layer] = readBoard([{ name: 'route.drl', text: routed }]).layers;
+    expect(layer.slots[0]).toEqual({ x0: 1, y0: 1, x1: 3, y1: 1, diameterMm: 1 });
+    const arc = layer.slots.slice(1);
+    expect(arc.length).toBeGreaterThan(4);
+    for (const s of arc) expect(Math.hypot(s.x1 - 4, s.y1 - 1)).toBeCloseTo(1, 6);
+    expect([arc.at(-1)!.x1, arc.at(-1)!.y1].map((v) => +v.toFixed(6))).toEqual([4, 0]);
+  });
+
+  it('clears the dot along the slot, from one end to the other', () => {
+    const plain = rasteriseBoard(set, opts('none'));
+    // A 0.3 mm dot drawn along the 2 mm slot: a 2 × 0.3 mm band and a round end at each end.
+    const dotted = rasteriseBoard(set, opts('unexposed-dot', 0.3));
+    expect(coveredArea(plain) - coveredArea(dotted)).toBeCloseTo(2 * 0.3 + Math.PI * 0.15 * 0.15, 3);
+    // By default as wide as the slot's tool, up to 0.4 mm.
+    const byTool = rasteriseBoard(set, opts('unexposed-dot'));
+    expect(coveredArea(plain) - coveredArea(byTool)).toBeCloseTo(2 * 0.4 + Math.PI * 0.2 * 0.2, 3);
+  });
+});

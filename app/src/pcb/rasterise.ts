@@ -6,7 +6,7 @@
 // of the cell (3.3 %), and arcs are chords within 0.1 µm. With an odd count the middle line runs through the
 // cell's centre, so at a 50 % threshold a horizontal edge decides a cell exactly as a vertical one does.
 // protocol/artwork.md says what this means for a feature's width in cells.
-import { isEmptyBox, unionBox, EMPTY_BOX, type BoxMm, type Paint } from './artwork';
+import { isEmptyBox, paint, unionBox, EMPTY_BOX, type BoxMm, type Paint } from './artwork';
 import { Intervals, subtract, union, unionAll } from './intervals';
 import { isCopper } from './layer-kind';
 import type { BoardLayer, BoardSet } from './read-board';
@@ -145,16 +145,20 @@ export function rasteriseBoard(board: BoardSet, opts: RasteriseOptions): BoardRa
   return { cols, rows, cells, coverage, windowMm };
 }
 
-/** Dots of the given diameter at the holes of every drill layer, exposed or not. */
+/**
+ * Dots of the given diameter at the holes of every drill layer, exposed or not; along a slot, the dot drawn
+ * from one end to the other (a stroke the dot's width).
+ */
 function drillDots(layers: readonly BoardLayer[], diameterMm: number | undefined): Paint[] {
-  return layers
-    .filter((l) => l.kind === 'drill')
-    .flatMap((l) => l.holes)
-    .map((h) => {
-      // A hole of a tool the file never sized (0) gets the widest dot.
-      const r = (diameterMm ?? (h.diameterMm > 0 ? Math.min(h.diameterMm, DEFAULT_DRILL_DOT_MM) : DEFAULT_DRILL_DOT_MM)) / 2;
-      return { shape: { kind: 'circle', cx: h.x, cy: h.y, r }, clear: false, box: { x0: h.x - r, y0: h.y - r, x1: h.x + r, y1: h.y + r } };
-    });
+  // A hole of a tool the file never sized (0) gets the widest dot.
+  const radius = (hole: number) => (diameterMm ?? (hole > 0 ? Math.min(hole, DEFAULT_DRILL_DOT_MM) : DEFAULT_DRILL_DOT_MM)) / 2;
+  const drills = layers.filter((l) => l.kind === 'drill');
+  const holes = drills.flatMap((l) => l.holes).map((h): Paint => {
+    const r = radius(h.diameterMm);
+    return { shape: { kind: 'circle', cx: h.x, cy: h.y, r }, clear: false, box: { x0: h.x - r, y0: h.y - r, x1: h.x + r, y1: h.y + r } };
+  });
+  const slots = drills.flatMap((l) => l.slots).map((s) => paint({ kind: 'stadium', x0: s.x0, y0: s.y0, x1: s.x1, y1: s.y1, r: radius(s.diameterMm) }, false));
+  return [...holes, ...slots];
 }
 
 function compile(paints: readonly Paint[], g: { top: number; py: number; rows: number; left: number; right: number }): Compiled {

@@ -2,7 +2,7 @@
 import { isEmptyBox, type BoxMm, type Paint } from './artwork';
 import { drawingMix, guessKinds, looksLikeCopper, type KindGuess, type KindSource } from './layer-content';
 import { isCopper, type LayerKind } from './layer-kind';
-import { ARC_MISMATCH_MM, HAIRLINE_MM, plotToArtwork, type Hole } from './plot-to-artwork';
+import { ARC_MISMATCH_MM, HAIRLINE_MM, plotToArtwork, type Hole, type Slot } from './plot-to-artwork';
 import { fileType, plotFile, zeroSetOffset, type LibraryWarning, type PlotObject, type Units } from './tracespace';
 
 export interface BoardLayer {
@@ -22,6 +22,8 @@ export interface BoardLayer {
   paints: Paint[];
   /** Flash centres of a drill file: the holes. Empty for other files. */
   holes: Hole[];
+  /** A drill file's slots (G85, routed paths), each a straight run of its tool. Empty for other files. */
+  slots: Slot[];
   /** The library's remarks that change nothing drawn (deprecated commands, assumed formats), with line numbers. */
   notes: string[];
 }
@@ -183,6 +185,7 @@ function readLayer(f: BoardFile, guess: KindGuess, problem: (message: string) =>
       lineBoundsMm: art.lineBoundsMm,
       paints: art.paints,
       holes: art.holes,
+      slots: art.slots,
       notes,
     };
     const flashes = format === 'gerber' ? flashPlaces(plot.objects, plot.units === 'in' ? 25.4 : 1) : new Float64Array(0);
