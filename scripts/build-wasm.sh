@@ -16,7 +16,7 @@ exec 9>"$out/.lock"
 flock 9
 srcs=(firmware/common/protocol/src/*.cpp firmware/common/planner/src/*.cpp firmware/mega/src/*.cpp
   firmware/nano/src/fire_plan.cpp firmware/nano/src/thermal_guard.cpp firmware/nano/src/printhead.cpp
-  firmware/nano/src/scan_store.cpp firmware/wasm/printer_module.cpp)
+  firmware/nano/src/scan_store.cpp firmware/nano/src/dose_tally.cpp firmware/wasm/printer_module.cpp)
 flags=(--target=wasm32-wasi --sysroot=/usr -isystem /usr/include/wasm32-wasi/c++/v1 -isystem /usr/include/wasm32-wasi
   -O2 -std=c++17 -fno-exceptions -Wall -Wextra -Wno-missing-field-initializers
   -Ifirmware/common/protocol/src -Ifirmware/common/planner/src -Ifirmware/mega/src -Ifirmware/nano/src)

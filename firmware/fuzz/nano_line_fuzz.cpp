@@ -39,6 +39,7 @@ struct Io : nano::PrintheadIo {
   }
   uint8_t litMask() const override { return lit; }
   uint32_t clockLineUs() override { return 0; }
+  bool takeCut(int32_t&) override { return false; }  // cuts are not modelled here: no dose record is checked
   void servoPulse(uint16_t us) override { FUZZ_REQUIRE(us >= 500 && us <= 2500, "a servo pulse no CR Touch takes"); }
   bool probeTriggered() override { return false; }
   void reply(const char* t, uint8_t n) override { out.append(t, n); }

@@ -28,6 +28,7 @@ struct Board : nano::PrintheadIo {
   }
   uint8_t litMask() const override { return lit; }
   uint32_t clockLineUs() override { return 0; }
+  bool takeCut(int32_t&) override { return false; }  // cuts are not modelled here: no dose record is checked
   bool startProgram(nano::ScanStore& s) override {
     chain = &s;
     for (uint32_t& t : on) t = 0;

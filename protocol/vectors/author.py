@@ -64,6 +64,8 @@ nano_commands = [
     {"line": "C\n", "command": {"op": "C"}, "flash": "dim_white"},
     {"line": "G\n", "command": {"op": "G"}, "flash": "purple"},
     {"line": "Q\n", "command": {"op": "Q"}, "flash": "dim_white"},
+    # O: the oldest dose record not yet reported (nano.md "Dose records").
+    {"line": "O\n", "command": {"op": "O"}, "flash": "dim_white"},
     {"line": "W\n", "command": {"op": "W"}, "flash": "dim_white"},
     # L: the link speed, 115200 (power-on) or one exact at 16 MHz with U2X (nano.md "Link speed").
     {"line": "L:1000000\n", "command": {"op": "L", "baud": 1000000}, "flash": "dim_white"},
@@ -82,6 +84,7 @@ nano_malformed = [
     {"line": "Z\n", "why": "unknown command"},
     {"line": "G1\n", "why": "trailing characters after G"},
     {"line": "W:1\n", "why": "W takes nothing"},
+    {"line": "O:1\n", "why": "O takes nothing"},
     {"line": "S1\n", "why": "trailing characters"},
     {"line": "S \n", "why": "trailing space"},
     {"line": "F:16,1,1,1,1\n", "why": "mask over 15"},
@@ -136,6 +139,13 @@ nano_replies = [
     # L: the Nano took the speed; both sides change once this reply has gone out (nano.md "Link speed").
     {"line": "L:1000000\n", "reply": {"op": "L", "baud": 1000000}},
     {"line": "L:115200\n", "reply": {"op": "L", "baud": 115200}},
+    # O: a dose record (exposure number, program in its chain, each LED's on-time in µs), or O:0 for none.
+    {"line": "O:0\n", "reply": {"op": "O", "exposure": 0}},
+    {"line": "O:1,0,1500,0,0,1500\n", "reply": {"op": "O", "exposure": 1, "program": 0, "onUs": [1500, 0, 0, 1500]}},
+    {"line": "O:17,3,40210,39988,0,2\n", "reply": {"op": "O", "exposure": 17, "program": 3, "onUs": [40210, 39988, 0, 2]}},
+    # The longest reply of the link: 62 bytes before its newline.
+    {"line": "O:4294967295,65535,4294967295,4294967295,4294967295,4294967295\n",
+     "reply": {"op": "O", "exposure": 4294967295, "program": 65535, "onUs": [4294967295] * 4}},
 ]
 nano_bad_replies = [
     {"line": "S:16\n"}, {"line": "S:\n"}, {"line": "S15\n"}, {"line": "P:2\n"},
@@ -149,6 +159,10 @@ nano_bad_replies = [
     {"line": "C:65536,0,1\n"}, {"line": "C:1,4294967296,1\n"}, {"line": "C:1,2,3\n"}, {"line": "C:1,2\n"}, {"line": "C:1,2,1,0\n"},
     # L: a speed not in the table is refused, as the Nano refuses it.
     {"line": "L:\n"}, {"line": "L:9600\n"}, {"line": "L:4295467296\n"}, {"line": "L:1000000,1\n"},
+    # O: exposure 0 carries no record; every number in range and in place, never wrapped.
+    {"line": "O:\n"}, {"line": "O:0,0,0,0,0,0\n"}, {"line": "O:1\n"}, {"line": "O:1,0,1,2,3\n"},
+    {"line": "O:1,0,1,2,3,4,5\n"}, {"line": "O:1,65536,0,0,0,0\n"}, {"line": "O:4294967296,0,0,0,0,0\n"},
+    {"line": "O:1,0,0,0,0,4294967296\n"}, {"line": "O:1,0,0,-1,0,0\n"}, {"line": "O:1,0,0,,0,0\n"},
 ]
 nano_streams = [
     {"name": "lines split anywhere", "bytes": "S\nT\r\n\nP\n", "lines": ["S", "T", "P"], "dropped": 0},

@@ -8,7 +8,7 @@ export const LED_COUNT = 4;
 export const SENSOR_COUNT = 6;
 
 export type NanoCommand =
-  | { op: 'S' | 'D' | 'U' | 'X' | 'P' | 'T' | 'R' | 'E' | 'V' | 'C' | 'G' | 'Q' | 'W' }
+  | { op: 'S' | 'D' | 'U' | 'X' | 'P' | 'T' | 'R' | 'E' | 'V' | 'C' | 'G' | 'Q' | 'W' | 'O' }
   | { op: 'F'; mask: number; durations: [number, number, number, number] }
   /** Link speed: both sides take `baud` once the Nano's `L` reply has gone out (protocol/nano.md "Link speed"). */
   | { op: 'L'; baud: number };
@@ -33,7 +33,11 @@ export type NanoReply =
   /** The Nano's micros() when the W's newline arrived: the Mega measures the Nano's clock by it. */
   | { op: 'W'; us: number }
   /** The speed both sides take once this reply has gone out. */
-  | { op: 'L'; baud: number };
+  | { op: 'L'; baud: number }
+  /** No dose record waits (protocol/nano.md "Dose records"). */
+  | { op: 'O'; exposure: 0 }
+  /** A dose record: the exposure's number (as C counts it), the program's place in its chain (0 for an F), each LED's on-time in µs. */
+  | { op: 'O'; exposure: number; program: number; onUs: [number, number, number, number] };
 
 export type Colour = 'green' | 'dim_white' | 'purple' | 'cyan' | 'orange' | 'red';
 
@@ -60,7 +64,7 @@ export const FAULT = {
 const FLASH: Record<NanoCommand['op'], Colour> = {
   S: 'dim_white', T: 'dim_white', E: 'dim_white', V: 'dim_white', C: 'dim_white',
   F: 'purple', D: 'cyan', U: 'cyan', X: 'cyan', P: 'cyan', R: 'orange',
-  G: 'purple', Q: 'dim_white', W: 'dim_white', L: 'dim_white',
+  G: 'purple', Q: 'dim_white', W: 'dim_white', L: 'dim_white', O: 'dim_white',
 };
 
 export function flashColour(op: NanoCommand['op']): Colour {
@@ -83,7 +87,7 @@ export function nanoLineUsable(line: SplitLine): boolean {
 
 /** Parses one line (without terminator). null = malformed: the Nano drops it. */
 export function parseNanoCommand(line: string): NanoCommand | null {
-  if (line.length === 1 && 'SDUXPTREVCGQW'.includes(line)) {
+  if (line.length === 1 && 'SDUXPTREVCGQWO'.includes(line)) {
     return { op: line as 'S' };
   }
   if (line.startsWith('L:')) {
@@ -141,6 +145,16 @@ export function formatNanoReply(r: NanoReply): string {
     case 'Q': return `Q:${r.free},${r.armed},${r.pass}\n`;
     case 'W': return `W:${r.us}\n`;
     case 'L': return `L:${r.baud}\n`;
+    case 'O': {
+      if (r.exposure === 0) return 'O:0\n';
+      const rec = r as Extract<NanoReply, { program: number }>;
+      const u32 = (v: number) => Number.isInteger(v) && v >= 0 && v <= U32_MAX;
+      // Out of range is refused, never wrapped (as the C++ codec's fields cannot hold it).
+      if (!u32(rec.exposure) || !Number.isInteger(rec.program) || rec.program < 0 || rec.program > 65535 || !rec.onUs.every(u32)) {
+        throw new RangeError(`O out of range: ${rec.exposure},${rec.program},${rec.onUs.join(',')}`);
+      }
+      return `O:${rec.exposure},${rec.program},${rec.onUs.join(',')}\n`;
+    }
   }
 }
 
@@ -148,7 +162,7 @@ export function formatNanoReply(r: NanoReply): string {
 export function parseNanoReply(raw: string): NanoReply | null {
   if (!raw.endsWith('\n')) return null;
   const line = raw.slice(0, -1);
-  const m = /^([SPTEVCKQWL]):(.*)$/.exec(line);
+  const m = /^([SPTEVCKQWLO]):(.*)$/.exec(line);
   if (!m) return null;
   const body = m[2];
   switch (m[1]) {
@@ -190,6 +204,16 @@ export function parseNanoReply(raw: string): NanoReply | null {
     case 'L': {
       const baud = parseU32(body);
       return baud !== null && NANO_LINK_BAUDS.includes(baud) ? { op: 'L', baud } : null;
+    }
+    case 'O': {
+      const fields = body.split(',');
+      const exposure = parseU32(fields[0]);
+      if (exposure === 0) return fields.length === 1 ? { op: 'O', exposure: 0 } : null;
+      if (exposure === null || fields.length !== 6) return null;
+      const program = /^[0-9]{1,5}$/.test(fields[1]) ? Number(fields[1]) : -1;
+      const onUs = fields.slice(2).map(parseU32);
+      if (program < 0 || program > 65535 || onUs.some((v) => v === null)) return null;
+      return { op: 'O', exposure, program, onUs: onUs as [number, number, number, number] };
     }
   }
   return null;

@@ -254,7 +254,18 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
     lit_ = static_cast<uint8_t>(lit_ & ~(1 << i));
     if (logging && !exposures.empty()) exposures.back().litUs[i] = static_cast<uint32_t>(atUs - startAt_);
   }
+  // A cut, as the board's timer notes it for the dose records: after the chain's last event, or the F's on-edge.
+  bool takeCut(int32_t& ticks) override {
+    ticks = cutTicks_;
+    bool was = cut_;
+    cut_ = false;
+    return was;
+  }
   void allOff() override {
+    if (program_ || lit_) {
+      cut_ = true;
+      cutTicks_ = static_cast<int32_t>((static_cast<int64_t>(nowUs) - static_cast<int64_t>(program_ ? madeAt_ : startAt_)) * nano::kTicksPerUs);
+    }
     if (program_) {
       setLit(0, nowUs);  // a chain cut: its light ends now
       program_ = nullptr;
@@ -269,6 +280,7 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
     program_ = &store;
     chainAt_ = nowUs;
     chainUs_ = uv::kProgramStartLeadUs;
+    madeAt_ = chainAt_ + uv::kProgramStartLeadUs;  // time 0
     return takeEvent();
   }
   bool takeEvent() {
@@ -287,6 +299,7 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
   void runProgram() {
     while (program_ && !stuck && nowUs >= eventAt_) {
       setLit(nextMask_, eventAt_);
+      madeAt_ = eventAt_;
       takeEvent();
     }
   }
@@ -319,6 +332,9 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
   nano::PrintheadConfig config_{10000000, {{600, 600, 600, 600, 600, 600}, 50, 100, 1750}, "0.1.0"};
   nano::Printhead head_;
   char line_[uv::kNanoMaxLine + 2];
+  bool cut_ = false;           // takeCut(): a cut since the last call, and when
+  int32_t cutTicks_ = 0;
+  uint64_t madeAt_ = 0;        // when the chain's last event (or its time 0) was made
   uv::LineSplitter splitter_;
   std::deque<WireByte> toNano_, toMega_;
   uint64_t toNanoFreeNs_ = 0, toMegaFreeNs_ = 0;  // when each direction's last queued byte ends

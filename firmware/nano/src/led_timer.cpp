@@ -44,6 +44,21 @@ uint8_t count_ = 0, next_ = 0;
 uint32_t lastOff_;          // tick of the F's last off, after its on-edge
 volatile uint16_t wraps_ = 0;  // compare matches still to pass before the armed wake
 uint32_t wakeTick_ = 0;        // ticks after the anchor at which the armed compare fires
+volatile bool spinning_ = false;  // waiting, interrupts on, for the pending event's tick
+// A run cut by allOff(): when, for the dose records (takeCut).
+bool cut_ = false;
+int32_t cutTicks_ = 0;
+
+// Ticks since the anchor at TCNT1 `now`, with interrupts off, while a run is pending: from the pending event
+// while the timer spins for it, else from the armed compare (its wraps still to pass, and a match
+// not yet served). Only a cut asks, so the edges pay nothing for it.
+int32_t sinceAnchor(uint16_t now) {
+  if (spinning_) return static_cast<int32_t>(pendTick_) - static_cast<int16_t>(static_cast<uint16_t>(anchor_ + static_cast<uint16_t>(pendTick_)) - now);
+  uint32_t left = static_cast<uint32_t>(wraps_) << 16;
+  if (TIFR1 & _BV(OCF1A)) left -= static_cast<uint16_t>(now - OCR1A);
+  else left += static_cast<uint16_t>(OCR1A - now);
+  return static_cast<int32_t>(wakeTick_ - left);
+}
 
 // fetch() without its hot path: a scan program's end (the chain's next program, or the end of the
 // chain), an F's offs, or the end of the run with every LED off.
@@ -100,10 +115,12 @@ void service(uint32_t nowTick) {
         uint16_t at = static_cast<uint16_t>(anchor_ + near);
         uint16_t quiet = static_cast<uint16_t>(at - kQuietTicks);
         if (static_cast<int16_t>(TCNT1 - quiet) < 0) {
+          spinning_ = true;
           sei();  // other interrupts may run until the last stretch
           while (static_cast<int16_t>(TCNT1 - quiet) < 0) {
           }
           cli();
+          spinning_ = false;
           if (!pending_) return;  // an R arrived meanwhile: allOff() has ended the run
         }
         uint8_t on = static_cast<uint8_t>(pendMask_ << LED_SHIFT);
@@ -186,6 +203,12 @@ bool allOff() {
   uint8_t sreg = SREG;
   cli();
   LED_PORT &= static_cast<uint8_t>(~LED_PORT_MASK);
+  uint16_t now = TCNT1;  // the moment of the cut, read right behind the write
+  if (pending_) {  // a run cut short: an F's time since its on-edge, a chain's since its last event
+    // (lastOff_ is the pending off's tick: the anchor, the last edge made, is pendTick_ before it)
+    cutTicks_ = (store_ ? 0 : static_cast<int32_t>(lastOff_ - pendTick_)) + sinceAnchor(now);
+    cut_ = true;
+  }
   bool was = lit_ || pending_;
   lit_ = 0;
   pending_ = false;
@@ -196,6 +219,16 @@ bool allOff() {
 }
 
 uint8_t lit() { return lit_; }
+
+bool takeCut(int32_t& ticks) {
+  uint8_t sreg = SREG;
+  cli();
+  bool was = cut_;
+  ticks = cutTicks_;
+  cut_ = false;
+  SREG = sreg;
+  return was;
+}
 
 bool quietFor(uint16_t ticks) {
   uint8_t sreg = SREG;

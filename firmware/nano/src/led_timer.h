@@ -17,6 +17,10 @@ void run(ScanStore& store, uint16_t time0);
 // Safe from an interrupt handler, even one that interrupted the timer's own wait.
 bool allOff();
 uint8_t lit();
+// Whether allOff() cut a run short since the last call, and when: ticks (16 a µs) after the F's
+// on-edge, or after the last event a scan chain made (negative before time 0). The dose records
+// take the cut's moment from it (dose_tally.h); the timer itself keeps no tally.
+bool takeCut(int32_t& ticks);
 // True when no switching work starts within `ticks` (so a 35 µs NeoPixel write cannot delay one).
 bool quietFor(uint16_t ticks);
 

@@ -7,6 +7,7 @@ namespace nano {
 
 void Printhead::line(const char* text, uint8_t len, bool overflow, uint32_t nowMs) {
   lastLineMs_ = nowMs;  // any line: the Mega is alive
+  settle();
   if (len == 0 && !overflow) return;  // empty lines are ignored without a flag
   uv::NanoCommand c;  // not zeroed: parse sets what each command uses (saves ~100 cycles a line)
   bool usable = uv::nanoLineUsable(text, len, overflow);
@@ -56,6 +57,7 @@ void Printhead::start() {
     if (store_.running()) return;  // Q goes on telling the running chain's state
   } else if (store_.startable()) {
     store_.start();
+    dose_.begin(fires_ + 1);
     if (io_.startProgram(store_)) {
       fires_++;
       whole_ = true;
@@ -82,6 +84,16 @@ void Printhead::handle(const uv::NanoCommand& c, uint32_t nowMs) {
     case 'W':
       r.us = io_.clockLineUs();
       return send(r);
+    case 'O': {
+      DoseRecord d;
+      r.exposure = 0;  // none waits
+      if (dose_.take(d)) {
+        r.exposure = d.exposure;
+        r.program = d.program;
+        memcpy(r.onUs, d.onUs, sizeof d.onUs);
+      }
+      return send(r);
+    }
     case 'Q':
       r.free = store_.freeBuffers();
       r.armed = store_.armed();
@@ -90,6 +102,7 @@ void Printhead::handle(const uv::NanoCommand& c, uint32_t nowMs) {
     case 'R':
       if (exposing() || io_.cutByReset()) whole_ = false;  // an exposure cut short
       io_.allOff();
+      settle();
       if (raised_) {  // back to 115200: the receive interrupt already did, as the line ended
         io_.linkSpeed(uv::kNanoBaud, false);
         raised_ = false;
@@ -146,6 +159,8 @@ void Printhead::fire(const uv::NanoCommand& c) {
     case FireVerdict::Capped: latched_ |= uv::fault::kCapped; return;
     case FireVerdict::Nothing: return;
     case FireVerdict::Fire:
+      dose_.begin(fires_ + 1);
+      dose_.openFire(c);
       io_.fire(plan);
       fires_++;
       whole_ = true;
@@ -159,8 +174,10 @@ void Printhead::fire(const uv::NanoCommand& c) {
 // sends a line at least every 20 ms, and a chain that hears none for 50 ms is cut.
 void Printhead::poll(uint32_t nowMs) {
   if (confirming_ && static_cast<uint16_t>(nowMs - switchedMs_) > kLinkConfirmMs) fallBack();  // never heard at the new speed
+  settle();
   if (!store_.running() || nowMs - lastLineMs_ <= uv::kChainSilenceMs) return;
   io_.allOff();
+  settle();
   store_.discard(uv::PassState::CutBySilence);
   whole_ = false;
 }
@@ -179,6 +196,7 @@ void Printhead::noise() {
 void Printhead::fallBack() {
   if (exposing() || io_.cutByReset()) whole_ = false;  // the receive interrupt may have cut it already
   io_.allOff();
+  settle();
   store_.discard(uv::PassState::CutByReset);
   io_.linkSpeed(uv::kNanoBaud, false);
   raised_ = confirming_ = false;
@@ -189,6 +207,7 @@ void Printhead::readings(const uint16_t mv[uv::kSensorCount]) {
   measured_ = true;
   if (guard_.update(mv) && exposing()) {
     io_.allOff();
+    settle();
     store_.discard(uv::PassState::CutByFault);
     whole_ = false;
     latched_ |= uv::fault::kCutoff;
@@ -200,6 +219,24 @@ uv::Colour Printhead::colour(uint32_t nowMs) {
   if (flashing_ && static_cast<int32_t>(nowMs - flashUntilMs_) < 0) return flash_;
   flashing_ = false;  // so a flash cannot come back when the millisecond clock wraps
   return guard_.active() ? uv::Colour::Red : uv::Colour::Green;
+}
+
+void Printhead::settle() {
+  bool dark = !io_.litMask();  // read before the cut: a cut that comes after it waits for the next call
+  int32_t ticks;
+  bool cut = io_.takeCut(ticks);
+  uint32_t untilUs = ticks <= 0 ? 0 : (static_cast<uint32_t>(ticks) + 8) >> 4;
+  if (dose_.fireOpen() && (cut || dark)) dose_.closeFire(cut ? untilUs : DoseTally::kWhole);
+  ScanStore::ProgramView v;
+  while (store_.oldestSpent(v)) {
+    dose_.program(v.words, v.count, DoseTally::kWhole);
+    store_.freeOldestSpent();
+  }
+  uint8_t made;
+  if (cut && store_.runningProgram(v, made)) {
+    for (uint8_t e = 0; e < made; e++) untilUs += v.words[e] >> 4;  // its events made before the cut
+    dose_.program(v.words, v.count, untilUs);
+  }
 }
 
 void Printhead::send(const uv::NanoReply& r) {

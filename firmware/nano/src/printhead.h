@@ -3,6 +3,7 @@
 #pragma once
 #include <stdint.h>
 
+#include "dose_tally.h"
 #include "fire_plan.h"
 #include "nano_codec.h"
 #include "scan_store.h"
@@ -24,6 +25,9 @@ class PrintheadIo {
   // UART's interrupt does, so R acts within microseconds however busy the main loop is), and
   // something was lit or still to switch then.
   virtual bool cutByReset() { return false; }
+  // Whether the LEDs were cut (R, a fault, silence, a fall-back) since the last call, and when: ticks
+  // (16 a µs) after an F's on-edge, or after the last event a chain made (negative before time 0).
+  virtual bool takeCut(int32_t& ticks) = 0;
   // Runs the store's armed chain from the `G` just received; false when the G's time 0 has gone
   // by (the Nano took it too late) and nothing runs.
   virtual bool startProgram(ScanStore& store) = 0;
@@ -80,6 +84,10 @@ class Printhead {
   void start();
   bool exposing() const { return io_.litMask() || store_.running(); }
   void send(const uv::NanoReply& r);
+  // The dose records of what has ended since the last call: an F gone dark, the programs the chain
+  // ran to their last event, and a cut's running program up to the cut. Before every line, every
+  // poll and every discard, so a spent buffer is read before it is loaded again.
+  void settle();
   void speed(uint32_t baud, uint32_t nowMs);
   // Back to 115200 at once, and, as an R would, every LED off and every program dropped.
   void fallBack();
@@ -88,6 +96,7 @@ class Printhead {
   const PrintheadConfig& cfg_;
   ThermalGuard guard_;
   ScanStore store_;
+  DoseTally dose_;
   int16_t deciC_[uv::kSensorCount] = {};
   uint8_t latched_ = 0;
   uv::Colour flash_ = uv::Colour::Green;

@@ -27,6 +27,14 @@ struct Board : PrintheadIo {
   }
   uint8_t litMask() const override { return lit; }
   uint32_t clockLineUs() override { return 0; }
+  bool cut = false;  // the LEDs were cut, `cutTicks` after the on-edge or the chain's last event
+  int32_t cutTicks = 0;
+  bool takeCut(int32_t& t) override {
+    t = cutTicks;
+    bool was = cut;
+    cut = false;
+    return was;
+  }
   bool startProgram(ScanStore& s) override {
     chain = &s;
     return true;

@@ -28,6 +28,14 @@ struct FakeIo : PrintheadIo {
   uint8_t litMask() const override { return lit; }
   uint32_t lineUs = 0;  // when the latest W arrived, by this board's micros()
   uint32_t clockLineUs() override { return lineUs; }
+  bool cut = false;  // the LEDs were cut, `cutTicks` after the on-edge or the chain's last event
+  int32_t cutTicks = 0;
+  bool takeCut(int32_t& t) override {
+    t = cutTicks;
+    bool was = cut;
+    cut = false;
+    return was;
+  }
   bool late = false;  // the G's time 0 has gone by when the Nano takes it
   ScanStore* running = nullptr;
   bool startProgram(ScanStore& s) override {
@@ -430,4 +438,59 @@ TEST(PrintheadLinkSpeed, RefusedWhileExposingOrArmedAndOutOfTheTable) {
   EXPECT_TRUE(h.io.speeds.empty());
   h.send("E");
   EXPECT_EQ(h.take(), "E:32\n");
+}
+
+TEST(Printhead, ReportsEachFsDoseOnceItHasGoneDark) {
+  Head h;
+  h.send("O");
+  EXPECT_EQ(h.take(), "O:0\n");
+  h.send("F:5,300,0,120,0");
+  ASSERT_EQ(h.io.fired.size(), 1u);
+  h.send("O");
+  EXPECT_EQ(h.take(), "O:0\n");  // still lit: no record yet
+  h.io.lit = 0;  // the timer's last off
+  h.send("O");
+  EXPECT_EQ(h.take(), "O:1,0,300,0,120,0\n");  // exposure 1, as C counts it
+  h.send("O");
+  EXPECT_EQ(h.take(), "O:0\n");
+}
+
+TEST(Printhead, ACutFReportsWhatRanBeforeTheCut) {
+  Head h;
+  h.send("F:15,1000,50,2000,400");
+  h.io.cut = true;  // the R's receive interrupt cut it 500.3 µs after the on-edge
+  h.io.cutTicks = 500 * 16 + 5;
+  h.io.lit = 0;
+  h.send("R");
+  h.send("O");
+  EXPECT_EQ(h.take(), "O:1,0,500,50,500,400\n");
+}
+
+TEST(Printhead, AChainReportsEachProgramAndACutOnesPart) {
+  Head h;
+  // Program 0: LED 0 on at 100 µs, LED 1 too at 300, LED 0 off at 700 (LED 1 runs on); more follows.
+  h.send("A:0,100,1,200,3,400,2");
+  h.send("K:2,3," + std::to_string(uv::checkEvent(uv::checkEvent(uv::checkEvent(uv::kCheckInit, 100, 1), 200, 3), 400, 2)));
+  EXPECT_EQ(h.take(), "K:0\n");
+  // Program 1 continues: LED 1 off 250 µs on, LED 2 on 100 later, off 1000 later.
+  h.send("A:0,250,0,100,4,1000,0");
+  h.send("K:1,3," + std::to_string(uv::checkEvent(uv::checkEvent(uv::checkEvent(uv::kCheckInit, 250, 0), 100, 4), 1000, 0)));
+  EXPECT_EQ(h.take(), "K:0\n");
+  h.send("G");
+  ASSERT_NE(h.io.running, nullptr);
+  uint32_t d;
+  uint8_t m;
+  for (int e = 0; e < 3; e++) ASSERT_EQ(h.io.running->next(d, m), ScanStore::Step::Event);  // program 0 ran
+  ASSERT_EQ(h.io.running->next(d, m), ScanStore::Step::Event);  // program 1's first event taken
+  h.send("O");
+  EXPECT_EQ(h.take(), "O:1,0,600,400,0,0\n");
+  ASSERT_EQ(h.io.running->next(d, m), ScanStore::Step::Event);  // LED 1 off made; LED 2 on pending
+  ASSERT_EQ(h.io.running->next(d, m), ScanStore::Step::Event);  // LED 2 on made; its off pending
+  h.io.cut = true;  // a fault cut it 40 µs after LED 2 went on
+  h.io.cutTicks = 40 * 16;
+  h.send("R");
+  h.send("O");
+  EXPECT_EQ(h.take(), "O:1,1,0,250,40,0\n");
+  h.send("O");
+  EXPECT_EQ(h.take(), "O:0\n");
 }

@@ -158,11 +158,33 @@ uint8_t ScanStore::freeBuffers() const {
 
 uint8_t ScanStore::armed() const { return (buf_[0].state == Armed) + (buf_[1].state == Armed); }
 
-uint8_t ScanStore::oldestArmed() const {
+uint8_t ScanStore::oldestIn(uint8_t state) const {
   uint8_t oldest = kNone;
   for (uint8_t i = 0; i < 2; i++)
-    if (buf_[i].state == Armed && (oldest == kNone || static_cast<int8_t>(buf_[i].order - buf_[oldest].order) < 0)) oldest = i;
+    if (buf_[i].state == state && (oldest == kNone || static_cast<int8_t>(buf_[i].order - buf_[oldest].order) < 0)) oldest = i;
   return oldest;
+}
+
+bool ScanStore::oldestSpent(ProgramView& v) const {
+  uint8_t i = oldestIn(Spent);
+  if (i == kNone) return false;
+  v.words = buf_[i].words;
+  v.count = buf_[i].count;
+  return true;
+}
+
+void ScanStore::freeOldestSpent() {
+  uint8_t i = oldestIn(Spent);
+  if (i != kNone) buf_[i].state = Free;
+}
+
+bool ScanStore::runningProgram(ProgramView& v, uint8_t& made) const {
+  uint8_t r = run_;
+  if (r == kNone) return false;
+  v.words = buf_[r].words;
+  v.count = buf_[r].count;
+  made = cur_ > buf_[r].words ? static_cast<uint8_t>(cur_ - buf_[r].words - 1) : 0;
+  return true;
 }
 
 bool ScanStore::startable() const {
@@ -195,7 +217,7 @@ ScanStore::Step ScanStore::nextProgram(uint32_t& d, uint8_t& m) {
   Buffer& b = buf_[r];
   Buffer& o = buf_[r ^ 1];
   bool more = b.flags & uv::kSealMore;
-  b.state = Free;
+  b.state = Spent;  // ran to its last event: the dose tally reads it, then frees it
   if (!more || o.state != Armed || !(o.flags & uv::kSealContinuation)) {
     run_ = kNone;
     pass_ = more ? uv::PassState::Underrun : uv::PassState::Whole;

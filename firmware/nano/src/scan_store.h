@@ -30,6 +30,18 @@ class ScanStore {
   uv::PassState pass() const { return pass_; }
   bool running() const { return run_ != kNone; }
 
+  // For the dose records (dose_tally.h), main loop: a program the chain ran to its last event keeps
+  // its buffer, spent, until the tally has read it; a spent buffer takes no load meanwhile.
+  struct ProgramView {
+    const uint32_t* words;  // as stored: pack(d, m)
+    uint8_t count;
+  };
+  bool oldestSpent(ProgramView& v) const;
+  void freeOldestSpent();
+  // The running program, and how many of its events the timer has made (the one it waits for,
+  // already taken, is not counted).
+  bool runningProgram(ProgramView& v, uint8_t& made) const;
+
   // Timer interrupt: the running chain's next event, d in µs since the one before (or time 0).
   enum class Step : uint8_t { Event, End, Underrun };
   Step next(uint32_t& d, uint8_t& m) {
@@ -56,7 +68,7 @@ class ScanStore {
 
  private:
   static constexpr uint8_t kNone = 0xFF;
-  enum State : uint8_t { Free, Loading, Armed, Running };
+  enum State : uint8_t { Free, Loading, Armed, Running, Spent };
   // An event as stored: d above the LED state's 4 bits, so the timer gets d in ticks (16 a µs) and
   // the state by masking, with no shift between two edges (the main loop shifts when it loads).
   static uint32_t pack(uint32_t d, uint8_t m) { return d << 4 | m; }
@@ -70,7 +82,8 @@ class ScanStore {
   void spoil(uv::SealCode why);
   __attribute__((noinline)) bool appendPacked(const char* line, uint8_t len);
   void openLoad();  // an A:0 or B:0: a free buffer for the new program (the unsealed one dropped)
-  uint8_t oldestArmed() const;  // the armed program sealed first, or kNone
+  uint8_t oldestArmed() const { return oldestIn(Armed); }
+  uint8_t oldestIn(uint8_t state) const;  // the program in `state` sealed first, or kNone
   // The chain's next program, or its end: next() once the running program's events are taken.
   __attribute__((noinline)) Step nextProgram(uint32_t& d, uint8_t& m);
   void runFrom(uint8_t i) {

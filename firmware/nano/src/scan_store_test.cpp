@@ -58,6 +58,13 @@ TEST(ScanStore, ArmsAProgramAndHandsOutItsEvents) {
   EXPECT_EQ(t.drain(), ev);
   EXPECT_EQ(t.s.pass(), PassState::Whole);
   EXPECT_FALSE(t.s.running());
+  EXPECT_EQ(t.s.freeBuffers(), 1);  // spent: kept for the dose tally until it has read it
+  ScanStore::ProgramView v;
+  ASSERT_TRUE(t.s.oldestSpent(v));
+  EXPECT_EQ(v.count, ev.size());
+  EXPECT_EQ(v.words[1], 2000u << 4);
+  t.s.freeOldestSpent();
+  EXPECT_FALSE(t.s.oldestSpent(v));
   EXPECT_EQ(t.s.freeBuffers(), 2);
 }
 
@@ -74,7 +81,13 @@ TEST(ScanStore, ChainsContinuationsLoadedWhileTheFirstRuns) {
   ASSERT_EQ(t.s.next(d, m), ScanStore::Step::Event);
   ASSERT_EQ(t.s.next(d, m), ScanStore::Step::Event);  // b's first: its buffer took over
   EXPECT_EQ(d, 700u);
-  EXPECT_EQ(t.s.freeBuffers(), 1);                   // a's buffer is free again
+  ScanStore::ProgramView v;
+  uint8_t made;
+  ASSERT_TRUE(t.s.runningProgram(v, made));
+  EXPECT_EQ(made, 0u);                               // b's first is taken, not yet made
+  EXPECT_EQ(t.s.freeBuffers(), 0);                   // a's buffer is spent,
+  t.s.freeOldestSpent();
+  EXPECT_EQ(t.s.freeBuffers(), 1);                   // and free again once the tally has read it
   ASSERT_EQ(t.load(c, uv::kSealContinuation), SealCode::Armed);
   EXPECT_EQ(t.drain(), (Events{{300, 8}, {40, 0}}));
   EXPECT_EQ(t.s.pass(), PassState::Whole);

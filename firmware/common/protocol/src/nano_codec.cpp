@@ -20,13 +20,12 @@ Rgb colourRgb(Colour c) {
   return {0, 0, 0};
 }
 
+// Comparisons, not a switch: the AVR compiler made the switch a 21-byte table in the Nano's RAM.
 Colour flashColour(char op) {
-  switch (op) {
-    case 'F': case 'G': return Colour::Purple;
-    case 'D': case 'U': case 'X': case 'P': return Colour::Cyan;
-    case 'R': return Colour::Orange;
-    default: return Colour::DimWhite;  // S T E V C A B K Q W L
-  }
+  if (op == 'F' || op == 'G') return Colour::Purple;
+  if (op == 'D' || op == 'U' || op == 'X' || op == 'P') return Colour::Cyan;
+  if (op == 'R') return Colour::Orange;
+  return Colour::DimWhite;  // S T E V C A B K Q W L O
 }
 
 bool nanoLineUsable(const char* text, uint8_t len, bool overflow) {
@@ -37,7 +36,7 @@ bool parseNanoCommand(const char* line, uint8_t len, NanoCommand& out) {
   if (len == 1) {
     switch (line[0]) {  // a switch, not strchr over a string: on the AVR that string would sit in RAM
       case 'S': case 'D': case 'U': case 'X': case 'P': case 'T': case 'R':
-      case 'E': case 'V': case 'C': case 'G': case 'Q': case 'W':
+      case 'E': case 'V': case 'C': case 'G': case 'Q': case 'W': case 'O':
         out.op = line[0];
         return true;
       default:
@@ -144,6 +143,16 @@ size_t formatNanoReply(const NanoReply& r, char* out, size_t size) {
     case 'K': n += putUnsigned(r.code, out + n); break;
     case 'W': n += putUnsigned(r.us, out + n); break;
     case 'L': n += putUnsigned(r.baud, out + n); break;
+    case 'O':
+      n += putUnsigned(r.exposure, out + n);
+      if (r.exposure == 0) break;  // no record waits
+      out[n++] = ',';
+      n += putUnsigned(r.program, out + n);
+      for (uint8_t i = 0; i < kLedCount; i++) {
+        out[n++] = ',';
+        n += putUnsigned(r.onUs[i], out + n);
+      }
+      break;
     case 'Q':
       n += putUnsigned(r.free, out + n);
       out[n++] = ',';
@@ -199,6 +208,21 @@ bool parseNanoReply(const char* line, size_t len, NanoReply& r) {
     case 'L':
       p = scanUnsigned(p, end, 10, 0xFFFFFFFFu, r.baud);
       return p == end && nanoLinkBaud(r.baud);
+    case 'O': {
+      p = scanUnsigned(p, end, 10, 0xFFFFFFFFu, r.exposure);
+      if (!p) return false;
+      if (r.exposure == 0) return p == end;  // none waits; a record is never numbered 0
+      if (p >= end || *p != ',') return false;
+      p = scanUnsigned(p + 1, end, 5, 65535, v);
+      if (!p) return false;
+      r.program = static_cast<uint16_t>(v);
+      for (uint8_t i = 0; i < kLedCount; i++) {
+        if (p >= end || *p != ',') return false;
+        p = scanUnsigned(p + 1, end, 10, 0xFFFFFFFFu, r.onUs[i]);
+        if (!p) return false;
+      }
+      return p == end;
+    }
     case 'Q': {
       uint32_t q[3];  // free, armed, pass
       for (uint8_t i = 0; i < 3; i++) {

@@ -17,14 +17,14 @@ constexpr uint8_t kLedCount = 4;
 constexpr uint8_t kSensorCount = 6;
 
 struct NanoCommand {
-  char op;  // one of S F D U X P T R E V C G Q W L (A and K lines: scan_program.h)
+  char op;  // one of S F D U X P T R E V C G Q W L O (A and K lines: scan_program.h)
   uint8_t mask;
   uint32_t durations[kLedCount];
   uint32_t baud;  // L: the link speed asked for (nanoLinkBaud)
 };
 
 struct NanoReply {
-  char op;  // one of S P T E V C K Q W L
+  char op;  // one of S P T E V C K Q W L O
   uint8_t mask;
   bool triggered;
   int16_t deciC[kSensorCount];
@@ -38,6 +38,10 @@ struct NanoReply {
   uint8_t free, armed, pass;  // Q: buffers free to load, programs armed, the last chain's PassState
   uint32_t us;     // W: the Nano's micros() when the W's newline arrived
   uint32_t baud;   // L: the speed both sides take once this reply has gone out
+  // O: a dose record (protocol/nano.md "Dose records"), or none waiting when `exposure` is 0.
+  uint32_t exposure;           // the exposure's number, as C counts it (1 the first since start)
+  uint16_t program;            // the program's place in its chain, 0 first; 0 for an F
+  uint32_t onUs[kLedCount];    // how long each LED was lit, µs
 };
 
 enum class Colour : uint8_t { Green, DimWhite, Purple, Cyan, Orange, Red };
@@ -67,8 +71,9 @@ size_t formatNanoCommand(const NanoCommand& cmd, char* out, size_t size);
 // Writes one-decimal Celsius for tenths; returns the length.
 size_t formatDeciC(int16_t deciC, char* out);
 
-// The longest reply: "T:" and six "-3276.8", five commas, '\n' and a NUL.
-constexpr size_t kNanoReplyMax = 56;
+// The longest reply: "O:" and a 10-digit exposure, a 5-digit program and four 10-digit on-times,
+// five commas (62 bytes), '\n' and a NUL.
+constexpr size_t kNanoReplyMax = 64;
 // Writes the reply in place; `size` must be at least kNanoReplyMax.
 size_t formatNanoReply(const NanoReply& reply, char* out, size_t size);
 // Parses a reply line including its '\n'. false = malformed.

@@ -76,6 +76,10 @@ json replyJson(const NanoReply& r) {
     case 'Q': j["free"] = r.free; j["armed"] = r.armed; j["pass"] = r.pass; break;
     case 'W': j["us"] = r.us; break;
     case 'L': j["baud"] = r.baud; break;
+    case 'O':
+      j["exposure"] = r.exposure;
+      if (r.exposure) j.update({{"program", r.program}, {"onUs", std::vector<uint32_t>(r.onUs, r.onUs + kLedCount)}});
+      break;
   }
   return j;
 }
@@ -98,6 +102,10 @@ NanoReply replyFrom(const json& j) {
   if (j.contains("pass")) r.pass = j["pass"];
   if (j.contains("us")) r.us = j["us"];
   if (j.contains("baud")) r.baud = j["baud"];
+  if (j.contains("exposure")) r.exposure = j["exposure"];
+  if (j.contains("program")) r.program = j["program"];
+  if (j.contains("onUs"))
+    for (int i = 0; i < kLedCount; i++) r.onUs[i] = j["onUs"][i];
   if (j.contains("firmware")) snprintf(r.firmware, sizeof r.firmware, "%s", j["firmware"].get<std::string>().c_str());
   return r;
 }
