@@ -125,7 +125,7 @@ bool JobPlan::stepScan() {
     return false;
   }
   uv::ProgramLines lines(passEvent, this);
-  uv::LinkLoad load;
+  uv::LinkLoad load(machine_.linkBaud);
   char line[uv::kNanoMaxLine + 2];
   passUs_ = 0;
   for (uint8_t n; (n = lines.next(line)) != 0;) load.add(line, n, lines.lastUs());
