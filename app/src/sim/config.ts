@@ -120,10 +120,10 @@ export function topSpeedUmS(config: Record<string, string>, axis: number): numbe
 }
 
 /**
- * The printhead link's speed this firmware's Mega runs jobs at (firmware/mega/src/printhead_link.h:
- * 115200 while the board does not raise the link, kRaiseNanoLink).
+ * The printhead link's speed this firmware's Mega plans and runs every job at (kJobLinkBaud in
+ * firmware/mega/src/printhead_link.h: it raises the link to 250000 once the Nano is known).
  */
-export const BOARD_LINK_BAUD = 115200;
+export const BOARD_LINK_BAUD = 250000;
 
 /** The motion the planner's time model prices (protocol/planner.md), from the settings, starting at `startUm`. */
 export function motionOf(config: Record<string, string>, startUm: [number, number] = [0, 0], linkBaud = BOARD_LINK_BAUD): Machine {

@@ -88,6 +88,8 @@ class ScanPlanner {
   // (Worked out when asked: on the Mega, RAM is dearer than the divisions.)
   ScanMotion motion() const { return scanMotion(h_, dose_, m_); }
   const ScanMotion& passMotion() const { return pass_; }
+  // The printhead link's speed the plan is made for (Machine::linkBaud): its passes need the link at it.
+  uint32_t linkBaud() const { return m_.linkBaud; }
   // Opens the next pass with a lit cell and adds its time to the estimate; false when done.
   bool nextPass(ScanPass& out);
   // The current pass's next event; false at its end.
