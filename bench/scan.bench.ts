@@ -3,7 +3,7 @@ import type { JobHeader, StrategyName } from '../app/src/protocol/job-types';
 import { durationTables } from '../app/src/planner/dose';
 import { planJob } from '../app/src/planner/planner';
 import { mixedPassCount, planMixed, type MixedPlan } from '../app/src/planner/mixed';
-import { planScan, PROGRAM_EVENT_US, PROGRAM_RELAY_US, type ScanPlan } from '../app/src/planner/scan';
+import { planScan, PROGRAM_EVENT_US, PROGRAM_RELAY_US, SCAN_PASS_END_US, SCAN_PASS_LOAD_US, type ScanPlan } from '../app/src/planner/scan';
 import { moveTimeUs } from '../app/src/planner/time-model';
 import { programLines } from '../app/src/protocol/scan-program';
 import { BENCH_MACHINE, GEOMETRY } from './planner.bench';
@@ -168,6 +168,27 @@ export function printP10(rows: P10Row[]): void {
   }
   printMixed(rows);
   printAutomatic(rows);
+  printTurnArounds(rows);
+}
+
+/**
+ * P10's turn-arounds (issue 39 §2): where the scan plan's time goes beyond its passes' lit and blank
+ * windows and their speeding up (2 × tA, the floor's own): the step engine's moves between passes
+ * (the Y hop and the X step from one stroke's end to the next's start, from rest to rest), the
+ * Mega's load and the Nano's closing Q of each pass, and what the strokes take beyond the floor's
+ * passes (the engine's ramps, the G lead, the steps either side; a pass the link cap slowed).
+ */
+function printTurnArounds(rows: P10Row[]): void {
+  const s = (us: number) => `${(us / 1e6).toFixed(2)} s`;
+  for (const r of rows) {
+    const n = r.scan.passes.length;
+    const moves = r.scan.passes.reduce((t, p) => t + p.moveUs, 0), ends = n * (SCAN_PASS_LOAD_US + SCAN_PASS_END_US);
+    const strokes = r.scan.estimateUs - r.accel - moves - ends;  // the strokes beyond the floor's passes
+    console.log(
+      `P10 ${r.mask.padEnd(7)} beyond its windows: moves between passes ${s(moves)} (${(moves / Math.max(1, n) / 1000).toFixed(1)} ms a pass), pass load and end ${s(ends)}, strokes past the floor's passes ${s(strokes)}; ` +
+        `the scan ${(r.scan.estimateUs / r.accel).toFixed(3)}x its floor at the axis's acceleration (goal <= 1.05x)`,
+    );
+  }
 }
 
 /** Bytes a second the printhead link carries at the bench machine's speed (the board's), 10 bits a byte. */
