@@ -147,3 +147,18 @@ describe("a stroke's place on the bed", () => {
     expect(strokeOnBed({ ...rightwards, startSteps: 0 }, m, Infinity)).toBe(true);
   });
 });
+
+describe('the printhead link speed a plan is made for', () => {
+  const job = randomJob(7, GEOMETRIES.adjacent, 'serpentine');
+  const cells = { header: headerOf(job), cells: job.gridData };
+  it('is refused when the link has no such speed, never rounded', () => {
+    for (const strategy of ['serpentine', 'scan', 'mixed'] as StrategyName[]) {
+      expect(() => planAnyJob({ ...cells, header: { ...cells.header, strategy } }, { ...MACHINE, linkBaud: 230400 })).toThrow(/no speed 230400 baud/);
+    }
+  });
+  it('shortens each stop by its F line at the raised speed', () => {
+    const slow = planJob(cells, MACHINE), fast = planJob(cells, { ...MACHINE, linkBaud: 250000 });
+    expect(fast.count).toBe(slow.count);
+    expect(fast.estimateUs).toBeLessThan(slow.estimateUs);
+  });
+});

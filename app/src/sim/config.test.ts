@@ -66,3 +66,13 @@ it('plans no axis faster than the Mega steps it: the setting, or 16000 steps/s a
   expect(topSpeedUmS(screw, 0)).toBe((MAX_STEP_RATE * 1_000_000) / 400_000);
   expect(topSpeedUmS({ ...CONFIG_DEFAULTS, 'steps_per_mm.z': '2000' }, 2)).toBe(8_000); // speed.z 10 mm/s, capped at 8
 });
+
+it('plans at the printhead link speed the Mega plans every job at (printhead_link.h kJobLinkBaud)', () => {
+  const h = readFileSync(new URL('../../../firmware/mega/src/printhead_link.h', import.meta.url), 'utf8');
+  const raise = /constexpr bool kRaiseNanoLink = (true|false);/.exec(h)?.[1];
+  const fast = Number(/constexpr uint32_t kNanoFastBaud = (\d+);/.exec(h)?.[1]);
+  expect(raise).toBeDefined();
+  expect(h).toContain('kJobLinkBaud = kRaiseNanoLink ? kNanoFastBaud : uv::kNanoBaud;');
+  expect(motionOf({}).linkBaud).toBe(raise === 'true' ? fast : 115200);
+  expect(motionOf({}, [0, 0], 115200).linkBaud).toBe(115200);
+});
