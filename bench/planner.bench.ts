@@ -5,6 +5,7 @@ import { planJob, type Plan } from '../app/src/planner/planner';
 import { moveTimeUs, type Machine } from '../app/src/planner/time-model';
 import { durationTables } from '../app/src/planner/dose';
 import { compare, type Row } from './harness';
+import { BOARD_LINK_BAUD } from '../app/src/machine/config';
 import { boardMask, fillMask, photoMask, sparseMask, textMask, type Mask } from './masks';
 
 export const BENCH_MACHINE: Machine = {
@@ -14,6 +15,7 @@ export const BENCH_MACHINE: Machine = {
   overheadUs: 4300, // stop_overhead_us: what the real images spend a stop beyond move, settle, F line and light (StopCycle)
   startUm: [0, 0],
   stepsMilli: [80_000, 80_000],
+  linkBaud: BOARD_LINK_BAUD, // the speed the board runs jobs at (printhead_link.h)
 };
 
 export const GEOMETRY: Record<string, [number, number][]> = {

@@ -3,7 +3,7 @@ import type { JobHeader, StrategyName } from '../app/src/protocol/job-types';
 import { durationTables } from '../app/src/planner/dose';
 import { planJob } from '../app/src/planner/planner';
 import { mixedPassCount, planMixed, type MixedPlan } from '../app/src/planner/mixed';
-import { planScan, PROGRAM_EVENT_US, PROGRAM_RELAY_US, type ScanPlan } from '../app/src/planner/scan';
+import { planScan, PROGRAM_EVENT_US, PROGRAM_RELAY_US, SCAN_PASS_END_US, SCAN_PASS_LOAD_US, type ScanPlan } from '../app/src/planner/scan';
 import { moveTimeUs } from '../app/src/planner/time-model';
 import { programLines } from '../app/src/protocol/scan-program';
 import { BENCH_MACHINE, GEOMETRY } from './planner.bench';
@@ -152,7 +152,7 @@ function printAutomatic(rows: P10Row[]): void {
 }
 
 export function printP10(rows: P10Row[]): void {
-  console.log('\nP10 scan (exposure on the move) vs stop-and-fire (goal: pcb >= 5x) and vs the larger limit (goal: pcb <= 1.3x)');
+  console.log(`\nP10 scan (exposure on the move) vs stop-and-fire (goal: pcb >= 5x) and vs the larger limit (goal: pcb <= 1.3x); the printhead link at ${BENCH_MACHINE.linkBaud} baud`);
   console.log('  adjacent rows; scan, stop-and-fire, light limit (dose/4), travel limit (passes at vmax); window, passes');
   console.log('  floor: every lit window at the pass speed, every blank one at vmax with no ramp, and each pass speeding up from rest and back; no scan of these passes beats it');
   console.log('  at the axis\'s acceleration: the floor with each blank stretch crossed as fast as the X axis can speed up and slow down');
@@ -168,10 +168,31 @@ export function printP10(rows: P10Row[]): void {
   }
   printMixed(rows);
   printAutomatic(rows);
+  printTurnArounds(rows);
 }
 
-/** Bytes a second the printhead link carries: 115200 baud, 10 bits a byte. */
-const LINK_BYTES_S = 11520;
+/**
+ * P10's turn-arounds (issue 39 §2): where the scan plan's time goes beyond its passes' lit and blank
+ * windows and their speeding up (2 × tA, the floor's own): the step engine's moves between passes
+ * (the Y hop and the X step from one stroke's end to the next's start, from rest to rest), the
+ * Mega's load and the Nano's closing Q of each pass, and what the strokes take beyond the floor's
+ * passes (the engine's ramps, the G lead, the steps either side; a pass the link cap slowed).
+ */
+function printTurnArounds(rows: P10Row[]): void {
+  const s = (us: number) => `${(us / 1e6).toFixed(2)} s`;
+  for (const r of rows) {
+    const n = r.scan.passes.length;
+    const moves = r.scan.passes.reduce((t, p) => t + p.moveUs, 0), ends = n * (SCAN_PASS_LOAD_US + SCAN_PASS_END_US);
+    const strokes = r.scan.estimateUs - r.accel - moves - ends;  // the strokes beyond the floor's passes
+    console.log(
+      `P10 ${r.mask.padEnd(7)} beyond its windows: moves between passes ${s(moves)} (${(moves / Math.max(1, n) / 1000).toFixed(1)} ms a pass), pass load and end ${s(ends)}, strokes past the floor's passes ${s(strokes)}; ` +
+        `the scan ${(r.scan.estimateUs / r.accel).toFixed(3)}x its floor at the axis's acceleration (goal <= 1.05x)`,
+    );
+  }
+}
+
+/** Bytes a second the printhead link carries at the bench machine's speed (the board's), 10 bits a byte. */
+const LINK_BYTES_S = BENCH_MACHINE.linkBaud / 10;
 
 /** A plan's load on the printhead link: its worst pass and the whole job, as the Mega's M29 counts them. */
 function linkLoad(plan: ScanPlan): { worst: number; whole: number; events: number; bytes: number } {
@@ -198,7 +219,7 @@ function linkLoad(plan: ScanPlan): { worst: number; whole: number; events: numbe
 
 /**
  * P11: how hard each scan job works the printhead link. A pass's programs (nano.md "Scan
- * programs") must cross the 115200-baud link no slower than the pass plays them, less the two
+ * programs") must cross the link (at the board's speed, BENCH_MACHINE.linkBaud) no slower than the pass plays them, less the two
  * loaded before it starts; above 1.00x the chain would underrun. The planner slows a pass until
  * they fit in four fifths of its time, and each program after the first two in four fifths of what
  * the one before it plays less the Mega's relay (planner.md "The printhead link"), so no pass is
@@ -206,7 +227,7 @@ function linkLoad(plan: ScanPlan): { worst: number; whole: number; events: numbe
  */
 export function printP11(rows: P10Row[]): void {
   console.log(
-    `\nP11 printhead link load of scan passes (program bytes, the packed B lines and K lines the Mega sends, against 115200 baud over the pass time; relay ${PROGRAM_RELAY_US} us, the Mega's planner ${PROGRAM_EVENT_US} us an event; goal: worst pass <= 1.00x, the photo >= 3x faster than stop and fire)`,
+    `\nP11 printhead link load of scan passes (program bytes, the packed B lines and K lines the Mega sends, against ${BENCH_MACHINE.linkBaud} baud over the pass time; relay ${PROGRAM_RELAY_US} us, the Mega's planner ${PROGRAM_EVENT_US} us an event; goal: worst pass <= 1.00x, the photo >= 3x faster than stop and fire)`,
   );
   const s = (us: number) => `${(us / 1e6).toFixed(1)} s`;
   for (const r of rows) {

@@ -1,4 +1,5 @@
 import { execFileSync } from 'node:child_process';
+import { readFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { expect, it } from 'vitest';
 import { SimHost } from '../sim/sim-host.fixture';
@@ -45,4 +46,14 @@ it('plans no axis faster than the Mega steps it: the setting, or 16000 steps/s a
   expect(motionOf(screw).vmaxUmS).toEqual([40_000, 100_000]);
   expect(topSpeedUmS(screw, 0)).toBe((MAX_STEP_RATE * 1_000_000) / 400_000);
   expect(topSpeedUmS({ ...CONFIG_DEFAULTS, 'steps_per_mm.z': '2000' }, 2)).toBe(8_000); // speed.z 10 mm/s, capped at 8
+});
+
+it('plans at the printhead link speed the Mega plans every job at (printhead_link.h kJobLinkBaud)', () => {
+  const h = readFileSync(new URL('../../../firmware/mega/src/printhead_link.h', import.meta.url), 'utf8');
+  const raise = /constexpr bool kRaiseNanoLink = (true|false);/.exec(h)?.[1];
+  const fast = Number(/constexpr uint32_t kNanoFastBaud = (\d+);/.exec(h)?.[1]);
+  expect(raise).toBeDefined();
+  expect(h).toContain('kJobLinkBaud = kRaiseNanoLink ? kNanoFastBaud : uv::kNanoBaud;');
+  expect(motionOf({}).linkBaud).toBe(raise === 'true' ? fast : 115200);
+  expect(motionOf({}, [0, 0], 115200).linkBaud).toBe(115200);
 });

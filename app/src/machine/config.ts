@@ -25,8 +25,14 @@ export function topSpeedUmS(config: Record<string, string>, axis: number): numbe
   return Math.min(setting, Math.floor((MAX_STEP_RATE * 1_000_000) / stepsMilli));
 }
 
+/**
+ * The printhead link's speed this firmware's Mega plans and runs every job at (kJobLinkBaud in
+ * firmware/mega/src/printhead_link.h: it raises the link to 250000 once the Nano is known).
+ */
+export const BOARD_LINK_BAUD = 250000;
+
 /** The motion the planner's time model prices (protocol/planner.md), from the settings, starting at `startUm`. */
-export function motionOf(config: Record<string, string>, startUm: [number, number] = [0, 0]): Machine {
+export function motionOf(config: Record<string, string>, startUm: [number, number] = [0, 0], linkBaud = BOARD_LINK_BAUD): Machine {
   return {
     vmaxUmS: [topSpeedUmS(config, 0), topSpeedUmS(config, 1)],
     accelUmS2: [num(config, 'accel.x') * 1000, num(config, 'accel.y') * 1000],
@@ -34,5 +40,6 @@ export function motionOf(config: Record<string, string>, startUm: [number, numbe
     overheadUs: num(config, 'stop_overhead_us'),
     startUm,
     stepsMilli: [Math.round(num(config, 'steps_per_mm.x') * 1000), Math.round(num(config, 'steps_per_mm.y') * 1000)],
+    linkBaud,
   };
 }

@@ -21,7 +21,11 @@ export const MACHINE: Machine = {
   overheadUs: 1500,
   startUm: [0, 0],
   stepsMilli: [80_000, 80_000],
+  linkBaud: 115200,
 };
+
+/** The same machine on a printhead link raised to 250000 baud (nano.md "Link speed"), as the board runs it. */
+export const RAISED_MACHINE: Machine = { ...MACHINE, linkBaud: 250000 };
 
 function rng(seed: number) {
   let x = Math.imul(seed, 0x9e3779b1) >>> 0 || 1;  // spread small consecutive seeds
@@ -91,5 +95,7 @@ export function goldenCases(): GoldenCase[] {
   for (const [g, offsets] of Object.entries(GEOMETRIES)) {
     out.push(planCase(`ts sparse shortest ${g}`, randomJob(seed++, offsets, 'shortest', [90, 70], 0.02), MACHINE));
   }
+  // On the raised link each stop's F line is shorter.
+  for (const s of STRATEGIES) out.push(planCase(`ts mixed ${s}, link at 250000`, randomJob(seed++, GEOMETRIES.mixed, s), RAISED_MACHINE));
   return out;
 }

@@ -9,7 +9,7 @@ import { headerOf } from './job-header';
 import type { Machine } from './time-model';
 import type { StrategyName } from '../protocol/job-types';
 
-const MACHINE: Machine = { vmaxUmS: [100_000, 100_000], accelUmS2: [2_000_000, 2_000_000], settleUs: 2000, overheadUs: 1500, startUm: [0, 0], stepsMilli: [80_000, 80_000] };
+const MACHINE: Machine = { vmaxUmS: [100_000, 100_000], accelUmS2: [2_000_000, 2_000_000], settleUs: 2000, overheadUs: 1500, startUm: [0, 0], stepsMilli: [80_000, 80_000], linkBaud: 115200 };
 
 const header = (cols: number, rows: number, name: StrategyName) => headerOf({
   grid: { cols, rows }, pitchUm: { x: 50, y: 50 }, originUm: { x: 5000, y: 5000 }, dose: { map: 'linear', fullUs: 4000 },
@@ -145,5 +145,20 @@ describe("a stroke's place on the bed", () => {
     expect(strokeOnBed({ ...rightwards, startSteps: 15_961, stopSteps: 100 }, m, 199_000)).toBe(false);
     expect(strokeOnBed({ ...rightwards, startSteps: -1 }, m, 199_000)).toBe(false);
     expect(strokeOnBed({ ...rightwards, startSteps: 0 }, m, Infinity)).toBe(true);
+  });
+});
+
+describe('the printhead link speed a plan is made for', () => {
+  const job = randomJob(7, GEOMETRIES.adjacent, 'serpentine');
+  const cells = { header: headerOf(job), cells: job.gridData };
+  it('is refused when the link has no such speed, never rounded', () => {
+    for (const strategy of ['serpentine', 'scan', 'mixed'] as StrategyName[]) {
+      expect(() => planAnyJob({ ...cells, header: { ...cells.header, strategy } }, { ...MACHINE, linkBaud: 230400 })).toThrow(/no speed 230400 baud/);
+    }
+  });
+  it('shortens each stop by its F line at the raised speed', () => {
+    const slow = planJob(cells, MACHINE), fast = planJob(cells, { ...MACHINE, linkBaud: 250000 });
+    expect(fast.count).toBe(slow.count);
+    expect(fast.estimateUs).toBeLessThan(slow.estimateUs);
   });
 });

@@ -2,7 +2,7 @@
 // take both ways. `npm run vectors:planner` writes them to protocol/vectors/mixed-ts.json.
 
 import type { PrintJob } from '../protocol/job-types';
-import { GEOMETRIES, MACHINE, randomJob } from './golden';
+import { GEOMETRIES, MACHINE, RAISED_MACHINE, randomJob } from './golden';
 import { headerOf } from './job-header';
 import { mixedVector, planMixed } from './mixed';
 import { SLOW_MACHINE } from './scan-golden';
@@ -41,6 +41,12 @@ export function mixedGoldenCases(): MixedCase[] {
       out.push(mixedCase(`ts mixed ${g} #${n}`, j, n % 2 ? SLOW_MACHINE : MACHINE));
     }
     out.push(mixedCase(`ts mixed ${g} random`, randomJob(seed++, offsets, 'mixed'), MACHINE));
+  }
+  // Dense and sparse rows on the raised link: its scan passes are capped less.
+  for (const [g, offsets] of Object.entries(GEOMETRIES)) {
+    const j = patchyJob(seed++, offsets, [60, 12], 2);
+    j.dose = { map: 'threshold', level: 100, fullUs: 1500 };
+    out.push(mixedCase(`ts mixed ${g}, link at 250000`, j, RAISED_MACHINE));
   }
   return out;
 }

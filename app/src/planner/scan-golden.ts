@@ -2,7 +2,7 @@
 // implementation makes. `npm run vectors:planner` writes them to protocol/vectors/scan-ts.json.
 
 import type { PrintJob } from '../protocol/job-types';
-import { GEOMETRIES, MACHINE, randomJob } from './golden';
+import { GEOMETRIES, MACHINE, RAISED_MACHINE, randomJob } from './golden';
 import { headerOf } from './job-header';
 import { planScan, type ScanPlan } from './scan';
 import type { Machine } from './time-model';
@@ -55,11 +55,15 @@ export function scanGoldenCases(): ScanCase[] {
     const j = randomJob(seed++, offsets, 'serpentine', [40 + (seed % 40), 4 + (seed % 6)], 0.9);
     j.dose = { map: 'linear', fullUs: 1000 + (seed % 17) * 113 };
     out.push(scanCase(`ts scan ${g} photo, link-capped`, j, MACHINE));
+    out.push(scanCase(`ts scan ${g} photo, link at 250000`, structuredClone(j), RAISED_MACHINE));  // capped less
   }
   // The simavr scan test's dense pass (scan_dose.h testPattern's rows 8 to 11, 100 µm at 1 ms a
   // cell): a chain of four programs whose third would come late at the window the whole chain's
   // rule gives, so each program's own rule slows it further.
-  out.push(scanCase('ts scan four programs, each in time', testPatternJob(8, 12), { ...MACHINE, vmaxUmS: [100_000, 100_000], accelUmS2: [2_000_000, 1_500_000], overheadUs: 400 }));
+  const simavr: Machine = { ...MACHINE, vmaxUmS: [100_000, 100_000], accelUmS2: [2_000_000, 1_500_000], overheadUs: 400 };
+  out.push(scanCase('ts scan four programs, each in time', testPatternJob(8, 12), simavr));
+  // The same at 250000 baud: the Mega's 300 µs an event, not the wire, now sets the window.
+  out.push(scanCase('ts scan four programs, link at 250000', testPatternJob(8, 12), { ...simavr, linkBaud: 250000 }));
   return out;
 }
 

@@ -6,7 +6,7 @@ import { GEOMETRIES, MACHINE, randomJob } from './golden';
 import { headerOf } from './job-header';
 import { passRows, planJob } from './planner';
 import { scanGoldenCases, type ScanCase } from './scan-golden';
-import { LINK_BAUD, linkShortfall, MAX_JUMPS, passMotion, planScan, planScanPass, PROGRAM_RELAY_US, scanMotion, SCAN_PASS_END_US, SCAN_PASS_LOAD_US, type ScanPlan } from './scan';
+import { linkShortfall, MAX_JUMPS, passMotion, planScan, planScanPass, PROGRAM_RELAY_US, scanMotion, SCAN_PASS_END_US, SCAN_PASS_LOAD_US, type ScanPlan } from './scan';
 import { parsePacked, programLines } from '../protocol/scan-program';
 import { axisSteps, engineMoveUs, MoveTimes, moveTimeUs, type Machine } from './time-model';
 
@@ -287,7 +287,7 @@ describe('scan planner and the printhead link', () => {
     }
     return out;
   };
-  const wireUs = (bytes: number) => Math.floor((bytes * 1e7) / LINK_BAUD);
+  const wireUs = (bytes: number, baud: number) => Math.floor((bytes * 1e7) / baud);
 
   it('loads each program after the first two while the one before it plays, with the relay and a fifth to spare', () => {
     let chains = 0;
@@ -296,7 +296,7 @@ describe('scan planner and the printhead link', () => {
         const p = programs(pass.events);
         if (p.length > 2) chains++;
         for (let k = 2; k < p.length; k++) {
-          expect(5 * wireUs(p[k].bytes) + 4 * PROGRAM_RELAY_US, `${c.name} pass ${pass.hy} program ${k + 1}`).toBeLessThanOrEqual(4 * (p[k - 1].endUs - p[k - 2].endUs));
+          expect(5 * wireUs(p[k].bytes, c.machine.linkBaud) + 4 * PROGRAM_RELAY_US, `${c.name} pass ${pass.hy} program ${k + 1}`).toBeLessThanOrEqual(4 * (p[k - 1].endUs - p[k - 2].endUs));
         }
       }
     }
@@ -313,7 +313,7 @@ describe('scan planner and the printhead link', () => {
       { job: { header: headerOf(c.job), cells: c.job.gridData }, tables: durationTables(headerOf(c.job)), motion: passMotion(headerOf(c.job), c.machine, pass.windowUs - 1), machine: c.machine, moves: new MoveTimes(c.machine), neverFly: false, noLinkCap: true },
       passRows(headerOf(c.job), c.job.gridData)[0].ledRows, pass.hy, false, 0, 0,
     );
-    expect(tighter && 'events' in tighter && linkShortfall(tighter.events)).toBeTruthy();
+    expect(tighter && 'events' in tighter && linkShortfall(tighter.events, c.machine.linkBaud)).toBeTruthy();
   });
 });
 

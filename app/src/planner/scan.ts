@@ -82,8 +82,13 @@ export function fitsTimer(h: JobHeader, windowUs: number): boolean {
   return (h.cols + Math.max(...dx) - Math.min(...dx)) * windowUs < 2 ** 32;
 }
 
-/** The G step comes at least this long before a pass's start mark (its line at 115200, the Nano's lead: scan_stroke.h). */
-export const STROKE_MARK_LEAD_US = 1000 + 2 * 85;
+/**
+ * µs a byte takes on the link at `baud` as the AVR's UART runs it (U2X, UBRR (16 MHz/4/baud − 1)/2
+ * rounded down: 85 at 115200, 40 at 250000; nano_codec.h linkByteUs).
+ */
+export const linkByteUs = (baud: number): number => 5 * (Math.floor((Math.floor(16_000_000 / 4 / baud) - 1) / 2) + 1);
+/** The G step comes at least this long before a pass's start mark: the G's two bytes at the link's speed, then the Nano's 1000 µs lead (scan_stroke.h markLeadUs). */
+export const strokeMarkLeadUs = (baud: number): number => 1000 + 2 * linkByteUs(baud);
 /** After the stroke the Mega waits for the Nano's next Q answer (asked every 10 ms): half a poll on average. */
 export const SCAN_PASS_END_US = 5000;
 /** µs the Mega takes to start a pass once its move is done (planner.md "Scan mode"): not a stop's overhead (`overheadUs`). */
@@ -116,7 +121,7 @@ export function planStroke(machine: Machine, markX2Um: number, endX2Um: number, 
   const accel = axisAccel(machine, 0);
   const ramp = stepRamp([1, 0], [rate, 0], [accel, 1]).ramp;
   const mark = sign * BigInt(markX2Um) * S;
-  const gAt = floorDivBig(mark, den) - ceilDiv((2n * BigInt(STROKE_MARK_LEAD_US)) << 16n, q16) - 1n;
+  const gAt = floorDivBig(mark, den) - ceilDiv((2n * BigInt(strokeMarkLeadUs(machine.linkBaud))) << 16n, q16) - 1n;
   const start = gAt - BigInt(ramp + 2);
   const stop = -floorDivBig(-(sign * BigInt(endX2Um) * S), den) + BigInt(ramp + 1);
   const n = Number(stop - start);
@@ -132,7 +137,7 @@ export function planStroke(machine: Machine, markX2Um: number, endX2Um: number, 
   };
 }
 
-/** Bytes a second the printhead link carries: 115200 baud, ten bits a byte (nano.md). */
+/** The printhead link's power-on speed (nano.md), what a board that never raises it runs at. */
 export const LINK_BAUD = 115200;
 
 /**
@@ -148,11 +153,11 @@ export const PROGRAM_RELAY_US = 10000;
  */
 export const PROGRAM_EVENT_US = 300;
 
-/** µs `bytes` take on the printhead link at 115200 baud, ten bits a byte. */
-const linkUs = (bytes: number): bigint => (BigInt(bytes) * 10_000_000n) / BigInt(LINK_BAUD);
-/** µs lines of `bytes` holding `events` take to go out: the wire's time, or the planner's if longer. */
-const sendUs = (bytes: number, events: number): bigint => {
-  const wire = linkUs(bytes), made = BigInt(events * PROGRAM_EVENT_US);
+/** µs `bytes` take on the printhead link at `baud`, ten bits a byte. */
+const linkUs = (bytes: number, baud: number): bigint => (BigInt(bytes) * 10_000_000n) / BigInt(baud);
+/** µs lines of `bytes` holding `events` take to go out at `baud`: the wire's time, or the planner's if longer. */
+const sendUs = (bytes: number, events: number, baud: number): bigint => {
+  const wire = linkUs(bytes, baud), made = BigInt(events * PROGRAM_EVENT_US);
   return wire > made ? wire : made;
 };
 
@@ -162,7 +167,7 @@ const sendUs = (bytes: number, events: number): bigint => {
  * the first two programs' link µs against 4 × the pass's last event), else that of the first program
  * k ≥ 3 that would come too late (5 × its link µs + 4 × the relay against 4 × the µs program k − 1 plays).
  */
-export function linkShortfall(events: ScanEvent[]): [bigint, bigint] | null {
+export function linkShortfall(events: ScanEvent[], baud: number): [bigint, bigint] | null {
   if (!events.length) return null;
   let bytes = 0, ahead = 0, aheadEvents = 0, sealed = 0, program = 0, end1 = 0, end2 = 0;
   let late: [bigint, bigint] | null = null;
@@ -176,14 +181,14 @@ export function linkShortfall(events: ScanEvent[]): [bigint, bigint] | null {
       aheadEvents = Math.min(2 * PROGRAM_EVENTS, events.length);
     }
     if (sealed > 2 && !late) {
-      const need = 5n * sendUs(program, held) + 4n * BigInt(PROGRAM_RELAY_US), have = 4n * BigInt(end1 - end2);
+      const need = 5n * sendUs(program, held, baud) + 4n * BigInt(PROGRAM_RELAY_US), have = 4n * BigInt(end1 - end2);
       if (need > have) late = [need, have];
     }
     program = 0;
     end2 = end1;
     end1 = events[Math.min(sealed * PROGRAM_EVENTS, events.length) - 1][0];
   }
-  const need = sealed > 2 ? 5n * sendUs(bytes - ahead, events.length - aheadEvents) : 0n, have = 4n * BigInt(events[events.length - 1][0]);
+  const need = sealed > 2 ? 5n * sendUs(bytes - ahead, events.length - aheadEvents, baud) : 0n, have = 4n * BigInt(events[events.length - 1][0]);
   return need > have ? [need, have] : late;
 }
 
@@ -251,7 +256,7 @@ export function planScanPass(ctx: ScanContext, ledRows: number[], hy: number, de
   let pass = layoutPass(job, tables, ledRows, hy, descending, motion, machine, moves, ctx.neverFly);
   if (!pass) return null;
   // The link cap: a pass whose program lines would outrun the link is laid out again at a longer window.
-  for (let short = ctx.noLinkCap ? null : linkShortfall(pass.events); short; short = linkShortfall(pass.events)) {
+  for (let short = ctx.noLinkCap ? null : linkShortfall(pass.events, machine.linkBaud); short; short = linkShortfall(pass.events, machine.linkBaud)) {
     const w = linkWindow(pass.windowUs, short);
     if (!fitsTimer(h, w)) return { refused: '' };
     pass = layoutPass(job, tables, ledRows, hy, descending, passMotion(h, machine, w), machine, moves, ctx.neverFly)!;

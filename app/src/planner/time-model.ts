@@ -1,20 +1,21 @@
 // Move times (the continuous trapezoid, and the Mega's step engine as it runs a move) and the
 // per-stop time model (protocol/planner.md "Time model"), in integer µs.
 
+import { NANO_LINK_BAUDS as LINK_BAUDS } from '../protocol/nano';
 import { roundDiv } from './dose';
 
 /**
- * µs the stop's `F:m,d0,d1,d2,d3` line takes on the printhead link at 115200 baud, ten bits a byte,
+ * µs the stop's `F:m,d0,d1,d2,d3` line takes on the printhead link at `baud`, ten bits a byte,
  * rounded down (protocol/planner.md "Time model"); 0 for a stop that lights nothing (no F goes).
  */
-export function fireLineUs(us: ArrayLike<number>): number {
+export function fireLineUs(us: ArrayLike<number>, baud: number): number {
   let mask = 0;
   let bytes = 7; // "F:", the four commas, the newline
   for (let k = 0; k < 4; k++) {
     if (us[k] > 0) mask |= 1 << k;
     bytes += String(us[k]).length;
   }
-  return mask ? Math.floor(((bytes + String(mask).length) * 10_000_000) / 115_200) : 0;
+  return mask ? Math.floor(((bytes + String(mask).length) * 10_000_000) / baud) : 0;
 }
 
 export interface Machine {
@@ -25,6 +26,11 @@ export interface Machine {
   startUm: [number, number];
   /** X and Y steps per mm × 1000: the step engine moves in whole steps. */
   stepsMilli: [number, number];
+  /**
+   * The printhead link's speed the job runs at, one of the Nano's `L` speeds (nano.md "Link speed"):
+   * it times each stop's F line, a pass's G lead and its programs on the wire (planner.md).
+   */
+  linkBaud: number;
 }
 
 /**
@@ -139,7 +145,9 @@ export function moveTimeUs(d: number, v: number, a: number): number {
 export class MoveTimes {
   readonly #cache = [new Map<number, number>(), new Map<number, number>()];
   readonly #engine = new Map<number, number>();
-  constructor(private readonly machine: Machine) {}
+  constructor(private readonly machine: Machine) {
+    if (!LINK_BAUDS.includes(machine.linkBaud)) throw new RangeError(`the printhead link has no speed ${machine.linkBaud} baud (nano.md "Link speed")`);
+  }
 
   axis(axis: 0 | 1, d: number): number {
     const cache = this.#cache[axis];
@@ -181,6 +189,6 @@ export class MoveTimes {
   /** The same after a move of (dx, dy) steps: the one rule every planner prices a stop by (stopCostStepsUs in C++). */
   stopSteps(dx: number, dy: number, us: ArrayLike<number>): number {
     const move = this.engine(dx, dy);
-    return move + (move > 0 ? this.machine.settleUs : 0) + this.machine.overheadUs + fireLineUs(us) + Math.max(us[0], us[1], us[2], us[3]);
+    return move + (move > 0 ? this.machine.settleUs : 0) + this.machine.overheadUs + fireLineUs(us, this.machine.linkBaud) + Math.max(us[0], us[1], us[2], us[3]);
   }
 }

@@ -4,7 +4,7 @@ import { planJob } from '../planner/planner';
 import type { PrintJob } from '../protocol/job-types';
 import { ledCoverage, previewGrid, timeline } from './exposure-preview';
 
-const machine = { vmaxUmS: [100_000, 100_000] as [number, number], accelUmS2: [2_000_000, 1_500_000] as [number, number], settleUs: 2000, overheadUs: 1500, startUm: [0, 0] as [number, number], stepsMilli: [80_000, 80_000] as [number, number] };
+const machine = { vmaxUmS: [100_000, 100_000] as [number, number], accelUmS2: [2_000_000, 1_500_000] as [number, number], settleUs: 2000, overheadUs: 1500, startUm: [0, 0] as [number, number], stepsMilli: [80_000, 80_000] as [number, number], linkBaud: 115200 };
 
 function job(cols: number, rows: number, cell: (x: number, y: number) => number): PrintJob {
   return {

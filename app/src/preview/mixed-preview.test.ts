@@ -7,7 +7,7 @@ import type { PrintJob } from '../protocol/job-types';
 import { mixedWords } from '../job/scan-words';
 import { mixedPreview, mixedTimeline } from './mixed-preview';
 
-const MACHINE: Machine = { vmaxUmS: [100_000, 100_000], accelUmS2: [2_000_000, 2_000_000], settleUs: 2000, overheadUs: 1500, startUm: [0, 0], stepsMilli: [80_000, 80_000] };
+const MACHINE: Machine = { vmaxUmS: [100_000, 100_000], accelUmS2: [2_000_000, 2_000_000], settleUs: 2000, overheadUs: 1500, startUm: [0, 0], stepsMilli: [80_000, 80_000], linkBaud: 115200 };
 
 // Dense bands of four rows between bands with one dot: passes on the move and passes of stops.
 const grid = Array.from({ length: 32 }, (_, y) => Array.from({ length: 80 }, (_, x) => ((y >> 2) % 2 === 0 ? 200 : y % 4 === 1 && x === (y * 37) % 80 ? 255 : 0)));

@@ -144,7 +144,7 @@ export function forecastMixedThermal(mixed: MixedPlan, place: PlanPlace, machine
     for (const [hx, hy, ...d] of p.stops) {
       const nx = axisSteps(machine, 0, place.originUm[0] + hx * place.pitchUm[0]), ny = axisSteps(machine, 1, place.originUm[1] + hy * place.pitchUm[1]);
       const move = moves.engine(nx - x, ny - y);
-      if (!hold(move + (move > 0 ? machine.settleUs : 0) + machine.overheadUs + fireLineUs(d), 0) || !paceWait() || !exposeStop(hold, d)) return result();
+      if (!hold(move + (move > 0 ? machine.settleUs : 0) + machine.overheadUs + fireLineUs(d, machine.linkBaud), 0) || !paceWait() || !exposeStop(hold, d)) return result();
       x = nx, y = ny;
       s.stop++;
     }

@@ -74,7 +74,7 @@ TEST_P(ScanBoardTest, AChainOfFourProgramsLoadsEachInTimeAndGivesEveryCellItsDos
   const Grid g(all.begin() + 8, all.end());
   const uv::JobHeader h = scanJob(g, 1000);
   uvtest::GridCells cells(g);
-  const uv::Machine m{{100000, 100000}, {2000000, 1500000}, 2000, 400, {0, 0}, {80000, 80000}};
+  const uv::Machine m{{100000, 100000}, {2000000, 1500000}, 2000, 400, {0, 0}, {80000, 80000}, mega::kJobLinkBaud};  // as the Mega plans it
   uv::ScanPlanner planner(h, cells, m);
   uv::ScanPass p;
   ASSERT_TRUE(planner.nextPass(p));
@@ -106,7 +106,8 @@ TEST_P(ScanBoardTest, APhotoLikePassLoadsEachProgramWithinTheRelay) {
     for (size_t c = 0; c < g[r].size(); c++) g[r][c] = static_cast<uint8_t>(std::lround(127.5 + 127.5 * std::sin(c / 6.0 + r) * std::cos(r / 3.0 + c / 17.0)));
   const uv::JobHeader h = scanJob(g, 2000);
   uvtest::GridCells cells(g);
-  const uv::Machine m{{100000, 100000}, {2000000, 1500000}, 2000, 400, {0, 0}, {80000, 80000}};
+  // As the Mega plans it: at the link's speed it runs the pass at (kJobLinkBaud).
+  const uv::Machine m{{100000, 100000}, {2000000, 1500000}, 2000, 400, {0, 0}, {80000, 80000}, mega::kJobLinkBaud};
   uv::ScanPlanner planner(h, cells, m);
   uv::ScanPass p;
   ASSERT_TRUE(planner.nextPass(p));
@@ -117,12 +118,12 @@ TEST_P(ScanBoardTest, APhotoLikePassLoadsEachProgramWithinTheRelay) {
   std::printf("[scan simavr, photo-like] real Mega + Nano images, the link at %u baud, the Nano's clock %+.1f %%, %d cells (%d lit) in 1 pass at a %u us window "
               "(the job's 2000, capped for the link): worst dose error %.2f %% of the full dose, worst LED edge %.2f um from its place, "
               "worst cell centroid %.2f um; %d programs waited for a buffer: longest relay %.0f us (the planner allows %u), least slack %.0f us\n",
-              mega::kRaiseNanoLink ? mega::kNanoFastBaud : uv::kNanoBaud, (GetParam() - 1) * 100, f.cells, f.lit, windowUs, f.worstDosePct, f.worstEdgeUm, f.worstCentreUm, link.waited, link.relayMaxUs,
+              mega::kJobLinkBaud, (GetParam() - 1) * 100, f.cells, f.lit, windowUs, f.worstDosePct, f.worstEdgeUm, f.worstCentreUm, link.waited, link.relayMaxUs,
               uv::kProgramRelayUs, link.slackMinUs);
   EXPECT_GT(windowUs, h.fullUs);  // the link, not the light, sets its pace
   // At the raised speed (protocol/nano.md "Link speed"): the Mega asked it, the Nano took it, and it
-  // never fell back (a fall-back drops the programs, and the pass would have failed). While the board
-  // does not raise (mega::kRaiseNanoLink, until the planners cost the raised link), no L goes at all.
+  // never fell back (a fall-back drops the programs, and the pass would have failed). A board that
+  // does not raise (mega::kRaiseNanoLink false) sends no L at all.
   const auto& toNano = sim.nanoLines;
   const auto& fromNano = sim.nanoReplies;
   const std::string raise = "L:" + std::to_string(mega::kNanoFastBaud);

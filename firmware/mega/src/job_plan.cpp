@@ -6,6 +6,7 @@
 #include "error_codes.h"
 #include "job_files.h"
 #include "nano_codec.h"
+#include "printhead_link.h"
 #include "scan_program.h"
 #include "scan_stroke.h"
 #include "step_profile.h"
@@ -30,6 +31,7 @@ uv::Machine plannerMachine(const Config& config, int32_t x, int32_t y) {
   m.startUm[1] = y;
   m.stepsMilli[0] = static_cast<uint32_t>(config.milli(Key::StepsX));
   m.stepsMilli[1] = static_cast<uint32_t>(config.milli(Key::StepsY));
+  m.linkBaud = kJobLinkBaud;  // the speed the passes run at (ScanRun waits for it)
   return m;
 }
 
@@ -125,7 +127,7 @@ bool JobPlan::stepScan() {
     return false;
   }
   uv::ProgramLines lines(passEvent, this);
-  uv::LinkLoad load;
+  uv::LinkLoad load(machine_.linkBaud);
   char line[uv::kNanoMaxLine + 2];
   passUs_ = 0;
   for (uint8_t n; (n = lines.next(line)) != 0;) load.add(line, n, lines.lastUs());

@@ -26,11 +26,12 @@ constexpr uint32_t kClockRepollUs = 5000000;  // then now and then, to follow it
 // The raised link speed (protocol/nano.md "Link speed", "Which speed"): the Nano's interrupts-off
 // stretches fit three byte-times at 250000, not at 500000.
 constexpr uint32_t kNanoFastBaud = 250000;
-// Whether the board raises the link. Not yet: the time model and the link rule of both planners still
-// cost the link at 115200 (planner.md "The printhead link"), so a raised link would run passes the
-// forecast does not know of. The speed change itself is whole and tested on the host
-// (printhead_link_speed_test.cpp, the Nano's printhead_test.cpp); issue 39 turns this on with the planners.
-constexpr bool kRaiseNanoLink = false;
+// Whether the board raises the link (once the Nano is known and the link idle).
+constexpr bool kRaiseNanoLink = true;
+// The link's speed every job is planned at (uv::Machine::linkBaud; planner.md "The printhead link"),
+// at M29, when it runs and when it resumes, so the plan is the same whenever it is made. A scan pass
+// starts only with the link at least this fast (ScanRun waits for the raise after a fall-back).
+constexpr uint32_t kJobLinkBaud = kRaiseNanoLink ? kNanoFastBaud : uv::kNanoBaud;
 constexpr uint32_t kWakeGapUs = 2000;  // after begin()'s 0x00, quiet so long before the R
 constexpr uint32_t kSpeedRetryUs = 5000000;  // after a fall-back or an L unanswered, asked again so late
 

@@ -5,37 +5,15 @@
 
 #include <algorithm>
 
-#include "fake_nano.h"
-#include "printhead_link.h"
+#include "printhead_link_fixture.h"
 
 using namespace mega;
 
 namespace {
 
-struct Speed : ::testing::Test {
-  FakeNano nano;
-  PrintheadLink link{nano};
-  uint32_t now = 0;
-
-  void run(uint32_t us) {
-    for (uint32_t end = now + us; now < end; now += 100) {
-      nano.advance(now);
-      link.poll(now);
-    }
-  }
-  // Runs until the link is raised and proved, at most `us`; false if it never is.
-  bool runUntilRaised(uint32_t us) {
-    for (uint32_t end = now + us; now < end && !link.raised(); now += 100) {
-      nano.advance(now);
-      link.poll(now);
-    }
-    return link.raised();
-  }
-  bool bothAt(uint32_t baud) { return nano.megaBaud() == baud && nano.nanoBaud() == baud; }
+struct Speed : LinkFixture {
   void SetUp() override {
-    nano.wired = true;  // each byte its ten bit-times at its sender's speed
-    link.raiseSpeed(true);
-    link.begin(now);
+    start(true);
     ASSERT_TRUE(runUntilRaised(600000));
   }
 };

@@ -6,32 +6,15 @@
 
 #include <algorithm>
 
-#include "fake_nano.h"
+#include "printhead_link_fixture.h"
 
 using namespace mega;
 
 namespace {
 
-struct Link : ::testing::Test {
-  FakeNano nano;
-  PrintheadLink link{nano};
-  uint32_t now = 0;
-
-  // Runs the main loop every 100 µs of simulated time.
-  void run(uint32_t us) {
-    for (uint32_t end = now + us; now < end; now += 100) {
-      nano.advance(now);
-      link.poll(now);
-    }
-  }
-  int count(const std::string& line) const {
-    int n = 0;
-    for (const std::string& l : nano.lines) n += l == line;
-    return n;
-  }
+struct Link : LinkFixture {
   void SetUp() override {
-    nano.wired = true;  // each byte its 86.8 µs: the exposure's checks count the F's time on the wire
-    link.begin(now);
+    start(false);  // at 115200 throughout: the speed change has its own tests
     run(600000);
   }
 };

@@ -114,9 +114,11 @@ ScanRun::Step ScanRun::poll(Motion& motion, PrintheadLink& head, const uv::JobHe
   if (error_) return Step::Failed;
   switch (phase_) {
     case Phase::Open: {
-      // The Nano's clock must be known before a pass: its light runs on it (nano_clock.h).
+      // The Nano's clock must be known before a pass: its light runs on it (nano_clock.h). And the
+      // link must be as fast as the plan counts on (its programs would come late): after a fall-back
+      // to 115200 the link is raised again once idle (kSpeedRetryUs), which this waits for.
       if (!head.online()) return fail(head, uv::kNanoTimeout);
-      if (!head.nanoClock().known()) {
+      if (!head.nanoClock().known() || head.baud() < planner_.linkBaud()) {
         if (!clockWaiting_) {
           clockWaiting_ = true;
           clockWaitFrom_ = nowUs;

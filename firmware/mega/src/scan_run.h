@@ -21,8 +21,9 @@ constexpr uint32_t kScanPollUs = 10000;      // Q while a chain runs: well insid
 // baud), then the Nano's lead.
 constexpr uint32_t kScanStartUs = 174 + uv::kProgramStartLeadUs;
 constexpr uint32_t kScanSettleUs = 50000;    // after the stroke, the chain must have ended by then
-// A pass waits this long at most for the Nano's clock (known 2 s after the Nano answers W): a Nano
-// that never answers W (older firmware) cannot run a scan job, which ends with E29 and no light.
+// A pass waits this long at most for the Nano's clock (known 2 s after the Nano answers W) and for the
+// link at the plan's speed (kJobLinkBaud: raised within kSpeedRetryUs of a fall-back): a Nano that
+// never answers W or never takes L (older firmware) cannot run a scan job, which ends with E29 and no light.
 constexpr uint32_t kScanClockWaitUs = 10000000;
 
 class ScanRun {

@@ -16,6 +16,7 @@ inline uv::Machine machineFrom(const nlohmann::json& m) {
   }
   out.settleUs = m["settleUs"];
   out.overheadUs = m["overheadUs"];
+  out.linkBaud = m["linkBaud"];
   return out;
 }
 

@@ -56,12 +56,19 @@ json makeJob(Rng& r, const std::vector<std::array<int, 2>>& offsets, const char*
           {"gridData", grid}};
 }
 
+// The same machine on a printhead link raised to 250000 baud (nano.md "Link speed"), as the board runs it.
+std::pair<uv::Machine, json> raised(uv::Machine m, json j) {
+  m.linkBaud = 250000;
+  j["linkBaud"] = 250000;
+  return {m, j};
+}
+
 // Scan plans (planner.md "Scan mode") of random jobs, on the same machine and on one that caps the speed.
 void writeScans(const char* path, const std::vector<std::pair<const char*, std::vector<std::array<int, 2>>>>& geometries,
                 const uv::Machine& fast, const json& fastJson) {
   const uv::Machine slow{{8000, 90000}, {600000, 1500000}, 1000, 900, {0, 4000}, {80000, 100000}};
   const json slowJson = {{"vmaxUmS", {8000, 90000}}, {"accelUmS2", {600000, 1500000}}, {"settleUs", 1000},
-                         {"overheadUs", 900}, {"startUm", {0, 4000}}, {"stepsMilli", {80000, 100000}}};
+                         {"overheadUs", 900}, {"startUm", {0, 4000}}, {"stepsMilli", {80000, 100000}}, {"linkBaud", 115200}};
   Rng r(20261124);
   json cases = json::array();
   for (const auto& [gname, offsets] : geometries) {
@@ -105,6 +112,11 @@ void writeScans(const char* path, const std::vector<std::pair<const char*, std::
                      {"job", job},
                      {"machine", fastJson},
                      {"scan", uvtest::scanPlanJson(h, cells, fast)}});
+    const auto [up, upJson] = raised(fast, fastJson);  // the same photo on the raised link: capped less
+    cases.push_back({{"name", std::string("c++ scan ") + gname + " photo, link at 250000"},
+                     {"job", job},
+                     {"machine", upJson},
+                     {"scan", uvtest::scanPlanJson(h, cells, up)}});
   }
   std::ofstream(path) << json({{"version", 1}, {"madeBy", "c++"}, {"cases", cases}}).dump() << "\n";
   std::printf("wrote %zu scan cases\n", cases.size());
@@ -116,7 +128,7 @@ void writeMixed(const char* path, const std::vector<std::pair<const char*, std::
                 const uv::Machine& fast, const json& fastJson) {
   const uv::Machine slow{{8000, 90000}, {600000, 1500000}, 1000, 900, {0, 4000}, {80000, 100000}};
   const json slowJson = {{"vmaxUmS", {8000, 90000}}, {"accelUmS2", {600000, 1500000}}, {"settleUs", 1000},
-                         {"overheadUs", 900}, {"startUm", {0, 4000}}, {"stepsMilli", {80000, 100000}}};
+                         {"overheadUs", 900}, {"startUm", {0, 4000}}, {"stepsMilli", {80000, 100000}}, {"linkBaud", 115200}};
   Rng r(20261127);
   json cases = json::array();
   for (const auto& [gname, offsets] : geometries) {
@@ -142,6 +154,13 @@ void writeMixed(const char* path, const std::vector<std::pair<const char*, std::
                        {"job", job},
                        {"machine", capped ? slowJson : fastJson},
                        {"mixed", uvtest::mixedPlanJson(h, cells, capped ? slow : fast)}});
+      if (n == 0) {  // dense rows at the job's window: on the raised link fewer of them are capped
+        const auto [up, upJson] = raised(fast, fastJson);
+        cases.push_back({{"name", std::string("c++ mixed ") + gname + " #0, link at 250000"},
+                         {"job", job},
+                         {"machine", upJson},
+                         {"mixed", uvtest::mixedPlanJson(h, cells, up)}});
+      }
     }
   }
   std::ofstream(path) << json({{"version", 1}, {"madeBy", "c++"}, {"cases", cases}}).dump() << "\n";
@@ -162,29 +181,32 @@ int main(int argc, char** argv) {
       {"staggered", {{{0, 0}}, {{1, 2}}, {{-2, 5}}, {{0, -1}}}},
   };
   const json machine = {{"vmaxUmS", {120000, 90000}}, {"accelUmS2", {2500000, 1500000}}, {"settleUs", 3000},
-                        {"overheadUs", 1200}, {"startUm", {5000, 0}}, {"stepsMilli", {80000, 80000}}};
+                        {"overheadUs", 1200}, {"startUm", {5000, 0}}, {"stepsMilli", {80000, 80000}}, {"linkBaud", 115200}};
   uv::Machine m{{120000, 90000}, {2500000, 1500000}, 3000, 1200, {5000, 0}, {80000, 80000}};
   Rng r(20261121);
   json cases = json::array();
   for (const auto& [gname, offsets] : geometries) {
     for (const char* s : {"raster", "serpentine", "shortest", "random"}) {
-      for (int n = 0; n < 2; n++) {
+      for (int n = 0; n < 3; n++) {
+        // The third of each is on the raised link (its F lines shorter): the first two are as before.
+        const bool up = n == 2;
+        const auto [mu, machineUp] = raised(m, machine);
         json job = makeJob(r, offsets, s);
         uv::JobHeader h = uvtest::headerFrom(job);
         std::vector<std::vector<uint8_t>> rows;
         for (const auto& row : job["gridData"]) rows.emplace_back(row.begin(), row.end());
         uvtest::GridCells cells(rows);
-        uv::Planner planner(h, cells, m);
-        uv::PlanClock clock(h, m);
+        uv::Planner planner(h, cells, up ? mu : m);
+        uv::PlanClock clock(h, up ? mu : m);
         json stops = json::array();
         uv::Stop st;
         while (planner.next(st)) {
           clock.add(st);
           stops.push_back({st.hx, st.hy, st.us[0], st.us[1], st.us[2], st.us[3]});
         }
-        cases.push_back({{"name", std::string("c++ ") + gname + " " + s + " #" + std::to_string(n)},
+        cases.push_back({{"name", std::string("c++ ") + gname + " " + s + " #" + std::to_string(n) + (up ? ", link at 250000" : "")},
                          {"job", job},
-                         {"machine", machine},
+                         {"machine", up ? machineUp : machine},
                          {"plan", {{"stops", stops}, {"passes", planner.passes()}, {"estimateUs", clock.totalUs()},
                                    {"travelUm", {clock.travelUm(0), clock.travelUm(1)}}}}});
       }

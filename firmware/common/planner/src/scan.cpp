@@ -28,7 +28,7 @@ void planStroke(const Machine& m, int32_t markX2Um, int32_t endX2Um, bool descen
   const uint32_t ramp = stepRamp(1, static_cast<uint32_t>(rate), accel, 0, 0, 0).ramp;
   // The G step: at least the lead before the mark, one step more in hand, after the ramp and a step.
   const int64_t mark = sign * markX2Um * S;
-  const int64_t gAt = floorDiv(mark, den) - static_cast<int64_t>(ceilDiv((2ull * kStrokeMarkLeadUs) << 16, q16)) - 1;
+  const int64_t gAt = floorDiv(mark, den) - static_cast<int64_t>(ceilDiv((2ull * strokeMarkLeadUs(m.linkBaud)) << 16, q16)) - 1;
   const int64_t start = gAt - (ramp + 2);
   const int64_t stop = -floorDiv(-(sign * endX2Um * S), den) + ramp + 1;
   out.startSteps = static_cast<int32_t>(sign * start);
@@ -165,7 +165,7 @@ void ScanPlanner::openPass() {
 // outruns the printhead link (need > have, uv::LinkLoad), as the Mega checks at M29.
 bool ScanPlanner::outrunsLink(uint64_t& need, uint64_t& have) {
   ProgramLines lines(passEvent, this);
-  LinkLoad load;
+  LinkLoad load(m_.linkBaud);
   char line[kNanoMaxLine + 2];
   for (uint8_t n; (n = lines.next(line)) != 0;) load.add(line, n, lines.lastUs());
   // The pass's last event (every LED off) is the last moment nextEvent() gathered.

@@ -5,6 +5,7 @@
 #include "cell_source.h"
 #include "job_types.h"
 #include "planner.h"
+#include "scan_program.h"
 #include "time_model.h"
 
 namespace uv {
@@ -59,8 +60,9 @@ constexpr uint8_t kMaxJumps = 8;
 constexpr uint8_t kMixedBand = kShortestBand;
 
 // A scan pass's stroke as the Mega runs it (planner.md "The stroke", firmware/mega/src/scan_stroke.h):
-// the G step comes at least this long before the start mark (its line at 115200, the Nano's lead).
-constexpr uint32_t kStrokeMarkLeadUs = 1000 + 2 * 85;
+// the G step comes at least this long before the start mark: the G's two bytes at the link's speed
+// (linkByteUs: 85 µs at 115200, 40 at 250000), then the Nano's lead (scan_stroke.h markLeadUs).
+constexpr uint32_t strokeMarkLeadUs(uint32_t baud) { return kProgramStartLeadUs + 2 * linkByteUs(baud); }
 // After the stroke the Mega waits for the Nano's next Q answer (asked every 10 ms): half a poll on average.
 constexpr uint32_t kScanPassEndUs = 5000;
 // µs the Mega takes to start a pass once its move is done (planner.md "Scan mode"): not a stop's overheadUs.
@@ -86,6 +88,8 @@ class ScanPlanner {
   // (Worked out when asked: on the Mega, RAM is dearer than the divisions.)
   ScanMotion motion() const { return scanMotion(h_, dose_, m_); }
   const ScanMotion& passMotion() const { return pass_; }
+  // The printhead link's speed the plan is made for (Machine::linkBaud): its passes need the link at it.
+  uint32_t linkBaud() const { return m_.linkBaud; }
   // Opens the next pass with a lit cell and adds its time to the estimate; false when done.
   bool nextPass(ScanPass& out);
   // The current pass's next event; false at its end.

@@ -126,7 +126,7 @@ uint32_t moveTimeUs(uint32_t d, uint32_t v, uint32_t a) {
   return static_cast<uint32_t>(2 * isqrt64(static_cast<uint64_t>(d) * 1000000000000ull / a));
 }
 
-uint32_t fireLineUs(const uint32_t us[4]) {
+uint32_t fireLineUs(const uint32_t us[4], uint32_t baud) {
   uint32_t mask = 0, bytes = 7;  // "F:", the four commas, the newline
   for (uint8_t k = 0; k < 4; k++) {
     if (us[k]) mask |= 1u << k;
@@ -135,7 +135,7 @@ uint32_t fireLineUs(const uint32_t us[4]) {
   }
   if (!mask) return 0;
   bytes += mask >= 10 ? 2 : 1;
-  return bytes * 10000000u / 115200u;
+  return bytes * 10000000u / baud;
 }
 
 uint32_t stopCostUs(const Machine& m, int32_t fromX, int32_t fromY, int32_t toX, int32_t toY, const uint32_t us[4]) {
@@ -147,7 +147,7 @@ uint32_t stopCostStepsUs(const Machine& m, int32_t dx, int32_t dy, const uint32_
   uint32_t longest = 0;
   for (uint8_t k = 0; k < 4; k++)
     if (us[k] > longest) longest = us[k];
-  return move + (move ? m.settleUs : 0) + m.overheadUs + fireLineUs(us) + longest;
+  return move + (move ? m.settleUs : 0) + m.overheadUs + fireLineUs(us, m.linkBaud) + longest;
 }
 
 void PlanClock::add(const Stop& s) {

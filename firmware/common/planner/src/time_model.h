@@ -5,6 +5,7 @@
 
 #include "isqrt.h"
 #include "job_types.h"
+#include "nano_codec.h"
 
 namespace uv {
 
@@ -15,6 +16,9 @@ struct Machine {
   uint32_t overheadUs;
   int32_t startUm[2];
   uint32_t stepsMilli[2];  // X and Y steps per mm × 1000: the step engine moves in whole steps
+  // The printhead link's speed the job runs at (one of nanoLinkBaud's; planner.md "Time model", "The
+  // printhead link"): it times each stop's F line, a pass's G lead and its programs on the wire.
+  uint32_t linkBaud = kNanoBaud;
 };
 
 // The Mega's step engine as the time model prices it (firmware/mega/src/step_profile.h, whose
@@ -56,9 +60,9 @@ uint64_t isqrt64(uint64_t n);
 // pass's flown stretch is planned on it: the Mega flies it in exactly that time).
 uint32_t moveTimeUs(uint32_t d, uint32_t v, uint32_t a);
 
-// µs the stop's F:m,d0,d1,d2,d3 line takes on the printhead link at 115200 baud, ten bits a byte,
+// µs the stop's F:m,d0,d1,d2,d3 line takes on the printhead link at `baud`, ten bits a byte,
 // rounded down (planner.md "Time model"); 0 for a stop that lights nothing (no F goes).
-uint32_t fireLineUs(const uint32_t us[4]);
+uint32_t fireLineUs(const uint32_t us[4], uint32_t baud);
 // One stop's time from the previous head position (bed µm): the step engine's move, settle if
 // it moved, the per-stop overhead, its F line on the wire and its longest LED duration.
 uint32_t stopCostUs(const Machine& m, int32_t fromX, int32_t fromY, int32_t toX, int32_t toY, const uint32_t us[4]);

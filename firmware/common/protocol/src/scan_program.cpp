@@ -186,7 +186,7 @@ void LinkLoad::add(const char* line, uint8_t n, uint32_t lastUs) {
     aheadEvents_ = events_;
   }
   if (sealed_ > 2 && !need_) {
-    const uint64_t need = 5 * sendUs(program_, s.events) + 4ull * kProgramRelayUs, have = 4ull * (end1_ - end2_);
+    const uint64_t need = 5 * sendUs(program_, s.events, baud_) + 4ull * kProgramRelayUs, have = 4ull * (end1_ - end2_);
     if (need > have) {
       need_ = need;
       have_ = have;
@@ -198,7 +198,7 @@ void LinkLoad::add(const char* line, uint8_t n, uint32_t lastUs) {
 }
 
 bool LinkLoad::fits(uint32_t passUs, uint64_t& need, uint64_t& have) const {
-  need = sealed_ > 2 ? 5 * sendUs(bytes_ - ahead_, events_ - aheadEvents_) : 0;
+  need = sealed_ > 2 ? 5 * sendUs(bytes_ - ahead_, events_ - aheadEvents_, baud_) : 0;
   have = 4ull * passUs;
   if (need > have) return false;
   need = need_;

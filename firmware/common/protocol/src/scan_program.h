@@ -106,12 +106,15 @@ class ProgramLines {
 // link cap and the Mega's M29 both ask it, so a plan the planner makes is never refused.
 class LinkLoad {
  public:
+  // `baud`: the link's speed while the pass plays (one of nanoLinkBaud's).
+  explicit LinkLoad(uint32_t baud) : baud_(baud) {}
   void add(const char* line, uint8_t n, uint32_t lastUs);
   // `passUs`: the pass's last event. False when the chain outruns the link: need > have, the first
   // rule broken (the whole chain's, else the first program that would come too late).
   bool fits(uint32_t passUs, uint64_t& need, uint64_t& have) const;
 
  private:
+  uint32_t baud_;
   uint32_t bytes_ = 0, ahead_ = 0, program_ = 0;  // all, the first two programs', the open program's
   uint32_t events_ = 0, aheadEvents_ = 0;         // all sealed, the first two programs'
   uint16_t sealed_ = 0;
@@ -131,11 +134,11 @@ constexpr uint32_t kProgramRelayUs = 10000;
 // more than their 5.5 ms on the wire, so a dense program goes out no faster than its events are made.
 constexpr uint32_t kProgramEventUs = 300;
 
-// µs `bytes` take on the printhead link: 115200 baud, ten bits a byte.
-inline uint64_t linkUs(uint32_t bytes) { return static_cast<uint64_t>(bytes) * 10 * 1000000 / kNanoBaud; }
-// µs lines of `bytes` holding `events` take to go out: the wire's time, or the planner's if longer.
-inline uint64_t sendUs(uint32_t bytes, uint32_t events) {
-  const uint64_t wire = linkUs(bytes), made = static_cast<uint64_t>(events) * kProgramEventUs;
+// µs `bytes` take on the printhead link at `baud`, ten bits a byte.
+inline uint64_t linkUs(uint32_t bytes, uint32_t baud) { return static_cast<uint64_t>(bytes) * 10 * 1000000 / baud; }
+// µs lines of `bytes` holding `events` take to go out at `baud`: the wire's time, or the planner's if longer.
+inline uint64_t sendUs(uint32_t bytes, uint32_t events, uint32_t baud) {
+  const uint64_t wire = linkUs(bytes, baud), made = static_cast<uint64_t>(events) * kProgramEventUs;
   return wire > made ? wire : made;
 }
 

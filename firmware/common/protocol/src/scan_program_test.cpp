@@ -162,11 +162,11 @@ TEST(ProgramLines, StopsUnsealedAtAnEventOutOfOrderOrTooFarApart) {
 }
 
 // Three programs of 64 events `spacing` µs apart, through LinkLoad as the planner and M29 feed it.
-static bool chainFits(uint32_t spacing, uint64_t& need, uint64_t& have, uint32_t& thirdBytes) {
+static bool chainFits(uint32_t spacing, uint64_t& need, uint64_t& have, uint32_t& thirdBytes, uint32_t baud = kNanoBaud) {
   Events events;
   for (uint32_t i = 1; i <= 3u * kProgramEvents; i++) events.list.push_back({i * spacing, static_cast<uint8_t>(i % 2)});
   ProgramLines writer(Events::take, &events);
-  LinkLoad load;
+  LinkLoad load(baud);
   char out[kNanoMaxLine + 2];
   uint16_t sealed = 0;
   thirdBytes = 0;
@@ -185,13 +185,27 @@ TEST(LinkLoad, EachProgramAfterTheFirstTwoMustFitTheTimeTheOneBeforeItPlays) {
   // of 58 ms), but the third program has only the second's 19 ms, less the relay, and needs 5/4 of
   // its 20.
   EXPECT_FALSE(chainFits(300, need, have, third));
-  EXPECT_EQ(need, 5 * sendUs(third, kProgramEvents) + 4 * kProgramRelayUs);
+  EXPECT_EQ(need, 5 * sendUs(third, kProgramEvents, kNanoBaud) + 4 * kProgramRelayUs);
   EXPECT_EQ(have, 4u * 64 * 300);
-  EXPECT_LE(5 * sendUs(third, kProgramEvents), 4u * 192 * 300);
+  EXPECT_LE(5 * sendUs(third, kProgramEvents, kNanoBaud), 4u * 192 * 300);
   EXPECT_TRUE(chainFits(2000, need, have, third));
 }
 
+TEST(LinkLoad, ARaisedLinkCarriesWhatTheMegaMakes) {
+  uint64_t need = 0, have = 0;
+  uint32_t third = 0;
+  // Events 535 µs apart: at 115200 the third program's lines take a little longer on the wire than
+  // the Mega takes to make their 64 events, and come too late; at 250000 the making sets the pace.
+  EXPECT_FALSE(chainFits(535, need, have, third, kNanoBaud));
+  EXPECT_GT(linkUs(third, kNanoBaud), 64u * kProgramEventUs);
+  EXPECT_EQ(need, 5 * linkUs(third, kNanoBaud) + 4 * kProgramRelayUs);
+  EXPECT_TRUE(chainFits(535, need, have, third, 250000));
+  EXPECT_EQ(linkUs(third, 250000), third * 40u);  // ten bits a byte at 250000: 40 µs
+  EXPECT_LT(linkUs(third, 250000), 64u * kProgramEventUs);
+}
+
 TEST(LinkLoad, AProgramGoesOutNoFasterThanTheMegaMakesItsEvents) {
-  EXPECT_EQ(sendUs(100, 64), 64u * kProgramEventUs);  // 8.7 ms on the wire, 64 events to make
-  EXPECT_EQ(sendUs(1000, 1), linkUs(1000));
+  EXPECT_EQ(sendUs(100, 64, kNanoBaud), 64u * kProgramEventUs);  // 8.7 ms on the wire, 64 events to make
+  EXPECT_EQ(sendUs(1000, 1, kNanoBaud), linkUs(1000, kNanoBaud));
+  EXPECT_EQ(sendUs(1000, 1, 250000), 40000u);  // the same lines at 250000: 40 ms
 }
