@@ -34,6 +34,17 @@ describe('dose grid', () => {
         expect(g.bounds()).toEqual({ x0: Math.min(x, 5), y0: y, x1: Math.max(x, 5), y1: 7 });
       }
   });
+
+  it('finds the same box a band of rows per task, with the page let run between', async () => {
+    const g = new DoseGrid(300, 200);
+    expect(await g.boundsSoon(async () => {}, 3000)).toBeNull();
+    g.cells[17 * 300 + 250] = 3;
+    g.cells[150 * 300 + 4] = 9;
+    let pauses = 0;
+    expect(await g.boundsSoon(async () => pauses++, 3000)).toEqual(g.bounds());
+    expect(g.bounds()).toEqual({ x0: 4, y0: 17, x1: 250, y1: 150 });
+    expect(pauses).toBe(19); // 10 rows a band
+  });
 });
 
 describe('raster tools', () => {

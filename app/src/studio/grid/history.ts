@@ -2,17 +2,11 @@
 // a stroke across a 4096² grid costs only the tiles it crosses, and a flood fill no more than the
 // area it fills. Steps that are not cells (the project's objects) share the same timeline.
 
-import type { DoseGrid } from './grid';
+import type { Box, DoseGrid } from './grid';
+
+export type { Box };
 
 const TILE = 64;
-
-/** A box of cells, both corners included. */
-export interface Box {
-  x0: number;
-  y0: number;
-  x1: number;
-  y1: number;
-}
 
 /** The cells a set of saved tiles covers, or null for none. */
 function tilesBox(g: DoseGrid, tiles: Map<number, Uint8Array>): Box | null {

@@ -126,7 +126,7 @@ describe('rasters', () => {
       let pauses = 0;
       const soon = await composeSoon(paint, [a, b], exposure, polarity, async () => pauses++);
       expect(Array.from(soon.cells), polarity).toEqual(Array.from(compose(paint, [a, b], exposure, polarity).cells));
-      expect(pauses, polarity).toBe(polarity === 'negative' ? 4 : 5); // each object and its one band; the positive's last merge
+      expect(pauses, polarity).toBe(polarity === 'negative' ? 5 : 6); // the copy, each object and its one band; the positive's last merge
     }
     expect(await composeSoon(paint, [], exposure, 'negative', async () => {})).toBe(paint);
     // A board of 1500 × 1600 cells laid in bands of about a million cells each, partly off a bed of 2000 × 1500
