@@ -18,14 +18,6 @@ export function doseColours(): Uint32Array {
   return lut;
 }
 
-/** Whether any cell has a dose, four cells a word where the cells start on a word. */
-function hasDose(cells: Uint8Array): boolean {
-  const words = cells.byteOffset % 4 === 0 ? new Uint32Array(cells.buffer, cells.byteOffset, cells.length >> 2) : new Uint32Array(0);
-  for (let i = 0; i < words.length; i++) if (words[i] !== 0) return true;
-  for (let i = words.length << 2; i < cells.length; i++) if (cells[i] !== 0) return true;
-  return false;
-}
-
 export class LevelGrid {
   readonly cols: number;
   readonly rows: number;
@@ -66,6 +58,8 @@ export class TileCache<T> {
     readonly grid: DoseGrid,
     private readonly makeTile: (w: number, h: number) => T,
     private readonly paint: (tile: T, pixels: Uint32Array, w: number, h: number) => void,
+    /** Whether the grid may hold doses; false for a blank one (the editor knows: its hasInk). */
+    painted = true,
   ) {
     this.#levels = [grid];
     let cols = grid.cols, rows = grid.rows;
@@ -74,8 +68,9 @@ export class TileCache<T> {
       rows = Math.ceil(rows / 2);
       this.#levels.push(new LevelGrid(cols, rows));
     }
-    // The coarser levels start blank: a blank grid (the page's first load) has nothing to make them from.
-    if (hasDose(grid.cells)) this.refresh(0, 0, grid.cols - 1, grid.rows - 1);
+    // The coarser levels start blank: a blank grid (the page's first load) has nothing to make them from,
+    // and reading its 16 M cells to find that out was 58 ms of the page's load on a busy machine (issue 40).
+    if (painted) this.refresh(0, 0, grid.cols - 1, grid.rows - 1);
   }
 
   /** Level 0 is the grid itself; level k has ceil(cols / 2^k) cells across, every one made up to date when read. */
