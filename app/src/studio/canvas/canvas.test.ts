@@ -62,12 +62,15 @@ describe('tile cache', () => {
 
   it('carries an edit to the coarser levels a band of rows per look at the clock, the levels the same in the end', () => {
     const g = new DoseGrid(4000, 4000);
-    const cache = new TileCache(g, () => 0, () => {});
+    const cache = new TileCache(g, () => 0, () => {}, false);
+    expect(cache.blank).toBe(true); // made for a blank bed: no tile to draw
+    expect(cache.catchUp(0)).toBe(true);
     const whole = new DoseGrid(4000, 4000);
     const h = new History(g);
     rectangle(g, h.begin('fill'), 0, 0, 3999, 3999, true, 1, 200);
     g.cells[3999 * 4000 + 3999] = 255;
     cache.refresh(0, 0, 3999, 3999);
+    expect(cache.blank).toBe(false);
     whole.cells.set(g.cells);
     let frames = 1;
     while (!cache.catchUp(0)) frames++; // a deadline already past: one band each time

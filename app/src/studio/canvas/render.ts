@@ -29,7 +29,7 @@ export function render(ctx: CanvasRenderingContext2D, w: number, h: number, ed: 
   const level = cache.levelsSoFar[k];
   const x0 = Math.max(0, Math.floor(v.x / f / TILE)), x1 = Math.min(Math.ceil(level.cols / TILE) - 1, Math.floor((v.x + w / v.scale) / f / TILE));
   const y0 = Math.max(0, Math.floor(v.y / f / TILE)), y1 = Math.min(Math.ceil(level.rows / TILE) - 1, Math.floor((v.y + h / v.scale) / f / TILE));
-  for (let ty = y0; ty <= y1; ty++)
+  for (let ty = y0; !cache.blank && ty <= y1; ty++) // a bed never painted: its tiles are the bed's colour
     for (let tx = x0; tx <= x1; tx++) {
       const tile = cache.tile(k, tx, ty);
       const at = toScreen(v, tx * TILE * f, ty * TILE * f);

@@ -53,6 +53,7 @@ export class TileCache<T> {
   #remakes: Remake[] = [];
   #tiles = new Map<string, { tile: T; dirty: boolean }>();
   readonly #lut = doseColours();
+  #everPainted: boolean;
 
   constructor(
     readonly grid: DoseGrid,
@@ -70,6 +71,7 @@ export class TileCache<T> {
     }
     // The coarser levels start blank: a blank grid (the page's first load) has nothing to make them from,
     // and reading its 16 M cells to find that out was 58 ms of the page's load on a busy machine (issue 40).
+    this.#everPainted = painted;
     if (painted) this.refresh(0, 0, grid.cols - 1, grid.rows - 1);
   }
 
@@ -77,6 +79,14 @@ export class TileCache<T> {
   get levels(): readonly (DoseGrid | LevelGrid)[] {
     this.catchUp(Infinity);
     return this.#levels;
+  }
+
+  /**
+   * No cell has had a dose since the cache was made for a blank grid: every tile would be the bed's
+   * own colour, which the frame draws anyway (the first frame painted 16 blank tiles on the page's load).
+   */
+  get blank(): boolean {
+    return !this.#everPainted;
   }
 
   /** The levels as they are now, parts of the coarser ones perhaps not yet remade after an edit (see `catchUp`). */
@@ -125,6 +135,7 @@ export class TileCache<T> {
     x0 = Math.max(0, x0), y0 = Math.max(0, y0);
     x1 = Math.min(this.grid.cols - 1, x1), y1 = Math.min(this.grid.rows - 1, y1);
     if (x0 > x1 || y0 > y1) return;
+    this.#everPainted = true;
     const queue = this.#remakes;
     queue.push({ x0, y0, x1, y1, level: 0, row: 0 });
     if (queue.length > 64) {
