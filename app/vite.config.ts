@@ -5,13 +5,22 @@ import { bundleSize, formatBundleSize } from '../scripts/bundle-size.ts';
 import { serviceWorker } from './pwa.ts';
 
 /** What loads only when a panel is first opened: grouped into one chunk. */
-const ON_DEMAND_PANELS = /\/(PositionDashboard|ProbeDashboard|MeshDashboard|LinkDashboard|mesh-image|Settings|setting-groups|setting-docs|Lamp|PreviewPanel|exposure-preview|preview-colours|MaterialTest|material-test|ObjectPanel|BoardPanel|board-object|fonts|Panel|ImportFile|import-artwork|artwork|svg-artwork|svg-size|density|picture|decode|clipping|dry-run|planner|job-header|time-model|adjust|gray|dither|ConfirmDialog|hms|thermal-forecast|pacing|mesh|mesh-figures|scan-words|work-client|check-job|remote-artwork)\.(svelte|ts)|\/CONFIG\.md\?raw$/; // CONFIG.md: the settings' words (setting-docs.ts)
+const ON_DEMAND_PANELS = /\/(PositionDashboard|ProbeDashboard|MeshDashboard|LinkDashboard|mesh-image|Settings|setting-groups|setting-docs|Lamp|PreviewPanel|exposure-preview|preview-colours|MaterialTest|material-test|ObjectPanel|BoardPanel|board-object|fonts|Panel|ImportFile|import-artwork|artwork|svg-artwork|svg-size|density|picture|decode|clipping|dry-run|planner|job-header|time-model|adjust|gray|dither|ConfirmDialog|hms|thermal-forecast|pacing|mesh|mesh-figures|scan-words|work-client|check-job|job-transfer|remote-artwork)\.(svelte|ts)|\/CONFIG\.md\?raw$/; // CONFIG.md: the settings' words (setting-docs.ts)
 
 /** The Wi-Fi hub's link and USB's (with the Latin-1 bytes only USB uses), loaded when that device is first chosen (device/chosen-links.ts). */
 const ON_DEMAND_LINKS = /\/(chosen-links|esp-link|serial-transport|bytes)\.ts$/;
 
-/** The text dialect's client and the simulated printer's link on it, loaded on connect, just after the first screen (device/links.ts). */
-const ON_DEMAND_DIALECT = /\/(sim-link|dialect-link|dialect-client|dialect-reply|line-splitter|dialect-frame)\.ts$/;
+/**
+ * The text dialect's client and the simulated printer's link on it, loaded on connect, just after the
+ * first screen (device/links.ts); with them the dashboards and the console, mounted a few tasks after
+ * the first screen (App.svelte, ui/Soon.svelte: mounted with it, the page load's longest task).
+ */
+const ON_DEMAND_DIALECT = /\/(sim-link|dialect-link|dialect-client|dialect-reply|line-splitter|dialect-frame)\.ts$|\/(Dashboards|ThermalDashboard|Console)\.svelte$|\/(thermal-watch|sensor-colours|head-thermal|firmware-view|firmware-view-absent)\.ts$/;
+/**
+ * The Web Serial polyfill (USB over WebUSB where there is no Web Serial): a file of its own took a
+ * 4 KB block of the ESP's flash for 1.8 KB, so it rides in the dialect's file, loaded on connect.
+ */
+const SERIAL_POLYFILL = /\/node_modules\/web-serial-polyfill\//;
 /** Espressif's esptool-js with its stub flashers, one file: the Firmware view loads it to flash an ESP. */
 const ESPTOOL = /\/node_modules\/(esptool-js|pako|atob-lite)\//;
 
@@ -19,7 +28,7 @@ const ESPTOOL = /\/node_modules\/(esptool-js|pako|atob-lite)\//;
  * Views that load on demand bring their styles in their own chunk (Svelte injects them when first
  * shown), so the one stylesheet holds only the first screen's and no further file goes to the flash.
  */
-const LAZY_VIEW = new RegExp(`${ON_DEMAND_PANELS.source}|/(SimulatorPanel|FirmwarePanel)\\.svelte$`);
+const LAZY_VIEW = new RegExp(`${ON_DEMAND_PANELS.source}|/(SimulatorPanel|FirmwarePanel|Dashboards|ThermalDashboard|Console)\\.svelte$`);
 
 /** What saving, opening or running something needs: the project file, the job's encoding, the test pattern, framing. */
 const ON_DEMAND_FILES = /\/(project-file|cells-codec|halftones|job-types|job-encode|crc32|test-pattern|framing)\.ts$/;
@@ -63,10 +72,10 @@ export default defineConfig(({ mode }) => ({
     modulePreload: { polyfill: false },
     // Few files: the ESP's LittleFS gives each file whole 4 KB blocks. One stylesheet (the lazy views'
     // styles ride in their chunks: LAZY_VIEW), the panels that load on demand in one chunk, what saving
-    // and running need in another, the chosen links in a third; uPlot's chart and the serial polyfill
-    // stay apart. Without a group, a chunk loaded on demand can split the first load into several files.
+    // and running need in another, the chosen links in a third (the dashboards, the console and the
+    // Web Serial polyfill ride with the dialect); uPlot's chart stays apart. Without a group, a chunk loaded on demand can split the first load into several files.
     cssCodeSplit: false,
-    rolldownOptions: { output: { codeSplitting: { includeDependenciesRecursively: false, groups: [{ name: 'panels', test: ON_DEMAND_PANELS }, { name: 'files', test: ON_DEMAND_FILES }, { name: 'links', test: ON_DEMAND_LINKS }, { name: 'dialect', test: ON_DEMAND_DIALECT }, { name: 'esptool', test: ESPTOOL }] } } },
+    rolldownOptions: { output: { codeSplitting: { includeDependenciesRecursively: false, groups: [{ name: 'panels', test: ON_DEMAND_PANELS }, { name: 'files', test: ON_DEMAND_FILES }, { name: 'links', test: ON_DEMAND_LINKS }, { name: 'dialect', test: new RegExp(`${ON_DEMAND_DIALECT.source}|${SERIAL_POLYFILL.source}`) }, { name: 'esptool', test: ESPTOOL }] } } },
   },
   worker: { format: 'es' },
   server: { port: 5173 },

@@ -24,7 +24,7 @@ function sourceOf(file: string, line: number, column: number): string | null {
 }
 
 const IMPORT = /^Import artwork \(SVG, PNG, JPG, BMP, GIF\)/;
-type Node = { id: number; callFrame: { functionName: string; url: string; lineNumber: number; columnNumber: number }; children?: number[] };
+type Node = { id: number; callFrame: { functionName: string; url: string; lineNumber: number; columnNumber: number }; children?: number[]; positionTicks?: { line: number; ticks: number }[] };
 function analyse(prof: { nodes: Node[]; samples: number[]; timeDeltas: number[]; startTime: number }, label: string) {
   const byId = new Map(prof.nodes.map((n) => [n.id, n]));
   const parent = new Map<number, number>();
@@ -53,7 +53,18 @@ function analyse(prof: { nodes: Node[]; samples: number[]; timeDeltas: number[];
       const seen = new Set<string>();
       for (let id: number | undefined = prof.samples[i]; id !== undefined; id = parent.get(id)) { const k = fmt(id); if (!seen.has(k)) { seen.add(k); incl.set(k, (incl.get(k) ?? 0) + dt); } }
     }
+    // The lines the samples fell on (positionTicks: the bundle's line; its column unknown, so the line's first mapping)
+    const lines = new Map<string, number>();
+    const inRun = new Set(prof.samples.slice(a, b));
+    for (const id of inRun) {
+      const n = byId.get(id)!, file = n.callFrame.url.split('/').pop() ?? '';
+      for (const t of n.positionTicks ?? []) {
+        const k = `${n.callFrame.functionName || '(anon)'} ${(file && sourceOf(file, t.line, n.callFrame.lineNumber + 1 === t.line ? n.callFrame.columnNumber : 0)) ?? `${file}:${t.line}`}`;
+        lines.set(k, (lines.get(k) ?? 0) + t.ticks);
+      }
+    }
     console.log(`\n[${label}] busy run ${ms.toFixed(0)} ms at ${times[a].toFixed(0)} ms`);
+    if (lines.size) console.log('  lines (ticks over the whole profile): ' + [...lines].sort((x, y) => y[1] - x[1]).slice(0, 6).map(([k, v]) => `${v} ${k}`).join('\n        '));
     console.log('  self: ' + [...self].sort((x, y) => y[1] - x[1]).slice(0, 10).map(([k, v]) => `${v.toFixed(0)} ${k}`).join('\n        '));
     console.log('  incl: ' + [...incl].sort((x, y) => y[1] - x[1]).slice(0, 25).map(([k, v]) => `${v.toFixed(0)} ${k}`).join('\n        '));
   }

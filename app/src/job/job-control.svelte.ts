@@ -120,20 +120,20 @@ export class JobControl {
     return this.#jobOf(this.editor().composed());
   }
 
-  /** The same, each step a task of its own: a whole bed composed, then bounded, takes tens of ms each. */
+  /** The same, a few ms a task: a whole bed composed, then bounded, takes tens of ms each. */
   async jobSoon(): Promise<PrintJob | null> {
     const composed = await this.editor().composedSoon(nextTask);
     await nextTask();
-    return this.#jobOf(composed);
+    return this.#jobOf(composed, await composed.boundsSoon(nextTask));
   }
 
-  #jobOf(grid: DoseGrid): PrintJob | null {
+  #jobOf(grid: DoseGrid, bounds = grid.bounds()): PrintJob | null {
     const ed = this.editor();
     return jobFromGrid(grid, ed.machine, {
       dose: doseOf(this.fullMs, this.doseMJcm2, this.calibration),
       strategy: { name: this.order },
       leds: ledsOf(this.config),
-    });
+    }, undefined, bounds);
   }
 
   /** The dry run, then the question: the time, where it lands, the verdict. Nothing fires before the yes. */

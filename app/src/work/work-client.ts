@@ -7,7 +7,7 @@ import type { Progress, WorkReply, WorkRequest } from './work-types';
 
 /** What the client needs of a Worker (a test hands it a fake one). */
 export interface WorkPort {
-  postMessage(m: { id: number; request: WorkRequest }): void;
+  postMessage(m: { id: number; request: WorkRequest }, transfer?: Transferable[]): void;
   onmessage: ((e: MessageEvent<WorkReply>) => void) | null;
   terminate(): void;
 }
@@ -24,6 +24,8 @@ export interface CallOptions {
   onProgress?: (p: Progress) => void;
   /** Aborting it cancels this request, and with it everything else the worker was doing. */
   signal?: AbortSignal;
+  /** Buffers the request holds that move to the worker instead of being copied (job-transfer.ts): unusable here afterwards. */
+  transfer?: Transferable[];
 }
 
 type Pending = { resolve: (r: unknown) => void; reject: (e: Error) => void; timer: ReturnType<typeof setTimeout>; onProgress?: (p: Progress) => void };
@@ -46,7 +48,7 @@ export class WorkClient {
       }, this.timeoutMs);
       this.#pending.set(id, { resolve: resolve as (r: unknown) => void, reject, timer, onProgress: opts.onProgress });
       opts.signal?.addEventListener('abort', () => this.#pending.has(id) && this.cancel(), { once: true });
-      port.postMessage({ id, request });
+      port.postMessage({ id, request }, opts.transfer ?? []);
     });
   }
 

@@ -1,7 +1,7 @@
 import { describe, expect, it } from 'vitest';
 import { DoseGrid } from '../grid/grid';
 import { History } from '../grid/history';
-import { line } from '../grid/tools';
+import { line, rectangle } from '../grid/tools';
 import { TILE, TileCache } from './tile-cache';
 import { fit, panBy, rulerStep, toCell, toScreen, zoomAt } from './viewport';
 
@@ -55,8 +55,30 @@ describe('tile cache', () => {
     const e2 = h.begin('dot');
     e2.set(10, 10, 255);
     cache.refresh(10, 10, 10, 10);
+    expect(cache.catchUp(Infinity)).toBe(true);
     cache.tile(4, 0, 0);
     expect(painted).toBe(before + 1);
+  });
+
+  it('carries an edit to the coarser levels a band of rows per look at the clock, the levels the same in the end', () => {
+    const g = new DoseGrid(4000, 4000);
+    const cache = new TileCache(g, () => 0, () => {}, false);
+    expect(cache.blank).toBe(true); // made for a blank bed: no tile to draw
+    expect(cache.catchUp(0)).toBe(true);
+    const whole = new DoseGrid(4000, 4000);
+    const h = new History(g);
+    rectangle(g, h.begin('fill'), 0, 0, 3999, 3999, true, 1, 200);
+    g.cells[3999 * 4000 + 3999] = 255;
+    cache.refresh(0, 0, 3999, 3999);
+    expect(cache.blank).toBe(false);
+    whole.cells.set(g.cells);
+    let frames = 1;
+    while (!cache.catchUp(0)) frames++; // a deadline already past: one band each time
+    expect(frames).toBeGreaterThan(10);
+    const levels = cache.levelsSoFar;
+    expect(levels[1].cells.every((d, i) => d === (i === levels[1].cells.length - 1 ? 255 : 200))).toBe(true);
+    const fresh = new TileCache(whole, () => 0, () => {});
+    for (let k = 1; k < levels.length; k++) expect(Buffer.compare(levels[k].cells, fresh.levels[k].cells), `level ${k}`).toBe(0);
   });
 
   it('holds in each coarser cell the darkest of the four below it, odd sizes and partial edits included', () => {

@@ -6,7 +6,15 @@ import { drawObjects, type Sprites } from './draw-objects';
 import { TILE, type TileCache } from './tile-cache';
 import { RULER, rulerStep, toScreen } from './viewport';
 
-export function render(ctx: CanvasRenderingContext2D, w: number, h: number, ed: GridEditor, cache: TileCache<HTMLCanvasElement>, sprites: Sprites): void {
+/** A frame's time for the coarser levels after an edit: the rest of the frame draws the tiles. */
+const LEVELS_MS = 8;
+
+/**
+ * Draws a frame; false when the coarser levels still carry an edit (a few ms of it are made per
+ * frame, TileCache.catchUp), so the caller draws again in the next frame.
+ */
+export function render(ctx: CanvasRenderingContext2D, w: number, h: number, ed: GridEditor, cache: TileCache<HTMLCanvasElement>, sprites: Sprites): boolean {
+  const caughtUp = cache.catchUp(performance.now() + LEVELS_MS);
   const v = ed.view;
   const { cols, rows } = ed.grid;
   ctx.fillStyle = '#d9dbe3';
@@ -18,10 +26,10 @@ export function render(ctx: CanvasRenderingContext2D, w: number, h: number, ed: 
   ctx.imageSmoothingEnabled = false;
   const k = cache.levelFor(v.scale);
   const f = 1 << k;
-  const level = cache.levels[k];
+  const level = cache.levelsSoFar[k];
   const x0 = Math.max(0, Math.floor(v.x / f / TILE)), x1 = Math.min(Math.ceil(level.cols / TILE) - 1, Math.floor((v.x + w / v.scale) / f / TILE));
   const y0 = Math.max(0, Math.floor(v.y / f / TILE)), y1 = Math.min(Math.ceil(level.rows / TILE) - 1, Math.floor((v.y + h / v.scale) / f / TILE));
-  for (let ty = y0; ty <= y1; ty++)
+  for (let ty = y0; !cache.blank && ty <= y1; ty++) // a bed never painted: its tiles are the bed's colour
     for (let tx = x0; tx <= x1; tx++) {
       const tile = cache.tile(k, tx, ty);
       const at = toScreen(v, tx * TILE * f, ty * TILE * f);
@@ -71,6 +79,7 @@ export function render(ctx: CanvasRenderingContext2D, w: number, h: number, ed: 
     }
   }
   rulers(ctx, w, h, ed);
+  return caughtUp;
 }
 
 function rulers(ctx: CanvasRenderingContext2D, w: number, h: number, ed: GridEditor): void {

@@ -34,6 +34,17 @@ describe('dose grid', () => {
         expect(g.bounds()).toEqual({ x0: Math.min(x, 5), y0: y, x1: Math.max(x, 5), y1: 7 });
       }
   });
+
+  it('finds the same box a band of rows per task, with the page let run between', async () => {
+    const g = new DoseGrid(300, 200);
+    expect(await g.boundsSoon(async () => {}, 3000)).toBeNull();
+    g.cells[17 * 300 + 250] = 3;
+    g.cells[150 * 300 + 4] = 9;
+    let pauses = 0;
+    expect(await g.boundsSoon(async () => pauses++, 3000)).toEqual(g.bounds());
+    expect(g.bounds()).toEqual({ x0: 4, y0: 17, x1: 250, y1: 150 });
+    expect(pauses).toBe(19); // 10 rows a band
+  });
 });
 
 describe('raster tools', () => {
@@ -110,6 +121,26 @@ describe('raster tools', () => {
     h.undo();
     h.undo();
     expect(g.cells.every((d) => d === 0)).toBe(true);
+  });
+
+  it('finds a single dose in a tile four cells a word or one by one, wherever the rows start', () => {
+    // 131 columns: each row starts at another byte of a word; the grid itself off a word in its buffer
+    for (const offset of [0, 1, 2, 3]) {
+      const buffer = new Uint8Array(offset + 131 * 70);
+      const g = new DoseGrid(131, 70, buffer.subarray(offset));
+      for (const [x, y] of [[0, 0], [63, 5], [64, 63], [130, 69], [67, 66], [129, 1]]) {
+        g.cells.fill(0);
+        g.cells[y * 131 + x] = 7;
+        const h = new History(g);
+        const e = h.begin('fill');
+        rectangle(g, e, 0, 0, 130, 69, true, 1, 200);
+        h.commit(e);
+        expect([...e.tiles.values()].filter((t) => t.length > 0), `dose at ${x}, ${y}, offset ${offset}`).toHaveLength(1);
+        h.undo();
+        expect(g.cells.reduce((n, d) => n + d, 0)).toBe(7);
+        expect(g.cells[y * 131 + x]).toBe(7);
+      }
+    }
   });
 
   it('says which cells an undo rewrote: the tiles its edit saved, not the grid', () => {

@@ -88,19 +88,37 @@ export async function composeSoon(paint: DoseGrid, objects: readonly StudioObjec
   return step.value;
 }
 
+/** The cells a composing step lays at most: a few ms of the page's thread on a busy machine. */
+const STEP_CELLS = 1 << 20;
+
+/** An object's rows in bands of about STEP_CELLS cells, the last row of each included. */
+function* bandsOf(o: Rect): Generator<[number, number]> {
+  const step = Math.max(1, Math.floor(STEP_CELLS / Math.max(1, o.w)));
+  for (let y = o.y; y < o.y + o.h; y += step) yield [y, Math.min(o.y + o.h, y + step) - 1];
+}
+
 /**
- * compose's steps: a whole bed's copy and a busy board laid over it were one 85 ms task on a busy
- * machine, the longest of a Gerber board's dry run (issue 40).
+ * compose's steps, each a band of an object's rows: a whole bed's copy and a busy board laid over it
+ * were one 85 ms task on a busy machine, the longest of a Gerber board's dry run, and the board alone
+ * still 58 ms (issue 40).
  */
 function* composing(paint: DoseGrid, objects: readonly StudioObject[], raster: (o: StudioObject) => Raster | null, polarity: Polarity): Generator<void, DoseGrid> {
   const lit = objects.filter(exposes);
   if (lit.length === 0) return paint;
-  const out = new DoseGrid(paint.cols, paint.rows, paint.cells.slice());
+  const out = new DoseGrid(paint.cols, paint.rows);
+  for (const [from, to] of bandsOf({ x: 0, y: 0, w: paint.cols, h: paint.rows })) {
+    out.cells.set(paint.cells.subarray(from * paint.cols, (to + 1) * paint.cols), from * paint.cols);
+    yield; // a whole bed's 16 MB copied in one go, with its fresh memory's page faults, was 94 ms on a busy machine
+  }
   if (polarity === 'negative') {
     for (const o of lit) {
       yield;
       const r = raster(o);
-      if (r) layOver(out, o, r);
+      if (r)
+        for (const [from, to] of bandsOf(o)) {
+          layOver(out, o, r, from, to);
+          yield;
+        }
     }
     return out;
   }
@@ -109,26 +127,33 @@ function* composing(paint: DoseGrid, objects: readonly StudioObject[], raster: (
   for (const o of lit) {
     yield;
     const r = raster(o);
-    if (r) layUnder(art, laid, o, r);
+    if (r)
+      for (const [from, to] of bandsOf(o)) {
+        layUnder(art, laid, o, r, from, to);
+        yield;
+      }
   }
-  yield;
-  for (let i = 0; i < out.cells.length; i++) if (art.cells[i] > out.cells[i]) out.cells[i] = art.cells[i];
+  for (const [from, to] of bandsOf({ x: 0, y: 0, w: paint.cols, h: paint.rows })) {
+    yield;
+    for (let i = from * paint.cols; i < (to + 1) * paint.cols; i++) if (art.cells[i] > out.cells[i]) out.cells[i] = art.cells[i];
+  }
   return out;
 }
 
-/** The object's box within the grid, or null if none of it is on the grid. */
-function onGrid(grid: DoseGrid, o: Rect): { x0: number; y0: number; x1: number; y1: number } | null {
+/** The object's box within the grid's rows `from`..`to`, or null if none of it is there. */
+function onGrid(grid: DoseGrid, o: Rect, from = 0, to = grid.rows - 1): { x0: number; y0: number; x1: number; y1: number } | null {
   const x0 = Math.max(0, o.x), x1 = Math.min(grid.cols, o.x + o.w) - 1;
-  const y0 = Math.max(0, o.y), y1 = Math.min(grid.rows, o.y + o.h) - 1;
+  const y0 = Math.max(0, from, o.y), y1 = Math.min(to + 1, grid.rows, o.y + o.h) - 1;
   return x0 > x1 || y0 > y1 ? null : { x0, y0, x1, y1 };
 }
 
 /**
  * Lays an object's raster over the grid where its box lies, the greater dose winning in each cell,
- * clipped to the grid; returns the cells it covered, or null if none are on the grid.
+ * clipped to the grid (and to the grid's rows `from`..`to`); returns the cells it covered, or null if
+ * none are on the grid.
  */
-export function layOver(grid: DoseGrid, o: Rect, r: Raster): { x0: number; y0: number; x1: number; y1: number } | null {
-  const b = onGrid(grid, o);
+export function layOver(grid: DoseGrid, o: Rect, r: Raster, from = 0, to = grid.rows - 1): { x0: number; y0: number; x1: number; y1: number } | null {
+  const b = onGrid(grid, o, from, to);
   if (!b) return null;
   // A row at a time with its offsets held: reading grid.cells and y * cols again for every cell, a busy
   // board laid over a whole bed took 62 ms of the page's thread before the dry run (issue 40).
@@ -144,8 +169,8 @@ export function layOver(grid: DoseGrid, o: Rect, r: Raster): { x0: number; y0: n
 }
 
 /** Positive resist: the lesser dose wins where objects overlap (`laid` marks the cells an object already set). */
-function layUnder(grid: DoseGrid, laid: Uint8Array, o: Rect, r: Raster): void {
-  const b = onGrid(grid, o);
+function layUnder(grid: DoseGrid, laid: Uint8Array, o: Rect, r: Raster, from: number, to: number): void {
+  const b = onGrid(grid, o, from, to);
   if (!b) return;
   for (let y = b.y0; y <= b.y1; y++) {
     const row = (y - o.y) * o.w - o.x;
