@@ -2,10 +2,10 @@
 // the motion they give the planner's time model.
 
 import type { Machine } from '../planner/time-model';
-import { SETTINGS } from './settings-table';
+import { SETTING_DEFAULTS } from './settings-defaults';
 
 /** Each key's value after M502, in the text form M850 takes. */
-export const CONFIG_DEFAULTS: Record<string, string> = Object.fromEntries(SETTINGS.map((s) => [s.key, s.default]));
+export const CONFIG_DEFAULTS: Readonly<Record<string, string>> = SETTING_DEFAULTS;
 
 /** A key's value as a number; the defaults make every key parse. */
 export function num(config: Record<string, string>, key: string): number {
