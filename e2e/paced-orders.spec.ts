@@ -55,10 +55,12 @@ async function runPaced(page: Page, order: 'scan' | 'mixed' | 'serpentine', mode
   await dialog.getByRole('button', { name: 'Expose paced' }).click();
 
   const state = page.getByTestId('job-state');
-  await expect(state).toContainText('waiting for the head to cool', { timeout: 300_000 }); // after the upload
-  await page.screenshot({ path: shot('cooling.png'), fullPage: true });
-  await expect(state).toHaveAttribute('data-state', /done|paused|failed|aborted/, { timeout: 240_000 });
+  await expect(state).toHaveAttribute('data-state', /done|paused|failed|aborted/, { timeout: 400_000 }); // after the upload
+  await page.screenshot({ path: shot('end.png'), fullPage: true });
+  // The waits, from every state the line showed: at ?simSpeed=40 a wait lasts a fraction of a second,
+  // which a poll of the line (Playwright's retries, up to a second apart) may miss on a loaded machine.
   const seen = await states();
+  expect(seen.some((s) => s.includes('waiting for the head to cool')), seen.join('\n')).toBe(true);
   expect(seen.filter((s) => /^paused|overtemp/.test(s)), seen.join('\n')).toEqual([]);
   await expect(state).toHaveAttribute('data-state', 'done');
   await expect(page.getByRole('region', { name: 'Console' })).not.toContainText('soft limit');
