@@ -20,6 +20,10 @@ using uv::esp::HandOver;
 namespace {
 
 constexpr int kRequests = 30000;
+// On a loaded machine the loop thread may run so seldom that 30000 requests end before every kind of
+// step is reached (one run had no 202 and no 400): requests go on being made until each kind is, up to
+// this many.
+constexpr int kMostRequests = 20 * kRequests;
 
 struct Client {
   std::shared_ptr<Request> request;
@@ -91,9 +95,16 @@ TEST(HandOverRace, EveryRequestIsAnsweredOnceOnTheNetworkThreadWhileClientsLeave
         tally.leftWhileSent++;
       }
     };
-    long pass = 0;
-    for (; tally.made < kRequests || !clients.empty() || network.spoolLent(); pass++) {
-      ASSERT_LT(pass, 50'000'000) << "the hand-over stopped moving";
+    auto everyKindReached = [&] {
+      return tally.byStatus[202] > 0 && tally.byStatus[400] > 0 && tally.leftWhileArriving > 0 && tally.leftWhileWaiting > 0 &&
+             tally.leftWhileSent > 0 && tally.cancelledWhileArriving > 0;
+    };
+    auto moreToMake = [&] { return tally.made < kRequests || (!everyKindReached() && tally.made < kMostRequests); };
+    long pass = 0, movedAt = 0;
+    int moves = 0;  // requests made, answered or left: the hand-over moving
+    for (; moreToMake() || !clients.empty() || network.spoolLent(); pass++) {
+      if (int now = tally.made + tally.answered + tally.left; now != moves) moves = now, movedAt = pass;
+      ASSERT_LT(pass - movedAt, 5'000'000) << "the hand-over stopped moving";
       network.pump(deliver);
       for (Client& c : clients) {
         if (!c.request) continue;
@@ -120,7 +131,7 @@ TEST(HandOverRace, EveryRequestIsAnsweredOnceOnTheNetworkThreadWhileClientsLeave
         }
       }
       clients.erase(std::remove_if(clients.begin(), clients.end(), [](const Client& c) { return !c.request; }), clients.end());
-      if (tally.made < kRequests && clients.size() < 12 && rng() % 3 == 0) {
+      if (moreToMake() && clients.size() < 12 && rng() % 3 == 0) {
         tally.made++;
         Client c;
         c.request = std::make_shared<Request>();
@@ -169,7 +180,8 @@ TEST(HandOverRace, EveryRequestIsAnsweredOnceOnTheNetworkThreadWhileClientsLeave
   EXPECT_FALSE(check.bodyOpen);
   EXPECT_EQ(rings.work.front(), nullptr);
   EXPECT_EQ(rings.answers.front(), nullptr);
-  EXPECT_EQ(tally.made, kRequests);
+  EXPECT_GE(tally.made, kRequests);
+  EXPECT_LE(tally.made, kMostRequests);
   EXPECT_EQ(tally.byStatus[0], 0);
   int answeredAll = 0;
   for (int s : tally.byStatus) answeredAll += s;
@@ -180,7 +192,7 @@ TEST(HandOverRace, EveryRequestIsAnsweredOnceOnTheNetworkThreadWhileClientsLeave
               tally.made, answeredAll, tally.byStatus[202], tally.byStatus[400], tally.byStatus[409], tally.byStatus[503], tally.byStatus[200], tally.left,
               tally.leftWhileArriving, tally.leftWhileWaiting, tally.leftWhileSent, tally.refusedAtHeaders, tally.overloaded, hub.uploadsStarted,
               tally.cancelsAtOnce, tally.cancelledWhileArriving);
-  // Each kind of step was reached, or the run proved little.
+  // Each kind of step was reached, or the run proved little (within kMostRequests, however loaded the machine).
   EXPECT_GT(tally.byStatus[202], 0);
   EXPECT_GT(tally.byStatus[400], 0);
   EXPECT_GT(tally.leftWhileArriving, 0);
