@@ -10,6 +10,8 @@ export interface SettingRow {
   lo: number;
   hi: number;
   kind: 'decimal' | 'whole' | 'pair';
+  /** 0 is taken too, below the range, for off (a report's period: a shorter one would flood the link). */
+  off?: true;
   /** The range as CONFIG.md words it: `1 to 2000`, `0 to 1000 whole`, `-4096 to 4096 each`. */
   range: string;
   description: string;
@@ -61,5 +63,5 @@ export const SETTINGS: readonly SettingRow[] = [
   { key: 'mesh.nx', name: 'Mesh points along X', unit: 'points', default: '3', lo: 3, hi: 9, kind: 'whole', range: '3 to 9 whole', description: 'mesh points along X for G29' },
   { key: 'mesh.ny', name: 'Mesh points along Y', unit: 'points', default: '3', lo: 3, hi: 9, kind: 'whole', range: '3 to 9 whole', description: 'mesh points along Y' },
   { key: 'mesh.margin', name: 'Mesh margin', unit: 'mm', default: '10', lo: 0, hi: 100, kind: 'decimal', range: '0 to 100', description: 'distance of the mesh from the bed\'s edges' },
-  { key: 'report.position_ms', name: 'Position report period', unit: 'ms', default: '0', lo: 0, hi: 60000, kind: 'whole', range: '0 to 60000 whole', description: 'position auto-report period, 0 for none' },
+  { key: 'report.position_ms', name: 'Position report period', unit: 'ms', default: '0', lo: 50, hi: 60000, kind: 'whole', range: '0, or 50 to 60000 whole', description: 'position auto-report period, 0 for none; 50 ms at the least, as M154 takes (a shorter one would fill the link with reports)', off: true },
 ];

@@ -23,7 +23,8 @@ export function settingProblem(key: string, value: string, doc = SETTING_DOCS.ge
   }
   if (!/^-?\d+(\.\d+)?$/.test(value)) return 'not a number';
   const milli = Math.round(Number(value) * 1000); // kept in thousandths, as on the Mega
-  if (!inRange(milli / 1000)) return `out of range: ${doc.lo} to ${doc.hi}`;
+  if (doc.off && milli === 0) return null; // off
+  if (!inRange(milli / 1000)) return `out of range: ${doc.off ? '0, or ' : ''}${doc.lo} to ${doc.hi}`;
   if (doc.kind === 'whole' && milli % 1000 !== 0) return 'a whole number';
   return null;
 }

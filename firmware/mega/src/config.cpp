@@ -11,7 +11,7 @@ namespace mega {
 
 namespace {
 
-enum Flags : uint8_t { kDecimal = 0, kWhole = 1, kPair = 2 };
+enum Flags : uint8_t { kDecimal = 0, kWhole = 1, kPair = 2, kOff = 4 };  // kOff: 0 is taken too, below the range (off)
 
 struct KeySpec {
   char name[kKeyNameMax + 1];
@@ -71,7 +71,7 @@ bool Config::setHeld(Key key, int32_t held) {
   if (specFlags(key) & kPair) {
     int16_t dx = static_cast<int16_t>(static_cast<uint32_t>(held) >> 16), dy = static_cast<int16_t>(held & 0xffff);
     if (dx < lo || dx > hi || dy < lo || dy > hi) return false;
-  } else if (held < lo || held > hi || ((specFlags(key) & kWhole) && held % 1000)) {
+  } else if ((held < lo && !(held == 0 && (specFlags(key) & kOff))) || held > hi || ((specFlags(key) & kWhole) && held % 1000)) {
     return false;
   }
   v_[static_cast<uint8_t>(key)] = held;

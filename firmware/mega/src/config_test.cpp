@@ -34,20 +34,20 @@ uint8_t m850(Config& c, const std::string& arg, Key& k, bool& query) {
 
 struct Row {
   std::string key, def, lo, hi;
-  bool whole, pair;
+  bool whole, pair, off;  // off: 0 is taken too, below the range
 };
 
 std::vector<Row> configDoc() {
   std::ifstream in(UV_MEGA_CONFIG_MD);
   std::string line;
   std::vector<Row> rows;
-  std::regex row(R"(^\| `([a-z0-9_.]+)` \| [^|]+ \| ([^|]+) \| (-?[0-9.]+) to (-?[0-9.]+)( whole| each)? \|)");
+  std::regex row(R"(^\| `([a-z0-9_.]+)` \| [^|]+ \| ([^|]+) \| (0, or )?(-?[0-9.]+) to (-?[0-9.]+)( whole| each)? \|)");
   while (std::getline(in, line)) {
     std::smatch m;
     if (!std::regex_search(line, m, row)) continue;
     std::string def = m[2];
     def.erase(def.find_last_not_of(' ') + 1);
-    rows.push_back({m[1], def, m[3], m[4], m[5] == " whole", m[5] == " each"});
+    rows.push_back({m[1], def, m[4], m[5], m[6] == " whole", m[6] == " each", m[3].matched});
   }
   return rows;
 }
@@ -82,6 +82,12 @@ TEST(Config, TableIsCONFIGmdKeyForKeyWithDefaultsAndRanges) {
     EXPECT_EQ(value(t, k), doc[i].hi);
     if (doc[i].whole) {
       EXPECT_FALSE(set(t, k, doc[i].lo + ".5"));
+    }
+    if (doc[i].off) {  // 0, off, below the range: and nothing else below it
+      EXPECT_TRUE(set(t, k, "0"));
+      EXPECT_EQ(value(t, k), "0");
+      EXPECT_FALSE(set(t, k, "1"));
+      EXPECT_FALSE(set(t, k, "-1"));
     }
   }
 }
@@ -136,6 +142,8 @@ TEST(Config, M850SetsQueriesAndRefusesWithE50) {
   EXPECT_EQ(m850(c, "accel.x 0", k, query), 50);
   EXPECT_EQ(m850(c, "thermal.limit.0 61", k, query), 50);  // above the Nano's hard limit
   EXPECT_EQ(m850(c, "esp.port 1", k, query), 50);
+  EXPECT_EQ(m850(c, "report.position_ms 20", k, query), 50);  // M154's floor: a shorter period floods the link
+  EXPECT_EQ(m850(c, "report.position_ms 0", k, query), 0);    // off
   EXPECT_EQ(m850(c, "", k, query), 50);
   EXPECT_EQ(value(c, Key::AccelX), "2500");
 }
