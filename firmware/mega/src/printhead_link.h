@@ -28,9 +28,10 @@ constexpr uint32_t kClockRepollUs = 5000000;  // then now and then, to follow it
 constexpr uint32_t kNanoFastBaud = 250000;
 // Whether the board raises the link (once the Nano is known and the link idle).
 constexpr bool kRaiseNanoLink = true;
-// The link's speed every job is planned at (uv::Machine::linkBaud; planner.md "The printhead link"),
-// at M29, when it runs and when it resumes, so the plan is the same whenever it is made. A scan pass
-// starts only with the link at least this fast (ScanRun waits for the raise after a fall-back).
+// The fastest speed a job is planned at (uv::Machine::linkBaud; planner.md "The printhead link"). A job
+// is planned at the speed the link has or will have (PrintheadLink::jobBaud()): this, or 115200 with a
+// Nano that never takes L. The speed is kept with the job (the card's stop file, a stream's machine),
+// and a scan pass starts only with the link at least that fast (ScanRun waits for the raise).
 constexpr uint32_t kJobLinkBaud = kRaiseNanoLink ? kNanoFastBaud : uv::kNanoBaud;
 constexpr uint32_t kWakeGapUs = 2000;  // after begin()'s 0x00, quiet so long before the R
 constexpr uint32_t kSpeedRetryUs = 5000000;  // after a fall-back or an L unanswered, asked again so late
@@ -46,7 +47,7 @@ class PrintheadLink {
     kNanoReset = 8,    // the Nano's watchdog reset it (WATCHDOG latched)
   };
 
-  explicit PrintheadLink(ByteStream& io) : io_(io), splitter_(line_, kReplyMax) {}
+  explicit PrintheadLink(ByteStream& io) : io_(io), splitter_(line_, kReplyMax), raise_(false), raiseSoon_(false), raiseFailed_(false) {}
 
   // After the Mega starts: LEDs off (R), then identify the Nano (V).
   void begin(uint32_t nowUs);
@@ -117,6 +118,12 @@ class PrintheadLink {
   uint32_t baud() const { return speed_ == Speed::Probing || speed_ == Speed::Raised ? kNanoFastBaud : uv::kNanoBaud; }
   // Raised and proved both ways.
   bool raised() const { return speed_ == Speed::Raised; }
+  // The speed a job planned now runs at: kNanoFastBaud when raised or about to be (raising on, and
+  // the last raise did not fail), else 115200: a Nano that never takes L (older firmware, or a wiring
+  // that fails at the raised speed) runs its jobs at 115200.
+  uint32_t jobBaud() const { return raised() || (raise_ && !raiseFailed_) ? kNanoFastBaud : uv::kNanoBaud; }
+  // The last L went unanswered or refused, or its V at the new speed never came back (until a raise holds).
+  bool raiseFailed() const { return raiseFailed_; }
   // Between the L and a proved speed, and while lowering, nothing but the link's own L, V and R goes.
   bool switching() const { return speed_ != Speed::Start && speed_ != Speed::Raised; }
   bool tempsKnown() const { return tempsKnown_; }
@@ -187,7 +194,9 @@ class PrintheadLink {
   // the R to follow.
   enum class Speed : uint8_t { Start, Asked, Probing, Raised, Lowering, Waking };
   Speed speed_ = Speed::Start;
-  bool raise_ = false, raiseSoon_ = false;
+  bool raise_ : 1;
+  bool raiseSoon_ : 1;
+  bool raiseFailed_ : 1;  // the last raise failed (its L or its V): jobs are planned at 115200
   uint32_t nextSpeed_ = 0;  // when an L may next go
 };
 
