@@ -1,10 +1,13 @@
 // The machine the Mega's planners see (plannerMachine): the settings, and no faster than the step
-// engine runs, so a scan pass never flies a stretch faster than the head can step.
+// engine runs, so a scan pass never flies a stretch faster than the head can step; and the link
+// speed a scan job's stop file keeps.
 #include <gtest/gtest.h>
 
 #include "job_plan.h"
 #include "printhead_link.h"
 #include "step_profile.h"
+#include "stop_file.h"
+#include "storage_fake.h"
 
 using namespace mega;
 
@@ -20,4 +23,31 @@ TEST(PlannerMachine, TopSpeedIsTheSettingOrTheStepEnginesWhicheverIsLess) {
   m = plannerMachine(config, 0, 0, kJobLinkBaud);
   EXPECT_EQ(m.vmaxUmS[0], kMaxStepRate * 1000000ull / 400000);  // 40 mm/s
   EXPECT_EQ(m.vmaxUmS[1], 100000u);
+}
+
+// A scan job's stop file keeps the link speed it was planned at, after the job's header; a speed the
+// link cannot take is read as a broken file (the job is planned again at M23), never used.
+TEST(StopFile, AScanJobsFileKeepsTheLinkSpeedItWasPlannedAt) {
+  FakeStorage sd;
+  uv::JobHeader job{};
+  job.cols = 12;
+  StopFileHeader h{};
+  h.scan = true;
+  h.count = 3;
+  for (uint32_t baud : {115200u, 250000u, 115201u, 0u}) {
+    FileHandle f = sd.open("J~s", Storage::Mode::Create);
+    ASSERT_GE(f, 0);
+    ASSERT_TRUE(writeStopHeader(sd, f, h));
+    ASSERT_TRUE(writeScanHeader(sd, f, job, baud));
+    sd.close(f);
+    f = sd.open("J~s", Storage::Mode::Read);
+    StopFileHeader back{};
+    uv::JobHeader jobBack{};
+    uint32_t linkBaud = 1;
+    ASSERT_TRUE(readStopHeader(sd, f, back));
+    EXPECT_EQ(readScanHeader(sd, f, jobBack, linkBaud), baud == 115200u || baud == 250000u) << baud;
+    EXPECT_EQ(linkBaud, baud);
+    EXPECT_EQ(jobBack.cols, 12);
+    sd.close(f);
+  }
 }

@@ -7,14 +7,25 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "job_files.h"
 #include "job_plan.h"
+#include "le_bytes.h"
 #include "machine_scan_fixture.h"
+#include "stop_file.h"
 
 using namespace mega;
 using namespace jobs;
 
 namespace {
 struct ScanLinkTest : ScanMachineTest {
+  // The link speed a card job's stop file says it was planned at (stop_file.h: after the job's header).
+  uint32_t plannedBaud(const char* job) {
+    char work[kWorkNameMax + 1];
+    workFileName(job, JobFile::Stops, work);
+    const std::string s = m.sd.contents(work);
+    if (s.size() != kStopHeaderBytes + sizeof(uv::JobHeader) + 4) return 0;
+    return getLe32(s.data() + kStopHeaderBytes + sizeof(uv::JobHeader));
+  }
   // The Nano restarts as one that never answers L: the Mega, back at 115200, asks again and gives up.
   void neverTakesL() {
     m.nano.noRaise = true;
@@ -82,6 +93,7 @@ TEST_F(ScanLinkTest, ANanoThatNeverTakesLRunsAPhotoPlannedAt115200EveryCellItsDo
   for (uint16_t r = 0; r < h.rows; r++)
     for (uint16_t c = 0; c < h.cols; c++) g[r][c] = static_cast<uint8_t>(1 + (c * 97 + r * 31) % 253);
   ASSERT_TRUE(has(upload("SLOWLINK.UVJ", encode(h, g)), "echo:Done saving file."));
+  EXPECT_EQ(plannedBaud("SLOWLINK.UVJ"), uv::kNanoBaud);
   const std::vector<double> windows = scandose::passWindows(h, g, plannerMachine(m.config, 0, 0, uv::kNanoBaud));
   const std::vector<double> raised = scandose::passWindows(h, g, plannerMachine(m.config, 0, 0, kNanoFastBaud));
   EXPECT_GT(windows[0], raised[0]);  // the slower link slows the passes more
@@ -119,6 +131,7 @@ TEST_F(ScanLinkTest, ANanoThatNeverTakesLRunsAStreamedScanJobAt115200) {
 TEST_F(ScanLinkTest, AJobPlannedRaisedWhoseLinkWillNotRiseAgainStopsWithE34AndContinuesOnceItDoes) {
   job(40, 10, 2000);
   ASSERT_TRUE(has(upload("E34.UVJ", encode(h, g)), "echo:Done saving file."));
+  EXPECT_EQ(plannedBaud("E34.UVJ"), kNanoFastBaud);
   m.cmd("M23 E34.UVJ");
   m.cmd("G28");
   m.rig.steps.clear();
@@ -139,4 +152,37 @@ TEST_F(ScanLinkTest, AJobPlannedRaisedWhoseLinkWillNotRiseAgainStopsWithE34AndCo
   const std::string end = runUntilJob({"done", "paused", "failed"}, 60000000);
   ASSERT_NE(end.find("JOB:done"), std::string::npos) << end;
   EXPECT_TRUE(m.head.raised());
+}
+
+// A job planned at 115200 runs at its plan whatever the link does: here the link is raised again
+// (the Nano takes L once more) before it runs, and a photo's passes go at their 115200 windows (not
+// the shorter ones a plan at 250000 lays out), every cell within 2 %.
+TEST_F(ScanLinkTest, AJobPlannedAt115200RunsAsPlannedOnceTheLinkIsRaised) {
+  neverTakesL();
+  job(200, 8, 2000);
+  for (uint16_t r = 0; r < h.rows; r++)
+    for (uint16_t c = 0; c < h.cols; c++) g[r][c] = static_cast<uint8_t>(1 + (c * 97 + r * 31) % 253);
+  const std::vector<double> windows = scandose::passWindows(h, g, plannerMachine(m.config, 0, 0, uv::kNanoBaud));
+  const std::vector<double> raised = scandose::passWindows(h, g, plannerMachine(m.config, 0, 0, kNanoFastBaud));
+  ASSERT_GT(windows[0], raised[0]);
+  ASSERT_TRUE(has(upload("P115.UVJ", encode(h, g)), "echo:Done saving file."));
+  EXPECT_EQ(plannedBaud("P115.UVJ"), uv::kNanoBaud);
+  m.nano.noRaise = false;
+  for (int i = 0; i < 700 && !m.head.raised(); i++) m.run(10000);
+  ASSERT_TRUE(m.head.raised());
+  EXPECT_EQ(m.head.jobBaud(), kNanoFastBaud);  // a job planned now would be costed raised
+  m.cmd("M23 P115.UVJ");  // planned at M29: not planned again
+  m.cmd("G28");
+  m.rig.steps.clear();
+  m.cmd("M24");
+  const std::string end = runUntilJob({"done", "paused", "failed", "aborted"}, 120000000);
+  ASSERT_NE(end.find("JOB:done"), std::string::npos) << end;
+  EXPECT_EQ(m.nano.megaBaud(), kNanoFastBaud);
+  const scandose::Figures f = measure(windows);
+  EXPECT_EQ(f.stray, 0);
+  EXPECT_LE(f.worstDosePct, 2.0);
+  EXPECT_LE(f.worstEdgeUm, 100 / 4.0);
+  // The head crossed each pass at the 115200 plan's speed: its pass took the 115200 windows' time.
+  std::printf("[scan link] a photo planned at 115200, run with the link raised: windows %.0f us (%.0f if planned raised), worst dose error %.2f %% of full\n",
+              windows[0], raised[0], f.worstDosePct);
 }
