@@ -125,7 +125,7 @@ ScanRun::Step ScanRun::poll(Motion& motion, PrintheadLink& head, const uv::JobHe
         }
         if (!due(nowUs, clockWaitFrom_ + kScanClockWaitUs)) return Step::Busy;
         // The clock never came (a Nano from before W), or the link stays slower than the plan counts
-        // on: the raise failed since the job was planned (E34; mega.md "Link speed").
+        // on: the raise failed since the job was planned (E34; protocol/nano.md "Link speed").
         return fail(head, head.nanoClock().known() ? uv::kLinkSpeed : uv::kScanUnsupported);
       }
       clockWaiting_ = false;
