@@ -21,6 +21,7 @@ import { lineWork } from './line-work';
 import { PickerDismissed } from './serial-support';
 export { SIMULATOR_BUILT_IN, loadSimulatorPanel, setSimulatorSpeed, tellSimulator } from './sim-transport';
 import type { TransportKind } from './transport';
+import { BOARD_LINK_BAUD, linkBaudOf } from '../machine/config';
 
 export type Connection =
   /** `job` is the job the printer ran when the app let go of it (Disconnect): it may still be running. */
@@ -77,6 +78,12 @@ export class Printer {
   resuming = $state(false);
   /** Printer seconds per wall second of the open link (the simulated printer at ?simSpeed=N runs N×). */
   timeScale = $state(1);
+  /**
+   * The printhead link's speed the connected printer plans jobs at (`Cap:LINK_BAUD`, mega.md M115:
+   * 115200 once its Nano failed a raise), which the estimates price; BOARD_LINK_BAUD when none is
+   * connected or it did not say.
+   */
+  linkBaud = $state(BOARD_LINK_BAUD);
   #link: PrinterLink | null = null;
   /** Bumped by every connect and disconnect: a connect whose link loaded after a newer one gives way. */
   #attempt = 0;
@@ -127,6 +134,7 @@ export class Printer {
       await link.command('M155 S1');
       await link.command('M154 S1');
       await link.command('M27 S1');
+      this.linkBaud = linkBaudOf(link.linkBaud);
       this.config = configOf(await link.command('M503'));
       this.interrupted = interruptedOf(await link.command('M1000 S'));
       if (this.#link === link) {
@@ -155,6 +163,7 @@ export class Printer {
     this.health = null;
     this.upload = { state: 'idle' };
     this.config = null;
+    this.linkBaud = BOARD_LINK_BAUD;
     this.interrupted = null;
     this.resuming = false;
     this.mesh = this.previousMesh = null;

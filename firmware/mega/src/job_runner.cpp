@@ -30,8 +30,9 @@ uint8_t JobRunner::start(const char* name, uint32_t from, uint32_t nowUs) {
   if (!readStopHeader(sd_, stops_, header_) || from > header_.count) return uv::kFileError;
   if (header_.scan) {
     uv::JobHeader job;
-    if (!readScanHeader(sd_, stops_, job) || !scanMem_ || scanBytes_ < sizeof(CardScan)) return uv::kFileError;
-    card_ = new (scanMem_) CardScan(sd_, job, plannerMachine(config_, 0, 0), header_.count);
+    uint32_t linkBaud;  // the speed it was planned at: it runs and resumes at it
+    if (!readScanHeader(sd_, stops_, job, linkBaud) || !scanMem_ || scanBytes_ < sizeof(CardScan)) return uv::kFileError;
+    card_ = new (scanMem_) CardScan(sd_, job, plannerMachine(config_, 0, 0, linkBaud), header_.count);
     const uint8_t err = card_->open(name);
     if (err) return err;
   }

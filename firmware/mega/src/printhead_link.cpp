@@ -256,10 +256,14 @@ void PrintheadLink::handle(const uv::NanoReply& r, uint32_t nowUs) {
         speed_ = Speed::Probing;
       } else {
         speed_ = Speed::Start;  // the Nano, unconfirmed, returns to 115200 within 100 ms
+        raiseFailed_ = true;
       }
       break;
     case 'V':
-      if (speed_ == Speed::Probing) speed_ = Speed::Raised;  // heard both ways at the new speed
+      if (speed_ == Speed::Probing) {  // heard both ways at the new speed
+        speed_ = Speed::Raised;
+        raiseFailed_ = false;
+      }
       memcpy(firmware_, r.firmware, sizeof firmware_ - 1);
       firmware_[sizeof firmware_ - 1] = 0;
       identityWanted_ = false;
@@ -290,6 +294,7 @@ void PrintheadLink::poll(uint32_t nowUs) {
       sealCode_ = kSealUnanswered;
       sealAnswered_ = true;
     }
+    if (inFlight_ == 'L' || speed_ == Speed::Probing) raiseFailed_ = true;  // the Nano never took the raise
     inFlight_ = 0;
     if (speed_ != Speed::Start) lowerSpeed(nowUs + kSpeedRetryUs);  // a reply missed above 115200: any doubt lowers it
     missed(nowUs);

@@ -123,7 +123,10 @@ ScanRun::Step ScanRun::poll(Motion& motion, PrintheadLink& head, const uv::JobHe
           clockWaiting_ = true;
           clockWaitFrom_ = nowUs;
         }
-        return due(nowUs, clockWaitFrom_ + kScanClockWaitUs) ? fail(head, uv::kScanUnsupported) : Step::Busy;
+        if (!due(nowUs, clockWaitFrom_ + kScanClockWaitUs)) return Step::Busy;
+        // The clock never came (a Nano from before W), or the link stays slower than the plan counts
+        // on: the raise failed since the job was planned (E34; protocol/nano.md "Link speed").
+        return fail(head, head.nanoClock().known() ? uv::kLinkSpeed : uv::kScanUnsupported);
       }
       clockWaiting_ = false;
       if (head.switching()) return Step::Busy;  // the link's speed is settling: it times the G
