@@ -14,6 +14,7 @@ import type { PrinterLink, StartOptions, UploadProgress } from './link';
 import { configOf, interruptedOf, levelingOf, type InterruptedJob } from './printer-replies';
 import { parseMesh } from './mesh-report';
 import { ThermalHistory } from './thermal-history';
+import { DoseLedger } from './dose-ledger';
 import { DeviceClock } from './device-clock';
 import type { Mesh } from '../planner/mesh';
 import { linkFor } from './links';
@@ -59,6 +60,9 @@ export class Printer {
   /** The temperatures of the last 20 minutes (not deep-reactive: the chart reads it on each revision). */
   readonly thermal = new ThermalHistory();
   thermalRevision = $state(0);
+  /** What the head delivered to the job, stop by stop, from its DOSE: lines (not deep-reactive: read it on each revision). */
+  readonly dose = new DoseLedger();
+  doseRevision = $state(0);
   /** The mesh the printer last reported, and the one it had before the last probing, for comparison. */
   mesh = $state<Mesh | null>(null);
   previousMesh = $state<Mesh | null>(null);
@@ -348,6 +352,11 @@ export class Printer {
       this.thermalRevision = this.thermal.revision;
     }
     if (applyReport(this.device, r, Date.now())) this.device = { ...this.device };
+    if (r.kind === 'job') this.dose.job(r.state, r.fields.file, this.device.job?.stop);
+    if (r.kind === 'dose') {
+      this.dose.add(r);
+      this.doseRevision++;
+    }
     if (r.kind === 'fault' && r.code === PRINTHEAD_SILENT) this.#watchPrinthead();
     if (r.kind === 'other' && r.text.startsWith('MESH:row')) this.mesh = parseMesh(this.device.mesh) ?? this.mesh; // whole with its last row
     if (this.#link) this.health = { ...this.#link.health };

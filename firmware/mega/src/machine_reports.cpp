@@ -12,6 +12,12 @@
 
 namespace mega {
 
+namespace {
+// The room a DOSE: line waits for: one with a 7-digit stop and exposure, 8-digit times (up to 99 s),
+// a plan and a flag.
+constexpr uint8_t kDoseLineRoom = 10 + 7 + 6 + 5 + 5 + 7 + 4 + 35 + 6 + 35 + 8 + 1;
+}  // namespace
+
 bool Machine::emitNext() {
   HostLink& port = *long_.port;
   char buf[112];
@@ -120,6 +126,21 @@ Machine::Result Machine::diagnostics(HostLink& port, const uv::Command& c) {
   port.line(buf);
   if (c.has('R')) stats_.loopMaxUs = 0;
   return Result::Done;
+}
+
+bool Machine::doseRecord(void* self, const uv::NanoReply* record) {
+  Machine& m = *static_cast<Machine*>(self);
+  if (!record) {
+    for (HostLink* p : m.ports_)
+      if (p->room() < kDoseLineRoom) return false;
+    return true;
+  }
+  uv::DoseReport d;
+  if (!m.running() || !m.run()->attribute(*record, d)) return true;  // no stop of a job: not reported
+  char line[uv::kDoseReportMax + 1];
+  if (uv::formatDoseReport(d, line, sizeof line))
+    for (HostLink* p : m.ports_) p->line(line);  // one wider than the room asked for is counted (M821)
+  return true;
 }
 
 void Machine::printheadEvents() {

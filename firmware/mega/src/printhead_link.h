@@ -51,11 +51,19 @@ class PrintheadLink {
       : io_(io), splitter_(line_, kReplyMax), online_(false), reportedOffline_(false), offPending_(false), identityWanted_(true),
         probeWanted_(false), probeAnswered_(false), probeTriggered_(false), countersWanted_(false), countersAnswered_(false), whole_(true),
         tempsKnown_(false), fireCheckWanted_(false), sealAnswered_(false), passWanted_(false), passAnswered_(false), held_(false),
-        raise_(false), raiseSoon_(false), raiseFailed_(false) {}
+        raise_(false), raiseSoon_(false), raiseFailed_(false), doseWanted_(false) {}
+
+  // The sink, given to poll() (not kept: the Mega's RAM), takes a record, or, given nullptr, says
+  // whether it could take one now (its line has room to go out whole): O waits until it can, as the
+  // Nano keeps its records meanwhile.
+  struct DoseSink {
+    bool (*take)(void* ctx, const uv::NanoReply* record);
+    void* ctx;
+  };
 
   // After the Mega starts: LEDs off (R), then identify the Nano (V).
   void begin(uint32_t nowUs);
-  void poll(uint32_t nowUs);
+  void poll(uint32_t nowUs, DoseSink dose = {nullptr, nullptr});
 
   // All LEDs off now (R), ahead of anything queued. Ends a running exposure as Failed.
   void allOff(uint8_t why = 0);
@@ -99,6 +107,13 @@ class PrintheadLink {
   // Starts the armed chain: its time 0 is 1000 µs after the G's newline reaches the Nano. (On the
   // board the step interrupt times the G; this sends it now.) False if the UART is full.
   bool startChain();
+  // Dose records (protocol/nano.md "O"): asks O until the Nano answers O:0, once the link is free (in
+  // a held pass too, after its G), and hands each record to the sink as it comes. A Nano that does not
+  // answer is not counted as missing for it: the records are given up (doseDrained()).
+  // Without a sink, the records are asked and dropped.
+  void requestDose() { doseWanted_ = true; }
+  // Every record asked for has come (or was given up): the last O answered O:0.
+  bool doseDrained() const { return !doseWanted_ && inFlight_ != 'O'; }
   // Asks Q: the Nano's free buffers, armed programs and the last chain's state (uv::PassState).
   void requestPass() {
     passWanted_ = true;
@@ -152,7 +167,9 @@ class PrintheadLink {
   bool ask(char op, uint32_t nowUs);
   // A line that asks `op` went out: its reply is awaited, up to kNanoReplyTimeoutUs from now.
   void awaitReply(char op, uint32_t nowUs);
-  void handle(const uv::NanoReply& r, uint32_t nowUs);
+  void handle(const uv::NanoReply& r, uint32_t nowUs, DoseSink dose);
+  // A requested O may go now.
+  bool doseMayAsk(DoseSink dose) const { return doseWanted_ && (!dose.take || dose.take(dose.ctx, nullptr)); }
   void missed(uint32_t nowUs);
   void fireFailed(uint8_t code);
   void flagsSeen(uint8_t flags, uint32_t nowUs);
@@ -163,8 +180,8 @@ class PrintheadLink {
   bool speedStep(uint32_t nowUs);  // the raise's next step; true when it sent something
 
   ByteStream& io_;
-  // The longest reply, T:, is 41 bytes at the sensors' widest (-40.0 to 125.0); a longer line is noise.
-  static constexpr uint8_t kReplyMax = 47;
+  // The longest reply, O:, is 62 bytes at its widest (uv::kNanoReplyMax); a longer line is noise.
+  static constexpr uint8_t kReplyMax = uv::kNanoReplyMax - 2;
   char line_[kReplyMax + 2];
   uv::LineSplitter splitter_;
   char inFlight_ = 0;        // the op whose reply we wait for, or 0
@@ -203,6 +220,7 @@ class PrintheadLink {
   bool raise_ : 1;
   bool raiseSoon_ : 1;
   bool raiseFailed_ : 1;  // the last raise failed (its L or its V): jobs are planned at 115200
+  bool doseWanted_ : 1;   // a record waits to be asked for with O
   uint32_t nextSpeed_ = 0;  // when an L may next go
 };
 

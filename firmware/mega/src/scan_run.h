@@ -49,7 +49,7 @@ class ScanRun {
   const StrokePlan& stroke() const { return stroke_; }
 
  private:
-  enum class Phase : uint8_t { Open, Load, Arm, Run, Finish };
+  enum class Phase : uint8_t { Open, Load, Arm, Run, Finish, Drain };
   static bool source(void* ctx, uint32_t& t, uint8_t& m);
   static bool jumpAt(void* ctx, uint8_t i, Motion::StrokeJump& out);
   // What open() found: no pass (starved, or the end), a pass on the move, or a mixed job's stop pass.
