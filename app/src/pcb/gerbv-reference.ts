@@ -110,32 +110,17 @@ export function gerbvDrill(path: string): { holes: Hole[]; slots: Slot[] } {
     } catch (e) {
       if (!existsPng(out)) throw e;
     }
-    const text = readFileSync(out, 'latin1');
-    return { holes: readGerbvDrill(text), slots: readGerbvSlots(text) };
+    return readGerbvExcellon(readFileSync(out, 'latin1'));
   } finally {
     rmSync(dir, { recursive: true, force: true });
   }
 }
 
-/** gerbv's Excellon export read back (exported for its unit test). */
-export function readGerbvDrill(text: string): Hole[] {
+/** gerbv's Excellon export read back: its holes and its G85 slots. */
+export function readGerbvExcellon(text: string): { holes: Hole[]; slots: Slot[] } {
   if (!/^INCH,TZ\s*$/m.test(text)) throw new Error('gerbv wrote its drill file in a format this reader does not know');
   const tools = new Map<string, number>();
   const holes: Hole[] = [];
-  let tool = '';
-  const inch = (v: string) => (v.includes('.') ? Number(v) : Number(v) / 1e4) * 25.4;
-  for (const line of text.split(/\r?\n/)) {
-    let m: RegExpExecArray | null;
-    if ((m = /^T(\d+)C([\d.]+)/.exec(line))) tools.set(m[1], Number(m[2]) * 25.4);
-    else if ((m = /^T(\d+)$/.exec(line))) tool = m[1];
-    else if ((m = /^X([-+]?[\d.]+)Y([-+]?[\d.]+)$/.exec(line))) holes.push({ x: inch(m[1]), y: inch(m[2]), diameterMm: tools.get(tool) ?? 0 });
-  }
-  return holes;
-}
-
-/** The slots in gerbv's Excellon export: "X001001Y003903G85X001237Y003903", the tool's diameter from its header. */
-export function readGerbvSlots(text: string): Slot[] {
-  const tools = new Map<string, number>();
   const slots: Slot[] = [];
   let tool = '';
   const inch = (v: string) => (v.includes('.') ? Number(v) : Number(v) / 1e4) * 25.4;
@@ -143,10 +128,17 @@ export function readGerbvSlots(text: string): Slot[] {
     let m: RegExpExecArray | null;
     if ((m = /^T(\d+)C([\d.]+)/.exec(line))) tools.set(m[1], Number(m[2]) * 25.4);
     else if ((m = /^T(\d+)$/.exec(line))) tool = m[1];
+    else if ((m = /^X([-+]?[\d.]+)Y([-+]?[\d.]+)$/.exec(line))) holes.push({ x: inch(m[1]), y: inch(m[2]), diameterMm: tools.get(tool) ?? 0 });
+    // "X001001Y003903G85X001237Y003903": a slot, the tool's diameter from its header.
     else if ((m = /^X([-+]?[\d.]+)Y([-+]?[\d.]+)G85X([-+]?[\d.]+)Y([-+]?[\d.]+)$/.exec(line)))
       slots.push({ x0: inch(m[1]), y0: inch(m[2]), x1: inch(m[3]), y1: inch(m[4]), diameterMm: tools.get(tool) ?? 0 });
   }
-  return slots;
+  return { holes, slots };
+}
+
+/** The holes in gerbv's Excellon export (for its unit test). */
+export function readGerbvDrill(text: string): Hole[] {
+  return readGerbvExcellon(text).holes;
 }
 
 export interface HoleMatch {

@@ -11,11 +11,9 @@
 
 #include "nano_codec.h"
 #include "nano_sim_fixture.h"
-#include "scan_program.h"
 
 namespace {
 
-using Events = std::vector<std::pair<uint32_t, uint8_t>>;  // absolute µs after time 0, LED state
 
 // A photo-like pass: every cell of each LED lit for its own share of a 4 ms window (slow enough
 // for the link at 115200 to load each program while the one before runs, as the planners' link
@@ -40,30 +38,6 @@ Events grayPass(int windows) {
     }
   }
   return ev;
-}
-
-std::vector<std::string> programs(const Events& ev) {
-  struct Cursor {
-    const Events& ev;
-    size_t i;
-  } cursor{ev, 0};
-  uv::ProgramLines lines(
-      [](void* ctx, uint32_t& t, uint8_t& m) {
-        auto& c = *static_cast<Cursor*>(ctx);
-        if (c.i == c.ev.size()) return false;
-        t = c.ev[c.i].first;
-        m = c.ev[c.i++].second;
-        return true;
-      },
-      &cursor);
-  std::vector<std::string> out(1);
-  char line[uv::kNanoMaxLine + 2];
-  while (uint8_t n = lines.next(line)) {
-    out.back().append(line, n);
-    if (line[0] == 'K') out.emplace_back();
-  }
-  out.pop_back();
-  return out;
 }
 
 std::string load(NanoRig& rig, const std::string& program) {

@@ -8,7 +8,6 @@
 #include <cstdio>
 
 #include "nano_sim_fixture.h"
-#include "scan_program.h"
 
 namespace {
 
@@ -34,7 +33,6 @@ struct ScanBudget {
   }
 } budget;
 
-using Events = std::vector<std::pair<uint32_t, uint8_t>>;  // absolute µs after time 0, LED state
 
 // A pass as the scan planner lays it out: windows of W µs, each LED's cells centred in theirs.
 // gray: every level; else PCB-like runs of full cells (W = full dose, so runs merge).
@@ -64,31 +62,6 @@ Events passEvents(int windows, uint32_t W, bool gray) {
     ev.push_back({t, m});
   }
   return ev;
-}
-
-// The chain's lines, one program (its A lines and K line) per entry.
-std::vector<std::string> programs(const Events& ev) {
-  struct Cursor {
-    const Events& ev;
-    size_t i;
-  } cursor{ev, 0};
-  uv::ProgramLines lines(
-      [](void* ctx, uint32_t& t, uint8_t& m) {
-        auto& c = *static_cast<Cursor*>(ctx);
-        if (c.i == c.ev.size()) return false;
-        t = c.ev[c.i].first;
-        m = c.ev[c.i++].second;
-        return true;
-      },
-      &cursor);
-  std::vector<std::string> out(1);
-  char line[uv::kNanoMaxLine + 2];
-  while (uint8_t n = lines.next(line)) {
-    out.back().append(line, n);
-    if (line[0] == 'K') out.emplace_back();
-  }
-  out.pop_back();
-  return out;
 }
 
 // Loads one program and waits for its K reply, timing the reply from the K's newline.

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "nano_rig.h"
+#include "scan_program.h"
 
 namespace {
 
@@ -21,6 +22,33 @@ inline std::unique_ptr<NanoRig> bootedRig() {
 }
 
 inline double us(uint64_t cycles) { return cycles / NanoRig::kCyclesPerUs; }
+
+using Events = std::vector<std::pair<uint32_t, uint8_t>>;  // absolute µs after time 0, LED state
+
+// The chain's lines, one program (its A lines and K line) per entry, as the Mega makes them.
+inline std::vector<std::string> programs(const Events& ev) {
+  struct Cursor {
+    const Events& ev;
+    size_t i;
+  } cursor{ev, 0};
+  uv::ProgramLines lines(
+      [](void* ctx, uint32_t& t, uint8_t& m) {
+        auto& c = *static_cast<Cursor*>(ctx);
+        if (c.i == c.ev.size()) return false;
+        t = c.ev[c.i].first;
+        m = c.ev[c.i++].second;
+        return true;
+      },
+      &cursor);
+  std::vector<std::string> out(1);
+  char line[uv::kNanoMaxLine + 2];
+  while (uint8_t n = lines.next(line)) {
+    out.back().append(line, n);
+    if (line[0] == 'K') out.emplace_back();
+  }
+  out.pop_back();
+  return out;
+}
 
 // Replies the Nano wrote, with the line they answered when the test asked for that.
 inline std::string reply(NanoRig& rig, const std::string& cmd) {
