@@ -42,8 +42,6 @@ class HostLink final : public uv::ReplySink, private uv::FlowCounters {
   // The oldest accepted line not yet answered, or nullptr.
   const LineSlot* front() { return ring_.front(); }
   uint8_t queued() const { return ring_.queued(); }
-  // A complete line is here, accepted or not yet (poll() accepts only with kAcceptRoom free).
-  bool linesHere() const { return ring_.free() < ring_.window(); }
   // Lines the host may have unanswered on this port (Cap:RX_WINDOW).
   uint8_t window() const { return ring_.window(); }
   // Ends the front line's reply block with its ok and frees its slot.

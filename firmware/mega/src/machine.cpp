@@ -99,9 +99,6 @@ void Machine::poll(uint32_t nowUs) {
   mesh_.poll();
   if (long_.op != Op::None) runLong();
   runJob();
-  replyWaits_ = 0;
-  for (uint8_t k = 0; k < kPorts; k++)
-    if (ports_[k]->linesHere() && ports_[k]->room() < kReplyRoom) replyWaits_ |= static_cast<uint8_t>(1 << k);
   // Lines run in turn from each port. While a long command runs, the other port's queries still run.
   bool ran = false;
   for (uint8_t i = 0; i < kPorts; i++) {

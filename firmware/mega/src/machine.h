@@ -107,7 +107,6 @@ class Machine {
   void finishLong(uint8_t error = 0, const char* detail = nullptr);
   bool emitNext();
   void reports();
-  void periodic(const char* text);  // an auto-report, to the ports whose replies do not wait for room
   void printheadEvents();
   void sayHeadFaults();
   void broadcast(const char* text);
@@ -245,10 +244,6 @@ class Machine {
   uint8_t& movesFree_;
   LoopStats& stats_;
   uint8_t next_ = 0;  // the port whose line runs next (round robin)
-  // Ports with a line here while their transmit ring lacked a reply's room, at the top of this
-  // main-loop pass: no M154/M155 report goes to them in the pass, so a short report period never
-  // starves a reply (a bit per port).
-  uint8_t replyWaits_ = 0;
   uint8_t keepaliveS_[kPorts] = {kKeepaliveUs / 1000000, kKeepaliveUs / 1000000};  // M113, per port
   uint8_t homed_ = 0;
   bool halted_ = false;

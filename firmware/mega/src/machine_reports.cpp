@@ -214,22 +214,12 @@ void Machine::reports() {
   if (tempPeriodUs_ && static_cast<int32_t>(now_ - tempNext_) >= 0 && head_.tempsKnown()) {
     tempNext_ = now_ + tempPeriodUs_;
     formatTemps(buf);
-    periodic(buf);
+    broadcast(buf);
   }
   if (posPeriodUs_ && static_cast<int32_t>(now_ - posNext_) >= 0) {
     posNext_ = now_ + posPeriodUs_;
     formatPosition(buf);
-    periodic(buf);
-  }
-}
-
-void Machine::periodic(const char* text) {
-  // A port whose reply waited for room at this pass's top, or waits now, skips this report: else a
-  // period shorter than the ring takes to drain (report.position_ms 1) would refill it each time
-  // and the reply, which needs kReplyRoom, would never go.
-  for (uint8_t k = 0; k < kPorts; k++) {
-    HostLink& p = *ports_[k];
-    if (!(replyWaits_ & (1 << k)) && !(p.linesHere() && p.room() < kReplyRoom)) p.report(text);
+    broadcast(buf);
   }
 }
 

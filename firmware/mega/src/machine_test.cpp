@@ -241,18 +241,6 @@ TEST_F(MachineTest, LongDwellsWaitTheirTimeAndTooLongOnesAreRefused) {
   EXPECT_LT(m.nowUs - before, 1510000u);
 }
 
-TEST_F(MachineTest, AReportPeriodShorterThanTheWireTakesNeverStarvesAReply) {
-  // report.position_ms takes 1 ms (M154 would refuse it): the reports then want more than the
-  // 115200-baud wire carries. Each pass whose reply waits for room sends none, so replies still go.
-  m.cmd("M850 report.position_ms 1");
-  m.cmd("M850 report.position_ms 1", true);  // the ESP's port too
-  size_t from = m.usbLines.size();
-  EXPECT_EQ(m.cmd("M105", false, 2000000).back().rfind("ok N", 0), 0u);
-  EXPECT_EQ(m.cmd("M850 report.position_ms 0", false, 2000000).back().rfind("ok N", 0), 0u);
-  EXPECT_GT(std::count_if(m.usbLines.begin() + static_cast<long>(from), m.usbLines.end(), [](const std::string& l) { return l.rfind("X:", 0) == 0; }), 0);
-  EXPECT_EQ(m.cmd("M114", true, 2000000).back().rfind("ok N", 0), 0u);
-}
-
 TEST_F(MachineTest, PositionAutoReportsMotorsOnAndOffAndJobStatusReports) {
   m.cmd("G28");
   m.cmd("M154 P100");  // every 100 ms
