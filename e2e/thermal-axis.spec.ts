@@ -24,6 +24,8 @@ test('the time axis says the truth from the first second', async ({ page }, info
 
 // The speed raised on the simulated printer's panel: its heartbeat follows (sim-transport.ts
 // setSimulatorSpeed), or the printer stalls between beats and the chart's samples come in bursts.
+// The Thermal tab chosen again makes its chart at once: when it waited for idle time the page never had
+// at 20x, the chart came back 5 s later, past the 2 minute window (the fresh-clone run of b43f59e).
 test('the time axis widens through 2, 5, 10 and 20 minutes as the history grows', async ({ page }, info) => {
   test.setTimeout(120_000);
   await page.setViewportSize({ width: 1440, height: 900 });
