@@ -347,6 +347,13 @@ sessions = [
     ]},
 ]
 
+def dose(stop, program, exposure, on, plan=None, cut=False, again=False):
+    d = {"kind": "dose", "stop": stop, "program": program, "exposure": exposure, "onUs": on, "cut": cut, "again": again}
+    if plan is not None:
+        d["planUs"] = plan
+    return d
+
+
 replies = [
     {"line": ok(4, 8, 7), "reply": {"kind": "ok", "n": 4, "p": 8, "b": 7}, "canonical": True},
     {"line": "ok N4 P8 B7*%04x" % (crc16("ok N4 P8 B7") ^ 1), "reply": {"kind": "ok"}, "canonical": False},
@@ -388,6 +395,20 @@ replies = [
      "reply": {"kind": "firmware", "name": "UVExposure 0.1.0 (Mega)", "protocol": 1}, "canonical": True},
     {"line": "Cap:RX_WINDOW:4", "reply": {"kind": "cap", "name": "RX_WINDOW", "value": 4}, "canonical": True},
     {"line": "MESH:row 0 0.010 -0.020 0.000", "reply": {"kind": "other", "text": "MESH:row 0 0.010 -0.020 0.000"}, "canonical": False},
+    # Dose reports (mega.md "Dose reports"): a stop, a pass's program, a cut stop with what it was to
+    # give and its exposure again, every number at its widest.
+    {"line": "DOSE:stop=12 prog=0 exp=345 on=40200,40000,0,0",
+     "reply": dose(12, 0, 345, [40200, 40000, 0, 0]), "canonical": True},
+    {"line": "DOSE:stop=7 prog=3 exp=19 on=14000,0,30011,2",
+     "reply": dose(7, 3, 19, [14000, 0, 30011, 2]), "canonical": True},
+    {"line": "DOSE:stop=40 prog=0 exp=81 on=1200,0,0,0 plan=90000,0,0,0 cut=1",
+     "reply": dose(40, 0, 81, [1200, 0, 0, 0], plan=[90000, 0, 0, 0], cut=True), "canonical": True},
+    {"line": "DOSE:stop=40 prog=0 exp=82 on=90000,0,0,0 again=1",
+     "reply": dose(40, 0, 82, [90000, 0, 0, 0], again=True), "canonical": True},
+    {"line": "DOSE:stop=4294967295 prog=65535 exp=4294967295 on=4294967295,4294967295,4294967295,4294967295"
+             " plan=4294967295,4294967295,4294967295,4294967295 cut=1 again=1",
+     "reply": dose(4294967295, 65535, 4294967295, [4294967295] * 4, plan=[4294967295] * 4, cut=True, again=True), "canonical": True},
+    {"line": "DOSE:stop=007 prog=0 exp=1 on=0,0,0,0", "reply": dose(7, 0, 1, [0, 0, 0, 0]), "canonical": False},
 ]
 bad_reports = [
     {"line": "T:31.2 /0.0 S0:24.0 /0.0", "why": "fewer than six sensors"},
@@ -396,6 +417,15 @@ bad_reports = [
     {"line": "T:31.2 /60.0 T0:24.0 /60.0 T1:31.2 /60.0 T2:23.9 /60.0 T3:24.1 /60.0 T4:22.0 /55.0 T5:-3.5 /55.0", "why": "sensors as hotends with their limits as targets (before issue 16)"},
     {"line": "X:10.000 Y:20.500", "why": "no Z"},
     {"line": "Resend: x", "why": "not a number"},
+    {"line": "DOSE:stop=12 prog=0 exp=345 on=40210,39988,0", "why": "three LEDs"},
+    {"line": "DOSE:stop=12 prog=0 exp=0 on=1,2,3,4", "why": "exposure 0 (no record is numbered 0)"},
+    {"line": "DOSE:stop=12 prog=65536 exp=3 on=1,2,3,4", "why": "a program past 65535"},
+    {"line": "DOSE:stop=12 prog=0 exp=3 on=4294967296,2,3,4", "why": "an on-time past 2^32 - 1"},
+    {"line": "DOSE:stop=12 exp=3 prog=0 on=1,2,3,4", "why": "fields out of order"},
+    {"line": "DOSE:stop=12 prog=0 exp=3 on=1,2,3,4 cut=0", "why": "a flag that is not 1"},
+    {"line": "DOSE:stop=12 prog=0 exp=3 on=1,2,3,4 again=1 cut=1", "why": "flags out of order"},
+    {"line": "DOSE:stop=12 prog=0 exp=3 on=1,2,3,4 plan=1,2", "why": "a plan of two LEDs"},
+    {"line": "DOSE:stop=12 prog=0 exp=3 on=1,2,3,4 ", "why": "a trailing space"},
 ]
 write("mega.json", {
     "link": "mega", "version": 1,

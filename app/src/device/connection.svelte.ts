@@ -14,6 +14,7 @@ import type { PrinterLink, StartOptions, UploadProgress } from './link';
 import { configOf, interruptedOf, levelingOf, type InterruptedJob } from './printer-replies';
 import { parseMesh } from './mesh-report';
 import { ThermalHistory } from './thermal-history';
+import { DoseLedger } from './dose-ledger';
 import { DeviceClock } from './device-clock';
 import type { Mesh } from '../planner/mesh';
 import { linkFor } from './links';
@@ -21,6 +22,7 @@ import { lineWork } from './line-work';
 import { PickerDismissed } from './serial-support';
 export { SIMULATOR_BUILT_IN, loadSimulatorPanel, setSimulatorSpeed, tellSimulator } from './sim-transport';
 import type { TransportKind } from './transport';
+import { BOARD_LINK_BAUD, linkBaudOf } from '../machine/config';
 
 export type Connection =
   /** `job` is the job the printer ran when the app let go of it (Disconnect): it may still be running. */
@@ -58,6 +60,9 @@ export class Printer {
   /** The temperatures of the last 20 minutes (not deep-reactive: the chart reads it on each revision). */
   readonly thermal = new ThermalHistory();
   thermalRevision = $state(0);
+  /** What the head delivered to the job, stop by stop, from its DOSE: lines (not deep-reactive: read it on each revision). */
+  readonly dose = new DoseLedger();
+  doseRevision = $state(0);
   /** The mesh the printer last reported, and the one it had before the last probing, for comparison. */
   mesh = $state<Mesh | null>(null);
   previousMesh = $state<Mesh | null>(null);
@@ -77,6 +82,12 @@ export class Printer {
   resuming = $state(false);
   /** Printer seconds per wall second of the open link (the simulated printer at ?simSpeed=N runs N×). */
   timeScale = $state(1);
+  /**
+   * The printhead link's speed the connected printer plans jobs at (`Cap:LINK_BAUD`, mega.md M115:
+   * 115200 once its Nano failed a raise), which the estimates price; BOARD_LINK_BAUD when none is
+   * connected or it did not say.
+   */
+  linkBaud = $state(BOARD_LINK_BAUD);
   #link: PrinterLink | null = null;
   /** Bumped by every connect and disconnect: a connect whose link loaded after a newer one gives way. */
   #attempt = 0;
@@ -127,6 +138,7 @@ export class Printer {
       await link.command('M155 S1');
       await link.command('M154 S1');
       await link.command('M27 S1');
+      this.linkBaud = linkBaudOf(link.linkBaud);
       this.config = configOf(await link.command('M503'));
       this.interrupted = interruptedOf(await link.command('M1000 S'));
       if (this.#link === link) {
@@ -155,6 +167,7 @@ export class Printer {
     this.health = null;
     this.upload = { state: 'idle' };
     this.config = null;
+    this.linkBaud = BOARD_LINK_BAUD;
     this.interrupted = null;
     this.resuming = false;
     this.mesh = this.previousMesh = null;
@@ -339,6 +352,11 @@ export class Printer {
       this.thermalRevision = this.thermal.revision;
     }
     if (applyReport(this.device, r, Date.now())) this.device = { ...this.device };
+    if (r.kind === 'job') this.dose.job(r.state, r.fields.file, this.device.job?.stop);
+    if (r.kind === 'dose') {
+      this.dose.add(r);
+      this.doseRevision++;
+    }
     if (r.kind === 'fault' && r.code === PRINTHEAD_SILENT) this.#watchPrinthead();
     if (r.kind === 'other' && r.text.startsWith('MESH:row')) this.mesh = parseMesh(this.device.mesh) ?? this.mesh; // whole with its last row
     if (this.#link) this.health = { ...this.#link.health };

@@ -49,6 +49,7 @@ describe('dialect client over a simulated 115200-baud wire', () => {
     if (pos.kind !== 'position') console.log(r.lines.slice(-30));
     expect(pos).toMatchObject({ kind: 'position', um: [0, 0, 0] });
     expect(r.lines).toContain('Cap:RX_WINDOW:3');
+    expect(r.dl.linkBaud).toBe(250000); // Cap:LINK_BAUD: its Nano takes the raised printhead link speed
   });
 
   it('uploads a job bit-exact through 1 % byte corruption with drops', async () => {

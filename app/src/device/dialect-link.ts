@@ -7,7 +7,7 @@ import { CommandError } from './command-error';
 import { encodeFrame } from '../protocol/dialect-frame';
 import { LINE_RATE, type LinkRate } from '../job/link-rate';
 import { DialectClient, type ClientOptions, type LinkHealth } from './dialect-client';
-import type { PrinterLink, StartOptions, UploadProgress } from './link';
+import { capValue, type PrinterLink, type StartOptions, type UploadProgress } from './link';
 import type { Transport } from './transport';
 
 const UPLOAD_ATTEMPTS = 5;
@@ -26,6 +26,8 @@ export class DialectLink implements PrinterLink {
   #heartbeat: unknown = null;
   /** The newest job format the printer reads (`Cap:JOB_FORMAT`, mega.md); 1 for firmware that does not say. */
   jobFormat: JobFormat = 1;
+  /** The printhead link's speed the printer plans jobs at (`Cap:LINK_BAUD`, mega.md); null for firmware that does not say. */
+  linkBaud: number | null = null;
   /** Wire bytes per second of the printer's time on the last whole upload through this link. */
   uploadRate: LinkRate = LINE_RATE;
 
@@ -54,6 +56,7 @@ export class DialectLink implements PrinterLink {
     const info = await this.#client.command('M115'); // learns the receive window and the job format
     const cap = info.find((r) => r.kind === 'cap' && r.name === 'JOB_FORMAT');
     this.jobFormat = cap?.kind === 'cap' && cap.value >= 2 ? 2 : 1;
+    this.linkBaud = capValue(info, 'LINK_BAUD');
     this.#beat();
     this.transport.onRescaled = () => { // the next heartbeat at the new speed's period, from now
       this.#stopHeartbeat();

@@ -38,4 +38,16 @@ describe('EspLink', () => {
     await link.open(() => {}, () => {});
     expect(link.jobFormat).toBe(format);
   });
+
+  it.each([
+    [['Cap:LINK_BAUD:115200'], 115200],
+    [['Cap:JOB_FORMAT:2', 'Cap:LINK_BAUD:250000'], 250000],
+    [[], null],
+  ])('with %j in the M115 answer knows the printhead link speed the Mega plans at: %s', async (caps, baud) => {
+    vi.stubGlobal('WebSocket', fakeHub(caps));
+    const link = new EspLink('http://hub.local');
+    expect(link.linkBaud).toBeNull();
+    await link.open(() => {}, () => {});
+    expect(link.linkBaud).toBe(baud);
+  });
 });

@@ -6,7 +6,7 @@ import type { JobFormat, PrintJob } from '../protocol/job-types';
 import { CommandError } from './command-error';
 import { postJob } from './esp-post';
 import type { LinkHealth } from './dialect-client';
-import type { PrinterLink, StartOptions, UploadProgress } from './link';
+import { capValue, type PrinterLink, type StartOptions, type UploadProgress } from './link';
 
 type FromEsp =
   | { type: 'hello'; protocol: number; firmware: string }
@@ -32,6 +32,8 @@ export class EspLink implements PrinterLink {
   #closing = false;
   /** The hub builds the job text itself, in the newest format its Mega reads (`Cap:JOB_FORMAT` in the M115 reply, esp.md): its bytes are what the estimate counts. */
   jobFormat: JobFormat = 1;
+  /** The Mega's printhead link speed for jobs (`Cap:LINK_BAUD` in the M115 reply); null if it did not say. */
+  linkBaud: number | null = null;
   uploadRate: LinkRate = LINE_RATE;
 
   constructor(private readonly origin: string) {}
@@ -41,6 +43,7 @@ export class EspLink implements PrinterLink {
     const info = await this.command('M115'); // the Mega's identity reaches us as relayed lines
     const cap = info.find((r) => r.kind === 'cap' && r.name === 'JOB_FORMAT');
     this.jobFormat = cap?.kind === 'cap' && cap.value >= 2 ? 2 : 1; // as the hub reads the same answer
+    this.linkBaud = capValue(info, 'LINK_BAUD');
   }
 
   #connect(onReply: (r: Reply, line: string) => void, onClosed: (error?: Error) => void): Promise<void> {

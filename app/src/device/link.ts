@@ -29,6 +29,8 @@ export interface PrinterLink {
   command(line: string): Promise<Reply[]>;
   /** The newest job format (job.md) the printer reads through this link. */
   readonly jobFormat: JobFormat;
+  /** The printhead link's speed the printer plans jobs at (`Cap:LINK_BAUD` in M115, mega.md); null if it did not say. */
+  readonly linkBaud: number | null;
   /** The upload rate: measured on the last upload through this link, else the line's. */
   readonly uploadRate: LinkRate;
   /** Uploads the job, verifies it on the printer, selects and starts it; `paced`: mega.md "Pacing". */
@@ -39,4 +41,10 @@ export interface PrinterLink {
 export interface StartOptions {
   /** Run paced: the printer waits to cool before a stop or a pass rather than pause at a soft limit. */
   paced?: boolean;
+}
+
+/** A `Cap:<name>:<n>` value of an `M115` reply block (mega.md), or null when the printer did not say. */
+export function capValue(info: readonly Reply[], name: string): number | null {
+  const cap = info.find((r) => r.kind === 'cap' && r.name === name);
+  return cap?.kind === 'cap' ? cap.value : null;
 }

@@ -103,6 +103,11 @@ export class JobControl {
     return this.printer.config ?? DEFAULT_CONFIG;
   }
 
+  /** The printhead link's speed the estimates price: the connected printer's (`Cap:LINK_BAUD`), else BOARD_LINK_BAUD. */
+  get linkBaud(): number {
+    return this.printer.linkBaud;
+  }
+
   /** The LEDs' irradiance from the printer's settings, or why a dose in mJ/cm² cannot be used. */
   get calibration(): Calibration {
     return calibrationOf(this.printer.config);
@@ -263,7 +268,7 @@ export class JobControl {
     try {
       // In the worker: for `auto`, the fastest order for exactly this job (of those on the bed), whatever the preview last saw; then the dry run.
       summary = await checkJob(
-        { job: asked, config: $state.snapshot(this.config), auto: this.strategy === 'auto', jobFormat: this.printer.jobFormat, opts: $state.snapshot({ leveling: leveling.on, mesh: leveling.mesh, startC, cuts, boards, machine }) },
+        { job: asked, config: $state.snapshot(this.config), auto: this.strategy === 'auto', jobFormat: this.printer.jobFormat, linkBaud: this.printer.linkBaud, opts: $state.snapshot({ leveling: leveling.on, mesh: leveling.mesh, startC, cuts, boards, machine }) },
         { signal: stop.signal, onProgress: (p) => (this.checking = { what, stage: p.stage }) },
       );
     } catch (e) {

@@ -3,7 +3,7 @@ import { readFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { expect, it } from 'vitest';
 import { SimHost } from '../sim/sim-host.fixture';
-import { CONFIG_DEFAULTS, MAX_STEP_RATE, motionOf, topSpeedUmS } from './config';
+import { BOARD_LINK_BAUD, CONFIG_DEFAULTS, linkBaudOf, MAX_STEP_RATE, motionOf, topSpeedUmS } from './config';
 
 const ROOT = fileURLToPath(new URL('../../..', import.meta.url));
 
@@ -48,7 +48,7 @@ it('plans no axis faster than the Mega steps it: the setting, or 16000 steps/s a
   expect(topSpeedUmS({ ...CONFIG_DEFAULTS, 'steps_per_mm.z': '2000' }, 2)).toBe(8_000); // speed.z 10 mm/s, capped at 8
 });
 
-it('plans at the printhead link speed the Mega plans every job at (printhead_link.h kJobLinkBaud)', () => {
+it('plans at the printhead link speed the Mega plans a job at when its Nano takes the raise (printhead_link.h kJobLinkBaud)', () => {
   const h = readFileSync(new URL('../../../firmware/mega/src/printhead_link.h', import.meta.url), 'utf8');
   const raise = /constexpr bool kRaiseNanoLink = (true|false);/.exec(h)?.[1];
   const fast = Number(/constexpr uint32_t kNanoFastBaud = (\d+);/.exec(h)?.[1]);
@@ -56,4 +56,12 @@ it('plans at the printhead link speed the Mega plans every job at (printhead_lin
   expect(h).toContain('kJobLinkBaud = kRaiseNanoLink ? kNanoFastBaud : uv::kNanoBaud;');
   expect(motionOf({}).linkBaud).toBe(raise === 'true' ? fast : 115200);
   expect(motionOf({}, [0, 0], 115200).linkBaud).toBe(115200);
+});
+
+it('prices at the link speed the printer reports (Cap:LINK_BAUD), else at BOARD_LINK_BAUD', () => {
+  expect(linkBaudOf(115200)).toBe(115200); // a Nano that never takes L: the Mega plans at 115200
+  expect(linkBaudOf(250000)).toBe(250000);
+  expect(linkBaudOf(null)).toBe(BOARD_LINK_BAUD); // firmware from before Cap:LINK_BAUD
+  expect(linkBaudOf(undefined)).toBe(BOARD_LINK_BAUD);
+  for (const bad of [0, 9600, 115201, 2 ** 32]) expect(linkBaudOf(bad)).toBe(BOARD_LINK_BAUD); // not a speed the link takes
 });

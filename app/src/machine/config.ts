@@ -2,6 +2,7 @@
 // the motion they give the planner's time model.
 
 import type { Machine } from '../planner/time-model';
+import { NANO_LINK_BAUDS } from '../protocol/nano';
 import { SETTING_DEFAULTS } from './settings-defaults';
 
 /** Each key's value after M502, in the text form M850 takes. */
@@ -26,10 +27,20 @@ export function topSpeedUmS(config: Record<string, string>, axis: number): numbe
 }
 
 /**
- * The printhead link's speed this firmware's Mega plans and runs every job at (kJobLinkBaud in
- * firmware/mega/src/printhead_link.h: it raises the link to 250000 once the Nano is known).
+ * The printhead link's speed this firmware's Mega plans and runs a job at when its Nano takes the
+ * raise (kJobLinkBaud in firmware/mega/src/printhead_link.h: it raises the link to 250000 once the
+ * Nano is known); the estimates' speed when the printer does not say (`Cap:LINK_BAUD`, mega.md M115).
  */
 export const BOARD_LINK_BAUD = 250000;
+
+/**
+ * The link speed to price a job at: what the printer said in `M115` (`Cap:LINK_BAUD`: 115200 once its
+ * Nano failed a raise, protocol/nano.md "Link speed"), when it is a speed the link can take; else
+ * BOARD_LINK_BAUD.
+ */
+export function linkBaudOf(reported: number | null | undefined): number {
+  return reported != null && NANO_LINK_BAUDS.includes(reported) ? reported : BOARD_LINK_BAUD;
+}
 
 /** The motion the planner's time model prices (protocol/planner.md), from the settings, starting at `startUm`. */
 export function motionOf(config: Record<string, string>, startUm: [number, number] = [0, 0], linkBaud = BOARD_LINK_BAUD): Machine {

@@ -25,13 +25,34 @@ export type Reply =
   | { kind: 'start' }
   | { kind: 'firmware'; name: string; protocol: number }
   | { kind: 'cap'; name: string; value: number }
-  | { kind: 'other'; text: string };
+  | { kind: 'other'; text: string }
+  | DoseReport;
+
+/**
+ * What the printhead delivered to one stop, or to one program of a pass on the move (mega.md "Dose
+ * reports"): each LED's on-time in µs as the Nano timed it, and for a stop what was sent.
+ */
+export interface DoseReport {
+  kind: 'dose';
+  stop: number;
+  program: number;
+  exposure: number;
+  onUs: number[];
+  planUs?: number[];
+  /** Cut short (a fault, a reset): the stop is exposed again, with `again`. */
+  cut: boolean;
+  /** The stop had light before in this job: its cells got it twice. */
+  again: boolean;
+}
 
 const JOB_STATES = new Set(['idle', 'uploading', 'ready', 'running', 'paused', 'done', 'aborted', 'failed', 'interrupted']);
 const PROBE_STATES = new Set(['triggered', 'open', 'alarm', 'deployed', 'stowed']);
 const MM = '(-?[0-9]{1,7}\\.[0-9]{3})';
 const POSITION = new RegExp(`^X:${MM} Y:${MM} Z:${MM} E:${MM} Count X:(-?[0-9]{1,10}) Y:(-?[0-9]{1,10}) Z:(-?[0-9]{1,10})$`);
 const BED = new RegExp(`^Bed X: ${MM} Y: ${MM} Z: ${MM}$`);
+const U32 = '([0-9]{1,10})';
+const FOUR = `${U32},${U32},${U32},${U32}`;
+const DOSE = new RegExp(`^DOSE:stop=${U32} prog=([0-9]{1,5}) exp=${U32} on=${FOUR}(?: plan=${FOUR})?( cut=1)?( again=1)?$`);
 const DECI = '(-?[0-9]{1,3}\\.[0-9])';
 const TEMP_PAIR = new RegExp(`^S([0-5]):${DECI} /0\\.0$`);
 
@@ -57,6 +78,18 @@ function parseTemps(line: string): Reply | null {
     deciC.push(parseDeciC(m[2])!);
   }
   return { kind: 'temps', deciC };
+}
+
+function parseDose(line: string): DoseReport | null {
+  const m = DOSE.exec(line);
+  if (!m) return null;
+  const n = m.slice(1, 12).map((v) => (v === undefined ? undefined : Number(v)));
+  if (n.some((v) => v !== undefined && v > 0xffffffff) || n[1]! > 0xffff || n[2] === 0) return null;
+  const d: DoseReport = {
+    kind: 'dose', stop: n[0]!, program: n[1]!, exposure: n[2]!, onUs: n.slice(3, 7) as number[], cut: m[12] !== undefined, again: m[13] !== undefined,
+  };
+  if (m[8] !== undefined) d.planUs = n.slice(7, 11) as number[];
+  return d;
 }
 
 function milli3(ms: string[]): Xyz {
@@ -91,6 +124,7 @@ export function parseReply(line: string): Reply | null {
     const m = BED.exec(line);
     return m ? { kind: 'probePoint', um: milli3([m[1], m[2], m[3]]) } : null;
   }
+  if (line.startsWith('DOSE:')) return parseDose(line);
   if (line.startsWith('JOB:')) {
     const m = /^JOB:([a-z]+)(.*)$/.exec(line);
     const fields = m && JOB_STATES.has(m[1]) ? parseFields(m[2]) : null;

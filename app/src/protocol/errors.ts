@@ -27,6 +27,7 @@ export const ERRORS = {
   over_temperature: { code: 31, message: 'over-temperature' },
   sensor_fault: { code: 32, message: 'temperature sensor fault' },
   exposure_refused: { code: 33, message: 'printhead refused an exposure' },
+  link_speed: { code: 34, message: "printhead link not at the job's planned speed" },
   probe_alarm: { code: 40, message: 'probe alarm' },
   probe_no_trigger: { code: 41, message: 'probe did not trigger' },
   endstop_hit: { code: 42, message: 'unexpected endstop hit' },
@@ -45,7 +46,7 @@ export function isLineError(code: number): boolean {
 /** The class of each code (errors.csv): a link error, a refusal that leaves the machine fine, or a fault. */
 export type ErrorClass = 'link' | 'refusal' | 'fault';
 
-const FAULTS = new Set([13, 28, 30, 31, 32, 33, 40, 41, 42, 43, 44]);
+const FAULTS = new Set([13, 28, 30, 31, 32, 33, 34, 40, 41, 42, 43, 44]);
 
 /** Faults mean the machine stopped or is in danger; refusals are answered `echo:E<code>` as Marlin answers them (mega.md §2). */
 export function errorClass(code: number): ErrorClass {

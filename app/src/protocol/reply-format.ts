@@ -53,5 +53,9 @@ export function formatReply(r: Reply, info: FirmwareInfo = { machine: 'UV-LED ex
       return `FIRMWARE_NAME:${r.name} PROTOCOL_VERSION:${r.protocol} MACHINE_TYPE:${info.machine} LEDS:4 SENSORS:6`;
     case 'cap': return `Cap:${r.name}:${r.value}`;
     case 'other': return r.text;
+    case 'dose': {
+      const plan = r.planUs ? ` plan=${r.planUs.join(',')}` : '';
+      return `DOSE:stop=${r.stop} prog=${r.program} exp=${r.exposure} on=${r.onUs.join(',')}${plan}${r.cut ? ' cut=1' : ''}${r.again ? ' again=1' : ''}`;
+    }
   }
 }

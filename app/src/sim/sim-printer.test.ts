@@ -33,6 +33,7 @@ describe('simulated printer: link and identity', () => {
     const block = h.cmd('M115');
     expect(parseReply(block[0])).toEqual({ kind: 'firmware', name: 'UVExposure 0.1.0 (Mega)', protocol: 1 });
     expect(block).toContain('Cap:RX_WINDOW:3');
+    expect(block).toContain('Cap:LINK_BAUD:250000'); // the printhead link speed it plans jobs at: its Nano takes the raise
     expect(block.at(-1)).toBe(formatOk(1, 8, 3));
   });
 

@@ -51,6 +51,16 @@ describe('dry run', () => {
     expect(sidesFinding([board(false, false)])!.message).toBe('no side of board demo. The other side is left out, for once the board is turned over');
   });
 
+  it('prices a photo scanned at the printhead link speed the printer reports: slower at 115200', () => {
+    // Every cell a different gray: each LED switches twice a window, so the link's bytes set the pace.
+    const photo = job({ strategy: { name: 'scan' }, dose: { map: 'linear', fullUs: 2000 }, pitchUm: { x: 100, y: 100 } }, 200, 8);
+    photo.gridData = photo.gridData.map((row, r) => Array.from({ length: row.length }, (_, c) => 1 + ((c * 97 + r * 31) % 253)));
+    const raised = dryRun(photo, DEFAULT_CONFIG, { linkBaud: 250000 });
+    const slow = dryRun(photo, DEFAULT_CONFIG, { linkBaud: 115200 });
+    expect(dryRun(photo, DEFAULT_CONFIG).plan.estimateUs).toBe(raised.plan.estimateUs); // BOARD_LINK_BAUD when the printer does not say
+    expect(slow.plan.estimateUs).toBeGreaterThan(raised.plan.estimateUs);
+  });
+
   it('stops an exposure longer than the printhead takes', () => {
     const r = dryRun(job({ dose: { map: 'linear', fullUs: 12_000_000 } }), DEFAULT_CONFIG);
     expect(levels(r).dose).toBe('error');

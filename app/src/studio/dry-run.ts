@@ -79,15 +79,16 @@ export function sidesFinding(boards: readonly TwoSided[]): Finding | null {
  * say. `cuts`: the drawing's objects cut by the bed's edge (absent for a job with no objects);
  * `boards`: its boards placed as two sides.
  * `startC` is the head's temperatures now (the printer's last report); a warm head pauses sooner.
+ * `linkBaud`: the printhead link's speed the printer plans at (`Cap:LINK_BAUD`), BOARD_LINK_BAUD if absent.
  */
 export function dryRun(
   job: PrintJob,
   config: MachineConfig,
-  opts: { mesh?: Mesh | null; leveling?: boolean | null; startC?: number[] | null; cuts?: readonly Cut[]; acceptCuts?: boolean; boards?: readonly TwoSided[]; machine?: MachineCheck; onStage?: (stage: string) => void } = {},
+  opts: { mesh?: Mesh | null; leveling?: boolean | null; linkBaud?: number; startC?: number[] | null; cuts?: readonly Cut[]; acceptCuts?: boolean; boards?: readonly TwoSided[]; machine?: MachineCheck; onStage?: (stage: string) => void } = {},
 ): DryRun {
   opts.onStage?.('planning');
   const header = headerOf(job);
-  const machine = motionOf(config);
+  const machine = motionOf(config, [0, 0], opts.linkBaud);
   const { plan, scan, mixed } = planAnyJob({ header, cells: job.gridData }, machine);
   const findings: Finding[] = opts.machine ? [machineFinding(opts.machine)] : [];
   const { bedMm } = bedOf(config);

@@ -13,10 +13,10 @@ export function dryRunSummary(req: Extract<WorkRequest, { kind: 'dry-run' }>, re
   if (req.auto) {
     report({ stage: 'choosing the fastest order' });
     // Of the orders whose scan strokes stay on the bed.
-    const orders = orderEstimates({ header: headerOf(job), cells: job.gridData }, motionOf(req.config), bedOf(req.config).bedMm.x * 1000);
+    const orders = orderEstimates({ header: headerOf(job), cells: job.gridData }, motionOf(req.config, [0, 0], req.linkBaud), bedOf(req.config).bedMm.x * 1000);
     job = { ...job, strategy: { name: fastestOrder(orders) } };
   }
-  const { findings, duty, plan, paced } = dryRun(job, req.config, { ...req.opts, onStage: (stage) => report({ stage }) });
+  const { findings, duty, plan, paced } = dryRun(job, req.config, { ...req.opts, linkBaud: req.linkBaud, onStage: (stage) => report({ stage }) });
   report({ stage: 'counting the upload' });
   const upload = uploadSize(job, req.jobFormat ?? 1);
   return { order: job.strategy.name, findings, duty, estimateUs: plan.estimateUs, pacedUs: paced && !paced.pause ? paced.totalUs : null, upload };

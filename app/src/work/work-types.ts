@@ -34,7 +34,7 @@ export type WorkRequest =
    * The check before an exposure (studio/dry-run.ts); `auto`: in its fastest order, of those that
    * stay on the config's bed. `boards`: the drawing's two-sided boards, one side a job.
    */
-  | { kind: 'dry-run'; job: PrintJob; config: MachineConfig; auto: boolean; jobFormat?: JobFormat; opts: { mesh?: Mesh | null; leveling?: boolean | null; startC?: number[] | null; cuts?: Cut[]; boards?: TwoSided[]; machine?: MachineCheck } }
+  | { kind: 'dry-run'; job: PrintJob; config: MachineConfig; auto: boolean; jobFormat?: JobFormat; linkBaud?: number; opts: { mesh?: Mesh | null; leveling?: boolean | null; startC?: number[] | null; cuts?: Cut[]; boards?: TwoSided[]; machine?: MachineCheck } }
   /** A picture embedded as a data: URL, decoded and kept. */
   | { kind: 'read-picture'; src: string }
   /** A board's files, as picked or embedded as a data: URL (pcb/board-artwork.ts), read and kept. */

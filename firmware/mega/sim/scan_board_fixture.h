@@ -2,6 +2,8 @@
 // Mega image, runs it to its end, and measures each cell's dose and each LED edge from the head's
 // steps and the Nano image's LED pins (scan_dose.h).
 #pragma once
+#include "dialect_reply.h"
+#include <map>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -91,6 +93,40 @@ class ScanOnBoard : public BoardTest {
     EXPECT_FALSE(lights.empty());
     const double spm[2] = {80, 80};
     return scandose::measure(h, g, lights, track, spm, windowOfRow);
+  }
+  // The DOSE: lines the USB host read (protocol/mega.md "Dose reports") against the Nano image's LED
+  // pins: per LED, the on-times reported and the light the pins gave, in µs; the lines, and whether
+  // each pass's programs came in order from 0, each once.
+  struct DoseFigures {
+    double reportedUs[4] = {}, pinUs[4] = {};
+    int stretches[4] = {};
+    int lines = 0;
+    bool inOrder = true;
+  };
+  DoseFigures doseAgainstPins() const {
+    DoseFigures d;
+    std::map<uint32_t, uint16_t> next;  // per pass, the program that comes next
+    for (const std::string& l : seen) {
+      if (l.rfind("DOSE:", 0) != 0) continue;
+      uv::Reply r{};
+      if (!uv::parseReply(l.data(), static_cast<uint8_t>(l.size()), r) || r.kind != uv::ReplyKind::Dose) {
+        d.inOrder = false;
+        continue;
+      }
+      d.inOrder = d.inOrder && r.dose.program == next[r.dose.stop]++ && !r.dose.cut && !r.dose.again;
+      d.lines++;
+      for (int k = 0; k < 4; k++) d.reportedUs[k] += r.dose.onUs[k];
+    }
+    double onAt[4] = {};
+    for (const BoardSim::LedEdge& e : sim.ledEdges) {
+      const double t = e.cycle / BoardSim::kCyclesPerUs;
+      if (e.on) onAt[e.led] = t;
+      else {
+        d.pinUs[e.led] += t - onAt[e.led];
+        d.stretches[e.led]++;
+      }
+    }
+    return d;
   }
   // M821's longest main-loop pass (µs) since the second pass's G (the pass that follows flying, and
   // not the opening of the next, 18 ms at rest), and the step underruns.

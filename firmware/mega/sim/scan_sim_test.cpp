@@ -28,6 +28,20 @@ class ScanBoardTest : public ScanOnBoard, public ::testing::WithParamInterface<d
     sim.nanoClock = GetParam();
     BoardTest::SetUp();
   }
+  // The pass's programs (`programs`, each sealed by one K) each reported once, in order, their on-times
+  // those of the Nano's pins on its own clock (its µs are the ones it counts) within 2 µs a stretch
+  // (protocol/nano.md "O").
+  void expectDoseReported(int programs) {
+    const DoseFigures d = doseAgainstPins();
+    EXPECT_EQ(std::count_if(sim.nanoLines.begin(), sim.nanoLines.end(), [](const std::string& l) { return l.rfind("K:", 0) == 0; }), programs);
+    EXPECT_EQ(d.lines, programs);
+    EXPECT_TRUE(d.inOrder);
+    for (int k = 0; k < 4; k++) {
+      EXPECT_NEAR(d.reportedUs[k], d.pinUs[k] * GetParam(), 2.0 * d.stretches[k] + 1) << "LED " << k;
+      std::printf("[scan simavr, dose reported] LED %d: %d stretches, %.0f us on the pins (on the Nano's clock), %.0f us in %d DOSE: lines\n", k,
+                  d.stretches[k], d.pinUs[k] * GetParam(), d.reportedUs[k], d.lines);
+    }
+  }
 };
 
 // A Nano 0.3 % fast, so the stretches flown are timed on a clock that is not the Mega's as well.
@@ -87,6 +101,7 @@ TEST_P(ScanBoardTest, AChainOfFourProgramsLoadsEachInTimeAndGivesEveryCellItsDos
               (GetParam() - 1) * 100, f.cells, f.lit, windowUs, f.worstDosePct, f.worstEdgeUm, f.worstCentreUm, link.waited, link.relayMaxUs,
               uv::kProgramRelayUs, link.slackMinUs);
   EXPECT_EQ(link.waited, 2);
+  expectDoseReported(4);
   EXPECT_LE(link.relayMaxUs, uv::kProgramRelayUs);
   EXPECT_GT(link.slackMinUs, 0);
   EXPECT_EQ(f.stray, 0);
@@ -138,6 +153,7 @@ TEST_P(ScanBoardTest, APhotoLikePassLoadsEachProgramWithinTheRelay) {
     EXPECT_GE(std::count(fromNano.begin(), fromNano.end(), raise), 1);
   }
   EXPECT_GE(link.waited, 4);
+  expectDoseReported(8);
   EXPECT_LE(link.relayMaxUs, uv::kProgramRelayUs);
   EXPECT_GT(link.slackMinUs, 0);
   EXPECT_EQ(f.stray, 0);

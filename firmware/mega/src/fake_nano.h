@@ -153,6 +153,7 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
   // The Nano's clock runs this many parts per million fast: what its W answers say.
   int32_t clockPpm = 0;
   bool noClock = false;  // firmware from before W: it does not answer one
+  bool noRaise = false;  // firmware from before L (or a wiring that fails raised): it never answers one
   bool silent = false;   // hears nothing, answers nothing
   bool stuck = false;    // LEDs ignore their off time (a failed timer), only R turns them off
   bool uartFull = false;
@@ -224,7 +225,7 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
       if (!splitter_.push(data[i])) continue;
       std::string l(splitter_.text(), splitter_.length());
       if (logging) lines.push_back(l);
-      if (silent || (noClock && l == "W")) continue;
+      if (silent || (noClock && l == "W") || (noRaise && l.rfind("L:", 0) == 0)) continue;
       head_.line(splitter_.text(), splitter_.length(), splitter_.overflow(), millis());
     }
   }

@@ -13,7 +13,7 @@
 
 namespace mega {
 
-uv::Machine plannerMachine(const Config& config, int32_t x, int32_t y) {
+uv::Machine plannerMachine(const Config& config, int32_t x, int32_t y, uint32_t linkBaud) {
   uv::Machine m{};
   for (uint8_t a = 0; a < 2; a++) {
     // speed.travel, or what the step engine runs on this axis if that is less (Motion::rateFor
@@ -31,7 +31,7 @@ uv::Machine plannerMachine(const Config& config, int32_t x, int32_t y) {
   m.startUm[1] = y;
   m.stepsMilli[0] = static_cast<uint32_t>(config.milli(Key::StepsX));
   m.stepsMilli[1] = static_cast<uint32_t>(config.milli(Key::StepsY));
-  m.linkBaud = kJobLinkBaud;  // the speed the passes run at (ScanRun waits for it)
+  m.linkBaud = linkBaud;  // the speed the passes run at (ScanRun waits for it)
   return m;
 }
 
@@ -94,7 +94,7 @@ bool JobPlan::finish(uint64_t estimateUs) {
   h.thermalCoeff = header_.thermalCoeff;
   h.thermalRefDeciC = header_.thermalRefDeciC;
   h.scan = scan_ != nullptr;
-  if (source_->failed() || !writeStopHeader(sd_, stops_, h) || (h.scan && !writeScanHeader(sd_, stops_, header_)) || !sd_.sync(stops_))
+  if (source_->failed() || !writeStopHeader(sd_, stops_, h) || (h.scan && !writeScanHeader(sd_, stops_, header_, machine_.linkBaud)) || !sd_.sync(stops_))
     error_ = uv::kFileError;
   close();
   done_ = true;

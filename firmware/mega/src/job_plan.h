@@ -14,10 +14,11 @@
 
 namespace mega {
 
-// The machine the planners see, from the settings, with the head starting at (x, y) µm. Jobs on
-// the card are planned from the origin, so they plan the same whenever they run. X and Y go no
-// faster than speed.travel, nor than kMaxStepRate steps/s.
-uv::Machine plannerMachine(const Config& config, int32_t x, int32_t y);
+// The machine the planners see, from the settings, with the head starting at (x, y) µm and the
+// printhead link at linkBaud (PrintheadLink::jobBaud() when a job is planned; a card job's recorded
+// speed when it runs). Jobs on the card are planned from the origin, so they plan the same whenever
+// they run. X and Y go no faster than speed.travel, nor than kMaxStepRate steps/s.
+uv::Machine plannerMachine(const Config& config, int32_t x, int32_t y, uint32_t linkBaud);
 
 class JobPlan {
  public:

@@ -30,8 +30,9 @@ uint8_t JobRunner::start(const char* name, uint32_t from, uint32_t nowUs) {
   if (!readStopHeader(sd_, stops_, header_) || from > header_.count) return uv::kFileError;
   if (header_.scan) {
     uv::JobHeader job;
-    if (!readScanHeader(sd_, stops_, job) || !scanMem_ || scanBytes_ < sizeof(CardScan)) return uv::kFileError;
-    card_ = new (scanMem_) CardScan(sd_, job, plannerMachine(config_, 0, 0), header_.count);
+    uint32_t linkBaud;  // the speed it was planned at: it runs and resumes at it
+    if (!readScanHeader(sd_, stops_, job, linkBaud) || !scanMem_ || scanBytes_ < sizeof(CardScan)) return uv::kFileError;
+    card_ = new (scanMem_) CardScan(sd_, job, plannerMachine(config_, 0, 0, linkBaud), header_.count);
     const uint8_t err = card_->open(name);
     if (err) return err;
   }
@@ -59,7 +60,8 @@ void JobRunner::startStream(StopSource& source, const uv::JobHeader& header, uin
   motion_.targetUm(here);
   zBase_ = here[2];
   state_ = RunState::Running;
-  phase_ = Phase::Load;
+  phase_ = Phase::Drain;  // records from before the stream are no stop's
+  head_.requestDose();
   since_ = nowUs;
   changed_ = true;
 }
@@ -68,7 +70,7 @@ uint8_t JobRunner::resume(const Progress& checkpoint, uint32_t nowUs) {
   uint8_t err = start(checkpoint.file, checkpoint.done, nowUs);
   if (err) return err;
   if (checkpoint.count != header_.count) return uv::kFileError;  // replanned since: not the same stops
-  resuming_ = true;
+  doseFor_ = DoseFor::Resuming;
   checkpointed_ = {checkpoint.done, checkpoint.boot, checkpoint.fires};
   return 0;
 }
@@ -85,6 +87,12 @@ void JobRunner::halt(RunState s, uint8_t reason) {
 }
 
 void JobRunner::fail(uint8_t code) {
+  // The light the Nano gave the stop (or pass) under way before the cut is reported as cut: the stop
+  // is exposed again from its start on continue, and that exposure is its light again.
+  if (doseFor_ == DoseFor::Stop || doseFor_ == DoseFor::StopAgain) {
+    doseFor_ = DoseFor::Cut;
+    head_.requestDose();
+  }
   head_.allOff(code);
   motion_.stop();
   count(now_);
@@ -158,8 +166,16 @@ void JobRunner::count(uint32_t nowUs) {
   elapsedUs_ %= 1000000;
 }
 
+bool JobRunner::doseSettled() {
+  if (doseFor_ != DoseFor::Done && doseFor_ != DoseFor::DoneAgain) return true;
+  if (!head_.doseDrained()) return false;
+  doseFor_ = DoseFor::None;
+  return true;
+}
+
 void JobRunner::confirmed(uint32_t nowUs) {
   stopInHand_ = false;
+  if (doseFor_ != DoseFor::Done && doseFor_ != DoseFor::DoneAgain) doseFor_ = DoseFor::None;
   done_++;
   progress_.done = done_;
   if (lit_) progress_.fires++;  // the Nano counted it
@@ -170,6 +186,32 @@ void JobRunner::confirmed(uint32_t nowUs) {
   if (source_) poll(nowUs);
 }
 
+bool JobRunner::attribute(const uv::NanoReply& r, uv::DoseReport& d) {
+  if (doseFor_ == DoseFor::None || doseFor_ == DoseFor::Again || doseFor_ == DoseFor::Resuming) return false;
+  d = uv::DoseReport{};
+  d.exposure = r.exposure;
+  d.program = r.program;
+  memcpy(d.onUs, r.onUs, sizeof d.onUs);
+  d.cut = doseFor_ == DoseFor::Cut || doseFor_ == DoseFor::CutResumed;
+  if (phase_ == Phase::Drain) {
+    // Found at a resume: only the exposure the checkpoint expected next is the stop that was next.
+    if (r.exposure != checkpointed_.fires + 1) return false;
+    d.stop = checkpointed_.done;
+    return true;
+  }
+  // A card job knows the Nano's count (read at its start and after every pause): its stop's exposure
+  // is the next, or, for the stop just confirmed, the last. An older record was no stop's of this job.
+  const bool confirmed = doseFor_ == DoseFor::Done || doseFor_ == DoseFor::DoneAgain;
+  if (!source_ && r.exposure != progress_.fires + (confirmed ? 0 : 1)) return false;
+  d.stop = confirmed ? done_ - 1 : done_;
+  d.again = doseFor_ == DoseFor::StopAgain || doseFor_ == DoseFor::DoneAgain;
+  if (d.cut && lit_) {  // a cut F: what it was to give, compensated as it was (readings change twice a second)
+    d.hasPlan = true;
+    for (uint8_t i = 0; i < 4; i++) d.planUs[i] = compensate(i, stop_.us[i]);
+  }
+  return true;
+}
+
 void JobRunner::poll(uint32_t nowUs) {
   now_ = nowUs;
   if (state_ != RunState::Running) return;
@@ -177,11 +219,12 @@ void JobRunner::poll(uint32_t nowUs) {
   switch (phase_) {
     case Phase::Sync: {
       if (!head_.online()) return fail(uv::kNanoTimeout);
-      if (!head_.countersAnswered()) return;
+      // A cut stop's records are its own, counted against the count before it: reported first.
+      if (!head_.countersAnswered() || !head_.doseDrained()) return;
       progress_.boot = head_.boot();
       progress_.fires = head_.fires();
-      if (resuming_) {
-        resuming_ = false;
+      if (doseFor_ == DoseFor::Resuming) {
+        doseFor_ = DoseFor::None;
         // The checkpoint holds the count before stop `done` was sent. One more, in the same start
         // of the Nano, means it was sent and carried out; `whole` says if it ran its full time.
         const Checkpointed& cp = checkpointed_;
@@ -190,12 +233,26 @@ void JobRunner::poll(uint32_t nowUs) {
         else if (progress_.fires == cp.fires + 1 && head_.lastWhole()) resumed_ = Resumed::Exposed;
         else resumed_ = Resumed::CutShort;
         if (resumed_ == Resumed::Exposed) done_++;
+        // The light of the stop that was next, if the Nano still holds its record: whole, or cut and
+        // so exposed again. A Nano that restarted lost its records, and its light is unknown.
+        if (resumed_ == Resumed::Exposed) doseFor_ = DoseFor::Resumed;
+        if (resumed_ == Resumed::CutShort) doseFor_ = DoseFor::CutResumed;
+        if (resumed_ == Resumed::PrintheadRestarted) doseFor_ = DoseFor::Again;
+      } else {
+        // Continued after a pause: the cut stop's records came meanwhile, and it is exposed again.
+        doseFor_ = doseFor_ == DoseFor::Cut || doseFor_ == DoseFor::Again ? DoseFor::Again : DoseFor::None;
       }
       progress_.done = done_;
       if (!checkpoint_.begin(progress_)) return fail(uv::kFileError);
-      phase_ = Phase::Load;
+      head_.requestDose();  // the records waiting: the resumed stop's light, or older (not this job's)
+      phase_ = Phase::Drain;
       return;
     }
+    case Phase::Drain:
+      if (!head_.doseDrained()) return;
+      doseFor_ = doseFor_ == DoseFor::CutResumed || doseFor_ == DoseFor::Again ? DoseFor::Again : DoseFor::None;
+      phase_ = Phase::Load;
+      return;
     case Phase::Load: {
       if (pauseWanted_) {
         pauseWanted_ = false;
@@ -214,6 +271,7 @@ void JobRunner::poll(uint32_t nowUs) {
           return halt(RunState::Aborted, 0);
         }
         if (n == NextStop::End) {
+          if (!doseSettled()) return;  // the last stop's DOSE: line before JOB:done
           count(nowUs);
           return halt(RunState::Done, 0);
         }
@@ -230,6 +288,7 @@ void JobRunner::poll(uint32_t nowUs) {
         header_.thermalRefDeciC = streamHeader_->thermalRefDeciC;
       } else {
         if (done_ >= header_.count) {
+          if (!doseSettled()) return;  // the last stop's DOSE: line before JOB:done
           count(nowUs);
           checkpoint_.clear();
           sd_.close(stops_);
@@ -269,7 +328,8 @@ void JobRunner::poll(uint32_t nowUs) {
       phase_ = Phase::Settle;
       return;
     case Phase::Settle: {
-      if (!due(nowUs, settleUntil_)) return;
+      // The stop before's record first (it is asked as the move begins, and has come long before).
+      if (!due(nowUs, settleUntil_) || !doseSettled()) return;
       if (uint8_t why = exposureBlocked()) return fail(why);
       if (paced_ && paceWaits(false)) {
         phase_ = Phase::Cool;  // LEDs off, the head still, until the readings show it cool
@@ -288,6 +348,7 @@ void JobRunner::poll(uint32_t nowUs) {
         return;
       }
       if (!head_.fire(mask, us, nowUs)) return;  // the link is busy: next pass
+      doseStarts();
       phase_ = Phase::Fire;
       return;
     }
@@ -311,6 +372,8 @@ void JobRunner::poll(uint32_t nowUs) {
         return fail(code);  // the stop is not counted: it is exposed again on continue
       }
       head_.clearFire();
+      head_.requestDose();  // its record, asked while the head moves to the next stop
+      doseFor_ = doseFor_ == DoseFor::StopAgain ? DoseFor::DoneAgain : DoseFor::Done;
       phase_ = Phase::Wait;
       return confirmed(nowUs);
     case Phase::Scan:

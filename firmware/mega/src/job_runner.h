@@ -7,6 +7,7 @@
 #include "card_scan.h"
 #include "checkpoint.h"
 #include "config.h"
+#include "dialect_dose.h"
 #include "mesh_store.h"
 #include "motion.h"
 #include "printhead_link.h"
@@ -82,11 +83,27 @@ class JobRunner {
   // The state changed since the last call (for JOB: reports).
   bool changed() const { return changed_; }
   void clearChanged() { changed_ = false; }
+  // A dose record from the Nano (protocol/mega.md "Dose reports"): the stop (or pass and program) it
+  // belongs to, into `d`. False for a record that belongs to none of this job's stops (one from
+  // before the job, or from before a restart that the checkpoint cannot place): it is not reported.
+  bool attribute(const uv::NanoReply& record, uv::DoseReport& d);
+
   // What the last failure was about, for its FAULT line: the stop index.
   uint32_t faultStop() const { return done_; }
 
  private:
-  enum class Phase : uint8_t { Sync, Load, Move, Settle, Cool, Fire, Wait, Scan };
+  enum class Phase : uint8_t { Sync, Drain, Load, Move, Settle, Cool, Fire, Wait, Scan };
+  // Whose light the Nano's records are, and whether the stop exposed next had light before (one byte:
+  // the Mega's RAM; it also says a resume waits for its verdict, Resuming). None, Again: no stop's (older than the job; Again: the next stop is exposed
+  // again). Stop, StopAgain: the stop under way (its F, or its pass's programs). Done, DoneAgain: the
+  // stop just confirmed, whose F's record is asked while the head moves on (the stop cycle does not
+  // wait for it). Cut: the stop a fault cut short, exposed again next. Resumed, CutResumed: at M1000,
+  // the stop that was next when the Mega restarted, exposed whole or cut short.
+  enum class DoseFor : uint8_t { None, Again, Stop, StopAgain, Done, DoneAgain, Cut, Resuming, Resumed, CutResumed };
+  // The last stop's record has come (or none will): the next stop may light, or the job end.
+  bool doseSettled();
+  // The stop under way starts its light.
+  void doseStarts() { doseFor_ = doseFor_ == DoseFor::Again || doseFor_ == DoseFor::Cut ? DoseFor::StopAgain : DoseFor::Stop; }
   void fail(uint8_t code);
   void halt(RunState s, uint8_t reason);
   uint32_t compensate(uint8_t led, uint32_t us) const;
@@ -121,10 +138,10 @@ class JobRunner {
   uint8_t reason_ = 0;
   bool pauseWanted_ = false;
   bool lit_ = false;  // the stop under way lights an LED
+  DoseFor doseFor_ = DoseFor::None;
   bool paced_ = false;
   uint8_t pauseReason_ = 0;
   bool changed_ = false;
-  bool resuming_ = false;
   Resumed resumed_ = Resumed::NotYet;
   // What resume() read off the checkpoint that the resume verdict compares with the Nano's counters,
   // not the whole record (its file name is progress_'s).

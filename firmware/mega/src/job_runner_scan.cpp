@@ -11,6 +11,7 @@ namespace mega {
 
 void JobRunner::pollScan(uint32_t nowUs) {
   if (!stopInHand_) {  // between passes (stopInHand_: a pass is under way)
+    if (!doseSettled()) return;  // a mixed job's stop before: its record first
     if (pauseWanted_) {
       pauseWanted_ = false;
       count(nowUs);
@@ -24,6 +25,8 @@ void JobRunner::pollScan(uint32_t nowUs) {
       return;
     }
     stopInHand_ = true;
+    doseStarts();  // its programs' records, as they end
+    lit_ = false;              // no F: its records carry no plan
   }
   StopSource& passes = card_ ? *static_cast<StopSource*>(card_) : *source_;
   switch (passes.scanStep(motion_, head_, nowUs)) {
@@ -40,6 +43,7 @@ void JobRunner::pollScan(uint32_t nowUs) {
       return;
     case ScanRun::Step::PassDone:
       stopInHand_ = false;
+      doseFor_ = DoseFor::None;
       done_++;
       progress_.done = done_;
       progress_.fires++;  // the Nano counts a chain as one exposure
@@ -58,6 +62,8 @@ void JobRunner::pollScan(uint32_t nowUs) {
         phase_ = Phase::Load;  // on continue: the pass again, planned afresh
         return fail(code ? code : static_cast<uint8_t>(uv::kExposureRefused));
       }
+      doseFor_ = DoseFor::Cut;  // what the cut pass gave, reported: a stream's pass is not run again
+      head_.requestDose();
       head_.allOff(code);
       motion_.stop();
       stopInHand_ = false;

@@ -91,7 +91,7 @@ void Machine::poll(uint32_t nowUs) {
   now_ = nowUs;
   for (HostLink* p : ports_)
     if (p->poll()) emergency();
-  head_.poll(nowUs);
+  head_.poll(nowUs, {&Machine::doseRecord, this});
   printheadEvents();
   motion_.poll();
   movesFree_ = motion_.movesFree();

@@ -111,6 +111,9 @@ class Machine {
   void sayHeadFaults();
   void broadcast(const char* text);
   void broadcastP(const char* text);  // a line in flash (UV_P)
+  // A dose record from the printhead (PrintheadLink's sink): the job's DOSE: line to every host. With
+  // nullptr: whether every host has room for such a line now.
+  static bool doseRecord(void* self, const uv::NanoReply* record);
 
   // commands (machine_motion.cpp)
   Result move(HostLink& port, const uv::Command& c);

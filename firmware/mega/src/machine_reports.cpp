@@ -12,6 +12,12 @@
 
 namespace mega {
 
+namespace {
+// The room a DOSE: line waits for: one with a 7-digit stop and exposure, 8-digit times (up to 99 s),
+// a plan and a flag.
+constexpr uint8_t kDoseLineRoom = 10 + 7 + 6 + 5 + 5 + 7 + 4 + 35 + 6 + 35 + 8 + 1;
+}  // namespace
+
 bool Machine::emitNext() {
   HostLink& port = *long_.port;
   char buf[112];
@@ -19,8 +25,9 @@ bool Machine::emitNext() {
   switch (long_.gen) {
     case Gen::Firmware: {
       static const char kWin[] UV_FLASH = "RX_WINDOW", kTemp[] UV_FLASH = "AUTOREPORT_TEMP", kPos[] UV_FLASH = "AUTOREPORT_POS",
-                        kSd[] UV_FLASH = "SDCARD", kResume[] UV_FLASH = "RESUME", kJob[] UV_FLASH = "JOB_FORMAT";
-      static const char* const kCaps[] UV_FLASH = {kWin, kTemp, kPos, kSd, kResume, kJob};
+                        kSd[] UV_FLASH = "SDCARD", kResume[] UV_FLASH = "RESUME", kJob[] UV_FLASH = "JOB_FORMAT",
+                        kLink[] UV_FLASH = "LINK_BAUD";
+      static const char* const kCaps[] UV_FLASH = {kWin, kTemp, kPos, kSd, kResume, kJob, kLink};
       char cap[32];
       if (long_.index == 0) {
         r.kind = uv::ReplyKind::Firmware;
@@ -28,10 +35,11 @@ bool Machine::emitNext() {
         r.text = cap;
         r.textLen = static_cast<uint8_t>(strlen(cap));
         r.value = 1;
-      } else if (long_.index <= 6) {
+      } else if (long_.index <= 7) {
         uint8_t i = static_cast<uint8_t>(long_.index - 1);
-        // JOB_FORMAT: the newest job format it reads (job.md), 2 with run-length rows.
-        const uint32_t values[] = {long_.port->window(), 1u, 1u, sd_.present() ? 1u : 0u, sd_.present() ? 1u : 0u, 2u};
+        // JOB_FORMAT: the newest job format it reads (job.md), 2 with run-length rows. LINK_BAUD: the
+        // printhead link's speed a job planned now is costed at and runs at (nano.md "Link speed").
+        const uint32_t values[] = {long_.port->window(), 1u, 1u, sd_.present() ? 1u : 0u, sd_.present() ? 1u : 0u, 2u, head_.jobBaud()};
         r.kind = uv::ReplyKind::Cap;
         strcpy_flash(cap, uvFlashPtr(kCaps[i]));
         r.text = cap;
@@ -118,6 +126,21 @@ Machine::Result Machine::diagnostics(HostLink& port, const uv::Command& c) {
   port.line(buf);
   if (c.has('R')) stats_.loopMaxUs = 0;
   return Result::Done;
+}
+
+bool Machine::doseRecord(void* self, const uv::NanoReply* record) {
+  Machine& m = *static_cast<Machine*>(self);
+  if (!record) {
+    for (HostLink* p : m.ports_)
+      if (p->room() < kDoseLineRoom) return false;
+    return true;
+  }
+  uv::DoseReport d;
+  if (!m.running() || !m.run()->attribute(*record, d)) return true;  // no stop of a job: not reported
+  char line[uv::kDoseReportMax + 1];
+  if (uv::formatDoseReport(d, line, sizeof line))
+    for (HostLink* p : m.ports_) p->line(line);  // one wider than the room asked for is counted (M821)
+  return true;
 }
 
 void Machine::printheadEvents() {

@@ -149,7 +149,7 @@ TEST_F(ScanCardTest, APhotoWhosePassesWouldOutrunThePrintheadLinkRunsSlowerEvery
   Lines got = upload("PHOTO.UVJ", encode(h, g));
   ASSERT_TRUE(has(got, "echo:Done saving file.")) << ::testing::PrintToString(got);
   // Each row's pass window, as the planner lays it out.
-  const std::vector<double> windows = scandose::passWindows(h, g, plannerMachine(m.config, 0, 0));
+  const std::vector<double> windows = scandose::passWindows(h, g, plannerMachine(m.config, 0, 0, m.head.jobBaud()));
   EXPECT_GT(windows[0], 2000 * 2);  // slowed to under half the speed the dose allows (4482 us)
   m.cmd("M23 PHOTO.UVJ");
   m.cmd("G28");

@@ -33,7 +33,7 @@ TEST_F(MachineTest, StartsOnBothPortsAndM115ListsTheCapabilities) {
   Lines p = payload("M115");
   EXPECT_EQ(p, (Lines{"FIRMWARE_NAME:UVExposure 0.1.0 (Mega) PROTOCOL_VERSION:1 MACHINE_TYPE:UV-LED exposure printer LEDS:4 SENSORS:6",
                       "Cap:RX_WINDOW:3", "Cap:AUTOREPORT_TEMP:1", "Cap:AUTOREPORT_POS:1", "Cap:SDCARD:1", "Cap:RESUME:1",
-                      "Cap:JOB_FORMAT:2"}));
+                      "Cap:JOB_FORMAT:2", "Cap:LINK_BAUD:250000"}));
   Lines block = m.cmd("M115");
   EXPECT_EQ(block.back().rfind("ok N2 P8 B3*", 0), 0u);
   // The ESP's port has a window of its own, smaller: its sender is on a wire (line_ring.h).

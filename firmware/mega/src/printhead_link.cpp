@@ -187,7 +187,7 @@ void PrintheadLink::missed(uint32_t nowUs) {
   }
 }
 
-void PrintheadLink::handle(const uv::NanoReply& r, uint32_t nowUs) {
+void PrintheadLink::handle(const uv::NanoReply& r, uint32_t nowUs, DoseSink dose) {
   if (r.op == inFlight_) inFlight_ = 0;
   misses_ = 0;
   online_ = true;
@@ -250,16 +250,24 @@ void PrintheadLink::handle(const uv::NanoReply& r, uint32_t nowUs) {
     case 'W':
       clock_.sample(clockSentUs_, r.us);
       break;
+    case 'O':  // a record, and then the next is asked, until O:0
+      if (!r.exposure) doseWanted_ = false;
+      else if (dose.take) dose.take(dose.ctx, &r);
+      break;
     case 'L':  // the Nano takes the speed as this reply ends: this side now, nothing having gone since
       if (speed_ != Speed::Asked) break;
       if (r.baud == kNanoFastBaud && io_.setBaud(kNanoFastBaud)) {
         speed_ = Speed::Probing;
       } else {
         speed_ = Speed::Start;  // the Nano, unconfirmed, returns to 115200 within 100 ms
+        raiseFailed_ = true;
       }
       break;
     case 'V':
-      if (speed_ == Speed::Probing) speed_ = Speed::Raised;  // heard both ways at the new speed
+      if (speed_ == Speed::Probing) {  // heard both ways at the new speed
+        speed_ = Speed::Raised;
+        raiseFailed_ = false;
+      }
       memcpy(firmware_, r.firmware, sizeof firmware_ - 1);
       firmware_[sizeof firmware_ - 1] = 0;
       identityWanted_ = false;
@@ -269,7 +277,7 @@ void PrintheadLink::handle(const uv::NanoReply& r, uint32_t nowUs) {
   }
 }
 
-void PrintheadLink::poll(uint32_t nowUs) {
+void PrintheadLink::poll(uint32_t nowUs, DoseSink dose) {
   if (offPending_ && speed_ != Speed::Waking) allOff();
   for (uint8_t budget = 64; budget; budget--) {  // bounded: a chattering line cannot hold the loop
     int16_t b = io_.read();
@@ -280,24 +288,31 @@ void PrintheadLink::poll(uint32_t nowUs) {
     memcpy(reply, splitter_.text(), n);
     reply[n++] = '\n';
     uv::NanoReply r{};
-    if (uv::parseNanoReply(reply, n, r)) handle(r, nowUs);
+    if (uv::parseNanoReply(reply, n, r)) handle(r, nowUs, dose);
   }
   if (inFlight_ && due(nowUs, askedAt_ + kNanoReplyTimeoutUs)) {
     if (inFlight_ == 'V') identityWanted_ = false;  // asked once; its absence is not a fault
     if (inFlight_ == 'C') countersWanted_ = true;   // asked again until answered
     if (inFlight_ == 'Q') passWanted_ = true;
+    if (inFlight_ == 'O') {  // its records are given up (a Nano from before O answers nothing): no miss
+      doseWanted_ = false;
+      inFlight_ = 0;
+      return;
+    }
     if (inFlight_ == 'K') {  // the program's fate is unknown: the runner treats it as refused
       sealCode_ = kSealUnanswered;
       sealAnswered_ = true;
     }
+    if (inFlight_ == 'L' || speed_ == Speed::Probing) raiseFailed_ = true;  // the Nano never took the raise
     inFlight_ = 0;
     if (speed_ != Speed::Start) lowerSpeed(nowUs + kSpeedRetryUs);  // a reply missed above 115200: any doubt lowers it
     missed(nowUs);
   }
   if (inFlight_) return;
   if (speedStep(nowUs)) return;
-  if (held_) {  // a scan pass's own Q alone: it asks none while its G waits, and needs it in time after
+  if (held_) {  // a scan pass's own Q and O alone: it asks none while its G waits, and needs them in time after
     if (passWanted_ && ask('Q', nowUs)) passWanted_ = false;
+    else if (doseMayAsk(dose)) ask('O', nowUs);
     return;
   }
   if (fire_ == FireState::Firing) {
@@ -316,6 +331,10 @@ void PrintheadLink::poll(uint32_t nowUs) {
   }
   if (probeWanted_) {
     if (ask('P', nowUs)) probeWanted_ = false;
+    return;
+  }
+  if (fire_ != FireState::Firing && doseMayAsk(dose)) {
+    ask('O', nowUs);
     return;
   }
   if (countersWanted_ && fire_ != FireState::Firing) {

@@ -28,9 +28,10 @@ constexpr uint32_t kClockRepollUs = 5000000;  // then now and then, to follow it
 constexpr uint32_t kNanoFastBaud = 250000;
 // Whether the board raises the link (once the Nano is known and the link idle).
 constexpr bool kRaiseNanoLink = true;
-// The link's speed every job is planned at (uv::Machine::linkBaud; planner.md "The printhead link"),
-// at M29, when it runs and when it resumes, so the plan is the same whenever it is made. A scan pass
-// starts only with the link at least this fast (ScanRun waits for the raise after a fall-back).
+// The fastest speed a job is planned at (uv::Machine::linkBaud; planner.md "The printhead link"). A job
+// is planned at the speed the link has or will have (PrintheadLink::jobBaud()): this, or 115200 with a
+// Nano that never takes L. The speed is kept with the job (the card's stop file, a stream's machine),
+// and a scan pass starts only with the link at least that fast (ScanRun waits for the raise).
 constexpr uint32_t kJobLinkBaud = kRaiseNanoLink ? kNanoFastBaud : uv::kNanoBaud;
 constexpr uint32_t kWakeGapUs = 2000;  // after begin()'s 0x00, quiet so long before the R
 constexpr uint32_t kSpeedRetryUs = 5000000;  // after a fall-back or an L unanswered, asked again so late
@@ -46,11 +47,23 @@ class PrintheadLink {
     kNanoReset = 8,    // the Nano's watchdog reset it (WATCHDOG latched)
   };
 
-  explicit PrintheadLink(ByteStream& io) : io_(io), splitter_(line_, kReplyMax) {}
+  explicit PrintheadLink(ByteStream& io)
+      : io_(io), splitter_(line_, kReplyMax), online_(false), reportedOffline_(false), offPending_(false), identityWanted_(true),
+        probeWanted_(false), probeAnswered_(false), probeTriggered_(false), countersWanted_(false), countersAnswered_(false), whole_(true),
+        tempsKnown_(false), fireCheckWanted_(false), sealAnswered_(false), passWanted_(false), passAnswered_(false), held_(false),
+        raise_(false), raiseSoon_(false), raiseFailed_(false), doseWanted_(false) {}
+
+  // The sink, given to poll() (not kept: the Mega's RAM), takes a record, or, given nullptr, says
+  // whether it could take one now (its line has room to go out whole): O waits until it can, as the
+  // Nano keeps its records meanwhile.
+  struct DoseSink {
+    bool (*take)(void* ctx, const uv::NanoReply* record);
+    void* ctx;
+  };
 
   // After the Mega starts: LEDs off (R), then identify the Nano (V).
   void begin(uint32_t nowUs);
-  void poll(uint32_t nowUs);
+  void poll(uint32_t nowUs, DoseSink dose = {nullptr, nullptr});
 
   // All LEDs off now (R), ahead of anything queued. Ends a running exposure as Failed.
   void allOff(uint8_t why = 0);
@@ -94,6 +107,13 @@ class PrintheadLink {
   // Starts the armed chain: its time 0 is 1000 µs after the G's newline reaches the Nano. (On the
   // board the step interrupt times the G; this sends it now.) False if the UART is full.
   bool startChain();
+  // Dose records (protocol/nano.md "O"): asks O until the Nano answers O:0, once the link is free (in
+  // a held pass too, after its G), and hands each record to the sink as it comes. A Nano that does not
+  // answer is not counted as missing for it: the records are given up (doseDrained()).
+  // Without a sink, the records are asked and dropped.
+  void requestDose() { doseWanted_ = true; }
+  // Every record asked for has come (or was given up): the last O answered O:0.
+  bool doseDrained() const { return !doseWanted_ && inFlight_ != 'O'; }
   // Asks Q: the Nano's free buffers, armed programs and the last chain's state (uv::PassState).
   void requestPass() {
     passWanted_ = true;
@@ -117,6 +137,12 @@ class PrintheadLink {
   uint32_t baud() const { return speed_ == Speed::Probing || speed_ == Speed::Raised ? kNanoFastBaud : uv::kNanoBaud; }
   // Raised and proved both ways.
   bool raised() const { return speed_ == Speed::Raised; }
+  // The speed a job planned now runs at: kNanoFastBaud when raised or about to be (raising on, and
+  // the last raise did not fail), else 115200: a Nano that never takes L (older firmware, or a wiring
+  // that fails at the raised speed) runs its jobs at 115200.
+  uint32_t jobBaud() const { return raised() || (raise_ && !raiseFailed_) ? kNanoFastBaud : uv::kNanoBaud; }
+  // The last L went unanswered or refused, or its V at the new speed never came back (until a raise holds).
+  bool raiseFailed() const { return raiseFailed_; }
   // Between the L and a proved speed, and while lowering, nothing but the link's own L, V and R goes.
   bool switching() const { return speed_ != Speed::Start && speed_ != Speed::Raised; }
   bool tempsKnown() const { return tempsKnown_; }
@@ -141,7 +167,9 @@ class PrintheadLink {
   bool ask(char op, uint32_t nowUs);
   // A line that asks `op` went out: its reply is awaited, up to kNanoReplyTimeoutUs from now.
   void awaitReply(char op, uint32_t nowUs);
-  void handle(const uv::NanoReply& r, uint32_t nowUs);
+  void handle(const uv::NanoReply& r, uint32_t nowUs, DoseSink dose);
+  // A requested O may go now.
+  bool doseMayAsk(DoseSink dose) const { return doseWanted_ && (!dose.take || dose.take(dose.ctx, nullptr)); }
   void missed(uint32_t nowUs);
   void fireFailed(uint8_t code);
   void flagsSeen(uint8_t flags, uint32_t nowUs);
@@ -152,33 +180,24 @@ class PrintheadLink {
   bool speedStep(uint32_t nowUs);  // the raise's next step; true when it sent something
 
   ByteStream& io_;
-  // The longest reply, T:, is 41 bytes at the sensors' widest (-40.0 to 125.0); a longer line is noise.
-  static constexpr uint8_t kReplyMax = 47;
+  // The longest reply, O:, is 62 bytes at its widest (uv::kNanoReplyMax); a longer line is noise.
+  static constexpr uint8_t kReplyMax = uv::kNanoReplyMax - 2;
   char line_[kReplyMax + 2];
   uv::LineSplitter splitter_;
   char inFlight_ = 0;        // the op whose reply we wait for, or 0
   uint32_t askedAt_ = 0;
   uint8_t misses_ = 0;
-  bool online_ = false;
-  bool reportedOffline_ = false;
-  bool offPending_ = false;  // an R that found the UART full
   uint32_t nextThermal_ = 0, nextFault_ = 0;
-  bool identityWanted_ = true;
-  bool probeWanted_ = false, probeAnswered_ = false, probeTriggered_ = false;
-  bool countersWanted_ = false, countersAnswered_ = false, whole_ = true;
   uint16_t boot_ = 0;
   uint32_t fires_ = 0;
-  bool tempsKnown_ = false;
   int16_t deciC_[uv::kSensorCount] = {};
   uint8_t flags_ = 0;
   char firmware_[12] = {};  // e.g. 0.1.0: a longer one is cut
   FireState fire_ = FireState::Idle;
   uint8_t fireError_ = 0, fireFlags_ = 0;
   uint32_t fireEndsAt_ = 0, nextStatus_ = 0;
-  bool fireCheckWanted_ = false;  // S said off: ask E once
   uint8_t events_ = 0;
   uint32_t sent_ = 0;
-  bool sealAnswered_ = false, passWanted_ = false, passAnswered_ = false, held_ = false;
   uint8_t sealCode_ = 0, passFree_ = 0, passArmed_ = 0, passState_ = 0;
   NanoClock clock_;
   uint32_t nextClock_ = 0, clockSentUs_ = 0;  // the next W; this clock's micros() as the last went out
@@ -187,7 +206,21 @@ class PrintheadLink {
   // the R to follow.
   enum class Speed : uint8_t { Start, Asked, Probing, Raised, Lowering, Waking };
   Speed speed_ = Speed::Start;
-  bool raise_ = false, raiseSoon_ = false;
+  // The flags, a bit each (the Mega's static RAM is short: docs/firmware-mega.md "Static RAM"); set
+  // in the constructor, as C++11 gives a bit-field no initializer.
+  bool online_ : 1;
+  bool reportedOffline_ : 1;
+  bool offPending_ : 1;  // an R that found the UART full
+  bool identityWanted_ : 1;
+  bool probeWanted_ : 1, probeAnswered_ : 1, probeTriggered_ : 1;
+  bool countersWanted_ : 1, countersAnswered_ : 1, whole_ : 1;
+  bool tempsKnown_ : 1;
+  bool fireCheckWanted_ : 1;  // S said off: ask E once
+  bool sealAnswered_ : 1, passWanted_ : 1, passAnswered_ : 1, held_ : 1;
+  bool raise_ : 1;
+  bool raiseSoon_ : 1;
+  bool raiseFailed_ : 1;  // the last raise failed (its L or its V): jobs are planned at 115200
+  bool doseWanted_ : 1;   // a record waits to be asked for with O
   uint32_t nextSpeed_ = 0;  // when an L may next go
 };
 

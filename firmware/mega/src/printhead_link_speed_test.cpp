@@ -107,3 +107,35 @@ TEST_F(Speed, NothingElseGoesWhileTheSpeedIsSettling) {
   EXPECT_TRUE(sawSwitching);
   EXPECT_TRUE(link.raised());
 }
+
+// The speed a job is planned at (jobBaud): the raised one while the link is raised or the raise has
+// not failed (a fall-back after a reset is raised again), 115200 once an L goes unanswered, and the
+// raised one again as soon as a raise holds.
+TEST_F(Speed, JobsArePlannedAt115200OnceAnLGoesUnansweredAndRaisedAgainOnceARaiseHolds) {
+  EXPECT_EQ(link.jobBaud(), kNanoFastBaud);
+  nano.noRaise = true;  // the Nano restarts as one that never answers L
+  nano.powerCycle();
+  run(200000);
+  EXPECT_FALSE(link.raised());
+  EXPECT_EQ(link.baud(), uv::kNanoBaud);
+  EXPECT_EQ(link.jobBaud(), kNanoFastBaud);  // a fall-back alone: the link will be raised again
+  EXPECT_FALSE(link.raiseFailed());
+  for (uint32_t end = now + kSpeedRetryUs + 200000; now < end && !link.raiseFailed();) run(1000);
+  ASSERT_TRUE(link.raiseFailed());  // its L went unanswered
+  EXPECT_EQ(link.jobBaud(), uv::kNanoBaud);
+  EXPECT_TRUE(bothAt(uv::kNanoBaud));
+  EXPECT_TRUE(link.online());
+  nano.noRaise = false;
+  ASSERT_TRUE(runUntilRaised(kSpeedRetryUs + 600000));
+  EXPECT_FALSE(link.raiseFailed());
+  EXPECT_EQ(link.jobBaud(), kNanoFastBaud);
+}
+
+// A board that does not raise the link plans every job at 115200.
+using SpeedOff = LinkFixture;
+TEST_F(SpeedOff, JobsArePlannedAt115200WhenTheLinkIsNeverRaised) {
+  start(false);
+  run(1000000);
+  EXPECT_FALSE(link.raised());
+  EXPECT_EQ(link.jobBaud(), uv::kNanoBaud);
+}

@@ -123,7 +123,10 @@ ScanRun::Step ScanRun::poll(Motion& motion, PrintheadLink& head, const uv::JobHe
           clockWaiting_ = true;
           clockWaitFrom_ = nowUs;
         }
-        return due(nowUs, clockWaitFrom_ + kScanClockWaitUs) ? fail(head, uv::kScanUnsupported) : Step::Busy;
+        if (!due(nowUs, clockWaitFrom_ + kScanClockWaitUs)) return Step::Busy;
+        // The clock never came (a Nano from before W), or the link stays slower than the plan counts
+        // on: the raise failed since the job was planned (E34; protocol/nano.md "Link speed").
+        return fail(head, head.nanoClock().known() ? uv::kLinkSpeed : uv::kScanUnsupported);
       }
       clockWaiting_ = false;
       if (head.switching()) return Step::Busy;  // the link's speed is settling: it times the G
@@ -189,10 +192,14 @@ ScanRun::Step ScanRun::poll(Motion& motion, PrintheadLink& head, const uv::JobHe
           return fail(head, state == static_cast<uint8_t>(uv::PassState::CutByFault) ? uv::kOverTemperature : uv::kExposureRefused);
         }
         if (!written_ && head.passFree() > 0) loading_ = true;  // a buffer is free: the next program
+        // The programs that have ended, reported (protocol/mega.md "Dose reports"): the Nano keeps two
+        // records, and a program cannot end sooner than the next one loads, so one O after each Q keeps
+        // up. A program waiting to go goes first: its O follows the next Q.
+        if (!loading_) head.requestDose();
         if (motion.idle() && written_ && state == static_cast<uint8_t>(uv::PassState::Whole)) {
-          passes_++;
-          phase_ = Phase::Open;
-          return Step::PassDone;
+          head.requestDose();  // the last program's record: the pass counts once it is reported
+          phase_ = Phase::Drain;
+          return Step::Busy;
         }
       }
       if (loading_) {
@@ -224,6 +231,12 @@ ScanRun::Step ScanRun::poll(Motion& motion, PrintheadLink& head, const uv::JobHe
       }
       return Step::Busy;
     }
+    case Phase::Drain:
+      head.hold(false);
+      if (!head.doseDrained()) return Step::Busy;
+      passes_++;
+      phase_ = Phase::Open;
+      return Step::PassDone;
   }
   return Step::Busy;
 }

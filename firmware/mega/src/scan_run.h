@@ -22,8 +22,9 @@ constexpr uint32_t kScanPollUs = 10000;      // Q while a chain runs: well insid
 constexpr uint32_t kScanStartUs = 174 + uv::kProgramStartLeadUs;
 constexpr uint32_t kScanSettleUs = 50000;    // after the stroke, the chain must have ended by then
 // A pass waits this long at most for the Nano's clock (known 2 s after the Nano answers W) and for the
-// link at the plan's speed (kJobLinkBaud: raised within kSpeedRetryUs of a fall-back): a Nano that
-// never answers W or never takes L (older firmware) cannot run a scan job, which ends with E29 and no light.
+// link at the plan's speed (the job's linkBaud: raised again within kSpeedRetryUs of a fall-back). A
+// Nano that never answers W cannot run a scan job (E29, no light); a link that stays below the plan's
+// speed ends the job with E34 (a job planned at 115200, as with a Nano that never takes L, never waits).
 constexpr uint32_t kScanClockWaitUs = 10000000;
 
 class ScanRun {
@@ -37,7 +38,7 @@ class ScanRun {
   // `h`: the job (its origin and pitch place each pass on the bed).
   Step poll(Motion& motion, PrintheadLink& head, const uv::JobHeader& h, uint32_t nowUs);
   // Why it failed: an error code (29 the speed is out of the step engine's range or the Nano's clock
-  // could not be measured, 30 the Nano went
+  // could not be measured, 34 the link stayed below the plan's speed, 30 the Nano went
   // silent before a pass, 31 the Nano cut the chain for a fault, 33 the Nano refused or cut it
   // otherwise).
   uint8_t error() const { return error_; }
@@ -48,7 +49,7 @@ class ScanRun {
   const StrokePlan& stroke() const { return stroke_; }
 
  private:
-  enum class Phase : uint8_t { Open, Load, Arm, Run, Finish };
+  enum class Phase : uint8_t { Open, Load, Arm, Run, Finish, Drain };
   static bool source(void* ctx, uint32_t& t, uint8_t& m);
   static bool jumpAt(void* ctx, uint8_t i, Motion::StrokeJump& out);
   // What open() found: no pass (starved, or the end), a pass on the move, or a mixed job's stop pass.

@@ -2,6 +2,7 @@
 #include "stop_file.h"
 
 #include "le_bytes.h"
+#include "nano_codec.h"
 #include "progmem.h"
 
 namespace mega {
@@ -43,16 +44,22 @@ bool readStopHeader(Storage& sd, FileHandle f, StopFileHeader& h) {
   uint32_t t = getLe32(b + 28);
   h.thermalCoeff = static_cast<int16_t>(t & 0xffff);
   h.thermalRefDeciC = static_cast<int16_t>(t >> 16);
-  if (scan) return sd.size(f) == kStopHeaderBytes + sizeof(uv::JobHeader);
+  if (scan) return sd.size(f) == kStopHeaderBytes + sizeof(uv::JobHeader) + 4;
   return sd.size(f) == kStopHeaderBytes + static_cast<uint32_t>(kStopBytes) * h.count;
 }
 
-bool writeScanHeader(Storage& sd, FileHandle f, const uv::JobHeader& h) {
-  return sd.seek(f, kStopHeaderBytes) && sd.write(f, reinterpret_cast<const char*>(&h), sizeof h);
+bool writeScanHeader(Storage& sd, FileHandle f, const uv::JobHeader& h, uint32_t linkBaud) {
+  char b[4];
+  putLe32(linkBaud, b);
+  return sd.seek(f, kStopHeaderBytes) && sd.write(f, reinterpret_cast<const char*>(&h), sizeof h) && sd.write(f, b, sizeof b);
 }
 
-bool readScanHeader(Storage& sd, FileHandle f, uv::JobHeader& h) {
-  return sd.seek(f, kStopHeaderBytes) && sd.read(f, reinterpret_cast<char*>(&h), sizeof h) == static_cast<int16_t>(sizeof h);
+bool readScanHeader(Storage& sd, FileHandle f, uv::JobHeader& h, uint32_t& linkBaud) {
+  char b[4];
+  if (!sd.seek(f, kStopHeaderBytes) || sd.read(f, reinterpret_cast<char*>(&h), sizeof h) != static_cast<int16_t>(sizeof h) || sd.read(f, b, sizeof b) != 4)
+    return false;
+  linkBaud = getLe32(b);
+  return uv::nanoLinkBaud(linkBaud);
 }
 
 bool writeStop(Storage& sd, FileHandle f, const uv::Stop& s) {

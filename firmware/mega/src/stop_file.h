@@ -2,7 +2,8 @@
 // they are exposed. Planning writes it once after the upload verified; running reads it front to
 // back, so a running job needs a few bytes of RAM however large it is.
 // A scan job's file (issue 19) holds its passes' count and time in the same header, then the job's
-// header as this firmware holds it: its passes are planned again, one at a time, as they run.
+// header as this firmware holds it and the printhead link's speed it was planned at (4 bytes): its
+// passes are planned again, one at a time, as they run, at that speed.
 #pragma once
 #include <stdint.h>
 
@@ -29,10 +30,12 @@ constexpr uint8_t kStopBytes = 20;
 bool writeStopHeader(Storage& sd, FileHandle f, const StopFileHeader& h);
 bool readStopHeader(Storage& sd, FileHandle f, StopFileHeader& h);
 bool writeStop(Storage& sd, FileHandle f, const uv::Stop& s);
-// A scan job's header, after the file's: written by the build that reads it (a build whose
-// JobHeader differs in size finds the file's size wrong, and the job is planned again at M23).
-bool writeScanHeader(Storage& sd, FileHandle f, const uv::JobHeader& h);
-bool readScanHeader(Storage& sd, FileHandle f, uv::JobHeader& h);
+// A scan job's header, after the file's, and the link speed it was planned at (uv::Machine::linkBaud):
+// written by the build that reads it (a build whose JobHeader differs in size finds the file's size
+// wrong, and the job is planned again at M23). A speed the link cannot take (uv::nanoLinkBaud) is a
+// file error.
+bool writeScanHeader(Storage& sd, FileHandle f, const uv::JobHeader& h, uint32_t linkBaud);
+bool readScanHeader(Storage& sd, FileHandle f, uv::JobHeader& h, uint32_t& linkBaud);
 // Reads stop i (seeks there first).
 bool readStop(Storage& sd, FileHandle f, uint32_t i, uv::Stop& s);
 

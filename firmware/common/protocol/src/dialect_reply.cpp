@@ -202,6 +202,10 @@ bool parseReply(const char* line, uint8_t len, Reply& r) {
     r.kind = ReplyKind::ProbePoint;
     return parseBed(p, end, r);
   }
+  if (startsWith(p, end, "DOSE:")) {
+    r.kind = ReplyKind::Dose;
+    return parseDoseReport(p + 5, end, r.dose);
+  }
   if (startsWith(p, end, "JOB:")) {
     r.kind = ReplyKind::Job;
     return parseNamedFields(p + 4, end, kJobStates, 9, r);
@@ -321,6 +325,7 @@ struct Out {
 }  // namespace
 
 size_t formatReply(const Reply& r, char* buf, size_t size) {
+  if (r.kind == ReplyKind::Dose) return formatDoseReport(r.dose, buf, size);
   Out o{buf, size, 0, false};
   switch (r.kind) {
     case ReplyKind::Ok:
@@ -430,6 +435,7 @@ size_t formatReply(const Reply& r, char* buf, size_t size) {
       o.num(static_cast<int32_t>(r.value));
       break;
     case ReplyKind::Other: o.put(r.text, r.textLen); break;
+    case ReplyKind::Dose: break;  // above
   }
   if (o.full) return 0;
   buf[o.n] = '\0';

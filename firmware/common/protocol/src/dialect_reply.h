@@ -3,13 +3,14 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "dialect_dose.h"
 #include "nano_codec.h"
 
 namespace uv {
 
 enum class ReplyKind : uint8_t {
   Ok, Error, Resend, Temps, Position, Job, Probe, ProbePoint, Test, Fault, Echo, Busy, Start,
-  Firmware, Cap, Other,
+  Firmware, Cap, Other, Dose,
 };
 
 // Index order matches the names in dialect_reply.cpp and protocol/mega.md §4.
@@ -32,6 +33,7 @@ struct Reply {
   int32_t steps[3];
   const char* text;      // into the line: message, echo text, ` k=v` fields, firmware name, cap name, other
   uint8_t textLen;
+  DoseReport dose;       // DOSE:
 };
 
 // Parses one line from the Mega. false = a known prefix with a malformed payload.

@@ -96,6 +96,13 @@ json replyJson(const Reply& r) {
     case ReplyKind::Firmware: return {{"kind", "firmware"}, {"name", text}, {"protocol", r.value}};
     case ReplyKind::Cap: return {{"kind", "cap"}, {"name", text}, {"value", r.value}};
     case ReplyKind::Other: return {{"kind", "other"}, {"text", text}};
+    case ReplyKind::Dose: {
+      const DoseReport& d = r.dose;
+      json j = {{"kind", "dose"}, {"stop", d.stop}, {"program", d.program}, {"exposure", d.exposure},
+                {"onUs", std::vector<uint32_t>(d.onUs, d.onUs + 4)}, {"cut", d.cut}, {"again", d.again}};
+      if (d.hasPlan) j["planUs"] = std::vector<uint32_t>(d.planUs, d.planUs + 4);
+      return j;
+    }
   }
   return nullptr;
 }

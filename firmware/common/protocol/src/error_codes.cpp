@@ -43,6 +43,7 @@ UV_ERR(30, nano_timeout, "printhead not responding")
 UV_ERR(31, over_temperature, "over-temperature")
 UV_ERR(32, sensor_fault, "temperature sensor fault")
 UV_ERR(33, exposure_refused, "printhead refused an exposure")
+UV_ERR(34, link_speed, "printhead link not at the job's planned speed")
 UV_ERR(40, probe_alarm, "probe alarm")
 UV_ERR(41, probe_no_trigger, "probe did not trigger")
 UV_ERR(42, endstop_hit, "unexpected endstop hit")
@@ -60,7 +61,7 @@ const Entry kTable[] UV_FLASH = {
     UV_ROW(21, file_not_found) UV_ROW(22, file_error) UV_ROW(23, job_malformed)
     UV_ROW(24, job_hash_mismatch) UV_ROW(25, job_incomplete) UV_ROW(26, no_job)
     UV_ROW(27, no_resume) UV_ROW(28, stream_overflow) UV_ROW(29, scan_unsupported) UV_ROW(30, nano_timeout) UV_ROW(31, over_temperature)
-    UV_ROW(32, sensor_fault) UV_ROW(33, exposure_refused) UV_ROW(40, probe_alarm)
+    UV_ROW(32, sensor_fault) UV_ROW(33, exposure_refused) UV_ROW(34, link_speed) UV_ROW(40, probe_alarm)
     UV_ROW(41, probe_no_trigger) UV_ROW(42, endstop_hit) UV_ROW(43, selftest_failed) UV_ROW(44, homing_failed)
     UV_ROW(50, config_invalid)};
 #undef UV_ROW

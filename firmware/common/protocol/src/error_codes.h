@@ -31,6 +31,7 @@ enum ErrorCode : uint8_t {
   kOverTemperature = 31,
   kSensorFault = 32,
   kExposureRefused = 33,
+  kLinkSpeed = 34,  // a scan job planned at a raised printhead link speed that the link no longer takes
   kProbeAlarm = 40,
   kProbeNoTrigger = 41,
   kEndstopHit = 42,
@@ -45,7 +46,7 @@ inline bool isLineError(uint8_t code) { return code >= 1 && code <= 6; }
 // The class column of errors.csv. Faults: the machine stopped or is in danger (`Error:`). Refusals leave it
 // fine and are answered `echo:E<code> …`, as Marlin answers them, so hosts like OctoPrint stay connected.
 inline bool isFault(uint8_t code) {
-  return code == 13 || code == 28 || (code >= 30 && code <= 33) || (code >= 40 && code <= 44);
+  return code == 13 || code == 28 || (code >= 30 && code <= 34) || (code >= 40 && code <= 44);
 }
 inline bool isRefusal(uint8_t code) { return !isLineError(code) && !isFault(code); }
 

@@ -1,0 +1,144 @@
+// The dose the head delivered, reported (protocol/mega.md "Dose reports"): each stop's and each
+// pass program's DOSE: line carries the Nano's own on-times, once per stop, and a resume says which
+// stop it lit twice. On a whole simulated Mega with the printhead's fake Nano.
+#include <gtest/gtest.h>
+
+#include <map>
+
+#include "dialect_reply.h"
+#include "machine_job_fixture.h"
+#include "machine_scan_fixture.h"
+
+using namespace mega;
+using namespace jobs;
+
+namespace {
+
+std::vector<uv::DoseReport> doses(const Lines& lines) {
+  std::vector<uv::DoseReport> out;
+  for (const std::string& l : lines) {
+    if (l.rfind("DOSE:", 0) != 0) continue;
+    uv::Reply r{};
+    EXPECT_TRUE(uv::parseReply(l.data(), static_cast<uint8_t>(l.size()), r)) << l;
+    EXPECT_EQ(r.kind, uv::ReplyKind::Dose) << l;
+    out.push_back(r.dose);
+  }
+  return out;
+}
+
+using DoseScanTest = ScanMachineTest;
+
+}  // namespace
+
+TEST_F(JobTest, EveryLitStopIsReportedOnceWithWhatTheNanoTimed) {
+  uv::JobHeader h = header(14, 9, uv::Strategy::Shortest);
+  Grid g = pattern(14, 9, 7);
+  uploadAndStart("D.UVJ", encode(h, g));
+  ASSERT_NE(runUntilJob({"done"}), "(none)");
+  const std::vector<uv::Stop> stops = plan(h, g);
+  const std::vector<uv::DoseReport> d = doses(m.usbLines);
+  ASSERT_EQ(d.size(), m.nano.exposures.size());
+  ASSERT_EQ(d.size(), stops.size());
+  for (size_t i = 0; i < d.size(); i++) {
+    EXPECT_EQ(d[i].stop, i);
+    EXPECT_EQ(d[i].program, 0);
+    EXPECT_FALSE(d[i].cut || d[i].again) << "stop " << i;
+    EXPECT_FALSE(d[i].hasPlan);  // a whole F gives what was sent
+    if (i) {
+      EXPECT_EQ(d[i].exposure, d[i - 1].exposure + 1);
+    }
+    for (int k = 0; k < 4; k++) {
+      EXPECT_EQ(d[i].onUs[k], m.nano.exposures[i].litUs[k]) << "stop " << i << " LED " << k;
+      EXPECT_EQ(d[i].onUs[k], stops[i].us[k]) << "stop " << i << " LED " << k;
+    }
+  }
+  // The ESP's port hears them too.
+  EXPECT_EQ(doses(m.espLines).size(), d.size());
+}
+
+TEST_F(JobTest, AResetThatCutsAStopReportsItsCutLightThenItsLightAgain) {
+  uv::JobHeader h = header(6, 4, uv::Strategy::Raster);
+  h.fullUs = 400000;  // long exposures: the restart lands inside one
+  Grid g = pattern(6, 4, 3);
+  uploadAndStart("L.UVJ", encode(h, g));
+  ASSERT_TRUE([&] {
+    for (int t = 0; t < 100000 && !(m.nano.lit() && m.nano.exposures.size() >= 2); t++) m.run(100);
+    return m.nano.lit() != 0;
+  }());
+  const size_t cut = m.nano.exposures.size() - 1;
+  m.reset(0);  // its R at start-up cuts the exposure; the Nano keeps the record
+  m.cmd("G28");
+  m.cmd("M1000");
+  ASSERT_NE(runUntilJob({"done"}), "(none)");
+  const std::vector<uv::Stop> stops = plan(h, g);
+  const std::vector<uv::DoseReport> d = doses(m.usbLines);
+  // Every stop once whole; the cut one also once cut, its cut light as the Nano timed it.
+  std::map<uint32_t, int> whole, cuts, again;
+  for (const uv::DoseReport& r : d) (r.cut ? cuts : whole)[r.stop]++;
+  for (const uv::DoseReport& r : d) again[r.stop] += r.again;
+  EXPECT_EQ(whole.size(), stops.size());
+  for (const auto& [stop, n] : whole) EXPECT_EQ(n, 1) << "stop " << stop;
+  ASSERT_EQ(cuts.size(), 1u);
+  EXPECT_EQ(cuts.begin()->first, cut);
+  EXPECT_EQ(again.at(static_cast<uint32_t>(cut)), 1);
+  for (const auto& [stop, n] : again) {
+    if (stop != cut) {
+      EXPECT_EQ(n, 0) << "stop " << stop;
+    }
+  }
+  const auto cutLine = std::find_if(d.begin(), d.end(), [](const uv::DoseReport& r) { return r.cut; });
+  for (int k = 0; k < 4; k++) EXPECT_EQ(cutLine->onUs[k], m.nano.exposures[cut].litUs[k]) << "LED " << k;
+  EXPECT_LT(cutLine->onUs[0] + cutLine->onUs[1] + cutLine->onUs[2] + cutLine->onUs[3], 4 * 400000u);
+}
+
+TEST_F(JobTest, AFaultThatCutsAStopReportsItCutAndItsExposureAgainOnContinue) {
+  uv::JobHeader h = header(6, 4, uv::Strategy::Raster);
+  h.fullUs = 400000;
+  Grid g = pattern(6, 4, 3);
+  uploadAndStart("F.UVJ", encode(h, g));
+  ASSERT_TRUE([&] {
+    for (int t = 0; t < 100000 && !(m.nano.lit() && m.nano.exposures.size() >= 2); t++) m.run(100);
+    return m.nano.lit() != 0;
+  }());
+  const size_t cut = m.nano.exposures.size() - 1;
+  m.nano.setTemps(650);  // over the Nano's own 60 °C: it cuts the light
+  ASSERT_NE(runUntilJob({"paused"}), "(none)");
+  m.run(100000);
+  m.nano.setTemps(300);
+  m.run(1200000);
+  EXPECT_EQ(payload("M24"), Lines{});
+  ASSERT_NE(runUntilJob({"done"}), "(none)");
+  const std::vector<uv::DoseReport> d = doses(m.usbLines);
+  const auto cutLine = std::find_if(d.begin(), d.end(), [](const uv::DoseReport& r) { return r.cut; });
+  ASSERT_NE(cutLine, d.end());
+  EXPECT_EQ(cutLine->stop, cut);
+  EXPECT_TRUE(cutLine->hasPlan);
+  const auto againLine = std::find_if(d.begin(), d.end(), [](const uv::DoseReport& r) { return r.again; });
+  ASSERT_NE(againLine, d.end());
+  EXPECT_EQ(againLine->stop, cut);
+  EXPECT_EQ(d.size(), plan(h, g).size() + 1);
+}
+
+TEST_F(DoseScanTest, APassReportsEachProgramAndTheirOnTimesAddUpToItsLight) {
+  job(40, 10, 2000);
+  ASSERT_TRUE(has(upload("S.UVJ", encode(h, g)), "echo:Done saving file."));
+  m.cmd("M23 S.UVJ");
+  m.cmd("G28");
+  m.cmd("M24");
+  const std::string end = runUntilJob({"done", "paused", "failed", "aborted"}, 60000000);
+  ASSERT_NE(end.find("JOB:done"), std::string::npos) << end;
+  const std::vector<uv::DoseReport> d = doses(m.usbLines);
+  ASSERT_FALSE(d.empty());
+  uint64_t reported[4] = {}, shone[4] = {};
+  std::map<uint32_t, uint16_t> programs;  // per pass, how many, in order from 0
+  for (const uv::DoseReport& r : d) {
+    EXPECT_FALSE(r.cut || r.again || r.hasPlan);
+    EXPECT_EQ(r.program, programs[r.stop]++) << "pass " << r.stop;
+    for (int k = 0; k < 4; k++) reported[k] += r.onUs[k];
+  }
+  EXPECT_EQ(programs.size(), 3u);  // every pass
+  for (const ScanLight& l : m.nano.scanLight) shone[l.led] += l.offUs - l.onUs;
+  for (int k = 0; k < 4; k++) EXPECT_NEAR(static_cast<double>(reported[k]), static_cast<double>(shone[k]), 2.0 * static_cast<double>(d.size())) << "LED " << k;
+  std::printf("[mega dose] 3 passes: %zu programs reported, LED 0 %llu us reported of %llu us shone\n", d.size(),
+              static_cast<unsigned long long>(reported[0]), static_cast<unsigned long long>(shone[0]));
+}
