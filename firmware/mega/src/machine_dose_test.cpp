@@ -57,15 +57,10 @@ TEST_F(JobTest, EveryLitStopIsReportedOnceWithWhatTheNanoTimed) {
 }
 
 TEST_F(JobTest, AResetThatCutsAStopReportsItsCutLightThenItsLightAgain) {
-  uv::JobHeader h = header(6, 4, uv::Strategy::Raster);
-  h.fullUs = 400000;  // long exposures: the restart lands inside one
-  Grid g = pattern(6, 4, 3);
-  uploadAndStart("L.UVJ", encode(h, g));
-  ASSERT_TRUE([&] {
-    for (int t = 0; t < 100000 && !(m.nano.lit() && m.nano.exposures.size() >= 2); t++) m.run(100);
-    return m.nano.lit() != 0;
-  }());
-  const size_t cut = m.nano.exposures.size() - 1;
+  uv::JobHeader h;
+  Grid g;
+  const size_t cut = startLongJobIntoItsLight("L.UVJ", h, g);
+  ASSERT_NE(m.nano.lit(), 0);
   m.reset(0);  // its R at start-up cuts the exposure; the Nano keeps the record
   m.cmd("G28");
   m.cmd("M1000");
@@ -92,15 +87,10 @@ TEST_F(JobTest, AResetThatCutsAStopReportsItsCutLightThenItsLightAgain) {
 }
 
 TEST_F(JobTest, AFaultThatCutsAStopReportsItCutAndItsExposureAgainOnContinue) {
-  uv::JobHeader h = header(6, 4, uv::Strategy::Raster);
-  h.fullUs = 400000;
-  Grid g = pattern(6, 4, 3);
-  uploadAndStart("F.UVJ", encode(h, g));
-  ASSERT_TRUE([&] {
-    for (int t = 0; t < 100000 && !(m.nano.lit() && m.nano.exposures.size() >= 2); t++) m.run(100);
-    return m.nano.lit() != 0;
-  }());
-  const size_t cut = m.nano.exposures.size() - 1;
+  uv::JobHeader h;
+  Grid g;
+  const size_t cut = startLongJobIntoItsLight("F.UVJ", h, g);
+  ASSERT_NE(m.nano.lit(), 0);
   m.nano.setTemps(650);  // over the Nano's own 60 °C: it cuts the light
   ASSERT_NE(runUntilJob({"paused"}), "(none)");
   m.run(100000);

@@ -38,6 +38,17 @@ class JobTest : public ::testing::Test {
     m.cmd("M24");
     return got;
   }
+  // A raster job of 6 x 4 cells whose exposures last 400 ms, started and run into its second stop's
+  // light, so that a restart or a fault lands inside an exposure; returns that exposure's index.
+  size_t startLongJobIntoItsLight(const std::string& name, uv::JobHeader& h, jobs::Grid& g) {
+    h = jobs::header(6, 4, uv::Strategy::Raster);
+    h.fullUs = 400000;
+    g = jobs::pattern(6, 4, 3);
+    uploadAndStart(name, jobs::encode(h, g));
+    for (int t = 0; t < 100000 && !(m.nano.lit() && m.nano.exposures.size() >= 2); t++) m.run(100);
+    EXPECT_NE(m.nano.lit(), 0) << "no light to cut";
+    return m.nano.exposures.size() - 1;
+  }
   // Runs until a JOB: line in `states` arrives; returns it.
   std::string runUntilJob(std::initializer_list<const char*> states, uint64_t maxUs = 300000000) {
     size_t from = m.usbLines.size();

@@ -296,15 +296,10 @@ TEST_F(JobTest, ResetsAtRandomPointsResumeAndExposeEveryStopExactlyOnce) {
 }
 
 TEST_F(JobTest, AResetThatCutsAnExposureShortSaysSoAndExposesItAgain) {
-  uv::JobHeader h = header(6, 4, uv::Strategy::Raster);
-  h.fullUs = 400000;  // long exposures: the restart lands inside one
-  Grid g = pattern(6, 4, 3);
-  uploadAndStart("L.UVJ", encode(h, g));
-  ASSERT_TRUE([&] {
-    for (int t = 0; t < 100000 && !(m.nano.lit() && m.nano.exposures.size() >= 2); t++) m.run(100);
-    return m.nano.lit() != 0;
-  }());
-  size_t cut = m.nano.exposures.size() - 1;
+  uv::JobHeader h;
+  Grid g;
+  size_t cut = startLongJobIntoItsLight("L.UVJ", h, g);
+  ASSERT_NE(m.nano.lit(), 0);
   m.reset(0);  // back at once: its R at start-up cuts the exposure
   EXPECT_EQ(m.nano.lit(), 0);
   EXPECT_LT(m.nano.exposures[cut].litUs[0] + m.nano.exposures[cut].litUs[1] + m.nano.exposures[cut].litUs[2] +

@@ -1,4 +1,4 @@
-// The machine tests' scan jobs (machine_scan_card_test.cpp, machine_scan_stream_test.cpp): a job of
+// The machine tests' scan jobs (machine_scan_card_test.cpp, machine_scan_stream_test.cpp, machine_scan_link_test.cpp): a job of
 // scandose::testPattern, every LED at the same gain, and each cell's dose measured from the light
 // and the head's steps.
 #pragma once
@@ -22,6 +22,27 @@ struct ScanMachineTest : JobTest {
     h.fullUs = fullUs;
     for (int k = 0; k < 4; k++) h.gainPermille[k] = 1000;
     g = scandose::testPattern(cols, rows);
+  }
+  // A photo: every cell a different gray, so each LED switches twice a window.
+  void photo(uint16_t cols, uint16_t rows, uint32_t fullUs) {
+    job(cols, rows, fullUs);
+    for (uint16_t r = 0; r < h.rows; r++)
+      for (uint16_t c = 0; c < h.cols; c++) g[r][c] = static_cast<uint8_t>(1 + (c * 97 + r * 31) % 253);
+  }
+  // Selects the uploaded job, homes, starts it from the origin and runs it to its end: "JOB:done".
+  void runToDone(const std::string& name) {
+    m.cmd("M23 " + name);
+    m.cmd("G28");
+    m.rig.steps.clear();
+    m.cmd("M24");
+    const std::string end = runUntilJob({"done", "paused", "failed", "aborted"}, 120000000);
+    ASSERT_NE(end.find("JOB:done"), std::string::npos) << end;
+  }
+  // No light outside the cells, every cell within 2 % of its dose, every edge within a quarter cell.
+  static void expectEveryCellItsDose(const scandose::Figures& f) {
+    EXPECT_EQ(f.stray, 0);
+    EXPECT_LE(f.worstDosePct, 2.0);
+    EXPECT_LE(f.worstEdgeUm, 100 / 4.0);
   }
   // Homes, then streams the job (M828 … M29); the track starts at the origin.
   void stream() {

@@ -89,28 +89,19 @@ TEST_F(ScanLinkTest, ANanoResetMidJobFallsBackTo115200AndTheResumedJobRunsRaised
 // slowed for the slower link, run whole with every cell within 2 % of its dose.
 TEST_F(ScanLinkTest, ANanoThatNeverTakesLRunsAPhotoPlannedAt115200EveryCellItsDose) {
   neverTakesL();
-  job(200, 8, 2000);
-  for (uint16_t r = 0; r < h.rows; r++)
-    for (uint16_t c = 0; c < h.cols; c++) g[r][c] = static_cast<uint8_t>(1 + (c * 97 + r * 31) % 253);
+  photo(200, 8, 2000);
   ASSERT_TRUE(has(upload("SLOWLINK.UVJ", encode(h, g)), "echo:Done saving file."));
   EXPECT_EQ(plannedBaud("SLOWLINK.UVJ"), uv::kNanoBaud);
   const std::vector<double> windows = scandose::passWindows(h, g, plannerMachine(m.config, 0, 0, uv::kNanoBaud));
   const std::vector<double> raised = scandose::passWindows(h, g, plannerMachine(m.config, 0, 0, kNanoFastBaud));
   EXPECT_GT(windows[0], raised[0]);  // the slower link slows the passes more
-  m.cmd("M23 SLOWLINK.UVJ");
-  m.cmd("G28");
-  m.rig.steps.clear();
-  m.cmd("M24");
-  const std::string end = runUntilJob({"done", "paused", "failed", "aborted"}, 120000000);
-  ASSERT_NE(end.find("JOB:done"), std::string::npos) << end;
+  ASSERT_NO_FATAL_FAILURE(runToDone("SLOWLINK.UVJ"));
   EXPECT_FALSE(m.head.raised());
   EXPECT_EQ(m.nano.megaBaud(), uv::kNanoBaud);
   const scandose::Figures f = measure(windows);
   std::printf("[scan link] a Nano that never takes L: a photo at 115200 (windows %.0f us, %.0f raised): worst dose error %.2f %% of full, worst edge %.2f um\n",
               windows[0], raised[0], f.worstDosePct, f.worstEdgeUm);
-  EXPECT_EQ(f.stray, 0);
-  EXPECT_LE(f.worstDosePct, 2.0);
-  EXPECT_LE(f.worstEdgeUm, 100 / 4.0);
+  expectEveryCellItsDose(f);
 }
 
 // The same Nano, a job streamed: planned at 115200 as it arrives, and every cell within 2 %.
@@ -159,9 +150,7 @@ TEST_F(ScanLinkTest, AJobPlannedRaisedWhoseLinkWillNotRiseAgainStopsWithE34AndCo
 // the shorter ones a plan at 250000 lays out), every cell within 2 %.
 TEST_F(ScanLinkTest, AJobPlannedAt115200RunsAsPlannedOnceTheLinkIsRaised) {
   neverTakesL();
-  job(200, 8, 2000);
-  for (uint16_t r = 0; r < h.rows; r++)
-    for (uint16_t c = 0; c < h.cols; c++) g[r][c] = static_cast<uint8_t>(1 + (c * 97 + r * 31) % 253);
+  photo(200, 8, 2000);
   const std::vector<double> windows = scandose::passWindows(h, g, plannerMachine(m.config, 0, 0, uv::kNanoBaud));
   const std::vector<double> raised = scandose::passWindows(h, g, plannerMachine(m.config, 0, 0, kNanoFastBaud));
   ASSERT_GT(windows[0], raised[0]);
@@ -171,17 +160,10 @@ TEST_F(ScanLinkTest, AJobPlannedAt115200RunsAsPlannedOnceTheLinkIsRaised) {
   for (int i = 0; i < 700 && !m.head.raised(); i++) m.run(10000);
   ASSERT_TRUE(m.head.raised());
   EXPECT_EQ(m.head.jobBaud(), kNanoFastBaud);  // a job planned now would be costed raised
-  m.cmd("M23 P115.UVJ");  // planned at M29: not planned again
-  m.cmd("G28");
-  m.rig.steps.clear();
-  m.cmd("M24");
-  const std::string end = runUntilJob({"done", "paused", "failed", "aborted"}, 120000000);
-  ASSERT_NE(end.find("JOB:done"), std::string::npos) << end;
+  ASSERT_NO_FATAL_FAILURE(runToDone("P115.UVJ"));  // planned at M29: not planned again
   EXPECT_EQ(m.nano.megaBaud(), kNanoFastBaud);
   const scandose::Figures f = measure(windows);
-  EXPECT_EQ(f.stray, 0);
-  EXPECT_LE(f.worstDosePct, 2.0);
-  EXPECT_LE(f.worstEdgeUm, 100 / 4.0);
+  expectEveryCellItsDose(f);
   // The head crossed each pass at the 115200 plan's speed: its pass took the 115200 windows' time.
   std::printf("[scan link] a photo planned at 115200, run with the link raised: windows %.0f us (%.0f if planned raised), worst dose error %.2f %% of full\n",
               windows[0], raised[0], f.worstDosePct);
