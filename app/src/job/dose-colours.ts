@@ -37,8 +37,8 @@ export function doseImage(m: DeliveredMap, maxSide: number): { width: number; he
     }
   const width = bw * zoom, height = bh * zoom;
   const pixels = new Uint32Array(width * height);
-  // The mark: the middle third of a cell, at least a pixel, when a cell has room for one.
-  const lo = Math.floor(zoom / 3), hi = zoom - lo;
+  // The mark: the middle half of a cell, when a cell has room for one around it.
+  const lo = Math.floor(zoom / 4), hi = zoom - lo;
   for (let by = 0; by < bh; by++)
     for (let bx = 0; bx < bw; bx++) {
       const b = by * bw + bx;
