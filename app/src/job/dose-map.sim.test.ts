@@ -10,6 +10,8 @@ import { SimHost } from '../sim/sim-host.fixture';
 import { DEFAULT_CONFIG, motionOf } from '../studio/machine-config';
 import { deliveredMap } from './dose-map';
 import { planDoses } from './dose-plan';
+import { headerOf } from '../planner/job-header';
+import { planAnyJob } from '../planner/job-plan';
 
 /** The link speed the simulated Mega plans at (its M115 says Cap:LINK_BAUD:250000). */
 const machine = motionOf(DEFAULT_CONFIG, [0, 0], 250_000);
@@ -56,6 +58,19 @@ describe('delivered-dose map on the simulated printer', () => {
     const m = deliveredMap(plan, ledgerOf(h.lines));
     expect(m.counts).toEqual({ within: lit(job), off: 0, dark: 0, waiting: 0, twice: 0 });
     expect(m.worst).toBeLessThan(0.02);
+  });
+
+  it("counts a mixed job's passes on the move and its stops alike", () => {
+    const job = comb('mixed', 12);
+    job.gridData = job.gridData.map((row, y) => (y >= 8 ? Array.from(row, (_, x) => (y === 9 && x === 37 ? 255 : 0)) : row)); // one cell in a band: a stop
+    const plan = planDoses(job, machine);
+    const mixed = planAnyJob({ header: headerOf(job), cells: job.gridData }, machine).mixed!;
+    expect(new Set(mixed.passes.map((p) => p.scan))).toEqual(new Set([true, false])); // passes on the move, and stops
+    const h = new SimHost();
+    start(h, job);
+    h.waitFor(/^JOB:done/);
+    const m = deliveredMap(plan, ledgerOf(h.lines));
+    expect(m.counts).toEqual({ within: lit(job), off: 0, dark: 0, waiting: 0, twice: 0 });
   });
 
   it('counts a stop job resumed after a power cycle once, and marks the stop lit again', () => {
