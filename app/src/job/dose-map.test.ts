@@ -75,6 +75,7 @@ describe('delivered-dose map', () => {
     for (const c of plan.steps[5][0].cell) expect(m.state[c]).toBe(CellDose.Waiting);
     expect(m.worst).toBeCloseTo(0.03, 3);
     expect(doseSummary(m)).toContain(`${cellsOf(5)} not reported yet`);
+    expect(doseSummary(m, true)).toContain(`${cellsOf(5)} not reported to this page`); // the job ended: it will not come
   });
 
   it("gives a program's cells the part of its light each LED gave", () => {

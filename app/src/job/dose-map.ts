@@ -84,10 +84,16 @@ export function grouped(n: number): string {
 const plural = (n: number, one: string, many = `${one}s`) => `${grouped(n)} ${n === 1 ? one : many}`;
 const unitName = (m: DeliveredMap, n: number) => (m.unit === 'pass' ? (n === 1 ? 'pass' : 'passes') : n === 1 ? m.unit : `${m.unit}s`);
 
-/** The map in one line: "12 480 cells within 2 %, 0 off, 0 never lit, 3 stops lit twice by a resume". */
-export function doseSummary(m: DeliveredMap): string {
+/** What the cells whose records have not come are called: while the job runs, "not reported yet". */
+export const waitingWords = (ended: boolean): string => (ended ? 'not reported to this page' : 'not reported yet');
+
+/**
+ * The map in one line: "12 480 cells within 2 %, 0 off, 0 never lit, 3 stops lit twice by a resume".
+ * `ended`: the job has ended, so a record still missing will not come (lit while no page listened, or lost).
+ */
+export function doseSummary(m: DeliveredMap, ended = false): string {
   const parts = [`${plural(m.counts.within, 'cell')} within ${DOSE_TOLERANCE * 100} %`, `${grouped(m.counts.off)} off`, `${grouped(m.counts.dark)} never lit`];
-  if (m.counts.waiting) parts.push(`${grouped(m.counts.waiting)} not reported yet`);
+  if (m.counts.waiting) parts.push(`${grouped(m.counts.waiting)} ${waitingWords(ended)}`);
   parts.push(`${grouped(m.twiceSteps.length)} ${unitName(m, m.twiceSteps.length)} lit twice by a resume`);
   return parts.join(', ');
 }
