@@ -297,6 +297,9 @@ export class JobControl {
     this.duty = duty;
     this.runningUnit = job.strategy.name === 'scan' ? 'pass' : job.strategy.name === 'mixed' ? 'step' : 'stop';
     await this.beforeJob();
+    // The last job's reports are not this one's: its map starts empty, through its upload too.
+    this.printer.dose.clear();
+    this.printer.doseRevision++;
     this.ran = { job, config: $state.snapshot(this.config), linkBaud: this.linkBaud };
     await this.printer.send('G28');
     await this.printer.startJob(job, { paced });
