@@ -42,7 +42,7 @@ test('a job cut by a fault and continued: every cell once, within 2 %, the fault
   await expect(faulted).toContainText(/^Stop \d+ of \d+: cut short by a fault or a restart, then exposed again from its start; its cells are counted once/);
   await expect(map.getByRole('img', { name: /^Delivered dose map: / })).toBeVisible();
   await expect(map.getByRole('list', { name: 'Map key' })).toContainText(`within 2 % of the plan: ${lit}`);
-  await expect(map.getByRole('list', { name: 'Map key' })).toContainText(/lit twice \(counted once\): [1-4] cells/);
+  await expect(map.getByRole('list', { name: 'Map key' })).toContainText(/lit twice \(counted once\): (1 cell|[2-4] cells)/);
   await map.screenshot({ path: info.outputPath('2-done.png') });
   await page.screenshot({ path: info.outputPath('3-page.png'), fullPage: true });
   app.close();

@@ -8,7 +8,7 @@ import { scanDoses } from '../preview/scan-preview';
 import type { PrintJob } from '../protocol/job-types';
 import { PROGRAM_EVENTS } from '../protocol/scan-program';
 import { DEFAULT_CONFIG, motionOf } from '../studio/machine-config';
-import { dosePlanOf, planDoses, programSpans } from './dose-plan';
+import { dosePlanOf, planDoses, programCount, programSpans, recordOf, type DosePlan } from './dose-plan';
 
 const machine = motionOf(DEFAULT_CONFIG);
 
@@ -24,11 +24,14 @@ function comb(strategy: PrintJob['strategy']['name']): PrintJob {
 }
 
 /** Each cell's light over every record of the plan. */
-function perCell(plan: ReturnType<typeof dosePlanOf>): Float64Array {
+function perCell(plan: DosePlan): Float64Array {
   const out = new Float64Array(plan.cols * plan.rows);
-  for (const records of plan.steps) for (const r of records) r.cell.forEach((c, i) => (out[c] += r.us[i]));
+  plan.cell.forEach((c, e) => (out[c] += plan.us[e]));
   return out;
 }
+
+/** Each step's records, unpacked. */
+const stepsOf = (plan: DosePlan) => Array.from({ length: plan.steps }, (_, s) => Array.from({ length: programCount(plan, s) }, (_, p) => recordOf(plan, s, p)));
 
 describe('dose plan', () => {
   it("gives a stop's one record its durations, on the cells its LEDs are over", () => {
@@ -36,8 +39,8 @@ describe('dose plan', () => {
     const planned = planAnyJob({ header: headerOf(job), cells: job.gridData }, machine);
     const plan = dosePlanOf(job, planned);
     expect(plan.unit).toBe('stop');
-    expect(plan.steps).toHaveLength(planned.plan.count);
-    plan.steps.forEach((records, i) => {
+    expect(plan.steps).toBe(planned.plan.count);
+    stepsOf(plan).forEach((records, i) => {
       expect(records).toHaveLength(1);
       expect(records[0].ledUs).toEqual(Array.from(planned.plan.durations.subarray(4 * i, 4 * i + 4)));
     });
@@ -58,7 +61,7 @@ describe('dose plan', () => {
     const job = comb(strategy);
     const planned = planAnyJob({ header: headerOf(job), cells: job.gridData }, machine);
     const plan = dosePlanOf(job, planned);
-    expect(plan.steps).toHaveLength(planned.plan.count);
+    expect(plan.steps).toBe(planned.plan.count);
     const passes = planned.scan?.passes ?? planned.mixed!.passes.flatMap((p) => (p.scan ? [p.pass] : []));
     expect(passes.some((p) => p.events.length > PROGRAM_EVENTS)).toBe(true);
     // Against the preview's light of the whole job: the same on every cell, split or not.
@@ -72,13 +75,13 @@ describe('dose plan', () => {
     const got = perCell(plan);
     got.forEach((us, c) => expect(us).toBeCloseTo(whole[c], 6));
     // Each program's LED totals are its cells' light (no cell of this comb is off the grid).
-    for (const records of plan.steps)
+    for (const records of stepsOf(plan))
       for (const r of records) {
         const sum = [0, 0, 0, 0];
         r.led.forEach((k, i) => (sum[k] += r.us[i]));
         sum.forEach((s, k) => expect(s).toBeCloseTo(r.ledUs[k], 6));
       }
-    const scanned = plan.steps.filter((records) => records.length > 1);
+    const scanned = stepsOf(plan).filter((records) => records.length > 1);
     expect(scanned.length).toBeGreaterThan(0);
     expect(stopLight > 0).toBe(strategy === 'mixed' && planned.mixed!.passes.some((p) => !p.scan));
   });

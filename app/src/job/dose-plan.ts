@@ -19,13 +19,62 @@ export interface PlannedRecord {
   us: number[];
 }
 
+/**
+ * A job's records packed in typed arrays, so a whole bed's (a million cells) goes from the worker to
+ * the page handed over rather than cloned (seconds as arrays of objects).
+ */
 export interface DosePlan {
   cols: number;
   rows: number;
-  /** steps[stop][program]: a stop has one record (program 0), a pass on the move one a program. */
-  steps: PlannedRecord[][];
   /** What a step is called to a person: a stop, a pass on the move, or (mixed) either. */
   unit: 'stop' | 'pass' | 'step';
+  /** Steps, as `JOB:` counts them. */
+  steps: number;
+  /** Step s's records are firstRecord[s] … firstRecord[s + 1] − 1, its program p at firstRecord[s] + p. */
+  firstRecord: Uint32Array;
+  /** Each record's planned on-time per LED, µs, four a record. */
+  ledUs: Float64Array;
+  /** Record r's cells are entries firstEntry[r] … firstEntry[r + 1] − 1. */
+  firstEntry: Uint32Array;
+  cell: Uint32Array;
+  led: Uint8Array;
+  us: Float64Array;
+}
+
+/** Packs each step's records (steps[stop][program]). */
+export function packDosePlan(cols: number, rows: number, unit: DosePlan['unit'], steps: PlannedRecord[][]): DosePlan {
+  const records = steps.flat();
+  const entries = records.reduce((n, r) => n + r.cell.length, 0);
+  const p: DosePlan = {
+    cols, rows, unit, steps: steps.length,
+    firstRecord: new Uint32Array(steps.length + 1), ledUs: new Float64Array(4 * records.length), firstEntry: new Uint32Array(records.length + 1),
+    cell: new Uint32Array(entries), led: new Uint8Array(entries), us: new Float64Array(entries),
+  };
+  let r = 0, e = 0;
+  steps.forEach((step, s) => {
+    p.firstRecord[s] = r;
+    for (const rec of step) {
+      p.ledUs.set(rec.ledUs, 4 * r);
+      p.firstEntry[r++] = e;
+      p.cell.set(rec.cell, e), p.led.set(rec.led, e), p.us.set(rec.us, e);
+      e += rec.cell.length;
+    }
+  });
+  p.firstRecord[steps.length] = r;
+  p.firstEntry[r] = e;
+  return p;
+}
+
+/** The buffers of a packed plan, to hand over to another thread. */
+export const dosePlanBuffers = (p: DosePlan): ArrayBuffer[] => [p.firstRecord, p.ledUs, p.firstEntry, p.cell, p.led, p.us].map((a) => a.buffer as ArrayBuffer);
+
+/** How many programs step s has (1 for a stop). */
+export const programCount = (p: DosePlan, s: number): number => p.firstRecord[s + 1] - p.firstRecord[s];
+
+/** Step s's program's record, unpacked. */
+export function recordOf(p: DosePlan, s: number, program = 0): PlannedRecord {
+  const r = p.firstRecord[s] + program, from = p.firstEntry[r], to = p.firstEntry[r + 1];
+  return { ledUs: Array.from(p.ledUs.subarray(4 * r, 4 * r + 4)), cell: Array.from(p.cell.subarray(from, to)), led: Array.from(p.led.subarray(from, to)), us: Array.from(p.us.subarray(from, to)) };
 }
 
 /** The record of one F: each LED's duration, on the cell under it (cells off the grid get none). */
@@ -78,11 +127,11 @@ export function dosePlanOf(job: PrintJob, planned: JobPlan): DosePlan {
       if (p.scan) steps.push(passRecords(job, p.pass));
       else for (const [hx, hy, ...us] of p.stops) steps.push([stopRecord(job, hx, hy, us)]);
     }
-    return { cols, rows, steps, unit: 'step' };
+    return packDosePlan(cols, rows, 'step', steps);
   }
-  if (scan) return { cols, rows, steps: scan.passes.map((p) => passRecords(job, p)), unit: 'pass' };
+  if (scan) return packDosePlan(cols, rows, 'pass', scan.passes.map((p) => passRecords(job, p)));
   const steps = Array.from({ length: plan.count }, (_, i) => [stopRecord(job, plan.hx[i], plan.hy[i], plan.durations.subarray(4 * i, 4 * i + 4))]);
-  return { cols, rows, steps, unit: 'stop' };
+  return packDosePlan(cols, rows, 'stop', steps);
 }
 
 /** Plans `job` (its order as it ran) for `machine` and gives its records. */
