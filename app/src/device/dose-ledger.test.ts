@@ -65,4 +65,14 @@ describe('DoseLedger', () => {
     expect(l.file).toBe('B.UVJ');
     expect(l.summary().stops).toBe(0);
   });
+  it('lists the stops of its lines from any line on, and counts its clears', () => {
+    const l = new DoseLedger();
+    l.add(dose('DOSE:stop=0 prog=0 exp=1 on=1,0,0,0'));
+    l.add(dose('DOSE:stop=2 prog=0 exp=2 on=1,0,0,0'));
+    l.add(dose('DOSE:stop=2 prog=1 exp=2 on=1,0,0,0'));
+    expect(l.since(1)).toEqual({ stops: [2, 2], lines: 3, clears: 0 });
+    expect(l.stop(2)?.lines).toBe(2);
+    l.clear();
+    expect(l.since(0)).toEqual({ stops: [], lines: 0, clears: 1 });
+  });
 });

@@ -14,6 +14,8 @@ export interface StopDose {
   cutUs: number[][];
   /** Its cells got light twice: a cut exposure, then the stop's exposure again. */
   twice: boolean;
+  /** Lines folded in: a view that counted the stop before sees whether it changed. */
+  lines: number;
 }
 
 export interface DoseSummary {
@@ -29,6 +31,10 @@ const ENDED = new Set(['idle', 'ready', 'done', 'aborted', 'failed']);
 
 export class DoseLedger {
   readonly #stops = new Map<number, StopDose>();
+  /** The stop of each line folded in since the last clear, in order: a view counts again only those. */
+  readonly #log: number[] = [];
+  /** Clears so far: a view's line count is of this ledger's lines only while it is the same. */
+  #clears = 0;
   #file: string | undefined;
   #ended = true;
 
@@ -55,9 +61,11 @@ export class DoseLedger {
   add(r: DoseReport): void {
     let s = this.#stops.get(r.stop);
     if (!s) {
-      s = { programs: new Map(), cutUs: [], twice: false };
+      s = { programs: new Map(), cutUs: [], twice: false, lines: 0 };
       this.#stops.set(r.stop, s);
     }
+    s.lines++;
+    this.#log.push(r.stop);
     if (r.again) s.twice = true;
     if (r.planUs) s.planUs = [...r.planUs];
     if (r.cut) {
@@ -94,7 +102,14 @@ export class DoseLedger {
     return { stops, twice, cutOnly };
   }
 
+  /** The stops of the lines folded in from line `from` on (0 the first since the last clear), how many lines there are now, and the clears so far. */
+  since(from: number): { stops: number[]; lines: number; clears: number } {
+    return { stops: this.#log.slice(from), lines: this.#log.length, clears: this.#clears };
+  }
+
   clear(): void {
     this.#stops.clear();
+    this.#log.length = 0;
+    this.#clears++;
   }
 }

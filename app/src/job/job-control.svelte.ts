@@ -80,6 +80,8 @@ export class JobControl {
   runningEstimate = $state.raw<JobEstimate | null>(null);
   /** The job started here runs paced: started so, or continued so after a pause to cool. */
   runningPaced = $state(false);
+  /** The job started here last, with the settings it was planned with: the delivered-dose map plans its cells from it. */
+  ran = $state.raw<{ job: PrintJob; config: MachineConfig; linkBaud: number } | null>(null);
   /** The movement that waits for the homing under way ("Jog X"), said with the homing's sign. */
   afterHoming = $state<string | null>(null);
 
@@ -295,6 +297,10 @@ export class JobControl {
     this.duty = duty;
     this.runningUnit = job.strategy.name === 'scan' ? 'pass' : job.strategy.name === 'mixed' ? 'step' : 'stop';
     await this.beforeJob();
+    // The last job's reports are not this one's: its map starts empty, through its upload too.
+    this.printer.dose.clear();
+    this.printer.doseRevision++;
+    this.ran = { job, config: $state.snapshot(this.config), linkBaud: this.linkBaud };
     await this.printer.send('G28');
     await this.printer.startJob(job, { paced });
   }

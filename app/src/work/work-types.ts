@@ -30,6 +30,8 @@ export type WorkRequest =
   | { kind: 'plan'; job: PrintJob; machine: Machine; auto?: boolean; bedXUm?: number }
   /** The kept plan's light up to stop (or pass) `upTo`, in bins of at most `maxSide` a side. */
   | { kind: 'preview-grid'; upTo: number; maxSide: number }
+  /** A job that ran, in its order: what each of its dose records should give, and to which cells (job/dose-plan.ts). */
+  | { kind: 'dose-plan'; job: PrintJob; machine: Machine }
   /**
    * The check before an exposure (studio/dry-run.ts); `auto`: in its fastest order, of those that
    * stay on the config's bed. `boards`: the drawing's two-sided boards, one side a job.
