@@ -13,6 +13,11 @@
 namespace mega {
 
 namespace {
+// Obeyed between a stream's records, so a running stream can be watched, paused and aborted.
+bool isStreamCommand(const LineSlot& l) {
+  uv::Command c;
+  return !uv::parseCommand(l.text, l.len, c) && (Machine::commandFlags(c) & Machine::kStream);
+}
 bool isEndOrStop(const LineSlot& l) {
   return l.len >= 3 && (l.text[0] == 'M' || l.text[0] == 'm') &&
          ((l.text[1] == '2' && l.text[2] == '9' && (l.len == 3 || l.text[3] == ' ')) || isEmergencyStop(l.text, l.len));
@@ -23,28 +28,6 @@ bool isCommandLine(const LineSlot& l) {
   return l.len >= 2 && (l.text[0] == 'G' || l.text[0] == 'M' || l.text[0] == 'g' || l.text[0] == 'm') && l.text[1] >= '0' && l.text[1] <= '9';
 }
 
-// Obeyed between a stream's records, so a running stream can be watched, paused and aborted.
-bool isStreamCommand(const LineSlot& l) {
-  uv::Command c;
-  if (uv::parseCommand(l.text, l.len, c) || c.letter != 'M') return false;
-  switch (c.code) {
-    case 24: case 25: case 524: case 27: case 105: case 114: case 115: case 154: case 155:
-      return true;
-    default:
-      return false;
-  }
-}
-
-// Queries that may run while another port's long command is under way.
-bool isQuery(const uv::Command& c) {
-  if (c.letter != 'M') return false;
-  switch (c.code) {
-    case 105: case 114: case 115: case 154: case 155: case 27:
-      return true;
-    default:
-      return false;
-  }
-}
 }  // namespace
 
 Machine::Machine(const MachineParts& p)
@@ -108,7 +91,7 @@ void Machine::poll(uint32_t nowUs) {
     if (!line || port.room() < kReplyRoom) continue;
     if (long_.op != Op::None) {
       uv::Command c;
-      if (long_.port == &port || uv::parseCommand(line->text, line->len, c) || !isQuery(c)) continue;
+      if (long_.port == &port || uv::parseCommand(line->text, line->len, c) || !(commandFlags(c) & kQuery)) continue;
     }
     Result r = execute(port, *line);
     if (r == Result::Wait) continue;
@@ -157,7 +140,7 @@ Machine::Result Machine::execute(HostLink& port, const LineSlot& line) {
     port.errorLine(err, word[0] ? word : nullptr);
     return Result::Done;
   }
-  if (halted_ && !c.is('M', 999) && !c.is('M', 112)) {
+  if (halted_ && !(commandFlags(c) & kWhileHalted)) {
     port.errorLine(uv::kHalted);
     return Result::Done;
   }
@@ -175,91 +158,6 @@ uint32_t Machine::keepaliveUs(const HostLink* port) const {
   for (uint8_t i = 0; i < kPorts; i++)
     if (ports_[i] == port) return static_cast<uint32_t>(keepaliveS_[i]) * 1000000;
   return kKeepaliveUs;  // the panel's commands have no port
-}
-
-Machine::Result Machine::dispatch(HostLink& port, const uv::Command& c) {
-  char buf[112];
-  if (c.letter == 'G') {
-    switch (c.code) {
-      case 0: case 1: return move(port, c);
-      case 4: return dwell(port, c);
-      case 28: return home(c);
-      case 29: return level(port, c);
-      case 30: return probeOnce(port);
-      case 90: absolute_ = true; return Result::Done;
-      case 91: absolute_ = false; return Result::Done;
-      default: break;
-    }
-  } else {
-    switch (c.code) {
-      case 115:
-        long_.op = Op::Emit;
-        long_.gen = Gen::Firmware;
-        long_.index = 0;
-        return Result::Long;
-      case 110: port.errorLine(uv::kBadParameter); return Result::Done;  // the receiver takes every good M110
-      case 105: return temperatures(port);
-      case 155:
-      case 154: {
-        // S in seconds (both), or P in milliseconds (M154), at least 50 ms; 0 stops.
-        int32_t ms = -1;
-        if (c.code == 154 && c.hasValue('P')) ms = c.value('P') / 1000;
-        else if (c.hasValue('S')) ms = c.value('S');  // thousandths of a second = ms
-        if (ms < 0 || ms > 60000 || (ms > 0 && ms < 50)) {
-          port.errorLine(uv::kBadParameter);
-          return Result::Done;
-        }
-        uint32_t& period = c.code == 155 ? tempPeriodUs_ : posPeriodUs_;
-        period = static_cast<uint32_t>(ms) * 1000;
-        (c.code == 155 ? tempNext_ : posNext_) = now_ + period;
-        return Result::Done;
-      }
-      case 114:
-        formatPosition(buf);
-        port.line(buf);
-        return Result::Done;
-      case 119:
-        long_.op = Op::ProbeRead;
-        head_.requestProbe();
-        return Result::Long;
-      case 17:
-        io_.motorsEnabled(true);
-        return Result::Done;
-      case 18: case 84: return release();
-      case 410:
-        motion_.stop();
-        return Result::Done;
-      case 400: return drain();
-      case 113: return busyInterval(port, c);
-      case 108: return Result::Done;  // Marlin's "stop waiting for heaters": nothing here heats or waits for heat
-      case 21:  // Marlin's "init card": the card is mounted at start; say whether it is there
-        port.lineP(sd_.present() ? UV_P("echo:SD card ok") : UV_P("echo:SD init fail"));
-        return Result::Done;
-      case 820: return jog(port, c);
-      case 822: return selfTest(port, c);
-      case 401: return servo(port, c, 'D');
-      case 402: return servo(port, c, 'U');
-      case 280: return servo(port, c, 0);
-      case 355: return light(port, c);
-      case 117: return message(c);
-      case 420: return meshCommand(port, c);
-      case 821: return diagnostics(port, c);
-      case 850: case 500: case 501: case 502: case 503: return configCommand(port, c);
-      case 20: case 23: case 24: case 25: case 26: case 27: case 28: case 29: case 30: case 32: case 524: case 828: case 1000:
-        return jobCommand(port, c);
-      case 112: return Result::Done;  // acted on when it arrived
-      case 999:
-        halted_ = false;
-        lastFault_ = 0;
-        return Result::Done;
-      default: break;
-    }
-  }
-  char word[8];
-  word[0] = c.letter;
-  word[1 + uv::putUnsigned(c.code, word + 1)] = 0;
-  port.errorLine(uv::kUnknownCommand, word);
-  return Result::Done;
 }
 
 void Machine::finishLong(uint8_t error, const char* detail) {

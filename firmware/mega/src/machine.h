@@ -88,8 +88,29 @@ class Machine {
   int16_t meshPoint(uint8_t i, uint8_t j) { return mesh_.z(i, j); }
   uint8_t homed() const { return homed_; }
 
+  // When a command may run beyond its turn (the command table, machine_commands.cpp): kQuery while
+  // another port's long command is under way, kStream between a running stream's records,
+  // kWhileHalted after M112 until M999.
+  enum CommandFlag : uint8_t { kQuery = 1, kStream = 2, kWhileHalted = 4 };
+  // The table's flags for a command; 0 for one not in it.
+  static uint8_t commandFlags(const uv::Command& c);
+  // Whether the command table has a row for it (a command answered E10 has none).
+  static bool knows(const uv::Command& c);
+
  private:
   enum class Result : uint8_t { Done, Long, Wait };
+  using Handler = Result (Machine::*)(HostLink& port, const uv::Command& c);
+  // One command: its letter and code, its CommandFlags, and the member that runs it. A new command
+  // is a row of kCommands (and its line in protocol/mega.md).
+  struct CommandRow {
+    char letter;
+    uint16_t code;
+    uint8_t flags;
+    Handler run;
+  };
+  static const CommandRow kCommands[];
+  // The row of a command, copied out of flash into `row`; nullptr if it has none.
+  static const CommandRow* findCommand(const uv::Command& c, CommandRow& row);
   // Answer: the command has ended, and its reply waits for room on its port (finishLong).
   enum class Op : uint8_t { None, Emit, Dwell, Home, SelfTest, Servo, ProbeRead, MoveRoom, Release, Plan, Prepare, Probe, Level, Store, Answer };
   enum class Gen : uint8_t { Firmware, Endstops, Config, Files, Mesh };
@@ -102,7 +123,15 @@ class Machine {
   };
 
   Result execute(HostLink& port, const LineSlot& line);
+  // Runs a command from the table, or answers E10 for one not in it (machine_commands.cpp).
   Result dispatch(HostLink& port, const uv::Command& c);
+  // Commands of the core (machine_commands.cpp).
+  Result firmwareInfo(HostLink& port, const uv::Command& c);   // M115
+  Result reportPeriod(HostLink& port, const uv::Command& c);   // M154, M155
+  Result refuseM110(HostLink& port, const uv::Command& c);     // M110
+  Result nothing(HostLink& port, const uv::Command& c);        // M108, M112
+  Result cardInit(HostLink& port, const uv::Command& c);       // M21
+  Result leaveHalt(HostLink& port, const uv::Command& c);      // M999
   void runLong();
   void finishLong(uint8_t error = 0, const char* detail = nullptr);
   bool emitNext();
@@ -117,21 +146,30 @@ class Machine {
 
   // commands (machine_motion.cpp)
   Result move(HostLink& port, const uv::Command& c);
-  Result home(const uv::Command& c);
+  Result home(HostLink& port, const uv::Command& c);
   Result jog(HostLink& port, const uv::Command& c);
   Result selfTest(HostLink& port, const uv::Command& c);
   Result dwell(HostLink& port, const uv::Command& c);
   // M400: waits for every queued move to end (a dwell of nothing after the queue).
-  Result drain();
+  Result drain(HostLink& port, const uv::Command& c);
   // M113: the busy: interval of this port.
   Result busyInterval(HostLink& port, const uv::Command& c);
   // The busy: interval of a port (M113), µs; 0: none.
   uint32_t keepaliveUs(const HostLink* port) const;
-  Result release();
+  Result release(HostLink& port, const uv::Command& c);
+  Result absoluteMode(HostLink& port, const uv::Command& c);  // G90
+  Result relativeMode(HostLink& port, const uv::Command& c);  // G91
+  Result motorsOn(HostLink& port, const uv::Command& c);      // M17
+  Result quickStop(HostLink& port, const uv::Command& c);     // M410
+  Result position(HostLink& port, const uv::Command& c);      // M114
   bool axisHomed(uint8_t axis) const { return homed_ & (1 << axis); }
   // commands (machine_printhead.cpp)
-  Result temperatures(HostLink& port);
+  Result temperatures(HostLink& port, const uv::Command& c);
   Result servo(HostLink& port, const uv::Command& c, char op);
+  Result deployProbe(HostLink& port, const uv::Command& c);  // M401
+  Result stowProbe(HostLink& port, const uv::Command& c);    // M402
+  Result servoAngle(HostLink& port, const uv::Command& c);   // M280
+  Result endstops(HostLink& port, const uv::Command& c);     // M119
   Result light(HostLink& port, const uv::Command& c);
   Result diagnostics(HostLink& port, const uv::Command& c);
   // commands (machine_job.cpp)
@@ -173,11 +211,11 @@ class Machine {
   // The snapshot row `row` shows; the costly fields (positions, time left: 64-bit divisions, about
   // 125 us each on the AVR) only for the rows that show them.
   ScreenState screenState(uint8_t row) const;
-  Result message(const uv::Command& c);
+  Result message(HostLink& port, const uv::Command& c);
   // commands (machine_probe.cpp)
   // G30 and G29 need every axis homed and the probe out; false, or the refusal said.
   bool refuseProbing(HostLink& port);
-  Result probeOnce(HostLink& port);
+  Result probeOnce(HostLink& port, const uv::Command& c);
   Result level(HostLink& port, const uv::Command& c);
   Result meshCommand(HostLink& port, const uv::Command& c);
   void runProbe();

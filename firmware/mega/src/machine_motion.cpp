@@ -75,7 +75,7 @@ Machine::Result Machine::dwell(HostLink& port, const uv::Command& c) {
   return Result::Long;
 }
 
-Machine::Result Machine::drain() {
+Machine::Result Machine::drain(HostLink&, const uv::Command&) {
   long_.op = Op::Dwell;
   long_.until = 0;
   long_.drain = true;
@@ -100,7 +100,7 @@ Machine::Result Machine::busyInterval(HostLink& port, const uv::Command& c) {
   return Result::Done;
 }
 
-Machine::Result Machine::home(const uv::Command& c) {
+Machine::Result Machine::home(HostLink&, const uv::Command& c) {
   uint8_t axes = 0;
   for (uint8_t a = 0; a < 3; a++)
     if (c.has(kAxis[a])) axes = static_cast<uint8_t>(axes | (1 << a));
@@ -111,7 +111,7 @@ Machine::Result Machine::home(const uv::Command& c) {
   return Result::Long;
 }
 
-Machine::Result Machine::release() {
+Machine::Result Machine::release(HostLink&, const uv::Command&) {
   long_.op = Op::Release;
   long_.drain = true;  // the queued moves end first, as Marlin's M18/M84: the head stops where they end
   return Result::Long;
@@ -154,6 +154,33 @@ Machine::Result Machine::selfTest(HostLink& port, const uv::Command& c) {
   test_.start(c.has('Q'));
   long_.op = Op::SelfTest;
   return Result::Long;
+}
+
+Machine::Result Machine::absoluteMode(HostLink&, const uv::Command&) {
+  absolute_ = true;
+  return Result::Done;
+}
+
+Machine::Result Machine::relativeMode(HostLink&, const uv::Command&) {
+  absolute_ = false;
+  return Result::Done;
+}
+
+Machine::Result Machine::motorsOn(HostLink&, const uv::Command&) {
+  io_.motorsEnabled(true);
+  return Result::Done;
+}
+
+Machine::Result Machine::quickStop(HostLink&, const uv::Command&) {
+  motion_.stop();
+  return Result::Done;
+}
+
+Machine::Result Machine::position(HostLink& port, const uv::Command&) {
+  char buf[112];
+  formatPosition(buf);
+  port.line(buf);
+  return Result::Done;
 }
 
 }  // namespace mega

@@ -76,7 +76,7 @@ void Machine::button(uint8_t pressed) {
   }
 }
 
-Machine::Result Machine::message(const uv::Command& c) {
+Machine::Result Machine::message(HostLink&, const uv::Command& c) {
   uint8_t n = c.text ? c.textLen : 0;
   if (n > kScreenCols) n = kScreenCols;
   memcpy(message_, c.text, n);

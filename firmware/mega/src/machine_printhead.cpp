@@ -6,7 +6,7 @@
 namespace mega {
 
 
-Machine::Result Machine::temperatures(HostLink& port) {
+Machine::Result Machine::temperatures(HostLink& port, const uv::Command&) {
   if (head_.firstReadingDue()) return Result::Wait;
   if (!head_.online() || !head_.tempsKnown()) {
     port.errorLine(uv::kNanoTimeout);
@@ -47,6 +47,16 @@ Machine::Result Machine::light(HostLink& port, const uv::Command& c) {
   }
   lightOn_ = on;
   return Result::Done;
+}
+
+Machine::Result Machine::deployProbe(HostLink& port, const uv::Command& c) { return servo(port, c, 'D'); }
+Machine::Result Machine::stowProbe(HostLink& port, const uv::Command& c) { return servo(port, c, 'U'); }
+Machine::Result Machine::servoAngle(HostLink& port, const uv::Command& c) { return servo(port, c, 0); }
+
+Machine::Result Machine::endstops(HostLink&, const uv::Command&) {
+  long_.op = Op::ProbeRead;
+  head_.requestProbe();
+  return Result::Long;
 }
 
 }  // namespace mega

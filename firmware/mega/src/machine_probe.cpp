@@ -46,7 +46,7 @@ bool Machine::refuseProbing(HostLink& port) {
   return false;
 }
 
-Machine::Result Machine::probeOnce(HostLink& port) {
+Machine::Result Machine::probeOnce(HostLink& port, const uv::Command&) {
   if (refuseProbing(port)) return Result::Done;
   if (!motion_.idle()) return Result::Wait;
   probe_.start(now_);
