@@ -15,7 +15,7 @@ const ON_DEMAND_LINKS = /\/(chosen-links|esp-link|serial-transport|bytes)\.ts$/;
  * first screen (device/links.ts); with them the dashboards and the console, mounted a few tasks after
  * the first screen (App.svelte, ui/Soon.svelte: mounted with it, the page load's longest task).
  */
-const ON_DEMAND_DIALECT = /\/(sim-link|dialect-link|dialect-client|dialect-reply|line-splitter|dialect-frame)\.ts$|\/(Dashboards|ThermalDashboard|Console)\.svelte$|\/(thermal-watch|sensor-colours|head-thermal|firmware-view|firmware-view-absent)\.ts$/;
+const ON_DEMAND_DIALECT = /\/(sim-link|dialect-link|dialect-client|dialect-reply|line-splitter|dialect-frame)\.ts$|\/(Dashboards|ThermalDashboard|Console)\.svelte$|\/(thermal-watch|intl-warm|sensor-colours|head-thermal|firmware-view|firmware-view-absent)\.ts$/;
 /**
  * The Web Serial polyfill (USB over WebUSB where there is no Web Serial): a file of its own took a
  * 4 KB block of the ESP's flash for 1.8 KB, so it rides in the dialect's file, loaded on connect.
