@@ -5,6 +5,7 @@ import type { Reply } from '../protocol/dialect-reply';
 import type { JobFormat, PrintJob } from '../protocol/job-types';
 import { CommandError } from './command-error';
 import { encodeFrame } from '../protocol/dialect-frame';
+import { encodeJob } from '../protocol/job-encode'; // in the dialect's file: as a file of its own it took a block of the ESP's flash
 import { LINE_RATE, type LinkRate } from '../job/link-rate';
 import { DialectClient, type ClientOptions, type LinkHealth } from './dialect-client';
 import { capValue, type PrinterLink, type StartOptions, type UploadProgress } from './link';
@@ -86,7 +87,6 @@ export class DialectLink implements PrinterLink {
 
   async startJob(job: PrintJob, onProgress: (p: UploadProgress) => void, opts: StartOptions = {}): Promise<void> {
     const pace = opts.paced ? ' P1' : '';
-    const { encodeJob } = await import('../protocol/job-encode'); // loaded with the first job
     const text = encodeJob(job, this.jobFormat);
     const records = text.trimEnd().split('\n');
     const total = records.reduce((n, r) => n + r.length + 1, 0);
