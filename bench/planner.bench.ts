@@ -2,13 +2,13 @@
 // P7: planning plus preview data for 1 M cells, against a plain pass over the cells.
 import type { JobHeader, StrategyName } from '../app/src/protocol/job-types';
 import { planJob, type Plan } from '../app/src/planner/planner';
-import { moveTimeUs, type Machine } from '../app/src/planner/time-model';
+import { moveTimeUs, type MotionModel } from '../app/src/planner/time-model';
 import { durationTables } from '../app/src/planner/dose';
 import { compare, type Row } from './harness';
 import { BOARD_LINK_BAUD } from '../app/src/machine/config';
 import { boardMask, fillMask, photoMask, sparseMask, textMask, type Mask } from './masks';
 
-export const BENCH_MACHINE: Machine = {
+export const BENCH_MACHINE: MotionModel = {
   vmaxUmS: [100_000, 100_000],
   accelUmS2: [2_000_000, 1_500_000],
   settleUs: 2000,
@@ -35,7 +35,7 @@ function header(mask: Mask, offsets: [number, number][], strategy: StrategyName,
  * stops that can hold the cells (each with its overhead and settle), and one cell pitch of
  * travel between consecutive stops.
  */
-export function lowerBoundUs(h: JobHeader, mask: Mask, m: Machine): number {
+export function lowerBoundUs(h: JobHeader, mask: Mask, m: MotionModel): number {
   const tables = durationTables(h);
   let sum = 0, lit = 0;
   for (const row of mask.cells) for (let c = 0; c < row.length; c++) if (tables[0][row[c]] > 0) (sum += tables[0][row[c]]), lit++;

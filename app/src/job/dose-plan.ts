@@ -6,7 +6,7 @@
 import { headerOf } from '../planner/job-header';
 import { planAnyJob, type JobPlan } from '../planner/job-plan';
 import type { ScanPass } from '../planner/scan';
-import type { Machine } from '../planner/time-model';
+import type { MotionModel } from '../planner/time-model';
 import { scanDoses } from '../preview/scan-preview';
 import type { PrintJob } from '../protocol/job-types';
 import { PROGRAM_EVENTS } from '../protocol/scan-program';
@@ -135,6 +135,6 @@ export function dosePlanOf(job: PrintJob, planned: JobPlan): DosePlan {
 }
 
 /** Plans `job` (its order as it ran) for `machine` and gives its records. */
-export function planDoses(job: PrintJob, machine: Machine): DosePlan {
+export function planDoses(job: PrintJob, machine: MotionModel): DosePlan {
   return dosePlanOf(job, planAnyJob({ header: headerOf(job), cells: job.gridData }, machine));
 }

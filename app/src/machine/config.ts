@@ -1,7 +1,7 @@
 // The Mega's settings as the app uses them (M850 / M500-M503, CONFIG.TXT on SD): their defaults, and
 // the motion they give the planner's time model.
 
-import type { Machine } from '../planner/time-model';
+import type { MotionModel } from '../planner/time-model';
 import { NANO_LINK_BAUDS } from '../protocol/nano';
 import { SETTING_DEFAULTS } from './settings-defaults';
 
@@ -43,7 +43,7 @@ export function linkBaudOf(reported: number | null | undefined): number {
 }
 
 /** The motion the planner's time model prices (protocol/planner.md), from the settings, starting at `startUm`. */
-export function motionOf(config: Record<string, string>, startUm: [number, number] = [0, 0], linkBaud = BOARD_LINK_BAUD): Machine {
+export function motionOf(config: Record<string, string>, startUm: [number, number] = [0, 0], linkBaud = BOARD_LINK_BAUD): MotionModel {
   return {
     vmaxUmS: [topSpeedUmS(config, 0), topSpeedUmS(config, 1)],
     accelUmS2: [num(config, 'accel.x') * 1000, num(config, 'accel.y') * 1000],

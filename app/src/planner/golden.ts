@@ -4,7 +4,7 @@
 import type { PrintJob, StrategyName } from '../protocol/job-types';
 import { headerOf } from './job-header';
 import { planJob, type Plan } from './planner';
-import type { Machine } from './time-model';
+import type { MotionModel } from './time-model';
 
 export const GEOMETRIES: Record<string, [number, number][]> = {
   adjacent: [[0, 0], [0, 1], [0, 2], [0, 3]],
@@ -14,7 +14,7 @@ export const GEOMETRIES: Record<string, [number, number][]> = {
 };
 export const STRATEGIES: StrategyName[] = ['raster', 'serpentine', 'shortest', 'random'];
 
-export const MACHINE: Machine = {
+export const MACHINE: MotionModel = {
   vmaxUmS: [150_000, 100_000],
   accelUmS2: [3_000_000, 2_000_000],
   settleUs: 2000,
@@ -25,7 +25,7 @@ export const MACHINE: Machine = {
 };
 
 /** The same machine on a printhead link raised to 250000 baud (nano.md "Link speed"), as the board runs it. */
-export const RAISED_MACHINE: Machine = { ...MACHINE, linkBaud: 250000 };
+export const RAISED_MACHINE: MotionModel = { ...MACHINE, linkBaud: 250000 };
 
 function rng(seed: number) {
   let x = Math.imul(seed, 0x9e3779b1) >>> 0 || 1;  // spread small consecutive seeds
@@ -67,7 +67,7 @@ export function randomJob(seed: number, geometry: [number, number][], strategy: 
 export interface GoldenCase {
   name: string;
   job: PrintJob;
-  machine: Machine;
+  machine: MotionModel;
   plan: { stops: number[][]; passes: number; estimateUs: number; travelUm: [number, number] };
 }
 
@@ -76,7 +76,7 @@ export function planStops(p: Plan): number[][] {
   return Array.from({ length: p.count }, (_, i) => [p.hx[i], p.hy[i], ...p.durations.subarray(i * 4, i * 4 + 4)]);
 }
 
-export function planCase(name: string, job: PrintJob, machine: Machine): GoldenCase {
+export function planCase(name: string, job: PrintJob, machine: MotionModel): GoldenCase {
   const p = planJob({ header: headerOf(job), cells: job.gridData }, machine);
   return { name, job, machine, plan: { stops: planStops(p), passes: p.passes, estimateUs: p.estimateUs, travelUm: p.travelUm } };
 }

@@ -6,10 +6,10 @@ import { GEOMETRIES, randomJob } from './golden';
 import { CONFIG_DEFAULTS, motionOf } from '../machine/config';
 import type { ScanPass, ScanPlan } from './scan';
 import { headerOf } from './job-header';
-import type { Machine } from './time-model';
+import type { MotionModel } from './time-model';
 import type { StrategyName } from '../protocol/job-types';
 
-const MACHINE: Machine = { vmaxUmS: [100_000, 100_000], accelUmS2: [2_000_000, 2_000_000], settleUs: 2000, overheadUs: 1500, startUm: [0, 0], stepsMilli: [80_000, 80_000], linkBaud: 115200 };
+const MACHINE: MotionModel = { vmaxUmS: [100_000, 100_000], accelUmS2: [2_000_000, 2_000_000], settleUs: 2000, overheadUs: 1500, startUm: [0, 0], stepsMilli: [80_000, 80_000], linkBaud: 115200 };
 
 const header = (cols: number, rows: number, name: StrategyName) => headerOf({
   grid: { cols, rows }, pitchUm: { x: 50, y: 50 }, originUm: { x: 5000, y: 5000 }, dose: { map: 'linear', fullUs: 4000 },

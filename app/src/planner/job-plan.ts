@@ -5,7 +5,7 @@ import type { JobHeader, StrategyName } from '../protocol/job-types';
 import { mixedPassCount, planMixed, type MixedPlan } from './mixed';
 import { planJob, type Plan, type PlannerJob } from './planner';
 import { passSpanUs, planScan, type ScanPass, type ScanPlan } from './scan';
-import type { Machine } from './time-model';
+import type { MotionModel } from './time-model';
 
 export interface JobPlan {
   /** One entry per step of the job's progress, as the Mega counts it: a stop, or a pass on the move. */
@@ -16,7 +16,7 @@ export interface JobPlan {
   mixed: MixedPlan | null;
 }
 
-export function planAnyJob(job: PlannerJob, machine: Machine): JobPlan {
+export function planAnyJob(job: PlannerJob, machine: MotionModel): JobPlan {
   if (job.header.strategy === 'mixed') {
     const mixed = planMixed(job, machine);
     return { plan: mixedAsPlan(mixed, machine, job.header), scan: null, mixed };
@@ -30,7 +30,7 @@ export function planAnyJob(job: PlannerJob, machine: Machine): JobPlan {
  * A mixed plan as a Plan of the Mega's progress steps: each stop with its durations, each pass on the
  * move as one entry at its first head column with none; `passes` counts every pass, a band's each.
  */
-export function mixedAsPlan(mixed: MixedPlan, machine: Machine, h: Pick<JobHeader, 'originUm' | 'pitchUm'>): Plan {
+export function mixedAsPlan(mixed: MixedPlan, machine: MotionModel, h: Pick<JobHeader, 'originUm' | 'pitchUm'>): Plan {
   const n = mixed.steps;
   const plan: Plan = { count: n, hx: new Int32Array(n), hy: new Int32Array(n), durations: new Uint32Array(4 * n), passes: mixedPassCount(mixed), estimateUs: mixed.estimateUs, travelUm: [0, 0] };
   let i = 0, x = machine.startUm[0], y = machine.startUm[1];
@@ -60,7 +60,7 @@ export function mixedAsPlan(mixed: MixedPlan, machine: Machine, h: Pick<JobHeade
 }
 
 /** A scan plan as a Plan of one entry per pass (at its first head column), with no stop durations. */
-export function scanAsPlan(scan: ScanPlan, machine: Machine, h: Pick<JobHeader, 'originUm' | 'pitchUm'>): Plan {
+export function scanAsPlan(scan: ScanPlan, machine: MotionModel, h: Pick<JobHeader, 'originUm' | 'pitchUm'>): Plan {
   const n = scan.passes.length;
   const travel: [number, number] = [0, 0];
   let x = machine.startUm[0], y = machine.startUm[1];
@@ -100,14 +100,14 @@ export const ORDERS: StrategyName[] = ['scan', 'mixed', 'serpentine', 'shortest'
 
 /** Where a pass's stroke on the move runs along X, µm, either way along it (a pass run leftwards
  *  starts at its right end): from its start to its stop step, run-up and run-out included. */
-export function strokeSpanUm(pass: ScanPass, machine: Machine): { minUm: number; maxUm: number } {
+export function strokeSpanUm(pass: ScanPass, machine: MotionModel): { minUm: number; maxUm: number } {
   const um = (steps: number) => (steps * 1_000_000) / machine.stepsMilli[0];
   return { minUm: um(Math.min(pass.startSteps, pass.stopSteps)), maxUm: um(Math.max(pass.startSteps, pass.stopSteps)) };
 }
 
 /** Whether a stroke stays on a bed `bedXUm` wide, in whole steps as the Mega holds it there
  *  (Motion::onBed: 0 to the bed's width rounded to the nearest step). */
-export function strokeOnBed(pass: ScanPass, machine: Machine, bedXUm: number): boolean {
+export function strokeOnBed(pass: ScanPass, machine: MotionModel, bedXUm: number): boolean {
   if (!Number.isFinite(bedXUm)) return Math.min(pass.startSteps, pass.stopSteps) >= 0;
   const bedSteps = Math.floor((bedXUm * machine.stepsMilli[0] + 500_000) / 1_000_000);
   return Math.min(pass.startSteps, pass.stopSteps) >= 0 && Math.max(pass.startSteps, pass.stopSteps) <= bedSteps;
@@ -117,7 +117,7 @@ export function strokeOnBed(pass: ScanPass, machine: Machine, bedXUm: number): b
  * Each order's estimate for the job, µs: what the Mega's planner will count for it. An order that
  * cannot plan a job that has light (a scan pass over the 32-bit limit) is Infinity.
  */
-export function orderEstimates(job: PlannerJob, machine: Machine, bedXUm = Infinity): Record<StrategyName, number> {
+export function orderEstimates(job: PlannerJob, machine: MotionModel, bedXUm = Infinity): Record<StrategyName, number> {
   const out = {} as Record<StrategyName, number>;
   let lit = false;
   // A scan's strokes run up and out beyond the artwork: one that leaves the bed is no choice.

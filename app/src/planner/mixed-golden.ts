@@ -6,16 +6,16 @@ import { GEOMETRIES, MACHINE, RAISED_MACHINE, randomJob } from './golden';
 import { headerOf } from './job-header';
 import { mixedVector, planMixed } from './mixed';
 import { SLOW_MACHINE } from './scan-golden';
-import type { Machine } from './time-model';
+import type { MotionModel } from './time-model';
 
 export interface MixedCase {
   name: string;
   job: PrintJob;
-  machine: Machine;
+  machine: MotionModel;
   mixed: object;
 }
 
-export function mixedCase(name: string, job: PrintJob, machine: Machine): MixedCase {
+export function mixedCase(name: string, job: PrintJob, machine: MotionModel): MixedCase {
   if ('targetUJcm2' in job.dose) job.dose.targetUJcm2 = Math.ceil(job.dose.targetUJcm2 / 1000);
   return { name, job, machine, mixed: mixedVector(planMixed({ header: headerOf(job), cells: job.gridData }, machine)) };
 }

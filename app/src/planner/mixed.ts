@@ -4,7 +4,7 @@
 import { durationTables } from './dose';
 import { passRows, SHORTEST_BAND, type PassRows, type PlannerJob } from './planner';
 import { engineStep, fitsTimer, passWallUs, planScanPass, scanMotion, type ScanPass } from './scan';
-import { axisSteps, MoveTimes, type Machine } from './time-model';
+import { axisSteps, MoveTimes, type MotionModel } from './time-model';
 
 interface MixedPassBase {
   hy: number;
@@ -103,7 +103,7 @@ export function bandStops(passes: number[][][], xSteps: (hx: number) => number, 
 }
 
 /** Plans a job in mixed mode; `knownRows` as planScan (a stream's prefix). */
-export function planMixed(job: PlannerJob, machine: Machine): MixedPlan {
+export function planMixed(job: PlannerJob, machine: MotionModel): MixedPlan {
   const h = job.header;
   const tables = durationTables(h);
   const motion = scanMotion(h, machine, tables);

@@ -2,7 +2,7 @@
 
 import type { JobHeader } from '../protocol/job-types';
 import { durationTables } from './dose';
-import { MoveTimes, type Machine } from './time-model';
+import { MoveTimes, type MotionModel } from './time-model';
 
 export interface PlannerJob {
   header: JobHeader;
@@ -168,7 +168,7 @@ function buildPasses(h: JobHeader, rows: ArrayLike<number>[], tables: Uint32Arra
 
 export const SHORTEST_BAND = 8;
 
-export function planJob(job: PlannerJob, machine: Machine): Plan {
+export function planJob(job: PlannerJob, machine: MotionModel): Plan {
   const h = job.header;
   const tables = durationTables(h);
   const out = new StopBuffer();

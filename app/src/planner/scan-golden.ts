@@ -5,19 +5,19 @@ import type { PrintJob } from '../protocol/job-types';
 import { GEOMETRIES, MACHINE, RAISED_MACHINE, randomJob } from './golden';
 import { headerOf } from './job-header';
 import { planScan, type ScanPlan } from './scan';
-import type { Machine } from './time-model';
+import type { MotionModel } from './time-model';
 
 /** A machine whose X maximum caps the speed of most jobs. */
-export const SLOW_MACHINE: Machine = { ...MACHINE, vmaxUmS: [9000, 100_000], accelUmS2: [700_000, 2_000_000], startUm: [3000, 500], stepsMilli: [80_000, 100_000] };
+export const SLOW_MACHINE: MotionModel = { ...MACHINE, vmaxUmS: [9000, 100_000], accelUmS2: [700_000, 2_000_000], startUm: [3000, 500], stepsMilli: [80_000, 100_000] };
 
 export interface ScanCase {
   name: string;
   job: PrintJob;
-  machine: Machine;
+  machine: MotionModel;
   scan: ScanPlan;
 }
 
-export function scanCase(name: string, job: PrintJob, machine: Machine): ScanCase {
+export function scanCase(name: string, job: PrintJob, machine: MotionModel): ScanCase {
   // Keep a window under a second or so, as real doses are: random targets make minutes.
   if ('targetUJcm2' in job.dose) job.dose.targetUJcm2 = Math.ceil(job.dose.targetUJcm2 / 1000);
   return { name, job, machine, scan: planScan({ header: headerOf(job), cells: job.gridData }, machine) };
@@ -60,7 +60,7 @@ export function scanGoldenCases(): ScanCase[] {
   // The simavr scan test's dense pass (scan_dose.h testPattern's rows 8 to 11, 100 µm at 1 ms a
   // cell): a chain of four programs whose third would come late at the window the whole chain's
   // rule gives, so each program's own rule slows it further.
-  const simavr: Machine = { ...MACHINE, vmaxUmS: [100_000, 100_000], accelUmS2: [2_000_000, 1_500_000], overheadUs: 400 };
+  const simavr: MotionModel = { ...MACHINE, vmaxUmS: [100_000, 100_000], accelUmS2: [2_000_000, 1_500_000], overheadUs: 400 };
   out.push(scanCase('ts scan four programs, each in time', testPatternJob(8, 12), simavr));
   // The same at 250000 baud: the Mega's 300 µs an event, not the wire, now sets the window.
   out.push(scanCase('ts scan four programs, link at 250000', testPatternJob(8, 12), { ...simavr, linkBaud: 250000 }));

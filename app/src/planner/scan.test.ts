@@ -8,18 +8,18 @@ import { passRows, planJob } from './planner';
 import { scanGoldenCases, type ScanCase } from './scan-golden';
 import { linkShortfall, MAX_JUMPS, passMotion, planScan, planScanPass, PROGRAM_RELAY_US, scanMotion, SCAN_PASS_END_US, SCAN_PASS_LOAD_US, type ScanPlan } from './scan';
 import { parsePacked, programLines } from '../protocol/scan-program';
-import { axisSteps, engineMoveUs, MoveTimes, moveTimeUs, type Machine } from './time-model';
+import { axisSteps, engineMoveUs, MoveTimes, moveTimeUs, type MotionModel } from './time-model';
 
 /** The fly of g blank windows on MACHINE at 50 µm, 2000 µs windows (planner.md "Blank stretches"). */
 const F = (g: number) => Math.max(1, moveTimeUs(g * 50 + 2 * 105, 150000, 3000000) - 2 * 8334);
 
-const plan = (job: PrintJob, machine: Machine = MACHINE) => planScan({ header: headerOf(job), cells: job.gridData }, machine);
+const plan = (job: PrintJob, machine: MotionModel = MACHINE) => planScan({ header: headerOf(job), cells: job.gridData }, machine);
 
 /**
  * `m` with as many X steps a mm as make the job's step 1 ms, so the step engine runs any window: the
  * properties of the light hold whatever the machine, and random doses make windows of seconds.
  */
-const runnable = (j: PrintJob, m: Machine): Machine => ({ ...m, stepsMilli: [Math.max(1, Math.round((1000 * scanMotion(headerOf(j), m).windowUs) / j.pitchUm.x)), m.stepsMilli[1]] });
+const runnable = (j: PrintJob, m: MotionModel): MotionModel => ({ ...m, stepsMilli: [Math.max(1, Math.round((1000 * scanMotion(headerOf(j), m).windowUs) / j.pitchUm.x)), m.stepsMilli[1]] });
 
 /** A job on a blank grid with the given lit cells [col, row, value]. */
 function job(cols: number, rows: number, lit: [number, number, number][], over: Partial<PrintJob> = {}): PrintJob {
@@ -253,7 +253,7 @@ describe('scan planner', () => {
 describe('scan planner limits', () => {
   it('plans nothing when a pass would outlast a 32-bit µs timer', () => {
     const long = job(3000, 4, [[1, 0, 255]], { dose: { map: 'linear', fullUs: 1_500_000 } });
-    const fine: Machine = { ...MACHINE, stepsMilli: [2_000_000, 80_000] }; // 100 steps a window: 15 ms a step
+    const fine: MotionModel = { ...MACHINE, stepsMilli: [2_000_000, 80_000] }; // 100 steps a window: 15 ms a step
     expect(plan(long, fine).passes).toEqual([]);
     long.grid.cols = 2800; // 2800 × 1.5 s < 2³² µs
     expect(plan(long, fine).passes.length).toBe(1);

@@ -3,7 +3,7 @@
 import type { JobHeader } from '../protocol/job-types';
 import { durationTables } from './dose';
 import { passRows, type PlannerJob } from './planner';
-import { axisAccel, axisSteps, ENGINE_MAX_RATE, ENGINE_TICK_HZ, MoveTimes, stepRamp, stepTicks, type Machine } from './time-model';
+import { axisAccel, axisSteps, ENGINE_MAX_RATE, ENGINE_TICK_HZ, MoveTimes, stepRamp, stepTicks, type MotionModel } from './time-model';
 import { mergeLight, programLines, PROGRAM_EVENTS, type ScanEvent } from '../protocol/scan-program';
 
 export interface ScanPass {
@@ -54,7 +54,7 @@ const ceilDiv = (n: bigint, d: bigint) => (n + d - 1n) / d;
 const roundDiv = (n: bigint, d: bigint) => (2n * n + d) / (2n * d);
 
 /** The motion of a window W µs: its speed, the time to reach it from rest and the distance that takes (planner.md "Overscan"). */
-export function passMotion(h: Pick<JobHeader, 'pitchUm'>, machine: Machine, windowUs: number): ScanMotion {
+export function passMotion(h: Pick<JobHeader, 'pitchUm'>, machine: MotionModel, windowUs: number): ScanMotion {
   const p = BigInt(h.pitchUm[0]), W = BigInt(windowUs);
   const tA = ceilDiv(p * 1_000_000_000_000n, BigInt(machine.accelUmS2[0]) * W);
   const o = ceilDiv(p * tA, 2n * W);
@@ -69,7 +69,7 @@ export interface ScanMotion {
 }
 
 /** The window, speed and overscan of a job's passes; windowUs 0 when nothing is lit. */
-export function scanMotion(h: JobHeader, machine: Machine, tables = durationTables(h)): ScanMotion {
+export function scanMotion(h: JobHeader, machine: MotionModel, tables = durationTables(h)): ScanMotion {
   const T = Math.max(...tables.map((t) => t[255]));
   if (T === 0) return { windowUs: 0, speedUmS: 0, accelUs: 0, overscanUm: 0 };
   const p = BigInt(h.pitchUm[0]);
@@ -98,7 +98,7 @@ export const SCAN_PASS_LOAD_US = 400;
  * A pass's step at window W as 16.16 timer ticks, or why the step engine cannot run it: over
  * ENGINE_MAX_RATE steps/s, or a step of 2¹⁶ ticks (32.768 ms) or more (mega.md M29, E29).
  */
-export function engineStep(machine: Machine, pitchUm: number, windowUs: number): { q16: bigint } | { refused: string } {
+export function engineStep(machine: MotionModel, pitchUm: number, windowUs: number): { q16: bigint } | { refused: string } {
   const den = BigInt(pitchUm) * BigInt(machine.stepsMilli[0]);
   if (den === 0n) return { refused: 'the X axis has no steps per mm' };
   const q16 = ((2n * BigInt(windowUs) * 1_000_000n << 16n) + den / 2n) / den;
@@ -115,7 +115,7 @@ const floorDivBig = (n: bigint, d: bigint) => (n >= 0n ? n / d : -((-n + d - 1n)
  * The stroke of a pass at the step `q16` whose start mark and last window's end are at twice the bed
  * X `markX2Um` and `endX2Um` (µm), as the Mega's scan_stroke.cpp lays it out (planner.md "The stroke").
  */
-export function planStroke(machine: Machine, markX2Um: number, endX2Um: number, descending: boolean, q16: bigint, savedUs: number): Pick<ScanPass, 'startSteps' | 'stopSteps' | 'strokeUs' | 'markUs'> {
+export function planStroke(machine: MotionModel, markX2Um: number, endX2Um: number, descending: boolean, q16: bigint, savedUs: number): Pick<ScanPass, 'startSteps' | 'stopSteps' | 'strokeUs' | 'markUs'> {
   const sign = descending ? -1n : 1n, S = BigInt(machine.stepsMilli[0]), den = 2_000_000n;
   const rate = Math.min(Number(((BigInt(ENGINE_TICK_HZ) << 16n) + q16 - 1n) / q16), ENGINE_MAX_RATE);
   const accel = axisAccel(machine, 0);
@@ -203,7 +203,7 @@ export function linkWindow(W: number, [need, have]: [bigint, bigint]): number {
  * throughout and the estimate is that of crossing (planner.md "Blank stretches"; bench P10's figure without flying).
  * `noLinkCap`: every pass at the job's window, however its programs load the link (bench P11's figure before the cap).
  */
-export function planScan(job: PlannerJob, machine: Machine, opts: { neverFly?: boolean; noLinkCap?: boolean } = {}): ScanPlan {
+export function planScan(job: PlannerJob, machine: MotionModel, opts: { neverFly?: boolean; noLinkCap?: boolean } = {}): ScanPlan {
   const h = job.header;
   const tables = durationTables(h);
   const motion = scanMotion(h, machine, tables);
@@ -239,7 +239,7 @@ export interface ScanContext {
   job: PlannerJob;
   tables: Uint32Array[];
   motion: ScanMotion;
-  machine: Machine;
+  machine: MotionModel;
   moves: MoveTimes;
   neverFly: boolean;
   noLinkCap: boolean;
@@ -295,7 +295,7 @@ export function passSpanUs(pass: ScanPass): number {
 /** One pass laid out at the motion `m`: its extent, flown stretches, switch times and events; null when nothing is lit. */
 export type LaidOutPass = Omit<ScanPass, 'moveUs' | 'startSteps' | 'stopSteps' | 'strokeUs' | 'markUs'>;
 
-export function layoutPass(job: PlannerJob, tables: Uint32Array[], ledRows: number[], hy: number, descending: boolean, m: ScanMotion, machine: Machine, moves: MoveTimes, neverFly: boolean): LaidOutPass | null {
+export function layoutPass(job: PlannerJob, tables: Uint32Array[], ledRows: number[], hy: number, descending: boolean, m: ScanMotion, machine: MotionModel, moves: MoveTimes, neverFly: boolean): LaidOutPass | null {
   const h = job.header;
   const p = h.pitchUm[0], W = m.windowUs;
   const X = (hx: number) => h.originUm[0] + hx * p;

@@ -18,7 +18,7 @@ export function fireLineUs(us: ArrayLike<number>, baud: number): number {
   return mask ? Math.floor(((bytes + String(mask).length) * 10_000_000) / baud) : 0;
 }
 
-export interface Machine {
+export interface MotionModel {
   vmaxUmS: [number, number];
   accelUmS2: [number, number];
   settleUs: number;
@@ -110,17 +110,17 @@ export function stepTicks(p: StepRamp, from: number, to: number): number {
 }
 
 /** An axis's position in steps for `um` (Motion::toSteps: rounded half away from zero). */
-export function axisSteps(m: Machine, axis: 0 | 1, um: number): number {
+export function axisSteps(m: MotionModel, axis: 0 | 1, um: number): number {
   const n = um * m.stepsMilli[axis];
   return Math.sign(n) * Math.floor((Math.abs(n) + 500_000) / 1_000_000);
 }
 
 /** The axis's top rate (steps/s) and acceleration (steps/s²), as the Mega's Motion::limits gives them. */
-export const axisRate = (m: Machine, axis: 0 | 1) => Math.min(Math.floor((m.vmaxUmS[axis] * m.stepsMilli[axis]) / 1_000_000), ENGINE_MAX_RATE);
-export const axisAccel = (m: Machine, axis: 0 | 1) => Math.floor((m.accelUmS2[axis] * m.stepsMilli[axis]) / 1_000_000);
+export const axisRate = (m: MotionModel, axis: 0 | 1) => Math.min(Math.floor((m.vmaxUmS[axis] * m.stepsMilli[axis]) / 1_000_000), ENGINE_MAX_RATE);
+export const axisAccel = (m: MotionModel, axis: 0 | 1) => Math.floor((m.accelUmS2[axis] * m.stepsMilli[axis]) / 1_000_000);
 
 /** The µs the step engine takes to move by (dx, dy) steps from rest to rest, until it is idle. */
-export function engineMoveUs(m: Machine, dx: number, dy: number): number {
+export function engineMoveUs(m: MotionModel, dx: number, dy: number): number {
   if (!dx && !dy) return 0;
   const p = stepRamp([dx, dy], [axisRate(m, 0), axisRate(m, 1)], [axisAccel(m, 0), axisAccel(m, 1)]);
   return Math.floor((stepTicks(p, 0, p.total) + 1) / 2);
@@ -145,7 +145,7 @@ export function moveTimeUs(d: number, v: number, a: number): number {
 export class MoveTimes {
   readonly #cache = [new Map<number, number>(), new Map<number, number>()];
   readonly #engine = new Map<number, number>();
-  constructor(private readonly machine: Machine) {
+  constructor(private readonly machine: MotionModel) {
     if (!LINK_BAUDS.includes(machine.linkBaud)) throw new RangeError(`the printhead link has no speed ${machine.linkBaud} baud (nano.md "Link speed")`);
   }
 

@@ -3,7 +3,7 @@
 // gave it; the travel is the head's path through the stops; the timeline is the time model's
 // clock at each stop (protocol/planner.md "Time model"), so scrubbing shows time as well as place.
 
-import { MoveTimes, type Machine } from '../planner/time-model';
+import { MoveTimes, type MotionModel } from '../planner/time-model';
 import type { Plan } from '../planner/planner';
 import type { PrintJob } from '../protocol/job-types';
 
@@ -51,7 +51,7 @@ export function previewGrid(job: PrintJob, plan: Plan, upTo: number, maxSide = 5
 }
 
 /** The time model's clock when each stop ends, µs: timeline[i] is the job's time through stop i. */
-export function timeline(job: PrintJob, plan: Plan, machine: Machine): Float64Array {
+export function timeline(job: PrintJob, plan: Plan, machine: MotionModel): Float64Array {
   const moves = new MoveTimes(machine);
   const out = new Float64Array(plan.count);
   let x = machine.startUm[0], y = machine.startUm[1], t = 0;

@@ -2,12 +2,12 @@ import { describe, expect, it } from 'vitest';
 import { GEOMETRIES } from '../planner/golden';
 import { headerOf } from '../planner/job-header';
 import { planMixed } from '../planner/mixed';
-import type { Machine } from '../planner/time-model';
+import type { MotionModel } from '../planner/time-model';
 import type { PrintJob } from '../protocol/job-types';
 import { mixedWords } from '../job/scan-words';
 import { mixedPreview, mixedTimeline } from './mixed-preview';
 
-const MACHINE: Machine = { vmaxUmS: [100_000, 100_000], accelUmS2: [2_000_000, 2_000_000], settleUs: 2000, overheadUs: 1500, startUm: [0, 0], stepsMilli: [80_000, 80_000], linkBaud: 115200 };
+const MACHINE: MotionModel = { vmaxUmS: [100_000, 100_000], accelUmS2: [2_000_000, 2_000_000], settleUs: 2000, overheadUs: 1500, startUm: [0, 0], stepsMilli: [80_000, 80_000], linkBaud: 115200 };
 
 // Dense bands of four rows between bands with one dot: passes on the move and passes of stops.
 const grid = Array.from({ length: 32 }, (_, y) => Array.from({ length: 80 }, (_, x) => ((y >> 2) % 2 === 0 ? 200 : y % 4 === 1 && x === (y * 37) % 80 ? 255 : 0)));

@@ -5,7 +5,7 @@ import { headerOf } from '../planner/job-header';
 import { fastestOrder, orderEstimates, planAnyJob } from '../planner/job-plan';
 import { ledCoverage, timeline } from './exposure-preview';
 import type { Plan } from '../planner/planner';
-import type { Machine } from '../planner/time-model';
+import type { MotionModel } from '../planner/time-model';
 import type { PrintJob, StrategyName } from '../protocol/job-types';
 import { mixedWords } from '../job/scan-words';
 import { mixedPreview, mixedTimeline } from './mixed-preview';
@@ -26,7 +26,7 @@ export interface Planned {
   order: StrategyName;
 }
 
-export type PlanRequest = { job: PrintJob; machine: Machine; auto?: boolean; bedXUm?: number };
+export type PlanRequest = { job: PrintJob; machine: MotionModel; auto?: boolean; bedXUm?: number };
 
 /**
  * The plan for `asked`, in its fastest order when `auto`; it throws what the planner throws.

@@ -4,7 +4,7 @@
 // cells ask for.
 
 import { passWallUs, type ScanPass, type ScanPlan } from '../planner/scan';
-import type { Machine } from '../planner/time-model';
+import type { MotionModel } from '../planner/time-model';
 import type { PrintJob } from '../protocol/job-types';
 import { emptyGrid, type PreviewGrid } from './exposure-preview';
 
@@ -118,7 +118,7 @@ export function scanPreviewGrid(job: PrintJob, doses: ScanDoses, upTo: number, m
 }
 
 /** The clock when each pass ends, µs, as planScan's estimate counts it. */
-export function scanTimeline(_job: PrintJob, scan: ScanPlan, _machine: Machine): Float64Array {
+export function scanTimeline(_job: PrintJob, scan: ScanPlan, _machine: MotionModel): Float64Array {
   const out = new Float64Array(scan.passes.length);
   let t = 0;
   scan.passes.forEach((p, i) => {

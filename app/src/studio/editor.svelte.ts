@@ -26,13 +26,13 @@ const HANDLE = 8;
 /** How far apart an import is placed from the objects already there, where the bed has room: two outlines edge to edge read as one. */
 const PLACED_APART_MM = 2;
 
-export interface Machine {
+export interface BedGeometry {
   bedMm: { x: number; y: number };
   pitchUm: { x: number; y: number };
 }
 
 /** The Mega's defaults (CONFIG.md) until its own settings are read. */
-export const DEFAULT_MACHINE: Machine = bedOf(DEFAULT_CONFIG);
+export const DEFAULT_BED: BedGeometry = bedOf(DEFAULT_CONFIG);
 
 export class GridEditor {
   grid: DoseGrid;
@@ -63,7 +63,7 @@ export class GridEditor {
   #start: { x: number; y: number } | null = null;
 
   /** An empty bed, or a project's cells (as many as the bed has), objects and resist polarity. */
-  constructor(readonly machine: Machine = DEFAULT_MACHINE, from?: { cells: Uint8Array; objects: StudioObject[]; polarity?: Polarity }) {
+  constructor(readonly machine: BedGeometry = DEFAULT_BED, from?: { cells: Uint8Array; objects: StudioObject[]; polarity?: Polarity }) {
     this.grid = DoseGrid.forBed(machine.bedMm, machine.pitchUm);
     this.history = new History(this.grid);
     this.layer = new ObjectLayer(this.history, this.grid.cols, this.grid.rows, () => this.#syncHistory());

@@ -2,7 +2,7 @@
 
 import type { PrintJob } from '../protocol/job-types';
 import type { Box, DoseGrid } from './grid/grid';
-import type { Machine } from './editor.svelte';
+import type { BedGeometry } from './editor.svelte';
 
 export interface ExposureSettings {
   dose: PrintJob['dose'];
@@ -17,7 +17,7 @@ export const DEFAULT_EXPOSURE: ExposureSettings = {
 };
 
 /** Null when nothing on the grid has a dose; `b`: the grid's bounds, when found already (DoseGrid.boundsSoon). */
-export function jobFromGrid(grid: DoseGrid, machine: Machine, settings: ExposureSettings, name = 'drawing', b: Box | null = grid.bounds()): PrintJob | null {
+export function jobFromGrid(grid: DoseGrid, machine: BedGeometry, settings: ExposureSettings, name = 'drawing', b: Box | null = grid.bounds()): PrintJob | null {
   if (!b) return null;
   const cols = b.x1 - b.x0 + 1, rows = b.y1 - b.y0 + 1;
   const gridData = Array.from({ length: rows }, (_, r) => grid.cells.subarray((b.y0 + r) * grid.cols + b.x0, (b.y0 + r) * grid.cols + b.x1 + 1));

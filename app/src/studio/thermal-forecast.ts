@@ -10,7 +10,7 @@ import { passDurationUs, passSwitches } from '../planner/job-plan';
 import type { Plan } from '../planner/planner';
 import type { MixedPlan } from '../planner/mixed';
 import { passWallUs, type ScanPass, type ScanPlan } from '../planner/scan';
-import { axisSteps, fireLineUs, MoveTimes, type Machine } from '../planner/time-model';
+import { axisSteps, fireLineUs, MoveTimes, type MotionModel } from '../planner/time-model';
 import { HEAD_THERMAL, HeadThermal, type HeadThermalModel } from '../machine/head-thermal';
 import { overSoftLimit, paceWaits, READING_PERIOD_US } from '../machine/pacing';
 
@@ -79,7 +79,7 @@ function forecastHead(o: ForecastOptions) {
   return { s, hold, paceWait, result };
 }
 
-export function forecastThermal(plan: Plan, place: PlanPlace, machine: Machine, o: ForecastOptions): ThermalRun {
+export function forecastThermal(plan: Plan, place: PlanPlace, machine: MotionModel, o: ForecastOptions): ThermalRun {
   const { s, hold, paceWait, result } = forecastHead(o);
   const moves = new MoveTimes(machine);
   let x = machine.startUm[0], y = machine.startUm[1];
@@ -128,7 +128,7 @@ function exposeStroke(hold: (dt: number, lit: number) => boolean, pass: ScanPass
  * head kept in steps). A pause is reported at the step under way (`stop` counts the Mega's steps: a
  * stop, or a pass on the move).
  */
-export function forecastMixedThermal(mixed: MixedPlan, place: PlanPlace, machine: Machine, o: ForecastOptions): ThermalRun {
+export function forecastMixedThermal(mixed: MixedPlan, place: PlanPlace, machine: MotionModel, o: ForecastOptions): ThermalRun {
   const { s, hold, paceWait, result } = forecastHead(o);
   const moves = new MoveTimes(machine);
   let x = axisSteps(machine, 0, machine.startUm[0]), y = axisSteps(machine, 1, machine.startUm[1]);
@@ -158,7 +158,7 @@ export function forecastMixedThermal(mixed: MixedPlan, place: PlanPlace, machine
  * on-intervals, so the head warms with the LEDs' real duty (on-time against the pass's wall time).
  * A pause is reported at the pass under way (`stop` counts passes).
  */
-export function forecastScanThermal(scan: ScanPlan, place: PlanPlace, machine: Machine, o: ForecastOptions): ThermalRun {
+export function forecastScanThermal(scan: ScanPlan, place: PlanPlace, machine: MotionModel, o: ForecastOptions): ThermalRun {
   const { s, hold, paceWait, result } = forecastHead(o);
   for (s.stop = 0; s.stop < scan.passes.length; s.stop++) {
     const pass = scan.passes[s.stop];

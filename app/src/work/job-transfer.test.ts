@@ -2,14 +2,14 @@ import { describe, expect, it } from 'vitest';
 import { testPattern } from '../device/test-pattern';
 import { DoseGrid } from '../studio/grid/grid';
 import { DEFAULT_EXPOSURE, jobFromGrid } from '../studio/grid-job';
-import { DEFAULT_MACHINE } from '../studio/editor.svelte';
+import { DEFAULT_BED } from '../studio/editor.svelte';
 import { jobForTransfer } from './job-transfer';
 
 describe('a job handed to the work worker', () => {
   it('carries the same rows in one buffer of its own, a band of rows per task, the page\'s job untouched', async () => {
     const grid = new DoseGrid(4000, 4000);
     for (let y = 0; y < 4000; y += 7) grid.cells.fill(y % 255, y * 4000 + 3, y * 4000 + 3997);
-    const job = jobFromGrid(grid, DEFAULT_MACHINE, DEFAULT_EXPOSURE)!;
+    const job = jobFromGrid(grid, DEFAULT_BED, DEFAULT_EXPOSURE)!;
     let pauses = 0;
     const sent = await jobForTransfer(job, async () => pauses++);
     expect(pauses).toBe(3); // 16 M cells in bands of about 4 M

@@ -4,7 +4,7 @@
 import { previewGrid, type PreviewGrid } from '../preview/exposure-preview';
 import { planJob, type Planned, type PlanRequest } from '../preview/plan-work';
 import { scanPreviewGrid } from '../preview/scan-preview';
-import type { Machine } from '../planner/time-model';
+import type { MotionModel } from '../planner/time-model';
 import type { PrintJob } from '../protocol/job-types';
 
 let kept: { job: PrintJob; planned: Planned } | null = null;

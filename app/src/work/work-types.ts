@@ -5,7 +5,7 @@ import type { FileProblems } from '../pcb/problem-words';
 import type { LayerKind } from '../pcb/layer-kind';
 import type { KindSource } from '../pcb/layer-content';
 import type { Mesh } from '../planner/mesh';
-import type { Machine } from '../planner/time-model';
+import type { MotionModel } from '../planner/time-model';
 import type { JobFormat, PrintJob, StrategyName } from '../protocol/job-types';
 import type { Finding, MachineCheck } from '../studio/dry-run';
 import type { UploadSize } from '../job/upload-time';
@@ -27,11 +27,11 @@ export type WorkRequest =
    * The preview's plan; the worker keeps it for `preview-grid`. `auto`: in its fastest order, of
    * those whose scan strokes stay within the bed's width `bedXUm`.
    */
-  | { kind: 'plan'; job: PrintJob; machine: Machine; auto?: boolean; bedXUm?: number }
+  | { kind: 'plan'; job: PrintJob; machine: MotionModel; auto?: boolean; bedXUm?: number }
   /** The kept plan's light up to stop (or pass) `upTo`, in bins of at most `maxSide` a side. */
   | { kind: 'preview-grid'; upTo: number; maxSide: number }
   /** A job that ran, in its order: what each of its dose records should give, and to which cells (job/dose-plan.ts). */
-  | { kind: 'dose-plan'; job: PrintJob; machine: Machine }
+  | { kind: 'dose-plan'; job: PrintJob; machine: MotionModel }
   /**
    * The check before an exposure (studio/dry-run.ts); `auto`: in its fastest order, of those that
    * stay on the config's bed. `boards`: the drawing's two-sided boards, one side a job.

@@ -17,7 +17,7 @@ namespace {
 
 // The Mega image's defaults (firmware/mega/CONFIG.md) as its planner sees them, from the origin where
 // G28 leaves the head: 100 mm/s (speed.travel), 2000 and 1500 mm/s², 2 ms settle, 400 µs a stop.
-const uv::Machine kDefaults{{100000, 100000}, {2000000, 1500000}, 2000, 400, {0, 0}, {80000, 80000}, mega::kJobLinkBaud};
+const uv::MotionModel kDefaults{{100000, 100000}, {2000000, 1500000}, 2000, 400, {0, 0}, {80000, 80000}, mega::kJobLinkBaud};
 
 // What the planner makes of the job on that machine: each pass's way ('s' on the move, 'x' stops, 'b' a
 // band of stops: planner.md "Bands"),

@@ -88,7 +88,7 @@ TEST_P(ScanBoardTest, AChainOfFourProgramsLoadsEachInTimeAndGivesEveryCellItsDos
   const Grid g(all.begin() + 8, all.end());
   const uv::JobHeader h = scanJob(g, 1000);
   uvtest::GridCells cells(g);
-  const uv::Machine m{{100000, 100000}, {2000000, 1500000}, 2000, 400, {0, 0}, {80000, 80000}, mega::kJobLinkBaud};  // as the Mega plans it
+  const uv::MotionModel m{{100000, 100000}, {2000000, 1500000}, 2000, 400, {0, 0}, {80000, 80000}, mega::kJobLinkBaud};  // as the Mega plans it
   uv::ScanPlanner planner(h, cells, m);
   uv::ScanPass p;
   ASSERT_TRUE(planner.nextPass(p));
@@ -122,7 +122,7 @@ TEST_P(ScanBoardTest, APhotoLikePassLoadsEachProgramWithinTheRelay) {
   const uv::JobHeader h = scanJob(g, 2000);
   uvtest::GridCells cells(g);
   // As the Mega plans it: at the link's speed it runs the pass at (kJobLinkBaud).
-  const uv::Machine m{{100000, 100000}, {2000000, 1500000}, 2000, 400, {0, 0}, {80000, 80000}, mega::kJobLinkBaud};
+  const uv::MotionModel m{{100000, 100000}, {2000000, 1500000}, 2000, 400, {0, 0}, {80000, 80000}, mega::kJobLinkBaud};
   uv::ScanPlanner planner(h, cells, m);
   uv::ScanPass p;
   ASSERT_TRUE(planner.nextPass(p));

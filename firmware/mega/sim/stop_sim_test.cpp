@@ -29,7 +29,7 @@ struct StopJob {
 // µs from the first stop's light to the last stop's, as the time model prices it: the whole job
 // from the first stop's place, less that stop's overhead (it has no move) and the last stop's light.
 double modelUs(const StopJob& j, const mega::Config& config) {
-  uv::Machine m = mega::plannerMachine(config, 0, 0, mega::kJobLinkBaud);
+  uv::MotionModel m = mega::plannerMachine(config, 0, 0, mega::kJobLinkBaud);
   m.startUm[0] = static_cast<int32_t>(j.h.originUm[0]) + j.stops.front().hx * static_cast<int32_t>(j.h.pitchUm[0]);
   m.startUm[1] = static_cast<int32_t>(j.h.originUm[1]) + j.stops.front().hy * static_cast<int32_t>(j.h.pitchUm[1]);
   uv::PlanClock clock(j.h, m);

@@ -16,7 +16,7 @@ namespace mega {
 
 class CardScan final : public StopSource {
  public:
-  CardScan(Storage& sd, const uv::JobHeader& h, const uv::Machine& m, uint32_t passes) : sd_(sd), header_(h), machine_(m), passes_(passes) {}
+  CardScan(Storage& sd, const uv::JobHeader& h, const uv::MotionModel& m, uint32_t passes) : sd_(sd), header_(h), machine_(m), passes_(passes) {}
   ~CardScan();
 
   // Opens the job's working files; 0 or 22 (file_error).
@@ -39,7 +39,7 @@ class CardScan final : public StopSource {
 
   Storage& sd_;
   uv::JobHeader header_;
-  uv::Machine machine_;
+  uv::MotionModel machine_;
   uint32_t passes_;
   FileHandle cells_ = -1, index_ = -1;
   SdCellsWith<uv::kScanCursors>* source_ = nullptr;

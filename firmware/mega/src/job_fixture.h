@@ -76,7 +76,7 @@ inline Lines encode(const uv::JobHeader& h, const Grid& g, uint8_t format = 1) {
 // the default settings' machine.
 inline std::vector<uv::Stop> plan(const uv::JobHeader& h, const Grid& g) {
   uvtest::GridCells cells(g);
-  const uv::Machine m{{100000, 100000}, {2000000, 1500000}, 2000, 1500, {0, 0}, {80000, 80000}};
+  const uv::MotionModel m{{100000, 100000}, {2000000, 1500000}, 2000, 1500, {0, 0}, {80000, 80000}};
   uv::Planner p(h, cells, m);
   std::vector<uv::Stop> out;
   uv::Stop s;

@@ -13,8 +13,8 @@
 
 namespace mega {
 
-uv::Machine plannerMachine(const Config& config, int32_t x, int32_t y, uint32_t linkBaud) {
-  uv::Machine m{};
+uv::MotionModel plannerMachine(const Config& config, int32_t x, int32_t y, uint32_t linkBaud) {
+  uv::MotionModel m{};
   for (uint8_t a = 0; a < 2; a++) {
     // speed.travel, or what the step engine runs on this axis if that is less (Motion::rateFor
     // holds every move to it): a plan that assumed more would fly a scan pass's blank stretches
@@ -35,7 +35,7 @@ uv::Machine plannerMachine(const Config& config, int32_t x, int32_t y, uint32_t 
   return m;
 }
 
-JobPlan::JobPlan(Storage& sd, const uv::JobHeader& header, const uv::Machine& machine)
+JobPlan::JobPlan(Storage& sd, const uv::JobHeader& header, const uv::MotionModel& machine)
     : sd_(sd), header_(header), machine_(machine), clock_(header_, machine_) {}
 
 JobPlan::~JobPlan() { close(); }

@@ -18,11 +18,11 @@ namespace mega {
 // printhead link at linkBaud (PrintheadLink::jobBaud() when a job is planned; a card job's recorded
 // speed when it runs). Jobs on the card are planned from the origin, so they plan the same whenever
 // they run. X and Y go no faster than speed.travel, nor than kMaxStepRate steps/s.
-uv::Machine plannerMachine(const Config& config, int32_t x, int32_t y, uint32_t linkBaud);
+uv::MotionModel plannerMachine(const Config& config, int32_t x, int32_t y, uint32_t linkBaud);
 
 class JobPlan {
  public:
-  JobPlan(Storage& sd, const uv::JobHeader& header, const uv::Machine& machine);
+  JobPlan(Storage& sd, const uv::JobHeader& header, const uv::MotionModel& machine);
   ~JobPlan();
 
   // Opens the files; 0 or 22 (file_error). `name` is the job's.
@@ -40,7 +40,7 @@ class JobPlan {
 
   Storage& sd_;
   uv::JobHeader header_;
-  uv::Machine machine_;
+  uv::MotionModel machine_;
   FileHandle cells_ = -1, index_ = -1, stops_ = -1;
   SdCellsWith<uv::kPlannerCursors>* source_ = nullptr;
   uv::Planner* planner_ = nullptr;

@@ -13,7 +13,7 @@ using namespace mega;
 
 TEST(PlannerMachine, TopSpeedIsTheSettingOrTheStepEnginesWhicheverIsLess) {
   Config config;  // 80 steps/mm, 100 mm/s: 8000 steps/s
-  uv::Machine m = plannerMachine(config, 5, 7, kJobLinkBaud);
+  uv::MotionModel m = plannerMachine(config, 5, 7, kJobLinkBaud);
   EXPECT_EQ(m.vmaxUmS[0], 100000u);
   EXPECT_EQ(m.vmaxUmS[1], 100000u);
   EXPECT_EQ(m.startUm[0], 5);

@@ -66,7 +66,7 @@ JobRunner* Machine::newRunner() {
 
 uint8_t Machine::startPlanning(const uv::JobHeader& header) {
   // Plans start from the origin, at the link's speed now (kept in the stop file): the same plan whenever it runs.
-  uv::Machine m = mega::plannerMachine(config_, 0, 0, head_.jobBaud());
+  uv::MotionModel m = mega::plannerMachine(config_, 0, 0, head_.jobBaud());
   char name[kFileNameMax + 1];
   strcpy(name, selected_);
   clearArena();

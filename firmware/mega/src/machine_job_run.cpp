@@ -141,7 +141,7 @@ Machine::Result Machine::startStream(HostLink& port, const uv::Command& c) {
   clearArena();
   int32_t here[3];
   motion_.targetUm(here);
-  uv::Machine m = mega::plannerMachine(config_, here[0], here[1], head_.jobBaud());  // the stream runs at this speed
+  uv::MotionModel m = mega::plannerMachine(config_, here[0], here[1], head_.jobBaud());  // the stream runs at this speed
   // The buffer is the card's sector cache (or its stand-in): no card command runs until the stream ends.
   StreamArena* a = reinterpret_cast<StreamArena*>(arenaMem_);
   new (&a->job) StreamJob(sd_.scratch(), kScratchBytes, m);

@@ -31,7 +31,7 @@ struct MixedMachineTest : ScanMachineTest {
     steps = 0;
     stopsBeforeBand = 0;
     uvtest::GridCells cells(g);
-    const uv::Machine machine = plannerMachine(m.config, 0, 0, m.head.jobBaud());
+    const uv::MotionModel machine = plannerMachine(m.config, 0, 0, m.head.jobBaud());
     uv::ScanPlanner planner(h, cells, machine);
     std::string out;
     uv::ScanPass p;

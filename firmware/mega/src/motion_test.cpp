@@ -263,7 +263,7 @@ TEST_F(MotionTest, AMainLoopUpTo30msLateNeverStarvesTheStepInterrupt) {
 // The planner's time model (planner.md "Time model", "The stroke") prices moves as this step engine
 // runs them: to the half µs, for moves on X, Y and both, short hops and long ones.
 TEST_F(MotionTest, ThePlannersStepEngineTimesEveryMoveAsTheEngineRunsIt) {
-  const uv::Machine m = plannerMachine(config, 0, 0, kJobLinkBaud);
+  const uv::MotionModel m = plannerMachine(config, 0, 0, kJobLinkBaud);
   std::mt19937 rng(5);
   for (int i = 0; i < 60; i++) {
     MotionRig r{config};
@@ -284,7 +284,7 @@ TEST_F(MotionTest, ThePlannersStepEngineTimesEveryMoveAsTheEngineRunsIt) {
 }
 
 TEST_F(MotionTest, ThePlannersStrokeIsTheOneTheMegaRunsAndTakesItsTime) {
-  const uv::Machine m = plannerMachine(config, 0, 0, kJobLinkBaud);
+  const uv::MotionModel m = plannerMachine(config, 0, 0, kJobLinkBaud);
   for (uint32_t window : {2000u, 4000u, 25000u, 100000u, 130000u}) {
     for (bool descending : {false, true}) {
       SCOPED_TRACE(testing::Message() << window << (descending ? " −X" : " +X"));

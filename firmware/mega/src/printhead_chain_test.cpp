@@ -91,7 +91,7 @@ Events pass(uint16_t windows) {
     for (int j = 0; j < windows; j++)
       if ((j * 7 + k * 3) % 5) rows[k][j] = static_cast<uint8_t>(36 * (1 + (j + k) % 7));
   }
-  const uv::Machine machine{{150000, 100000}, {3000000, 2000000}, 2000, 1500, {0, 0}, {80000, 80000}};
+  const uv::MotionModel machine{{150000, 100000}, {3000000, 2000000}, 2000, 1500, {0, 0}, {80000, 80000}};
   uvtest::GridCells cells(rows);
   uv::ScanPlanner planner(h, cells, machine);
   uv::ScanPass p;

@@ -28,7 +28,7 @@ constexpr uint32_t kClockRepollUs = 5000000;  // then now and then, to follow it
 constexpr uint32_t kNanoFastBaud = 250000;
 // Whether the board raises the link (once the Nano is known and the link idle).
 constexpr bool kRaiseNanoLink = true;
-// The fastest speed a job is planned at (uv::Machine::linkBaud; planner.md "The printhead link"). A job
+// The fastest speed a job is planned at (uv::MotionModel::linkBaud; planner.md "The printhead link"). A job
 // is planned at the speed the link has or will have (PrintheadLink::jobBaud()): this, or 115200 with a
 // Nano that never takes L. The speed is kept with the job (the card's stop file, a stream's machine),
 // and a scan pass starts only with the link at least that fast (ScanRun waits for the raise).

@@ -16,7 +16,7 @@ namespace scandose {
 
 // The cell window of the pass that exposes each row, as the scan planner lays the job out on `m`
 // (each pass at the job's window, or slower where the printhead link caps it).
-inline std::vector<double> passWindows(const uv::JobHeader& h, const std::vector<std::vector<uint8_t>>& grid, const uv::Machine& m) {
+inline std::vector<double> passWindows(const uv::JobHeader& h, const std::vector<std::vector<uint8_t>>& grid, const uv::MotionModel& m) {
   std::vector<double> out(h.rows, 0);
   uvtest::GridCells cells(grid);
   uv::ScanPlanner plan(h, cells, m);

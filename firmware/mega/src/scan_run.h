@@ -96,7 +96,7 @@ class ScanRun {
 // planner flies (Motion::StrokeJump).
 struct ScanJob {
   // A band is priced a pass a main-loop pass (ScanPlanner::sliceBands): ScanRun waits it out.
-  ScanJob(const uv::JobHeader& h, uv::CellSource& cells, const uv::Machine& m) : planner(h, cells, m), run(planner) { planner.sliceBands(); }
+  ScanJob(const uv::JobHeader& h, uv::CellSource& cells, const uv::MotionModel& m) : planner(h, cells, m), run(planner) { planner.sliceBands(); }
   uv::ScanPlanner planner;
   ScanRun run;
 };

@@ -41,8 +41,8 @@ struct ScanRunTest : ::testing::Test {
     }
     return h;
   }
-  uv::Machine machine() const {
-    uv::Machine m{};
+  uv::MotionModel machine() const {
+    uv::MotionModel m{};
     m.vmaxUmS[0] = m.vmaxUmS[1] = static_cast<uint32_t>(config.milli(Key::SpeedTravel));
     m.accelUmS2[0] = static_cast<uint32_t>(config.milli(Key::AccelX));
     m.accelUmS2[1] = static_cast<uint32_t>(config.milli(Key::AccelY));
@@ -93,7 +93,7 @@ struct ScanRunTest : ::testing::Test {
     std::vector<std::vector<uint8_t>> grid;
     uv::JobHeader h;
     uvtest::GridCells cells;
-    uv::Machine m;
+    uv::MotionModel m;
     uv::ScanPlanner planner;
     ScanRun scan;
   };

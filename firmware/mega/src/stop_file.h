@@ -30,7 +30,7 @@ constexpr uint8_t kStopBytes = 20;
 bool writeStopHeader(Storage& sd, FileHandle f, const StopFileHeader& h);
 bool readStopHeader(Storage& sd, FileHandle f, StopFileHeader& h);
 bool writeStop(Storage& sd, FileHandle f, const uv::Stop& s);
-// A scan job's header, after the file's, and the link speed it was planned at (uv::Machine::linkBaud):
+// A scan job's header, after the file's, and the link speed it was planned at (uv::MotionModel::linkBaud):
 // written by the build that reads it (a build whose JobHeader differs in size finds the file's size
 // wrong, and the job is planned again at M23). A speed the link cannot take (uv::nanoLinkBaud) is a
 // file error.

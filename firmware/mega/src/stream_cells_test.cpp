@@ -33,7 +33,7 @@ TEST(StreamCells, ThePlannerReadsItLikeTheWholeGridWhileItFreesRowsBehind) {
       h.gainPermille[k] = 1000;
       h.offsets[k][1] = static_cast<int16_t>(k);
     }
-    const uv::Machine m{{100000, 100000}, {2000000, 2000000}, 2000, 1500, {0, 0}, {80000, 80000}};
+    const uv::MotionModel m{{100000, 100000}, {2000000, 2000000}, 2000, 1500, {0, 0}, {80000, 80000}};
     uvtest::GridCells all(grid);
     uv::Planner whole(h, all, m);
     std::vector<uv::Stop> expected;

@@ -15,7 +15,7 @@ constexpr uint8_t kRecordWaits = 0xff;  // record(): no room yet, offer it again
 
 class StreamJob : public StopSource, private uv::SegmentSink {
  public:
-  StreamJob(uint8_t* buffer, uint16_t size, const uv::Machine& machine)
+  StreamJob(uint8_t* buffer, uint16_t size, const uv::MotionModel& machine)
       : verifier_(this), cells_(buffer, size), machine_(machine) {}
   ~StreamJob();
 
@@ -43,7 +43,7 @@ class StreamJob : public StopSource, private uv::SegmentSink {
 
   uv::JobVerifier verifier_;
   StreamCells cells_;
-  uv::Machine machine_;
+  uv::MotionModel machine_;
   void freeRows(int32_t lowest) { cells_.freeBelow(static_cast<uint16_t>(lowest)); }
   int32_t lowestRowNeeded() const { return scan_ ? scan_->planner.lowestRowNeeded() : planner_->lowestRowNeeded(); }
 

@@ -6,8 +6,8 @@
 
 namespace uvtest {
 
-inline uv::Machine machineFrom(const nlohmann::json& m) {
-  uv::Machine out{};
+inline uv::MotionModel machineFrom(const nlohmann::json& m) {
+  uv::MotionModel out{};
   for (int a = 0; a < 2; a++) {
     out.vmaxUmS[a] = m["vmaxUmS"][a];
     out.accelUmS2[a] = m["accelUmS2"][a];

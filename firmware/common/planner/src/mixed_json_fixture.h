@@ -10,7 +10,7 @@ namespace uvtest {
 
 // Each pass's two prices and the way taken (planner.md "Mixed mode"), or a band of stops's; a scan pass's motion, jumps,
 // events and stroke, a stop pass's stops. `h` must ask for the strategy `mixed`.
-inline nlohmann::json mixedPlanJson(const uv::JobHeader& h, const std::vector<std::vector<uint8_t>>& rows, const uv::Machine& m) {
+inline nlohmann::json mixedPlanJson(const uv::JobHeader& h, const std::vector<std::vector<uint8_t>>& rows, const uv::MotionModel& m) {
   using nlohmann::json;
   GridCells cells(rows);
   uv::ScanPlanner planner(h, cells, m);

@@ -40,7 +40,7 @@ void checkMixedGolden(const char* file) {
   std::printf("[vectors] %s: %zu mixed plans checked (C++), %d scan passes and %d of stops (%d of them bands)\n", file, v["cases"].size(), scans, stops, bands);
 }
 
-const Machine kMachine{{150000, 100000}, {3000000, 2000000}, 2000, 1500, {0, 0}, {80000, 80000}};
+const MotionModel kMachine{{150000, 100000}, {3000000, 2000000}, 2000, 1500, {0, 0}, {80000, 80000}};
 
 JobHeader mixedJob(uint16_t cols, uint16_t rows) {
   JobHeader h{};

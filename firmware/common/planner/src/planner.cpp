@@ -46,7 +46,7 @@ uint32_t Durations::longest(const uint8_t value[4]) const {
   return best;
 }
 
-Planner::Planner(const JobHeader& h, CellSource& cells, const Machine& m)
+Planner::Planner(const JobHeader& h, CellSource& cells, const MotionModel& m)
     : h_(h), cells_(cells), m_(m), dose_(h), known_(h.rows), curX_(m.startUm[0]), curY_(m.startUm[1]), rng_(h.seed ? h.seed : 0x9E3779B9u) {
   memset(&shared_, 0, sizeof shared_);  // no pass has a stop peeked yet
   dyMin_ = dyMax_ = h.offsets[0][1];

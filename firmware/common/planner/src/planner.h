@@ -38,7 +38,7 @@ class Durations {
 
 class Planner {
  public:
-  Planner(const JobHeader& h, CellSource& cells, const Machine& m);
+  Planner(const JobHeader& h, CellSource& cells, const MotionModel& m);
 
   // The next stop in execution order; false when the job is done, or when starved().
   bool next(Stop& out);
@@ -90,7 +90,7 @@ class Planner {
 
   const JobHeader& h_;
   CellSource& cells_;
-  const Machine& m_;
+  const MotionModel& m_;
   Durations dose_;
   bool covered(int32_t row) const { return covered_[(row & (kCoveredWindowRows - 1)) >> 3] & (1 << (row & 7)); }
   void cover(int32_t row) { covered_[(row & (kCoveredWindowRows - 1)) >> 3] |= static_cast<uint8_t>(1 << (row & 7)); }

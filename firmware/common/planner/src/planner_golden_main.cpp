@@ -57,7 +57,7 @@ json makeJob(Rng& r, const std::vector<std::array<int, 2>>& offsets, const char*
 }
 
 // The same machine on a printhead link raised to 250000 baud (nano.md "Link speed"), as the board runs it.
-std::pair<uv::Machine, json> raised(uv::Machine m, json j) {
+std::pair<uv::MotionModel, json> raised(uv::MotionModel m, json j) {
   m.linkBaud = 250000;
   j["linkBaud"] = 250000;
   return {m, j};
@@ -65,8 +65,8 @@ std::pair<uv::Machine, json> raised(uv::Machine m, json j) {
 
 // Scan plans (planner.md "Scan mode") of random jobs, on the same machine and on one that caps the speed.
 void writeScans(const char* path, const std::vector<std::pair<const char*, std::vector<std::array<int, 2>>>>& geometries,
-                const uv::Machine& fast, const json& fastJson) {
-  const uv::Machine slow{{8000, 90000}, {600000, 1500000}, 1000, 900, {0, 4000}, {80000, 100000}};
+                const uv::MotionModel& fast, const json& fastJson) {
+  const uv::MotionModel slow{{8000, 90000}, {600000, 1500000}, 1000, 900, {0, 4000}, {80000, 100000}};
   const json slowJson = {{"vmaxUmS", {8000, 90000}}, {"accelUmS2", {600000, 1500000}}, {"settleUs", 1000},
                          {"overheadUs", 900}, {"startUm", {0, 4000}}, {"stepsMilli", {80000, 100000}}, {"linkBaud", 115200}};
   Rng r(20261124);
@@ -125,8 +125,8 @@ void writeScans(const char* path, const std::vector<std::pair<const char*, std::
 // Mixed plans (planner.md "Mixed mode"): rows dense in places and sparse in others, on both machines,
 // so the plans take both ways.
 void writeMixed(const char* path, const std::vector<std::pair<const char*, std::vector<std::array<int, 2>>>>& geometries,
-                const uv::Machine& fast, const json& fastJson) {
-  const uv::Machine slow{{8000, 90000}, {600000, 1500000}, 1000, 900, {0, 4000}, {80000, 100000}};
+                const uv::MotionModel& fast, const json& fastJson) {
+  const uv::MotionModel slow{{8000, 90000}, {600000, 1500000}, 1000, 900, {0, 4000}, {80000, 100000}};
   const json slowJson = {{"vmaxUmS", {8000, 90000}}, {"accelUmS2", {600000, 1500000}}, {"settleUs", 1000},
                          {"overheadUs", 900}, {"startUm", {0, 4000}}, {"stepsMilli", {80000, 100000}}, {"linkBaud", 115200}};
   Rng r(20261127);
@@ -182,7 +182,7 @@ int main(int argc, char** argv) {
   };
   const json machine = {{"vmaxUmS", {120000, 90000}}, {"accelUmS2", {2500000, 1500000}}, {"settleUs", 3000},
                         {"overheadUs", 1200}, {"startUm", {5000, 0}}, {"stepsMilli", {80000, 80000}}, {"linkBaud", 115200}};
-  uv::Machine m{{120000, 90000}, {2500000, 1500000}, 3000, 1200, {5000, 0}, {80000, 80000}};
+  uv::MotionModel m{{120000, 90000}, {2500000, 1500000}, 3000, 1200, {5000, 0}, {80000, 80000}};
   Rng r(20261121);
   json cases = json::array();
   for (const auto& [gname, offsets] : geometries) {

@@ -61,7 +61,7 @@ std::vector<std::vector<uint8_t>> gridFrom(const json& job) {
   return rows;
 }
 
-Planned planOf(const JobHeader& h, const std::vector<std::vector<uint8_t>>& rows, const Machine& m) {
+Planned planOf(const JobHeader& h, const std::vector<std::vector<uint8_t>>& rows, const MotionModel& m) {
   GridCells cells(rows);
   Planner planner(h, cells, m);
   PlanClock clock(h, m);
@@ -117,7 +117,7 @@ TEST(PlannerMemory, StreamsWithinItsBoundAndNeverAllocates) {
   for (Strategy s : {Strategy::Raster, Strategy::Serpentine, Strategy::Shortest, Strategy::Random}) {
     h.strategy = s;
     GridCells cells(rows);
-    const Machine m{{100000, 100000}, {2000000, 2000000}, 2000, 1500, {0, 0}, {80000, 80000}};
+    const MotionModel m{{100000, 100000}, {2000000, 2000000}, 2000, 1500, {0, 0}, {80000, 80000}};
     long before = allocations;
     Planner planner(h, cells, m);
     Stop stop;
@@ -159,7 +159,7 @@ TEST(PlannerProperty, EveryLitCellOnceWithLedsSpreadOverManyRows) {
       h.offsets[k][1] = static_cast<int16_t>(k == 3 ? spread : rnd(spread + 1u));
     }
     GridCells cells(grid);
-    const Machine m{{100000, 100000}, {2000000, 2000000}, 2000, 1500, {0, 0}, {80000, 80000}};
+    const MotionModel m{{100000, 100000}, {2000000, 2000000}, 2000, 1500, {0, 0}, {80000, 80000}};
     Planner planner(h, cells, m);
     ASSERT_TRUE(planner.supported());
     std::vector<std::vector<int>> exposed(rows, std::vector<int>(cols, 0));
@@ -179,7 +179,7 @@ TEST(PlannerProperty, EveryLitCellOnceWithLedsSpreadOverManyRows) {
   wide.offsets[3][1] = static_cast<int16_t>(kCoveredWindowRows);
   std::vector<std::vector<uint8_t>> one(1, std::vector<uint8_t>(1, 1));
   GridCells cells(one);
-  const Machine m{{100000, 100000}, {2000000, 2000000}, 2000, 1500, {0, 0}, {80000, 80000}};
+  const MotionModel m{{100000, 100000}, {2000000, 2000000}, 2000, 1500, {0, 0}, {80000, 80000}};
   Planner planner(wide, cells, m);
   EXPECT_FALSE(planner.supported());
   Stop s;
@@ -209,7 +209,7 @@ TEST(PlannerStreaming, RowsArrivingOneByOneGiveTheWholePlanInOrderAndNothingEarl
       h.offsets[k][0] = static_cast<int16_t>(rnd(3)) - 1;
       h.offsets[k][1] = static_cast<int16_t>(trial % 5 == 0 ? rnd(9) : k);
     }
-    const Machine m{{100000, 100000}, {2000000, 2000000}, 2000, 1500, {0, 0}, {80000, 80000}};
+    const MotionModel m{{100000, 100000}, {2000000, 2000000}, 2000, 1500, {0, 0}, {80000, 80000}};
     GridCells all(grid);
     Planner whole(h, all, m);
     std::vector<Stop> expected;

@@ -13,14 +13,14 @@ uint64_t roundDiv(uint64_t n, uint64_t d) { return (2 * n + d) / (2 * d); }
 int64_t floorDiv(int64_t n, int64_t d) { return n >= 0 ? n / d : -((-n + d - 1) / d); }
 }  // namespace
 
-bool engineStep(const Machine& m, uint32_t pitchUm, uint32_t windowUs, uint64_t& q16) {
+bool engineStep(const MotionModel& m, uint32_t pitchUm, uint32_t windowUs, uint64_t& q16) {
   const uint64_t den = static_cast<uint64_t>(pitchUm) * m.stepsMilli[0];
   if (!den) return false;
   q16 = (((2ull * windowUs * 1000000u) << 16) + den / 2) / den;
   return q16 >= (static_cast<uint64_t>(kEngineTickHz / kEngineMaxRate) << 16) && q16 < (1ull << 32);
 }
 
-void planStroke(const Machine& m, int32_t markX2Um, int32_t endX2Um, bool descending, uint64_t q16, uint32_t savedUs, ScanPass& out) {
+void planStroke(const MotionModel& m, int32_t markX2Um, int32_t endX2Um, bool descending, uint64_t q16, uint32_t savedUs, ScanPass& out) {
   const int64_t sign = descending ? -1 : 1, S = m.stepsMilli[0], den = 2000000;  // positions in steps × den
   uint64_t rate = ((static_cast<uint64_t>(kEngineTickHz) << 16) + q16 - 1) / q16;  // Motion::strokeProfile
   if (rate > kEngineMaxRate) rate = kEngineMaxRate;
@@ -43,7 +43,7 @@ void planStroke(const Machine& m, int32_t markX2Um, int32_t endX2Um, bool descen
   out.markUs = static_cast<uint32_t>((markTicks16 + 65536) / 131072);
 }
 
-ScanMotion scanMotion(const JobHeader& h, const Durations& dose, const Machine& m) {
+ScanMotion scanMotion(const JobHeader& h, const Durations& dose, const MotionModel& m) {
   ScanMotion out{0, 0, 0, 0};
   uint32_t longest = 0;
   for (uint8_t k = 0; k < 4; k++)
@@ -54,7 +54,7 @@ ScanMotion scanMotion(const JobHeader& h, const Durations& dose, const Machine& 
   return passMotion(h, m, static_cast<uint32_t>(w));
 }
 
-ScanMotion passMotion(const JobHeader& h, const Machine& m, uint32_t windowUs) {
+ScanMotion passMotion(const JobHeader& h, const MotionModel& m, uint32_t windowUs) {
   const uint64_t p = h.pitchUm[0], w = windowUs;
   const uint64_t tA = ceilDiv(p * 1000000000000ull, static_cast<uint64_t>(m.accelUmS2[0]) * w);
   ScanMotion out;
@@ -65,7 +65,7 @@ ScanMotion passMotion(const JobHeader& h, const Machine& m, uint32_t windowUs) {
   return out;
 }
 
-ScanPlanner::ScanPlanner(const JobHeader& h, CellSource& cells, const Machine& m)
+ScanPlanner::ScanPlanner(const JobHeader& h, CellSource& cells, const MotionModel& m)
     : h_(h), cells_(cells), m_(m), dose_(h), known_(h.rows), curX_(axisSteps(m, 0, m.startUm[0])), curY_(m.startUm[1]),
       flies_(false), pass_(scanMotion(h, dose_, m)) {
   dyMin_ = dyMax_ = h.offsets[0][1];

@@ -18,9 +18,9 @@ struct ScanMotion {
   uint32_t overscanUm;  // the distance that takes
 };
 
-ScanMotion scanMotion(const JobHeader& h, const Durations& dose, const Machine& m);
+ScanMotion scanMotion(const JobHeader& h, const Durations& dose, const MotionModel& m);
 // The motion of a window of `windowUs`: its speed, time to reach it and the distance that takes.
-ScanMotion passMotion(const JobHeader& h, const Machine& m, uint32_t windowUs);
+ScanMotion passMotion(const JobHeader& h, const MotionModel& m, uint32_t windowUs);
 
 struct ScanPass {
   int32_t hy;
@@ -69,26 +69,26 @@ constexpr uint32_t kScanPassEndUs = 5000;
 constexpr uint32_t kScanPassLoadUs = 400;
 // The step of a pass at window W, as 16.16 timer ticks; false when the step engine cannot run it
 // (over kEngineMaxRate steps/s, or a step of 2¹⁶ ticks, 32.768 ms, or more).
-bool engineStep(const Machine& m, uint32_t pitchUm, uint32_t windowUs, uint64_t& q16);
+bool engineStep(const MotionModel& m, uint32_t pitchUm, uint32_t windowUs, uint64_t& q16);
 // The stroke of a pass at the step `q16` (engineStep) whose start mark and last window's end are at
 // twice the bed X `markX2Um` and `endX2Um` (µm), as scan_stroke.cpp lays it out: where it starts and
 // stops (X steps), its µs from rest to idle (the ramps as the engine runs them, the middle at the
 // exact step, less the flown stretches' `savedUs`), and the mark's µs after it starts.
-void planStroke(const Machine& m, int32_t markX2Um, int32_t endX2Um, bool descending, uint64_t q16, uint32_t savedUs, ScanPass& out);
+void planStroke(const MotionModel& m, int32_t markX2Um, int32_t endX2Um, bool descending, uint64_t q16, uint32_t savedUs, ScanPass& out);
 
 // CellSource cursors the scan planner opens: one an LED, numbered as the LEDs.
 constexpr uint8_t kScanCursors = 4;
 
 class ScanPlanner {
  public:
-  ScanPlanner(const JobHeader& h, CellSource& cells, const Machine& m);
+  ScanPlanner(const JobHeader& h, CellSource& cells, const MotionModel& m);
 
   // The job's motion; a pass's own window may be longer (the link cap: planner.md "The printhead
   // link"), and passMotion() is the open pass's.
   // (Worked out when asked: on the Mega, RAM is dearer than the divisions.)
   ScanMotion motion() const { return scanMotion(h_, dose_, m_); }
   const ScanMotion& passMotion() const { return pass_; }
-  // The printhead link's speed the plan is made for (Machine::linkBaud): its passes need the link at it.
+  // The printhead link's speed the plan is made for (MotionModel::linkBaud): its passes need the link at it.
   uint32_t linkBaud() const { return m_.linkBaud; }
   // Opens the next pass with a lit cell and adds its time to the estimate; false when done.
   bool nextPass(ScanPass& out);
@@ -157,7 +157,7 @@ class ScanPlanner {
 
   const JobHeader& h_;
   CellSource& cells_;
-  const Machine& m_;
+  const MotionModel& m_;
   Durations dose_;
   uint8_t covered_[kCoveredWindowRows / 8] = {};
   uint16_t scan_ = 0;  // next row that may open a pass

@@ -8,7 +8,7 @@
 
 namespace uvtest {
 
-inline nlohmann::json scanPlanJson(const uv::JobHeader& h, const std::vector<std::vector<uint8_t>>& rows, const uv::Machine& m) {
+inline nlohmann::json scanPlanJson(const uv::JobHeader& h, const std::vector<std::vector<uint8_t>>& rows, const uv::MotionModel& m) {
   using nlohmann::json;
   GridCells cells(rows), cellsForEvents(rows);
   uv::ScanPlanner planner(h, cells, m);

@@ -48,7 +48,7 @@ struct Xorshift {
   }
 };
 
-const Machine kMachine{{150000, 100000}, {3000000, 2000000}, 2000, 1500, {0, 0}, {80000, 80000}};
+const MotionModel kMachine{{150000, 100000}, {3000000, 2000000}, 2000, 1500, {0, 0}, {80000, 80000}};
 
 JobHeader smallJob(uint16_t cols, uint16_t rows) {
   JobHeader h{};
@@ -144,7 +144,7 @@ TEST(ScanPlanner, NegativeOffsetsAndTheSpeedCap) {
   const uint32_t on[4] = {8000, 14000, 0, 10000};
   for (uint8_t k = 0; k < 4; k++) EXPECT_EQ(e.leds[k], (Lists{{on[k], on[k] + 2000}})) << "LED " << int(k);
 
-  Machine slow = kMachine;
+  MotionModel slow = kMachine;
   slow.vmaxUmS[0] = 10000;  // 5000 µs windows: full cells no longer touch
   std::vector<std::vector<uint8_t>> run(4, std::vector<uint8_t>(12, 0));
   run[0][2] = run[0][3] = 255;

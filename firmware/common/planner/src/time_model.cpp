@@ -93,27 +93,27 @@ uint64_t stepTicks(const StepRamp& p, uint32_t from, uint32_t to) {
   return ticks;
 }
 
-int32_t axisSteps(const Machine& m, uint8_t axis, int32_t um) {
+int32_t axisSteps(const MotionModel& m, uint8_t axis, int32_t um) {
   const int64_t n = static_cast<int64_t>(um) * m.stepsMilli[axis];
   return static_cast<int32_t>(n >= 0 ? (n + 500000) / 1000000 : -((-n + 500000) / 1000000));
 }
 
-uint32_t axisRate(const Machine& m, uint8_t axis) {
+uint32_t axisRate(const MotionModel& m, uint8_t axis) {
   const uint64_t r = static_cast<uint64_t>(m.vmaxUmS[axis]) * m.stepsMilli[axis] / 1000000u;
   return r > kEngineMaxRate ? kEngineMaxRate : static_cast<uint32_t>(r);
 }
 
-uint32_t axisAccel(const Machine& m, uint8_t axis) {
+uint32_t axisAccel(const MotionModel& m, uint8_t axis) {
   return static_cast<uint32_t>(static_cast<uint64_t>(m.accelUmS2[axis]) * m.stepsMilli[axis] / 1000000u);
 }
 
-uint32_t engineMoveUs(const Machine& m, uint32_t dx, uint32_t dy) {
+uint32_t engineMoveUs(const MotionModel& m, uint32_t dx, uint32_t dy) {
   if (!dx && !dy) return 0;
   const StepRamp p = stepRamp(dx, axisRate(m, 0), axisAccel(m, 0), dy, axisRate(m, 1), axisAccel(m, 1));
   return static_cast<uint32_t>((stepTicks(p, 0, p.total) + 1) / 2);
 }
 
-uint32_t engineMoveUs(const Machine& m, int32_t fromX, int32_t fromY, int32_t toX, int32_t toY) {
+uint32_t engineMoveUs(const MotionModel& m, int32_t fromX, int32_t fromY, int32_t toX, int32_t toY) {
   const int32_t dx = axisSteps(m, 0, toX) - axisSteps(m, 0, fromX), dy = axisSteps(m, 1, toY) - axisSteps(m, 1, fromY);
   return engineMoveUs(m, static_cast<uint32_t>(dx < 0 ? -dx : dx), static_cast<uint32_t>(dy < 0 ? -dy : dy));
 }
@@ -138,11 +138,11 @@ uint32_t fireLineUs(const uint32_t us[4], uint32_t baud) {
   return bytes * 10000000u / baud;
 }
 
-uint32_t stopCostUs(const Machine& m, int32_t fromX, int32_t fromY, int32_t toX, int32_t toY, const uint32_t us[4]) {
+uint32_t stopCostUs(const MotionModel& m, int32_t fromX, int32_t fromY, int32_t toX, int32_t toY, const uint32_t us[4]) {
   return stopCostStepsUs(m, axisSteps(m, 0, toX) - axisSteps(m, 0, fromX), axisSteps(m, 1, toY) - axisSteps(m, 1, fromY), us);
 }
 
-uint32_t stopCostStepsUs(const Machine& m, int32_t dx, int32_t dy, const uint32_t us[4]) {
+uint32_t stopCostStepsUs(const MotionModel& m, int32_t dx, int32_t dy, const uint32_t us[4]) {
   const uint32_t move = engineMoveUs(m, static_cast<uint32_t>(dx < 0 ? -dx : dx), static_cast<uint32_t>(dy < 0 ? -dy : dy));
   uint32_t longest = 0;
   for (uint8_t k = 0; k < 4; k++)

@@ -9,7 +9,7 @@
 
 namespace uv {
 
-struct Machine {
+struct MotionModel {
   uint32_t vmaxUmS[2];
   uint32_t accelUmS2[2];
   uint32_t settleUs;
@@ -41,14 +41,14 @@ StepRamp stepRamp(uint32_t stepsX, uint32_t rateX, uint32_t accelX, uint32_t ste
 // each step's interval counted, the last one's too (the engine is idle only after it).
 uint64_t stepTicks(const StepRamp& p, uint32_t from, uint32_t to);
 // An axis's position in steps for `um` (Motion::toSteps: rounded half away from zero).
-int32_t axisSteps(const Machine& m, uint8_t axis, int32_t um);
+int32_t axisSteps(const MotionModel& m, uint8_t axis, int32_t um);
 // The axis's top rate (steps/s) and acceleration (steps/s²), as Motion::limits gives them.
-uint32_t axisRate(const Machine& m, uint8_t axis);
-uint32_t axisAccel(const Machine& m, uint8_t axis);
+uint32_t axisRate(const MotionModel& m, uint8_t axis);
+uint32_t axisAccel(const MotionModel& m, uint8_t axis);
 // The µs the step engine takes to move by (dx, dy) steps from rest to rest, until it is idle.
-uint32_t engineMoveUs(const Machine& m, uint32_t dx, uint32_t dy);
+uint32_t engineMoveUs(const MotionModel& m, uint32_t dx, uint32_t dy);
 // The same between two bed positions (µm).
-uint32_t engineMoveUs(const Machine& m, int32_t fromX, int32_t fromY, int32_t toX, int32_t toY);
+uint32_t engineMoveUs(const MotionModel& m, int32_t fromX, int32_t fromY, int32_t toX, int32_t toY);
 
 struct Stop {
   int32_t hx, hy;   // head position in cells
@@ -65,21 +65,21 @@ uint32_t moveTimeUs(uint32_t d, uint32_t v, uint32_t a);
 uint32_t fireLineUs(const uint32_t us[4], uint32_t baud);
 // One stop's time from the previous head position (bed µm): the step engine's move, settle if
 // it moved, the per-stop overhead, its F line on the wire and its longest LED duration.
-uint32_t stopCostUs(const Machine& m, int32_t fromX, int32_t fromY, int32_t toX, int32_t toY, const uint32_t us[4]);
+uint32_t stopCostUs(const MotionModel& m, int32_t fromX, int32_t fromY, int32_t toX, int32_t toY, const uint32_t us[4]);
 // The same after a move of (dx, dy) steps: the one rule every planner prices a stop by.
-uint32_t stopCostStepsUs(const Machine& m, int32_t dx, int32_t dy, const uint32_t us[4]);
+uint32_t stopCostStepsUs(const MotionModel& m, int32_t dx, int32_t dy, const uint32_t us[4]);
 
 // Adds up the estimate stop by stop, as the planner emits them.
 class PlanClock {
  public:
-  PlanClock(const JobHeader& h, const Machine& m) : h_(h), m_(m), x_(m.startUm[0]), y_(m.startUm[1]) {}
+  PlanClock(const JobHeader& h, const MotionModel& m) : h_(h), m_(m), x_(m.startUm[0]), y_(m.startUm[1]) {}
   void add(const Stop& s);
   uint64_t totalUs() const { return total_; }
   uint64_t travelUm(uint8_t axis) const { return travel_[axis]; }
 
  private:
   const JobHeader& h_;
-  const Machine& m_;
+  const MotionModel& m_;
   int32_t x_, y_;
   uint64_t total_ = 0;
   uint64_t travel_[2] = {0, 0};
