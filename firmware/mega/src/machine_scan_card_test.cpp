@@ -79,10 +79,7 @@ TEST_F(ScanCardTest, AResetMidPassResumesWithThatPassExposedAgainAndTheOthersOnc
 TEST_F(ScanCardTest, APassCutForHeatPausesAndContinueExposesItAgain) {
   job(40, 10, 2000);
   ASSERT_TRUE(has(upload("H.UVJ", encode(h, g)), "echo:Done saving file."));
-  m.cmd("M23 H.UVJ");
-  m.cmd("G28");
-  m.rig.steps.clear();
-  m.cmd("M24");
+  start("H.UVJ");
   ASSERT_NE(runUntilJob({"running file=H.UVJ stop=1/3"}, 20000000), "(none)");
   ASSERT_TRUE(lightOn());
   m.nano.setTemps(900);  // the Nano's own guard cuts the chain

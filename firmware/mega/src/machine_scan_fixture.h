@@ -29,12 +29,16 @@ struct ScanMachineTest : JobTest {
     for (uint16_t r = 0; r < h.rows; r++)
       for (uint16_t c = 0; c < h.cols; c++) g[r][c] = static_cast<uint8_t>(1 + (c * 97 + r * 31) % 253);
   }
-  // Selects the uploaded job, homes, starts it from the origin and runs it to its end: "JOB:done".
-  void runToDone(const std::string& name) {
+  // Selects the uploaded job, homes, and starts it; the track starts at the origin.
+  void start(const std::string& name) {
     m.cmd("M23 " + name);
     m.cmd("G28");
     m.rig.steps.clear();
     m.cmd("M24");
+  }
+  // Starts the uploaded job and runs it to its end: "JOB:done".
+  void runToDone(const std::string& name) {
+    start(name);
     const std::string end = runUntilJob({"done", "paused", "failed", "aborted"}, 120000000);
     ASSERT_NE(end.find("JOB:done"), std::string::npos) << end;
   }

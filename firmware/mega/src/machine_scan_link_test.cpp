@@ -43,10 +43,7 @@ TEST_F(ScanLinkTest, ANanoResetMidJobFallsBackTo115200AndTheResumedJobRunsRaised
   EXPECT_EQ(m.head.jobBaud(), kNanoFastBaud);
   job(40, 10, 2000);
   ASSERT_TRUE(has(upload("L.UVJ", encode(h, g)), "echo:Done saving file."));
-  m.cmd("M23 L.UVJ");
-  m.cmd("G28");
-  m.rig.steps.clear();
-  m.cmd("M24");
+  start("L.UVJ");
   ASSERT_NE(runUntilJob({"running file=L.UVJ stop=1/3"}, 20000000), "(none)");  // into the second pass
   ASSERT_TRUE(lightOn());
   EXPECT_TRUE(m.head.raised());
@@ -123,10 +120,7 @@ TEST_F(ScanLinkTest, AJobPlannedRaisedWhoseLinkWillNotRiseAgainStopsWithE34AndCo
   job(40, 10, 2000);
   ASSERT_TRUE(has(upload("E34.UVJ", encode(h, g)), "echo:Done saving file."));
   EXPECT_EQ(plannedBaud("E34.UVJ"), kNanoFastBaud);
-  m.cmd("M23 E34.UVJ");
-  m.cmd("G28");
-  m.rig.steps.clear();
-  m.cmd("M24");
+  start("E34.UVJ");
   ASSERT_NE(runUntilJob({"running file=E34.UVJ stop=1/3"}, 20000000), "(none)");
   ASSERT_TRUE(lightOn());
   m.nano.noRaise = true;
