@@ -109,8 +109,8 @@ class Machine {
     Handler run;
   };
   static const CommandRow kCommands[];
-  // The row of a command, copied out of flash into `row`; nullptr if it has none.
-  static const CommandRow* findCommand(const uv::Command& c, CommandRow& row);
+  // The row of a command, copied out of flash into `row`; false if it has none.
+  static bool findCommand(const uv::Command& c, CommandRow& row);
   // Answer: the command has ended, and its reply waits for room on its port (finishLong).
   enum class Op : uint8_t { None, Emit, Dwell, Home, SelfTest, Servo, ProbeRead, MoveRoom, Release, Plan, Prepare, Probe, Level, Store, Answer };
   enum class Gen : uint8_t { Firmware, Endstops, Config, Files, Mesh };

@@ -65,16 +65,16 @@ const Machine::CommandRow Machine::kCommands[] UV_FLASH = {
     {'M', 1000, 0, &Machine::jobCommand},
 };
 
-const Machine::CommandRow* Machine::findCommand(const uv::Command& c, CommandRow& row) {
+bool Machine::findCommand(const uv::Command& c, CommandRow& row) {
   for (const CommandRow& r : kCommands) {
     if (static_cast<char>(uvFlashByte(&r.letter)) != c.letter) continue;
     uint16_t code;
     uvMemcpyP(&code, &r.code, sizeof code);
     if (code != c.code) continue;
     uvMemcpyP(&row, &r, sizeof row);
-    return &r;
+    return true;
   }
-  return nullptr;
+  return false;
 }
 
 uint8_t Machine::commandFlags(const uv::Command& c) {
@@ -84,7 +84,7 @@ uint8_t Machine::commandFlags(const uv::Command& c) {
 
 bool Machine::knows(const uv::Command& c) {
   CommandRow row;
-  return findCommand(c, row) != nullptr;
+  return findCommand(c, row);
 }
 
 Machine::Result Machine::dispatch(HostLink& port, const uv::Command& c) {
