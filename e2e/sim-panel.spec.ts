@@ -52,15 +52,19 @@ test('the speed changes while a job runs, and the address keeps it for a reload'
 });
 
 test('a missing printhead and an overheating one are reported as faults', async ({ page }, info) => {
+  test.setTimeout(90_000); // three waits on the printer's own time, each up to 30 s on a loaded machine
   await openPanel(page, 2);
   await page.getByRole('checkbox', { name: 'Printhead missing (no Nano answers)' }).check();
   await expect(page.getByTestId('faults')).toContainText('E30 printhead not responding', { timeout: 10_000 });
   await page.screenshot({ path: info.outputPath('missing-nano.png'), fullPage: true });
   await page.getByRole('checkbox', { name: 'Printhead missing (no Nano answers)' }).uncheck();
 
-  await page.getByLabel('Full dose').fill('40');
+  // About 20 s of exposing at real time (10 s at 2x): the job still runs when the head overheats.
+  await page.getByLabel('Full dose').fill('100');
   await page.getByTestId('strategy').selectOption('serpentine'); // stop and fire, stop by stop (the default, automatic, may scan)
   await page.getByRole('button', { name: 'Expose test pattern' }).click();
+  // The dialog asks the printhead first (M105): it answers again, so nothing stands against the job.
+  await expect(page.getByTestId('dry-run')).toContainText('machine: the printhead answers, and the machine reports no fault', { timeout: 15_000 });
   await page.getByRole('dialog').getByRole('button', { name: 'Expose now' }).click();
   await expect(page.getByTestId('job-state')).toContainText(/running: stop [1-9]\d* of/, { timeout: 30_000 });
   await page.getByLabel('Extra heating (°C/s)').fill('20'); // past the 55 °C limit in under 2 s of the printer's time
