@@ -5,7 +5,7 @@ import { bundleSize, formatBundleSize } from '../scripts/bundle-size.ts';
 import { serviceWorker } from './pwa.ts';
 
 /** What loads only when a panel is first opened: grouped into one chunk. */
-const ON_DEMAND_PANELS = /\/(PositionDashboard|ProbeDashboard|MeshDashboard|LinkDashboard|mesh-image|Settings|setting-groups|setting-docs|Lamp|PreviewPanel|exposure-preview|preview-colours|MaterialTest|material-test|ObjectPanel|BoardPanel|board-object|fonts|Panel|ImportFile|import-artwork|artwork|svg-artwork|svg-size|density|picture|decode|clipping|dry-run|planner|job-header|time-model|adjust|gray|dither|ConfirmDialog|hms|thermal-forecast|pacing|mesh|mesh-figures|scan-words|work-client|check-job|job-transfer|remote-artwork|settings-table|DeliveredDose|dose-plan|dose-map|dose-colours)\.(svelte|ts)$/;
+const ON_DEMAND_PANELS = /\/(PositionDashboard|ProbeDashboard|MeshDashboard|LinkDashboard|mesh-image|Settings|setting-groups|setting-docs|Lamp|PreviewPanel|exposure-preview|preview-colours|MaterialTest|material-test|ObjectPanel|BoardPanel|board-object|fonts|Panel|ImportFile|import-artwork|artwork|svg-artwork|svg-size|density|picture|decode|clipping|dry-run|planner|job-header|time-model|adjust|gray|dither|ConfirmDialog|hms|thermal-forecast|pacing|mesh|mesh-figures|scan-words|work-client|check-job|job-transfer|remote-artwork|settings-table|DeliveredDose|dose-plan|dose-map|dose-colours|dose-batch)\.(svelte|ts)$/;
 
 /** The Wi-Fi hub's link and USB's (with the Latin-1 bytes only USB uses), loaded when that device is first chosen (device/chosen-links.ts). */
 const ON_DEMAND_LINKS = /\/(chosen-links|esp-link|serial-transport|bytes)\.ts$/;

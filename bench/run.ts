@@ -2,6 +2,7 @@
 import { printTable } from './harness';
 import { jobCodecBench } from './job-codec.bench';
 import { pcbBench } from './pcb.bench';
+import { doseMapBench } from './dose-map.bench';
 import { editorBench } from './editor.bench';
 import { neverFreezeBench } from './never-freeze.bench';
 import { flashBench } from './flash.bench';
@@ -12,7 +13,7 @@ import { p2, p7, printP2 } from './planner.bench';
 import { p10, printP10, printP11 } from './scan.bench';
 import { simSpeed } from './sim-speed.bench';
 
-printTable([...jobCodecBench(), ...p7(), ...pcbBench()]);
+printTable([...jobCodecBench(), ...p7(), ...pcbBench(), ...doseMapBench()]);
 printP2(p2());
 const scans = p10();
 printP10(scans);

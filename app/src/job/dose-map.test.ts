@@ -105,6 +105,7 @@ describe('delivered-dose map', () => {
     expect(tally.update(l)).toBe(tally.update(l)); // nothing new: the same map
     l.clear(); // another job: every cell waits again
     expect(tally.update(l).counts).toEqual({ within: 0, off: 0, dark: 0, waiting: lit, twice: 0 });
+    expect(tally.update(l).worst).toBe(0); // stop 3's 10 % went with its job
     report(l, plan, 0, 4);
     tally.update(l);
     l.clear(); // and again, with more lines by the next update than the ledger had before

@@ -37,6 +37,14 @@ export interface DeliveredMap {
   steps: number;
 }
 
+/** The map as the page shows it: its words, counted in the work worker, and its pixels binned there (work/dose-work.ts). */
+export type DoseMapView = Omit<DeliveredMap, 'state' | 'twice' | 'plannedUs' | 'deliveredUs'> & {
+  image: { width: number; height: number; zoom: number; pixels: Uint32Array<ArrayBuffer> };
+};
+
+/** What the map's words are made of. */
+type MapWords = Pick<DeliveredMap, 'counts' | 'twiceSteps' | 'cutSteps' | 'unit' | 'steps'>;
+
 /**
  * The map of what a ledger reported against a plan, kept up to date as reports come: each update
  * counts again only the steps whose lines changed, so a whole bed's map follows its job without
@@ -84,6 +92,7 @@ export class DoseTally {
       ({ stops, lines } = ledger.since(0));
       stops = [...this.#counted, ...stops];
       this.#clears = clears;
+      m.worst = 0; // the cells counted before are counted again: their worst with them
     }
     this.#lines = lines;
     const touched: number[] = [];
@@ -158,7 +167,7 @@ export function grouped(n: number): string {
 }
 
 const plural = (n: number, one: string, many = `${one}s`) => `${grouped(n)} ${n === 1 ? one : many}`;
-const unitName = (m: DeliveredMap, n: number) => (m.unit === 'pass' ? (n === 1 ? 'pass' : 'passes') : n === 1 ? m.unit : `${m.unit}s`);
+const unitName = (m: MapWords, n: number) => (m.unit === 'pass' ? (n === 1 ? 'pass' : 'passes') : n === 1 ? m.unit : `${m.unit}s`);
 
 /** What the cells whose records have not come are called: while the job runs, "not reported yet". */
 export const waitingWords = (ended: boolean): string => (ended ? 'not reported to this page' : 'not reported yet');
@@ -167,7 +176,7 @@ export const waitingWords = (ended: boolean): string => (ended ? 'not reported t
  * The map in one line: "12 480 cells within 2 %, 0 off, 0 never lit, 3 stops lit twice by a resume".
  * `ended`: the job has ended, so a record still missing will not come (lit while no page listened, or lost).
  */
-export function doseSummary(m: DeliveredMap, ended = false): string {
+export function doseSummary(m: MapWords, ended = false): string {
   const parts = [`${plural(m.counts.within, 'cell')} within ${DOSE_TOLERANCE * 100} %`, `${grouped(m.counts.off)} off`, `${grouped(m.counts.dark)} never lit`];
   if (m.counts.waiting) parts.push(`${grouped(m.counts.waiting)} ${waitingWords(ended)}`);
   parts.push(`${grouped(m.twiceSteps.length)} ${unitName(m, m.twiceSteps.length)} lit twice by a resume`);
@@ -175,7 +184,7 @@ export function doseSummary(m: DeliveredMap, ended = false): string {
 }
 
 /** The steps a fault or a restart cut, named as the job panel counts them (from 1, "of" the job's). */
-export function faultedWords(m: DeliveredMap): string | null {
+export function faultedWords(m: MapWords): string | null {
   if (!m.cutSteps.length) return null;
   const names = m.cutSteps.map((s) => `${m.unit} ${s + 1} of ${m.steps}`);
   const list = names.length === 1 ? names[0] : `${names.slice(0, -1).join(', ')} and ${names[names.length - 1]}`;

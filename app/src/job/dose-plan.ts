@@ -20,8 +20,8 @@ export interface PlannedRecord {
 }
 
 /**
- * A job's records packed in typed arrays, so a whole bed's (a million cells) goes from the worker to
- * the page handed over rather than cloned (seconds as arrays of objects).
+ * A job's records packed in typed arrays (a whole bed's has a million cells), kept in the work worker
+ * for as long as the job's map is shown (work/dose-work.ts).
  */
 export interface DosePlan {
   cols: number;
@@ -64,9 +64,6 @@ export function packDosePlan(cols: number, rows: number, unit: DosePlan['unit'],
   p.firstEntry[r] = e;
   return p;
 }
-
-/** The buffers of a packed plan, to hand over to another thread. */
-export const dosePlanBuffers = (p: DosePlan): ArrayBuffer[] => [p.firstRecord, p.ledUs, p.firstEntry, p.cell, p.led, p.us].map((a) => a.buffer as ArrayBuffer);
 
 /** How many programs step s has (1 for a stop). */
 export const programCount = (p: DosePlan, s: number): number => p.firstRecord[s + 1] - p.firstRecord[s];

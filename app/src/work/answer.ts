@@ -3,7 +3,7 @@
 
 import { planForPreview, keptGrid } from './preview-work';
 import { dryRunSummary } from './dry-run-work';
-import { dosePlanBuffers, planDoses } from '../job/dose-plan';
+import { doseMapNow, keepDosePlan } from './dose-work';
 import { BoardUnreadable, rasterInWorker, readBoard, readPicture, spriteOf } from './artwork-work';
 import type { Progress, WorkRequest } from './work-types';
 
@@ -17,10 +17,10 @@ export async function answer(request: WorkRequest, report: (p: Progress) => void
       return planForPreview(request);
     case 'preview-grid':
       return keptGrid(request.upTo, request.maxSide);
-    case 'dose-plan': {
-      const plan = planDoses(request.job, request.machine);
-      return { result: plan, transfer: dosePlanBuffers(plan) };
-    }
+    case 'dose-plan':
+      return { result: keepDosePlan(request.job, request.machine) };
+    case 'dose-map':
+      return doseMapNow(request.batch, request.maxSide);
     case 'dry-run':
       return { result: dryRunSummary(request, report) };
     case 'read-picture':

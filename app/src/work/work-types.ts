@@ -11,6 +11,7 @@ import type { Finding, MachineCheck } from '../studio/dry-run';
 import type { UploadSize } from '../job/upload-time';
 import type { MachineConfig } from '../studio/machine-config';
 import type { Cut } from '../studio/objects/clipping';
+import type { DoseBatch } from '../job/dose-batch';
 import type { TwoSided } from '../studio/objects/board-object';
 import type { ArtworkObject } from '../studio/objects/objects';
 import type { Polarity } from '../studio/objects/raster';
@@ -30,8 +31,10 @@ export type WorkRequest =
   | { kind: 'plan'; job: PrintJob; machine: MotionModel; auto?: boolean; bedXUm?: number }
   /** The kept plan's light up to stop (or pass) `upTo`, in bins of at most `maxSide` a side. */
   | { kind: 'preview-grid'; upTo: number; maxSide: number }
-  /** A job that ran, in its order: what each of its dose records should give, and to which cells (job/dose-plan.ts). */
+  /** A job that ran, in its order: what each of its dose records should give, and to which cells (job/dose-plan.ts), kept for `dose-map`. */
   | { kind: 'dose-plan'; job: PrintJob; machine: MotionModel }
+  /** The page's dose ledger's changes since the last batch: the kept job's delivered-dose map, counted and binned in at most `maxSide` pixels a side. */
+  | { kind: 'dose-map'; batch: DoseBatch; maxSide: number }
   /**
    * The check before an exposure (studio/dry-run.ts); `auto`: in its fastest order, of those that
    * stay on the config's bed. `boards`: the drawing's two-sided boards, one side a job.
