@@ -5,9 +5,9 @@
 import type { ObjectLayer } from '../objects/object-layer.svelte';
 import { exposes, type StudioObject } from '../objects/objects';
 import { FRAME_PX, HANDLE_PX, handleCentres, selectionFrame } from './handles';
-import type { Raster } from '../objects/raster';
+import { madeSprites, type Raster } from '../objects/raster';
 import { doseColours } from './tile-cache';
-import { madeSprites, spritePixels } from './made-sprites';
+import { spritePixels } from './made-sprites';
 import { toScreen, type View } from './viewport';
 
 const ACCENT = '#7a3cff';

@@ -1,8 +1,6 @@
-// Sprites made off the page's thread (the work worker draws a large raster's as an ImageBitmap),
-// known by the raster they show; the editor draws them instead of making its own.
+// A raster's sprite, as the editor draws it: made here on the page, or off the page's thread by the
+// work worker for a large raster (kept in objects/raster.ts `madeSprites`).
 import type { Raster } from '../objects/raster';
-
-export const madeSprites = new WeakMap<Raster, CanvasImageSource>();
 
 /** A raster's sprite pixels, RGBA as one 32-bit word each through the dose colours: dose 0 see-through. */
 export function spritePixels(raster: Raster, lut: Uint32Array): Uint32Array<ArrayBuffer> {

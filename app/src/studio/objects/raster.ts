@@ -12,6 +12,14 @@ import { frameSize, orient } from './orientation';
 /** The cells' doses of an object, w × h, row 0 first. */
 export type Raster = Uint8Array;
 
+/**
+ * Sprites made off the page's thread (the work worker draws a large raster's as an ImageBitmap),
+ * known by the raster they show; the editor draws them instead of making its own. Kept here, with
+ * the rasters of the first load: in a file of its own, shared by the studio's and the panels'
+ * chunks, its 141 B took a 4 KB block of the ESP's flash.
+ */
+export const madeSprites = new WeakMap<Raster, CanvasImageSource>();
+
 /** Which side of the artwork is exposed, for the whole job. */
 export type Polarity = 'negative' | 'positive';
 

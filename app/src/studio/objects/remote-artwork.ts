@@ -7,8 +7,7 @@ import { Cancelled, spawnWorker, WorkClient, type CallOptions } from '../../work
 import type { BoardRead, PictureRead } from '../../work/work-types';
 import { ready } from './artwork';
 import type { ArtworkObject } from './objects';
-import type { Polarity, Raster, ReadyArtwork } from './raster';
-import { madeSprites } from '../canvas/made-sprites';
+import { madeSprites, type Polarity, type Raster, type ReadyArtwork } from './raster';
 
 /** The studio's worker: one for every picture and board, so what it has read serves them all. */
 export const studioWork = new WorkClient(spawnWorker);
