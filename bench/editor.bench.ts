@@ -41,6 +41,7 @@ export async function editorBench(): Promise<void> {
     await page.addInitScript('window.__name = (f) => f');
     await page.goto(`${url}/?bench&bed=204.8x204.8`); // 4096 × 4096 cells of 50 µm
     await page.waitForFunction(() => (window as unknown as { __studio?: unknown }).__studio);
+    await page.getByTestId('editor-canvas').waitFor(); // the studio's chunk loads as it mounts, a task after the first screen
     const rows = await page.evaluate(async () => {
       type Ed = { grid: { cols: number; rows: number }; view: { scale: number; x: number; y: number }; pan(dx: number, dy: number): void;
         place(d: Uint8Array, w: number, h: number, x: number, y: number, label: string): void; fitTo(w: number, h: number): void; screen: { width: number; height: number } };
