@@ -2,6 +2,7 @@ import { svelte } from '@sveltejs/vite-plugin-svelte';
 import { fileURLToPath } from 'node:url';
 import { defineConfig, type Plugin } from 'vite';
 import { bundleSize, formatBundleSize } from '../scripts/bundle-size.ts';
+import { compileHint } from './compile-hint.ts';
 import { serviceWorker } from './pwa.ts';
 
 /** What loads only when a panel is first opened: grouped into one chunk. */
@@ -64,7 +65,7 @@ function printSize(): Plugin {
 
 export default defineConfig(({ mode }) => ({
   root: fileURLToPath(new URL('.', import.meta.url)),
-  plugins: [svelte({ configFile: false, dynamicCompileOptions: ({ filename }) => (LAZY_VIEW.test(filename) ? { css: 'injected' } : undefined) }), serviceWorker(fileURLToPath(new URL('service-worker.js', import.meta.url))), printSize()],
+  plugins: [svelte({ configFile: false, dynamicCompileOptions: ({ filename }) => (LAZY_VIEW.test(filename) ? { css: 'injected' } : undefined) }), serviceWorker(fileURLToPath(new URL('service-worker.js', import.meta.url))), compileHint(), printSize()],
   build: {
     outDir,
     emptyOutDir: true,

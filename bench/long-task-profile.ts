@@ -66,7 +66,7 @@ function analyse(prof: { nodes: Node[]; samples: number[]; timeDeltas: number[];
     console.log(`\n[${label}] busy run ${ms.toFixed(0)} ms at ${times[a].toFixed(0)} ms`);
     if (lines.size) console.log('  lines (ticks over the whole profile): ' + [...lines].sort((x, y) => y[1] - x[1]).slice(0, 6).map(([k, v]) => `${v} ${k}`).join('\n        '));
     console.log('  self: ' + [...self].sort((x, y) => y[1] - x[1]).slice(0, 10).map(([k, v]) => `${v.toFixed(0)} ${k}`).join('\n        '));
-    console.log('  incl: ' + [...incl].sort((x, y) => y[1] - x[1]).slice(0, 25).map(([k, v]) => `${v.toFixed(0)} ${k}`).join('\n        '));
+    console.log('  incl: ' + [...incl].sort((x, y) => y[1] - x[1]).slice(0, Number(process.env.TOPN ?? 25)).map(([k, v]) => `${v.toFixed(0)} ${k}`).join('\n        '));
   }
 }
 const which = process.argv.slice(2);

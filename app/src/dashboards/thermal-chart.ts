@@ -5,6 +5,7 @@ import uPlot from 'uplot';
 import uPlotCss from 'uplot/dist/uPlot.min.css?inline';
 import { agoLabel, secondsAgo, timeAxis, type TimeAxis } from './chart-time';
 import { SENSOR_COLOURS } from './sensor-colours';
+import { warmCanvasFonts } from '../ui/later';
 
 export interface ThermalChart {
   /** `data[0]` is the printer's time in seconds; the chart shows it as time before the newest sample. */
@@ -26,18 +27,12 @@ const LABEL_FONT = `bold ${AXIS_FONT}`;
 
 /**
  * Readies the page for the first chart, in an idle task of its own before it is made: uPlot's styles
- * added, and the axes' fonts drawn once on a canvas of a pixel (the page's first text on a canvas
- * finds and shapes its fonts, 14–30 ms of the chart's first drawing). Made in one go, the chart was
- * the page load's longest task (issue 40).
+ * added, and the axes' fonts drawn once (ui/later.ts). Made in one go, the chart was the page
+ * load's longest task (issue 40).
  */
 export function warmText(): void {
   addStyles();
-  const ctx = document.createElement('canvas').getContext('2d');
-  if (!ctx) return;
-  for (const font of [AXIS_FONT, LABEL_FONT]) {
-    ctx.font = font;
-    ctx.fillText('-20 min 0123456789 s °C now time before', 0, 0);
-  }
+  warmCanvasFonts([AXIS_FONT, LABEL_FONT], '-20 min 0123456789 s °C now time before');
 }
 
 /** The readings under the cursor: how long before now, and each sensor's value (null where none). */

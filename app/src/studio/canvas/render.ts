@@ -6,6 +6,10 @@ import { drawObjects, type Sprites } from './draw-objects';
 import { TILE, type TileCache } from './tile-cache';
 import { RULER, rulerStep, toScreen } from './viewport';
 
+/** The rulers' numbers; EditorCanvas readies it before the first frame (ui/later.ts). */
+export const RULER_FONT = '10px system-ui, sans-serif';
+export const RULER_SAMPLE = 'mm 0123456789.';
+
 /** A frame's time for the coarser levels after an edit: the rest of the frame draws the tiles. */
 const LEVELS_MS = 8;
 
@@ -90,7 +94,7 @@ function rulers(ctx: CanvasRenderingContext2D, w: number, h: number, ed: GridEdi
   ctx.fillRect(0, 0, RULER, h);
   ctx.fillStyle = '#444a5a';
   ctx.strokeStyle = '#444a5a';
-  ctx.font = '10px system-ui, sans-serif';
+  ctx.font = RULER_FONT;
   ctx.lineWidth = 1;
   const pxPerMmX = (v.scale * 1000) / pitchUm.x, pxPerMmY = (v.scale * 1000) / pitchUm.y;
   const stepX = rulerStep(pxPerMmX), stepY = rulerStep(pxPerMmY);
