@@ -3,6 +3,7 @@
 // apart, and the stops a fault or a resume lit twice.
 
 import type { DoseReport } from '../protocol/dialect-reply';
+import { StopBook } from './stop-book';
 
 /** One stop's light: a stop's F is program 0; a pass on the move has one entry a program. */
 export interface StopDose {
@@ -30,11 +31,8 @@ export interface DoseSummary {
 const ENDED = new Set(['idle', 'ready', 'done', 'aborted', 'failed']);
 
 export class DoseLedger {
-  readonly #stops = new Map<number, StopDose>();
-  /** The stop of each line folded in since the last clear, in order: a view counts again only those. */
-  readonly #log: number[] = [];
-  /** Clears so far: a view's line count is of this ledger's lines only while it is the same. */
-  #clears = 0;
+  /** Each stop's light, and the stop of each line folded in since the last clear: a view counts again only those. */
+  readonly #book = new StopBook<StopDose>();
   #file: string | undefined;
   #ended = true;
 
@@ -59,13 +57,13 @@ export class DoseLedger {
 
   /** Folds one line's report in. A second report of a stop's program replaces the first. */
   add(r: DoseReport): void {
-    let s = this.#stops.get(r.stop);
+    let s = this.#book.stop(r.stop);
     if (!s) {
       s = { programs: new Map(), cutUs: [], twice: false, lines: 0 };
-      this.#stops.set(r.stop, s);
+      this.#book.stops.set(r.stop, s);
     }
     s.lines++;
-    this.#log.push(r.stop);
+    this.#book.changed(r.stop);
     if (r.again) s.twice = true;
     if (r.planUs) s.planUs = [...r.planUs];
     if (r.cut) {
@@ -78,12 +76,12 @@ export class DoseLedger {
   }
 
   stop(n: number): StopDose | undefined {
-    return this.#stops.get(n);
+    return this.#book.stop(n);
   }
 
   /** The light counted for a stop, per LED in µs: its programs summed; undefined if none reported. */
   delivered(n: number): number[] | undefined {
-    const s = this.#stops.get(n);
+    const s = this.#book.stop(n);
     if (!s || !s.programs.size) return undefined;
     const sum = [0, 0, 0, 0];
     for (const on of s.programs.values()) on.forEach((v, k) => (sum[k] += v));
@@ -94,7 +92,7 @@ export class DoseLedger {
     const twice: number[] = [];
     const cutOnly: number[] = [];
     let stops = 0;
-    for (const [n, s] of [...this.#stops].sort((a, b) => a[0] - b[0])) {
+    for (const [n, s] of [...this.#book.stops].sort((a, b) => a[0] - b[0])) {
       if (s.programs.size) stops++;
       else if (s.cutUs.length) cutOnly.push(n);
       if (s.twice) twice.push(n);
@@ -104,12 +102,10 @@ export class DoseLedger {
 
   /** The stops of the lines folded in from line `from` on (0 the first since the last clear), how many lines there are now, and the clears so far. */
   since(from: number): { stops: number[]; lines: number; clears: number } {
-    return { stops: this.#log.slice(from), lines: this.#log.length, clears: this.#clears };
+    return this.#book.since(from);
   }
 
   clear(): void {
-    this.#stops.clear();
-    this.#log.length = 0;
-    this.#clears++;
+    this.#book.clear();
   }
 }

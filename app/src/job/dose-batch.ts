@@ -3,6 +3,7 @@
 // the worker's mirror takes them, and answers the delivered-dose map's questions as the ledger would.
 
 import type { DoseLedger, StopDose } from '../device/dose-ledger';
+import { StopBook } from '../device/stop-book';
 import type { DoseLedgerView } from './dose-map';
 
 /** The stops that changed since the last batch; a new `clears` starts the ledger again. */
@@ -29,28 +30,22 @@ export function batchSince(ledger: Pick<DoseLedger, 'since' | 'stop'>, heard: He
 
 /** The ledger as the worker has heard it: each stop as last sent, and the order its changes came in. */
 export class LedgerMirror implements DoseLedgerView {
-  readonly #stops = new Map<number, StopDose>();
-  readonly #log: number[] = [];
-  #clears = -1;
+  readonly #book = new StopBook<StopDose>(-1);
 
   apply(batch: DoseBatch): void {
-    if (batch.clears !== this.#clears) {
-      this.#stops.clear();
-      this.#log.length = 0;
-      this.#clears = batch.clears;
-    }
+    if (batch.clears !== this.#book.clears) this.#book.clear(batch.clears);
     for (const [n, s] of batch.stops) {
-      if (s) this.#stops.set(n, s);
-      else this.#stops.delete(n);
-      this.#log.push(n);
+      if (s) this.#book.stops.set(n, s);
+      else this.#book.stops.delete(n);
+      this.#book.changed(n);
     }
   }
 
   stop(n: number): StopDose | undefined {
-    return this.#stops.get(n);
+    return this.#book.stop(n);
   }
 
   since(from: number): { stops: number[]; lines: number; clears: number } {
-    return { stops: this.#log.slice(from), lines: this.#log.length, clears: this.#clears };
+    return this.#book.since(from);
   }
 }
