@@ -18,6 +18,7 @@
 #include "line_splitter.h"
 #include "nano_codec.h"
 #include "printhead.h"
+#include "printhead_config.h"
 
 namespace mega {
 
@@ -330,7 +331,7 @@ class FakeNano : public ByteStream, private nano::PrintheadIo {
     for (uint8_t i = 0; i < len; i++) toMega_.push_back({0, text[i], baud});
   }
 
-  nano::PrintheadConfig config_{10000000, {{600, 600, 600, 600, 600, 600}, 50, 100, 1750}, "0.1.0"};
+  nano::PrintheadConfig config_ = nano::kPrintheadConfig;  // the real Nano's build-time settings and version
   nano::Printhead head_;
   char line_[uv::kNanoMaxLine + 2];
   bool cut_ = false;           // takeCut(): a cut since the last call, and when

@@ -27,7 +27,7 @@ TEST_F(Link, StartsWithRThenIdentifiesAndPollsTemperaturesAndFaults) {
   ASSERT_GE(nano.lines.size(), 3u);
   EXPECT_EQ(nano.lines[0], "R");
   EXPECT_EQ(nano.lines[1], "V");
-  EXPECT_STREQ(link.firmware(), "0.1.0");
+  EXPECT_STREQ(link.firmware(), NANO_FIRMWARE_VERSION);  // the simulated Nano is the real one's
   EXPECT_TRUE(link.online());
   EXPECT_TRUE(link.tempsKnown());
   EXPECT_EQ(link.deciC()[0], 250);

@@ -10,6 +10,7 @@
 #include "neopixel.h"
 #include "pins.h"
 #include "printhead.h"
+#include "printhead_config.h"
 #include "probe_input.h"
 #include "servo_pulse.h"
 #include "uart.h"
@@ -68,14 +69,8 @@ class Board : public nano::PrintheadIo {
   void linkSpeed(uint32_t baud, bool afterReply) override { nano::uart::setBaud(baud, afterReply); }
 };
 
-const nano::PrintheadConfig kConfig = {
-    NANO_MAX_EXPOSURE_US,
-    {NANO_TEMP_LIMITS_DC, NANO_TEMP_HYSTERESIS_DC, 100, 1750},
-    NANO_FIRMWARE_VERSION,
-};
-
 Board board;
-nano::Printhead head(board, kConfig);
+nano::Printhead head(board, nano::kPrintheadConfig);
 char lineBuf[uv::kNanoMaxLine + 1];
 uv::LineSplitter splitter(lineBuf, uv::kNanoMaxLine);
 uv::Colour shown = uv::Colour::Red;  // differs from the first wanted colour, so it is written once
