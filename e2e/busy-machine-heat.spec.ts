@@ -65,7 +65,7 @@ test('item 3: the dry run shows a silent printhead as a red line, and offers no 
   await dialog.getByRole('button', { name: 'Cancel' }).click();
 });
 
-test('item 4: paused to cool, Continue stays closed while the head is hot, and says so; the fault goes when the job goes on', async ({ page }, info) => {
+test('item 4: paused to cool, Continue stays closed while the head is hot, and says so; Continue paced is open and says it waits to cool; the fault goes when the job goes on', async ({ page }, info) => {
   test.setTimeout(120_000);
   await open(page, 2);
   await startTestPattern(page, '100');
@@ -78,7 +78,8 @@ test('item 4: paused to cool, Continue stays closed while the head is hot, and s
   await expect(cont).toBeDisabled();
   await expect(cont).toHaveAttribute('title', /^T4 .*, T5 .* are still too hot$/);
   await expect(page.getByTestId('continue-why')).toContainText('Continue: not yet, T4');
-  await expect(hint.getByRole('button', { name: 'Continue paced' })).toBeDisabled();
+  await expect(hint.getByRole('button', { name: 'Continue paced' })).toBeEnabled(); // the Mega waits for the head to cool first
+  await expect(page.getByTestId('continue-paced-waits')).toHaveText('waits for the head to cool, then continues');
   await page.screenshot({ path: info.outputPath('hot-two-sensors.png'), fullPage: true });
 
   await setLimits(page, { 4: 50 }); // one sensor left over its limit
@@ -88,6 +89,7 @@ test('item 4: paused to cool, Continue stays closed while the head is hot, and s
 
   await setLimits(page, { 5: 50 }); // cooled, as far as the limits go
   await expect(cont).toBeEnabled();
+  await expect(page.getByTestId('continue-paced-waits')).toBeHidden();
   await expect(page.getByTestId('faults')).toContainText('E31'); // it stands until the job goes on
   await hint.getByRole('button', { name: 'Continue paced' }).click();
   await expect(page.getByTestId('job-state')).toContainText('running, paced');

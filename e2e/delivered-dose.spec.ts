@@ -31,9 +31,10 @@ test('a job cut by a fault and continued: every cell once, within 2 %, the fault
   await expect(map.getByTestId('dose-summary')).toContainText('not reported yet');
   await map.screenshot({ path: info.outputPath('1-cut.png') });
 
-  // The heat gone, the job continues paced: it waits for the head to cool, then exposes the cut stop again.
-  // While the Nano's fault still stands, the Mega refuses (E31 printhead faulted) and the job stays
-  // paused: a person presses again, as here (a fresh-clone run caught that once).
+  // The heat gone, the job continues paced: the Mega takes it while the head is still hot, waits for it
+  // to cool, then exposes the cut stop again (mega.md "Pacing"). A head heated past its sensors' range
+  // (125 °C) reads as a broken sensor, which the Mega refuses (E32) until it reads in range again: a
+  // person presses again then, as here.
   sim.setFaults({ overheatCPerS: 0 });
   await expect(async () => {
     await page.getByRole('button', { name: 'Continue paced' }).click({ timeout: 2_000 });

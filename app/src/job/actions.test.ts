@@ -79,10 +79,19 @@ describe('actionsFor', () => {
   it('keeps a job paused to cool from continuing while a sensor is over its limit, and lets it go once cooled', () => {
     const hot = { ...VIEWS.paused, job: job('paused', { reason: 'overtemp' }), faults: [E31] };
     expect(actionsFor({ ...hot, hot: ['T3 56.0 °C (limit 55 °C)'] }).continue).toEqual({ open: false, why: 'T3 56.0 °C (limit 55 °C) is still too hot' });
-    expect(actionsFor({ ...hot, hot: ['T3 56.0 °C (limit 55 °C)', 'T4 51.0 °C (limit 50 °C)'] }).continuePaced.why).toMatch(/, T4 .* are still too hot$/);
+    expect(actionsFor({ ...hot, hot: ['T3 56.0 °C (limit 55 °C)', 'T4 51.0 °C (limit 50 °C)'] }).continue.why).toMatch(/, T4 .* are still too hot$/);
     expect(actionsFor(hot).continue.open).toBe(true); // E31 stands until the job continues; the readings decide
     expect(actionsFor({ ...hot, faults: [E30] }).continue.why).toBe('the printhead is still faulted: E30 printhead not responding');
     expect(actionsFor({ ...hot, faults: [{ code: 33, message: 'printhead refused an exposure', atMs: 0 }] }).continue.open).toBe(true); // the Mega judges it
+  });
+
+  it('lets a job paused to cool continue paced while it is still hot: the Mega waits for the head to cool first', () => {
+    const hot = { ...VIEWS.paused, job: job('paused', { reason: 'overtemp' }), faults: [E31], hot: ['T3 56.0 °C (limit 55 °C)', 'T4 51.0 °C (limit 50 °C)'] };
+    expect(actionsFor(hot).continuePaced).toEqual({ open: true });
+    expect(actionsFor(hot).continue.open).toBe(false);
+    expect(actionsFor({ ...hot, faults: [E31, E30] }).continuePaced).toEqual({ open: false, why: 'the printhead is still faulted: E30 printhead not responding' });
+    expect(actionsFor({ ...hot, job: job('running', { paced: true, cooling: true }) }).continuePaced.why).toBe('the job is running');
+    expect(actionsFor({ ...IDLE, hot: hot.hot }).continuePaced.why).toBe('no job is paused');
   });
 
   it('counts a running job before a homing, and a job that ended as none', () => {

@@ -110,11 +110,13 @@ export function actionsFor(v: MachineView): Actions {
   const printhead = v.faults.find((f) => f.code === 30);
   const probe = busy ? free : printhead ? closed(`the printhead does not answer (${faultWords([printhead])})`) : OPEN;
   const idleish = phase === 'idle' || phase === 'faulted' || phase === 'homing' || phase === 'probing' || phase === 'configuring';
-  // A paused job continues once the head is below its limits (the readings say when) and the
-  // printhead answers (the app asks again until it does), as the Mega refuses it otherwise.
-  const goOn = phase === 'paused'
-    ? v.hot.length ? closed(stillTooHot(v.hot)) : printhead ? closed(`the printhead is still faulted: ${faultWords([printhead])}`) : OPEN
-    : closed(jobOn ? 'the job is running' : idleish ? 'no job is paused' : busy!);
+  // A paused job continues once the printhead answers (the app asks again until it does) and, unpaced,
+  // once the head is below its limits (the readings say when), as the Mega refuses it otherwise. A paced
+  // continue while hot is taken: the Mega waits for the head to cool first (mega.md "Pacing").
+  const notPaused = closed(jobOn ? 'the job is running' : idleish ? 'no job is paused' : busy!);
+  const silent = printhead ? closed(`the printhead is still faulted: ${faultWords([printhead])}`) : null;
+  const goOn = phase !== 'paused' ? notPaused : v.hot.length ? closed(stillTooHot(v.hot)) : silent ?? OPEN;
+  const goOnPaced = phase !== 'paused' ? notPaused : silent ?? OPEN;
   const noJob = closed(idleish ? 'no job is running' : busy!);
   const offer = !v.interrupted ? closed('no interrupted job') : busy ? closed(busy) : OPEN;
   return {
@@ -132,7 +134,7 @@ export function actionsFor(v: MachineView): Actions {
     flash: phase === 'disconnected' ? OPEN : busy ? closed(`${busy}: flashing restarts the board`) : OPEN,
     pause: jobOn ? OPEN : phase === 'paused' ? closed('the job is paused') : noJob,
     continue: goOn,
-    continuePaced: goOn,
+    continuePaced: goOnPaced,
     stop: jobOn || phase === 'paused' ? OPEN : noJob,
     resume: offer,
     discard: offer,

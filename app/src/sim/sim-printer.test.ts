@@ -246,6 +246,27 @@ describe('simulated printer: faults', () => {
     expect(h.cmd('M24')[0]).toMatch(/^Error:E31/);
   });
 
+  it('continues a job paused hot, paced, by waiting to cool first: no second press (mega.md "Pacing")', () => {
+    const h = new SimHost();
+    h.cmd('G28');
+    upload(h, 'W.UVJ', encodeJob(smallJob(7)));
+    h.cmd('M23 W.UVJ');
+    h.sim.setFaults({ overheatCPerS: 40 }); // the head heats with or without its LEDs: past 55 °C within the job
+    h.cmd('M24');
+    h.waitFor(/^JOB:paused .*reason=overtemp/, 120_000);
+    expect(h.cmd('M24')[0]).toBe('Error:E31 over-temperature: printhead faulted'); // unpaced: refused while hot
+    h.sim.setFaults({ overheatCPerS: 0 });
+    expect(h.cmd('M24 P1').filter((l) => /^(Error|echo):E/.test(l))).toEqual([]);
+    expect(h.waitFor(/^JOB:/, 1000)).toMatch(/^JOB:running .* paced=1 cooling=1$/);
+    const fires = h.sim.module.fires;
+    h.sim.advance(1000); // from 55 °C or more to 52 takes longer
+    expect(h.cmd('M27')[0]).toMatch(/ cooling=1$/);
+    expect(h.sim.module.fires).toBe(fires); // dark while it waits
+    h.waitFor(/^JOB:running (?!.*cooling=1)/, 120_000); // the wait ends: every reading 3 °C under its limit
+    for (let i = 0; i < 4; i++) expect(h.sim.thermal.temp[i], `T${i}`).toBeLessThanOrEqual(55 - 3);
+    expect(h.waitFor(/^JOB:(done|paused|failed)/, 600_000)).toMatch(/^JOB:done .*paced=1/);
+  });
+
   it('refuses to start a job while the printhead is over its limit', () => {
     const h = new SimHost({ thermal: { extraHeatingCPerS: 10 } }); // hot before any LED fires (and below the TMP36's 125 °C)
     h.cmd('G28');

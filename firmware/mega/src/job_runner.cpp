@@ -105,17 +105,22 @@ void JobRunner::pause(uint8_t reason) {
   pauseReason_ = reason;
 }
 
-void JobRunner::resume(uint32_t nowUs) {
+void JobRunner::resume(uint32_t nowUs, bool coolFirst) {
   if (state_ != RunState::Paused) return;
   pauseWanted_ = false;
   reason_ = 0;
+  if (coolFirst) phase_ = Phase::CoolFirst;  // nothing moves, nothing is read, until it is cool
+  else continueAfterPause();
+  since_ = nowUs;
+  state_ = RunState::Running;
+  changed_ = true;
+}
+
+void JobRunner::continueAfterPause() {
   // A stop that failed is exposed again from its start: it was not confirmed. The Nano's count is
   // read again first, since a failed exposure may or may not have been counted.
   phase_ = source_ ? Phase::Load : Phase::Sync;  // a stream keeps the stop in hand: moved to, exposed again
   if (!source_) head_.requestCounters();
-  since_ = nowUs;
-  state_ = RunState::Running;
-  changed_ = true;
 }
 
 void JobRunner::abort() {
@@ -125,28 +130,6 @@ void JobRunner::abort() {
   if (stops_ >= 0) sd_.close(stops_);
   stops_ = -1;
   halt(RunState::Aborted, 0);
-}
-
-uint8_t JobRunner::tooHot() const {
-  const int16_t* t = head_.deciC();
-  for (uint8_t i = 0; i < uv::kSensorCount; i++)
-    if (t[i] * 100 >= config_.milli(Key::ThermalLimit0 + i)) return static_cast<uint8_t>(i + 1);
-  return 0;
-}
-
-uint8_t JobRunner::exposureBlocked() const {
-  if (tooHot() || head_.activeFaults()) return uv::kOverTemperature;
-  if (!head_.online()) return uv::kNanoTimeout;
-  return 0;
-}
-
-bool JobRunner::paceWaits(bool cooling) const {
-  const int16_t* t = head_.deciC();
-  for (uint8_t i = 0; i < uv::kSensorCount; i++) {
-    int32_t limit = config_.milli(Key::ThermalLimit0 + i) / 100;
-    if (cooling ? t[i] > limit - kPaceUntilDeciC : t[i] >= limit - kPaceAtDeciC) return true;
-  }
-  return false;
 }
 
 uint32_t JobRunner::compensate(uint8_t led, uint32_t us) const {
@@ -353,17 +336,8 @@ void JobRunner::poll(uint32_t nowUs) {
       return;
     }
     case Phase::Cool:
-      if (pauseWanted_) {
-        phase_ = Phase::Load;  // the stop is still in hand: the pause comes before it
-        return;
-      }
-      if (paceWaits(true)) return;
-      // A stop in hand waited after its move: due at once, the checks again, then the exposure. A
-      // scan job waited between passes: the checks again, then the pass.
-      phase_ = stopInHand_ ? Phase::Settle : Phase::Scan;
-      settleUntil_ = nowUs;
-      changed_ = true;
-      return;
+    case Phase::CoolFirst:
+      return cool(nowUs);
     case Phase::Fire:
       if (head_.fireState() == FireState::Firing) return;
       if (head_.fireState() == FireState::Failed) {

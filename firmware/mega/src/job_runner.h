@@ -21,10 +21,16 @@ enum class RunState : uint8_t { Running, Paused, Done, Aborted, Failed };
 
 // Pacing (protocol/mega.md "Pacing"): before a stop, or a pass on the move, a paced job waits with the
 // LEDs off while a sensor reads within kPaceAtDeciC of its soft limit, until every one reads
-// kPaceUntilDeciC below it.
+// kPaceUntilDeciC below it and the Nano's OVERTEMP flag is clear (job_runner_pacing.cpp).
 // The app's dry run and simulated printer use the same numbers (app/src/sim/pacing.ts).
 constexpr int16_t kPaceAtDeciC = 20;
 constexpr int16_t kPaceUntilDeciC = 30;
+
+// The first sensor (1-6) reading at or over its soft limit (thermal.limit.<i>) now, or 0.
+uint8_t sensorAtSoftLimit(const PrintheadLink& head, const Config& config);
+// Heat stands in the way of an exposure: a sensor at or over its soft limit, or the Nano's own
+// OVERTEMP flag (it clears only 5 °C under the Nano's hard limit, nano.md). Cooling clears both.
+bool headHot(const PrintheadLink& head, const Config& config);
 
 class JobRunner {
  public:
@@ -62,16 +68,18 @@ class JobRunner {
   void poll(uint32_t nowUs);
   // Pauses once the stop under way is confirmed. `reason`: 0 by request, else an error code.
   void pause(uint8_t reason = 0);
-  void resume(uint32_t nowUs);
+  // Continues a paused job. `coolFirst` (a paced continue while the head is hot, mega.md "Pacing"):
+  // it waits to cool first, LEDs off and the head still, as a paced job's wait before a stop.
+  void resume(uint32_t nowUs, bool coolFirst = false);
   // Stops everything at once: LEDs off, motion stopped, the checkpoint cleared.
   void abort();
 
   // Paced or not (mega.md "Pacing"); a paced job waiting for the head to cool is `cooling`.
   void setPaced(bool paced) { paced_ = paced; }
   bool paced() const { return paced_; }
-  bool cooling() const { return phase_ == Phase::Cool; }
+  bool cooling() const { return state_ == RunState::Running && (phase_ == Phase::Cool || phase_ == Phase::CoolFirst); }
   // The first sensor (1-6) reading at or over its soft limit now, or 0.
-  uint8_t tooHot() const;
+  uint8_t tooHot() const { return sensorAtSoftLimit(head_, config_); }
 
   RunState state() const { return state_; }
   uint8_t reason() const { return reason_; }
@@ -92,7 +100,9 @@ class JobRunner {
   uint32_t faultStop() const { return done_; }
 
  private:
-  enum class Phase : uint8_t { Sync, Drain, Load, Move, Settle, Cool, Fire, Wait, Scan };
+  // Cool: a paced job's wait before a stop or a pass. CoolFirst: the same wait, before a paced
+  // continue goes on (the phase costs no RAM, where a flag in the runner would).
+  enum class Phase : uint8_t { Sync, Drain, Load, Move, Settle, Cool, CoolFirst, Fire, Wait, Scan };
   // Whose light the Nano's records are, and whether the stop exposed next had light before (one byte:
   // the Mega's RAM; it also says a resume waits for its verdict, Resuming). None, Again: no stop's (older than the job; Again: the next stop is exposed
   // again). Stop, StopAgain: the stop under way (its F, or its pass's programs). Done, DoneAgain: the
@@ -107,9 +117,13 @@ class JobRunner {
   void fail(uint8_t code);
   void halt(RunState s, uint8_t reason);
   uint32_t compensate(uint8_t led, uint32_t us) const;
-  // What stops an exposure from starting now (too hot, a printhead fault, the Nano gone): its error code, or 0.
+  // What stops an exposure from starting now (a broken sensor, too hot, the Nano gone): its error code, or 0.
   uint8_t exposureBlocked() const;
   bool paceWaits(bool cooling) const;
+  // A paused job runs on: the Nano's count read again (a card job), the stop in hand again.
+  void continueAfterPause();
+  // A paced wait to cool, either kind (Cool, CoolFirst): on while only heat stands in the way.
+  void cool(uint32_t nowUs);
   // The stop under way is exposed (or had nothing to light): counted, and the next loaded.
   void confirmed(uint32_t nowUs);
   // A scan job's passes (job_runner_scan.cpp).

@@ -193,7 +193,10 @@ class Machine {
   // The JOB: line into `out`, kJobLineMax bytes: the longest fits a host's transmit ring whole.
   uint8_t formatJob(char* out) const;
   void jobReports();
-  uint8_t refuseExposure(HostLink& port);
+  // What keeps a job from exposing now (the printhead silent, a sensor broken, the head hot, an axis
+  // not homed): the error said on `port` and its code, or 0. `heatWaits`: heat is no refusal (a paced
+  // continue waits it out).
+  uint8_t refuseExposure(HostLink& port, bool heatWaits = false);
   Result startStream(HostLink& port, const uv::Command& c);
   Result streamLine(HostLink& port, const LineSlot& line);
   // G-code files on the card (machine_card_gcode.cpp): true if the command was one of theirs.

@@ -26,15 +26,16 @@ void Machine::clearArena() {
   streaming_ = false;
 }
 
-uint8_t Machine::refuseExposure(HostLink& port) {
+uint8_t Machine::refuseExposure(HostLink& port, bool heatWaits) {
   if (!head_.online()) {
     port.errorLine(uv::kNanoTimeout);
     return uv::kNanoTimeout;
   }
-  const int16_t* t = head_.deciC();
-  bool hot = head_.activeFaults() != 0;
-  for (uint8_t i = 0; i < uv::kSensorCount; i++) hot |= t[i] * 100 >= config_.milli(Key::ThermalLimit0 + i);
-  if (hot) {
+  if (head_.activeFaults() & uv::fault::kSensor) {  // a broken sensor does not clear by cooling
+    port.errorLine(uv::kSensorFault);
+    return uv::kSensorFault;
+  }
+  if (!heatWaits && headHot(head_, config_)) {
     port.errorLineP(uv::kOverTemperature, UV_P("printhead faulted"));
     return uv::kOverTemperature;
   }
@@ -164,9 +165,12 @@ Machine::Result Machine::startOrContinue(HostLink& port, const uv::Command& c) {
   Pace pace = paceParam(port, c);
   if (pace == Pace::Bad) return Result::Done;
   if (running() && run()->state() == RunState::Paused) {
-    if (refuseExposure(port)) return Result::Done;
-    if (pace != Pace::Unsaid) run()->setPaced(pace == Pace::On);  // else as it was
-    run()->resume(now_);
+    // A continue that runs the job paced (P1, or no P for a paced job) waits out heat rather than
+    // being refused for it: first the wait to cool, then the job (mega.md "Pacing").
+    const bool paced = pace == Pace::On || (pace == Pace::Unsaid && run()->paced());
+    if (refuseExposure(port, paced)) return Result::Done;
+    run()->setPaced(paced);
+    run()->resume(now_, paced && headHot(head_, config_));
     return Result::Done;
   }
   if (running() && run()->state() == RunState::Running) {

@@ -12,6 +12,13 @@ namespace mega {
 
 using jobs::Lines;
 
+// The last JOB: line among `lines`, or "(none)".
+inline std::string lastJob(const Lines& lines) {
+  for (auto it = lines.rbegin(); it != lines.rend(); ++it)
+    if (it->rfind("JOB:", 0) == 0) return *it;
+  return "(none)";
+}
+
 class JobTest : public ::testing::Test {
  protected:
   MegaRig m;

@@ -7,12 +7,6 @@ using namespace mega;
 using namespace jobs;
 
 namespace {
-std::string lastJob(const Lines& lines) {
-  for (auto it = lines.rbegin(); it != lines.rend(); ++it)
-    if (it->rfind("JOB:", 0) == 0) return *it;
-  return "(none)";
-}
-
 // A job run to its end with the head held at `deciC`, started by `start`: its last JOB: line.
 class PacingTest : public JobTest {
  protected:

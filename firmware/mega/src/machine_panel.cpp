@@ -59,10 +59,7 @@ void Machine::button(uint8_t pressed) {
     if (running() && run()->state() == RunState::Running) {
       run()->pause(0);
     } else if (running() && run()->state() == RunState::Paused) {
-      const int16_t* t = head_.deciC();
-      bool hot = head_.activeFaults() != 0 || !head_.online();
-      for (uint8_t i = 0; i < uv::kSensorCount; i++) hot |= t[i] * 100 >= config_.milli(Key::ThermalLimit0 + i);
-      if (!hot) run()->resume(now_);
+      if (head_.online() && !head_.activeFaults() && !headHot(head_, config_)) run()->resume(now_);
     }
   }
   if ((pressed & kButtonHome) && long_.op == Op::None && !jobActive()) {

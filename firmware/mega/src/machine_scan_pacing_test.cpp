@@ -1,6 +1,7 @@
 // Paced scan jobs (protocol/mega.md "Pacing", issue 41): the Mega waits to cool between passes,
 // before the move to the next, with the LEDs off and the head still, instead of pausing in a pass;
-// a pause asked for while it waits comes before the pass; every cell still gets its dose.
+// a pause asked for while it waits comes before the pass; a stream paused hot and continued paced
+// waits the same way; every cell still gets its dose.
 #include <gtest/gtest.h>
 
 #include "machine_scan_fixture.h"
@@ -20,12 +21,6 @@ struct ScanPacingTest : ScanMachineTest {
     return false;
   }
 };
-
-std::string lastJob(const Lines& lines) {
-  for (auto it = lines.rbegin(); it != lines.rend(); ++it)
-    if (it->rfind("JOB:", 0) == 0) return *it;
-  return "(none)";
-}
 }  // namespace
 
 TEST_F(ScanPacingTest, APacedScanJobWaitsBetweenPassesStillAndDarkThenExposesEveryCell) {
@@ -86,6 +81,36 @@ TEST_F(ScanPacingTest, AStreamedPacedScanWaitsBeforeThePassThatWouldStartNearThe
   ASSERT_EQ(end.rfind("JOB:done", 0), 0u) << end;
   EXPECT_NE(end.find(" stop=3/3"), std::string::npos) << end;
   EXPECT_FALSE(has(m.usbLines, "FAULT:E31"));
+  const scandose::Figures f = measure(20000);
+  EXPECT_EQ(f.stray, 0);
+  EXPECT_LE(f.worstDosePct, 2.0);
+}
+
+TEST_F(ScanPacingTest, AStreamPausedHotAndContinuedPacedWaitsStillAndDarkBeforeItsNextPass) {
+  job(40, 10, 20000);
+  m.nano.setTemps(250);
+  ASSERT_TRUE(has(m.cmd("G28"), "ok"));
+  m.rig.steps.clear();
+  m.cmd("M828");  // unpaced
+  for (const std::string& r : encode(h, g)) m.cmd(r);
+  m.cmd("M29");
+  ASSERT_TRUE(runUntilStop("1/"));
+  m.nano.setTemps(510);  // over T4's and T5's 50 °C soft limit: the stream pauses before its next pass
+  const std::string paused = runUntilJob({"paused"});
+  EXPECT_NE(paused.find(" stop=2/"), std::string::npos) << paused;
+  EXPECT_NE(paused.find("reason=overtemp"), std::string::npos) << paused;
+  EXPECT_EQ(payload("M24"), (Lines{"Error:E31 over-temperature: printhead faulted"}));
+  EXPECT_EQ(payload("M24 P1"), Lines{});  // taken: it waits to cool first
+  m.run(1500000);
+  EXPECT_NE(lastJob(m.usbLines).find(" paced=1 cooling=1"), std::string::npos) << lastJob(m.usbLines);
+  const size_t lit = m.nano.scanLight.size(), stepped = m.rig.steps.size();
+  m.run(1500000);
+  EXPECT_EQ(m.nano.scanLight.size(), lit);  // dark
+  EXPECT_EQ(m.rig.steps.size(), stepped);   // still
+  m.nano.setTemps(460);
+  const std::string end = runUntilJob({"done", "paused", "failed", "aborted"}, 60000000);
+  ASSERT_EQ(end.rfind("JOB:done", 0), 0u) << end;
+  EXPECT_NE(end.find(" stop=3/3"), std::string::npos) << end;
   const scandose::Figures f = measure(20000);
   EXPECT_EQ(f.stray, 0);
   EXPECT_LE(f.worstDosePct, 2.0);
