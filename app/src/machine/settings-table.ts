@@ -51,7 +51,7 @@ export const SETTINGS: readonly SettingRow[] = [
   { key: 'led.gain.1', name: 'LED 1 gain', unit: '‰', default: '1000', lo: 1, hi: 10000, kind: 'whole', range: '1 to 10000 whole', description: 'calibration gain of LED 1' },
   { key: 'led.gain.2', name: 'LED 2 gain', unit: '‰', default: '1000', lo: 1, hi: 10000, kind: 'whole', range: '1 to 10000 whole', description: 'calibration gain of LED 2' },
   { key: 'led.gain.3', name: 'LED 3 gain', unit: '‰', default: '1000', lo: 1, hi: 10000, kind: 'whole', range: '1 to 10000 whole', description: 'calibration gain of LED 3' },
-  { key: 'thermal.limit.0', name: 'Soft limit, LED 0 sensor', unit: '°C', default: '55', lo: 0, hi: 60, kind: 'decimal', range: '0 to 60', description: 'the Mega\'s soft limit for sensor A0: no job starts or continues above it' },
+  { key: 'thermal.limit.0', name: 'Soft limit, LED 0 sensor', unit: '°C', default: '55', lo: 0, hi: 60, kind: 'decimal', range: '0 to 60', description: 'the Mega\'s soft limit for sensor A0: no job starts or continues above it (a paced continue waits to cool first)' },
   { key: 'thermal.limit.1', name: 'Soft limit, LED 1 sensor', unit: '°C', default: '55', lo: 0, hi: 60, kind: 'decimal', range: '0 to 60', description: 'the Mega\'s soft limit for sensor A1: no job starts or continues above it' },
   { key: 'thermal.limit.2', name: 'Soft limit, LED 2 sensor', unit: '°C', default: '55', lo: 0, hi: 60, kind: 'decimal', range: '0 to 60', description: 'the Mega\'s soft limit for sensor A2: no job starts or continues above it' },
   { key: 'thermal.limit.3', name: 'Soft limit, LED 3 sensor', unit: '°C', default: '55', lo: 0, hi: 60, kind: 'decimal', range: '0 to 60', description: 'the Mega\'s soft limit for sensor A3: no job starts or continues above it' },
