@@ -47,6 +47,11 @@ export function whenIdle(work: () => void, latestMs = 2000): () => void {
 
 const warmed = new Set<string>();
 
+/** Whether every one of `fonts` has been drawn on this page already. */
+export function canvasFontsWarm(fonts: readonly string[]): boolean {
+  return fonts.every((f) => warmed.has(f));
+}
+
 /** Draws `sample` once in each font not yet drawn on this page. */
 export function warmCanvasFonts(fonts: readonly string[], sample: string): void {
   const cold = fonts.filter((f) => !warmed.has(f));
