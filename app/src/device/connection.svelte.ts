@@ -270,6 +270,12 @@ export class Printer {
   checkPrinthead = async (): Promise<boolean> => {
     const answered = (await this.ask('M105', [PRINTHEAD_SILENT])) !== null;
     if (answered && clearFault(this.device, PRINTHEAD_SILENT)) this.device = { ...this.device };
+    // An E30 answer stands as the FAULT:E30 report would (one may have come before the app connected), and is asked after.
+    if (!answered && !this.device.activeFaults.some((a) => a.code === PRINTHEAD_SILENT)) {
+      applyReport(this.device, { kind: 'fault', code: PRINTHEAD_SILENT, message: 'printhead not responding' }, Date.now());
+      this.device = { ...this.device };
+      this.#watchPrinthead();
+    }
     return answered;
   };
 

@@ -16,7 +16,8 @@ import type { DoseGrid } from '../studio/grid/grid';
 import { DEFAULT_CONFIG, ledsOf, type MachineConfig } from '../studio/machine-config';
 import { JobNotice } from './job-notice.svelte';
 import { calibrationOf, doseOf, msFor, type Calibration } from './dose-units';
-import { actionsFor, hotSensors, viewOf, type Action, type Actions } from './actions';
+import { actionsFor, viewOf, type Action, type Actions } from './actions';
+import { machineFinding, machineNow } from './machine-finding';
 import { estimateUsFor, type JobEstimate } from './job-times';
 import { limitsOf } from '../studio/machine-config';
 import { uploadBytes, uploadUs, type LinkRate } from './link-rate';
@@ -182,10 +183,23 @@ export class JobControl {
     this.pending = { ...p, accepted: true, findings: p.findings.map((f) => (f.check === 'clipping' ? clippingFinding(p.cuts, true) : f)) };
   };
 
+  /**
+   * The pending exposure's dry run, its machine line read live: the printhead answering again (the
+   * app asks every 2 s while E30 stands), a head that cooled or one that got hot changes the verdict
+   * while the question is open.
+   */
+  get findings(): Finding[] {
+    const p = this.pending;
+    if (p?.kind !== 'expose') return [];
+    const device = this.printer.device;
+    return p.findings.map((f) => (f.check === 'machine' ? machineFinding(machineNow(device.activeFaults, device.deciC, limitsOf(this.config))) : f));
+  }
+
   /** The user's yes to what is pending (an exposure without errors, or a homing). */
   confirm = (opts: { paced?: boolean } = {}) =>
     this.#act(async () => {
       const p = this.pending;
+      const findings = this.findings;
       this.pending = null;
       if (!p) return;
       // The machine may have turned busy while the question was open: it is asked again here.
@@ -198,7 +212,7 @@ export class JobControl {
           this.afterHoming = null;
         }
         await p.run();
-      } else if (!p.findings.some((f) => f.level === 'error')) {
+      } else if (!findings.some((f) => f.level === 'error')) {
         const paced = !!opts.paced && p.pacedUs !== null;
         this.runningEstimate = { estimateUs: p.estimateUs, pacedUs: p.pacedUs };
         this.runningPaced = paced;
@@ -261,7 +275,7 @@ export class JobControl {
     const printheadAnswers = await this.printer.checkPrinthead();
     const device = this.printer.device;
     const startC = device.deciC?.map((d) => d / 10) ?? null;
-    const machine = { faults: device.activeFaults, printheadAnswers, hot: hotSensors(device.deciC, limitsOf(this.config)) };
+    const machine = { ...machineNow(device.activeFaults, device.deciC, limitsOf(this.config)), printheadAnswers };
     const { checkJob, Cancelled } = await import('../work/check-job');
     await nextTask();
     const stop = (this.#stopCheck = new AbortController());

@@ -1,6 +1,6 @@
 import { describe, expect, it } from 'vitest';
 import type { PrintJob } from '../protocol/job-types';
-import { dryRun, machineFinding, sidesFinding } from './dry-run';
+import { dryRun, sidesFinding } from './dry-run';
 import { DEFAULT_CONFIG } from './machine-config';
 
 function job(over: Partial<PrintJob> = {}, cols = 20, rows = 8, value = 255): PrintJob {
@@ -111,23 +111,11 @@ describe('dry run', () => {
 
 describe("the machine's faults in the dry run", () => {
   const E30 = { code: 30, message: 'printhead not responding', atMs: 0 };
-  const E31 = { code: 31, message: 'over-temperature T3 56.0 (soft limit)', atMs: 0 };
   const well = { faults: [], printheadAnswers: true, hot: [] };
 
-  it('is a red line first for a silent printhead, whether reported or found by asking', () => {
+  it('is the first line, red for a silent printhead (job/machine-finding.test.ts has its other verdicts)', () => {
     const r = dryRun(job(), DEFAULT_CONFIG, { machine: { ...well, faults: [E30], printheadAnswers: false } });
     expect(r.findings[0]).toEqual({ check: 'machine', level: 'error', message: 'E30 printhead not responding. The printer would refuse the job: clear the fault first' });
-    expect(machineFinding({ ...well, printheadAnswers: false }).message).toMatch(/^E30 printhead not responding\./);
-  });
-
-  it('judges an over-temperature by the readings: still hot is an error, cooled is fine', () => {
-    expect(machineFinding({ ...well, faults: [E31], hot: ['T3 56.0 °C (limit 55 °C)'] })).toMatchObject({ level: 'error', message: /^T3 56\.0 °C \(limit 55\) is still too hot\./ });
-    expect(machineFinding({ ...well, faults: [E31] }).level).toBe('ok');
-  });
-
-  it('warns of a sensor fault it cannot see clear', () => {
-    const E32 = { code: 32, message: 'temperature sensor fault T2', atMs: 0 };
-    expect(machineFinding({ ...well, faults: [E32] })).toEqual({ check: 'machine', level: 'warning', message: 'the printer reported E32 temperature sensor fault T2: it refuses the job while that stands' });
   });
 
   it('is a green line for a machine without faults, and absent when not asked', () => {

@@ -12,8 +12,7 @@ import { passRows, type Plan } from '../planner/planner';
 import type { MixedPlan } from '../planner/mixed';
 import type { ScanPass, ScanPlan } from '../planner/scan';
 import type { PrintJob } from '../protocol/job-types';
-import type { Fault } from '../device/device-state';
-import { stillTooHot } from '../job/actions';
+import { machineFinding, type MachineCheck } from '../job/machine-finding';
 import { hms } from '../job/hms';
 import { mixedWords, scanWords } from '../job/scan-words';
 import { bedOf, limitsOf, motionOf, type MachineConfig } from './machine-config';
@@ -25,14 +24,6 @@ export interface Finding {
   check: 'machine' | 'mode' | 'envelope' | 'clipping' | 'sides' | 'mesh' | 'dose' | 'thermal';
   level: 'error' | 'warning' | 'ok';
   message: string;
-}
-
-/** What the machine says of itself just before the question: its standing faults, whether the printhead answered, its hot sensors. */
-export interface MachineCheck {
-  faults: readonly Fault[];
-  printheadAnswers: boolean;
-  /** The sensors at or over their soft limit, in words (job/actions.ts hotSensors). */
-  hot: readonly string[];
 }
 
 /** nano.md: the printhead refuses any single duration over this (NANO_MAX_EXPOSURE_US). */
@@ -184,21 +175,6 @@ export function dryRun(
   findings.push(thermalFinding(thermal, paced, plan.count, limitsC, scan ? 'pass' : mixed ? 'step' : 'stop'));
 
   return { plan, scan, mixed, findings, duty, thermal, paced };
-}
-
-/**
- * The machine's faults: a printhead that does not answer (E30, asked just now) and sensors over
- * their soft limits (read just now) are errors, as the printer would refuse the job. An E31 itself
- * is judged by the readings; a sensor fault or a refused exposure (E32, E33) the app cannot see
- * clear, so it is a warning.
- */
-export function machineFinding(m: MachineCheck): Finding {
-  const silent = m.printheadAnswers ? [] : ['E30 printhead not responding'];
-  const errors = [...silent, ...(m.hot.length ? [stillTooHot(m.hot)] : [])];
-  if (errors.length) return { check: 'machine', level: 'error', message: `${errors.join('; ')}. The printer would refuse the job: clear the fault first` };
-  const others = m.faults.filter((f) => f.code !== 30 && f.code !== 31);
-  if (others.length) return { check: 'machine', level: 'warning', message: `the printer reported ${others.map((f) => `E${f.code} ${f.message}`).join('; ')}: it refuses the job while that stands` };
-  return { check: 'machine', level: 'ok', message: 'the printhead answers, and the machine reports no fault' };
 }
 
 /** What a scan job is: its passes, their speed and the cell window. */
