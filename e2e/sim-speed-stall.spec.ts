@@ -1,7 +1,7 @@
 // Issue 41, item 3: at simulator speed 50 a serpentine 30 × 30 mm job stalled for good at stop 5900
 // of 90902, "paused (printhead)" with E30. The printer had run 71.6 minutes of its own time there
 // (at 50x the upload alone is most of it), where a 32-bit µs count wraps; the rig's printhead
-// (firmware/mega/src/fake_nano.h) kept its wire on that count and lost every byte after it. The same
+// (firmware/virtual/fake_nano.h) kept its wire on that count and lost every byte after it. The same
 // job runs here under load (the machine and the page both), the printer run ahead at up to 1000x, across that point to its end.
 import { expect, test, type Page } from '@playwright/test';
 import { Worker } from 'node:worker_threads';

@@ -19,7 +19,7 @@ srcs=(firmware/common/protocol/src/*.cpp firmware/common/planner/src/*.cpp firmw
   firmware/nano/src/scan_store.cpp firmware/nano/src/dose_tally.cpp firmware/wasm/printer_module.cpp)
 flags=(--target=wasm32-wasi --sysroot=/usr -isystem /usr/include/wasm32-wasi/c++/v1 -isystem /usr/include/wasm32-wasi
   -O2 -std=c++17 -fno-exceptions -Wall -Wextra -Wno-missing-field-initializers
-  -Ifirmware/common/protocol/src -Ifirmware/common/planner/src -Ifirmware/mega/src -Ifirmware/nano/src)
+  -Ifirmware/common/protocol/src -Ifirmware/common/planner/src -Ifirmware/mega/src -Ifirmware/nano/src -Ifirmware/virtual)
 objs=()
 pids=()
 for src in "${srcs[@]}"; do

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The tests of code that two threads run at once, built with clang's ThreadSanitizer in build/tsan
 # (firmware/CMakeLists.txt, UV_TSAN): the hand-over between the ESP32's network task and loop()
-# (firmware/esp/src/hand_over_race_test.cpp). A reported race fails the run.
+# (firmware/esp/test/hand_over_race_test.cpp). A reported race fails the run.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 

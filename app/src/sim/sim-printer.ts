@@ -3,7 +3,7 @@
 // hold around it, each written once: virtual time, the head's thermal model (head-thermal.ts, which
 // the dry run's forecast also runs), the bed the probe touches (bed.ts), and the faults the
 // simulator's panel injects on the link and the printhead. The stepper timing, the switches and the
-// LEDs' on-time are the module's (firmware/mega/src/mega_rig.h).
+// LEDs' on-time are the module's (firmware/virtual/mega_rig.h).
 // Runs in a Web Worker (the app's default device) and in Node (tests, `npm run sim` for desktop hosts).
 
 import { bedZ, DEFAULT_BED, type BedShape } from './bed';

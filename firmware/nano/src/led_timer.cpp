@@ -28,7 +28,7 @@ constexpr uint16_t kMinLeadTicks = 256;  // never arm a compare closer than 16 �
 // run back to back just before it (about 5 µs each), and must all be done before the edge.
 constexpr uint16_t kQuietTicks = 384;
 // The wait loop leaves 5-9 cycles after the target tick (one 8-cycle pass of the loop plus the
-// port write), measured on the pins in simulation (firmware/nano/sim/nano_sim_test.cpp); aiming
+// port write), measured on the pins in simulation (firmware/nano/test/sim/nano_sim_test.cpp); aiming
 // 7 cycles early centres every edge within ±2 cycles (±0.13 µs) of its target.
 constexpr uint16_t kEdgeCorrectionTicks = 7;
 

@@ -38,7 +38,7 @@ constexpr uint16_t kPixelQuietTicks = 1500;  // 93.75 µs
 
 // A scan program's time 0, in Timer1 ticks after the receive interrupt read TCNT1 for the `\n` of
 // its `G`: the protocol's lead, less the interrupt's own entry before that read (measured on the
-// pins in simavr, firmware/nano/sim/nano_sim_test.cpp).
+// pins in simavr, firmware/nano/test/sim/nano_sim_test.cpp).
 constexpr uint16_t kStampLatencyTicks = 46;
 constexpr uint16_t kStartLeadTicks = static_cast<uint16_t>(uv::kProgramStartLeadUs * nano::kTicksPerUs - kStampLatencyTicks);
 

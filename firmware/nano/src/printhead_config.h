@@ -1,5 +1,5 @@
 // The printhead's build-time settings (config.h) as the Printhead takes them: one constant for the
-// real Nano (main.cpp) and the simulated one (firmware/mega/src/fake_nano.h), so the simulated
+// real Nano (main.cpp) and the simulated one (firmware/virtual/fake_nano.h), so the simulated
 // printer reports the Nano's version and cuts off at its limits.
 #pragma once
 #include "config.h"

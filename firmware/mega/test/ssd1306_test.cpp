@@ -5,7 +5,7 @@
 #include <set>
 #include <string>
 
-#include "../sim/ssd1306_model.h"
+#include "sim/ssd1306_model.h"
 #include "panel_font.h"
 #include "ssd1306.h"
 #include "twi_write.h"
