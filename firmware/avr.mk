@@ -30,9 +30,9 @@ WARN := -Wall -Wextra -Wno-missing-field-initializers
 ASFLAGS := -x assembler-with-cpp
 
 CORE_SRCS := $(wildcard $(CORE)/*.c $(CORE)/*.cpp $(CORE)/*.S)
-APP_SRCS := $(filter-out %_test.cpp %_main.cpp,$(wildcard $(COMMON)/*.cpp $(BOARD_SRC)/*.cpp $(BOARD_SRC)/hw/*.cpp))
+APP_SRCS := $(wildcard $(COMMON)/*.cpp $(BOARD_SRC)/*.cpp $(BOARD_SRC)/hw/*.cpp)
 ifeq ($(BOARD),mega)
-APP_SRCS += $(filter-out %_test.cpp %_main.cpp,$(wildcard $(PLANNER)/*.cpp))
+APP_SRCS += $(wildcard $(PLANNER)/*.cpp)
 endif
 CORE_OBJS := $(patsubst $(CORE)/%,$(OBJ)/core/%.o,$(CORE_SRCS))
 APP_OBJS := $(patsubst %,$(OBJ)/app/%.o,$(APP_SRCS))
