@@ -266,8 +266,8 @@ export class Printer {
     }
   };
 
-  /** Asks the printhead's temperatures (M105): true when it answers, and then E30 no longer stands. */
-  checkPrinthead = async (): Promise<boolean> => {
+  /** Asks the printhead's temperatures (M105): afterwards E30 stands in the device state exactly when it did not answer. */
+  checkPrinthead = async (): Promise<void> => {
     const answered = (await this.ask('M105', [PRINTHEAD_SILENT])) !== null;
     if (answered && clearFault(this.device, PRINTHEAD_SILENT)) this.device = { ...this.device };
     // An E30 answer stands as the FAULT:E30 report would (one may have come before the app connected), and is asked after.
@@ -276,7 +276,6 @@ export class Printer {
       this.device = { ...this.device };
       this.#watchPrinthead();
     }
-    return answered;
   };
 
   /** The Mega says E30 once, and nothing when the printhead is back: the app asks until it answers. */

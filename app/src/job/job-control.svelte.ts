@@ -191,8 +191,13 @@ export class JobControl {
   get findings(): Finding[] {
     const p = this.pending;
     if (p?.kind !== 'expose') return [];
+    return p.findings.map((f) => (f.check === 'machine' ? machineFinding(this.#machineNow()) : f));
+  }
+
+  /** The machine as its reports leave it: after checkPrinthead, an E30 stands exactly when the printhead did not answer. */
+  #machineNow() {
     const device = this.printer.device;
-    return p.findings.map((f) => (f.check === 'machine' ? machineFinding(machineNow(device.activeFaults, device.deciC, limitsOf(this.config))) : f));
+    return machineNow(device.activeFaults, device.deciC, limitsOf(this.config));
   }
 
   /** The user's yes to what is pending (an exposure without errors, or a homing). */
@@ -272,10 +277,10 @@ export class JobControl {
 
   async #ask(what: 'drawing' | 'test pattern', asked: PrintJob, cuts?: Cut[], boards: TwoSided[] = []): Promise<void> {
     const leveling = await this.printer.leveling();
-    const printheadAnswers = await this.printer.checkPrinthead();
+    await this.printer.checkPrinthead();
     const device = this.printer.device;
     const startC = device.deciC?.map((d) => d / 10) ?? null;
-    const machine = { ...machineNow(device.activeFaults, device.deciC, limitsOf(this.config)), printheadAnswers };
+    const machine = this.#machineNow();
     const { checkJob, Cancelled } = await import('../work/check-job');
     await nextTask();
     const stop = (this.#stopCheck = new AbortController());

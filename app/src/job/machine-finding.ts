@@ -1,8 +1,7 @@
 // The dry run's line about the machine itself: would the printer take the job as it stands now?
 // Asked once before the question (an M105 to learn whether the printhead answers), then read live
 // while the question is open: a printhead that answers again, or a head that cools, opens the job.
-import type { Fault } from '../device/device-state';
-import { PRINTHEAD_SILENT } from '../device/device-state';
+import { OVERTEMP, PRINTHEAD_SILENT, type Fault } from '../device/device-state';
 import type { Finding } from '../studio/dry-run';
 import { hotSensors, stillTooHot } from './actions';
 
@@ -28,7 +27,7 @@ export function machineFinding(m: MachineCheck): Finding {
   const silent = m.printheadAnswers ? [] : ['E30 printhead not responding'];
   const errors = [...silent, ...(m.hot.length ? [stillTooHot(m.hot)] : [])];
   if (errors.length) return { check: 'machine', level: 'error', message: `${errors.join('; ')}. The printer would refuse the job: clear the fault first` };
-  const others = m.faults.filter((f) => f.code !== PRINTHEAD_SILENT && f.code !== 31);
+  const others = m.faults.filter((f) => f.code !== PRINTHEAD_SILENT && f.code !== OVERTEMP);
   if (others.length) return { check: 'machine', level: 'warning', message: `the printer reported ${others.map((f) => `E${f.code} ${f.message}`).join('; ')}: it refuses the job while that stands` };
   return { check: 'machine', level: 'ok', message: 'the printhead answers, and the machine reports no fault' };
 }
