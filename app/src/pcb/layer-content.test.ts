@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { drawingMix, guessKinds, isDrawingName, kindFromAttributes, kindFromComments, kindFromWords, looksLikeCopper } from './layer-content';
+import { drawingMix, guessKinds, isDrawingName, kindFromAllegroFilm, kindFromAttributes, kindFromComments, kindFromWords, looksLikeCopper } from './layer-content';
 import { plotFile } from './tracespace';
 import { at, gerber } from './test-boards';
 
@@ -56,6 +56,43 @@ describe('the words of a name or a comment', () => {
     expect(kindFromComments('G04 Layer : SolderPasteBottom.gdo*\n')).toBe('paste-bottom');
     expect(kindFromComments('%MOIN*%\n%LNBACK*%\n')).toBe('copper-bottom');
     expect(kindFromComments('G04 Title: test, layergroup #1 *\n%LNGROUP_0*%\n')).toBeNull();
+  });
+
+  // Eagle 9 names the layer in the image name; other tools put the project's name there.
+  it.each([
+    ['%INTop Copper*%', 'copper-top'],
+    ['%INSilkscreen Top*%', 'silk-top'], // whats-that-gerber takes silkscreen_top.gbr for the top copper
+    ['%INSoldermask Top*%', 'mask-top'],
+    ['%INSolderpaste Bottom*%', 'paste-bottom'],
+    ['%INProfile*%', 'outline'],
+    ['%INFrontPanel*%', null], // a side alone in a project's name is no copper
+    ['%INPCB1*%', null],
+  ])('reads Eagle’s image name %s as %s', (line, kind) => {
+    expect(kindFromComments(`G04 EAGLE Gerber RS-274X export*\nG75*\n%MOMM*%\n%FSLAX34Y34*%\n%LPD*%\n${line}\n%IPPOS*%\n`)).toBe(kind);
+  });
+
+  // The film records of gerbonara's Allegro boards (Cadence Allegro 16.6 and 17.2), as each film's head lists them.
+  const film = (...layers: string[]) =>
+    `G04 ================== begin FILE IDENTIFICATION RECORD ==================*\nG04 File Origin:  Cadence Allegro 17.2-060*\nG04 *\n${layers.map((l) => `G04 Layer:  ${l}*`).join('\n')}\nG04 *\n`;
+  it.each([
+    [film('VIA CLASS/TOP', 'PIN/TOP', 'ETCH/TOP', 'PACKAGE GEOMETRY/ETCH_TOP', 'BOARD GEOMETRY/LYR_TOP', 'BOARD GEOMETRY/TOOLING_CORNERS'), 'copper-top'],
+    [film('VIA CLASS/BOTTOM', 'PIN/BOTTOM', 'ETCH/BOTTOM', 'BOARD GEOMETRY/ROOT_NUMBER'), 'copper-bottom'],
+    [film('BOARD GEOMETRY/TOOLING_CORNERS', 'VIA CLASS/GND2', 'PIN/GND2', 'ETCH/GND2', 'DRAWING FORMAT/TITLE_BLOCK'), 'other'],
+    [film('VIA CLASS/SOLDERMASK_TOP', 'PIN/SOLDERMASK_TOP', 'BOARD GEOMETRY/TOOLING_CORNERS'), 'mask-top'],
+    [film('BOARD GEOMETRY/TOOLING_CORNERS', 'USER PART NUMBER/DISPLAY_BOTTOM', 'PIN/PASTEMASK_BOTTOM', 'DRAWING FORMAT/TITLE_BLOCK'), 'paste-bottom'],
+    // Its first layer names a side and no layer: read as words, it was taken for the bottom copper.
+    [film('PACKAGE GEOMETRY/DISPLAY_BOTTOM', 'MANUFACTURING/AUTOSILK_BOTTOM', 'BOARD GEOMETRY/TOOLING_CORNERS', 'REF DES/SILKSCREEN_BOTTOM'), 'silk-bottom'],
+    // Fabrication and assembly drawings hold the outline among their layers: they were taken for the outline.
+    [film('BOARD GEOMETRY/DESIGN_OUTLINE', 'DRAWING FORMAT/DSIZE', 'BOARD GEOMETRY/FAB_NOTES2', 'MANUFACTURING/NCLEGEND-1-4', 'BOARD GEOMETRY/OUTLINE', 'BOARD GEOMETRY/DIMENSION'), 'other'],
+    [film('BOARD GEOMETRY/DESIGN_OUTLINE', 'REF DES/ASSEMBLY_TOP', 'PACKAGE GEOMETRY/ASSEMBLY_TOP', 'BOARD GEOMETRY/OUTLINE'), 'other'],
+    [film('BOARD GEOMETRY/OUTLINE', 'BOARD GEOMETRY/TOOLING_CORNERS'), 'outline'],
+  ])('reads an Allegro film record (%#) as %s', (head, kind) => {
+    expect(kindFromAllegroFilm(head)).toBe(kind);
+    expect(kindFromComments(head)).toBe(kind);
+  });
+
+  it('leaves a Veribest layer name, which has no class, to the name’s words', () => {
+    expect(kindFromAllegroFilm('*\nG04 Layer : EtchLayer2Bottom.gdo*\n')).toBeNull();
   });
 });
 

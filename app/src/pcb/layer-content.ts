@@ -78,7 +78,7 @@ function sideOf(words: string): 'top' | 'bottom' | null {
  * The kind the words of a name or comment give, in the conventions of tools whats-that-gerber does not know:
  * gEDA PCB (front, back, frontmask, componentsilk, solder, group1), Eagle (top-cop), Veribest (EtchLayer2Bottom).
  */
-export function kindFromWords(text: string): LayerKind | null {
+export function kindFromWords(text: string, sideAlone = true): LayerKind | null {
   const words = wordsOf(text);
   if (DRAWING.test(words)) return 'other';
   const side = sideOf(words);
@@ -91,15 +91,42 @@ export function kindFromWords(text: string): LayerKind | null {
   if (INNER.test(words)) return 'other';
   if (/\b(?:copper|cop|cu|etch|signal|conductor)\b/.test(words)) return side ? `copper-${side}` : null;
   // gEDA names its outer copper by the side alone ("board.front.gbr", "%LNBACK*%", "Title: …, component").
-  return side ? `copper-${side}` : null;
+  return side && sideAlone ? `copper-${side}` : null;
+}
+
+/** What Allegro's film record lists besides the artwork: marks on every film, which say nothing of its kind. */
+const ALLEGRO_ON_EVERY_FILM = /^(?:TOOLING_CORNERS|TITLE_BLOCK|ROOT_NUMBER|PLATING_BAR|LYR_.*|DISPLAY_.*)$/;
+
+/**
+ * Cadence Allegro's film record: one "G04 Layer:  CLASS/SUBCLASS*" line per layer the film gathers (ETCH/TOP,
+ * PIN/SOLDERMASK_TOP, REF DES/SILKSCREEN_BOTTOM, BOARD GEOMETRY/OUTLINE…), every film with tooling corners and a
+ * title block too. Its copper is etch on an outer side; a mask, paste or legend film says so in a subclass; a
+ * film with assembly, fabrication or dimension layers is a drawing; one with nothing but the board's outline is
+ * the outline.
+ */
+export function kindFromAllegroFilm(head: string): LayerKind | null {
+  const layers = [...head.matchAll(/^G04 Layer:\s+([A-Z][A-Z ]*)\/([^*\r\n]+)\*/gm)]
+    .map((m) => ({ cls: m[1].trim(), sub: m[2].trim() }))
+    .filter((l) => !ALLEGRO_ON_EVERY_FILM.test(l.sub));
+  if (layers.length === 0) return null;
+  const side = (s: string) => (s === 'TOP' ? 'top' : 'bottom');
+  for (const { cls, sub } of layers) if (cls === 'ETCH') return sub === 'TOP' || sub === 'BOTTOM' ? `copper-${side(sub)}` : 'other';
+  for (const { sub } of layers) {
+    const m = /^(SOLDERMASK|PASTEMASK|SILKSCREEN|AUTOSILK)_(TOP|BOTTOM)$/.exec(sub);
+    if (m) return `${m[1] === 'SOLDERMASK' ? 'mask' : m[1] === 'PASTEMASK' ? 'paste' : 'silk'}-${side(m[2])}`;
+  }
+  if (layers.every((l) => l.cls === 'BOARD GEOMETRY' && /^(?:DESIGN_)?OUTLINE$/.test(l.sub))) return 'outline';
+  return 'other'; // assembly, fabrication, dimensions, drill legends: drawings for people
 }
 
 /**
- * What CAD tools say of the layer in the file's head: gEDA's title and layer name (%LN), Veribest's, EasyEDA's
- * and Copper Connection's "G04 Layer: TopSilkscreenLayer".
+ * What CAD tools say of the layer in the file's head: Allegro's film record, gEDA's title and layer name (%LN),
+ * Veribest's, EasyEDA's and Copper Connection's "G04 Layer: TopSilkscreenLayer", Eagle's image name (%IN).
  */
 export function kindFromComments(text: string): LayerKind | null {
   const head = text.slice(0, HEAD_CHARS);
+  const film = kindFromAllegroFilm(head);
+  if (film) return film;
   const said = [
     /^G04 Title: [^,\r\n]*, ([^*\r\n]*)\*/m, // gEDA PCB: "G04 Title: (unknown), component *"
     /^G04 Layer\s*: ([^*\r\n]*)\*/m, // Veribest: "G04 Layer : EtchLayer2Bottom.gdo*"
@@ -110,7 +137,10 @@ export function kindFromComments(text: string): LayerKind | null {
     const kind = m ? kindFromWords(m[1].replace(/\.\w+$/, '')) : null;
     if (kind) return kind;
   }
-  return null;
+  // The image's name: Eagle 9 writes its layer's ("%INSilkscreen Top*%", "%INTop Copper*%"), other tools the
+  // project's, so only a layer's word counts here, never a side alone ("%INFrontPanel*%" is no copper).
+  const image = /%IN([^*%]*)\*%/.exec(head);
+  return image ? kindFromWords(image[1], false) : null;
 }
 
 /** A name without its extension, whose letters would read as words ("x.sol" is not "solder"). */
