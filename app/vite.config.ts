@@ -39,11 +39,17 @@ const ON_DEMAND_FILES = /\/(project-file|cells-codec|halftones|job-types|job-enc
 /**
  * The Gerber parser and plotter are Node transform streams that app/src/pcb/tracespace.ts drives by
  * hand: small stand-ins for readable-stream and string_decoder keep Node's stream polyfills (half the
- * Gerber chunk) out of the build. Why each is enough is in its file.
+ * Gerber chunk) out of the build. Why each is enough is in its file. Their lodash helpers (padStart,
+ * padEnd, fill, isFunction, isFinite from before ES2015 was everywhere) give way to the language's
+ * own: 7 KB of the work worker, which the ESP's flash counts in whole blocks.
  */
 export const STREAM_SHIMS = [
   { find: /^readable-stream$/, replacement: fileURLToPath(new URL('src/pcb/stream-shim.ts', import.meta.url)) },
   { find: /^string_decoder$/, replacement: fileURLToPath(new URL('src/pcb/string-decoder-shim.ts', import.meta.url)) },
+  ...['padstart', 'padend', 'fill', 'isfunction', 'isfinite'].map((name) => ({
+    find: new RegExp(`^lodash\\.${name}$`),
+    replacement: fileURLToPath(new URL(`src/pcb/lodash-shims/${name}.cjs`, import.meta.url)),
+  })),
 ];
 
 const outDir = fileURLToPath(new URL('../dist/app', import.meta.url));

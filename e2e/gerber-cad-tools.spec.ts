@@ -88,3 +88,25 @@ test('a Gerber 2016 block aperture is drawn where it is flashed, with nothing to
   expect(await sizeShown(page)).toEqual({ w: 15, h: 15 });
   await page.getByRole('region', { name: 'Drawing' }).screenshot({ path: info.outputPath('block-aperture.png') });
 });
+
+test('a real Xpedition board (the corpus’s MinnowBoard Turbot): its pour’s quarter-arc cut-outs drawn whole, nothing said', async ({ page }, info) => {
+  test.setTimeout(120_000);
+  await openStudio(page);
+  // The published files themselves (app/src/pcb/corpus/), not a fixture modelled on them.
+  const dir = join('..', '..', '..', 'app', 'src', 'pcb', 'corpus', 'xpedition-minnowboard-turbot');
+  const files = readdirSync(join(PCB, dir)).filter((f) => /\.(gdo|ncd)$/.test(f)).sort();
+  await importBoard(page, dir, files);
+  await expect(selected(page)).toContainText('Board 80101_0125_F200', { timeout: 30_000 });
+  // No outline file: the board's edge is drawn in the copper, 0.005 in wide, and exposed with it: 99.187 × 73.787 mm,
+  // shown to the panel's 0.1 mm.
+  await expect.poll(() => sizeShown(page), { timeout: 30_000 }).toEqual({ w: 99.2, h: 73.8 });
+  // 353 "skipping impossible arc" lines were said before, and the pour was cut at each.
+  await expect(problems(page)).toHaveCount(0);
+  await expectLayers(page, {
+    '80101_0125_F200_L01_Top.gdo': ['copper-top', true],
+    '80101_0125_F200_L12_Bottom.gdo': ['copper-bottom', false],
+    '80101_0125_F200_SoldermaskTop.gdo': ['mask-top', false],
+    '80101_0125_F200_ThruHolePlated.ncd': ['drill', false],
+  });
+  await page.getByRole('region', { name: 'Drawing' }).screenshot({ path: info.outputPath('xpedition-turbot.png') });
+});

@@ -13,6 +13,7 @@
 import gerberParser from 'gerber-parser';
 import { cutBlocks } from './block-apertures';
 import gerberPlotter from 'gerber-plotter';
+import { quarterArcCentre, type ArcCoord } from './single-quadrant';
 
 export type Point = [number, number];
 export type Units = 'mm' | 'in';
@@ -77,10 +78,32 @@ export function fileType(text: string): 'gerber' | 'drill' | null {
 
 interface PlotterInternals {
   format: { units: Units | null };
+  _pos: [number, number];
+  _mode: 'i' | 'cw' | 'ccw' | null;
+  _arc: 's' | 'm' | null;
+  _lastOp: string | null;
+  _epsilon: number | null;
   push: (o: PlotObject) => boolean;
   _transform(command: unknown, encoding: null, done: (error?: Error) => void): void;
   _flush(done: (error?: Error) => void): void;
   on(event: 'warning', listener: (w: LibraryWarning) => void): unknown;
+}
+
+/** A drawing command as the parser gives it (D01, D02, D03, or none: the last one again). */
+interface OpCommand {
+  type: 'op';
+  op: string;
+  coord: ArcCoord;
+}
+const isOp = (command: { type: string }): command is OpCommand => command.type === 'op';
+
+/** A single-quadrant arc the plotter would skip for floating point alone, and the centre it should have. */
+function quarterArcAt(plotter: PlotterInternals, command: OpCommand): [number, number] | null {
+  const op = command.op === 'last' ? plotter._lastOp : command.op;
+  const mode = plotter._mode;
+  // No quadrant mode set: the plotter assumes single quadrant for an arc without a radius, and so does this.
+  if (op !== 'int' || plotter._arc === 'm' || (mode !== 'cw' && mode !== 'ccw') || plotter._epsilon == null) return null;
+  return quarterArcCentre(plotter._pos, command.coord, mode, plotter._epsilon);
 }
 
 /**
@@ -134,7 +157,19 @@ function plotText(text: string, filetype: 'gerber' | 'drill'): Plot {
   const fail = (error?: Error) => {
     if (error) throw error;
   };
-  for (const command of commands) plotter._transform(command, null, fail);
+  for (const command of commands as { type: string }[]) {
+    const centre = isOp(command) ? quarterArcAt(plotter, command) : null;
+    if (!centre || !isOp(command)) {
+      plotter._transform(command, null, fail);
+      continue;
+    }
+    // The centre as a multi-quadrant offset, for this one arc (single-quadrant.ts says why).
+    const [sx, sy] = plotter._pos;
+    const arc = plotter._arc;
+    plotter._transform({ type: 'set', prop: 'arc', value: 'm' }, null, fail);
+    plotter._transform({ ...command, coord: { ...command.coord, i: centre[0] - sx, j: centre[1] - sy } }, null, fail);
+    plotter._transform({ type: 'set', prop: 'arc', value: arc }, null, fail);
+  }
   plotter._flush(fail);
 
   const size = objects[objects.length - 1]; // the plotter's flush ends with the image's size and units
