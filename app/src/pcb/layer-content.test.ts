@@ -56,6 +56,9 @@ describe('the words of a name or a comment', () => {
     expect(kindFromComments('G04 Layer : SolderPasteBottom.gdo*\n')).toBe('paste-bottom');
     expect(kindFromComments('%MOIN*%\n%LNBACK*%\n')).toBe('copper-bottom');
     expect(kindFromComments('G04 Title: test, layergroup #1 *\n%LNGROUP_0*%\n')).toBeNull();
+    // gEDA's layer name is its group's own; the title's is the user's (stepper-lights' controller board, in gerbonara).
+    expect(kindFromComments('G04 start of page 3 for group 1 idx 2 *\nG04 Title: controller, bottomVCC *\n%MOIN*%\n%FSLAX25Y25*%\n%LNBOTTOM*%\n')).toBe('copper-bottom');
+    expect(kindFromComments('G04 Title: controller, jumper *\n%LNGROUP3*%\n')).toBeNull();
   });
 
   // Eagle 9 names the layer in the image name; other tools put the project's name there.
@@ -86,6 +89,12 @@ describe('the words of a name or a comment', () => {
     [film('BOARD GEOMETRY/DESIGN_OUTLINE', 'DRAWING FORMAT/DSIZE', 'BOARD GEOMETRY/FAB_NOTES2', 'MANUFACTURING/NCLEGEND-1-4', 'BOARD GEOMETRY/OUTLINE', 'BOARD GEOMETRY/DIMENSION'), 'other'],
     [film('BOARD GEOMETRY/DESIGN_OUTLINE', 'REF DES/ASSEMBLY_TOP', 'PACKAGE GEOMETRY/ASSEMBLY_TOP', 'BOARD GEOMETRY/OUTLINE'), 'other'],
     [film('BOARD GEOMETRY/OUTLINE', 'BOARD GEOMETRY/TOOLING_CORNERS'), 'outline'],
+    // OrCAD PCB Designer (Allegro 17.4): an assembly film gathers the auto-silk among keep-outs and drill legends.
+    [film('ROUTE KEEPOUT/TOP', 'MANUFACTURING/NCDRILL_LEGEND', 'MANUFACTURING/AUTOSILK_TOP', 'MANUFACTURING/XSECTION_CHART', 'BOARD GEOMETRY/DIMENSION'), 'other'],
+    [film('VIA KEEPOUT/TOP', 'VIA CLASS/TOP', 'PIN/FILMMASKBOTTOM', 'PIN/TOP', 'ETCH/TOP', 'BOARD GEOMETRY/OUTLINE'), 'copper-top'],
+    [film('VIA KEEPOUT/ALL', 'PIN/LAYER 1', 'ETCH/LAYER 1', 'BOARD GEOMETRY/OUTLINE'), 'other'],
+    // …and its bottom legend an assembly layer among its legends.
+    [film('REF DES/SILKSCREEN_BOTTOM', 'PACKAGE GEOMETRY/ASSEMBLY_BOTTOM', 'PACKAGE GEOMETRY/SILKSCREEN_BOTTOM', 'BOARD GEOMETRY/SILKSCREEN_BOTTOM'), 'silk-bottom'],
   ])('reads an Allegro film record (%#) as %s', (head, kind) => {
     expect(kindFromAllegroFilm(head)).toBe(kind);
     expect(kindFromComments(head)).toBe(kind);

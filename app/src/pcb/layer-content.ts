@@ -96,6 +96,8 @@ export function kindFromWords(text: string, sideAlone = true): LayerKind | null 
 
 /** What Allegro's film record lists besides the artwork: marks on every film, which say nothing of its kind. */
 const ALLEGRO_ON_EVERY_FILM = /^(?:TOOLING_CORNERS|TITLE_BLOCK|ROOT_NUMBER|PLATING_BAR|LYR_.*|DISPLAY_.*)$/;
+/** Subclasses only drawings for people hold: assembly, fabrication, dimensions, drill legends and charts. */
+const ALLEGRO_DRAWING = /ASSEMBLY|ASSY|FAB|DIMENSION|NCLEGEND|NCDRILL|XSECTION/;
 
 /**
  * Cadence Allegro's film record: one "G04 Layer:  CLASS/SUBCLASS*" line per layer the film gathers (ETCH/TOP,
@@ -111,12 +113,20 @@ export function kindFromAllegroFilm(head: string): LayerKind | null {
   if (layers.length === 0) return null;
   const side = (s: string) => (s === 'TOP' ? 'top' : 'bottom');
   for (const { cls, sub } of layers) if (cls === 'ETCH') return sub === 'TOP' || sub === 'BOTTOM' ? `copper-${side(sub)}` : 'other';
+  // A legend film holds an assembly layer or two, and an assembly drawing the auto-silk (OrCAD PCB Designer's
+  // Assembly.art): the kind most of its layers name wins, a drawing on a tie.
+  const votes = new Map<LayerKind, number>();
   for (const { sub } of layers) {
     const m = /^(SOLDERMASK|PASTEMASK|SILKSCREEN|AUTOSILK)_(TOP|BOTTOM)$/.exec(sub);
-    if (m) return `${m[1] === 'SOLDERMASK' ? 'mask' : m[1] === 'PASTEMASK' ? 'paste' : 'silk'}-${side(m[2])}`;
+    const kind: LayerKind | undefined = m ? `${m[1] === 'SOLDERMASK' ? 'mask' : m[1] === 'PASTEMASK' ? 'paste' : 'silk'}-${side(m[2])}` : undefined;
+    if (kind) votes.set(kind, (votes.get(kind) ?? 0) + 1);
   }
+  const drawings = layers.filter((l) => l.cls === 'DRAWING FORMAT' || ALLEGRO_DRAWING.test(l.sub)).length;
+  const [kind, most] = [...votes].reduce((a, b) => (b[1] > a[1] ? b : a), ['other' as LayerKind, 0]);
+  if (most > drawings) return kind;
+  if (drawings > 0) return 'other';
   if (layers.every((l) => l.cls === 'BOARD GEOMETRY' && /^(?:DESIGN_)?OUTLINE$/.test(l.sub))) return 'outline';
-  return 'other'; // assembly, fabrication, dimensions, drill legends: drawings for people
+  return 'other';
 }
 
 /**
@@ -128,9 +138,11 @@ export function kindFromComments(text: string): LayerKind | null {
   const film = kindFromAllegroFilm(head);
   if (film) return film;
   const said = [
+    // The image's layer name: gEDA's "%LNFRONT*%", "%LNBOTTOM*%". Before gEDA's title, which names the layer
+    // as its user did ("controller, bottomVCC" is the bottom copper, not an inner VCC plane).
+    /%LN([^*%]*)\*%/,
     /^G04 Title: [^,\r\n]*, ([^*\r\n]*)\*/m, // gEDA PCB: "G04 Title: (unknown), component *"
     /^G04 Layer\s*: ([^*\r\n]*)\*/m, // Veribest: "G04 Layer : EtchLayer2Bottom.gdo*"
-    /%LN([^*%]*)\*%/, // the image's layer name: gEDA's "%LNFRONT*%"
   ];
   for (const re of said) {
     const m = re.exec(head);
