@@ -102,9 +102,9 @@ const ALLEGRO_DRAWING = /ASSEMBLY|ASSY|FAB|DIMENSION|NCLEGEND|NCDRILL|XSECTION/;
 /**
  * Cadence Allegro's film record: one "G04 Layer:  CLASS/SUBCLASS*" line per layer the film gathers (ETCH/TOP,
  * PIN/SOLDERMASK_TOP, REF DES/SILKSCREEN_BOTTOM, BOARD GEOMETRY/OUTLINE…), every film with tooling corners and a
- * title block too. Its copper is etch on an outer side; a mask, paste or legend film says so in a subclass; a
- * film with assembly, fabrication or dimension layers is a drawing; one with nothing but the board's outline is
- * the outline.
+ * title block too. Its copper is etch on an outer side; a mask, paste or legend film says so in its subclasses,
+ * a drawing in its assembly, fabrication, dimension or drill-legend ones, and the more of them win; a film with
+ * nothing but the board's outline is the outline.
  */
 export function kindFromAllegroFilm(head: string): LayerKind | null {
   const layers = [...head.matchAll(/^G04 Layer:\s+([A-Z][A-Z ]*)\/([^*\r\n]+)\*/gm)]
