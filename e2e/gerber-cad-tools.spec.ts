@@ -1,6 +1,7 @@
 // Issue 40: board sets as EasyEDA Pro, DipTrace and Eagle write them, a set whose heads contradict its names,
 // numbered files and Gerber 2016 block apertures (hand-written in e2e/fixtures/pcb/cad-tools/, modelled on
-// each tool's output), picked through the file picker. The panel shows the board's true size (from its outline,
+// each tool's output), and a real Xpedition board from the corpus (app/src/pcb/corpus/), picked through the
+// file picker. The panel shows the board's true size (from its outline,
 // never from drawing layers), the layer exposed, the outline offered as a cutting guide, and what was guessed.
 import { expect, test, type Page } from '@playwright/test';
 import { readdirSync } from 'node:fs';
