@@ -8,9 +8,6 @@ import { serviceWorker } from './pwa.ts';
 /** What loads only when a panel is first opened: grouped into one chunk. */
 const ON_DEMAND_PANELS = /\/(PositionDashboard|ProbeDashboard|MeshDashboard|LinkDashboard|mesh-image|Settings|setting-groups|setting-docs|Lamp|PreviewPanel|exposure-preview|preview-colours|MaterialTest|material-test|ObjectPanel|BoardPanel|board-object|fonts|Panel|ImportFile|import-artwork|artwork|svg-artwork|svg-size|density|picture|decode|clipping|dry-run|planner|job-header|time-model|adjust|gray|dither|ConfirmDialog|hms|thermal-forecast|pacing|mesh|mesh-figures|scan-words|work-client|check-job|job-transfer|remote-artwork|settings-table|DeliveredDose|dose-plan|dose-map|dose-colours|dose-batch)\.(svelte|ts)$/;
 
-/** The Wi-Fi hub's link and USB's (with the Latin-1 bytes only USB uses), loaded when that device is first chosen (device/chosen-links.ts). */
-const ON_DEMAND_LINKS = /\/(chosen-links|esp-link|serial-transport|bytes)\.ts$/;
-
 /**
  * The text dialect's client and the simulated printer's link on it, loaded on connect, just after the
  * first screen (device/links.ts); with them the dashboards and the console, mounted a few tasks after
@@ -81,10 +78,13 @@ export default defineConfig(({ mode }) => ({
     modulePreload: { polyfill: false },
     // Few files: the ESP's LittleFS gives each file whole 4 KB blocks. One stylesheet (the lazy views'
     // styles ride in their chunks: LAZY_VIEW), the panels that load on demand in one chunk, what saving
-    // and running need in another, the chosen links in a third (the dashboards, the console and the
-    // Web Serial polyfill ride with the dialect); uPlot's chart stays apart. Without a group, a chunk loaded on demand can split the first load into several files.
+    // and running need in another (the dashboards, the console and the Web Serial polyfill ride with
+    // the dialect); uPlot's chart stays apart. Without a group, a chunk loaded on demand can split the
+    // first load into several files: `first` keeps all the entry imports statically in the entry's
+    // file (alone, protocol/nano.ts's 229 B took a block). The links the user picks (device/chosen-links.ts)
+    // are one chunk without a group: as a group they took a file beside the import()'s own.
     cssCodeSplit: false,
-    rolldownOptions: { output: { codeSplitting: { includeDependenciesRecursively: false, groups: [{ name: 'panels', test: ON_DEMAND_PANELS }, { name: 'files', test: ON_DEMAND_FILES }, { name: 'links', test: ON_DEMAND_LINKS }, { name: 'dialect', test: new RegExp(`${ON_DEMAND_DIALECT.source}|${SERIAL_POLYFILL.source}`) }, { name: 'esptool', test: ESPTOOL }] } } },
+    rolldownOptions: { output: { codeSplitting: { includeDependenciesRecursively: false, groups: [{ name: 'first', tags: ['$initial'] }, { name: 'panels', test: ON_DEMAND_PANELS }, { name: 'files', test: ON_DEMAND_FILES }, { name: 'dialect', test: new RegExp(`${ON_DEMAND_DIALECT.source}|${SERIAL_POLYFILL.source}`) }, { name: 'esptool', test: ESPTOOL }] } } },
   },
   worker: { format: 'es' },
   server: { port: 5173 },

@@ -6,7 +6,7 @@ import { join } from 'node:path';
 
 const ROOT = join(import.meta.dirname, '..');
 const BINARY = join(ROOT, 'build', 'host', 'esp_host');
-const WWW = join(ROOT, 'firmware', 'esp', 'data', 'www');
+export const WWW = join(ROOT, 'firmware', 'esp', 'data', 'www');
 
 export interface EspHost {
   url: string;

@@ -10,10 +10,10 @@
 // are large, so the hub rarely sees it fall behind: closing a client a ring behind is tested in
 // live_race_test.cpp and bridge_test.cpp.
 import { expect, test } from '@playwright/test';
-import { readFileSync } from 'node:fs';
+import { readdirSync, readFileSync } from 'node:fs';
 import { request } from 'node:http';
 import { connect, type Socket } from 'node:net';
-import { startEspHost } from './esp-host';
+import { startEspHost, WWW } from './esp-host';
 
 const SOAK_MS = Number(process.env.SOAK_MS ?? 120_000);
 
@@ -91,11 +91,13 @@ function rssKb(pid: number): number {
   return Number(/VmRSS:\s+(\d+)/.exec(readFileSync(`/proc/${pid}/status`, 'utf8'))?.[1] ?? 0);
 }
 
-// The app's files, fetched again and again until `done`: each answered 200, or 503 flash_busy.
+// The app's files, fetched again and again until `done`: each answered 200, or 503 flash_busy. The
+// page, and the chart's chunk: a file of several blocks, read while the job's body is written.
 async function fetchApp(base: string, done: () => boolean): Promise<Record<string, number>> {
   const seen: Record<string, number> = {};
+  const chart = readdirSync(`${WWW}/assets`).find((f) => f.startsWith('thermal-chart-'))!.replace(/\.gz$/, '');
   while (!done()) {
-    for (const path of ['/', '/index.html', '/icon.svg']) {
+    for (const path of ['/', '/index.html', `/assets/${chart}`]) {
       const r = await call(base, 'GET', path);
       const key = r.status === 503 ? `503 ${JSON.parse(r.body).error.code}` : String(r.status);
       seen[key] = (seen[key] ?? 0) + 1;

@@ -26,7 +26,7 @@ test('a tab says it is loading, then shows its panel', async ({ page }) => {
 
 test('a tab whose chunk cannot load says so, and so does a device whose link cannot', async ({ page }) => {
   await page.route(PANELS, (route) => route.abort());
-  await page.route(/\/assets\/links-[\w-]+\.js$/, (route) => route.abort());
+  await page.route(/\/assets\/chosen-links-[\w-]+\.js$/, (route) => route.abort());
   await page.goto('/');
   await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected');
   await page.getByTestId('tab-position').click();
