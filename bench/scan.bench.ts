@@ -1,4 +1,5 @@
-// P10: exposure on the move (issue 19) against stop-and-fire and against the two limits of a scan.
+// P10: exposure on the move (issue 19) against stop-and-fire and against the two limits of a scan; and
+// its scan and mixed plans by the C++ planner as WebAssembly against the TypeScript planner.
 import type { JobHeader, StrategyName } from '../app/src/protocol/job-types';
 import { durationTables } from '../app/src/planner/dose';
 import { planJob } from '../app/src/planner/planner';
@@ -6,6 +7,9 @@ import { mixedPassCount, planMixed, type MixedPlan } from '../app/src/planner/mi
 import { planScan, PROGRAM_EVENT_US, PROGRAM_RELAY_US, SCAN_PASS_END_US, SCAN_PASS_LOAD_US, type ScanPlan } from '../app/src/planner/scan';
 import { moveTimeUs } from '../app/src/planner/time-model';
 import { programLines } from '../app/src/protocol/scan-program';
+import * as wasm from '../app/src/planner/planner-wasm';
+import { loadNodePlannerWasm } from '../app/src/planner/wasm/node-planner-wasm';
+import { compare, type Row } from './harness';
 import { BENCH_MACHINE, GEOMETRY } from './planner.bench';
 import { boardMask, fillMask, photoMask, sparseMask, textMask, type Mask } from './masks';
 
@@ -241,4 +245,21 @@ export function printP11(rows: P10Row[]): void {
         `  (uncapped: worst pass ${before.worst.toFixed(2)}x, ${s(r.uncapped.estimateUs)})`,
     );
   }
+}
+
+/** P10's scan and mixed plans of three masks, by the TypeScript planner (each group's baseline) and by the C++ planner as WebAssembly. */
+export function p10Wasm(): Row[] {
+  loadNodePlannerWasm();
+  const masks: [Mask, 'linear' | 'threshold'][] = [[boardMask(800, 400), 'threshold'], [sparseMask(800, 400), 'threshold'], [photoMask(300, 200), 'linear']];
+  let sink = 0;
+  return masks.flatMap(([mask, map]) => {
+    const cells = mask.cells;
+    const scan = { header: header(mask, 'scan', map), cells }, mixed = { header: header(mask, 'mixed', map), cells };
+    const pair = (what: string, ts: () => number, asWasm: () => number): Row[] =>
+      compare(`P10 ${mask.name} ${mask.cols}×${mask.rows} ${what}: the C++ planner as WebAssembly against the TypeScript planner`, { name: `TypeScript ${what} (baseline)`, run: () => (sink += ts()) }, [{ name: `WebAssembly ${what} (cells in, plan decoded)`, run: () => (sink += asWasm()) }], 5);
+    return [
+      ...pair('planScan', () => planScan(scan, BENCH_MACHINE).estimateUs, () => wasm.planScan(scan, BENCH_MACHINE).estimateUs),
+      ...pair('planMixed', () => planMixed(mixed, BENCH_MACHINE).estimateUs, () => wasm.planMixed(mixed, BENCH_MACHINE).estimateUs),
+    ];
+  });
 }

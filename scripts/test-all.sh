@@ -26,6 +26,7 @@ stage() {
 }
 
 stage "The simulated printer's module (printer.wasm) is what the firmware's sources build, byte for byte" bash scripts/build-wasm.sh --check
+stage "The planner's module (planner.wasm) is what the planner's sources build, byte for byte" bash scripts/build-planner-wasm.sh --check
 # The AVR images first: Vitest reads them too (the flasher's chip and HEX checks on the real images).
 stage "AVR firmware images and budgets" bash scripts/test-firmware.sh images
 stage "TypeScript unit tests (Vitest)" npm run --silent test:unit
