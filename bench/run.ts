@@ -1,4 +1,5 @@
 // npm run bench: every benchmark, printed as tables of medians and ratios to each group's baseline.
+import '../app/src/planner/wasm/node-planner-wasm'; // the app plans with the Mega's planner as WebAssembly: loaded first
 import { printTable } from './harness';
 import { jobCodecBench } from './job-codec.bench';
 import { pcbBench } from './pcb.bench';

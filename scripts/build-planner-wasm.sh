@@ -22,7 +22,7 @@ srcs=(firmware/common/planner/src/planner.cpp firmware/common/planner/src/time_m
   firmware/common/protocol/src/crc16.cpp firmware/common/protocol/src/text_scan.cpp
   firmware/common/protocol/src/line_splitter.cpp firmware/wasm/planner_module.cpp)
 flags=(--target=wasm32-wasi --sysroot=/usr -isystem /usr/include/wasm32-wasi
-  -Oz -flto -mbulk-memory -ffunction-sections -fdata-sections -fvisibility=hidden -std=c++17 -fno-exceptions -fno-rtti
+  -Oz -flto -fwhole-program-vtables -mbulk-memory -ffunction-sections -fdata-sections -fvisibility=hidden -std=c++17 -fno-exceptions -fno-rtti
   -Wall -Wextra -Wno-missing-field-initializers -Werror
   -Ifirmware/common/protocol/src -Ifirmware/common/planner/src)
 objs=()

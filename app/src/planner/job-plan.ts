@@ -1,11 +1,16 @@
-// Plans a job by its strategy: stop and fire (planner.ts), or exposure on the move (scan.ts) seen
-// through the same Plan, one "stop" per pass, so progress, estimates and checkpoints count passes.
+// Plans a job by its strategy: stop and fire, or exposure on the move seen through the same Plan,
+// one "stop" per pass, so progress, estimates and checkpoints count passes. The plans are the
+// Mega's own: its C++ planners as WebAssembly (planner-wasm.ts), loaded by the work worker, where
+// every plan of the app is made (work/answer.ts).
 
 import type { JobHeader, StrategyName } from '../protocol/job-types';
-import { mixedPassCount, planMixed, type MixedPlan } from './mixed';
-import { planJob, type Plan, type PlannerJob } from './planner';
-import { passSpanUs, planScan, type ScanPass, type ScanPlan } from './scan';
+import { mixedPassCount, type MixedPlan } from './mixed';
+import type { Plan, PlannerJob } from './planner';
+import { ORDERS, planJob, planMixed, planScan } from './planner-wasm';
+import { passSpanUs, type ScanPass, type ScanPlan } from './scan';
 import type { MotionModel } from './time-model';
+
+export { ORDERS, orderEstimates } from './planner-wasm';
 
 export interface JobPlan {
   /** One entry per step of the job's progress, as the Mega counts it: a stop, or a pass on the move. */
@@ -95,8 +100,6 @@ export function passSwitches(pass: ScanPlan['passes'][number]): { atUs: number; 
 /** The studio's Order list: a strategy, or the fastest of them for the job at hand. */
 export type OrderChoice = StrategyName | 'auto';
 
-/** The orders the automatic choice weighs, in the order it prefers them on a tie. */
-export const ORDERS: StrategyName[] = ['scan', 'mixed', 'serpentine', 'shortest', 'raster', 'random'];
 
 /** Where a pass's stroke on the move runs along X, µm, either way along it (a pass run leftwards
  *  starts at its right end): from its start to its stop step, run-up and run-out included. */
@@ -111,27 +114,6 @@ export function strokeOnBed(pass: ScanPass, machine: MotionModel, bedXUm: number
   if (!Number.isFinite(bedXUm)) return Math.min(pass.startSteps, pass.stopSteps) >= 0;
   const bedSteps = Math.floor((bedXUm * machine.stepsMilli[0] + 500_000) / 1_000_000);
   return Math.min(pass.startSteps, pass.stopSteps) >= 0 && Math.max(pass.startSteps, pass.stopSteps) <= bedSteps;
-}
-
-/**
- * Each order's estimate for the job, µs: what the Mega's planner will count for it. An order that
- * cannot plan a job that has light (a scan pass over the 32-bit limit) is Infinity.
- */
-export function orderEstimates(job: PlannerJob, machine: MotionModel, bedXUm = Infinity): Record<StrategyName, number> {
-  const out = {} as Record<StrategyName, number>;
-  let lit = false;
-  // A scan's strokes run up and out beyond the artwork: one that leaves the bed is no choice.
-  for (const name of ORDERS) {
-    const { plan, scan, mixed } = planAnyJob({ ...job, header: { ...job.header, strategy: name } }, machine);
-    const strokes = scan?.passes ?? mixed?.passes.flatMap((p) => (p.scan ? [p.pass] : [])) ?? [];
-    const offBed = strokes.some((p) => !strokeOnBed(p, machine, bedXUm));
-    out[name] = offBed ? Infinity : plan.count || !lit ? plan.estimateUs : Infinity;
-    if (name !== 'scan' && name !== 'mixed' && plan.count) lit = true;
-  }
-  // A scan or mixed plan that is empty where stops are not: refused (planner.md "Limits").
-  if (lit && out.scan === 0) out.scan = Infinity;
-  if (lit && out.mixed === 0) out.mixed = Infinity;
-  return out;
 }
 
 /** The fastest order of `estimates`; on a tie, the first in ORDERS. */

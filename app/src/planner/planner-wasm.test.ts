@@ -6,7 +6,7 @@ import { boardMask, fillMask, pcbMask, photoMask, sparseMask, textMask, type Mas
 import type { JobHeader, PrintJob, StrategyName } from '../protocol/job-types';
 import { GEOMETRIES, MACHINE, planStops, randomJob, type GoldenCase } from './golden';
 import { headerOf } from './job-header';
-import { orderEstimates } from './job-plan';
+import { mixedAsPlan, scanAsPlan, strokeOnBed } from './job-plan';
 import { mixedVector, planMixed } from './mixed';
 import { planJob, type PlannerJob } from './planner';
 import * as wasm from './planner-wasm';
@@ -17,6 +17,44 @@ import { loadNodePlannerWasm } from './wasm/node-planner-wasm';
 loadNodePlannerWasm();
 
 const ORDERS: StrategyName[] = ['raster', 'serpentine', 'shortest', 'random', 'scan', 'mixed'];
+
+/** The orders as job-plan.ts weighs them, in the order it prefers them on a tie. */
+const WEIGHED: StrategyName[] = ['scan', 'mixed', 'serpentine', 'shortest', 'raster', 'random'];
+
+/** job-plan.ts planAnyJob as it was with the TypeScript planner. */
+function tsPlanAnyJob(job: PlannerJob, machine: MotionModel) {
+  const h = job.header;
+  if (h.strategy === 'mixed') {
+    const mixed = planMixed(job, machine);
+    return { plan: mixedAsPlan(mixed, machine, h), scan: null, mixed };
+  }
+  if (h.strategy !== 'scan') return { plan: planJob(job, machine), scan: null, mixed: null };
+  const scan = planScan(job, machine);
+  return { plan: scanAsPlan(scan, machine, h), scan, mixed: null };
+}
+
+/**
+ * The TypeScript planner's weighing of the six orders, the rule the app used before it planned with
+ * the module (job-plan.ts): each order planned, an order that cannot plan a job that has light
+ * (a scan pass over the 32-bit limit) Infinity, and a scan or mixed plan whose strokes leave the bed.
+ */
+function orderEstimates(job: PlannerJob, machine: MotionModel, bedXUm = Infinity): Record<StrategyName, number> {
+  const out = {} as Record<StrategyName, number>;
+  let lit = false;
+  // A scan's strokes run up and out beyond the artwork: one that leaves the bed is no choice.
+  for (const name of WEIGHED) {
+    const { plan, scan, mixed } = tsPlanAnyJob({ ...job, header: { ...job.header, strategy: name } }, machine);
+    const strokes = scan?.passes ?? mixed?.passes.flatMap((p) => (p.scan ? [p.pass] : [])) ?? [];
+    const offBed = strokes.some((p) => !strokeOnBed(p, machine, bedXUm));
+    out[name] = offBed ? Infinity : plan.count || !lit ? plan.estimateUs : Infinity;
+    if (name !== 'scan' && name !== 'mixed' && plan.count) lit = true;
+  }
+  // A scan or mixed plan that is empty where stops are not: refused (planner.md "Limits").
+  if (lit && out.scan === 0) out.scan = Infinity;
+  if (lit && out.mixed === 0) out.mixed = Infinity;
+  return out;
+}
+
 
 /** The bench's two heads (bench/planner.bench.ts GEOMETRY), a head of four LEDs on one cell, and a staggered one. */
 const HEADS: Record<string, [number, number][]> = {

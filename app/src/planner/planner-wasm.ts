@@ -24,6 +24,14 @@ interface Exports {
 }
 
 let planner: Exports | null = null;
+let loading: Promise<void> | null = null;
+
+/**
+ * Where the module's bytes are: an asset of the app's build beside the work worker's file. Asked for
+ * only when wanted: as a constant it would be code at the module's top, which follows this file into
+ * the page's chunks that import the planner's types and helpers.
+ */
+const plannerUrl = (): URL => new URL('./wasm/planner.wasm', import.meta.url);
 
 /** Compiles and starts the module from its bytes, synchronously (a worker's or Node's way); later calls keep the first. */
 export function loadPlannerWasm(bytes: BufferSource): void {
@@ -33,8 +41,28 @@ export function loadPlannerWasm(bytes: BufferSource): void {
   planner._initialize();
 }
 
+/**
+ * Fetches and starts the module once (the work worker, before its first plan). Fetched as bytes and
+ * compiled in the worker, so any server's content type will do (the hub's flash, a static host). A
+ * failed fetch is said, and the next call tries again.
+ */
+export function plannerReady(): Promise<void> {
+  if (planner) return Promise.resolve();
+  loading ??= fetch(plannerUrl())
+    .then((r) => {
+      if (!r.ok) throw new Error(`HTTP ${r.status}`);
+      return r.arrayBuffer();
+    })
+    .then(loadPlannerWasm)
+    .catch((e: Error) => {
+      loading = null;
+      throw new Error(`the planner's module (planner.wasm) could not be loaded: ${e.message}`);
+    });
+  return loading;
+}
+
 function module(): Exports {
-  if (!planner) throw new Error('the planner module is not loaded: loadPlannerWasm(bytes) first');
+  if (!planner) throw new Error('the planner module is not loaded: plannerReady() (or loadPlannerWasm(bytes)) first');
   return planner;
 }
 
@@ -196,11 +224,11 @@ export function planMixed(job: PlannerJob, machine: MotionModel): MixedPlan {
   return { windowUs, passes, steps, estimateUs };
 }
 
-/** The orders the automatic choice weighs, in the order it prefers them on a tie (job-plan.ts ORDERS). */
-const ORDERS: StrategyName[] = ['scan', 'mixed', 'serpentine', 'shortest', 'raster', 'random'];
+/** The orders the automatic choice weighs, in the order it prefers them on a tie. */
+export const ORDERS: StrategyName[] = ['scan', 'mixed', 'serpentine', 'shortest', 'raster', 'random'];
 
 /**
- * Each order's estimate for the job, µs, as job-plan.ts orderEstimates weighs them: an order that cannot
+ * Each order's estimate for the job, µs: what the Mega's planner will count for it. An order that cannot
  * plan a job that has light is Infinity, and so is a scan or mixed plan whose strokes leave the bed.
  */
 export function orderEstimates(job: PlannerJob, machine: MotionModel, bedXUm = Infinity): Record<StrategyName, number> {

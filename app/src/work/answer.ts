@@ -5,13 +5,18 @@ import { planForPreview, keptGrid } from './preview-work';
 import { dryRunSummary } from './dry-run-work';
 import { doseMapNow, keepDosePlan } from './dose-work';
 import { BoardUnreadable, rasterInWorker, readBoard, readPicture, spriteOf } from './artwork-work';
+import { plannerReady } from '../planner/planner-wasm';
 import type { Progress, WorkRequest } from './work-types';
 
 export { BoardUnreadable };
 
 type Answer = { result: unknown; transfer?: Transferable[] };
 
+/** What plans a job: the Mega's planner as WebAssembly, fetched before the first of them. */
+const PLANS = new Set<WorkRequest['kind']>(['plan', 'dose-plan', 'dry-run']);
+
 export async function answer(request: WorkRequest, report: (p: Progress) => void): Promise<Answer> {
+  if (PLANS.has(request.kind)) await plannerReady();
   switch (request.kind) {
     case 'plan':
       return planForPreview(request);

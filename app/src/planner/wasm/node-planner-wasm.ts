@@ -1,4 +1,5 @@
-// Node's way to the planner module (tests, the bench): the committed planner.wasm beside this file, loaded once per process.
+// Node's way to the planner module (tests, the bench, desktop scripts): the committed planner.wasm
+// beside this file, started synchronously once per process, on import (Vitest's setup file).
 import { readFileSync } from 'node:fs';
 import { loadPlannerWasm } from '../planner-wasm';
 
@@ -8,3 +9,5 @@ export const PLANNER_WASM_FILE = new URL('./planner.wasm', import.meta.url);
 export function loadNodePlannerWasm(): void {
   loadPlannerWasm(readFileSync(PLANNER_WASM_FILE));
 }
+
+loadNodePlannerWasm();

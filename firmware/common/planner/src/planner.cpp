@@ -29,9 +29,18 @@ Durations::Durations(const JobHeader& h) : linear_(h.map == DoseMap::Linear), le
     uint64_t full = h.byTarget ? roundDiv(static_cast<uint64_t>(h.targetUJcm2) * 1000000u, h.irradianceUWcm2[k]) : h.fullUs;
     scale_[k] = full * h.gainPermille[k];
   }
+#ifndef __AVR__
+  for (uint8_t k = 0; k < 4; k++)
+    for (uint16_t v = 0; v < 256; v++) table_[k][v] = compute(k, static_cast<uint8_t>(v));
+#endif
 }
 
+// On the AVR, a cell's duration worked out when asked; elsewhere, once a value for the table.
+#ifdef __AVR__
 uint32_t Durations::us(uint8_t led, uint8_t value) const {
+#else
+uint32_t Durations::compute(uint8_t led, uint8_t value) const {
+#endif
   uint32_t m = linear_ ? value : (value >= level_ && value > 0 ? 255 : 0);
   if (m == 0) return 0;
   return static_cast<uint32_t>(roundDiv(scale_[led] * m, 255000));

@@ -23,7 +23,11 @@ constexpr uint16_t kPlannerMaxBytes = 1400;
 class Durations {
  public:
   explicit Durations(const JobHeader& h);
+#ifdef __AVR__
   uint32_t us(uint8_t led, uint8_t value) const;
+#else
+  uint32_t us(uint8_t led, uint8_t value) const { return table_[led][value]; }
+#endif
   uint32_t longest(const uint8_t value[4]) const;
   // The four LEDs' durations for a stop's values.
   void each(const uint8_t value[4], uint32_t out[4]) const {
@@ -34,6 +38,21 @@ class Durations {
   uint64_t scale_[4];  // full_k × gain_k
   bool linear_;
   uint8_t level_;
+#ifndef __AVR__
+  uint32_t compute(uint8_t led, uint8_t value) const;
+  // Off the AVR, every value's duration worked out once (4 KB): the planners look a cell's up several
+  // times a pass, and the division took 14 % of planning a scan of a board. The Nano's and Mega's RAM
+  // has no room for it.
+  uint32_t table_[4][256];
+
+ public:
+  // What the table adds off the AVR: a planner's size bound (kPlannerMaxBytes) is the Mega's.
+  static constexpr uint16_t kTableBytes = sizeof(uint32_t) * 4 * 256;
+#else
+
+ public:
+  static constexpr uint16_t kTableBytes = 0;
+#endif
 };
 
 class Planner {
