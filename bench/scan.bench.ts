@@ -257,9 +257,16 @@ export function p10Wasm(): Row[] {
     const scan = { header: header(mask, 'scan', map), cells }, mixed = { header: header(mask, 'mixed', map), cells };
     const pair = (what: string, ts: () => number, asWasm: () => number): Row[] =>
       compare(`P10 ${mask.name} ${mask.cols}×${mask.rows} ${what}: the C++ planner as WebAssembly against the TypeScript planner`, { name: `TypeScript ${what} (baseline)`, run: () => (sink += ts()) }, [{ name: `WebAssembly ${what} (cells in, plan decoded)`, run: () => (sink += asWasm()) }], 5);
+    // What the preview and the dry run do first: every order planned and weighed (job-plan.ts orderEstimates).
+    const sixOrders = () => {
+      let t = planScan(scan, BENCH_MACHINE).estimateUs + planMixed(mixed, BENCH_MACHINE).estimateUs;
+      for (const s of ['raster', 'serpentine', 'shortest', 'random'] as StrategyName[]) t += planJob({ header: header(mask, s, map), cells }, BENCH_MACHINE).estimateUs;
+      return t;
+    };
     return [
       ...pair('planScan', () => planScan(scan, BENCH_MACHINE).estimateUs, () => wasm.planScan(scan, BENCH_MACHINE).estimateUs),
       ...pair('planMixed', () => planMixed(mixed, BENCH_MACHINE).estimateUs, () => wasm.planMixed(mixed, BENCH_MACHINE).estimateUs),
+      ...pair('six orders weighed', sixOrders, () => wasm.orderEstimates(scan, BENCH_MACHINE).scan),
     ];
   });
 }

@@ -100,7 +100,6 @@ export function passSwitches(pass: ScanPlan['passes'][number]): { atUs: number; 
 /** The studio's Order list: a strategy, or the fastest of them for the job at hand. */
 export type OrderChoice = StrategyName | 'auto';
 
-
 /** Where a pass's stroke on the move runs along X, µm, either way along it (a pass run leftwards
  *  starts at its right end): from its start to its stop step, run-up and run-out included. */
 export function strokeSpanUm(pass: ScanPass, machine: MotionModel): { minUm: number; maxUm: number } {

@@ -1,7 +1,7 @@
-// The C++ exposure planners as WebAssembly (firmware/wasm/planner_module.cpp, built by
-// scripts/build-planner-wasm.sh into wasm/planner.wasm): planJob, planScan, planMixed, orderEstimates
-// and the move times of the TypeScript planner, with the same arguments, their plans decoded from the
-// module's words into the same objects.
+// The app's planner: the Mega's C++ planners as WebAssembly (firmware/wasm/planner_module.cpp, built
+// by scripts/build-planner-wasm.sh into wasm/planner.wasm): planJob, planScan, planMixed, orderEstimates
+// and the move times, with the TypeScript planner's arguments, their plans decoded from the module's
+// words into the same objects (planner-wasm.test.ts holds the two equal until that one is deleted).
 
 import type { JobHeader, StrategyName } from '../protocol/job-types';
 import { NANO_LINK_BAUDS } from '../protocol/nano';
