@@ -200,6 +200,13 @@ void planStops(const uv::JobHeader& h, const uv::MotionModel& m, uint32_t known)
   set64(head + 6, clock.travelUm(1));
 }
 
+// A pass's events as its link check walks them, for the plan's words (ScanPlanner::keepEvents): room
+// for the densest pass of a photo 2048 cells wide (8 switches a window); a denser one is walked again.
+constexpr uint32_t kLoggedEvents = 16384;
+uint32_t gLogT[kLoggedEvents];
+uint8_t gLogState[kLoggedEvents];
+uv::ScanPlanner::EventLog gLog{gLogT, gLogState, kLoggedEvents};
+
 // A pass on the move: hy, descending, first, last, its window, accelUs, overscanUm, runUpUm,
 // runOutUm, moveUs, startSteps, stopSteps, strokeUs, markUs; its jumps (count, then window, windows,
 // µs each) and its events as the Nano runs them (count, then t, state each).
@@ -242,6 +249,7 @@ void putEnding(uint32_t at, const uv::ScanPlanner& planner) {
 void planScan(const uv::JobHeader& h, const uv::MotionModel& m, uint32_t known, bool neverFly) {
   MemoryCells cells;
   uv::ScanPlanner planner(h, cells, m);
+  planner.keepEvents(&gLog);
   if (neverFly) planner.neverFly();
   if (known < h.rows) planner.setKnownRows(static_cast<uint16_t>(known));
   const uv::ScanMotion motion = planner.motion();
@@ -264,6 +272,7 @@ void planScan(const uv::JobHeader& h, const uv::MotionModel& m, uint32_t known, 
 void planMixed(const uv::JobHeader& h, const uv::MotionModel& m, uint32_t known) {
   MemoryCells cells;
   uv::ScanPlanner planner(h, cells, m);
+  planner.keepEvents(&gLog);
   if (known < h.rows) planner.setKnownRows(static_cast<uint16_t>(known));
   put(planner.motion().windowUs);
   const uint32_t head = gOutWords;

@@ -164,6 +164,11 @@ void ScanPlanner::openPass() {
 // Plays the open pass's events through the program writer and reopens it: true when its chain
 // outruns the printhead link (need > have, uv::LinkLoad), as the Mega checks at M29.
 bool ScanPlanner::outrunsLink(uint64_t& need, uint64_t& have) {
+#ifndef __AVR__
+  replay_ = false;
+  logging_ = log_ != nullptr;
+  logged_ = logNext_ = 0;
+#endif
   ProgramLines lines(passEvent, this);
   LinkLoad load(m_.linkBaud);
   char line[kNanoMaxLine + 2];
@@ -171,6 +176,11 @@ bool ScanPlanner::outrunsLink(uint64_t& need, uint64_t& have) {
   // The pass's last event (every LED off) is the last moment nextEvent() gathered.
   const uint32_t lastUs = u_.ev.heldT;
   openPass();
+#ifndef __AVR__
+  // Every event logged, none left unread by an early end: the pass's events as nextEvent() would walk them.
+  replay_ = logging_ && !lines.failed() && logged_ <= log_->cap;
+  logging_ = false;
+#endif
   if (lines.failed()) return false;  // a gap of 2²⁸ µs: the Mega refuses the pass, whatever its speed
   return !load.fits(lastUs, need, have);
 }
@@ -320,10 +330,31 @@ bool ScanPlanner::fillEdges() {
   return true;
 }
 
+#ifndef __AVR__
+bool ScanPlanner::passEvent(void* ctx, uint32_t& t, uint8_t& m) {
+  ScanPlanner& p = *static_cast<ScanPlanner*>(ctx);
+  if (!p.nextEvent(t, m)) return false;
+  if (p.logging_ && p.logged_ < p.log_->cap) {
+    p.log_->t[p.logged_] = t;
+    p.log_->state[p.logged_] = m;
+  }
+  if (p.logging_ && p.logged_ <= p.log_->cap) p.logged_++;
+  return true;
+}
+#endif
+
 // Gathers every edge of one moment before handing out the state after it: an LED whose cell ends
 // where its next cell begins (full cells at an uncapped speed) switches off and on at the same
 // moment, which is no event at all.
 bool ScanPlanner::nextEvent(uint32_t& t, uint8_t& m) {
+#ifndef __AVR__
+  if (replay_) {
+    if (logNext_ == logged_) return false;
+    t = log_->t[logNext_];
+    m = log_->state[logNext_++];
+    return true;
+  }
+#endif
   for (;;) {
     const bool more = u_.ev.edgeNext < u_.ev.edgeCount || fillEdges();
     if (u_.ev.held && (!more || u_.ev.edges[u_.ev.edgeNext].t > u_.ev.heldT)) {

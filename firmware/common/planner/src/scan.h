@@ -132,6 +132,19 @@ class ScanPlanner {
   // every row it reads has arrived; until then it says false with starved() true.
   void setKnownRows(uint16_t known) { known_ = known; }
   bool starved() const { return starved_; }
+#ifndef __AVR__
+  // Off the AVR a caller may lend the planner a log for a pass's events, `cap` of them (t, state). The
+  // link check walks each pass's events once (outrunsLink); with a log, nextEvent() then hands them out
+  // from it instead of walking the pass a second time (the app's planner module: that walk was some
+  // 45 % of a PCB's scan plan). A pass with more events than the log holds is walked again, as without
+  // one. Not on the Mega, whose RAM has no room for it. Before the first nextPass().
+  struct EventLog {
+    uint32_t* t;
+    uint8_t* state;
+    uint32_t cap;
+  };
+  void keepEvents(EventLog* log) { log_ = log; }
+#endif
   // The lowest row a later call may still read: rows below it may be dropped.
   int32_t lowestRowNeeded() const { return bandLen_ && bandHy_[0] + dyMin_ < low_ ? bandHy_[0] + dyMin_ : low_; }
 
@@ -209,7 +222,14 @@ class ScanPlanner {
   void setStopPass(bool on) { live_ = static_cast<uint8_t>(on ? live_ | kStopPassBit : live_ & ~kStopPassBit); }
   void openPass();
   bool outrunsLink(uint64_t& need, uint64_t& have);
+#ifdef __AVR__
   static bool passEvent(void* ctx, uint32_t& t, uint8_t& m) { return static_cast<ScanPlanner*>(ctx)->nextEvent(t, m); }
+#else
+  static bool passEvent(void* ctx, uint32_t& t, uint8_t& m);  // and logs them (keepEvents)
+  EventLog* log_ = nullptr;
+  uint32_t logged_ = 0, logNext_ = 0;  // the open pass's events in log_ (cap + 1: more than it holds), the next to hand out
+  bool logging_ = false, replay_ = false;  // the link check is filling log_; nextEvent() hands out log_
+#endif
 
   // The current pass and each LED's next lit cell in its direction.
   int16_t row_[4] = {-1, -1, -1, -1};

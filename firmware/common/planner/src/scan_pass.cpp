@@ -52,6 +52,9 @@ bool ScanPlanner::collect(int32_t& hy, int32_t& first, int32_t& last, uint64_t& 
 // mixed job priced as stops too; added to the estimate. False when the plan must end here.
 bool ScanPlanner::planPass(int32_t hy, int32_t first, int32_t last, uint64_t span, ScanPass& out) {
   descending_ = passes_ % 2 == 1;
+#ifndef __AVR__
+  replay_ = false;  // the log is the pass before's
+#endif
   start_ = descending_ ? last : first;
   openPass();
   // The link cap (planner.md "The printhead link"): a pass whose program lines would outrun the
