@@ -1,11 +1,10 @@
 // P2: planned exposure time per mask against a lower bound and against unidirectional raster.
-// P7: planning plus preview data for 1 M cells, against a plain pass over the cells; and the same plan by
-// the C++ planner as WebAssembly (app/src/planner/planner-wasm.ts) against the TypeScript planner.
+// P7: planning plus preview data for 1 M cells, against a plain pass over the cells, by the app's planner
+// (the C++ planner as WebAssembly, app/src/planner/planner-wasm.ts).
 import type { JobHeader, StrategyName } from '../app/src/protocol/job-types';
-import { planJob, type Plan } from '../app/src/planner/planner';
-import * as wasm from '../app/src/planner/planner-wasm';
-import { loadNodePlannerWasm } from '../app/src/planner/wasm/node-planner-wasm';
-import { moveTimeUs, type MotionModel } from '../app/src/planner/time-model';
+import type { Plan } from '../app/src/planner/plan';
+import { moveTimeUs, planJob } from '../app/src/planner/planner-wasm';
+import type { MotionModel } from '../app/src/planner/time-model';
 import { durationTables } from '../app/src/planner/dose';
 import { compare, type Row } from './harness';
 import { BOARD_LINK_BAUD } from '../app/src/machine/config';
@@ -91,7 +90,7 @@ export function p7(): Row[] {
   const mask = boardMask(1024, 1024);
   const h = header(mask, GEOMETRY['adjacent rows'], 'shortest', 'threshold');
   let sink = 0;
-  return compare('P7 planning + preview data, 1 M cells (TypeScript; goal <= 300 ms)', {
+  return compare('P7 planning + preview data, 1 M cells (the C++ planner as WebAssembly; goal <= 300 ms)', {
     name: 'baseline: one pass summing every cell', run: () => {
       for (const row of mask.cells) for (let i = 0; i < row.length; i++) sink += row[i];
     },
@@ -105,23 +104,6 @@ export function p7(): Row[] {
           if (us) dose[(plan.hy[i] + h.offsets[k][1]) * mask.cols + plan.hx[i] + h.offsets[k][0]] += us;
         }
       sink += dose[0];
-    },
-  }], 7);
-}
-
-/** P7's job planned by the TypeScript planner (the baseline) and by the C++ planner as WebAssembly, plans decoded. */
-export function p7Wasm(): Row[] {
-  loadNodePlannerWasm();
-  const mask = boardMask(1024, 1024);
-  const h = header(mask, GEOMETRY['adjacent rows'], 'shortest', 'threshold');
-  let sink = 0;
-  return compare('P7 planning, 1 M cells: the C++ planner as WebAssembly against the TypeScript planner', {
-    name: 'TypeScript planJob (baseline)', run: () => {
-      sink += planJob({ header: h, cells: mask.cells }, BENCH_MACHINE).count;
-    },
-  }, [{
-    name: 'WebAssembly planJob (cells in, stops decoded)', run: () => {
-      sink += wasm.planJob({ header: h, cells: mask.cells }, BENCH_MACHINE).count;
     },
   }], 7);
 }

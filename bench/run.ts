@@ -10,13 +10,13 @@ import { flashBench } from './flash.bench';
 import { hubLatency } from './hub.bench';
 import { p1 } from './link.bench';
 import { p13 } from './upload.bench';
-import { p2, p7, p7Wasm, printP2 } from './planner.bench';
-import { p10, p10Wasm, printP10, printP11 } from './scan.bench';
+import { p2, p7, printP2 } from './planner.bench';
+import { p10, p10Planning, printP10, printP11 } from './scan.bench';
 import { simSpeed } from './sim-speed.bench';
 
 printTable([...jobCodecBench(), ...p7(), ...pcbBench(), ...doseMapBench()]);
 printP2(p2());
-printTable([...p7Wasm(), ...p10Wasm()], "ratio = median time / the TypeScript planner's median");
+printTable(p10Planning());
 const scans = p10();
 printP10(scans);
 printP11(scans);

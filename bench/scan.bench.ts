@@ -1,14 +1,10 @@
 // P10: exposure on the move (issue 19) against stop-and-fire and against the two limits of a scan; and
-// its scan and mixed plans by the C++ planner as WebAssembly against the TypeScript planner.
+// the time the app's planner (the C++ planner as WebAssembly) takes to make its scan and mixed plans.
 import type { JobHeader, StrategyName } from '../app/src/protocol/job-types';
 import { durationTables } from '../app/src/planner/dose';
-import { planJob } from '../app/src/planner/planner';
-import { mixedPassCount, planMixed, type MixedPlan } from '../app/src/planner/mixed';
-import { planScan, PROGRAM_EVENT_US, PROGRAM_RELAY_US, SCAN_PASS_END_US, SCAN_PASS_LOAD_US, type ScanPlan } from '../app/src/planner/scan';
-import { moveTimeUs } from '../app/src/planner/time-model';
+import { mixedPassCount, type MixedPlan, type ScanPlan } from '../app/src/planner/plan';
+import { moveTimeUs, orderEstimates, planJob, planMixed, planScan } from '../app/src/planner/planner-wasm';
 import { programLines } from '../app/src/protocol/scan-program';
-import * as wasm from '../app/src/planner/planner-wasm';
-import { loadNodePlannerWasm } from '../app/src/planner/wasm/node-planner-wasm';
 import { compare, type Row } from './harness';
 import { BENCH_MACHINE, GEOMETRY } from './planner.bench';
 import { boardMask, fillMask, photoMask, sparseMask, textMask, type Mask } from './masks';
@@ -16,8 +12,6 @@ import { boardMask, fillMask, photoMask, sparseMask, textMask, type Mask } from 
 export interface P10Row {
   mask: string;
   scan: ScanPlan;
-  /** The same passes all at the job's window, however their programs load the printhead link (planScan's noLinkCap): P11's figure before the cap. */
-  uncapped: ScanPlan;
   /** The scan's estimate crossing every blank stretch at the pass's speed (planScan's neverFly). */
   crossingUs: number;
   /** The better of serpentine and shortest stop-and-fire. */
@@ -68,12 +62,11 @@ export function p10(): P10Row[] {
     const scan = planScan({ header: h, cells }, BENCH_MACHINE);
     const mixed = planMixed({ header: header(mask, 'mixed', map), cells }, BENCH_MACHINE);
     const crossing = planScan({ header: h, cells }, BENCH_MACHINE, { neverFly: true });
-    const uncapped = planScan({ header: h, cells }, BENCH_MACHINE, { noLinkCap: true });
     const table = durationTables(h)[0];
     let dose = 0;
     for (const row of cells) for (let c = 0; c < row.length; c++) dose += table[row[c]];
     const travelLimit = scan.passes.reduce((t, p) => t + ((p.last - p.first + 1) * h.pitchUm[0] * 1e6) / BENCH_MACHINE.vmaxUmS[0], 0);
-    return { mask: mask.name, scan, uncapped, crossingUs: crossing.estimateUs, stops, mixed, lightLimit: dose / 4, travelLimit, ...floorsUs(crossing, h.pitchUm[0]), anyPasses: anyPassesUs(cells, table, h) };
+    return { mask: mask.name, scan, crossingUs: crossing.estimateUs, stops, mixed, lightLimit: dose / 4, travelLimit, ...floorsUs(crossing, h.pitchUm[0]), anyPasses: anyPassesUs(cells, table, h) };
   });
 }
 
@@ -186,7 +179,7 @@ function printTurnArounds(rows: P10Row[]): void {
   const s = (us: number) => `${(us / 1e6).toFixed(2)} s`;
   for (const r of rows) {
     const n = r.scan.passes.length;
-    const moves = r.scan.passes.reduce((t, p) => t + p.moveUs, 0), ends = n * (SCAN_PASS_LOAD_US + SCAN_PASS_END_US);
+    const moves = r.scan.passes.reduce((t, p) => t + p.moveUs, 0), ends = r.scan.passes.reduce((t, p) => t + p.wallUs - p.moveUs - p.strokeUs, 0);
     const strokes = r.scan.estimateUs - r.accel - moves - ends;  // the strokes beyond the floor's passes
     console.log(
       `P10 ${r.mask.padEnd(7)} beyond its windows: moves between passes ${s(moves)} (${(moves / Math.max(1, n) / 1000).toFixed(1)} ms a pass), pass load and end ${s(ends)}, strokes past the floor's passes ${s(strokes)}; ` +
@@ -231,42 +224,40 @@ function linkLoad(plan: ScanPlan): { worst: number; whole: number; events: numbe
  */
 export function printP11(rows: P10Row[]): void {
   console.log(
-    `\nP11 printhead link load of scan passes (program bytes, the packed B lines and K lines the Mega sends, against ${BENCH_MACHINE.linkBaud} baud over the pass time; relay ${PROGRAM_RELAY_US} us, the Mega's planner ${PROGRAM_EVENT_US} us an event; goal: worst pass <= 1.00x, the photo >= 3x faster than stop and fire)`,
+    `\nP11 printhead link load of scan passes (program bytes, the packed B lines and K lines the Mega sends, against ${BENCH_MACHINE.linkBaud} baud over the pass time; relay 10000 us, the Mega's planner 300 us an event (scan_program.h); goal: worst pass <= 1.00x, the photo >= 3x faster than stop and fire)`,
   );
   const s = (us: number) => `${(us / 1e6).toFixed(1)} s`;
   for (const r of rows) {
-    const now = linkLoad(r.scan), before = linkLoad(r.uncapped);
+    const now = linkLoad(r.scan);
     const slowed = r.scan.passes.filter((p) => p.windowUs > r.scan.windowUs);
     const widest = Math.max(r.scan.windowUs, ...r.scan.passes.map((p) => p.windowUs));
     console.log(
       `P11 ${r.mask.padEnd(7)} worst pass ${now.worst.toFixed(2)}x  whole job ${now.whole.toFixed(2)}x` +
         `  (${now.events} events, ${(now.bytes / 1024).toFixed(0)} KiB of program lines; ${now.bytes && now.events ? (now.bytes / now.events).toFixed(1) : '0'} B an event)` +
-        `  ${slowed.length} of ${r.scan.passes.length} passes slowed for the link (widest window ${widest} us), scan ${s(r.scan.estimateUs)}, ${(r.stops / r.scan.estimateUs).toFixed(2)}x stop-and-fire` +
-        `  (uncapped: worst pass ${before.worst.toFixed(2)}x, ${s(r.uncapped.estimateUs)})`,
+        `  ${slowed.length} of ${r.scan.passes.length} passes slowed for the link (widest window ${widest} us), scan ${s(r.scan.estimateUs)}, ${(r.stops / r.scan.estimateUs).toFixed(2)}x stop-and-fire`,
     );
   }
 }
 
-/** P10's scan and mixed plans of three masks, by the TypeScript planner (each group's baseline) and by the C++ planner as WebAssembly. */
-export function p10Wasm(): Row[] {
-  loadNodePlannerWasm();
+/**
+ * P10's scan and mixed plans of three masks by the app's planner (the C++ planner as WebAssembly), and
+ * every order weighed as the preview and the dry run weigh them, against one pass summing every cell
+ * (each group's baseline, as P7's). planner.md "Speed" has the TypeScript planner's last figures.
+ */
+export function p10Planning(): Row[] {
   const masks: [Mask, 'linear' | 'threshold'][] = [[boardMask(800, 400), 'threshold'], [sparseMask(800, 400), 'threshold'], [photoMask(300, 200), 'linear']];
   let sink = 0;
   return masks.flatMap(([mask, map]) => {
     const cells = mask.cells;
     const scan = { header: header(mask, 'scan', map), cells }, mixed = { header: header(mask, 'mixed', map), cells };
-    const pair = (what: string, ts: () => number, asWasm: () => number): Row[] =>
-      compare(`P10 ${mask.name} ${mask.cols}×${mask.rows} ${what}: the C++ planner as WebAssembly against the TypeScript planner`, { name: `TypeScript ${what} (baseline)`, run: () => (sink += ts()) }, [{ name: `WebAssembly ${what} (cells in, plan decoded)`, run: () => (sink += asWasm()) }], 5);
-    // What the preview and the dry run do first: every order planned and weighed (job-plan.ts orderEstimates).
-    const sixOrders = () => {
-      let t = planScan(scan, BENCH_MACHINE).estimateUs + planMixed(mixed, BENCH_MACHINE).estimateUs;
-      for (const s of ['raster', 'serpentine', 'shortest', 'random'] as StrategyName[]) t += planJob({ header: header(mask, s, map), cells }, BENCH_MACHINE).estimateUs;
-      return t;
-    };
-    return [
-      ...pair('planScan', () => planScan(scan, BENCH_MACHINE).estimateUs, () => wasm.planScan(scan, BENCH_MACHINE).estimateUs),
-      ...pair('planMixed', () => planMixed(mixed, BENCH_MACHINE).estimateUs, () => wasm.planMixed(mixed, BENCH_MACHINE).estimateUs),
-      ...pair('six orders weighed', sixOrders, () => wasm.orderEstimates(scan, BENCH_MACHINE).scan),
-    ];
+    return compare(`P10 ${mask.name} ${mask.cols}×${mask.rows}: the app's planner (the C++ planner as WebAssembly, cells in, plan decoded)`, {
+      name: 'baseline: one pass summing every cell', run: () => {
+        for (const row of cells) for (let i = 0; i < row.length; i++) sink += row[i];
+      },
+    }, [
+      { name: 'planScan', run: () => (sink += planScan(scan, BENCH_MACHINE).estimateUs) },
+      { name: 'planMixed', run: () => (sink += planMixed(mixed, BENCH_MACHINE).estimateUs) },
+      { name: 'six orders weighed', run: () => (sink += orderEstimates(scan, BENCH_MACHINE).scan) },
+    ], 5);
   });
 }

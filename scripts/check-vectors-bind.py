@@ -19,20 +19,17 @@ EXPECTED = {
                   "replies": "reply"},
     "job.json": {"jobs": "text", "invalid": "error"},
     "esp.json": {"requests": ["text", "paced"]},
-    "planner-ts.json": {"cases": "plan"},
     "planner-cpp.json": {"cases": "plan"},
     "mesh.json": {"cases": "points"},
-    "scan-ts.json": {"cases": "scan"},
     "scan-cpp.json": {"cases": "scan"},
-    "mixed-ts.json": {"cases": "mixed"},
     "mixed-cpp.json": {"cases": "mixed"},
     "nano-program.json": {"programs": "lines", "sessions": "steps"},
 }
 # The C++ test program that reads each file (a list: each of them must fail).
 CXX_BINARY = {"nano.json": "protocol_tests", "mega.json": "protocol_tests", "job.json": "protocol_tests",
-              "esp.json": "esp_tests", "planner-ts.json": "planner_tests", "planner-cpp.json": "planner_tests",
-              "mesh.json": "planner_tests", "scan-ts.json": "planner_tests", "scan-cpp.json": "planner_tests",
-              "mixed-ts.json": "planner_tests", "mixed-cpp.json": "planner_tests",
+              "esp.json": "esp_tests", "planner-cpp.json": "planner_tests",
+              "mesh.json": "planner_tests", "scan-cpp.json": "planner_tests",
+              "mixed-cpp.json": "planner_tests",
               "nano-program.json": "protocol_tests", "nano-program.json#sessions": "nano_tests",
               # The jobs' texts bind the ESP hub's path too (hub_job_format_test.cpp): each must fail.
               "job.json#jobs": ["protocol_tests", "esp_tests"]}

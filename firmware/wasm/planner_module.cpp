@@ -208,7 +208,7 @@ uint8_t gLogState[kLoggedEvents];
 uv::ScanPlanner::EventLog gLog{gLogT, gLogState, kLoggedEvents};
 
 // A pass on the move: hy, descending, first, last, its window, accelUs, overscanUm, runUpUm,
-// runOutUm, moveUs, startSteps, stopSteps, strokeUs, markUs; its jumps (count, then window, windows,
+// runOutUm, moveUs, startSteps, stopSteps, strokeUs, markUs, its time in the estimate (2 words); its jumps (count, then window, windows,
 // µs each) and its events as the Nano runs them (count, then t, state each).
 void putScanPass(uv::ScanPlanner& planner, const uv::ScanPass& p) {
   const uv::ScanMotion& own = planner.passMotion();
@@ -216,6 +216,7 @@ void putScanPass(uv::ScanPlanner& planner, const uv::ScanPass& p) {
                              own.windowUs, own.accelUs, own.overscanUm, static_cast<uint32_t>(p.runUpUm), static_cast<uint32_t>(p.runOutUm),
                              p.moveUs, static_cast<uint32_t>(p.startSteps), static_cast<uint32_t>(p.stopSteps), p.strokeUs, p.markUs};
   for (uint32_t f : fields) put(f);
+  put64(p.scanUs);
   put(planner.jumps());
   for (uint8_t i = 0; i < planner.jumps(); i++) {
     uint32_t window, windows, flyUs;
@@ -386,3 +387,10 @@ EXPORT("planner_estimates") const uint32_t* plannerEstimates() {
 // step engine's move by (dx, dy) steps on the machine's words.
 EXPORT("planner_move_time_us") uint32_t plannerMoveTimeUs(uint32_t d, uint32_t v, uint32_t a) { return uv::moveTimeUs(d, v, a); }
 EXPORT("planner_engine_move_us") uint32_t plannerEngineMoveUs(uint32_t dx, uint32_t dy) { return uv::engineMoveUs(machine(), dx, dy); }
+// A stop's cost in the time model after a move of (dx, dy) steps, lighting the LEDs for us0 … us3 µs
+// (stopCostStepsUs), and an axis's position in steps for `um` µm, on the machine's words.
+EXPORT("planner_stop_cost_us") uint32_t plannerStopCostUs(int32_t dx, int32_t dy, uint32_t us0, uint32_t us1, uint32_t us2, uint32_t us3) {
+  const uint32_t us[4] = {us0, us1, us2, us3};
+  return uv::stopCostStepsUs(machine(), dx, dy, us);
+}
+EXPORT("planner_axis_steps") int32_t plannerAxisSteps(uint32_t axis, int32_t um) { return uv::axisSteps(machine(), axis ? 1 : 0, um); }

@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { GEOMETRIES, planCase, randomJob } from '../planner/golden';
+import { GEOMETRIES, planCase, randomJob } from '../planner/test-jobs';
 import { encodeJob } from '../protocol/job-encode';
 import { SimWire } from '../sim/wire';
 import { CommandError } from './command-error';

@@ -1,7 +1,7 @@
 // The host's heartbeat: the Mega pauses a running job no host has spoken to for 30 s of its time
 // (mega.md §6). The app's reports come by themselves, so its link says something every 10 s.
 import { describe, expect, it } from 'vitest';
-import { GEOMETRIES, randomJob } from '../planner/golden';
+import { GEOMETRIES, randomJob } from '../planner/test-jobs';
 import { SimWire } from '../sim/wire';
 import { DialectLink, HEARTBEAT_MS } from './dialect-link';
 import type { Transport } from './transport';

@@ -5,7 +5,7 @@
 
 import { headerOf } from '../planner/job-header';
 import { planAnyJob, type JobPlan } from '../planner/job-plan';
-import type { ScanPass } from '../planner/scan';
+import type { ScanPass } from '../planner/plan';
 import type { MotionModel } from '../planner/time-model';
 import { scanDoses } from '../preview/scan-preview';
 import type { PrintJob } from '../protocol/job-types';

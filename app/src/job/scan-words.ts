@@ -1,6 +1,6 @@
 // How a scan job (exposure on the move), or a mixed one, is described wherever it is shown: the dry run, the preview.
 
-import { mixedPassCount, type MixedPlan } from '../planner/mixed';
+import { mixedPassCount, type MixedPlan } from '../planner/plan';
 
 export function scanWords(passes: number, speedUmS: number, windowUs: number): string {
   const mmS = speedUmS / 1000;

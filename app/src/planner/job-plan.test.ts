@@ -1,10 +1,10 @@
 import { mergeLight } from '../protocol/scan-program';
 import { describe, expect, it } from 'vitest';
 import { fastestOrder, ORDERS, orderEstimates, passDurationUs, passSwitches, planAnyJob, strokeOnBed, strokeSpanUm } from './job-plan';
-import { planJob } from './planner';
-import { GEOMETRIES, randomJob } from './golden';
+import { planJob } from './planner-wasm';
+import { GEOMETRIES, randomJob } from './test-jobs';
 import { CONFIG_DEFAULTS, motionOf } from '../machine/config';
-import type { ScanPass, ScanPlan } from './scan';
+import type { ScanPass, ScanPlan } from './plan';
 import { headerOf } from './job-header';
 import type { MotionModel } from './time-model';
 import type { StrategyName } from '../protocol/job-types';
@@ -17,7 +17,7 @@ const header = (cols: number, rows: number, name: StrategyName) => headerOf({
 });
 
 const pass = (leds: [number, number][][], jumps: [number, number, number][] = []): ScanPass =>
-  ({ hy: 0, descending: false, first: 0, last: 9, windowUs: 100, accelUs: 7, overscanUm: 1, runUpUm: 0, runOutUm: 0, leds, jumps, events: mergeLight(leds), moveUs: 0, startSteps: 0, stopSteps: 0, strokeUs: 1234, markUs: 56 });
+  ({ hy: 0, descending: false, first: 0, last: 9, windowUs: 100, accelUs: 7, overscanUm: 1, runUpUm: 0, runOutUm: 0, leds, jumps, events: mergeLight(leds), moveUs: 0, startSteps: 0, stopSteps: 0, strokeUs: 1234, markUs: 56, wallUs: 6634 });
 
 describe('a scan pass as the machine runs it', () => {
   it('switches the LEDs in time order, one mask per instant, an LED going off where another comes on', () => {

@@ -4,10 +4,8 @@
 // every plan of the app is made (work/answer.ts).
 
 import type { JobHeader, StrategyName } from '../protocol/job-types';
-import { mixedPassCount, type MixedPlan } from './mixed';
-import type { Plan, PlannerJob } from './planner';
+import { mixedPassCount, passSpanUs, type MixedPlan, type Plan, type PlannerJob, type ScanPass, type ScanPlan } from './plan';
 import { ORDERS, planJob, planMixed, planScan } from './planner-wasm';
-import { passSpanUs, type ScanPass, type ScanPlan } from './scan';
 import type { MotionModel } from './time-model';
 
 export { ORDERS, orderEstimates } from './planner-wasm';

@@ -1,12 +1,12 @@
+// Mixed mode's properties (protocol/planner.md "Mixed mode") and the firmware's mixed vectors, checked on
+// the app's planner: the C++ planner as WebAssembly.
 import { readFileSync } from 'node:fs';
 import { describe, expect, it } from 'vitest';
 import type { PrintJob } from '../protocol/job-types';
-import { GEOMETRIES, MACHINE, planStops } from './golden';
 import { headerOf } from './job-header';
-import { mixedGoldenCases, type MixedCase } from './mixed-golden';
-import { bandStops, mixedVector, planMixed } from './mixed';
-import { planJob } from './planner';
-import { planScan } from './scan';
+import { planJob, planMixed, planScan } from './planner-wasm';
+import { GEOMETRIES, MACHINE, mixedVector, planStops } from './test-jobs';
+import type { MotionModel } from './time-model';
 
 const plannerJob = (j: PrintJob) => ({ header: headerOf(j), cells: j.gridData });
 
@@ -42,13 +42,6 @@ describe('the mixed planner', () => {
     for (const p of m.passes) expect(p.scan ? p.scanUs < p.stopsUs : p.stopsUs < p.scanUs).toBe(true);
     expect(m.estimateUs).toBe(m.passes.reduce((t, p) => t + (p.scan ? p.scanUs : p.stopsUs), 0));
     expect(m.steps).toBe(8 + 32);
-  });
-
-  it('orders a band column by column from the nearer end: bandStops', () => {
-    const pass = (hy: number, ...hx: number[]) => hx.map((x) => [x, hy, 1, 0, 0, 0]);
-    const r = bandStops([pass(0, 1, 5), pass(4, 1, 3), pass(8, 5)], (hx) => hx * 4, (hy) => hy * 50, 100, 0);
-    expect(r).toMatchObject({ descending: true, first: 1, last: 5 }); // X 20 is nearer than 4 to the head at 100
-    expect(r.stops.map((s) => [s[0], s[1]])).toEqual([[5, 0], [5, 8], [3, 4], [1, 4], [1, 0]]);
   });
 
   it('takes the scan passes for full rows: the scan plan, with its estimate', () => {
@@ -96,11 +89,11 @@ describe('the mixed planner', () => {
 });
 
 describe('mixed golden vectors', () => {
-  const load = (file: string): MixedCase[] => {
+  const load = (file: string): { name: string; job: PrintJob; machine: MotionModel; mixed: object }[] => {
     const dir = process.env.UV_VECTORS_DIR ? `file://${process.env.UV_VECTORS_DIR}/` : new URL('../../../protocol/vectors/', import.meta.url);
     return JSON.parse(readFileSync(new URL(file, dir), 'utf8')).cases;
   };
-  for (const file of ['mixed-ts.json', 'mixed-cpp.json']) {
+  for (const file of ['mixed-cpp.json']) {
     it(`reproduces every mixed plan in ${file}, with passes of both ways`, () => {
       const cases = load(file);
       expect(cases.length).toBeGreaterThanOrEqual(10);
@@ -109,11 +102,7 @@ describe('mixed golden vectors', () => {
       expect(ways.filter((p) => p.scan).length).toBeGreaterThan(5);
       expect(ways.filter((p) => !p.scan).length).toBeGreaterThan(5);
       expect(ways.filter((p) => p.band).length).toBeGreaterThan(2); // bands of stops too
-      console.log(`[vectors] ${file}: ${cases.length} mixed plans checked (TypeScript)`);
+      console.log(`[vectors] ${file}: ${cases.length} mixed plans checked (the C++ planner as WebAssembly)`);
     });
   }
-
-  it('mixed-ts.json is what this implementation makes', () => {
-    expect(mixedGoldenCases().map((c) => c.mixed)).toEqual(load('mixed-ts.json').map((c) => c.mixed));
-  });
 });

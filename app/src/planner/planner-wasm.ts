@@ -1,14 +1,12 @@
 // The app's planner: the Mega's C++ planners as WebAssembly (firmware/wasm/planner_module.cpp, built
 // by scripts/build-planner-wasm.sh into wasm/planner.wasm): planJob, planScan, planMixed, orderEstimates
-// and the move times, with the TypeScript planner's arguments, their plans decoded from the module's
-// words into the same objects (planner-wasm.test.ts holds the two equal until that one is deleted).
+// and the time model's moves and stops, their plans decoded from the module's words into plan.ts's
+// objects. There is no other planner: the firmware's vectors check this one (planner-wasm.test.ts).
 
 import type { JobHeader, StrategyName } from '../protocol/job-types';
 import { NANO_LINK_BAUDS } from '../protocol/nano';
 import type { ScanEvent } from '../protocol/scan-program';
-import type { MixedPass, MixedPlan } from './mixed';
-import type { Plan, PlannerJob } from './planner';
-import type { ScanPass, ScanPlan } from './scan';
+import type { MixedPass, MixedPlan, Plan, PlannerJob, ScanPass, ScanPlan } from './plan';
 import { ENGINE_MAX_RATE, ENGINE_TICK_HZ, type MotionModel } from './time-model';
 
 interface Exports {
@@ -21,6 +19,8 @@ interface Exports {
   planner_estimates(): number;
   planner_move_time_us(d: number, v: number, a: number): number;
   planner_engine_move_us(dx: number, dy: number): number;
+  planner_stop_cost_us(dx: number, dy: number, us0: number, us1: number, us2: number, us3: number): number;
+  planner_axis_steps(axis: number, um: number): number;
 }
 
 let planner: Exports | null = null;
@@ -79,9 +79,14 @@ function headerWords(h: JobHeader): number[] {
   ];
 }
 
+let machineWritten: MotionModel | null = null;
+
 function writeMachine(wasm: Exports, m: MotionModel): void {
-  // As the TypeScript planner's MoveTimes: a link speed the Nano does not have is no machine to plan for.
+  // A timeline asks a stop's cost at every stop: the same machine is written once (machines are not changed in place).
+  if (m === machineWritten) return;
+  // A link speed the Nano does not have is no machine to plan for.
   if (!NANO_LINK_BAUDS.includes(m.linkBaud)) throw new RangeError(`the printhead link has no speed ${m.linkBaud} baud (nano.md "Link speed")`);
+  machineWritten = m;
   const words = [...m.vmaxUmS, ...m.accelUmS2, m.settleUs, m.overheadUs, ...m.startUm, ...m.stepsMilli, m.linkBaud];
   new Int32Array(wasm.memory.buffer, wasm.planner_machine(), words.length).set(words);
 }
@@ -168,13 +173,13 @@ function ledsOf(events: ScanEvent[]): [number, number][][] {
 function scanPass(w: PlanWords): ScanPass {
   const hy = w.i32(), descending = w.u32() === 1, first = w.i32(), last = w.i32();
   const windowUs = w.u32(), accelUs = w.u32(), overscanUm = w.u32(), runUpUm = w.i32(), runOutUm = w.i32();
-  const moveUs = w.u32(), startSteps = w.i32(), stopSteps = w.i32(), strokeUs = w.u32(), markUs = w.u32();
+  const moveUs = w.u32(), startSteps = w.i32(), stopSteps = w.i32(), strokeUs = w.u32(), markUs = w.u32(), wallUs = w.u64();
   const jumps: [number, number, number][] = [];
   for (let n = w.u32(); n > 0; n--) jumps.push([w.u32(), w.u32(), w.u32()]);
   const events: ScanEvent[] = [];
   for (let n = w.u32(); n > 0; n--) events.push([w.u32(), w.u32()]);
   const leds = ledsOf(events);
-  return { hy, descending, first, last, windowUs, accelUs, overscanUm, runUpUm, runOutUm, leds, jumps, events, moveUs, startSteps, stopSteps, strokeUs, markUs };
+  return { hy, descending, first, last, windowUs, accelUs, overscanUm, runUpUm, runOutUm, leds, jumps, events, moveUs, startSteps, stopSteps, strokeUs, markUs, wallUs };
 }
 
 /**
@@ -252,14 +257,32 @@ export function orderEstimates(job: PlannerJob, machine: MotionModel, bedXUm = I
   return out;
 }
 
-/** µs to move `d` µm on one axis from rest to rest on the continuous trapezoid (time-model.ts moveTimeUs). */
+/** µs to move `d` µm on one axis from rest to rest on the continuous trapezoid (time_model.cpp moveTimeUs). */
 export function moveTimeUs(d: number, v: number, a: number): number {
   return module().planner_move_time_us(d, v, a) >>> 0;
 }
 
-/** µs the step engine takes to move by (dx, dy) steps from rest to rest (time-model.ts engineMoveUs). */
+/** µs the step engine takes to move by (dx, dy) steps from rest to rest (time_model.cpp engineMoveUs). */
 export function engineMoveUs(m: MotionModel, dx: number, dy: number): number {
   const wasm = module();
   writeMachine(wasm, m);
   return wasm.planner_engine_move_us(Math.abs(dx), Math.abs(dy)) >>> 0;
+}
+
+/**
+ * A stop's cost in the time model (protocol/planner.md "Time model", time_model.cpp stopCostStepsUs):
+ * the step engine's move by (dx, dy) steps, the settle after a move, the overhead, its F line on the
+ * printhead link and its longest exposure (`us`: its four on-times).
+ */
+export function stopCostUs(m: MotionModel, dx: number, dy: number, us: ArrayLike<number>): number {
+  const wasm = module();
+  writeMachine(wasm, m);
+  return wasm.planner_stop_cost_us(dx, dy, us[0], us[1], us[2], us[3]) >>> 0;
+}
+
+/** An axis's position in steps for `um` µm, rounded half away from zero (the Mega's Motion::toSteps). */
+export function axisSteps(m: MotionModel, axis: 0 | 1, um: number): number {
+  const wasm = module();
+  writeMachine(wasm, m);
+  return wasm.planner_axis_steps(axis, um);
 }

@@ -1,9 +1,10 @@
+// The stop planner's properties and the firmware's stop vectors (protocol/planner.md), checked on the
+// app's planner: the C++ planner as WebAssembly.
 import { existsSync, readFileSync } from 'node:fs';
 import { describe, expect, it } from 'vitest';
-import { goldenCases, GEOMETRIES, MACHINE, planStops, randomJob, STRATEGIES, type GoldenCase } from './golden';
 import { headerOf } from './job-header';
-import { planJob } from './planner';
-import { moveTimeUs } from './time-model';
+import { moveTimeUs, planJob } from './planner-wasm';
+import { GEOMETRIES, MACHINE, planStops, randomJob, STRATEGIES, type GoldenCase } from './test-jobs';
 
 const VECTORS = new URL('../../../protocol/vectors/', import.meta.url);
 
@@ -22,7 +23,7 @@ function stopsOf(c: Pick<GoldenCase, 'job' | 'machine'>) {
 }
 
 describe('planner golden vectors', () => {
-  for (const file of ['planner-ts.json', 'planner-cpp.json']) {
+  for (const file of ['planner-cpp.json']) {
     it(`reproduces every plan in ${file}`, () => {
       const cases = load(file);
       expect(cases.length).toBeGreaterThan(20);
@@ -31,13 +32,9 @@ describe('planner golden vectors', () => {
         expect(stops, c.name).toEqual(c.plan.stops);
         expect([p.passes, p.estimateUs, p.travelUm], c.name).toEqual([c.plan.passes, c.plan.estimateUs, c.plan.travelUm]);
       }
-      console.log(`[vectors] ${file}: ${cases.length} plans checked (TypeScript)`);
+      console.log(`[vectors] ${file}: ${cases.length} plans checked (the C++ planner as WebAssembly)`);
     });
   }
-
-  it('planner-ts.json is what this implementation makes', () => {
-    expect(goldenCases().map((c) => c.plan)).toEqual(load('planner-ts.json').map((c) => c.plan));
-  });
 });
 
 /** Independent dose formula with BigInt, for the property tests. */

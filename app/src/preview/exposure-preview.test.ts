@@ -1,6 +1,6 @@
 import { describe, expect, it } from 'vitest';
 import { headerOf } from '../planner/job-header';
-import { planJob } from '../planner/planner';
+import { planJob } from '../planner/planner-wasm';
 import type { PrintJob } from '../protocol/job-types';
 import { ledCoverage, previewGrid, timeline } from './exposure-preview';
 

@@ -3,8 +3,9 @@
 // gave it; the travel is the head's path through the stops; the timeline is the time model's
 // clock at each stop (protocol/planner.md "Time model"), so scrubbing shows time as well as place.
 
-import { MoveTimes, type MotionModel } from '../planner/time-model';
-import type { Plan } from '../planner/planner';
+import type { Plan } from '../planner/plan';
+import { axisSteps, stopCostUs } from '../planner/planner-wasm';
+import type { MotionModel } from '../planner/time-model';
 import type { PrintJob } from '../protocol/job-types';
 
 export interface PreviewGrid {
@@ -52,13 +53,13 @@ export function previewGrid(job: PrintJob, plan: Plan, upTo: number, maxSide = 5
 
 /** The time model's clock when each stop ends, µs: timeline[i] is the job's time through stop i. */
 export function timeline(job: PrintJob, plan: Plan, machine: MotionModel): Float64Array {
-  const moves = new MoveTimes(machine);
   const out = new Float64Array(plan.count);
   let x = machine.startUm[0], y = machine.startUm[1], t = 0;
   for (let i = 0; i < plan.count; i++) {
     const nx = job.originUm.x + plan.hx[i] * job.pitchUm.x, ny = job.originUm.y + plan.hy[i] * job.pitchUm.y;
     const d = plan.durations;
-    t += moves.stop(nx, ny, x, y, d.subarray(i * 4, i * 4 + 4));
+    const dx = axisSteps(machine, 0, nx) - axisSteps(machine, 0, x), dy = axisSteps(machine, 1, ny) - axisSteps(machine, 1, y);
+    t += stopCostUs(machine, dx, dy, d.subarray(i * 4, i * 4 + 4));
     out[i] = t;
     x = nx, y = ny;
   }

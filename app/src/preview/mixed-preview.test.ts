@@ -1,7 +1,7 @@
 import { describe, expect, it } from 'vitest';
-import { GEOMETRIES } from '../planner/golden';
+import { GEOMETRIES } from '../planner/test-jobs';
 import { headerOf } from '../planner/job-header';
-import { planMixed } from '../planner/mixed';
+import { planMixed } from '../planner/planner-wasm';
 import type { MotionModel } from '../planner/time-model';
 import type { PrintJob } from '../protocol/job-types';
 import { mixedWords } from '../job/scan-words';

@@ -2,8 +2,7 @@
 // stop (a band of stops as its passes), as scan-preview.ts draws a scan job's, so the drawing shows
 // which passes scan; and the light of each, from its switch times or its stops' durations.
 
-import type { MixedPlan } from '../planner/mixed';
-import type { ScanPlan } from '../planner/scan';
+import type { MixedPlan, ScanPlan } from '../planner/plan';
 import type { PrintJob } from '../protocol/job-types';
 import { scanDoses, type ScanLine, type ScanPreview } from './scan-preview';
 

@@ -4,7 +4,7 @@
 import { headerOf } from '../planner/job-header';
 import { fastestOrder, orderEstimates, planAnyJob } from '../planner/job-plan';
 import { ledCoverage, timeline } from './exposure-preview';
-import type { Plan } from '../planner/planner';
+import type { Plan } from '../planner/plan';
 import type { MotionModel } from '../planner/time-model';
 import type { PrintJob, StrategyName } from '../protocol/job-types';
 import { mixedWords } from '../job/scan-words';

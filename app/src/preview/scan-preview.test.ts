@@ -1,7 +1,7 @@
 import { describe, expect, it } from 'vitest';
 import { durationTables } from '../planner/dose';
 import { headerOf } from '../planner/job-header';
-import { planScan } from '../planner/scan';
+import { planScan } from '../planner/planner-wasm';
 import type { PrintJob } from '../protocol/job-types';
 import { motionOf } from '../studio/machine-config';
 import { DEFAULT_CONFIG } from '../studio/machine-config';

@@ -3,7 +3,7 @@
 // on-time inside each cell's window), so the picture is what the plan will switch, not what the
 // cells ask for.
 
-import { passWallUs, type ScanPass, type ScanPlan } from '../planner/scan';
+import { passWallUs, type ScanPass, type ScanPlan } from '../planner/plan';
 import type { MotionModel } from '../planner/time-model';
 import type { PrintJob } from '../protocol/job-types';
 import { emptyGrid, type PreviewGrid } from './exposure-preview';

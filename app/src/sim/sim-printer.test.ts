@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { GEOMETRIES, randomJob } from '../planner/golden';
+import { GEOMETRIES, randomJob } from '../planner/test-jobs';
 import { encodeFrame } from '../protocol/dialect-frame';
 import { parseReply } from '../protocol/dialect-reply';
 import { formatOk } from '../protocol/reply-format';

@@ -1,6 +1,6 @@
 // Test-only: the browser's store as the simulated printer's keeper sees it, and a small job to keep.
 
-import { GEOMETRIES, randomJob } from '../planner/golden';
+import { GEOMETRIES, randomJob } from '../planner/test-jobs';
 import type { StoreEntries } from './sim-keeper';
 import { readKept } from './sim-snapshot';
 

@@ -3,9 +3,9 @@
 // the simulated printer runs it, a band of stops too, in the steps and time the app plans.
 
 import { describe, expect, it } from 'vitest';
-import { GEOMETRIES } from '../planner/golden';
+import { GEOMETRIES } from '../planner/test-jobs';
 import { headerOf } from '../planner/job-header';
-import { planMixed } from '../planner/mixed';
+import { planMixed } from '../planner/planner-wasm';
 import { encodeJob } from '../protocol/job-encode';
 import type { PrintJob } from '../protocol/job-types';
 import { CONFIG_DEFAULTS, motionOf } from '../machine/config';

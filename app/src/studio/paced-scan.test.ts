@@ -4,8 +4,8 @@
 
 import { describe, expect, it } from 'vitest';
 import { headerOf } from '../planner/job-header';
-import { planMixed } from '../planner/mixed';
-import { planScan } from '../planner/scan';
+import { planMixed } from '../planner/planner-wasm';
+import { planScan } from '../planner/planner-wasm';
 import { encodeJob } from '../protocol/job-encode';
 import type { PrintJob } from '../protocol/job-types';
 import { CONFIG_DEFAULTS, motionOf } from '../machine/config';

@@ -3,7 +3,7 @@
 
 import { describe, expect, it } from 'vitest';
 import { headerOf } from '../planner/job-header';
-import { planScan } from '../planner/scan';
+import { planScan } from '../planner/planner-wasm';
 import { encodeJob } from '../protocol/job-encode';
 import type { PrintJob } from '../protocol/job-types';
 import { CONFIG_DEFAULTS, motionOf } from '../machine/config';

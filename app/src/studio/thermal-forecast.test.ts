@@ -4,7 +4,7 @@
 
 import { describe, expect, it } from 'vitest';
 import { headerOf } from '../planner/job-header';
-import { planJob } from '../planner/planner';
+import { planJob } from '../planner/planner-wasm';
 import { encodeJob } from '../protocol/job-encode';
 import type { PrintJob } from '../protocol/job-types';
 import { CONFIG_DEFAULTS, motionOf } from '../machine/config';

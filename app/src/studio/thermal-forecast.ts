@@ -7,10 +7,9 @@
 // LEDs' switch times, a mixed job pass by pass either way.
 
 import { passDurationUs, passSwitches } from '../planner/job-plan';
-import type { Plan } from '../planner/planner';
-import type { MixedPlan } from '../planner/mixed';
-import { passWallUs, type ScanPass, type ScanPlan } from '../planner/scan';
-import { axisSteps, fireLineUs, MoveTimes, type MotionModel } from '../planner/time-model';
+import { passWallUs, type MixedPlan, type Plan, type ScanPass, type ScanPlan } from '../planner/plan';
+import { axisSteps, stopCostUs } from '../planner/planner-wasm';
+import type { MotionModel } from '../planner/time-model';
 import { HEAD_THERMAL, HeadThermal, type HeadThermalModel } from '../machine/head-thermal';
 import { overSoftLimit, paceWaits, READING_PERIOD_US } from '../machine/pacing';
 
@@ -81,7 +80,6 @@ function forecastHead(o: ForecastOptions) {
 
 export function forecastThermal(plan: Plan, place: PlanPlace, machine: MotionModel, o: ForecastOptions): ThermalRun {
   const { s, hold, paceWait, result } = forecastHead(o);
-  const moves = new MoveTimes(machine);
   let x = machine.startUm[0], y = machine.startUm[1];
   const d = [0, 0, 0, 0];
   for (s.stop = 0; s.stop < plan.count; s.stop++) {
@@ -90,7 +88,8 @@ export function forecastThermal(plan: Plan, place: PlanPlace, machine: MotionMod
     const ny = place.originUm[1] + plan.hy[stop] * place.pitchUm[1];
     let longest = 0;
     for (let k = 0; k < 4; k++) longest = Math.max(longest, (d[k] = plan.durations[stop * 4 + k]));
-    if (!hold(moves.stop(nx, ny, x, y, d) - longest, 0)) break;
+    const move = [axisSteps(machine, 0, nx) - axisSteps(machine, 0, x), axisSteps(machine, 1, ny) - axisSteps(machine, 1, y)];
+    if (!hold(stopCostUs(machine, move[0], move[1], d) - longest, 0)) break;
     x = nx, y = ny;
     if (!paceWait() || !exposeStop(hold, d)) break;
   }
@@ -130,7 +129,6 @@ function exposeStroke(hold: (dt: number, lit: number) => boolean, pass: ScanPass
  */
 export function forecastMixedThermal(mixed: MixedPlan, place: PlanPlace, machine: MotionModel, o: ForecastOptions): ThermalRun {
   const { s, hold, paceWait, result } = forecastHead(o);
-  const moves = new MoveTimes(machine);
   let x = axisSteps(machine, 0, machine.startUm[0]), y = axisSteps(machine, 1, machine.startUm[1]);
   s.stop = 0;
   for (const p of mixed.passes) {
@@ -143,8 +141,8 @@ export function forecastMixedThermal(mixed: MixedPlan, place: PlanPlace, machine
     }
     for (const [hx, hy, ...d] of p.stops) {
       const nx = axisSteps(machine, 0, place.originUm[0] + hx * place.pitchUm[0]), ny = axisSteps(machine, 1, place.originUm[1] + hy * place.pitchUm[1]);
-      const move = moves.engine(nx - x, ny - y);
-      if (!hold(move + (move > 0 ? machine.settleUs : 0) + machine.overheadUs + fireLineUs(d, machine.linkBaud), 0) || !paceWait() || !exposeStop(hold, d)) return result();
+      // The stop's cost less its exposure: the move, the settle, the overhead, its F line.
+      if (!hold(stopCostUs(machine, nx - x, ny - y, d) - Math.max(d[0], d[1], d[2], d[3]), 0) || !paceWait() || !exposeStop(hold, d)) return result();
       x = nx, y = ny;
       s.stop++;
     }

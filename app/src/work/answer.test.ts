@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { GEOMETRIES, randomJob } from '../planner/golden';
+import { GEOMETRIES, randomJob } from '../planner/test-jobs';
 import type { Planned } from '../preview/plan-work';
 import { DEFAULT_CONFIG, bedOf, motionOf } from '../studio/machine-config';
 import type { TwoSided } from '../studio/objects/board-object';

@@ -11,7 +11,7 @@ namespace uv {
 constexpr uint16_t kPlannerMaxRows = kJobMaxSide;
 // Rows already given to a pass are marked in a ring this many rows long. A pass marks rows from the
 // lowest open row up to the LEDs' spread in rows above it, so the C++ planner takes jobs whose LED
-// rows (dy) span less than this; supported() says so (the TypeScript planner has no such limit).
+// rows (dy) span less than this; supported() says so.
 constexpr uint16_t kCoveredWindowRows = 1024;
 constexpr uint8_t kRandomBlock = 32;
 constexpr uint8_t kShortestBand = 8;                 // passes per band for `shortest`

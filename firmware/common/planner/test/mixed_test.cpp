@@ -1,4 +1,4 @@
-// Host tests of mixed mode (planner.md "Mixed mode"): golden plans from both implementations, the
+// Host tests of mixed mode (planner.md "Mixed mode"): its golden plans, the
 // choice of each band and pass, and a mixed job planned while its rows arrive.
 #include <gtest/gtest.h>
 
@@ -61,7 +61,6 @@ JobHeader mixedJob(uint16_t cols, uint16_t rows) {
 
 }  // namespace
 
-TEST(MixedGolden, ReproducesTypeScriptPlans) { checkMixedGolden("mixed-ts.json"); }
 TEST(MixedGolden, ReproducesItsOwnPlans) { checkMixedGolden("mixed-cpp.json"); }
 
 // A few dots far apart: the five passes are one band (planner.md "Bands"), cheaper as one group of

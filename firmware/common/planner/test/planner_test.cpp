@@ -1,4 +1,4 @@
-// Host tests of the C++ planner: golden plans from both implementations, exactness on random jobs,
+// Host tests of the C++ planner: its golden plans, exactness on random jobs,
 // and the RAM bound with no heap use.
 #include "planner.h"
 
@@ -95,7 +95,6 @@ void checkGolden(const char* file) {
 
 }  // namespace
 
-TEST(PlannerGolden, ReproducesTypeScriptPlans) { checkGolden("planner-ts.json"); }
 TEST(PlannerGolden, ReproducesItsOwnPlans) { checkGolden("planner-cpp.json"); }
 
 TEST(PlannerMemory, StreamsWithinItsBoundAndNeverAllocates) {

@@ -1,4 +1,4 @@
-// Host tests of the C++ scan planner: golden scan plans from both implementations, switch times of
+// Host tests of the C++ scan planner: its golden scan plans, switch times of
 // small features, and a pass at a time without the heap.
 #include "scan.h"
 
@@ -86,7 +86,6 @@ using Lists = std::vector<std::vector<uint32_t>>;
 
 }  // namespace
 
-TEST(ScanGolden, ReproducesTypeScriptScans) { checkScanGolden("scan-ts.json"); }
 TEST(ScanGolden, ReproducesItsOwnScans) { checkScanGolden("scan-cpp.json"); }
 
 TEST(ScanPlanner, CentresGrayCellsMergesFullRunsAndReversesTheSecondPass) {

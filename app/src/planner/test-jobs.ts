@@ -1,9 +1,10 @@
-// Golden planner cases: random small jobs over every strategy and several geometries, with the plan
-// this implementation makes. `npm run vectors:planner` writes them to protocol/vectors/planner-ts.json.
+// The app's tests' jobs and machines: random small jobs over several geometries, and a job's stop plan
+// as the planner's vectors write it (protocol/vectors/planner-cpp.json).
 
 import type { PrintJob, StrategyName } from '../protocol/job-types';
 import { headerOf } from './job-header';
-import { planJob, type Plan } from './planner';
+import type { MixedPlan, Plan } from './plan';
+import { planJob } from './planner-wasm';
 import type { MotionModel } from './time-model';
 
 export const GEOMETRIES: Record<string, [number, number][]> = {
@@ -81,21 +82,13 @@ export function planCase(name: string, job: PrintJob, machine: MotionModel): Gol
   return { name, job, machine, plan: { stops: planStops(p), passes: p.passes, estimateUs: p.estimateUs, travelUm: p.travelUm } };
 }
 
-export function goldenCases(): GoldenCase[] {
-  const out: GoldenCase[] = [];
-  let seed = 1000;
-  for (const [g, offsets] of Object.entries(GEOMETRIES)) {
-    for (const s of STRATEGIES) {
-      for (let n = 0; n < 2; n++) out.push(planCase(`ts ${g} ${s} #${n}`, randomJob(seed++, offsets, s), MACHINE));
-    }
-  }
-  // Wide passes: the random strategy shuffles several 32-stop blocks, shortest turns around.
-  for (const s of STRATEGIES) out.push(planCase(`ts wide ${s}`, randomJob(seed++, GEOMETRIES.adjacent, s, [75, 9]), MACHINE));
-  // Sparse dots over several bands: `shortest` takes the column order in some bands, rows in others.
-  for (const [g, offsets] of Object.entries(GEOMETRIES)) {
-    out.push(planCase(`ts sparse shortest ${g}`, randomJob(seed++, offsets, 'shortest', [90, 70], 0.02), MACHINE));
-  }
-  // On the raised link each stop's F line is shorter.
-  for (const s of STRATEGIES) out.push(planCase(`ts mixed ${s}, link at 250000`, randomJob(seed++, GEOMETRIES.mixed, s), RAISED_MACHINE));
-  return out;
+/** A mixed plan as the firmware's vectors write it (protocol/vectors/mixed-cpp.json). */
+export function mixedVector(plan: MixedPlan): object {
+  const passes = plan.passes.map((p) => {
+    const base = { hy: p.hy, descending: p.descending, first: p.first, last: p.last, scanUs: p.scanUs, stopsUs: p.stopsUs, scan: p.scan };
+    if (!p.scan) return { ...base, ...(p.band ? { band: p.band } : {}), stops: p.stops };
+    const s = p.pass;
+    return { ...base, windowUs: s.windowUs, jumps: s.jumps, events: s.events, moveUs: s.moveUs, startSteps: s.startSteps, stopSteps: s.stopSteps, strokeUs: s.strokeUs, markUs: s.markUs };
+  });
+  return { windowUs: plan.windowUs, passes, steps: plan.steps, estimateUs: plan.estimateUs };
 }
