@@ -133,7 +133,7 @@ class PlanWords {
   }
 }
 
-/** The job planned in `order`, whatever its header asks (as each TypeScript planner plans its own). */
+/** The job planned in `order`, whatever its header asks (planScan plans a scan of any header). */
 function plan(job: PlannerJob, machine: MotionModel, order: StrategyName, neverFly = false): PlanWords {
   const wasm = module();
   writeJob(wasm, job, machine);
@@ -141,7 +141,7 @@ function plan(job: PlannerJob, machine: MotionModel, order: StrategyName, neverF
   return new PlanWords(wasm, wasm.planner_plan(STRATEGY_INDEX[order], job.knownRows ?? h.rows, neverFly ? 1 : 0));
 }
 
-/** A stop-and-fire plan (raster, serpentine, shortest, random), as planner.ts planJob. */
+/** A stop-and-fire plan (raster, serpentine, shortest, random). */
 export function planJob(job: PlannerJob, machine: MotionModel): Plan {
   const w = plan(job, machine, job.header.strategy);
   const count = w.u32(), passes = w.u32(), estimateUs = w.u64(), travelUm: [number, number] = [w.u64(), w.u64()];
@@ -183,7 +183,7 @@ function scanPass(w: PlanWords): ScanPass {
 }
 
 /**
- * Why the step engine cannot run a window (mega.md M29, E29), worded as scan.ts's engineStep words it:
+ * Why the step engine cannot run a window (mega.md M29, E29), worded for the dry run and the order list:
  * the module says only that it cannot, and at which window.
  */
 function engineRefusal(machine: MotionModel, pitchUm: number, windowUs: number): string {
@@ -203,7 +203,7 @@ function ending(w: PlanWords, machine: MotionModel, h: JobHeader): { empty: bool
   return { empty: code === 1 };
 }
 
-/** A plan exposed on the move, as scan.ts planScan (`neverFly` as its option; the link cap always applies). */
+/** A plan exposed on the move (protocol/planner.md "Scan mode"; `neverFly` for the bench's figure; the link cap always applies). */
 export function planScan(job: PlannerJob, machine: MotionModel, opts: { neverFly?: boolean } = {}): ScanPlan {
   const w = plan(job, machine, 'scan', !!opts.neverFly);
   const motion = { windowUs: w.u32(), speedUmS: w.u32(), accelUs: w.u32(), overscanUm: w.u32() };
@@ -214,7 +214,7 @@ export function planScan(job: PlannerJob, machine: MotionModel, opts: { neverFly
   return { ...motion, passes, estimateUs };
 }
 
-/** A plan in mixed mode, as mixed.ts planMixed. */
+/** A plan in mixed mode (protocol/planner.md "Mixed mode"). */
 export function planMixed(job: PlannerJob, machine: MotionModel): MixedPlan {
   const w = plan(job, machine, 'mixed');
   const windowUs = w.u32(), steps = w.u32(), estimateUs = w.u64(), end = ending(w, machine, job.header), count = w.u32();
