@@ -34,8 +34,9 @@ CXX_BINARY = {"nano.json": "protocol_tests", "mega.json": "protocol_tests", "job
               # The jobs' texts bind the ESP hub's path too (hub_job_format_test.cpp): each must fail.
               "job.json#jobs": ["protocol_tests", "esp_tests"]}
 # Sections that only the firmware implements: the Nano's program store runs in C++ alone since the
-# simulated printer became the firmware's C++ (issue 27); there is no TypeScript Nano to bind.
-FIRMWARE_ONLY = {"nano-program.json#sessions"}
+# simulated printer became the firmware's C++ (issue 27); there is no TypeScript Nano to bind. Nor a
+# TypeScript Mega to take lines (issue 38): the sessions of mega.json bind the Mega's line receiver.
+FIRMWARE_ONLY = {"nano-program.json#sessions", "mega.json#sessions"}
 
 
 def mutate(value, rng):

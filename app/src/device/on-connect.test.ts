@@ -8,8 +8,8 @@ import { describe, expect, it } from 'vitest';
 const SRC = join(import.meta.dirname, '..');
 const ON_CONNECT = /\/(dialect-client|dialect-link|dialect-reply|line-splitter|dialect-frame|sim-link)['"]/;
 const LOADED_ON_CONNECT = ['device/chosen-links.ts', 'device/dialect-client.ts', 'device/dialect-link.ts', 'device/esp-link.ts', 'device/sim-link.ts'];
-/** The simulated printer's side of the link, in its worker or the tests' hosts; and the upload's size, counted in the work worker's dry run (work/dry-run-work.ts). */
-const SIMULATOR = /^(sim\/|protocol\/dialect-receiver\.ts$|job\/upload-time\.ts$)/;
+/** The simulated printer's side of the link, in its worker; and the upload's size, counted in the work worker's dry run (work/dry-run-work.ts). */
+const SIMULATOR = /^(sim\/|job\/upload-time\.ts$)/;
 
 function sources(dir: string): string[] {
   return readdirSync(dir).flatMap((name) => {

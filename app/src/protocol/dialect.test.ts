@@ -1,7 +1,6 @@
 import { describe, expect, it } from 'vitest';
 import { formatMilli, parseCommand } from './dialect-command';
 import { DIALECT_MAX_LINE, encodeFrame, parseFrame } from './dialect-frame';
-import { LineReceiver } from './dialect-receiver';
 import { parseReply } from './dialect-reply';
 import { formatReply } from './reply-format';
 import { LineSplitter } from './line-splitter';
@@ -42,21 +41,6 @@ describe('mega dialect vectors', () => {
     const r = parseCommand(c.body);
     if (c.error) expect(r).toEqual({ ok: false, error: c.error });
     else expect(r).toEqual({ ok: true, command: c.command });
-    count();
-  });
-
-  it.each(cases(v.sessions, 'name'))('session: %s', (_n, s: any) => {
-    const rx = new LineReceiver({ movesFree: () => v.movesFree, windowFree: () => v.window });
-    for (const step of s.steps) {
-      if (step.answered !== undefined) {
-        rx.markAnswered(step.answered); // the executor finished that line
-        continue;
-      }
-      const a = rx.accept(split(step.rx));
-      if (step.execute !== undefined) expect(a).toMatchObject({ kind: 'execute', body: step.execute });
-      else if (step.reply.length === 0) expect(a).toEqual({ kind: 'none' });
-      else expect(a).toEqual({ kind: 'reply', lines: step.reply });
-    }
     count();
   });
 
