@@ -16,7 +16,7 @@ using Geometries = std::vector<std::pair<const char*, std::vector<std::array<int
 struct Rng {
   uint64_t x;
   explicit Rng(uint64_t seed) : x(seed * 0x9E3779B97F4A7C15ull | 1) {}
-  uint32_t next() {  // splitmix64, a different generator from the TypeScript side's
+  uint32_t next() {  // splitmix64
     uint64_t z = (x += 0x9E3779B97F4A7C15ull);
     z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
     z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;

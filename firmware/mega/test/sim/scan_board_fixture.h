@@ -33,6 +33,7 @@ class ScanOnBoard : public BoardTest {
   // Both host ports poll the temperatures and the job while it runs (the stack's heaviest run).
   bool pollBothHosts = false;
   int espHeard = 0;  // the ESP port's temperature reports
+  double jobUs = 0;  // expose(): from the M29's ok to the job's end, on the Mega's clock
   scandose::Figures expose(const uv::JobHeader& h, const Grid& g, int passes) { return expose(h, g, passes, passes, std::vector<double>(h.rows, h.fullUs)); }
   // `steps`: the job's progress count (a mixed job's stops count one each); `strokes`: its passes on
   // the move (one G each); `windowOfRow`: the window of the pass on the move that exposes each row.
@@ -44,6 +45,7 @@ class ScanOnBoard : public BoardTest {
     EXPECT_TRUE(said(numbered("M828"), "ok"));
     for (const std::string& r : encode(h, g)) EXPECT_TRUE(said(numbered(r), "ok")) << r;
     EXPECT_TRUE(said(numbered("M29"), "ok"));
+    const uint64_t started = sim.megaCycle();
     std::string end;
     bool reset = passes < 2;
     uint64_t nextPoll = sim.megaCycle();
@@ -66,6 +68,7 @@ class ScanOnBoard : public BoardTest {
       return !end.empty();
     }, 20e6));
     sim.logging = false;
+    jobUs = (sim.megaCycle() - started) / BoardSim::kCyclesPerUs;
     std::string replies;
     for (const std::string& l : sim.nanoReplies) replies += l + " ";
     EXPECT_EQ(end.rfind("JOB:done", 0), 0u) << end << "\nthe Nano said: " << replies;
