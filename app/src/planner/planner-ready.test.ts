@@ -26,7 +26,7 @@ describe('the planner module, fetched by the work worker', () => {
     });
     vi.stubGlobal('fetch', fetch);
     const wasm = await freshPlanner();
-    await expect(wasm.plannerReady()).rejects.toThrow("the planner's module (planner.wasm) could not be loaded: HTTP 404");
+    await expect(wasm.plannerReady()).rejects.toThrow("the planner's module (planner.wasm) could not be loaded: HTTP 404. Reload the page if the app was updated");
     expect(() => wasm.moveTimeUs(1000, 100_000, 2_000_000)).toThrow(/not loaded/);
     await wasm.plannerReady();
     expect(wasm.moveTimeUs(100_000, 150_000, 3_000_000)).toBe(666_667 + 50_000);
@@ -39,7 +39,7 @@ describe('the planner module, fetched by the work worker', () => {
       throw new TypeError('Failed to fetch');
     }));
     let wasm = await freshPlanner();
-    await expect(wasm.plannerReady()).rejects.toThrow("the planner's module (planner.wasm) could not be loaded: Failed to fetch");
+    await expect(wasm.plannerReady()).rejects.toThrow("the planner's module (planner.wasm) could not be loaded: Failed to fetch. Reload the page");
     // A server that answers every path with the page (a single-page host's fallback) gives HTML.
     vi.stubGlobal('fetch', vi.fn(async () => new Response('<!doctype html><title>UV</title>', { status: 200 })));
     wasm = await freshPlanner();

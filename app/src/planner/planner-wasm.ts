@@ -56,7 +56,8 @@ export function plannerReady(): Promise<void> {
     .then(loadPlannerWasm)
     .catch((e: Error) => {
       loading = null;
-      throw new Error(`the planner's module (planner.wasm) could not be loaded: ${e.message}`);
+      // A page left open across a redeploy asks for a module the server no longer has.
+      throw new Error(`the planner's module (planner.wasm) could not be loaded: ${e.message}. Reload the page if the app was updated`);
     });
   return loading;
 }
