@@ -1,4 +1,5 @@
-// Cell value to exposure time per LED (protocol/planner.md "Durations"), in exact integer arithmetic.
+// Cell value to exposure time per LED (protocol/planner.md "Durations"), in exact integer arithmetic:
+// the dose units' rounding, and the spec's durations the tests and the bench hold the planner's plans to.
 
 import type { JobHeader } from '../protocol/job-types';
 

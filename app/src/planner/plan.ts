@@ -119,37 +119,6 @@ export interface MixedPlan {
   refused?: string;
 }
 
-/** A pass's head row and the row each LED exposes in it, or -1. */
-export interface PassRows {
-  hy: number;
-  ledRows: number[];
-}
-
-/** The rows each pass gives its LEDs, in the order the passes open (protocol/planner.md "Passes"). */
-export function passRows(h: JobHeader, rows: ArrayLike<number>[]): PassRows[] {
-  const dy = h.offsets.map((o) => o[1]);
-  const dyMin = Math.min(...dy);
-  const covered = new Uint8Array(h.rows);
-  const out: PassRows[] = [];
-  for (let r = 0; r < h.rows; r++) {
-    if (covered[r]) continue;
-    const row = rows[r];
-    let nonEmpty = false;
-    for (let c = 0; c < row.length && !nonEmpty; c++) nonEmpty = row[c] > 0;
-    if (!nonEmpty) continue;
-    const hy = r - dyMin;
-    const ledRows = [-1, -1, -1, -1];
-    for (let k = 0; k < 4; k++) {
-      const rk = hy + dy[k];
-      if (rk < 0 || rk >= h.rows || covered[rk]) continue;
-      covered[rk] = 1;
-      ledRows[k] = rk;
-    }
-    out.push({ hy, ledRows });
-  }
-  return out;
-}
-
 /** A pass's whole time in the estimate: the move to its stroke, the overhead, the stroke, the Q that confirms it. */
 export function passWallUs(pass: ScanPass): number {
   return pass.wallUs;

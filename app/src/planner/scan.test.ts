@@ -4,7 +4,8 @@ import { describe, expect, it } from 'vitest';
 import type { PrintJob } from '../protocol/job-types';
 import { durationTables } from './dose';
 import { headerOf } from './job-header';
-import { passRows, type ScanPlan } from './plan';
+import type { ScanPlan } from './plan';
+import type { JobHeader } from '../protocol/job-types';
 import { axisSteps, engineMoveUs, moveTimeUs, planJob, planScan } from './planner-wasm';
 import { GEOMETRIES, MACHINE, randomJob } from './test-jobs';
 import { parsePacked, programLines } from '../protocol/scan-program';
@@ -25,6 +26,30 @@ const plan = (job: PrintJob, machine: MotionModel = MACHINE) => planScan({ heade
  * properties of the light hold whatever the machine, and random doses make windows of seconds.
  */
 const runnable = (j: PrintJob, m: MotionModel): MotionModel => ({ ...m, stepsMilli: [Math.max(1, Math.round((1000 * plan(j, m).windowUs) / j.pitchUm.x)), m.stepsMilli[1]] });
+
+/**
+ * The test's own reading of protocol/planner.md "Passes": the row each pass gives each LED, or -1, in
+ * the order the passes open (every row once, to the first pass that reaches it).
+ */
+function passRows(h: JobHeader, rows: ArrayLike<number>[]): { hy: number; ledRows: number[] }[] {
+  const dy = h.offsets.map((o) => o[1]);
+  const dyMin = Math.min(...dy);
+  const covered = new Uint8Array(h.rows);
+  const out: { hy: number; ledRows: number[] }[] = [];
+  for (let r = 0; r < h.rows; r++) {
+    if (covered[r] || !Array.from(rows[r]).some((v) => v > 0)) continue;
+    const hy = r - dyMin;
+    const ledRows = [-1, -1, -1, -1];
+    for (let k = 0; k < 4; k++) {
+      const rk = hy + dy[k];
+      if (rk < 0 || rk >= h.rows || covered[rk]) continue;
+      covered[rk] = 1;
+      ledRows[k] = rk;
+    }
+    out.push({ hy, ledRows });
+  }
+  return out;
+}
 
 /** A job on a blank grid with the given lit cells [col, row, value]. */
 function job(cols: number, rows: number, lit: [number, number, number][], over: Partial<PrintJob> = {}): PrintJob {

@@ -6,9 +6,9 @@
 
 import { headerOf } from '../planner/job-header';
 import type { Mesh } from '../planner/mesh';
-import { durationTables } from '../planner/dose';
 import { planAnyJob, strokeOnBed, strokeSpanUm } from '../planner/job-plan';
-import { passRows, type MixedPlan, type Plan, type ScanPass, type ScanPlan } from '../planner/plan';
+import type { MixedPlan, Plan, ScanPass, ScanPlan } from '../planner/plan';
+import { planJob } from '../planner/planner-wasm';
 import type { PrintJob } from '../protocol/job-types';
 import { machineFinding, type MachineCheck } from '../job/machine-finding';
 import { hms } from '../job/hms';
@@ -143,16 +143,11 @@ export function dryRun(
     lit[i & 3] += plan.durations[i];
   }
   // A scan job's cell is lit for its stop-mode on-time t_k(v) (an LED stays on across a run of full
-  // cells, but each cell's exposure is its own): judged from the cells, so a scan the Mega cannot run
-  // (no passes) is judged too.
+  // cells, but each cell's exposure is its own): judged from the stop plan of the same passes, so a
+  // scan the Mega cannot run (no passes) is judged too.
   if (scan || mixed) {
-    const tables = durationTables(header);
-    for (const { ledRows } of passRows(header, job.gridData)) {
-      ledRows.forEach((r, k) => {
-        const row = r >= 0 ? job.gridData[r] : [];
-        for (let c = 0; c < row.length; c++) longest = Math.max(longest, tables[k][row[c]]);
-      });
-    }
+    const stops = planJob({ header: { ...header, strategy: 'serpentine' }, cells: job.gridData }, machine);
+    for (let i = 0; i < stops.durations.length; i++) longest = Math.max(longest, stops.durations[i]);
   }
   for (const pass of scan?.passes ?? strokes.values()) pass.leds.forEach((list, k) => list.forEach(([on, off]) => (lit[k] += off - on)));
   findings.push(longest > NANO_MAX_EXPOSURE_US
