@@ -119,11 +119,6 @@ export interface MixedPlan {
   refused?: string;
 }
 
-/** A pass's whole time in the estimate: the move to its stroke, the overhead, the stroke, the Q that confirms it. */
-export function passWallUs(pass: ScanPass): number {
-  return pass.wallUs;
-}
-
 /** A pass's time from its start at rest to its end at rest, as the step engine runs its stroke. */
 export function passSpanUs(pass: ScanPass): number {
   return pass.strokeUs;

@@ -54,12 +54,11 @@ export function previewGrid(job: PrintJob, plan: Plan, upTo: number, maxSide = 5
 /** The time model's clock when each stop ends, µs: timeline[i] is the job's time through stop i. */
 export function timeline(job: PrintJob, plan: Plan, machine: MotionModel): Float64Array {
   const out = new Float64Array(plan.count);
-  let x = machine.startUm[0], y = machine.startUm[1], t = 0;
+  // The head in steps, as the Mega keeps it.
+  let x = axisSteps(machine, 0, machine.startUm[0]), y = axisSteps(machine, 1, machine.startUm[1]), t = 0;
   for (let i = 0; i < plan.count; i++) {
-    const nx = job.originUm.x + plan.hx[i] * job.pitchUm.x, ny = job.originUm.y + plan.hy[i] * job.pitchUm.y;
-    const d = plan.durations;
-    const dx = axisSteps(machine, 0, nx) - axisSteps(machine, 0, x), dy = axisSteps(machine, 1, ny) - axisSteps(machine, 1, y);
-    t += stopCostUs(machine, dx, dy, d.subarray(i * 4, i * 4 + 4));
+    const nx = axisSteps(machine, 0, job.originUm.x + plan.hx[i] * job.pitchUm.x), ny = axisSteps(machine, 1, job.originUm.y + plan.hy[i] * job.pitchUm.y);
+    t += stopCostUs(machine, nx - x, ny - y, plan.durations.subarray(i * 4, i * 4 + 4));
     out[i] = t;
     x = nx, y = ny;
   }

@@ -3,7 +3,7 @@
 // on-time inside each cell's window), so the picture is what the plan will switch, not what the
 // cells ask for.
 
-import { passWallUs, type ScanPass, type ScanPlan } from '../planner/plan';
+import type { ScanPass, ScanPlan } from '../planner/plan';
 import type { MotionModel } from '../planner/time-model';
 import type { PrintJob } from '../protocol/job-types';
 import { emptyGrid, type PreviewGrid } from './exposure-preview';
@@ -122,7 +122,7 @@ export function scanTimeline(_job: PrintJob, scan: ScanPlan, _machine: MotionMod
   const out = new Float64Array(scan.passes.length);
   let t = 0;
   scan.passes.forEach((p, i) => {
-    t += passWallUs(p);
+    t += p.wallUs;
     out[i] = t;
   });
   return out;

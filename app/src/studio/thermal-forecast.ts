@@ -7,7 +7,7 @@
 // LEDs' switch times, a mixed job pass by pass either way.
 
 import { passDurationUs, passSwitches } from '../planner/job-plan';
-import { passWallUs, type MixedPlan, type Plan, type ScanPass, type ScanPlan } from '../planner/plan';
+import type { MixedPlan, Plan, ScanPass, ScanPlan } from '../planner/plan';
 import { axisSteps, stopCostUs } from '../planner/planner-wasm';
 import type { MotionModel } from '../planner/time-model';
 import { HEAD_THERMAL, HeadThermal, type HeadThermalModel } from '../machine/head-thermal';
@@ -80,16 +80,15 @@ function forecastHead(o: ForecastOptions) {
 
 export function forecastThermal(plan: Plan, place: PlanPlace, machine: MotionModel, o: ForecastOptions): ThermalRun {
   const { s, hold, paceWait, result } = forecastHead(o);
-  let x = machine.startUm[0], y = machine.startUm[1];
+  let x = axisSteps(machine, 0, machine.startUm[0]), y = axisSteps(machine, 1, machine.startUm[1]);
   const d = [0, 0, 0, 0];
   for (s.stop = 0; s.stop < plan.count; s.stop++) {
     const stop = s.stop;
-    const nx = place.originUm[0] + plan.hx[stop] * place.pitchUm[0];
-    const ny = place.originUm[1] + plan.hy[stop] * place.pitchUm[1];
+    const nx = axisSteps(machine, 0, place.originUm[0] + plan.hx[stop] * place.pitchUm[0]);
+    const ny = axisSteps(machine, 1, place.originUm[1] + plan.hy[stop] * place.pitchUm[1]);
     let longest = 0;
     for (let k = 0; k < 4; k++) longest = Math.max(longest, (d[k] = plan.durations[stop * 4 + k]));
-    const move = [axisSteps(machine, 0, nx) - axisSteps(machine, 0, x), axisSteps(machine, 1, ny) - axisSteps(machine, 1, y)];
-    if (!hold(stopCostUs(machine, move[0], move[1], d) - longest, 0)) break;
+    if (!hold(stopCostUs(machine, nx - x, ny - y, d) - longest, 0)) break;
     x = nx, y = ny;
     if (!paceWait() || !exposeStop(hold, d)) break;
   }
@@ -162,7 +161,7 @@ export function forecastScanThermal(scan: ScanPlan, place: PlanPlace, machine: M
     const pass = scan.passes[s.stop];
     const stroke = passDurationUs(scan, pass);
     if (!paceWait()) break; // the Mega paces between passes, before the move to the next
-    if (!hold(passWallUs(pass) - stroke, 0)) break; // the move, the overhead, the Q that ends the pass
+    if (!hold(pass.wallUs - stroke, 0)) break; // the move, the overhead, the Q that ends the pass
     if (!exposeStroke(hold, pass)) break;
   }
   return result();

@@ -67,9 +67,7 @@ std::pair<int, uint64_t> capped(const json& mixed) {
 // Mixed plans (planner.md "Mixed mode"): rows dense in places and sparse in others, on both machines,
 // so the plans take both ways.
 void writeMixed(const char* path, const Geometries& geometries, const uv::MotionModel& fast, const json& fastJson) {
-  const auto slowOne = slowMachine();
-  const uv::MotionModel& slow = slowOne.first;
-  const json& slowJson = slowOne.second;
+  const auto [slow, slowJson] = slowMachine();
   Rng r(20261127);
   json cases = json::array();
   for (const auto& [gname, offsets] : geometries) {

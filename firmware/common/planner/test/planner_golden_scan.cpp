@@ -49,9 +49,7 @@ std::string passesFlying(const json& scan, size_t jumps) {
 
 // Scan plans (planner.md "Scan mode") of random jobs, on the same machine and on one that caps the speed.
 void writeScans(const char* path, const Geometries& geometries, const uv::MotionModel& fast, const json& fastJson) {
-  const auto slowOne = slowMachine();
-  const uv::MotionModel& slow = slowOne.first;
-  const json& slowJson = slowOne.second;
+  const auto [slow, slowJson] = slowMachine();
   Rng r(20261124);
   json cases = json::array();
   for (const auto& [gname, offsets] : geometries) {
