@@ -4,7 +4,6 @@ import type { JobHeader, StrategyName } from '../app/src/protocol/job-types';
 import { durationTables } from '../app/src/planner/dose';
 import { mixedPassCount, type MixedPlan, type ScanPlan } from '../app/src/planner/plan';
 import { moveTimeUs, orderEstimates, planJob, planMixed, planScan } from '../app/src/planner/planner-wasm';
-import { programLines } from '../app/src/protocol/scan-program';
 import { compare, type Row } from './harness';
 import { BENCH_MACHINE, GEOMETRY } from './planner.bench';
 import { boardMask, fillMask, photoMask, sparseMask, textMask, type Mask } from './masks';
@@ -191,23 +190,15 @@ function printTurnArounds(rows: P10Row[]): void {
 /** Bytes a second the printhead link carries at the bench machine's speed (the board's), 10 bits a byte. */
 const LINK_BYTES_S = BENCH_MACHINE.linkBaud / 10;
 
-/** A plan's load on the printhead link: its worst pass and the whole job, as the Mega's M29 counts them. */
+/** A plan's load on the printhead link, as the Mega's M29 counts it: its worst pass and the whole job. Each pass's chain bytes are its link check's (ScanPlanner::chainBytes). */
 function linkLoad(plan: ScanPlan): { worst: number; whole: number; events: number; bytes: number } {
   let worst = 0, bytes = 0, busyUs = 0, events = 0;
   for (const p of plan.passes) {
     if (!p.events.length) continue;
-    const lines = programLines(p.events);
-    const total = lines.reduce((n, l) => n + l.length + 1, 0);
     // What the first two programs take is loaded during the move to the run-up.
-    let ahead = 0, programs = 0;
-    for (const l of lines) {
-      if (programs >= 2) break;
-      ahead += l.length + 1;
-      if (l.startsWith('K:')) programs++;
-    }
     const passUs = Math.max(1, p.events[p.events.length - 1][0]);
-    worst = Math.max(worst, ((total - ahead) / LINK_BYTES_S) * 1e6 / passUs);
-    bytes += total;
+    worst = Math.max(worst, ((p.chainBytes - p.chainAheadBytes) / LINK_BYTES_S) * 1e6 / passUs);
+    bytes += p.chainBytes;
     busyUs += passUs;
     events += p.events.length;
   }

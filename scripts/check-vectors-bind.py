@@ -36,7 +36,9 @@ CXX_BINARY = {"nano.json": "protocol_tests", "mega.json": "protocol_tests", "job
 # Sections that only the firmware implements: the Nano's program store runs in C++ alone since the
 # simulated printer became the firmware's C++ (issue 27); there is no TypeScript Nano to bind. Nor a
 # TypeScript Mega to take lines (issue 38): the sessions of mega.json bind the Mega's line receiver.
-FIRMWARE_ONLY = {"nano-program.json#sessions", "mega.json#sessions"}
+# Nor a TypeScript reader of job text or writer of scan programs: the app writes jobs (job.json#jobs
+# binds its encoder) and the Mega reads them and writes the Nano's program lines.
+FIRMWARE_ONLY = {"nano-program.json#sessions", "mega.json#sessions", "job.json#invalid", "nano-program.json#programs"}
 
 
 def mutate(value, rng):

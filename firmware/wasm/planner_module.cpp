@@ -208,8 +208,9 @@ uint8_t gLogState[kLoggedEvents];
 uv::ScanPlanner::EventLog gLog{gLogT, gLogState, kLoggedEvents};
 
 // A pass on the move: hy, descending, first, last, its window, accelUs, overscanUm, runUpUm,
-// runOutUm, moveUs, startSteps, stopSteps, strokeUs, markUs, its time in the estimate (2 words); its jumps (count, then window, windows,
-// µs each) and its events as the Nano runs them (count, then t, state each).
+// runOutUm, moveUs, startSteps, stopSteps, strokeUs, markUs, its time in the estimate (2 words),
+// its chain's bytes and its first two programs' (ScanPlanner::chainBytes); its jumps (count, then
+// window, windows, µs each) and its events as the Nano runs them (count, then t, state each).
 void putScanPass(uv::ScanPlanner& planner, const uv::ScanPass& p) {
   const uv::ScanMotion& own = planner.passMotion();
   const uint32_t fields[] = {static_cast<uint32_t>(p.hy), p.descending, static_cast<uint32_t>(p.first), static_cast<uint32_t>(p.last),
@@ -217,6 +218,8 @@ void putScanPass(uv::ScanPlanner& planner, const uv::ScanPass& p) {
                              p.moveUs, static_cast<uint32_t>(p.startSteps), static_cast<uint32_t>(p.stopSteps), p.strokeUs, p.markUs};
   for (uint32_t f : fields) put(f);
   put64(p.scanUs);
+  put(planner.chainBytes());
+  put(planner.chainAheadBytes());
   put(planner.jumps());
   for (uint8_t i = 0; i < planner.jumps(); i++) {
     uint32_t window, windows, flyUs;

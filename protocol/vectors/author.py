@@ -8,6 +8,7 @@ Strings are byte strings: every character stands for one byte (Latin-1).
 """
 import json
 import os
+import random
 import zlib
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -600,6 +601,39 @@ jobs += [
      "job": base_job(grid={"cols": 120, "rows": 3}, strategy={"name": "raster"},
                      gridData=[pcb_row(120, 1), pcb_row(120, 2), [0] * 5 + [255, 0, 255] + [0] * 112])},
 ]
+
+# Drawn jobs, seeded: any grid, cell, pitch, origin, dose and order in format 1, and rows of runs of
+# every length in format 2. The app's encoder must write each byte for byte, and the firmware's
+# verifier must read each back to its cells (the round trip that no single implementation can check).
+def drawn_jobs(rng):
+    out = []
+    for i in range(16):
+        cols, rows = rng.randint(1, 40), rng.randint(1, 12)
+        name = rng.choice(["raster", "serpentine", "shortest", "random", "scan"])
+        strategy = {"name": name, "seed": rng.randint(0, 2**32 - 1)} if name == "random" else {"name": name}
+        dose = ({"map": "linear", "fullUs": rng.randint(1, 10_000_000)} if rng.random() < 0.7 else
+                {"map": "threshold", "level": rng.randint(1, 255), "fullUs": rng.randint(1, 10_000_000)})
+        out.append({"name": f"drawn {i + 1}: {cols}x{rows}, {name}, {dose['map']}", "job": base_job(
+            grid={"cols": cols, "rows": rows},
+            pitchUm={"x": rng.randint(1, 1000), "y": rng.randint(1, 1000)},
+            originUm={"x": rng.randint(0, 200000), "y": rng.randint(0, 200000)},
+            dose=dose, leds={"offsets": [[0, 0], [1, 0], [0, 1], [1, 1]]}, strategy=strategy,
+            gridData=[[0 if rng.random() < 0.4 else rng.randint(0, 255) for _ in range(cols)] for _ in range(rows)])})
+    for i in range(8):
+        cols, rows = rng.randint(1, 400), rng.randint(1, 3)
+
+        def run_row():
+            row = []
+            while len(row) < cols:
+                row += [rng.choice([0, 0, 255, 128, 7])] * rng.randint(1, 90)
+            return row[:cols]
+        out.append({"name": f"drawn runs {i + 1}: {cols}x{rows}", "format": 2, "job": base_job(
+            grid={"cols": cols, "rows": rows}, pitchUm={"x": 50, "y": 50}, originUm={"x": 0, "y": 0},
+            dose={"map": "linear", "fullUs": 1000}, strategy={"name": "raster"}, gridData=[run_row() for _ in range(rows)])})
+    return out
+
+
+jobs += drawn_jobs(random.Random(38))
 for j in jobs:
     j["text"], j["crc"] = job_text(j["job"], j.get("format", 1))
 

@@ -6,7 +6,7 @@ import { headerOf } from '../planner/job-header';
 import { planAnyJob } from '../planner/job-plan';
 import { scanDoses } from '../preview/scan-preview';
 import type { PrintJob } from '../protocol/job-types';
-import { PROGRAM_EVENTS } from '../protocol/scan-program';
+import { PROGRAM_EVENTS } from '../protocol/nano';
 import { DEFAULT_CONFIG, motionOf } from '../studio/machine-config';
 import { dosePlanOf, planDoses, programCount, programSpans, recordOf, type DosePlan } from './dose-plan';
 

@@ -9,7 +9,7 @@ import type { ScanPass } from '../planner/plan';
 import type { MotionModel } from '../planner/time-model';
 import { scanDoses } from '../preview/scan-preview';
 import type { PrintJob } from '../protocol/job-types';
-import { PROGRAM_EVENTS } from '../protocol/scan-program';
+import { PROGRAM_EVENTS } from '../protocol/nano';
 
 /** One record's planned light: each LED's on-time, and the cells it falls on (row × cols + col) with their µs. */
 export interface PlannedRecord {

@@ -1,7 +1,6 @@
-import { mergeLight } from '../protocol/scan-program';
 import { describe, expect, it } from 'vitest';
 import { fastestOrder, ORDERS, orderEstimates, passDurationUs, passSwitches, planAnyJob, strokeOnBed, strokeSpanUm } from './job-plan';
-import { planJob } from './planner-wasm';
+import { planJob, planScan } from './planner-wasm';
 import { GEOMETRIES, randomJob } from './test-jobs';
 import { CONFIG_DEFAULTS, motionOf } from '../machine/config';
 import type { ScanPass, ScanPlan } from './plan';
@@ -16,18 +15,32 @@ const header = (cols: number, rows: number, name: StrategyName) => headerOf({
   leds: { offsets: [[0, 0], [0, 1], [0, 2], [0, 3]] }, strategy: { name }, gridData: [],
 });
 
-const pass = (leds: [number, number][][], jumps: [number, number, number][] = []): ScanPass =>
-  ({ hy: 0, descending: false, first: 0, last: 9, windowUs: 100, accelUs: 7, overscanUm: 1, runUpUm: 0, runOutUm: 0, leds, jumps, events: mergeLight(leds), moveUs: 0, startSteps: 0, stopSteps: 0, strokeUs: 1234, markUs: 56, wallUs: 6634 });
+const pass = (leds: [number, number][][]): ScanPass =>
+  ({ hy: 0, descending: false, first: 0, last: 9, windowUs: 100, accelUs: 7, overscanUm: 1, runUpUm: 0, runOutUm: 0, leds, jumps: [], events: [], moveUs: 0, startSteps: 0, stopSteps: 0, strokeUs: 1234, markUs: 56, wallUs: 6634, chainBytes: 0, chainAheadBytes: 0 });
 
 describe('a scan pass as the machine runs it', () => {
-  it('switches the LEDs in time order, one mask per instant, an LED going off where another comes on', () => {
-    const p = pass([[[10, 20], [30, 40]], [[20, 30]], [], [[10, 40]]]);
-    expect(passSwitches(p)).toEqual([
-      { atUs: 10, mask: 0b1001 },
-      { atUs: 20, mask: 0b1010 },
-      { atUs: 30, mask: 0b1001 },
-      { atUs: 40, mask: 0 },
-    ]);
+  it('switches the LEDs in time order, one mask per instant, each LED lit over its intervals', () => {
+    // Gray and full cells under four LEDs a row apart: LEDs overlap, and one goes off where another comes on.
+    const cells = Array.from({ length: 8 }, (_, y) => Array.from({ length: 24 }, (_, x) => ((x + 3 * y) % 5 === 0 ? 0 : (x * 40 + y * 17) % 256)));
+    const { passes } = planScan({ header: header(24, 8, 'scan'), cells }, MACHINE);
+    expect(passes.length).toBeGreaterThan(0);
+    for (const p of passes) {
+      const switches = passSwitches(p);
+      const on: number[] = [0, 0, 0, 0];
+      const lit: [number, number][][] = [[], [], [], []];
+      let mask = 0, at = -1;
+      for (const s of switches) {
+        expect(s.atUs).toBeGreaterThan(at);
+        expect(s.mask).not.toBe(mask);
+        for (let k = 0; k < 4; k++) {
+          if (!((mask >> k) & 1) && (s.mask >> k) & 1) on[k] = s.atUs;
+          if ((mask >> k) & 1 && !((s.mask >> k) & 1)) lit[k].push([on[k], s.atUs]);
+        }
+        [mask, at] = [s.mask, s.atUs];
+      }
+      expect(mask).toBe(0);
+      expect(lit).toEqual(p.leds);
+    }
   });
 
   it('lasts its stroke, as the step engine runs it', () => {

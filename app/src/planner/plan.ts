@@ -2,9 +2,8 @@
 // them, and what the app reads off them: no planning here (protocol/planner.md).
 
 import type { JobHeader } from '../protocol/job-types';
-import type { ScanEvent } from '../protocol/scan-program';
-
-export type { ScanEvent };
+/** An event: from `t` µs after the pass's start mark the LEDs are in state `m` (bit k = LED k), as the Nano runs it (nano.md "Scan programs"). */
+export type ScanEvent = [t: number, m: number];
 
 export interface PlannerJob {
   header: JobHeader;
@@ -60,6 +59,9 @@ export interface ScanPass {
   markUs: number;
   /** The pass's whole time in the estimate: the move, the pass's load, the stroke, the Q that confirms it. */
   wallUs: number;
+  /** The pass's chain of programs as the Mega sends it (nano.md "Scan programs"): all its lines' bytes, and the first two programs', loaded before the pass starts. */
+  chainBytes: number;
+  chainAheadBytes: number;
 }
 
 export interface ScanPlan {

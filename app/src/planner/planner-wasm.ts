@@ -5,8 +5,7 @@
 
 import type { JobHeader, StrategyName } from '../protocol/job-types';
 import { NANO_LINK_BAUDS } from '../protocol/nano';
-import type { ScanEvent } from '../protocol/scan-program';
-import type { MixedPass, MixedPlan, Plan, PlannerJob, ScanPass, ScanPlan } from './plan';
+import type { MixedPass, MixedPlan, Plan, PlannerJob, ScanEvent, ScanPass, ScanPlan } from './plan';
 import { ENGINE_MAX_RATE, ENGINE_TICK_HZ, type MotionModel } from './time-model';
 
 interface Exports {
@@ -175,12 +174,13 @@ function scanPass(w: PlanWords): ScanPass {
   const hy = w.i32(), descending = w.u32() === 1, first = w.i32(), last = w.i32();
   const windowUs = w.u32(), accelUs = w.u32(), overscanUm = w.u32(), runUpUm = w.i32(), runOutUm = w.i32();
   const moveUs = w.u32(), startSteps = w.i32(), stopSteps = w.i32(), strokeUs = w.u32(), markUs = w.u32(), wallUs = w.u64();
+  const chainBytes = w.u32(), chainAheadBytes = w.u32();
   const jumps: [number, number, number][] = [];
   for (let n = w.u32(); n > 0; n--) jumps.push([w.u32(), w.u32(), w.u32()]);
   const events: ScanEvent[] = [];
   for (let n = w.u32(); n > 0; n--) events.push([w.u32(), w.u32()]);
   const leds = ledsOf(events);
-  return { hy, descending, first, last, windowUs, accelUs, overscanUm, runUpUm, runOutUm, leds, jumps, events, moveUs, startSteps, stopSteps, strokeUs, markUs, wallUs };
+  return { hy, descending, first, last, windowUs, accelUs, overscanUm, runUpUm, runOutUm, leds, jumps, events, moveUs, startSteps, stopSteps, strokeUs, markUs, wallUs, chainBytes, chainAheadBytes };
 }
 
 /**

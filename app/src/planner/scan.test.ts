@@ -1,5 +1,4 @@
 // Scan mode's properties (protocol/planner.md "Scan mode"), checked on the app's planner: the C++ planner as WebAssembly.
-import { readFileSync } from 'node:fs';
 import { describe, expect, it } from 'vitest';
 import type { PrintJob } from '../protocol/job-types';
 import { durationTables } from './dose';
@@ -8,13 +7,10 @@ import type { ScanPlan } from './plan';
 import type { JobHeader } from '../protocol/job-types';
 import { axisSteps, engineMoveUs, moveTimeUs, planJob, planScan } from './planner-wasm';
 import { GEOMETRIES, MACHINE, randomJob } from './test-jobs';
-import { parsePacked, programLines } from '../protocol/scan-program';
 import type { MotionModel } from './time-model';
 
 /** The blank stretches a pass flies at most (scan.h kMaxJumps). */
 const MAX_JUMPS = 8;
-/** The relay the link rule allows a program (scan_program.h kProgramRelayUs). */
-const PROGRAM_RELAY_US = 10000;
 
 /** The fly of g blank windows on MACHINE at 50 µm, 2000 µs windows (planner.md "Blank stretches"). */
 const F = (g: number) => Math.max(1, moveTimeUs(g * 50 + 2 * 105, 150000, 3000000) - 2 * 8334);
@@ -305,41 +301,3 @@ describe('scan planner limits', () => {
   });
 });
 
-/** The firmware's scan vectors' jobs (protocol/vectors/scan-cpp.json), to plan again. */
-function vectorCases(): { name: string; job: PrintJob; machine: MotionModel; scan: ScanPlan }[] {
-  const dir = process.env.UV_VECTORS_DIR ? `file://${process.env.UV_VECTORS_DIR}/` : new URL('../../../protocol/vectors/', import.meta.url);
-  return JSON.parse(readFileSync(new URL('scan-cpp.json', dir), 'utf8')).cases;
-}
-
-describe('scan planner and the printhead link', () => {
-  // Each program's bytes and last event, read back from the lines the Mega sends (nano.md "Scan programs").
-  const programs = (events: [number, number][]) => {
-    const out: { bytes: number; endUs: number }[] = [];
-    let bytes = 0, n = 0;
-    for (const line of programLines(events)) {
-      bytes += line.length + 1;
-      if (line.startsWith('B:')) n += parsePacked(line)!.events.length;
-      else {
-        out.push({ bytes, endUs: events[n - 1][0] });
-        bytes = 0;
-      }
-    }
-    return out;
-  };
-  const wireUs = (bytes: number, baud: number) => Math.floor((bytes * 1e7) / baud);
-
-  it('loads each program after the first two while the one before it plays, with the relay and a fifth to spare', () => {
-    let chains = 0;
-    for (const c of vectorCases()) {
-      c.scan = plan(c.job, c.machine);
-      for (const pass of c.scan.passes) {
-        const p = programs(pass.events);
-        if (p.length > 2) chains++;
-        for (let k = 2; k < p.length; k++) {
-          expect(5 * wireUs(p[k].bytes, c.machine.linkBaud) + 4 * PROGRAM_RELAY_US, `${c.name} pass ${pass.hy} program ${k + 1}`).toBeLessThanOrEqual(4 * (p[k - 1].endUs - p[k - 2].endUs));
-        }
-      }
-    }
-    expect(chains).toBeGreaterThan(0);
-  });
-});

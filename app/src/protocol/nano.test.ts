@@ -2,7 +2,7 @@ import { describe, expect, it } from 'vitest';
 import { LineSplitter } from './line-splitter';
 import {
   flashColour, formatNanoCommand, formatNanoReply, NANO_COLOURS, NANO_MAX_LINE,
-  nanoLineUsable, parseNanoCommand, parseNanoReply,
+  nanoLineUsable, parseNanoCommand, parseNanoReply, PROGRAM_EVENTS,
 } from './nano';
 import { cases, loadVectors, vectorCounter } from './vectors.fixture';
 
@@ -19,6 +19,9 @@ describe('nano link vectors', () => {
   it('agrees on limits and colours', () => {
     expect(NANO_MAX_LINE).toBe(v.maxLine);
     expect(NANO_COLOURS).toEqual(v.colours);
+    // The program lines are the Mega's to write and the Nano's to read (nano-program.json binds the
+    // C++); the app reads only how many events a program holds, to lay a pass's dose records.
+    expect(PROGRAM_EVENTS).toBe(loadVectors('nano-program.json').maxEvents);
     count();
   });
 

@@ -6,6 +6,8 @@ import type { SplitLine } from './line-splitter';
 export const NANO_MAX_LINE = 63;
 export const LED_COUNT = 4;
 export const SENSOR_COUNT = 6;
+/** The events a scan program holds (nano.md "Scan programs"): the Mega cuts a pass's chain into programs of this many. */
+export const PROGRAM_EVENTS = 64;
 
 export type NanoCommand =
   | { op: 'S' | 'D' | 'U' | 'X' | 'P' | 'T' | 'R' | 'E' | 'V' | 'C' | 'G' | 'Q' | 'W' | 'O' }

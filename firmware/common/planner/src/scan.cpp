@@ -180,6 +180,8 @@ bool ScanPlanner::outrunsLink(uint64_t& need, uint64_t& have) {
   // Every event logged, none left unread by an early end: the pass's events as nextEvent() would walk them.
   replay_ = logging_ && !lines.failed() && logged_ <= log_->cap;
   logging_ = false;
+  chainBytes_ = load.bytes();
+  chainAheadBytes_ = load.aheadBytes();
 #endif
   if (lines.failed()) return false;  // a gap of 2²⁸ µs: the Mega refuses the pass, whatever its speed
   return !load.fits(lastUs, need, have);

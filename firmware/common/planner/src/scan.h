@@ -144,6 +144,11 @@ class ScanPlanner {
     uint32_t cap;
   };
   void keepEvents(EventLog* log) { log_ = log; }
+  // The pass's chain of programs as the Mega sends it (nano.md "Scan programs"), from its link check
+  // at the window it kept: every line's bytes, and those of the first two programs, which load before
+  // the pass starts (the bench's link load, P11).
+  uint32_t chainBytes() const { return chainBytes_; }
+  uint32_t chainAheadBytes() const { return chainAheadBytes_; }
 #endif
   // The lowest row a later call may still read: rows below it may be dropped.
   int32_t lowestRowNeeded() const { return bandLen_ && bandHy_[0] + dyMin_ < low_ ? bandHy_[0] + dyMin_ : low_; }
@@ -229,6 +234,7 @@ class ScanPlanner {
   EventLog* log_ = nullptr;
   uint32_t logged_ = 0, logNext_ = 0;  // the open pass's events in log_ (cap + 1: more than it holds), the next to hand out
   bool logging_ = false, replay_ = false;  // the link check is filling log_; nextEvent() hands out log_
+  uint32_t chainBytes_ = 0, chainAheadBytes_ = 0;
 #endif
 
   // The current pass and each LED's next lit cell in its direction.

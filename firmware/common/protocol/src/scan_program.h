@@ -112,6 +112,9 @@ class LinkLoad {
   // `passUs`: the pass's last event. False when the chain outruns the link: need > have, the first
   // rule broken (the whole chain's, else the first program that would come too late).
   bool fits(uint32_t passUs, uint64_t& need, uint64_t& have) const;
+  // The bytes added, and those of the first two programs (all of them while fewer are sealed).
+  uint32_t bytes() const { return bytes_; }
+  uint32_t aheadBytes() const { return sealed_ >= 2 ? ahead_ : bytes_; }
 
  private:
   uint32_t baud_;

@@ -65,6 +65,19 @@ TEST(JobVectors, EncodeByteExactAndVerify) {
   }
 }
 
+// A job cut short anywhere is refused, never taken for a smaller job: the text before any cut lacks
+// its `end` line, or its CRC, or a whole last line (some 300 cuts a job, every byte of a short one).
+TEST(JobVectors, EveryJobCutShortIsRefused) {
+  size_t cuts = 0;
+  for (const json& c : V["jobs"]) {
+    const std::string text = c["text"];
+    const size_t step = text.size() / 300 + 1;
+    for (size_t at = 0; at < text.size(); at += step, cuts++)
+      ASSERT_NE(verify(text.substr(0, at), nullptr), 0) << c["name"] << " cut at " << at;
+  }
+  EXPECT_GT(cuts, 5000u);
+}
+
 TEST(JobVectors, InvalidJobsRefused) {
   for (const json& c : V["invalid"]) {
     EXPECT_EQ(verify(bytes(c["text"]), nullptr), c["error"].get<int>()) << c["why"];

@@ -1,0 +1,102 @@
+// Host tests of the scan planner against the printhead link (planner.md "The printhead link"): every
+// pass of the golden scan jobs, cut into the lines the Mega sends, loads each program after the first
+// two while the one before it plays, with the relay and a fifth to spare. The rule's arithmetic is
+// the test's own, not uv::LinkLoad's, which the planner asks.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <vector>
+
+#include "grid_cells.h"
+#include "job_json_fixture.h"
+#include "machine_json_fixture.h"
+#include "scan.h"
+#include "scan_program.h"
+#include "vectors_fixture.h"
+
+using namespace uv;
+using namespace uvtest;
+
+namespace {
+
+struct Program {
+  uint32_t bytes = 0, events = 0, endUs = 0;
+};
+
+struct Events {
+  const std::vector<std::pair<uint32_t, uint8_t>>* list;
+  size_t next = 0;
+  static bool take(void* ctx, uint32_t& t, uint8_t& m) {
+    Events& e = *static_cast<Events*>(ctx);
+    if (e.next == e.list->size()) return false;
+    t = (*e.list)[e.next].first;
+    m = (*e.list)[e.next++].second;
+    return true;
+  }
+};
+
+// The programs of a pass's chain: each one's bytes (its B lines and its K line), events and last event.
+std::vector<Program> programsOf(const std::vector<std::pair<uint32_t, uint8_t>>& events, uint32_t& bytes) {
+  Events source{&events};
+  ProgramLines lines(Events::take, &source);
+  std::vector<Program> out(1);
+  char line[kNanoMaxLine + 2];
+  bytes = 0;
+  for (uint8_t n; (n = lines.next(line)) != 0;) {
+    bytes += n;
+    out.back().bytes += n;
+    if (line[0] != 'K') continue;
+    out.back().endUs = lines.lastUs();
+    out.emplace_back();
+  }
+  EXPECT_FALSE(lines.failed());
+  out.pop_back();
+  // Each program's events: the events up to its last one, less those before.
+  size_t at = 0;
+  for (Program& p : out) {
+    const size_t from = at;
+    while (at < events.size() && events[at].first <= p.endUs) at++;
+    p.events = static_cast<uint32_t>(at - from);
+  }
+  return out;
+}
+
+// What a program's lines take to go out: the wire's time at ten bits a byte, or the Mega's making of
+// its events (kProgramEventUs each) if longer.
+uint64_t sendingUs(uint32_t bytes, uint32_t events, uint32_t baud) {
+  return std::max<uint64_t>(static_cast<uint64_t>(bytes) * 10000000ull / baud, static_cast<uint64_t>(events) * kProgramEventUs);
+}
+
+}  // namespace
+
+TEST(ScanLink, EveryProgramAfterTheFirstTwoLoadsWhileTheOneBeforeItPlays) {
+  const json v = loadVectors("scan-cpp.json");
+  size_t chains = 0, programs = 0;
+  for (const json& c : v["cases"]) {
+    std::vector<std::vector<uint8_t>> rows;
+    for (const auto& r : c["job"]["gridData"]) rows.emplace_back(r.begin(), r.end());
+    const JobHeader h = headerFrom(c["job"]);
+    const MotionModel m = machineFrom(c["machine"]);
+    GridCells cells(rows);
+    ScanPlanner planner(h, cells, m);
+    ScanPass pass;
+    while (planner.nextPass(pass)) {
+      std::vector<std::pair<uint32_t, uint8_t>> events;
+      uint32_t t;
+      uint8_t state;
+      while (planner.nextEvent(t, state)) events.emplace_back(t, state);
+      if (events.empty()) continue;
+      uint32_t bytes;
+      const std::vector<Program> p = programsOf(events, bytes);
+      // The planner's own count of the chain it checked, at the window it kept (the bench's P11 reads it).
+      EXPECT_EQ(planner.chainBytes(), bytes) << c["name"] << " pass " << pass.hy;
+      EXPECT_EQ(planner.chainAheadBytes(), p.size() > 1 ? p[0].bytes + p[1].bytes : bytes) << c["name"] << " pass " << pass.hy;
+      if (p.size() > 2) chains++;
+      for (size_t k = 2; k < p.size(); k++, programs++)
+        EXPECT_LE(5 * sendingUs(p[k].bytes, p[k].events, m.linkBaud) + 4ull * kProgramRelayUs, 4ull * (p[k - 1].endUs - p[k - 2].endUs))
+            << c["name"] << " pass " << pass.hy << " program " << k + 1;
+    }
+  }
+  EXPECT_GT(chains, 0u);
+  std::printf("[scan link] %zu chains of three programs or more, %zu programs loaded while another plays\n", chains, programs);
+}
