@@ -1,21 +1,60 @@
 import { svelte } from '@sveltejs/vite-plugin-svelte';
+import { readFileSync } from 'node:fs';
+import { dirname, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { defineConfig, type Plugin } from 'vite';
 import { bundleSize, formatBundleSize } from '../scripts/bundle-size.ts';
 import { compileHint } from './compile-hint.ts';
 import { serviceWorker } from './pwa.ts';
 
-/** What loads only when a panel is first opened: grouped into one chunk. */
-const ON_DEMAND_PANELS = /\/(PositionDashboard|ProbeDashboard|MeshDashboard|LinkDashboard|mesh-image|Settings|setting-groups|setting-docs|Lamp|PreviewPanel|exposure-preview|preview-colours|MaterialTest|material-test|ObjectPanel|BoardPanel|board-object|fonts|Panel|ImportFile|import-artwork|artwork|svg-artwork|svg-size|density|picture|decode|clipping|dry-run|plan|job-header|time-model|adjust|gray|dither|ConfirmDialog|hms|thermal-forecast|pacing|mesh|mesh-figures|scan-words|work-client|check-job|job-transfer|remote-artwork|settings-table|DeliveredDose|dose-plan|dose-map|dose-colours|dose-batch)\.(svelte|ts)$/;
+/**
+ * What loads after the first screen goes to a chunk by its folder (app/src/<folder>/), so a new file
+ * lands in its folder's chunk. The `first` group comes before them and keeps whatever the entry
+ * imports statically in the entry's file, whatever its folder. A chunk may import an earlier one but
+ * never a later one, which would then load with it: what both use (ui/, machine/) goes in the earlier.
+ * - `dialect`, on connect, just after the first screen: the link and its dialect, the dashboards and
+ *   the console (mounted a few tasks after the first screen), and project/, whose file format restore
+ *   and autosave need (the material test rides along). As files of their own, the link's helpers, the
+ *   job's encoder and the project file each took a 4 KB block of the ESP's flash.
+ * - `panels`, when first opened: the dashboards' tabs, the settings, the preview, the question before
+ *   a job, the delivered dose, the studio's object and import panels, the work worker's clients.
+ * Other folders (firmware/) get rolldown's own chunk for each import().
+ */
+const FOLDER_CHUNKS: Record<string, string> = {
+  console: 'dialect',
+  dashboards: 'dialect',
+  device: 'dialect',
+  machine: 'dialect',
+  project: 'dialect',
+  protocol: 'dialect',
+  ui: 'dialect',
+  job: 'panels',
+  planner: 'panels',
+  preview: 'panels',
+  settings: 'panels',
+  studio: 'panels',
+  work: 'panels',
+};
 
 /**
- * The text dialect's client and the simulated printer's link on it, loaded on connect, just after the
- * first screen (device/links.ts); with them the dashboards and the console, mounted a few tasks after
- * the first screen (App.svelte, ui/Soon.svelte: mounted with it, the page load's longest task). The
- * link's helpers and the job's encoder, which the panels, the links and saving share with it, ride here
- * too: as files of their own (109 and 613 B gzipped) each took a 4 KB block of the ESP's flash.
+ * Files whose folder mixes what loads at different times, and their chunk. null keeps their import()'s
+ * own chunk: as a group, the chosen links took a file beside it.
  */
-const ON_DEMAND_DIALECT = /\/(sim-link|dialect-link|dialect-client|dialect-reply|line-splitter|dialect-frame)\.ts$|\/(Dashboards|ThermalDashboard|Console)\.svelte$|\/(thermal-watch|intl-warm|sensor-colours|head-thermal|firmware-view|firmware-view-absent)\.ts$|\/(device\/link|protocol\/job-encode|protocol\/job-runs)\.ts$/;
+const NOT_BY_FOLDER: [RegExp, string | null][] = [
+  // uPlot's chart loads when the page is idle after its first paint.
+  [/\/dashboards\/(thermal-chart|chart-time)\.ts$/, null],
+  // The dashboards' tabs load when opened.
+  [/\/dashboards\/((Position|Probe|Mesh|Link)Dashboard\.svelte|mesh-(figures|image)\.ts)$/, 'panels'],
+  // The Wi-Fi hub's and USB's links load when that device is chosen.
+  [/\/device\/(chosen-links|esp-link|esp-post|serial-transport)\.ts$/, null],
+  // The studio mounts a task after the first screen, its panels later.
+  [/\/studio\/((Studio|EditorCanvas|ImportPanel)\.svelte|shortcuts\.ts|canvas\/|objects\/import-accept\.ts)/, null],
+  // The Firmware tab's entry, which the dashboards import: alone, a file of 190 B.
+  [/\/firmware\/firmware-view(-absent)?\.ts$/, 'dialect'],
+  // The project file reads the halftones' names.
+  [/\/studio\/image\/halftones\.ts$/, 'dialect'],
+];
+
 /**
  * The Web Serial polyfill (USB over WebUSB where there is no Web Serial): a file of its own took a
  * 4 KB block of the ESP's flash for 1.8 KB, so it rides in the dialect's file, loaded on connect.
@@ -24,14 +63,30 @@ const SERIAL_POLYFILL = /\/node_modules\/web-serial-polyfill\//;
 /** Espressif's esptool-js with its stub flashers, one file: the Firmware view loads it to flash an ESP. */
 const ESPTOOL = /\/node_modules\/(esptool-js|pako|atob-lite)\//;
 
-/**
- * Views that load on demand bring their styles in their own chunk (Svelte injects them when first
- * shown), so the one stylesheet holds only the first screen's and no further file goes to the flash.
- */
-const LAZY_VIEW = new RegExp(`${ON_DEMAND_PANELS.source}|/(SimulatorPanel|FirmwarePanel|Dashboards|ThermalDashboard|Console)\\.svelte$`);
+/** The chunk of a module that the first screen does not import; null leaves it to rolldown. */
+function chunkOf(id: string): string | null {
+  if (SERIAL_POLYFILL.test(id)) return 'dialect';
+  if (ESPTOOL.test(id)) return 'esptool';
+  const named = NOT_BY_FOLDER.find(([test]) => test.test(id));
+  if (named) return named[1];
+  const folder = /\/app\/src\/([^/]+)\//.exec(id)?.[1];
+  return (folder && FOLDER_CHUNKS[folder]) || null;
+}
 
-/** What saving, opening or running something needs: the project file, the job's encoding, the test pattern, framing. */
-const ON_DEMAND_FILES = /\/(project-file|cells-codec|halftones|job-types|job-encode|crc32|test-pattern|framing)\.ts$/;
+/**
+ * The first screen's views: App.svelte, the components it imports statically, and theirs. Every other
+ * view loads on demand and brings its styles in its chunk (Svelte injects them when it is first shown),
+ * so the one stylesheet holds only the first screen's and no further file goes to the flash.
+ */
+function firstScreenViews(file = fileURLToPath(new URL('src/App.svelte', import.meta.url)), seen = new Set<string>()): Set<string> {
+  seen.add(file);
+  for (const [, spec] of readFileSync(file, 'utf8').matchAll(/^\s*import\s+\w+\s+from\s+['"](\.[^'"]+\.svelte)['"]/gm)) {
+    const path = resolve(dirname(file), spec);
+    if (!seen.has(path)) firstScreenViews(path, seen);
+  }
+  return seen;
+}
+const FIRST_SCREEN = firstScreenViews();
 
 /**
  * The Gerber parser and plotter are Node transform streams that app/src/pcb/tracespace.ts drives by
@@ -68,7 +123,7 @@ function printSize(): Plugin {
 
 export default defineConfig(({ mode }) => ({
   root: fileURLToPath(new URL('.', import.meta.url)),
-  plugins: [svelte({ configFile: false, dynamicCompileOptions: ({ filename }) => (LAZY_VIEW.test(filename) ? { css: 'injected' } : undefined) }), serviceWorker(fileURLToPath(new URL('service-worker.js', import.meta.url))), compileHint(), printSize()],
+  plugins: [svelte({ configFile: false, dynamicCompileOptions: ({ filename }) => (FIRST_SCREEN.has(filename) ? undefined : { css: 'injected' }) }), serviceWorker(fileURLToPath(new URL('service-worker.js', import.meta.url))), compileHint(), printSize()],
   build: {
     outDir,
     emptyOutDir: true,
@@ -76,15 +131,13 @@ export default defineConfig(({ mode }) => ({
     // 17); without that, a preload is only a hint missed. Vite's polyfill would be first-load code no
     // browser of ours runs.
     modulePreload: { polyfill: false },
-    // Few files: the ESP's LittleFS gives each file whole 4 KB blocks. One stylesheet (the lazy views'
-    // styles ride in their chunks: LAZY_VIEW), the panels that load on demand in one chunk, what saving
-    // and running need in another (the dashboards, the console and the Web Serial polyfill ride with
-    // the dialect); uPlot's chart stays apart. Without a group, a chunk loaded on demand can split the
-    // first load into several files: `first` keeps all the entry imports statically in the entry's
-    // file (alone, protocol/nano.ts's 229 B took a block). The links the user picks (device/chosen-links.ts)
-    // are one chunk without a group: as a group they took a file beside the import()'s own.
+    // Few files: the ESP's LittleFS gives each file whole 4 KB blocks. One stylesheet (the other views'
+    // styles ride in their chunks: FIRST_SCREEN), and what loads later in a few chunks by folder
+    // (chunkOf); uPlot's chart, the studio and the chosen links keep their import()'s own. Without a
+    // group, a chunk loaded on demand can split the first load into several files: `first` keeps all
+    // the entry imports statically in the entry's file (alone, protocol/nano.ts's 229 B took a block).
     cssCodeSplit: false,
-    rolldownOptions: { output: { codeSplitting: { includeDependenciesRecursively: false, groups: [{ name: 'first', tags: ['$initial'] }, { name: 'panels', test: ON_DEMAND_PANELS }, { name: 'files', test: ON_DEMAND_FILES }, { name: 'dialect', test: new RegExp(`${ON_DEMAND_DIALECT.source}|${SERIAL_POLYFILL.source}`) }, { name: 'esptool', test: ESPTOOL }] } } },
+    rolldownOptions: { output: { codeSplitting: { includeDependenciesRecursively: false, groups: [{ name: 'first', tags: ['$initial'] }, { name: chunkOf, debugName: 'by folder' }] } } },
   },
   worker: { format: 'es' },
   server: { port: 5173 },
