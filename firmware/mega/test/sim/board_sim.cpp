@@ -273,8 +273,14 @@ void BoardSim::step() {
   uint64_t before = next->cycle;
   bool wasInPanel = inPanel_;
   int wasVector = next == mega_ ? runningVector(mega_) : 0;
+  const uint32_t pc = next->pc;
   avr_run(next);
   if (next == mega_) {
+    if (megaProfile) {
+      if (megaProfile->size() <= pc / 2) megaProfile->resize(pc / 2 + 1);
+      (*megaProfile)[pc / 2].cycles += next->cycle - before;
+      (*megaProfile)[pc / 2].runs++;
+    }
     profilePanel(next->cycle - before, wasInPanel, wasVector);
     bool off = !mega_->sreg[S_I];
     if (off && !megaOff_) {

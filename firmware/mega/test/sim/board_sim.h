@@ -53,6 +53,12 @@ class BoardSim {
   // and where it began: an interrupt's vector (bytes: 4 × its number), or the code that cleared it.
   uint64_t megaMaxInterruptsOff = 0;
   uint32_t megaMaxOffPc = 0;
+  // While set: the Mega's cycles and instructions run by the word address of each instruction (a
+  // profile of the real image, ISRs included; scripts/mega-profile.py names the functions).
+  struct PcCount {
+    uint64_t cycles = 0, runs = 0;
+  };
+  std::vector<PcCount>* megaProfile = nullptr;
 
   // The panel on the Mega's TWI.
   Ssd1306Model panel;

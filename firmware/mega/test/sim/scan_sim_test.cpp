@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <regex>
 
 #include "grid_cells.h"
@@ -144,7 +145,21 @@ TEST_P(ScanBoardTest, APhotoLikePassLoadsEachProgramWithinTheRelay) {
   ASSERT_TRUE(planner.nextPass(p));
   const uint32_t windowUs = planner.passMotion().windowUs;
   pollBothHosts = true;  // and the panel redraws: the longest main-loop passes, which the relay waits on
+  // UV_MEGA_PROFILE=<file>: the Mega's cycles over the job by instruction (the Nano at its nominal
+  // clock), for scripts/mega-profile.py.
+  std::vector<BoardSim::PcCount> profile;
+  const char* profileTo = GetParam() == 1.0 ? std::getenv("UV_MEGA_PROFILE") : nullptr;
+  if (profileTo) sim.megaProfile = &profile;
   const scandose::Figures f = expose(h, g, 1, 1, std::vector<double>(h.rows, windowUs));
+  sim.megaProfile = nullptr;
+  if (profileTo) {
+    std::FILE* out = std::fopen(profileTo, "w");
+    ASSERT_NE(out, nullptr) << profileTo;
+    for (size_t w = 0; w < profile.size(); w++)
+      if (profile[w].runs)
+        std::fprintf(out, "%zx %llu %llu\n", 2 * w, static_cast<unsigned long long>(profile[w].cycles), static_cast<unsigned long long>(profile[w].runs));
+    std::fclose(out);
+  }
   const LinkFigures link = linkFigures();
   std::printf("[scan simavr, photo-like] real Mega + Nano images, the link at %u baud, the Nano's clock %+.1f %%, %d cells (%d lit) in 1 pass at a %u us window "
               "(the job's 2000, capped for the link): worst dose error %.2f %% of the full dose, worst LED edge %.2f um from its place, "
