@@ -139,10 +139,15 @@ function printMixed(rows: P10Row[]): void {
 }
 
 /** P10's automatic line: the Order list's default, the fastest of every order for the job (job-plan.ts fastestOrder), against stop-and-fire. */
+/** The order the automatic choice takes for a mask (the fastest), and its estimate. */
+function chosen(r: P10Row): [string, number] {
+  const choices: [string, number][] = [['scan', r.scan.estimateUs], ['mixed', r.mixed.estimateUs], ['stop-and-fire', r.stops]];
+  return choices.reduce((a, b) => (b[1] < a[1] ? b : a));
+}
+
 function printAutomatic(rows: P10Row[]): void {
   for (const r of rows) {
-    const choices: [string, number][] = [['scan', r.scan.estimateUs], ['mixed', r.mixed.estimateUs], ['stop-and-fire', r.stops]];
-    const [order, fast] = choices.reduce((a, b) => (b[1] < a[1] ? b : a));
+    const [order, fast] = chosen(r);
     console.log(`P10 ${r.mask.padEnd(7)} automatic ${(fast / 1e6).toFixed(1).padStart(6)} s in ${order.padEnd(13)}  speed-up ${(r.stops / fast).toFixed(2)}x  (goal >= 1.00x; the fastest order, by construction)`);
   }
 }
@@ -182,7 +187,7 @@ function printTurnArounds(rows: P10Row[]): void {
     const strokes = r.scan.estimateUs - r.accel - moves - ends;  // the strokes beyond the floor's passes
     console.log(
       `P10 ${r.mask.padEnd(7)} beyond its windows: moves between passes ${s(moves)} (${(moves / Math.max(1, n) / 1000).toFixed(1)} ms a pass), pass load and end ${s(ends)}, strokes past the floor's passes ${s(strokes)}; ` +
-        `the scan ${(r.scan.estimateUs / r.accel).toFixed(3)}x its floor at the axis's acceleration (goal <= 1.05x)`,
+        `the scan ${(r.scan.estimateUs / r.accel).toFixed(3)}x its floor at the axis's acceleration; the chosen plan (${chosen(r)[0]}) ${(chosen(r)[1] / r.accel).toFixed(3)}x (goal <= 1.05x), the printhead link at ${BENCH_MACHINE.linkBaud} baud`,
     );
   }
 }
