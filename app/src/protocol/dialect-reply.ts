@@ -1,7 +1,7 @@
 // Replies and reports of the Mega dialect, typed and parsed (host side); their canonical lines are
 // reply-format.ts's (Mega side).
 
-import { parseMilli } from './dialect-command';
+import { parseMilli } from './dialect-number';
 import { crc16Hex } from './crc16';
 import { parseDeciC, SENSOR_COUNT } from './nano';
 

@@ -1,69 +1,62 @@
-// Property tests of the TypeScript codecs against generated and hostile input (fast-check): the
-// counterpart of the C++ fuzzers in firmware/fuzz/. Nothing throws on any input, and what is
-// made is read back as it was.
+// Property tests of the TypeScript in app/src/protocol/ against generated and hostile input
+// (fast-check): the counterpart of the C++ fuzzers in firmware/fuzz/, which take what only the firmware
+// reads (the dialect's frames and commands in mega_link and mega_machine, the printhead link in
+// nano_line and printhead_link). Nothing throws on any input, and what is made is read back as it was
+// or has the shape its reader takes.
 import fc from 'fast-check';
 import { crc32 } from 'node:zlib';
 import { describe, expect, it } from 'vitest';
-import { MAX_MILLI, parseCommand } from './dialect-command';
-import { encodeFrame, MAX_LINE_NUMBER, parseFrame } from './dialect-frame';
+import { crc16Hex } from './crc16';
+import { encodeFrame } from './dialect-frame';
+import { formatMilli, parseMilli } from './dialect-number';
 import { parseReply } from './dialect-reply';
 import { encodeJob } from './job-encode';
 import { JOB_LIMITS, type PrintJob, type StrategyName } from './job-types';
-import { LineSplitter } from './line-splitter';
-import { formatNanoCommand, formatNanoReply, parseNanoCommand, parseNanoReply, type NanoCommand } from './nano';
+import { LineSplitter, type SplitLine } from './line-splitter';
 import { validatePrintRequest } from './print-request';
 
 const runs = { numRuns: 400 };
 const anyText = fc.string({ unit: 'binary', maxLength: 200 });
 const bodyChar = fc.constantFrom(...'GM0123456789 XYZSPF.-abcN'.split(''));
 const body = fc.string({ unit: bodyChar, minLength: 1, maxLength: 60 }).filter((s) => s.trim() === s && !s.includes('  '));
+/** Bytes with line ends among them, often enough that lines of every length end. */
+const wire = fc.array(fc.oneof(anyText, fc.constantFrom('\n', '\r\n', '\r')), { maxLength: 12 }).map((parts) => parts.join(''));
+
+/** The lines a stream holds: one `\r` before a `\n` dropped (mega.md §1), a line past the limit cut to it and flagged, a tail without its `\n` left waiting. */
+function linesOf(bytes: string, maxLine: number): SplitLine[] {
+  return bytes.split('\n').slice(0, -1).map((l) => {
+    const text = l.endsWith('\r') ? l.slice(0, -1) : l;
+    return { text: text.slice(0, maxLine), overflow: text.length > maxLine };
+  });
+}
 
 describe('the dialect against hostile bytes', () => {
-  it('splits, frames and parses any bytes without throwing, every number in its range', () => {
-    fc.assert(fc.property(fc.array(anyText, { maxLength: 8 }), (chunks) => {
-      const splitter = new LineSplitter(96);
-      for (const chunk of chunks) {
-        for (const line of splitter.push(chunk)) {
-          const f = parseFrame(line);
-          if (f.n !== undefined) expect(f.n >= -1 && f.n <= MAX_LINE_NUMBER).toBe(true);
-          if (!f.ok) continue;
-          const c = parseCommand(f.body);
-          if (c.ok && 'params' in c.command)
-            for (const v of Object.values(c.command.params)) if (v !== null) expect(Math.abs(v)).toBeLessThanOrEqual(MAX_MILLI);
-        }
-      }
-    }), runs);
-  });
-
-  it('reads back every numbered frame it writes', () => {
-    fc.assert(fc.property(fc.integer({ min: 0, max: MAX_LINE_NUMBER }), body, (n, b) => {
-      const f = parseFrame({ text: encodeFrame(n, b), overflow: false });
-      if (encodeFrame(n, b).length > 96) return;
-      expect(f).toEqual({ ok: true, n, body: b });
+  it('splits any bytes into the same lines wherever the chunks break, each within its limit', () => {
+    fc.assert(fc.property(wire, fc.nat(), fc.integer({ min: 1, max: 40 }), (bytes, at, maxLine) => {
+      const cut = at % (bytes.length + 1);
+      const s = new LineSplitter(maxLine);
+      expect([...s.push(bytes.slice(0, cut)), ...s.push(bytes.slice(cut))]).toEqual(linesOf(bytes, maxLine));
     }), runs);
   });
 
   it('parses any reply line without throwing', () => {
     fc.assert(fc.property(anyText, (line) => void parseReply(line)), runs);
   });
-});
 
-const fire: fc.Arbitrary<NanoCommand> = fc.record({
-  op: fc.constant('F' as const),
-  mask: fc.integer({ min: 0, max: 15 }),
-  durations: fc.tuple(...[0, 1, 2, 3].map(() => fc.integer({ min: 0, max: 0xffffffff }))) as fc.Arbitrary<[number, number, number, number]>,
-});
-
-describe('the printhead link against hostile bytes', () => {
-  it('reads back every command it writes, and parses any line without throwing', () => {
-    fc.assert(fc.property(fc.oneof(fire, fc.constantFrom(...'SDUXPTREVC'.split('')).map((op) => ({ op }) as NanoCommand)), (cmd) => {
-      const text = formatNanoCommand(cmd);
-      expect(parseNanoCommand(text.slice(0, -1))).toEqual(cmd);
+  it('reads back every number it writes', () => {
+    fc.assert(fc.property(fc.integer({ min: -2_000_000_000, max: 2_000_000_000 }), (v) => {
+      expect(parseMilli(formatMilli(v))).toBe(v);
     }), runs);
-    fc.assert(fc.property(anyText, (line) => {
-      void parseNanoCommand(line);
-      const r = parseNanoReply(line + '\n');
-      if (r) expect(parseNanoReply(formatNanoReply(r))).toEqual(r);
+  });
+
+  it('writes every numbered frame in the shape of mega.md §1, its checks over all before the `*`', () => {
+    // 2147483646: the last line number (mega.md §1).
+    fc.assert(fc.property(fc.integer({ min: 0, max: 2147483646 }), body, (n, b) => {
+      const m = /^(N([0-9]+) (.*))\*([0-9]{1,3})#([0-9a-f]{4})$/.exec(encodeFrame(n, b));
+      expect(m?.slice(2, 4)).toEqual([String(n), b]);
+      const head = m![1];
+      expect(Number(m![4])).toBe([...head].reduce((x, ch) => x ^ ch.charCodeAt(0), 0));
+      expect(m![5]).toBe(crc16Hex(head));
     }), runs);
   });
 });

@@ -1,7 +1,7 @@
 // The canonical line of each reply and report of the Mega dialect (Mega side): what the firmware
 // prints, and what the console shows for a reply it did not see as a line. Parsed by dialect-reply.ts.
 
-import { formatMilli } from './dialect-command';
+import { formatMilli } from './dialect-number';
 import { crc16Hex } from './crc16';
 import type { Reply } from './dialect-reply';
 import { errorClass } from './errors';
