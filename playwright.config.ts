@@ -22,7 +22,7 @@ export default defineConfig({
     },
   },
   webServer: {
-    // The ESP's image too: the mock hub (e2e/mock-esp.ts) serves it, as the real one does.
+    // The ESP's image too: the hub's own C++ on the host (e2e/esp-host.ts) serves it, as the ESP does.
     command: `npm run build && npm run build:esp && npm run preview -- --port ${PORT} --strictPort`,
     url: `http://127.0.0.1:${PORT}`,
     reuseExistingServer: !process.env.CI,

@@ -1,21 +1,14 @@
-// protocol/esp.md from a page, against the mock the app's tests use and against the ESP's own
-// core on the host (real HTTP and WebSocket): the two must answer alike, so the mock stays true.
+// protocol/esp.md from a page, against the ESP's own core on the host (real HTTP and WebSocket), the
+// hub every end-to-end test of the Wi-Fi link runs against (transports.ts).
 import { expect, test, type Page } from '@playwright/test';
 import { readFileSync } from 'node:fs';
 import { connect } from 'node:net';
 import { join } from 'node:path';
 import { startEspHost } from './esp-host';
-import { MockEsp } from './mock-esp';
 
 const vectors = JSON.parse(readFileSync(join(import.meta.dirname, '..', 'protocol', 'vectors', 'esp.json'), 'utf8'));
 
-async function open(page: Page, which: 'mock' | 'firmware'): Promise<() => void> {
-  if (which === 'mock') {
-    const esp = new MockEsp({}, 20);
-    await esp.install(page);
-    await page.goto('/');
-    return () => esp.stop();
-  }
+async function open(page: Page): Promise<() => void> {
   const host = await startEspHost(20);
   await page.goto(host.url);
   return () => host.stop();
@@ -54,84 +47,82 @@ function socket(page: Page, frames: string[], until: string) {
   );
 }
 
-for (const which of ['mock', 'firmware'] as const) {
-  test.describe(`esp API (${which})`, () => {
-    test('POST /print answers every vector with its status and field, and DELETE with nothing to cancel is 409', async ({ page }) => {
-      const close = await open(page, which);
-      // GET /status first: the hub must have heard the Mega.
-      await expect.poll(async () => (await call(page, 'GET', '/status')).json.mega).toBe('online');
-      for (const c of vectors.requests) {
-        if (c.status === 202) continue; // accepted jobs start uploads: the flows cover them
-        const r = await call(page, 'POST', '/print', c.body);
-        expect(r.status, c.name).toBe(c.status);
-        expect(r.json.error.code, c.name).toBe(c.error);
-        if (c.path !== undefined) expect(r.json.error.path, c.name).toBe(c.path);
-      }
-      expect((await call(page, 'POST', '/print', '{}', 'text/plain')).status).toBe(415);
-      expect((await call(page, 'DELETE', '/print')).status).toBe(409);
-      const s = (await call(page, 'GET', '/status')).json;
-      for (const key of ['mega', 'firmware', 'position', 'temps', 'limits', 'job', 'probe', 'faults', 'clients']) expect(s, key).toHaveProperty(key);
-      expect(s.temps).toHaveLength(6);
-      close();
-    });
-
-    test('GET and POST /wifi keep the password to themselves and refuse a weak one', async ({ page }) => {
-      const close = await open(page, which);
-      const got = await call(page, 'GET', '/wifi');
-      expect(got.status).toBe(200);
-      expect(got.json.apSsid).toMatch(/^UVPrinter-[0-9A-F]{6}$/);
-      expect(got.json).not.toHaveProperty('apPassword');
-      const weak = await call(page, 'POST', '/wifi', JSON.stringify({ apPassword: 'short' }));
-      expect(weak.status).toBe(400);
-      expect(weak.json.error.path).toBe('/apPassword');
-      // A text body, which a foreign page may send without a preflight, changes nothing.
-      expect((await call(page, 'POST', '/wifi', JSON.stringify({ staSsid: 'x' }), 'text/plain')).status).toBe(415);
-      const unknown = await call(page, 'POST', '/wifi', JSON.stringify({ colour: 'red' }));
-      expect(unknown.json.error.path).toBe('/colour');
-      const ok = await call(page, 'POST', '/wifi', JSON.stringify({ apPassword: 'a good long one', staSsid: 'workshop', staPassword: 'hunter22' }));
-      expect(ok.status).toBe(200);
-      expect(ok.json).toEqual({ apSsid: got.json.apSsid, staSsid: 'workshop' });
-      // A name is UTF-8 text, counted in bytes: 16 × "é" is 32 bytes and comes back as it went in.
-      const accented = await call(page, 'POST', '/wifi', JSON.stringify({ staSsid: 'é'.repeat(16) }));
-      expect(accented.json).toEqual({ apSsid: got.json.apSsid, staSsid: 'é'.repeat(16) });
-      for (const staSsid of ['é'.repeat(17), 'tab\there']) {
-        const refused = await call(page, 'POST', '/wifi', JSON.stringify({ staSsid }));
-        expect(refused.status).toBe(400);
-        expect(refused.json.error.path).toBe('/staSsid');
-      }
-      close();
-    });
-
-    test('the WebSocket greets, answers by id, refuses bad frames and stays open', async ({ page }) => {
-      const close = await open(page, which);
-      await expect.poll(async () => (await call(page, 'GET', '/status')).json.mega).toBe('online');
-      const got = await socket(
-        page,
-        [
-          '{"type":"ping"}',
-          'not json',
-          '{"type":"shout","id":1}',
-          JSON.stringify({ type: 'send', line: 'M'.repeat(73), id: 2 }),
-          JSON.stringify({ type: 'send', line: 'M105\nM112', id: 3 }),
-          JSON.stringify({ type: 'send', line: 'M115', id: 4 }),
-        ],
-        '"id":4',
-      );
-      expect(got[0]).toMatchObject({ type: 'hello', protocol: 1 });
-      expect(got[1]).toMatchObject({ type: 'status' });
-      const errors = got.filter((m) => m.type === 'error');
-      expect(errors.map((e) => e.code)).toEqual(['bad_json', 'unknown_type', 'line_too_long', 'bad_line']);
-      expect(errors.map((e) => e.id)).toEqual([undefined, 1, 2, 3]);
-      expect(got.some((m) => m.type === 'pong')).toBe(true);
-      const reply = got.find((m) => m.type === 'reply' && m.id === 4) as { lines: string[] } | undefined;
-      expect(reply).toBeDefined();
-      expect(reply!.lines.some((l) => l.startsWith('FIRMWARE_NAME:UVExposure'))).toBe(true);
-      expect(reply!.lines.at(-1)).toMatch(/^ok/);
-      expect(got.some((m) => m.type === 'sent' && m.line === 'M115' && m.from === 'ws')).toBe(true);
-      close();
-    });
+test.describe('esp API (firmware)', () => {
+  test('POST /print answers every vector with its status and field, and DELETE with nothing to cancel is 409', async ({ page }) => {
+    const close = await open(page);
+    // GET /status first: the hub must have heard the Mega.
+    await expect.poll(async () => (await call(page, 'GET', '/status')).json.mega).toBe('online');
+    for (const c of vectors.requests) {
+      if (c.status === 202) continue; // accepted jobs start uploads: the flows cover them
+      const r = await call(page, 'POST', '/print', c.body);
+      expect(r.status, c.name).toBe(c.status);
+      expect(r.json.error.code, c.name).toBe(c.error);
+      if (c.path !== undefined) expect(r.json.error.path, c.name).toBe(c.path);
+    }
+    expect((await call(page, 'POST', '/print', '{}', 'text/plain')).status).toBe(415);
+    expect((await call(page, 'DELETE', '/print')).status).toBe(409);
+    const s = (await call(page, 'GET', '/status')).json;
+    for (const key of ['mega', 'firmware', 'position', 'temps', 'limits', 'job', 'probe', 'faults', 'clients']) expect(s, key).toHaveProperty(key);
+    expect(s.temps).toHaveLength(6);
+    close();
   });
-}
+
+  test('GET and POST /wifi keep the password to themselves and refuse a weak one', async ({ page }) => {
+    const close = await open(page);
+    const got = await call(page, 'GET', '/wifi');
+    expect(got.status).toBe(200);
+    expect(got.json.apSsid).toMatch(/^UVPrinter-[0-9A-F]{6}$/);
+    expect(got.json).not.toHaveProperty('apPassword');
+    const weak = await call(page, 'POST', '/wifi', JSON.stringify({ apPassword: 'short' }));
+    expect(weak.status).toBe(400);
+    expect(weak.json.error.path).toBe('/apPassword');
+    // A text body, which a foreign page may send without a preflight, changes nothing.
+    expect((await call(page, 'POST', '/wifi', JSON.stringify({ staSsid: 'x' }), 'text/plain')).status).toBe(415);
+    const unknown = await call(page, 'POST', '/wifi', JSON.stringify({ colour: 'red' }));
+    expect(unknown.json.error.path).toBe('/colour');
+    const ok = await call(page, 'POST', '/wifi', JSON.stringify({ apPassword: 'a good long one', staSsid: 'workshop', staPassword: 'hunter22' }));
+    expect(ok.status).toBe(200);
+    expect(ok.json).toEqual({ apSsid: got.json.apSsid, staSsid: 'workshop' });
+    // A name is UTF-8 text, counted in bytes: 16 × "é" is 32 bytes and comes back as it went in.
+    const accented = await call(page, 'POST', '/wifi', JSON.stringify({ staSsid: 'é'.repeat(16) }));
+    expect(accented.json).toEqual({ apSsid: got.json.apSsid, staSsid: 'é'.repeat(16) });
+    for (const staSsid of ['é'.repeat(17), 'tab\there']) {
+      const refused = await call(page, 'POST', '/wifi', JSON.stringify({ staSsid }));
+      expect(refused.status).toBe(400);
+      expect(refused.json.error.path).toBe('/staSsid');
+    }
+    close();
+  });
+
+  test('the WebSocket greets, answers by id, refuses bad frames and stays open', async ({ page }) => {
+    const close = await open(page);
+    await expect.poll(async () => (await call(page, 'GET', '/status')).json.mega).toBe('online');
+    const got = await socket(
+      page,
+      [
+        '{"type":"ping"}',
+        'not json',
+        '{"type":"shout","id":1}',
+        JSON.stringify({ type: 'send', line: 'M'.repeat(73), id: 2 }),
+        JSON.stringify({ type: 'send', line: 'M105\nM112', id: 3 }),
+        JSON.stringify({ type: 'send', line: 'M115', id: 4 }),
+      ],
+      '"id":4',
+    );
+    expect(got[0]).toMatchObject({ type: 'hello', protocol: 1 });
+    expect(got[1]).toMatchObject({ type: 'status' });
+    const errors = got.filter((m) => m.type === 'error');
+    expect(errors.map((e) => e.code)).toEqual(['bad_json', 'unknown_type', 'line_too_long', 'bad_line']);
+    expect(errors.map((e) => e.id)).toEqual([undefined, 1, 2, 3]);
+    expect(got.some((m) => m.type === 'pong')).toBe(true);
+    const reply = got.find((m) => m.type === 'reply' && m.id === 4) as { lines: string[] } | undefined;
+    expect(reply).toBeDefined();
+    expect(reply!.lines.some((l) => l.startsWith('FIRMWARE_NAME:UVExposure'))).toBe(true);
+    expect(reply!.lines.at(-1)).toMatch(/^ok/);
+    expect(got.some((m) => m.type === 'sent' && m.line === 'M115' && m.from === 'ws')).toBe(true);
+    close();
+  });
+});
 
 test('esp API (firmware): a POST /print cut off mid-body frees the Mega for the next job', async ({ page }) => {
   const host = await startEspHost(20);

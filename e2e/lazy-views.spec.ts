@@ -1,7 +1,7 @@
 // The views that load on demand (docs/app.md "Size"): a loading line while their chunk comes, and what went
 // wrong when it cannot come (the printer's hub went away), never an empty panel.
 import { expect, test } from '@playwright/test';
-import { MockEsp } from './mock-esp';
+import { startEspHost } from './esp-host';
 
 // The page's own requests only: a service worker would answer them from its cache.
 test.use({ serviceWorkers: 'block' });
@@ -52,11 +52,10 @@ test('a tab whose chunk cannot load says so, and so does a device whose link can
 });
 
 test('served by the printer\'s hub, a tab whose chunk cannot load names the hub, and loads when it is back', async ({ page }) => {
-  const esp = new MockEsp({}, 20);
+  const hub = await startEspHost(20); // the hub's own C++, serving the ESP's image (npm run build:esp)
   try {
-    await esp.install(page); // the ESP's own image (npm run build:esp), as the hub serves it
     await page.route(PANELS, (route) => route.abort());
-    await page.goto('/');
+    await page.goto(hub.url);
     await expect(page.getByTestId('connection')).toHaveAttribute('data-state', 'connected');
     await page.getByTestId('tab-settings').click();
     await expect(page.getByTestId('panel-settings').getByRole('alert')).toContainText("Try again once the printer's hub can be reached");
@@ -64,6 +63,6 @@ test('served by the printer\'s hub, a tab whose chunk cannot load names the hub,
     await page.getByTestId('panel-settings').getByTestId('lazy-retry').click();
     await expect(page.getByTestId('panel-settings').locator('input, button').first()).toBeVisible();
   } finally {
-    esp.stop();
+    hub.stop();
   }
 });

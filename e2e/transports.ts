@@ -3,16 +3,15 @@ import type { Page } from '@playwright/test';
 import { startEspHost } from './esp-host';
 import type { SimOptions } from '../app/src/sim/sim-printer';
 import { installFakeSerial, type FakeSerial } from './fake-serial';
-import { MockEsp } from './mock-esp';
 import { NodeSim } from './node-sim';
 
-export type TransportName = 'simulated' | 'web serial' | 'esp' | 'esp firmware';
+export type TransportName = 'simulated' | 'web serial' | 'esp';
 /**
- * `esp` is the mock of protocol/esp.md inside the page's routes; `esp firmware` is the ESP's own
- * C++ core on the host (build/host/esp_host), over real HTTP and WebSocket, serving the app from
- * its flash image, in front of the whole simulated Mega.
+ * `esp` is the ESP's own C++ core on the host (build/host/esp_host), over real HTTP and WebSocket,
+ * serving the app from its flash image, in front of the whole simulated Mega: the hub has no second,
+ * TypeScript imitation to drift from it.
  */
-export const TRANSPORTS: TransportName[] = ['simulated', 'web serial', 'esp', 'esp firmware'];
+export const TRANSPORTS: TransportName[] = ['simulated', 'web serial', 'esp'];
 
 export interface Opened {
   /** The printer behind the transport, when the test can reach it (not inside the page's worker). */
@@ -27,12 +26,6 @@ export async function openApp(page: Page, transport: TransportName, speed = 40, 
     return { sim: null, fake: null, close() {} };
   }
   if (transport === 'esp') {
-    const esp = new MockEsp(options, speed);
-    await esp.install(page);
-    await page.goto('/'); // the app finds the ESP by its GET /status and picks it
-    return { sim: esp.sim, fake: null, close: () => esp.stop() };
-  }
-  if (transport === 'esp firmware') {
     const host = await startEspHost(speed);
     await page.goto(host.url); // served by the hub itself, so the app finds it by its GET /status
     return { sim: null, fake: null, close: () => host.stop() };
