@@ -182,12 +182,13 @@ export function printP10(rows: P10Row[]): void {
 function printTurnArounds(rows: P10Row[]): void {
   const s = (us: number) => `${(us / 1e6).toFixed(2)} s`;
   for (const r of rows) {
+    const [order, fast] = chosen(r);
     const n = r.scan.passes.length;
     const moves = r.scan.passes.reduce((t, p) => t + p.moveUs, 0), ends = r.scan.passes.reduce((t, p) => t + p.wallUs - p.moveUs - p.strokeUs, 0);
     const strokes = r.scan.estimateUs - r.accel - moves - ends;  // the strokes beyond the floor's passes
     console.log(
       `P10 ${r.mask.padEnd(7)} beyond its windows: moves between passes ${s(moves)} (${(moves / Math.max(1, n) / 1000).toFixed(1)} ms a pass), pass load and end ${s(ends)}, strokes past the floor's passes ${s(strokes)}; ` +
-        `the scan ${(r.scan.estimateUs / r.accel).toFixed(3)}x its floor at the axis's acceleration; the chosen plan (${chosen(r)[0]}) ${(chosen(r)[1] / r.accel).toFixed(3)}x (goal <= 1.05x), the printhead link at ${BENCH_MACHINE.linkBaud} baud`,
+        `the scan ${(r.scan.estimateUs / r.accel).toFixed(3)}x its floor at the axis's acceleration; the chosen plan (${order}) ${(fast / r.accel).toFixed(3)}x (goal <= 1.05x), the printhead link at ${BENCH_MACHINE.linkBaud} baud`,
     );
   }
 }

@@ -35,7 +35,8 @@ struct Events {
   }
 };
 
-// The programs of a pass's chain: each one's bytes (its B lines and its K line), events and last event.
+// The programs of a pass's chain: each one's bytes (its B lines and its K line), events (its K line's
+// count) and last event.
 std::vector<Program> programsOf(const std::vector<std::pair<uint32_t, uint8_t>>& events, uint32_t& bytes) {
   Events source{&events};
   ProgramLines lines(Events::take, &source);
@@ -45,19 +46,14 @@ std::vector<Program> programsOf(const std::vector<std::pair<uint32_t, uint8_t>>&
   for (uint8_t n; (n = lines.next(line)) != 0;) {
     bytes += n;
     out.back().bytes += n;
-    if (line[0] != 'K') continue;
+    Seal seal;
+    if (line[0] != 'K' || !parseSeal(line, static_cast<uint8_t>(n - 1), seal)) continue;
+    out.back().events = seal.events;
     out.back().endUs = lines.lastUs();
     out.emplace_back();
   }
   EXPECT_FALSE(lines.failed());
   out.pop_back();
-  // Each program's events: the events up to its last one, less those before.
-  size_t at = 0;
-  for (Program& p : out) {
-    const size_t from = at;
-    while (at < events.size() && events[at].first <= p.endUs) at++;
-    p.events = static_cast<uint32_t>(at - from);
-  }
   return out;
 }
 
