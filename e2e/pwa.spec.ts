@@ -12,7 +12,8 @@ test('installs from its manifest and starts offline from its service worker', as
     return { name: m.name, display: m.display, start: m.start_url, icon: icon.ok && icon.headers.get('content-type') };
   });
   expect(manifest).toEqual({ name: 'UV Exposure', display: 'standalone', start: './', icon: 'image/svg+xml' });
-  expect(await page.evaluate(async () => (await navigator.serviceWorker.ready).active?.state)).toBe('activated');
+  // `ready` gives the registration once it has an active worker, which may still be activating.
+  await expect.poll(() => page.evaluate(async () => (await navigator.serviceWorker.ready).active?.state)).toBe('activated');
   // Everything the page loads is in the worker's list (relative to its scope), the stylesheet included.
   const missing = await page.evaluate(async () => {
     const sw = await (await fetch('/sw.js')).text();
