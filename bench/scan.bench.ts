@@ -221,7 +221,7 @@ function linkLoad(plan: ScanPlan): { worst: number; whole: number; events: numbe
  */
 export function printP11(rows: P10Row[]): void {
   console.log(
-    `\nP11 printhead link load of scan passes (program bytes, the packed B lines and K lines the Mega sends, against ${BENCH_MACHINE.linkBaud} baud over the pass time; relay 10000 us, the Mega's planner 300 us an event (scan_program.h); goal: worst pass <= 1.00x, the photo >= 3x faster than stop and fire)`,
+    `\nP11 printhead link load of scan passes (program bytes, the packed B lines and K lines the Mega sends, against ${BENCH_MACHINE.linkBaud} baud over the pass time; the Mega's relay and time to make an event as scan_program.h gives them (kProgramRelayUs, kProgramEventUs); goal: worst pass <= 1.00x, the photo >= 3x faster than stop and fire)`,
   );
   const s = (us: number) => `${(us / 1e6).toFixed(1)} s`;
   for (const r of rows) {

@@ -15,7 +15,7 @@ bool ScanRun::source(void* ctx, uint32_t& t, uint8_t& m) {
   t += s->stroke_.shiftUs;  // the plan's time 0 falls this long after the Nano's
   // As the Nano's clock counts it. Its time 0 is kProgramStartLeadUs of its own µs after the G's
   // newline, where this plan put it that many of the Mega's: so the lead is scaled with the times.
-  t = NanoClock::toNano(t + uv::kProgramStartLeadUs, s->clockPpm_) - uv::kProgramStartLeadUs;
+  t = NanoClock::toNano(t + uv::kProgramStartLeadUs, s->clockRate_) - uv::kProgramStartLeadUs;
   return true;
 }
 
@@ -130,7 +130,7 @@ ScanRun::Step ScanRun::poll(Motion& motion, PrintheadLink& head, const uv::JobHe
       }
       clockWaiting_ = false;
       if (head.switching()) return Step::Busy;  // the link's speed is settling: it times the G
-      clockPpm_ = head.nanoClock().ppm();
+      clockRate_ = NanoClock::rate(head.nanoClock().ppm());
       const Opened opened = open(motion, h, head.baud());
       if (opened == Opened::None && planner_.pricing()) return Step::Busy;  // a band priced a pass at a time: open again
       if (opened == Opened::None) return planner_.starved() ? Step::Starved : Step::End;

@@ -62,7 +62,7 @@ class ScanRun {
   // The held line's start: the chain's time just before its first event, Nano µs after time 0.
   uint32_t lineStartUs() const;
   // When the next buffer frees on the Nano, by this clock: as the program before the newest sent ends.
-  uint32_t freeAt() const { return start_ + NanoClock::toNano(older_, -clockPpm_); }
+  uint32_t freeAt() const { return start_ + NanoClock::toNano(older_, -clockRate_); }
   Step fail(PrintheadLink& head, uint8_t code);
 
   uv::ScanPlanner& planner_;
@@ -83,7 +83,7 @@ class ScanRun {
   uint16_t passes_ = 0;
   uint32_t nextPoll_ = 0, until_ = 0;
   int32_t y_ = 0;
-  int32_t clockPpm_ = 0;  // the Nano's clock when the pass opened (nano_clock.h)
+  int32_t clockRate_ = 0;  // the Nano's clock when the pass opened, as NanoClock::rate (nano_clock.h)
   union {
     uint32_t clockWaitFrom_ = 0;  // Open: when this pass began to wait for the Nano's clock
     uint32_t start_;              // Finish: the chain's time 0 by this clock (its G seen, so a little late)

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 using namespace mega;
 
 TEST(NanoClock, OneExchangeSaysNothingAndTwoOverTwoSecondsGiveTheRate) {
@@ -49,10 +51,30 @@ TEST(NanoClock, TheRateFollowsADriftingClockOnceTheFirstExchangeIsOld) {
 }
 
 TEST(NanoClock, MegaTimeAsTheNanoCountsItRoundsAndNeverWraps) {
-  EXPECT_EQ(NanoClock::toNano(1600000, 0), 1600000u);
-  EXPECT_EQ(NanoClock::toNano(1600000, 5000), 1608000u);
-  EXPECT_EQ(NanoClock::toNano(1600000, -5000), 1592000u);
-  EXPECT_EQ(NanoClock::toNano(999, 500), 999u);    // 999.4995
-  EXPECT_EQ(NanoClock::toNano(1001, 500), 1002u);  // 1001.5005
-  EXPECT_EQ(NanoClock::toNano(4000000000u, -20000), 3920000000u);
+  EXPECT_EQ(NanoClock::toNano(1600000, NanoClock::rate(0)), 1600000u);
+  EXPECT_EQ(NanoClock::toNano(1600000, NanoClock::rate(5000)), 1608000u);
+  EXPECT_EQ(NanoClock::toNano(1600000, NanoClock::rate(-5000)), 1592000u);
+  EXPECT_EQ(NanoClock::toNano(999, NanoClock::rate(500)), 999u);    // 999.4995
+  EXPECT_EQ(NanoClock::toNano(1001, NanoClock::rate(500)), 1002u);  // 1001.5005
+  EXPECT_EQ(NanoClock::toNano(4000000000u, NanoClock::rate(-20000)), 3920000000u);
+}
+
+// The rate as a factor in 2⁻³² (no division an event): within a µs of the exact product, at any time
+// and any rate a clock may have.
+TEST(NanoClock, MegaTimeAsTheNanoCountsItIsWithinAMicrosecondOfExact) {
+  uint32_t x = 0x39u;
+  auto draw = [&x]() {
+    x ^= x << 13;
+    x ^= x >> 17;
+    x ^= x << 5;
+    return x;
+  };
+  for (int i = 0; i < 200000; i++) {
+    const uint32_t us = i < 1000 ? static_cast<uint32_t>(i) : (i % 3 ? draw() : draw() % 4000000);
+    const int32_t ppm = static_cast<int32_t>(draw() % (2 * kClockMaxPpm + 1)) - kClockMaxPpm;
+    const double exact = us * (1.0 + ppm / 1e6);
+    if (exact >= 4294967295.0) continue;  // past 2³² µs (71 minutes): no pass is that long
+    const uint32_t nano = NanoClock::toNano(us, NanoClock::rate(ppm));
+    ASSERT_LE(std::fabs(nano - exact), 1.0) << us << " µs at " << ppm << " ppm";
+  }
 }

@@ -133,6 +133,33 @@ TEST(PlannerMemory, StreamsWithinItsBoundAndNeverAllocates) {
   std::printf("[planner memory] sizeof(Planner) = %zu bytes without the host's duration table (bound %u), no heap\n", sizeof(Planner) - Durations::kTableBytes, kPlannerMaxBytes);
 }
 
+// A cell's duration, round(full × gain × m / 255000), worked out without a 64-bit division (the
+// Mega's speed): against the exact quotient over every value, for durations by time and by target
+// across the ranges the job's header takes (job_verifier.cpp), modulo 2³² where a target over a faint
+// LED needs more.
+TEST(Durations, EveryValueIsTheExactRoundedQuotient) {
+  Xorshift rng{0x39u};
+  for (int job = 0; job < 400; job++) {
+    JobHeader h{};
+    h.map = DoseMap::Linear;
+    h.byTarget = job % 2;
+    h.fullUs = 1 + rng(10000000);
+    h.targetUJcm2 = 1 + rng(100000000);
+    for (uint8_t k = 0; k < 4; k++) {
+      h.irradianceUWcm2[k] = 1 + rng(10000000);
+      h.gainPermille[k] = static_cast<uint16_t>(1 + rng(10000));
+    }
+    const Durations dose(h);
+    for (uint8_t k = 0; k < 4; k++) {
+      const unsigned __int128 full = h.byTarget ? (static_cast<unsigned __int128>(h.targetUJcm2) * 1000000u * 2 + h.irradianceUWcm2[k]) / (2ull * h.irradianceUWcm2[k]) : h.fullUs;
+      for (uint16_t v = 0; v < 256; v++) {
+        const unsigned __int128 exact = (full * h.gainPermille[k] * v * 2 + 255000) / 510000;
+        ASSERT_EQ(dose.us(k, static_cast<uint8_t>(v)), static_cast<uint32_t>(exact)) << "job " << job << " led " << int(k) << " value " << v;
+      }
+    }
+  }
+}
+
 TEST(PlannerProperty, EveryLitCellOnceWithLedsSpreadOverManyRows) {
   // Rows marked as taken live in a ring of kCoveredWindowRows: jobs taller than it, with the LEDs'
   // rows spread up to its limit, still expose each lit cell exactly once and nothing else.
