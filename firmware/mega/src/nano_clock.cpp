@@ -1,7 +1,7 @@
 // The Nano's clock against the Mega's: see nano_clock.h.
 #include "nano_clock.h"
 
-#include <string.h>
+#include "fast_div.h"
 
 namespace mega {
 
@@ -35,13 +35,8 @@ int32_t NanoClock::rate(int32_t ppm) {
 }
 
 uint32_t NanoClock::toNano(uint32_t us, int32_t rate) {
-  // us × rate / 2³², rounded: the product's top four bytes, taken as bytes (an AVR shifts a 64-bit
-  // value by calling a loop).
-  const int64_t extra = static_cast<int64_t>(us) * rate + (int64_t{1} << 31);
-  uint8_t b[8];
-  memcpy(b, &extra, sizeof b);  // little-endian, on the AVR and the hosts alike
-  const uint32_t high = static_cast<uint32_t>(b[4]) | static_cast<uint32_t>(b[5]) << 8 | static_cast<uint32_t>(b[6]) << 16 | static_cast<uint32_t>(b[7]) << 24;
-  return us + high;  // the top half, two's complement: adding it subtracts when negative
+  // us × rate / 2³², rounded; the product's top half, two's complement: adding it subtracts when negative.
+  return us + highHalf(static_cast<uint64_t>(static_cast<int64_t>(us) * rate + (int64_t{1} << 31)));
 }
 
 }  // namespace mega
