@@ -55,7 +55,7 @@ void PrintheadLink::begin(uint32_t nowUs) {
 void PrintheadLink::allOff(uint8_t why) {
   uv::NanoCommand r{};
   r.op = 'R';
-  held_ = false;  // whatever a scan pass was waiting for, it is over
+  held_ = doseHeld_ = false;  // whatever a scan pass was waiting for, it is over
   offPending_ = !send(r);  // a full UART: poll() sends it before anything else
   // The Nano takes 115200 as the R ends; so does this side, once the R has gone out at the old speed.
   if (!offPending_ && speed_ != Speed::Start) {

@@ -50,7 +50,7 @@ class PrintheadLink {
   explicit PrintheadLink(ByteStream& io)
       : io_(io), splitter_(line_, kReplyMax), online_(false), reportedOffline_(false), offPending_(false), identityWanted_(true),
         probeWanted_(false), probeAnswered_(false), probeTriggered_(false), countersWanted_(false), countersAnswered_(false), whole_(true),
-        tempsKnown_(false), fireCheckWanted_(false), sealAnswered_(false), passWanted_(false), passAnswered_(false), held_(false),
+        tempsKnown_(false), fireCheckWanted_(false), sealAnswered_(false), passWanted_(false), passAnswered_(false), held_(false), doseHeld_(false),
         raise_(false), raiseSoon_(false), raiseFailed_(false), doseWanted_(false) {}
 
   // The sink, given to poll() (not kept: the Mega's RAM), takes a record, or, given nullptr, says
@@ -122,7 +122,14 @@ class PrintheadLink {
   bool passAnswered() const { return passAnswered_; }
   // Asks nothing but a requested Q while held: a scan pass's G must find the UART idle when its step
   // comes, and a pass loading its chain must hear of a free buffer at once, not after a T's reply.
-  void hold(bool quiet) { held_ = quiet; }
+  void hold(bool quiet) {
+    held_ = quiet;
+    if (!quiet) doseHeld_ = false;
+  }
+  // No O while held so (an O under way still ends), until released or hold(false): a scan program
+  // loading, whose lines and K must follow the Q's answer at once (the relay). The O asked
+  // meanwhile goes once released.
+  void holdDose(bool held) { doseHeld_ = held; }
   uint8_t passFree() const { return passFree_; }
   uint8_t passArmed() const { return passArmed_; }
   uint8_t passState() const { return passState_; }
@@ -169,7 +176,7 @@ class PrintheadLink {
   void awaitReply(char op, uint32_t nowUs);
   void handle(const uv::NanoReply& r, uint32_t nowUs, DoseSink dose);
   // A requested O may go now.
-  bool doseMayAsk(DoseSink dose) const { return doseWanted_ && (!dose.take || dose.take(dose.ctx, nullptr)); }
+  bool doseMayAsk(DoseSink dose) const { return doseWanted_ && !doseHeld_ && (!dose.take || dose.take(dose.ctx, nullptr)); }
   void missed(uint32_t nowUs);
   void fireFailed(uint8_t code);
   void flagsSeen(uint8_t flags, uint32_t nowUs);
@@ -216,7 +223,7 @@ class PrintheadLink {
   bool countersWanted_ : 1, countersAnswered_ : 1, whole_ : 1;
   bool tempsKnown_ : 1;
   bool fireCheckWanted_ : 1;  // S said off: ask E once
-  bool sealAnswered_ : 1, passWanted_ : 1, passAnswered_ : 1, held_ : 1;
+  bool sealAnswered_ : 1, passWanted_ : 1, passAnswered_ : 1, held_ : 1, doseHeld_ : 1;
   bool raise_ : 1;
   bool raiseSoon_ : 1;
   bool raiseFailed_ : 1;  // the last raise failed (its L or its V): jobs are planned at 115200

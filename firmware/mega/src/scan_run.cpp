@@ -192,9 +192,10 @@ ScanRun::Step ScanRun::poll(Motion& motion, PrintheadLink& head, const uv::JobHe
           return fail(head, state == static_cast<uint8_t>(uv::PassState::CutByFault) ? uv::kOverTemperature : uv::kExposureRefused);
         }
         if (!written_ && head.passFree() > 0) loading_ = true;  // a buffer is free: the next program
+        head.holdDose(loading_);  // until that program is armed
         // The programs that have ended, reported (protocol/mega.md "Dose reports"): the Nano keeps two
-        // records, and a program cannot end sooner than the next one loads, so one O after each Q keeps
-        // up. A program waiting to go goes first: its O follows the next Q.
+        // records, and a program cannot end sooner than the next one loads, so one O after each Q, or
+        // once the program it made way for is armed, keeps up. A program waiting to go goes first.
         if (!loading_) head.requestDose();
         if (motion.idle() && written_ && state == static_cast<uint8_t>(uv::PassState::Whole)) {
           head.requestDose();  // the last program's record: the pass counts once it is reported
@@ -203,8 +204,14 @@ ScanRun::Step ScanRun::poll(Motion& motion, PrintheadLink& head, const uv::JobHe
         }
       }
       if (loading_) {
-        if (sendProgram(head, nowUs) || written_) loading_ = false;
+        const bool armed = sendProgram(head, nowUs);
+        if (armed || written_) loading_ = false;
         if (error_) return fail(head, error_);
+        if (armed) {  // its O before the next Q, which waits for the answer
+          head.holdDose(false);
+          head.requestDose();
+          return Step::Busy;
+        }
       }
       // A program waits for a buffer: Q as the one before it ends (not just before, which would
       // only learn it is not yet free), then again as each answer comes until one is, so the program

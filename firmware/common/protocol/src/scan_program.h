@@ -133,12 +133,13 @@ class LinkLoad {
 constexpr uint32_t kProgramRelayUs = 10000;
 
 // What the Mega takes over an event as it writes a program's lines, and over the program's dose
-// record. Making a line of some 20 events took 2 to 3 ms in simavr (a few, 4.5) once a duration and the Nano's
-// clock took no 64-bit division (mega_sim_tests "photo-like", UV_MEGA_PROFILE; 4.7 to 6.1 ms before),
-// some 125 µs an event. What bounds it now is the report: each Q that finds a buffer free loads a
-// program rather than ask O, and at 200 µs an event every Q did, so the Nano's two records overflowed
-// and that pass reported 7 of its 8 programs. At 250 µs all 8, at the three Nano clocks.
-constexpr uint32_t kProgramEventUs = 250;
+// record. Making a line of some 20 events took 2 to 3 ms in simavr (a few, 4.5) once a duration and
+// the Nano's clock took no 64-bit division (mega_sim_tests "photo-like", UV_MEGA_PROFILE; 4.7 to 6.1
+// ms before), some 125 µs an event. What bounds it is the report: each program's O goes once it is
+// armed, before the next Q (scan_run.cpp), and its answer takes milliseconds. At 175 µs the
+// photo-like pass ran whole with every program reported at the three Nano clocks, the least slack
+// 5.7 ms; at 150 a program came late and the Nano cut the chain.
+constexpr uint32_t kProgramEventUs = 175;
 
 // µs `bytes` take on the printhead link at `baud`, ten bits a byte.
 inline uint64_t linkUs(uint32_t bytes, uint32_t baud) { return static_cast<uint64_t>(bytes) * 10 * 1000000 / baud; }
