@@ -16,7 +16,7 @@ rm -rf "$out/obj"
 mkdir -p "$out/obj"
 # The planners and what the scan planner's link check reads of the protocol (the Nano's program lines).
 srcs=(firmware/common/planner/src/planner.cpp firmware/common/planner/src/time_model.cpp
-  firmware/common/planner/src/scan.cpp firmware/common/planner/src/scan_band.cpp
+  firmware/common/planner/src/scan.cpp firmware/common/planner/src/scan_band.cpp firmware/common/planner/src/glide.cpp
   firmware/common/planner/src/scan_pass.cpp firmware/common/planner/src/scan_stops.cpp
   firmware/common/protocol/src/scan_program.cpp firmware/common/protocol/src/nano_codec.cpp
   firmware/common/protocol/src/crc16.cpp firmware/common/protocol/src/text_scan.cpp

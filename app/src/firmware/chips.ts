@@ -88,7 +88,9 @@ const word = (b: Uint8Array, at: number) => (at + 1 < b.length ? b[at] | (b[at +
 
 export function readImageStart(bytes: Uint8Array): ImageStart {
   let jumps = 0;
-  while (word(bytes, jumps * 4) === 0x940c) jumps++;
+  // jmp k: 1001 010k kkkk 110k, then k's low 16 bits; a target past the first 128 KB (a Mega image
+  // over 128 KB puts some handlers there) sets k's high bits in the first word.
+  while ((word(bytes, jumps * 4) & 0xfe0e) === 0x940c) jumps++;
   let stackTop: number | null = null;
   let setsEind = false;
   if (jumps > 0) {

@@ -84,11 +84,14 @@ void Machine::poll(uint32_t nowUs) {
   runJob();
   // Lines run in turn from each port. While a long command runs, the other port's queries still run.
   bool ran = false;
+  // A dose record to ask for, or on its way, goes before the hosts' lines: it needs the room their
+  // replies would take, and the Nano keeps only two (protocol/mega.md "Dose reports").
+  const bool doseFirst = !head_.doseDrained();
   for (uint8_t i = 0; i < kPorts; i++) {
     uint8_t k = static_cast<uint8_t>((next_ + i) % kPorts);
     HostLink& port = *ports_[k];
     const LineSlot* line = port.front();
-    if (!line || port.room() < kReplyRoom) continue;
+    if (!line || port.room() < kReplyRoom || doseFirst) continue;
     if (long_.op != Op::None) {
       uv::Command c;
       if (long_.port == &port || uv::parseCommand(line->text, line->len, c) || !(commandFlags(c) & kQuery)) continue;

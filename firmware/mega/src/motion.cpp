@@ -55,7 +55,7 @@ void Motion::setPositionSteps(const int32_t steps[3]) {
 }
 
 bool Motion::push(const int32_t delta[3], const AxisLimits lim[3], int8_t seekAxis) {
-  if (!accepting()) return false;
+  if (!accepting() || (delta[1] && e_.gliding())) return false;
   StepBlock b{};
   uint32_t total = 0;
   for (uint8_t a = 0; a < 3; a++) {
@@ -115,6 +115,24 @@ Profile Motion::strokeProfile(uint32_t steps, uint16_t interval, uint16_t frac) 
   const uint64_t exact = (static_cast<uint64_t>(interval) << 16) | frac;
   lim[0].rate = static_cast<uint32_t>(((static_cast<uint64_t>(kTickHz) << 16) + exact - 1) / exact);
   return profileFor(total, lim);
+}
+
+bool Motion::glides(int32_t dy) const {
+  const AxisLimits y = limits(1, 0);
+  uv::GlidePlan p;
+  return uv::planGlide(absU(dy), y.rate, y.accel, p);
+}
+
+bool Motion::glide(int32_t dy) {
+  if (stopping_ || e_.gliding() || e_.blocksMove(1)) return false;
+  const AxisLimits y = limits(1, 0);
+  uv::GlidePlan p;
+  if (!uv::planGlide(absU(dy), y.rate, y.accel, p)) return false;
+  const uint8_t n = static_cast<uint8_t>(absU(dy));
+  e_.startGlide(uv::Glide{p.first, n, n}, dy < 0);
+  target_[1] += dy;
+  stepperKick();
+  return true;
 }
 
 uint32_t Motion::strokeRampSteps(uint16_t interval, uint16_t frac) const { return strokeProfile(1, interval, frac).rampSteps; }

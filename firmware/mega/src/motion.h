@@ -47,6 +47,12 @@ class Motion {
     void* ctx;
   };
   bool stroke(const Stroke& s);
+  // A Y hop of `dy` steps that glides (glide.h, planner.md "Gliding"): at once, on its own timing,
+  // beside whatever X does (a stroke's run-out, the X move queued after it) or at rest. False when
+  // nothing may glide now (a queued move or a glide moves Y, or a stop runs down) or the hop cannot
+  // glide at all (glides()). While it runs, a move that would move Y waits (false: try again).
+  bool glide(int32_t dy);
+  bool glides(int32_t dy) const;
   // Steps the stroke's ramp takes at either end (the middle begins after them).
   uint32_t strokeRampSteps(uint16_t interval, uint16_t frac) const;
   // Feeds the step interrupt; call every pass of the main loop. Never waits.
@@ -57,6 +63,8 @@ class Motion {
   void halt();
 
   bool idle() const { return !stopping_ && planSlot_ < 0 && e_.idle(); }
+  // A stroke is queued whose segments are not all cut yet (its jumps are still asked for).
+  bool cuttingStroke() const { return strokeSlot_ >= 0; }
   bool accepting() const { return !stopping_ && e_.blocksFree() > 0; }
   uint8_t movesFree() const { return stopping_ ? 0 : e_.blocksFree(); }
   void positionSteps(int32_t out[3]) const { e_.position(out); }

@@ -133,21 +133,29 @@ ScanRun::Step ScanRun::poll(Motion& motion, PrintheadLink& head, const uv::JobHe
       clockRate_ = NanoClock::rate(head.nanoClock().ppm());
       const Opened opened = open(motion, h, head.baud());
       if (opened == Opened::None && planner_.pricing()) return Step::Busy;  // a band priced a pass at a time: open again
-      if (opened == Opened::None) return planner_.starved() ? Step::Starved : Step::End;
+      if (opened == Opened::None && planner_.starved()) return Step::Starved;
+      if (opened == Opened::None) return motion.idle() ? Step::End : Step::Busy;  // the last stroke at rest
       if (error_) return fail(head, error_);
-      if (opened == Opened::Stops) return Step::Stops;  // stays Open: the pass after it opens next
+      if (opened == Opened::Stops) {
+        afterStroke_ = false;  // its stops leave the head at rest
+        return Step::Stops;    // stays Open: the pass after it opens next
+      }
       phase_ = Phase::Load;
       return Step::Busy;
     }
     case Phase::Load: {
       if (!moved_) {
         int32_t to[3];
-        motion.targetSteps(to);  // Z stays where the job put it
+        motion.targetSteps(to);  // Z stays where the job put it; X and Y where the queued moves end
+        const int32_t dy = motion.toSteps(1, y_) - to[1];
         to[0] = stroke_.startSteps;
-        to[1] = motion.toSteps(1, y_);
+        to[1] += dy;
         // The whole stroke, run-up and run-out included, on the bed, or the head never sets off.
         if (!motion.onBed(0, to[0]) || !motion.onBed(0, to[0] + stroke_.steps) || !motion.onBed(1, to[1])) return fail(head, uv::kSoftLimit);
-        moved_ = motion.moveToSteps(to);
+        // After a stroke, a hop in Y that can glide does so at once, beside its run-out (protocol/
+        // planner.md "Gliding"), and X's part goes in the queue behind it on the next poll.
+        if (afterStroke_ && dy != 0 && motion.glides(dy)) motion.glide(dy);
+        else moved_ = motion.moveToSteps(to);
       }
       // Two programs armed before the head sets off (the Nano's two buffers), or the whole chain.
       while (armed_ < 2 && !written_) {
@@ -197,7 +205,7 @@ ScanRun::Step ScanRun::poll(Motion& motion, PrintheadLink& head, const uv::JobHe
         // records, and a program cannot end sooner than the next one loads, so one O after each Q, or
         // once the program it made way for is armed, keeps up. A program waiting to go goes first.
         if (!loading_) head.requestDose();
-        if (motion.idle() && written_ && state == static_cast<uint8_t>(uv::PassState::Whole)) {
+        if (written_ && state == static_cast<uint8_t>(uv::PassState::Whole)) {
           head.requestDose();  // the last program's record: the pass counts once it is reported
           phase_ = Phase::Drain;
           return Step::Busy;
@@ -225,12 +233,23 @@ ScanRun::Step ScanRun::poll(Motion& motion, PrintheadLink& head, const uv::JobHe
           nextPoll_ = nowUs;
         }
       }
+      // Every line out: the pass is whole with its last event, most often while the stroke still runs
+      // out. Q as that event is due, not up to a poll later, then every kScanEndPollUs until it is.
+      uint32_t pollEvery = kScanPollUs;
+      if (written_) {
+        const uint32_t end = chainEnd();
+        if (!due(nowUs, end)) {
+          if (due(nextPoll_, end)) nextPoll_ = end;
+        } else {
+          pollEvery = kScanEndPollUs;
+        }
+      }
       // No Q while a program goes out: its K would wait behind the answer, and its lines keep the
       // chain from being cut as silent as the Q does.
       if (!asked_ && !loading_ && due(nowUs, nextPoll_)) {
         head.requestPass();
         asked_ = true;
-        nextPoll_ = nowUs + kScanPollUs;
+        nextPoll_ = nowUs + pollEvery;
       }
       if (motion.idle()) {
         if (!until_) until_ = nowUs + kScanSettleUs;
@@ -240,8 +259,11 @@ ScanRun::Step ScanRun::poll(Motion& motion, PrintheadLink& head, const uv::JobHe
     }
     case Phase::Drain:
       head.hold(false);
-      if (!head.doseDrained()) return Step::Busy;
+      // Whole and reported. The stroke may still be running out, but every segment of it is queued,
+      // so the next pass may open (its jumps replace this one's) and its hop glide beside it.
+      if (!head.doseDrained() || motion.cuttingStroke()) return Step::Busy;
       passes_++;
+      afterStroke_ = true;
       phase_ = Phase::Open;
       return Step::PassDone;
   }

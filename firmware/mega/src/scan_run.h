@@ -2,8 +2,9 @@
 // planner opens them: to the pass's start, its first two programs loaded and armed on the Nano, the
 // stroke queued with its G on the marked step, the rest of the chain sent as the Nano's buffers
 // free up (asked by Q when the program before them is due to end, and every 10 ms, which also keeps
-// the chain from being cut as silent), and the pass confirmed whole by the Nano's Q before the next
-// opens.
+// the chain from being cut as silent), and the pass confirmed whole by the Nano's Q (asked as its
+// last event is due) and its dose reported before the next opens, while the stroke runs out: a hop
+// in Y alone to the next pass glides beside that run-out (protocol/planner.md "Gliding").
 #pragma once
 #include <stdint.h>
 
@@ -17,6 +18,10 @@
 namespace mega {
 
 constexpr uint32_t kScanPollUs = 10000;      // Q while a chain runs: well inside the Nano's 50 ms
+// Once the chain is written: the first Q this long after its last event is due (the Nano's loop
+// marks the pass whole on its next turn), then one this often until the answer says whole.
+constexpr uint32_t kScanEndMarginUs = 200;
+constexpr uint32_t kScanEndPollUs = 1000;
 // From the step that writes the G to the chain's time 0: the G and its newline (two bytes at 115200
 // baud), then the Nano's lead.
 constexpr uint32_t kScanStartUs = 174 + uv::kProgramStartLeadUs;
@@ -30,7 +35,8 @@ constexpr uint32_t kScanClockWaitUs = 10000000;
 class ScanRun {
  public:
   explicit ScanRun(uv::ScanPlanner& planner)
-      : planner_(planner), lines_(source, this), sealSent_(false), written_(false), asked_(false), loading_(false), moved_(false), clockWaiting_(false) {}
+      : planner_(planner), lines_(source, this), sealSent_(false), written_(false), asked_(false), loading_(false), moved_(false), clockWaiting_(false),
+        afterStroke_(false) {}
 
   // Stops: a mixed job's pass opened as stops (planner.md "Mixed mode"): the job runner takes them
   // from the planner's nextStop(), and the next poll opens the pass after it.
@@ -63,19 +69,22 @@ class ScanRun {
   uint32_t lineStartUs() const;
   // When the next buffer frees on the Nano, by this clock: as the program before the newest sent ends.
   uint32_t freeAt() const { return start_ + NanoClock::toNano(older_, -clockRate_); }
+  // When the Nano's pass is whole, by this clock: its last event, and a margin (kScanEndMarginUs).
+  uint32_t chainEnd() const { return start_ + NanoClock::toNano(lines_.lastUs(), -clockRate_) + kScanEndMarginUs; }
   Step fail(PrintheadLink& head, uint8_t code);
 
   uv::ScanPlanner& planner_;
   uv::ProgramLines lines_;
   char line_[uv::kNanoMaxLine + 2];
   uint8_t held_ = 0;          // a line taken from lines_, not sent yet
-  // One byte for the six (the Mega's static RAM holds a ScanJob twice: card_scan.h, stream_job.h).
+  // One byte for the seven (the Mega's static RAM holds a ScanJob twice: card_scan.h, stream_job.h).
   bool sealSent_ : 1;         // its K went out; its answer is awaited
   bool written_ : 1;          // the chain's every line has gone
   bool asked_ : 1;            // a Q is out: its answer is awaited
   bool loading_ : 1;          // a Q found a buffer free: the next program goes out
   bool moved_ : 1;            // the move to the pass's start is queued
   bool clockWaiting_ : 1;     // Open: waiting for the Nano's clock
+  bool afterStroke_ : 1;      // the last pass was a stroke: the hop to the next glides (planner.md "Gliding")
   uint8_t armed_ = 0;         // programs answered K:0 before the stroke
   Phase phase_ = Phase::Open;
   uint8_t marks_ = 0, missed_ = 0;  // the step engine's counts before the stroke

@@ -128,6 +128,71 @@ TEST_F(ScanRunTest, ExposesEveryCellItsDoseInPlaceOnTheMove) {
   EXPECT_LE(f.worstCentreUm, 50 / 4.0);
 }
 
+// A pass is confirmed as its light ends, while its stroke runs out (50 ms at 100 mm/s): every pass
+// is done before its head is at rest, where it waited for the 10 ms Q after that rest before.
+TEST_F(ScanRunTest, EachPassIsDoneWhileItsStrokeRunsOut) {
+  Planned p(*this, 60, 11, 500);
+  ScanRun::Step st = ScanRun::Step::Busy;
+  uint32_t done = 0, whileMoving = 0;
+  while (us() < 60000000) {
+    st = p.scan.poll(rig.motion, link, p.h, us());
+    if (st == ScanRun::Step::PassDone) {
+      done++;
+      if (!rig.motion.idle()) whileMoving++;
+    }
+    if (st == ScanRun::Step::End || st == ScanRun::Step::Failed) break;
+    loop();
+  }
+  ASSERT_EQ(st, ScanRun::Step::End) << "error " << int(p.scan.error());
+  EXPECT_EQ(done, p.planner.passes());
+  EXPECT_EQ(whileMoving, done);
+  EXPECT_TRUE(rig.motion.idle()) << "the job ends at rest";
+}
+
+// A filled block with the LEDs on adjacent rows: each pass starts where the last one stops, a hop of
+// four rows (16 steps) in Y alone, which glides beside the last stroke's run-out (protocol/planner.md
+// "Gliding"). Every cell keeps its dose in place, most of each hop's steps come while X still runs
+// out, and the job takes what the planner prices it at.
+TEST_F(ScanRunTest, TheHopToTheNextPassGlidesBesideTheRunOut) {
+  const std::vector<std::vector<uint8_t>> grid(16, std::vector<uint8_t>(40, 255));
+  uv::JobHeader h = job(40, 16, 2000);  // 25 mm/s passes: 12.5 ms run-outs
+  for (int k = 0; k < 4; k++) h.offsets[k][0] = 0;
+  uvtest::GridCells cells(grid);
+  const uv::MotionModel m = machine();
+  uv::ScanPlanner planner(h, cells, m);
+  ScanRun scan(planner);
+  while (!link.nanoClock().known() && us() < 10000000) loop();
+  rig.steps.clear();
+  const uint32_t startUs = us();
+  ASSERT_EQ(run(scan, h), ScanRun::Step::End) << "error " << int(scan.error());
+  const uint32_t tookUs = us() - startUs;
+  ASSERT_EQ(scan.passes(), 4);
+  // The hops: the Y steps after the first pass's mark. One glided beside a run-out when X steps in the
+  // same direction come both before it and after it, less than 20 ms apart (a stroke still under way).
+  ASSERT_FALSE(rig.marks.empty());
+  uint32_t ySteps = 0, beside = 0;
+  for (size_t i = 0; i < rig.steps.size(); i++) {
+    if (!(rig.steps[i].axes & 2) || rig.steps[i].us2 < rig.marks.front()) continue;
+    ySteps++;
+    size_t b = i, j = i + 1;
+    while (b > 0 && !(rig.steps[b].axes & 1)) b--;
+    while (j < rig.steps.size() && !(rig.steps[j].axes & 1)) j++;
+    if (j < rig.steps.size() && (rig.steps[b].axes & 1) && ((rig.steps[b].dirNeg ^ rig.steps[j].dirNeg) & 1) == 0 &&
+        rig.steps[j].us2 - rig.steps[b].us2 < 40000)
+      beside++;
+  }
+  const scandose::Figures f = measure(h, grid, scandose::passWindows(h, grid, m));
+  std::printf("[scan host, gliding] %u passes in %.1f ms (planned %.1f ms): %u of %u Y steps beside X's run-out; worst dose error %.2f %% of full, worst edge %.2f um\n",
+              scan.passes(), tookUs / 1e3, planner.estimateUs() / 1e3, beside, ySteps, f.worstDosePct, f.worstEdgeUm);
+  EXPECT_EQ(f.stray, 0);
+  EXPECT_LE(f.worstDosePct, 2.0);
+  EXPECT_LE(f.worstEdgeUm, 50 / 4.0);
+  EXPECT_EQ(rig.engine.underruns(), 0);
+  EXPECT_EQ(ySteps, 3u * 16u);
+  EXPECT_GE(beside, ySteps / 3) << "the hops glided beside the run-outs";
+  EXPECT_NEAR(tookUs, static_cast<double>(planner.estimateUs()), 0.01 * planner.estimateUs() + 2000.0 * scan.passes());
+}
+
 // At 25 mm/s, under the axis's 100: the stretches between islands are flown, each back at the speed
 // on the step and the tick the Nano's program expects.
 TEST_F(ScanRunTest, FliesBlankStretchesAndKeepsEveryCellInPlace) {

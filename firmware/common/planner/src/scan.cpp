@@ -35,9 +35,12 @@ void planStroke(const MotionModel& m, int32_t markX2Um, int32_t endX2Um, bool de
   out.stopSteps = static_cast<int32_t>(sign * stop);
   const uint32_t n = static_cast<uint32_t>(stop - start);
   const StepRamp p = stepRamp(n, static_cast<uint32_t>(rate), accel, 0, 0, 0);
-  const uint64_t up = stepTicks(p, 0, ramp);
-  const uint64_t ticks = up + ((static_cast<uint64_t>(n - 2 * ramp) * q16) >> 16) + stepTicks(p, n - ramp, n);
+  const uint64_t up = stepTicks(p, 0, ramp), down = stepTicks(p, n - ramp, n);
+  const uint64_t ticks = up + ((static_cast<uint64_t>(n - 2 * ramp) * q16) >> 16) + down;
   out.strokeUs = static_cast<uint32_t>((ticks - 2ull * savedUs + 1) / 2);
+  // The run-out: from the last window's end (at least a step before the ramp down) to rest.
+  out.runOutUs = static_cast<uint32_t>((down + (q16 >> 16) + 1) / 2);
+  out.endUs = out.runOutUs >= kScanPassEndUs ? 0 : kScanPassEndUs - out.runOutUs;
   // The G step comes after the ramp and one step at the speed; the mark, (mark − gAt) steps later.
   const uint64_t markTicks16 = (up << 16) + q16 + static_cast<uint64_t>(mark - gAt * den) * q16 / den;
   out.markUs = static_cast<uint32_t>((markTicks16 + 65536) / 131072);

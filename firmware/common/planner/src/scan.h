@@ -32,6 +32,9 @@ struct ScanPass {
   uint32_t moveUs;
   int32_t startSteps, stopSteps;
   uint32_t strokeUs, markUs;
+  // The run-out, µs from the last window's end to rest; what the pass takes past that rest to be
+  // confirmed, kScanPassEndUs from its last window's end less the run-out.
+  uint32_t runOutUs, endUs;
   // Mixed mode (planner.md "Mixed mode"): the pass priced as a scan pass and as stops, and the way
   // taken. A stop pass's stops come from nextStop(); its scan fields above say what it would have been.
   uint64_t scanUs, stopsUs;
@@ -63,8 +66,10 @@ constexpr uint8_t kMixedBand = kShortestBand;
 // the G step comes at least this long before the start mark: the G's two bytes at the link's speed
 // (linkByteUs: 85 µs at 115200, 40 at 250000), then the Nano's lead (scan_stroke.h markLeadUs).
 constexpr uint32_t strokeMarkLeadUs(uint32_t baud) { return kProgramStartLeadUs + 2 * linkByteUs(baud); }
-// After the stroke the Mega waits for the Nano's next Q answer (asked every 10 ms): half a poll on average.
-constexpr uint32_t kScanPassEndUs = 5000;
+// From a pass's last window's end until the Mega has it confirmed: its Q as the chain's last event is
+// due, the Nano's whole answer, and the last program's dose record (scan_run.h kScanEndMarginUs). The
+// stroke runs out meanwhile, so the pass costs only what this outlasts the run-out.
+constexpr uint32_t kScanPassEndUs = 2000;
 // µs the Mega takes to start a pass once its move is done (planner.md "Scan mode"): not a stop's overheadUs.
 constexpr uint32_t kScanPassLoadUs = 400;
 // The step of a pass at window W, as 16.16 timer ticks; false when the step engine cannot run it
@@ -73,7 +78,7 @@ bool engineStep(const MotionModel& m, uint32_t pitchUm, uint32_t windowUs, uint6
 // The stroke of a pass at the step `q16` (engineStep) whose start mark and last window's end are at
 // twice the bed X `markX2Um` and `endX2Um` (µm), as scan_stroke.cpp lays it out: where it starts and
 // stops (X steps), its µs from rest to idle (the ramps as the engine runs them, the middle at the
-// exact step, less the flown stretches' `savedUs`), and the mark's µs after it starts.
+// exact step, less the flown stretches' `savedUs`), the mark's µs after it starts, and its endUs.
 void planStroke(const MotionModel& m, int32_t markX2Um, int32_t endX2Um, bool descending, uint64_t q16, uint32_t savedUs, ScanPass& out);
 
 // CellSource cursors the scan planner opens: one an LED, numbered as the LEDs.
@@ -184,6 +189,9 @@ class ScanPlanner {
   int32_t low_ = 0;    // the open pass's lowest row, or the next that may open one
   int16_t dyMin_ = 0, dyMax_ = 0;
   int32_t curX_, curY_;  // where the last pass ended: X in steps, Y in µm
+  // The last pass's run-out (µs, 1 to 65535), beside which the next one's hop glides; 0 when the
+  // head is at rest (the start, after stops), where the hop is a move as any.
+  uint16_t runOut_ = 0;
   uint64_t estimate_ = 0;
   uint16_t passes_ = 0;
   bool flies_;  // the open pass's speed is below the maximum: blank stretches may be flown
@@ -219,6 +227,7 @@ class ScanPlanner {
   static constexpr uint8_t kSlicedBit = 1 << 7;  // live_: sliceBands()
   uint8_t bandPriced_ = 0;
   int32_t bandX0_ = 0, bandY0_ = 0;
+  uint16_t bandRunOut0_ = 0;
   uint64_t bandUs_ = 0;
   // nextStop() walks the open pass's stops: a flag above the LEDs' bits of live_ (no byte more in
   // the Mega's job arena, whose every byte is spoken for).

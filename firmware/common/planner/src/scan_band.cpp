@@ -30,6 +30,7 @@ bool ScanPlanner::nextBand(ScanPass& out) {
       if (starved_ || bandLen_ == 0) return false;
       bandX0_ = curX_;
       bandY0_ = curY_;
+      bandRunOut0_ = runOut_;
       bandUs_ = 0;
     }
     // The band pass by pass, each from where the one before leaves the head; undone once priced.
@@ -47,6 +48,7 @@ bool ScanPlanner::nextBand(ScanPass& out) {
     const uint64_t passesUs = bandUs_;
     curX_ = bandX0_;
     curY_ = bandY0_;
+    runOut_ = bandRunOut0_;
     estimate_ -= passesUs;
     passes_ = static_cast<uint16_t>(passes_ - bandLen_);
     bandPriced_ = 0;
@@ -68,6 +70,7 @@ bool ScanPlanner::nextBand(ScanPass& out) {
       passes_ = static_cast<uint16_t>(passes_ + bandLen_);
       curX_ = endX;
       curY_ = endY;
+      runOut_ = 0;  // the band's stops end at rest
       bandNext_ = bandLen_;
       live_ |= kStopPassBit | kBandBit;
       return true;

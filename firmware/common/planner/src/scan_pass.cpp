@@ -2,6 +2,8 @@
 // a lit cell, and a pass laid out, link-capped, stroked and priced from where the head stands.
 #include "scan.h"
 
+#include "glide.h"
+
 namespace uv {
 
 namespace {
@@ -83,7 +85,7 @@ bool ScanPlanner::planPass(int32_t hy, int32_t first, int32_t last, uint64_t spa
   out.runUpUm = descending_ ? X(last) + reach : X(first) - reach;
   out.runOutUm = descending_ ? X(first) - reach : X(last) + reach;
   // The pass as the Mega runs it (planner.md "The stroke"): the step engine's move to the stroke's
-  // start, the overhead, the stroke, and the Nano's Q answer that confirms the pass.
+  // start, the overhead, the stroke, and what confirming the pass outlasts its run-out (endUs).
   uint64_t q16;
   if (!engineStep(m_, h_.pitchUm[0], pass_.windowUs, q16)) {
     refusal_ = Refusal::Engine;  // the job's window, or a pass the link cap slowed, is beyond the step engine
@@ -94,8 +96,20 @@ bool ScanPlanner::planPass(int32_t hy, int32_t first, int32_t last, uint64_t spa
   const uint64_t saved = static_cast<uint64_t>(last - first + 1) * pass_.windowUs - span;
   planStroke(m_, 2 * x0 - dir * pitch, 2 * x1 + dir * pitch, descending_, q16, static_cast<uint32_t>(saved), out);
   const int32_t y = Y(out.hy), dy = axisSteps(m_, 1, y) - axisSteps(m_, 1, curY_), dx = out.startSteps - curX_;
-  out.moveUs = engineMoveUs(m_, static_cast<uint32_t>(dx < 0 ? -dx : dx), static_cast<uint32_t>(dy < 0 ? -dy : dy));
-  out.scanUs = static_cast<uint64_t>(out.moveUs) + kScanPassLoadUs + out.strokeUs + kScanPassEndUs;
+  const uint32_t ady = static_cast<uint32_t>(dy < 0 ? -dy : dy);
+  const uint32_t adx = static_cast<uint32_t>(dx < 0 ? -dx : dx);
+  GlidePlan glide;
+  if (runOut_ && planGlide(ady, axisRate(m_, 1), axisAccel(m_, 1), glide)) {
+    // After a stroke, the hop in Y glides (planner.md "Gliding") from the time that pass is
+    // confirmed, beside its run-out and the X move queued after it: the pass pays what the later of
+    // the two ends past the last pass's rest and confirmation.
+    const uint32_t g = (glide.ticks + 1) / 2, x = engineMoveUs(m_, adx, 0);
+    const uint32_t rest = runOut_ > kScanPassEndUs ? runOut_ : kScanPassEndUs;
+    out.moveUs = kScanPassEndUs + g > rest + x ? kScanPassEndUs + g - rest : x;
+  } else {
+    out.moveUs = engineMoveUs(m_, adx, ady);
+  }
+  out.scanUs = static_cast<uint64_t>(out.moveUs) + kScanPassLoadUs + out.strokeUs + out.endUs;
   out.stopsUs = 0;
   out.stops = false;
   int32_t endX = out.stopSteps;
@@ -108,6 +122,7 @@ bool ScanPlanner::planPass(int32_t hy, int32_t first, int32_t last, uint64_t spa
   estimate_ += out.stops ? out.stopsUs : out.scanUs;
   curX_ = out.stops ? endX : out.stopSteps;
   curY_ = y;
+  runOut_ = static_cast<uint16_t>(out.stops ? 0 : out.runOutUs > 65535 ? 65535 : out.runOutUs);
   passes_++;
   out.band = 0;
   return true;

@@ -61,10 +61,22 @@ uint16_t stepperWorstTicks() {
   return w;
 }
 
+namespace {
+// The rest of the interrupt, for the tick the engine gave: inlined into both of its paths.
+inline void stepWith(StepTick t) __attribute__((always_inline));
+// While a glide runs (StepEngine::twoTimings): out of line, so the usual path keeps its tick in registers.
+__attribute__((noinline)) void glidingInterrupt() { stepWith(stepEngine.tickGliding(readEndstops())); }
+}  // namespace
+
 void stepInterrupt() {
   STEP_XY_PORT &= static_cast<uint8_t>(~(STEP_X_BIT | STEP_Y_BIT));
   STEP_Z_PORT &= static_cast<uint8_t>(~STEP_Z_BIT);
-  StepTick t = stepEngine.tick(readEndstops());
+  if (stepEngine.twoTimings()) return glidingInterrupt();
+  stepWith(stepEngine.tickBlocks(readEndstops()));
+}
+
+namespace {
+inline void stepWith(StepTick t) {
   if (t.idle) {
     TIMSK1 &= static_cast<uint8_t>(~(1 << OCIE1A));
     running = false;
@@ -114,6 +126,7 @@ void stepInterrupt() {
   OCR1A = top > took + 4 ? top : took + 4;
   if (took > worst) worst = took;
 }
+}  // namespace
 
 }  // namespace mega
 

@@ -193,6 +193,29 @@ class ScanOnBoard : public BoardTest {
     }
     return f;
   }
+  // Between passes, from each pass's last light to the first step of the hop to the next (which
+  // glides once the next pass has opened: the Mega plans it then, its link check walking every event
+  // of it), ms, comma-separated.
+  std::string turnsMs() const {
+    std::string out;
+    int32_t y = INT32_MIN;
+    uint64_t hopAfter = 0;  // the light the last hop followed
+    for (const BoardSim::HeadStep& e : sim.headSteps) {
+      if (y != INT32_MIN && e.y != y) {
+        uint64_t lastOff = 0;
+        for (const BoardSim::LedEdge& l : sim.ledEdges)
+          if (l.cycle < e.cycle && !l.on) lastOff = l.cycle;
+        if (lastOff > hopAfter) {  // the first step after a pass's light: a hop begins
+          char b[32];
+          std::snprintf(b, sizeof b, "%s%.1f", out.empty() ? "" : ", ", static_cast<double>(e.cycle - lastOff) / BoardSim::kCyclesPerUs / 1e3);
+          out += b;
+          hopAfter = lastOff;
+        }
+      }
+      y = e.y;
+    }
+    return out;
+  }
   // The head's fastest X step, in steps/s.
   double fastestX() const {
     double best = 0;
