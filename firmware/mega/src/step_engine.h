@@ -1,6 +1,7 @@
 // The step interrupt's work, as plain C++: it takes queued segments, runs Bresenham over X, Y and Z,
-// counts the position, and ends a seek (homing, self-test) when its endstop closes. The main loop
-// queues blocks and segments; hw/stepper_timer calls tick() from the timer and drives the pins.
+// counts the position, and ends a seek (homing, self-test) when its endstop closes; beside the
+// blocks it runs a glide, Y steps on their own timing (glide.h). The main loop queues blocks and
+// segments; hw/stepper_timer calls tickBlocks() or tickGliding() from the timer and drives the pins.
 #pragma once
 #include <stdint.h>
 
@@ -77,9 +78,10 @@ class StepEngine {
 
   // --- interrupt side ---
   // endstops: bit a set while axis a's endstop is closed. tick() takes whichever of the two below is
-  // live; the board's interrupt makes that choice itself, so its usual path is tickBlocks() inlined
-  // and nothing more (with the choice inside, the longest step interrupt went from 41 to 55 µs and a
-  // fast move underran in simavr: its StepTick went to the stack).
+  // live; the board's interrupt makes that choice itself, so its usual path is tickBlocks() with its
+  // colder paths inlined whole, as when tick() was one function. (Called from two places, they went
+  // out of line and the tick to the stack: the longest step interrupt went from 41 to 55 µs and a
+  // fast move underran in simavr. Inlined, 43 µs.)
   StepTick tick(uint8_t endstops) { return twoTimings() ? tickGliding(endstops) : tickBlocks(endstops); }
   // A glide runs, or the blocks' step still waits out the time the glide left it.
   bool twoTimings() const { return glide_.left || blockDue_; }
