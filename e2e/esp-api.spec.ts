@@ -109,14 +109,15 @@ test.describe('esp API (firmware)', () => {
       ],
       '"id":4',
     );
-    expect(got[0]).toMatchObject({ type: 'hello', protocol: 1 });
-    expect(got[1]).toMatchObject({ type: 'status' });
+    const seen = JSON.stringify(got); // what came, should an expectation fail
+    expect(got[0], seen).toMatchObject({ type: 'hello', protocol: 1 });
+    expect(got[1], seen).toMatchObject({ type: 'status' });
     const errors = got.filter((m) => m.type === 'error');
-    expect(errors.map((e) => e.code)).toEqual(['bad_json', 'unknown_type', 'line_too_long', 'bad_line']);
+    expect(errors.map((e) => e.code), seen).toEqual(['bad_json', 'unknown_type', 'line_too_long', 'bad_line']);
     expect(errors.map((e) => e.id)).toEqual([undefined, 1, 2, 3]);
     expect(got.some((m) => m.type === 'pong')).toBe(true);
     const reply = got.find((m) => m.type === 'reply' && m.id === 4) as { lines: string[] } | undefined;
-    expect(reply).toBeDefined();
+    expect(reply, seen).toBeDefined();
     expect(reply!.lines.some((l) => l.startsWith('FIRMWARE_NAME:UVExposure'))).toBe(true);
     expect(reply!.lines.at(-1)).toMatch(/^ok/);
     expect(got.some((m) => m.type === 'sent' && m.line === 'M115' && m.from === 'ws')).toBe(true);

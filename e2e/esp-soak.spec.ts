@@ -186,11 +186,12 @@ test('four /ws clients, one slow, uploads, cancels and app fetches for a bounded
     expect(Object.keys(fetched).every((k) => k === '200' || k === '503 flash_busy')).toBe(true);
     // Flat: between two jobs the hub holds no more than it held a quarter in. A sample may catch an
     // HTTP session or a WebSocket message in flight beside it (the app's fetches never stop), so
-    // the least of each tenth of the samples is compared: a leak of a byte a request or message
-    // (thousands of each) raises that floor past the margin.
+    // the least of each tenth of the samples is compared. On a loaded machine a whole tenth's samples
+    // can each catch one HTTP session (560 B) still closing, so the margin is above one session: a
+    // leak of a byte a request or message (over ten thousand of each) still raises the floor past it.
     expect(heapBetweenJobs.length).toBeGreaterThan(20);
     const floor = floors(heapBetweenJobs);
-    expect(floor[9] - floor[0]).toBeLessThanOrEqual(256);
+    expect(floor[9] - floor[0]).toBeLessThanOrEqual(1024);
     clients.forEach((c) => c.socket.destroy());
   } finally {
     hub.stop();

@@ -9,6 +9,7 @@ bool LiveChannel::join(uint8_t client) {
     if (r.used.load(std::memory_order_relaxed)) continue;
     r.id = client;
     r.at = head_.load(std::memory_order_acquire);
+    r.greeted = false;
     r.used.store(true, std::memory_order_release);
     return true;
   }
@@ -99,7 +100,8 @@ void LiveChannel::pump() {
         r.at = at;
         break;
       }
-      bool mine = to == kEveryone || to == r.id;
+      // Until its greeting, a broadcast is not yet for it: loop() had not heard of the client.
+      bool mine = to == r.id || (to == kEveryone && r.greeted);
       uint16_t i = static_cast<uint16_t>(at % kRing);
       bool fits = len <= kMaxMessage && i + kHeader + len <= kRing;
       if (mine && fits)
@@ -116,6 +118,7 @@ void LiveChannel::pump() {
         break;
       }
       r.at = at + kHeader + len;
+      if (to == r.id) r.greeted = true;
     }
   }
   backlog_.store(blocked, std::memory_order_relaxed);

@@ -36,7 +36,9 @@ class LiveChannel {
   explicit LiveChannel(LiveClients& clients) : clients_(clients) {}
 
   // --- the readers' side ---
-  // A new connection reads from now on. False when kMaxClients are connected (close it: 1013).
+  // A new connection reads from now on, beginning with the first message addressed to it (the
+  // bridge's `hello`): what loop() broadcast before it heard of the client is skipped, so a client
+  // is always greeted first (esp.md). False when kMaxClients are connected (close it: 1013).
   // `client` names it to the writer: a name is not given again while the writer may still
   // address its old holder (LiveSocket hands out fresh names).
   bool join(uint8_t client);
@@ -65,6 +67,7 @@ class LiveChannel {
     std::atomic<bool> used{false};
     uint8_t id = 0;
     uint32_t at = 0;  // absolute position in the message stream
+    bool greeted = false;  // a message addressed to it was taken: broadcasts are its too from then on
   };
   static constexpr uint16_t kHeader = 4;  // length (2), addressee (1), spare (1)
   static constexpr uint16_t kWrap = 0xffff;

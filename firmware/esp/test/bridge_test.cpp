@@ -140,9 +140,29 @@ TEST(Bridge, GreetsAClientAndReportsTheMegaItIdentified) {
   EXPECT_GE(h.clients.of(1, "status").size() - before, 3u);
 }
 
+// The network side lets a client in before loop() hears of it: what loop() broadcasts in
+// between (a line from the Mega) must not reach it before its hello and status (esp.md).
+TEST(Bridge, AClientIsGreetedBeforeAnyBroadcast) {
+  Hub h;
+  h.start();
+  ASSERT_TRUE(h.live.join(1));
+  const char line[] = R"({"type":"line","line":"ok"})";
+  h.live.broadcast(line, sizeof line - 1);
+  h.live.pump();
+  EXPECT_TRUE(h.clients.frames[1].empty());
+  h.bridge.clientJoined(1, h.nowMs());
+  h.live.broadcast(line, sizeof line - 1);
+  h.live.pump();
+  ASSERT_EQ(h.clients.frames[1].size(), 3u);
+  EXPECT_EQ(h.clients.frames[1][0]["type"], "hello");
+  EXPECT_EQ(h.clients.frames[1][1]["type"], "status");
+  EXPECT_EQ(h.clients.frames[1][2]["type"], "line");
+}
+
 TEST(Bridge, TheApKeyGoesToTheOledAndNeverOnTheLiveChannel) {
   Hub h;
   ASSERT_TRUE(h.live.join(1));  // there before the ESP sends its first line
+  h.bridge.clientJoined(1, h.nowMs());
   h.mega.begin();
   h.bridge.begin(h.nowMs(), "key:abcdefghjkmn");
   h.run(3000000);
@@ -280,10 +300,13 @@ TEST(Bridge, TheRingHoldsEightKilobytesPerClientAndDeliversInOrder) {
   LiveChannel live(c);
   ASSERT_TRUE(live.join(1));
   ASSERT_TRUE(live.join(2));
+  for (uint8_t client : {1, 2}) live.sendTo(client, "{}", 2);  // greeted: broadcasts are theirs from now on
+  live.pump();
+  c.frames.clear();
   c.stalled[1] = c.stalled[2] = true;
   std::string m = R"({"type":"line","line":")" + std::string(60, 'x') + R"("})";
   int n = 0;
-  while (live.lag(1) + m.size() + 4 <= LiveChannel::kRing) {
+  while (live.written() + m.size() + 4 <= LiveChannel::kRing) {  // to the ring's end, unwrapped
     live.broadcast(m.c_str(), static_cast<uint16_t>(m.size()));
     n++;
   }

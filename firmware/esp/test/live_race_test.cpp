@@ -5,7 +5,7 @@
 // echoes and a stream of broadcasts, some large, so the ring wraps and a slow client falls a ring
 // behind. The only things shared are the inbox's rings and the channel's ring. Built with
 // ThreadSanitizer (esp_race_tests, scripts/tsan.sh), a torn message, one delivered to the wrong
-// client or out of order, or a join or leave lost fails the run.
+// client, before its hello or out of order, or a join or leave lost fails the run.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -85,6 +85,11 @@ struct Connections : LiveClients {
       return;
     }
     delivered++;
+    if (!c.lastOwn && to == LiveChannel::kEveryone) {
+      ADD_FAILURE() << "a broadcast before the client's hello";
+      bad++;
+      return;
+    }
     if (to == LiveChannel::kEveryone) {
       EXPECT_GT(n, c.lastEveryone) << "out of order";
       c.lastEveryone = n;
