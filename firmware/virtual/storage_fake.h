@@ -17,7 +17,7 @@ namespace mega {
 
 class FakeStorage : public Storage {
  public:
-  static constexpr uint8_t kHandles = 4;
+  static constexpr uint8_t kHandles = kCardFiles;  // as many as the board's card (storage.h)
 
   bool inserted = true;
   long failWritesAfter = -1;  // bytes the card still takes before every write fails; -1 = never

@@ -7,6 +7,10 @@ namespace mega {
 
 using FileHandle = int8_t;  // -1: no file
 constexpr uint8_t kFileNameMax = 31;
+// Files open at once: the board's SdStorage has this many (a FatFile each, some 40 B of the Mega's
+// RAM), and the host's fake card no more, so a job that needs one more fails in the tests as on the
+// board. A card job holds three: its cells (~c), their index (~i) and its checkpoint.
+constexpr uint8_t kCardFiles = 3;
 
 class Storage {
  public:

@@ -12,7 +12,7 @@ namespace mega {
 
 class SdStorage : public Storage {
  public:
-  static constexpr uint8_t kFiles = 3;  // the job, its checkpoint, and one more (config, mesh)
+  static constexpr uint8_t kFiles = kCardFiles;  // storage.h
 
   // Mounts the card; false if there is none. Call again to retry after a card is inserted.
   bool begin(uint8_t csPin);
