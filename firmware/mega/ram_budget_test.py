@@ -1,6 +1,7 @@
 # Tests ram_budget.py, the post-action that makes `pio run` fail over the Mega's static-RAM budget:
 # its parsing of avr-size, its verdict, and the action as PlatformIO would call it (a fake env and a
-# fake size tool). Run by scripts/build-avr.sh: python3 firmware/mega/ram_budget_test.py
+# fake size tool); and link_flags.py, the pre-script that puts the section flags on the link line.
+# Run by scripts/build-avr.sh: python3 firmware/mega/ram_budget_test.py
 import contextlib
 import io
 import os
@@ -90,6 +91,23 @@ class RamBudget(unittest.TestCase):
     def test_the_post_action_fails_the_build_over_budget_and_passes_within_it(self):
         self.assertEqual(self.run_action(4776), 1)
         self.assertIsNone(self.run_action(4777))
+
+
+class LinkFlagsTest(unittest.TestCase):
+    def test_the_section_flags_go_on_the_link_line(self):
+        class Env:
+            def __init__(self):
+                self.flags = {}
+
+            def Append(self, **kw):
+                for k, v in kw.items():
+                    self.flags.setdefault(k, []).extend(v)
+
+        env = Env()
+        path = os.path.join(os.path.dirname(os.path.abspath(__file__)), "link_flags.py")
+        with open(path) as f:
+            exec(compile(f.read(), path, "exec"), {"Import": lambda name: None, "env": env})
+        self.assertEqual(env.flags, {"LINKFLAGS": ["-ffunction-sections", "-fdata-sections"]})
 
 
 if __name__ == "__main__":
