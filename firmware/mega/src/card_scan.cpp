@@ -5,6 +5,7 @@
 
 #include "error_codes.h"
 #include "job_files.h"
+#include "le_bytes.h"
 
 namespace mega {
 
@@ -22,7 +23,24 @@ void CardScan::release() {
 }
 
 uint8_t CardScan::open(const char* name) {
-  return openCellFiles(sd_, name, cells_, index_) ? 0 : uv::kFileError;
+  if (!openCellFiles(sd_, name, cells_, index_)) return uv::kFileError;
+  // A scan job's windows, one a pass, all there: else the files changed since M29.
+  if (windows_ && (windows_ != passes_ || sd_.size(index_) < passWindowAt(header_.rows, windows_))) return uv::kFileError;
+  return 0;
+}
+
+uint32_t CardScan::windowOf(uint32_t pass) {
+  if (pass >= windows_) return 0;
+  if (pass != windowPass_) {
+    char b[4];
+    if (!sd_.seek(index_, passWindowAt(header_.rows, pass)) || sd_.read(index_, b, sizeof b) != sizeof b) {
+      error_ = uv::kFileError;
+      return 0;
+    }
+    windowUs_ = getLe32(b);
+    windowPass_ = pass;
+  }
+  return windowUs_;
 }
 
 void CardScan::seek(uint32_t done) {
@@ -45,7 +63,9 @@ ScanRun::Step CardScan::scanStep(Motion& motion, PrintheadLink& head, uint32_t n
       return ScanRun::Step::Busy;
     }
     uv::ScanPass p;
-    if (!job_->planner.nextPass(p)) {
+    const uint32_t window = windowOf(opened_);
+    if (error_) return ScanRun::Step::Failed;
+    if (!job_->planner.nextPass(p, window)) {
       if (job_->planner.pricing()) return ScanRun::Step::Busy;  // a band priced a pass a call
       error_ = uv::kFileError;  // fewer passes than planned at M29: the files changed
       return ScanRun::Step::Failed;
@@ -60,7 +80,9 @@ ScanRun::Step CardScan::scanStep(Motion& motion, PrintheadLink& head, uint32_t n
     return ScanRun::Step::Busy;
   }
   if (job_->planner.inStopPass()) return ScanRun::Step::Stops;  // a mixed job's stop pass, part done before
-  const ScanRun::Step s = job_->run.poll(motion, head, header_, nowUs);
+  const uint32_t window = windowOf(opened_);  // the pass that opens next, or the one running
+  if (error_) return ScanRun::Step::Failed;
+  const ScanRun::Step s = job_->run.poll(motion, head, header_, nowUs, window);
   if (s == ScanRun::Step::PassDone) opened_++;
   if (source_->failed()) {
     error_ = uv::kFileError;

@@ -41,8 +41,9 @@ class ScanRun {
   // Stops: a mixed job's pass opened as stops (planner.md "Mixed mode"): the job runner takes them
   // from the planner's nextStop(), and the next poll opens the pass after it.
   enum class Step : uint8_t { Busy, Starved, PassDone, End, Failed, Stops };
-  // `h`: the job (its origin and pitch place each pass on the bed).
-  Step poll(Motion& motion, PrintheadLink& head, const uv::JobHeader& h, uint32_t nowUs);
+  // `h`: the job (its origin and pitch place each pass on the bed). `windowUs`: the window of the
+  // pass it may open, when known (a card job's: ScanPlanner::nextPass), else 0.
+  Step poll(Motion& motion, PrintheadLink& head, const uv::JobHeader& h, uint32_t nowUs, uint32_t windowUs = 0);
   // Why it failed: an error code (29 the speed is out of the step engine's range or the Nano's clock
   // could not be measured, 34 the link stayed below the plan's speed, 30 the Nano went
   // silent before a pass, 31 the Nano cut the chain for a fault, 33 the Nano refused or cut it
@@ -60,7 +61,7 @@ class ScanRun {
   static bool jumpAt(void* ctx, uint8_t i, Motion::StrokeJump& out);
   // What open() found: no pass (starved, or the end), a pass on the move, or a mixed job's stop pass.
   enum class Opened : uint8_t { None, Stroke, Stops };
-  Opened open(Motion& motion, const uv::JobHeader& h, uint32_t linkBaud);
+  Opened open(Motion& motion, const uv::JobHeader& h, uint32_t linkBaud, uint32_t windowUs);
   // Sends the chain's lines up to the end of one program; true once its K is answered 0.
   bool sendProgram(PrintheadLink& head, uint32_t nowUs);
   // The chain's next line into line_, unless one is held already; false once every line is written.

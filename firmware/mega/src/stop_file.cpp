@@ -44,21 +44,23 @@ bool readStopHeader(Storage& sd, FileHandle f, StopFileHeader& h) {
   uint32_t t = getLe32(b + 28);
   h.thermalCoeff = static_cast<int16_t>(t & 0xffff);
   h.thermalRefDeciC = static_cast<int16_t>(t >> 16);
-  if (scan) return sd.size(f) == kStopHeaderBytes + sizeof(uv::JobHeader) + 4;
+  if (scan) return sd.size(f) == kStopHeaderBytes + sizeof(uv::JobHeader) + 8;
   return sd.size(f) == kStopHeaderBytes + static_cast<uint32_t>(kStopBytes) * h.count;
 }
 
-bool writeScanHeader(Storage& sd, FileHandle f, const uv::JobHeader& h, uint32_t linkBaud) {
-  char b[4];
+bool writeScanHeader(Storage& sd, FileHandle f, const uv::JobHeader& h, uint32_t linkBaud, uint32_t windows) {
+  char b[8];
   putLe32(linkBaud, b);
+  putLe32(windows, b + 4);
   return sd.seek(f, kStopHeaderBytes) && sd.write(f, reinterpret_cast<const char*>(&h), sizeof h) && sd.write(f, b, sizeof b);
 }
 
-bool readScanHeader(Storage& sd, FileHandle f, uv::JobHeader& h, uint32_t& linkBaud) {
-  char b[4];
-  if (!sd.seek(f, kStopHeaderBytes) || sd.read(f, reinterpret_cast<char*>(&h), sizeof h) != static_cast<int16_t>(sizeof h) || sd.read(f, b, sizeof b) != 4)
+bool readScanHeader(Storage& sd, FileHandle f, uv::JobHeader& h, uint32_t& linkBaud, uint32_t& windows) {
+  char b[8];
+  if (!sd.seek(f, kStopHeaderBytes) || sd.read(f, reinterpret_cast<char*>(&h), sizeof h) != static_cast<int16_t>(sizeof h) || sd.read(f, b, sizeof b) != 8)
     return false;
   linkBaud = getLe32(b);
+  windows = getLe32(b + 4);
   return uv::nanoLinkBaud(linkBaud);
 }
 

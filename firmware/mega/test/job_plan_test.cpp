@@ -25,8 +25,9 @@ TEST(PlannerMachine, TopSpeedIsTheSettingOrTheStepEnginesWhicheverIsLess) {
   EXPECT_EQ(m.vmaxUmS[1], 100000u);
 }
 
-// A scan job's stop file keeps the link speed it was planned at, after the job's header; a speed the
-// link cannot take is read as a broken file (the job is planned again at M23), never used.
+// A scan job's stop file keeps the link speed it was planned at, after the job's header, and how many
+// pass windows its index holds; a speed the link cannot take is read as a broken file (the job is
+// planned again at M23), never used.
 TEST(StopFile, AScanJobsFileKeepsTheLinkSpeedItWasPlannedAt) {
   FakeStorage sd;
   uv::JobHeader job{};
@@ -38,15 +39,16 @@ TEST(StopFile, AScanJobsFileKeepsTheLinkSpeedItWasPlannedAt) {
     FileHandle f = sd.open("J~s", Storage::Mode::Create);
     ASSERT_GE(f, 0);
     ASSERT_TRUE(writeStopHeader(sd, f, h));
-    ASSERT_TRUE(writeScanHeader(sd, f, job, baud));
+    ASSERT_TRUE(writeScanHeader(sd, f, job, baud, 3));
     sd.close(f);
     f = sd.open("J~s", Storage::Mode::Read);
     StopFileHeader back{};
     uv::JobHeader jobBack{};
-    uint32_t linkBaud = 1;
+    uint32_t linkBaud = 1, windows = 0;
     ASSERT_TRUE(readStopHeader(sd, f, back));
-    EXPECT_EQ(readScanHeader(sd, f, jobBack, linkBaud), baud == 115200u || baud == 250000u) << baud;
+    EXPECT_EQ(readScanHeader(sd, f, jobBack, linkBaud, windows), baud == 115200u || baud == 250000u) << baud;
     EXPECT_EQ(linkBaud, baud);
+    EXPECT_EQ(windows, 3u);
     EXPECT_EQ(jobBack.cols, 12);
     sd.close(f);
   }

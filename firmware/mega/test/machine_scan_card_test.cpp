@@ -5,7 +5,10 @@
 
 #include <cstdio>
 
+#include "grid_cells.h"
+#include "job_files.h"
 #include "job_plan.h"
+#include "le_bytes.h"
 #include "machine_scan_fixture.h"
 
 using namespace mega;
@@ -149,4 +152,57 @@ TEST_F(ScanCardTest, APhotoWhosePassesWouldOutrunThePrintheadLinkRunsSlowerEvery
   std::printf("[scan card] a photo slowed for the link (windows %.0f and %.0f us): worst dose error %.2f %% of full, worst edge %.2f um\n",
               windows[0], windows[h.rows - 1], f.worstDosePct, f.worstEdgeUm);
   expectEveryCellItsDose(f);
+}
+
+// A card job's passes open at the windows its plan found at M29, kept in its index file after the
+// rows (job_files.h, passWindowAt), so no link check walks a pass's events again before it runs:
+// what is kept is what the planner's own search finds, and a pass runs at what is kept (here the
+// second pass's window made half as long again: it runs that much slower, every cell its dose).
+TEST_F(ScanCardTest, APhotoOnTheCardOpensEachPassAtTheWindowItsIndexKeeps) {
+  photo(200, 8, 2000);
+  ASSERT_TRUE(has(upload("KEPT.UVJ", encode(h, g)), "echo:Done saving file."));
+  uvtest::GridCells cells(g);
+  const uv::MotionModel machine = plannerMachine(m.config, 0, 0, m.head.jobBaud());
+  uv::ScanPlanner search(h, cells, machine);  // holds the machine by reference
+  std::vector<uint32_t> found;
+  std::vector<int32_t> hy;
+  for (uv::ScanPass p; search.nextPass(p);) {
+    found.push_back(search.passMotion().windowUs);
+    hy.push_back(p.hy);
+  }
+  ASSERT_EQ(found.size(), 2u);
+  ASSERT_GT(found[1], 2000u);  // capped for the link: a search of more than one walk
+  std::string index = m.sd.contents("KEPT.UVJ~i");
+  ASSERT_EQ(index.size(), passWindowAt(h.rows, 2));
+  for (uint32_t k = 0; k < 2; k++) EXPECT_EQ(getLe32(index.data() + passWindowAt(h.rows, k)), found[k]) << "pass " << k;
+  putLe32(found[1] * 3 / 2, &index[passWindowAt(h.rows, 1)]);
+  m.sd.put("KEPT.UVJ~i", index);
+  ASSERT_NO_FATAL_FAILURE(runToDone("KEPT.UVJ"));
+  std::vector<double> windowOfRow(h.rows, 0);
+  for (size_t k = 0; k < 2; k++)
+    for (uint8_t led = 0; led < 4; led++) {
+      const int32_t r = hy[k] + h.offsets[led][1];
+      if (r >= 0 && r < h.rows) windowOfRow[r] = k == 1 ? found[1] * 3 / 2 : found[0];
+    }
+  const scandose::Figures f = measure(windowOfRow);
+  std::printf("[scan card] passes at the windows kept in the index (%u us, and %u kept for %u): worst dose error %.2f %% of full, worst edge %.2f um\n",
+              found[0], found[1] * 3 / 2, found[1], f.worstDosePct, f.worstEdgeUm);
+  expectEveryCellItsDose(f);
+}
+
+// An index whose windows are cut short (the files changed since M29) is refused before any light.
+TEST_F(ScanCardTest, AnIndexMissingItsWindowsIsAFileErrorBeforeAnyLight) {
+  photo(200, 8, 2000);
+  ASSERT_TRUE(has(upload("CUT.UVJ", encode(h, g)), "echo:Done saving file."));
+  std::string index = m.sd.contents("CUT.UVJ~i");
+  m.sd.put("CUT.UVJ~i", index.substr(0, passWindowAt(h.rows, 1)));
+  start("CUT.UVJ");
+  const std::string end = runUntilJob({"done", "paused", "failed", "aborted"}, 20000000);
+  EXPECT_EQ(end.find("JOB:done"), std::string::npos) << end;
+  EXPECT_TRUE(m.nano.scanLight.empty());
+  std::string said;
+  for (const std::string& l : m.usbLines)
+    if (l.find("E22") != std::string::npos) said = l;
+  EXPECT_NE(said, "") << end;
+  std::printf("[scan card] an index cut short: %s\n", said.c_str());
 }

@@ -23,7 +23,7 @@ struct ScanLinkTest : ScanMachineTest {
     char work[kWorkNameMax + 1];
     workFileName(job, JobFile::Stops, work);
     const std::string s = m.sd.contents(work);
-    if (s.size() != kStopHeaderBytes + sizeof(uv::JobHeader) + 4) return 0;
+    if (s.size() != kStopHeaderBytes + sizeof(uv::JobHeader) + 8) return 0;  // the speed, then the windows kept
     return getLe32(s.data() + kStopHeaderBytes + sizeof(uv::JobHeader));
   }
   // The Nano restarts as one that never answers L: the Mega, back at 115200, asks again and gives up.

@@ -96,7 +96,11 @@ class ScanPlanner {
   // The printhead link's speed the plan is made for (MotionModel::linkBaud): its passes need the link at it.
   uint32_t linkBaud() const { return m_.linkBaud; }
   // Opens the next pass with a lit cell and adds its time to the estimate; false when done.
-  bool nextPass(ScanPass& out);
+  // `windowUs`: that pass's window when it is known already (a card job's, found at M29 by this
+  // same search and kept in its index file): the pass is laid out at it and the link check, a walk
+  // of every event of the pass and more when the link caps it, is not made again. 0 (or any below
+  // the job's window): found here. A mixed job's passes are always found here.
+  bool nextPass(ScanPass& out, uint32_t windowUs = 0);
   // The current pass's next event; false at its end.
   bool next(ScanEvent& out);
   // Or, instead of next(): the pass as the Nano runs it (protocol/nano.md "Scan programs"), one
@@ -206,7 +210,8 @@ class ScanPlanner {
   // Bands (planner.md "Bands", scan_band.cpp): a mixed job's passes, kMixedBand at a time, each band
   // priced pass by pass and as one group of stops column by column, and taken the cheaper way.
   bool collect(int32_t& hy, int32_t& first, int32_t& last, uint64_t& span);
-  bool planPass(int32_t hy, int32_t first, int32_t last, uint64_t span, ScanPass& out);
+  bool planPass(int32_t hy, int32_t first, int32_t last, uint64_t span, ScanPass& out, uint32_t windowUs = 0);
+  bool layOutAt(uint64_t w, int32_t& first, int32_t& last, uint64_t& span);
   bool nextBand(ScanPass& out);
   void bandRows(uint8_t q);
   int32_t bandPeek(uint8_t q, int32_t from);

@@ -10,14 +10,14 @@ namespace {
 uint64_t ceilDiv(uint64_t n, uint64_t d) { return (n + d - 1) / d; }
 }  // namespace
 
-bool ScanPlanner::nextPass(ScanPass& out) {
+bool ScanPlanner::nextPass(ScanPass& out, uint32_t windowUs) {
   starved_ = false;
   if (!supported() || refused() || motion().windowUs == 0) return false;
   live_ = static_cast<uint8_t>(live_ & ~(kStopPassBit | kBandBit));
   if (h_.strategy == Strategy::Mixed) return nextBand(out);
   int32_t hy, first, last;
   uint64_t span;
-  return collect(hy, first, last, span) && planPass(hy, first, last, span, out);
+  return collect(hy, first, last, span) && planPass(hy, first, last, span, out, windowUs);
 }
 
 // Opens the next pass with a lit cell (planner.md "Passes"): its rows in row_, its head row, and its
@@ -52,30 +52,43 @@ bool ScanPlanner::collect(int32_t& hy, int32_t& first, int32_t& last, uint64_t& 
 
 // The pass on the rows in row_, laid out at the job's window, from where the head stands, laid out, link-capped and stroked, and in a
 // mixed job priced as stops too; added to the estimate. False when the plan must end here.
-bool ScanPlanner::planPass(int32_t hy, int32_t first, int32_t last, uint64_t span, ScanPass& out) {
+// The open pass laid out again at a window of w µs (longer than the job's), its cursors reopened;
+// false when its switch times would outgrow 32 bits.
+bool ScanPlanner::layOutAt(uint64_t w, int32_t& first, int32_t& last, uint64_t& span) {
+  int32_t dxMin = h_.offsets[0][0], dxMax = dxMin;
+  for (uint8_t k = 1; k < 4; k++) {
+    if (h_.offsets[k][0] < dxMin) dxMin = h_.offsets[k][0];
+    if (h_.offsets[k][0] > dxMax) dxMax = h_.offsets[k][0];
+  }
+  if (static_cast<uint64_t>(h_.cols + dxMax - dxMin) * w >= (1ull << 32)) {
+    refusal_ = Refusal::TooLong;
+    return false;
+  }
+  pass_ = uv::passMotion(h_, m_, static_cast<uint32_t>(w));
+  layout(first, last, span);
+  openPass();
+  return true;
+}
+
+bool ScanPlanner::planPass(int32_t hy, int32_t first, int32_t last, uint64_t span, ScanPass& out, uint32_t windowUs) {
   descending_ = passes_ % 2 == 1;
 #ifndef __AVR__
   replay_ = false;  // the log is the pass before's
 #endif
   start_ = descending_ ? last : first;
   openPass();
-  // The link cap (planner.md "The printhead link"): a pass whose program lines would outrun the
-  // link is laid out again at a longer window, until they fit.
-  for (uint64_t need, have; outrunsLink(need, have);) {
-    uint64_t w = have ? ceilDiv(static_cast<uint64_t>(pass_.windowUs) * need, have) : 2ull * pass_.windowUs;
-    if (w <= pass_.windowUs) w = pass_.windowUs + 1ull;
-    int32_t dxMin = h_.offsets[0][0], dxMax = dxMin;
-    for (uint8_t k = 1; k < 4; k++) {
-      if (h_.offsets[k][0] < dxMin) dxMin = h_.offsets[k][0];
-      if (h_.offsets[k][0] > dxMax) dxMax = h_.offsets[k][0];
+  if (windowUs >= pass_.windowUs) {
+    // Found before (nextPass()): the pass at that window, as the search below ends with it. One
+    // below the job's is no pass's window: it is searched for, as without one.
+    if (windowUs != pass_.windowUs && !layOutAt(windowUs, first, last, span)) return false;
+  } else {
+    // The link cap (planner.md "The printhead link"): a pass whose program lines would outrun the
+    // link is laid out again at a longer window, until they fit.
+    for (uint64_t need, have; outrunsLink(need, have);) {
+      uint64_t w = have ? ceilDiv(static_cast<uint64_t>(pass_.windowUs) * need, have) : 2ull * pass_.windowUs;
+      if (w <= pass_.windowUs) w = pass_.windowUs + 1ull;
+      if (!layOutAt(w, first, last, span)) return false;
     }
-    if (static_cast<uint64_t>(h_.cols + dxMax - dxMin) * w >= (1ull << 32)) {
-      refusal_ = Refusal::TooLong;
-      return false;
-    }
-    pass_ = uv::passMotion(h_, m_, static_cast<uint32_t>(w));
-    layout(first, last, span);
-    openPass();
   }
   const int32_t reach = static_cast<int32_t>((h_.pitchUm[0] + 1) / 2 + pass_.overscanUm);
   out.hy = hy;

@@ -96,3 +96,51 @@ TEST(ScanLink, EveryProgramAfterTheFirstTwoLoadsWhileTheOneBeforeItPlays) {
   EXPECT_GT(chains, 0u);
   std::printf("[scan link] %zu chains of three programs or more, %zu programs loaded while another plays\n", chains, programs);
 }
+
+// A card job's passes are planned again as they run at the windows the link check found at M29
+// (nextPass's windowUs, kept in the job's index file): given those, the plan is the searched plan to
+// the last event and µs, and no link check runs (its chain count stays unset).
+TEST(ScanLink, APassGivenTheWindowItsSearchFoundIsThatPassWithoutTheSearch) {
+  const json v = loadVectors("scan-cpp.json");
+  size_t passes = 0, capped = 0;
+  for (const json& c : v["cases"]) {
+    std::vector<std::vector<uint8_t>> rows;
+    for (const auto& r : c["job"]["gridData"]) rows.emplace_back(r.begin(), r.end());
+    JobHeader h = headerFrom(c["job"]);
+    if (h.strategy == Strategy::Mixed) continue;  // a mixed job's passes are always searched
+    for (uint32_t baud : {kNanoBaud, 57600u}) {  // 57600: more passes capped, some more than once
+      MotionModel m = machineFrom(c["machine"]);
+      m.linkBaud = baud;
+      auto plan = [&](const std::vector<uint32_t>* given, std::vector<uint32_t>& windows) {
+        GridCells cells(rows);
+        ScanPlanner planner(h, cells, m);
+        std::vector<std::vector<uint64_t>> out;
+        ScanPass p;
+        for (size_t k = 0; planner.nextPass(p, given && k < given->size() ? (*given)[k] : 0); k++) {
+          windows.push_back(planner.passMotion().windowUs);
+          std::vector<uint64_t> pass{static_cast<uint64_t>(p.hy), p.descending, static_cast<uint64_t>(p.first), static_cast<uint64_t>(p.last),
+                                     p.moveUs, p.strokeUs, p.scanUs, static_cast<uint64_t>(p.startSteps), planner.jumps()};
+          uint32_t t;
+          uint8_t state;
+          while (planner.nextEvent(t, state)) pass.insert(pass.end(), {t, state});
+          if (given) {
+            EXPECT_EQ(planner.chainBytes(), 0u) << "a link check ran";
+          }
+          out.push_back(pass);
+        }
+        out.push_back({planner.estimateUs(), planner.passes()});
+        return out;
+      };
+      std::vector<uint32_t> found, kept;
+      const auto searched = plan(nullptr, found);
+      EXPECT_EQ(plan(&found, kept), searched) << c["name"] << " at " << baud;
+      EXPECT_EQ(kept, found);
+      GridCells cells(rows);
+      const uint32_t jobWindow = ScanPlanner(h, cells, m).motion().windowUs;
+      passes += found.size();
+      for (uint32_t w : found) capped += w > jobWindow;
+    }
+  }
+  EXPECT_GT(capped, 0u);
+  std::printf("[scan link] %zu passes planned again at the windows found, %zu of them capped for the link: the same plans\n", passes, capped);
+}
