@@ -15,6 +15,7 @@ enum class JobFile : char {
   Index = 'i',   // 8 bytes a row: offset into the cells file (LE), first and last column; then a
                  // scan job's pass windows (passWindowAt)
   Stops = 's',   // the planned stops, in execution order (stop_file.h)
+  Dose = 'd',    // the last run's DOSE: lines, as the hosts got them (protocol/mega.md "Dose reports")
 };
 
 constexpr const char* kCheckpointFile = "JOB~CKP";
@@ -29,13 +30,13 @@ inline void workFileName(const char* job, JobFile kind, char* out) {
   out[n + 2] = 0;
 }
 
-// A job's `~c`, `~i`, `~s`, a G-code upload's `~u`, and the checkpoint.
+// A job's `~c`, `~i`, `~s`, `~d`, a G-code upload's `~u`, and the checkpoint.
 inline bool isWorkFile(const char* name) {
   size_t n = strlen(name);
   if (strcmp(name, kCheckpointFile) == 0) return true;
   if (n < 2 || name[n - 2] != '~') return false;
   char k = name[n - 1];  // compared one by one: a string literal would cost RAM on the AVR
-  return k == 'c' || k == 'i' || k == 's' || k == 'u';
+  return k == 'c' || k == 'i' || k == 's' || k == 'u' || k == 'd';
 }
 
 // Opens a job's cells and index files to read (the index to write too when planning puts the
@@ -54,7 +55,7 @@ inline bool openCellFiles(Storage& sd, const char* job, FileHandle& cells, FileH
 // search for it is made once, at M29, not again before each pass on the machine.
 inline uint32_t passWindowAt(uint16_t rows, uint32_t pass) { return static_cast<uint32_t>(rows) * 8u + 4u * pass; }
 
-constexpr JobFile kWorkFiles[] = {JobFile::Cells, JobFile::Index, JobFile::Stops};
+constexpr JobFile kWorkFiles[] = {JobFile::Cells, JobFile::Index, JobFile::Stops, JobFile::Dose};
 
 // Removes what the Mega built from a job.
 inline void removeWorkFiles(Storage& sd, const char* job) {

@@ -13,12 +13,14 @@ namespace mega {
 
 namespace {
 constexpr uint32_t kNanoCapUs = 10000000;  // protocol/nano.md: a longer duration is refused, never clamped there
+constexpr uint32_t kDoseSyncStops = 16;
 bool due(uint32_t now, uint32_t at) { return static_cast<int32_t>(now - at) >= 0; }
 }  // namespace
 
 JobRunner::~JobRunner() {
   if (card_) card_->~CardScan();
   if (stops_ >= 0) sd_.close(stops_);
+  if (dose_ >= 0) sd_.close(dose_);  // not kDoseRefused: closed already
   checkpoint_.close();
 }
 
@@ -41,6 +43,10 @@ uint8_t JobRunner::start(const char* name, uint32_t from, uint32_t nowUs) {
     const uint8_t err = card_->open(name);
     if (err) return err;
   }
+  // The run's dose file: afresh from the first stop, added to from a later one (a resume).
+  workFileName(name, JobFile::Dose, work);
+  dose_ = sd_.open(work, from ? Storage::Mode::Update : Storage::Mode::Create);
+  if (dose_ < 0 || !sd_.seek(dose_, sd_.size(dose_))) return uv::kFileError;
   strncpy(progress_.file, name, kFileNameMax);
   progress_.file[kFileNameMax] = 0;
   progress_.count = header_.count;
@@ -85,7 +91,24 @@ uint32_t JobRunner::remainingS() const {
   return static_cast<uint32_t>(static_cast<uint64_t>(header_.estimateS) * (header_.count - done_) / header_.count);
 }
 
+void JobRunner::keepDose(const char* line) {
+  if (dose_ < 0) return;
+  if (sd_.write(dose_, line, static_cast<uint16_t>(strlen(line))) && sd_.write(dose_, "\n", 1)) return;
+  sd_.close(dose_);
+  // Failed by the next poll: this runs inside the printhead link's record sink, which the failure
+  // (LEDs off, the cut record asked for) must not re-enter.
+  dose_ = kDoseRefused;
+}
+
 void JobRunner::halt(RunState s, uint8_t reason) {
+  if (dose_ >= 0) {
+    if (s == RunState::Done || s == RunState::Aborted) {  // its last record is in (doseSettled)
+      sd_.close(dose_);
+      dose_ = -1;
+    } else {
+      sd_.sync(dose_);  // what it holds so far survives a power cut; a paused job's records go on
+    }
+  }
   state_ = s;
   reason_ = reason;
   changed_ = true;
@@ -168,6 +191,9 @@ void JobRunner::confirmed(uint32_t nowUs) {
   progress_.done = done_;
   if (lit_) progress_.fires++;  // the Nano counted it
   if (!source_ && !checkpoint_.write(progress_)) return fail(uv::kFileError);
+  // A card job's dose file reaches the card's directory every kDoseSyncStops stops (and at each
+  // stop of the job: halt), not at every stop: a sync is a card write or two, of a stop's 20 ms.
+  if (dose_ >= 0 && done_ % kDoseSyncStops == 0 && !sd_.sync(dose_)) return fail(uv::kFileError);
   phase_ = Phase::Load;
   // A stream's next stop is loaded in this same pass: a pass is about 200 µs on the board. A card
   // job's has the checkpoint's write behind it in this one, and waits for the next.
@@ -202,6 +228,10 @@ bool JobRunner::attribute(const uv::NanoReply& r, uv::DoseReport& d) {
 
 void JobRunner::poll(uint32_t nowUs) {
   now_ = nowUs;
+  if (dose_ == kDoseRefused) {
+    dose_ = -1;
+    if (state_ == RunState::Running || state_ == RunState::Paused) return fail(uv::kFileError);
+  }
   if (state_ != RunState::Running) return;
   count(nowUs);  // every pass: a job outlasts the 71 minutes a 32-bit µs count holds
   switch (phase_) {

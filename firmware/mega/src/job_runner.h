@@ -95,6 +95,12 @@ class JobRunner {
   // belongs to, into `d`. False for a record that belongs to none of this job's stops (one from
   // before the job, or from before a restart that the checkpoint cannot place): it is not reported.
   bool attribute(const uv::NanoReply& record, uv::DoseReport& d);
+  // A card job keeps its DOSE: lines, as the hosts got them, in its dose file (name~d): started
+  // afresh by a run from the first stop, added to by a resume. It reaches the card's directory at
+  // each pass's checkpoint, every 16 stops, and whenever the job stops (pause, fault, end): a power
+  // cut may take the last few stops' lines from it (the hosts had them). A line the card will not
+  // take stops the job as any card error (E22: paused, LEDs off). Nothing for a stream.
+  void keepDose(const char* line);
 
   // What the last failure was about, for its FAULT line: the stop index.
   uint32_t faultStop() const { return done_; }
@@ -137,6 +143,8 @@ class JobRunner {
   int32_t zBase_ = 0;  // the head's Z when the job started; the mesh offset adds to it
   Checkpoint checkpoint_;
   FileHandle stops_ = -1;
+  FileHandle dose_ = -1;  // keepDose()
+  static constexpr FileHandle kDoseRefused = -2;  // the card refused a line: the next poll fails the job
   StopSource* source_ = nullptr;
   CardScan* card_ = nullptr;  // a scan job on the card: its passes' planner and runner
   uint8_t* scanMem_ = nullptr;

@@ -48,7 +48,8 @@ void JobRunner::pollScan(uint32_t nowUs) {
       progress_.done = done_;
       progress_.fires++;  // the Nano counts a chain as one exposure
       changed_ = true;
-      if (card_ && !checkpoint_.write(progress_)) return fail(uv::kFileError);
+      // The pass's records are in (ScanRun waits for them): its dose file reaches the directory too.
+      if (card_ && (!checkpoint_.write(progress_) || (dose_ >= 0 && !sd_.sync(dose_)))) return fail(uv::kFileError);
       return;
     case ScanRun::Step::End:
       stopInHand_ = false;

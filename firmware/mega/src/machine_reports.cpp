@@ -138,8 +138,10 @@ bool Machine::doseRecord(void* self, const uv::NanoReply* record) {
   uv::DoseReport d;
   if (!m.running() || !m.run()->attribute(*record, d)) return true;  // no stop of a job: not reported
   char line[uv::kDoseReportMax + 1];
-  if (uv::formatDoseReport(d, line, sizeof line))
+  if (uv::formatDoseReport(d, line, sizeof line)) {
     for (HostLink* p : m.ports_) p->line(line);  // one wider than the room asked for is counted (M821)
+    m.run()->keepDose(line);  // and beside a card job, on the card
+  }
   return true;
 }
 

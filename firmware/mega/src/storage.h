@@ -8,9 +8,10 @@ namespace mega {
 using FileHandle = int8_t;  // -1: no file
 constexpr uint8_t kFileNameMax = 31;
 // Files open at once: the board's SdStorage has this many (a FatFile each, some 40 B of the Mega's
-// RAM), and the host's fake card no more, so a job that needs one more fails in the tests as on the
-// board. A card job holds three: its cells (~c), their index (~i) and its checkpoint.
-constexpr uint8_t kCardFiles = 3;
+// RAM: 32 B in the full build), and the host's fake card no more, so a job that needs one more fails
+// in the tests as on the board. A scan job on the card holds four: its cells (~c), their index (~i),
+// its checkpoint and its dose file (~d); a stop job three (its ~s for ~c and ~i).
+constexpr uint8_t kCardFiles = 4;
 
 class Storage {
  public:

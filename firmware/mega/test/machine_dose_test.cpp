@@ -1,6 +1,7 @@
 // The dose the head delivered, reported (protocol/mega.md "Dose reports"): each stop's and each
 // pass program's DOSE: line carries the Nano's own on-times, once per stop, and a resume says which
-// stop it lit twice. On a whole simulated Mega with the printhead's fake Nano.
+// stop it lit twice; a card job keeps the same lines beside it (name~d). On a whole simulated Mega
+// with the printhead's fake Nano.
 #include <gtest/gtest.h>
 
 #include <map>
@@ -28,6 +29,20 @@ std::vector<uv::DoseReport> doses(const Lines& lines) {
 
 using DoseScanTest = ScanMachineTest;
 
+// The DOSE: lines a host got, and those a card job's dose file holds.
+Lines doseLines(const Lines& lines) {
+  Lines out;
+  for (const std::string& l : lines)
+    if (l.rfind("DOSE:", 0) == 0) out.push_back(l);
+  return out;
+}
+Lines doseFile(const FakeStorage& sd, const std::string& job) {
+  Lines out;
+  const std::string text = sd.contents(job + "~d");
+  for (size_t at = 0, nl; (nl = text.find('\n', at)) != std::string::npos; at = nl + 1) out.push_back(text.substr(at, nl - at));
+  return out;
+}
+
 }  // namespace
 
 TEST_F(JobTest, EveryLitStopIsReportedOnceWithWhatTheNanoTimed) {
@@ -52,8 +67,17 @@ TEST_F(JobTest, EveryLitStopIsReportedOnceWithWhatTheNanoTimed) {
       EXPECT_EQ(d[i].onUs[k], stops[i].us[k]) << "stop " << i << " LED " << k;
     }
   }
-  // The ESP's port hears them too.
+  // The ESP's port hears them too, and the card keeps them beside the job, line for line.
   EXPECT_EQ(doses(m.espLines).size(), d.size());
+  EXPECT_EQ(doseFile(m.sd, "D.UVJ"), doseLines(m.usbLines));
+  // Run again from its first stop, the file holds that run's alone.
+  const size_t before = m.usbLines.size();
+  m.cmd("M23 D.UVJ");
+  m.cmd("M24");
+  ASSERT_NE(runUntilJob({"done"}), "(none)");
+  const Lines again = doseLines(Lines(m.usbLines.begin() + static_cast<long>(before), m.usbLines.end()));
+  EXPECT_EQ(again.size(), stops.size());
+  EXPECT_EQ(doseFile(m.sd, "D.UVJ"), again);
 }
 
 TEST_F(JobTest, AResetThatCutsAStopReportsItsCutLightThenItsLightAgain) {
@@ -84,6 +108,19 @@ TEST_F(JobTest, AResetThatCutsAStopReportsItsCutLightThenItsLightAgain) {
   const auto cutLine = std::find_if(d.begin(), d.end(), [](const uv::DoseReport& r) { return r.cut; });
   for (int k = 0; k < 4; k++) EXPECT_EQ(cutLine->onUs[k], m.nano.exposures[cut].litUs[k]) << "LED " << k;
   EXPECT_LT(cutLine->onUs[0] + cutLine->onUs[1] + cutLine->onUs[2] + cutLine->onUs[3], 4 * 400000u);
+  // The resume added to the dose file: what reached the card before the reset (its last sync), then
+  // every line since, each one a host got, in order.
+  const Lines file = doseFile(m.sd, "L.UVJ"), host = doseLines(m.usbLines);
+  ASSERT_FALSE(file.empty());
+  size_t at = 0;
+  for (const std::string& l : file) {
+    while (at < host.size() && host[at] != l) at++;
+    ASSERT_LT(at, host.size()) << "not a host's line, or out of order: " << l;
+    at++;
+  }
+  EXPECT_EQ(file.back(), host.back());
+  const std::vector<uv::DoseReport> kept = doses(file);  // the cut stop's light again: after the resume
+  EXPECT_TRUE(std::any_of(kept.begin(), kept.end(), [&](const uv::DoseReport& r) { return r.again && r.stop == cut; }));
 }
 
 TEST_F(JobTest, AFaultThatCutsAStopReportsItCutAndItsExposureAgainOnContinue) {
@@ -107,6 +144,7 @@ TEST_F(JobTest, AFaultThatCutsAStopReportsItCutAndItsExposureAgainOnContinue) {
   ASSERT_NE(againLine, d.end());
   EXPECT_EQ(againLine->stop, cut);
   EXPECT_EQ(d.size(), plan(h, g).size() + 1);
+  EXPECT_EQ(doseFile(m.sd, "F.UVJ"), doseLines(m.usbLines));  // the cut line and the again line too
 }
 
 TEST_F(DoseScanTest, APassReportsEachProgramAndTheirOnTimesAddUpToItsLight) {
@@ -127,8 +165,26 @@ TEST_F(DoseScanTest, APassReportsEachProgramAndTheirOnTimesAddUpToItsLight) {
     for (int k = 0; k < 4; k++) reported[k] += r.onUs[k];
   }
   EXPECT_EQ(programs.size(), 3u);  // every pass
+  EXPECT_EQ(doseFile(m.sd, "S.UVJ"), doseLines(m.usbLines));
   for (const ScanLight& l : m.nano.scanLight) shone[l.led] += l.offUs - l.onUs;
   for (int k = 0; k < 4; k++) EXPECT_NEAR(static_cast<double>(reported[k]), static_cast<double>(shone[k]), 2.0 * static_cast<double>(d.size())) << "LED " << k;
   std::printf("[mega dose] 3 passes: %zu programs reported, LED 0 %llu us reported of %llu us shone\n", d.size(),
               static_cast<unsigned long long>(reported[0]), static_cast<unsigned long long>(shone[0]));
+}
+
+// A card that stops taking writes mid-job (full, or pulled): the next line it refuses, the dose
+// file's or the checkpoint's, pauses the job with E22 (as any card error), every LED off.
+TEST_F(JobTest, ACardThatRefusesTheDoseFileStopsTheJobDark) {
+  uv::JobHeader h = header(14, 9, uv::Strategy::Shortest);
+  Grid g = pattern(14, 9, 7);
+  uploadAndStart("W.UVJ", encode(h, g));
+  for (int i = 0; i < 20000 && m.nano.exposures.size() < 3; i++) m.run(1000);
+  ASSERT_GE(m.nano.exposures.size(), 3u);
+  m.sd.failWritesAfter = 0;
+  const std::string end = runUntilJob({"failed", "done", "paused"}, 20000000);
+  EXPECT_NE(end.find("reason=sd"), std::string::npos) << end;
+  EXPECT_EQ(m.nano.lit(), 0);
+  bool said = false;
+  for (const std::string& l : m.usbLines) said |= l.rfind("FAULT:E22", 0) == 0;
+  EXPECT_TRUE(said);
 }
