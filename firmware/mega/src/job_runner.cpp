@@ -36,7 +36,7 @@ uint8_t JobRunner::start(const char* name, uint32_t from, uint32_t nowUs) {
     uint32_t windows;   // its passes' windows, in the index file
     if (!readScanHeader(sd_, stops_, job, linkBaud, windows) || !scanMem_ || scanBytes_ < sizeof(CardScan)) return uv::kFileError;
     // Its passes are planned again from the cells as they run: the stop file is done with, and its
-    // place is the checkpoint's (kCardFiles: the cells, their index and the checkpoint).
+    // place is another's (kCardFiles: the cells, their index, the checkpoint and the dose file).
     sd_.close(stops_);
     stops_ = -1;
     card_ = new (scanMem_) CardScan(sd_, job, plannerMachine(config_, 0, 0, linkBaud), header_.count, windows);
