@@ -95,14 +95,17 @@ bool ScanPlanner::mayFly() const {
   return !neverFly_ && pass_.windowUs > ceilDiv(static_cast<uint64_t>(h_.pitchUm[0]) * 1000000u, m_.vmaxUmS[0]);
 }
 
-bool ScanPlanner::supported() const {
+uint64_t ScanPlanner::switchSpan() const {
   int32_t dxMin = h_.offsets[0][0], dxMax = dxMin;
   for (uint8_t k = 1; k < 4; k++) {
     if (h_.offsets[k][0] < dxMin) dxMin = h_.offsets[k][0];
     if (h_.offsets[k][0] > dxMax) dxMax = h_.offsets[k][0];
   }
-  const uint64_t span = static_cast<uint64_t>(h_.cols + dxMax - dxMin);
-  return refusal_ != Refusal::TooLong && dyMax_ - dyMin_ < static_cast<int16_t>(kCoveredWindowRows) && span * motion().windowUs < (1ull << 32);
+  return static_cast<uint64_t>(h_.cols + dxMax - dxMin);
+}
+
+bool ScanPlanner::supported() const {
+  return refusal_ != Refusal::TooLong && dyMax_ - dyMin_ < static_cast<int16_t>(kCoveredWindowRows) && switchSpan() * motion().windowUs < (1ull << 32);
 }
 
 // The open pass's lit windows at the window pass_, ascending: its extent, the stretches it flies,

@@ -212,6 +212,8 @@ class ScanPlanner {
   bool collect(int32_t& hy, int32_t& first, int32_t& last, uint64_t& span);
   bool planPass(int32_t hy, int32_t first, int32_t last, uint64_t span, ScanPass& out, uint32_t windowUs = 0);
   bool layOutAt(uint64_t w, int32_t& first, int32_t& last, uint64_t& span);
+  // The windows a pass's switch times may span: cols + the LEDs' spread in X (supported()).
+  uint64_t switchSpan() const;
   bool nextBand(ScanPass& out);
   void bandRows(uint8_t q);
   int32_t bandPeek(uint8_t q, int32_t from);

@@ -50,17 +50,10 @@ bool ScanPlanner::collect(int32_t& hy, int32_t& first, int32_t& last, uint64_t& 
   return false;
 }
 
-// The pass on the rows in row_, laid out at the job's window, from where the head stands, laid out, link-capped and stroked, and in a
-// mixed job priced as stops too; added to the estimate. False when the plan must end here.
 // The open pass laid out again at a window of w µs (longer than the job's), its cursors reopened;
 // false when its switch times would outgrow 32 bits.
 bool ScanPlanner::layOutAt(uint64_t w, int32_t& first, int32_t& last, uint64_t& span) {
-  int32_t dxMin = h_.offsets[0][0], dxMax = dxMin;
-  for (uint8_t k = 1; k < 4; k++) {
-    if (h_.offsets[k][0] < dxMin) dxMin = h_.offsets[k][0];
-    if (h_.offsets[k][0] > dxMax) dxMax = h_.offsets[k][0];
-  }
-  if (static_cast<uint64_t>(h_.cols + dxMax - dxMin) * w >= (1ull << 32)) {
+  if (switchSpan() * w >= (1ull << 32)) {
     refusal_ = Refusal::TooLong;
     return false;
   }
@@ -70,6 +63,9 @@ bool ScanPlanner::layOutAt(uint64_t w, int32_t& first, int32_t& last, uint64_t& 
   return true;
 }
 
+// The pass on the rows in row_, laid out at the job's window (or `windowUs`, nextPass()), from where
+// the head stands, link-capped and stroked, and in a mixed job priced as stops too; added to the
+// estimate. False when the plan must end here.
 bool ScanPlanner::planPass(int32_t hy, int32_t first, int32_t last, uint64_t span, ScanPass& out, uint32_t windowUs) {
   descending_ = passes_ % 2 == 1;
 #ifndef __AVR__
