@@ -21,6 +21,7 @@ class FakeStorage : public Storage {
 
   bool inserted = true;
   long failWritesAfter = -1;  // bytes the card still takes before every write fails; -1 = never
+  std::string refuseWritesTo;  // a file whose name ends in this refuses every write (a bad block under it)
 
   bool present() override { return inserted; }
 
@@ -55,6 +56,9 @@ class FakeStorage : public Storage {
   bool write(FileHandle h, const char* buf, uint16_t n) override {
     File* f = file(h);
     if (!f || !f->writable) return false;
+    if (!refuseWritesTo.empty() && f->name.size() >= refuseWritesTo.size() &&
+        f->name.compare(f->name.size() - refuseWritesTo.size(), refuseWritesTo.size(), refuseWritesTo) == 0)
+      return false;
     if (failWritesAfter >= 0) {
       if (failWritesAfter < n) return false;
       failWritesAfter -= n;

@@ -5,6 +5,7 @@
 
 #include "error_codes.h"
 #include "job_files.h"
+#include "kept_pass.h"
 #include "le_bytes.h"
 
 namespace mega {
@@ -24,23 +25,22 @@ void CardScan::release() {
 
 uint8_t CardScan::open(const char* name) {
   if (!openCellFiles(sd_, name, cells_, index_)) return uv::kFileError;
-  // A scan job's windows, one a pass, all there: else the files changed since M29.
-  if (windows_ && (windows_ != passes_ || sd_.size(index_) < passWindowAt(header_.rows, windows_))) return uv::kFileError;
+  // A scan job's kept passes, one a pass, all there: else the files changed since M29.
+  if (keptCount_ && (keptCount_ != passes_ || sd_.size(index_) < keptPassAt(header_.rows, keptCount_))) return uv::kFileError;
   return 0;
 }
 
-uint32_t CardScan::windowOf(uint32_t pass) {
-  if (pass >= windows_) return 0;
-  if (pass != windowPass_) {
-    char b[4];
-    if (!sd_.seek(index_, passWindowAt(header_.rows, pass)) || sd_.read(index_, b, sizeof b) != sizeof b) {
+const uv::KeptPass* CardScan::keptOf(uint32_t pass) {
+  if (pass >= keptCount_) return nullptr;
+  if (pass != keptPass_) {
+    char b[kKeptPassBytes];
+    if (!sd_.seek(index_, keptPassAt(header_.rows, pass)) || sd_.read(index_, b, sizeof b) != sizeof b || !getKeptPass(b, kept_)) {
       error_ = uv::kFileError;
-      return 0;
+      return nullptr;
     }
-    windowUs_ = getLe32(b);
-    windowPass_ = pass;
+    keptPass_ = pass;
   }
-  return windowUs_;
+  return &kept_;
 }
 
 void CardScan::seek(uint32_t done) {
@@ -63,9 +63,9 @@ ScanRun::Step CardScan::scanStep(Motion& motion, PrintheadLink& head, uint32_t n
       return ScanRun::Step::Busy;
     }
     uv::ScanPass p;
-    const uint32_t window = windowOf(opened_);
+    const uv::KeptPass* kept = keptOf(opened_);
     if (error_) return ScanRun::Step::Failed;
-    if (!job_->planner.nextPass(p, window)) {
+    if (!job_->planner.nextPass(p, kept)) {
       if (job_->planner.pricing()) return ScanRun::Step::Busy;  // a band priced a pass a call
       error_ = uv::kFileError;  // fewer passes than planned at M29: the files changed
       return ScanRun::Step::Failed;
@@ -80,10 +80,14 @@ ScanRun::Step CardScan::scanStep(Motion& motion, PrintheadLink& head, uint32_t n
     return ScanRun::Step::Busy;
   }
   if (job_->planner.inStopPass()) return ScanRun::Step::Stops;  // a mixed job's stop pass, part done before
-  const uint32_t window = windowOf(opened_);  // the pass that opens next, or the one running
+  const uv::KeptPass* kept = keptOf(opened_);  // the pass that opens next, or the one running
   if (error_) return ScanRun::Step::Failed;
-  const ScanRun::Step s = job_->run.poll(motion, head, header_, nowUs, window);
+  const ScanRun::Step s = job_->run.poll(motion, head, header_, nowUs, kept);
   if (s == ScanRun::Step::PassDone) opened_++;
+  if (s == ScanRun::Step::End && opened_ < keptCount_) {  // a kept pass not found: the files changed since M29
+    error_ = uv::kFileError;
+    return ScanRun::Step::Failed;
+  }
   if (source_->failed()) {
     error_ = uv::kFileError;
     return ScanRun::Step::Failed;

@@ -1,8 +1,8 @@
 // A scan or mixed job on the card (issues 19, 28): its passes planned again from the job's working
 // files (~c, ~i) as they run, one at a time, by the scan planner that planned them at M29
-// (job_plan.h), a scan job's at the windows found then (job_files.h: no link check walks a pass again
-// before it runs), and run by ScanRun, or stop by stop by the job runner (a mixed job's stop pass). A
-// step that must run again (after a pause, a fault or a reset) is found by planning the job from its
+// (job_plan.h), a scan job's from what planning kept of each pass then (kept_pass.h: no pass is laid
+// out or walked for the link again before it runs), and run by ScanRun, or stop by stop by the job
+// runner (a mixed job's stop pass). A step that must run again (after a pause, a fault or a reset) is found by planning the job from its
 // start and passing over the steps done (passes, and a mixed job's stops), without light.
 #pragma once
 #include <stdint.h>
@@ -17,13 +17,13 @@ namespace mega {
 
 class CardScan final : public StopSource {
  public:
-  // `windows`: the pass windows planning put in the index file (readScanHeader): `passes` for a
-  // scan job, 0 for a mixed one.
-  CardScan(Storage& sd, const uv::JobHeader& h, const uv::MotionModel& m, uint32_t passes, uint32_t windows)
-      : sd_(sd), header_(h), machine_(m), passes_(passes), windows_(windows) {}
+  // `kept`: the passes planning kept in the index file (readScanHeader): `passes` for a scan job, 0
+  // for a mixed one.
+  CardScan(Storage& sd, const uv::JobHeader& h, const uv::MotionModel& m, uint32_t passes, uint32_t kept)
+      : sd_(sd), header_(h), machine_(m), passes_(passes), keptCount_(kept) {}
   ~CardScan();
 
-  // Opens the job's working files; 0 or 22 (file_error, also when the index lacks its windows).
+  // Opens the job's working files; 0 or 22 (file_error, also when the index lacks its kept passes).
   uint8_t open(const char* name);
   // The next pass to run is pass `done` (0-based): if the planner is not just before it, it plans
   // the job again from its start and passes over the first `done`, a pass each scanStep().
@@ -40,17 +40,18 @@ class CardScan final : public StopSource {
 
  private:
   void release();
-  // Pass `pass`'s window from the index file, or 0 (none kept: the planner searches). A read that
-  // fails sets error_.
-  uint32_t windowOf(uint32_t pass);
+  // Pass `pass` as planning kept it, from the index file, or null (none kept: the planner lays it
+  // out and searches). A read that fails sets error_.
+  const uv::KeptPass* keptOf(uint32_t pass);
 
   Storage& sd_;
   uv::JobHeader header_;
   uv::MotionModel machine_;
   uint32_t passes_;
-  uint32_t windows_;
-  // The last window read, and its pass (the run asks each poll until the pass opens).
-  uint32_t windowUs_ = 0, windowPass_ = 0xffffffffu;
+  uint32_t keptCount_;
+  // The last pass read, and its number (the run asks each poll until the pass opens).
+  uv::KeptPass kept_;
+  uint32_t keptPass_ = 0xffffffffu;
   FileHandle cells_ = -1, index_ = -1;
   SdCellsWith<uv::kScanCursors>* source_ = nullptr;
   ScanJob* job_ = nullptr;

@@ -13,7 +13,7 @@ namespace mega {
 enum class JobFile : char {
   Cells = 'c',   // each non-empty row's cells, from its first to its last non-zero column
   Index = 'i',   // 8 bytes a row: offset into the cells file (LE), first and last column; then a
-                 // scan job's pass windows (passWindowAt)
+                 // scan job's passes as planning kept them (kept_pass.h)
   Stops = 's',   // the planned stops, in execution order (stop_file.h)
   Dose = 'd',    // the last run's DOSE: lines, as the hosts got them (protocol/mega.md "Dose reports")
 };
@@ -40,7 +40,7 @@ inline bool isWorkFile(const char* name) {
 }
 
 // Opens a job's cells and index files to read (the index to write too when planning puts the
-// windows in it); false unless both opened.
+// kept passes in it); false unless both opened.
 inline bool openCellFiles(Storage& sd, const char* job, FileHandle& cells, FileHandle& index, Storage::Mode indexMode = Storage::Mode::Read) {
   char work[kWorkNameMax + 1];
   workFileName(job, JobFile::Cells, work);
@@ -49,11 +49,6 @@ inline bool openCellFiles(Storage& sd, const char* job, FileHandle& cells, FileH
   index = sd.open(work, indexMode);
   return cells >= 0 && index >= 0;
 }
-
-// A scan job's pass windows follow its index's rows: pass i's window (µs, 4 bytes LE) is here,
-// written as it is planned (job_plan.h) and read as it opens (card_scan.h), so the link check's
-// search for it is made once, at M29, not again before each pass on the machine.
-inline uint32_t passWindowAt(uint16_t rows, uint32_t pass) { return static_cast<uint32_t>(rows) * 8u + 4u * pass; }
 
 constexpr JobFile kWorkFiles[] = {JobFile::Cells, JobFile::Index, JobFile::Stops, JobFile::Dose};
 

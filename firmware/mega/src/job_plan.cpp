@@ -5,6 +5,7 @@
 
 #include "error_codes.h"
 #include "job_files.h"
+#include "kept_pass.h"
 #include "le_bytes.h"
 #include "nano_codec.h"
 #include "printhead_link.h"
@@ -56,9 +57,9 @@ void JobPlan::close() {
 }
 
 uint8_t JobPlan::begin(const char* name) {
-  // A scan job's pass windows go into its index file, after the rows (passWindowAt).
-  const bool windows = header_.strategy == uv::Strategy::Scan;
-  openCellFiles(sd_, name, cells_, index_, windows ? Storage::Mode::Update : Storage::Mode::Read);  // checked with the stop file's below
+  // A scan job's passes as planned go into its index file, after the rows (kept_pass.h).
+  const bool keep = header_.strategy == uv::Strategy::Scan;
+  openCellFiles(sd_, name, cells_, index_, keep ? Storage::Mode::Update : Storage::Mode::Read);  // checked with the stop file's below
   char work[kWorkNameMax + 1];
   workFileName(name, JobFile::Stops, work);
   stops_ = sd_.open(work, Storage::Mode::Create);
@@ -97,9 +98,9 @@ bool JobPlan::finish(uint64_t estimateUs) {
   h.thermalCoeff = header_.thermalCoeff;
   h.thermalRefDeciC = header_.thermalRefDeciC;
   h.scan = scan_ != nullptr;
-  const uint32_t windows = header_.strategy == uv::Strategy::Scan ? count_ : 0;
-  if (source_->failed() || (windows && !sd_.sync(index_)) || !writeStopHeader(sd_, stops_, h) ||
-      (h.scan && !writeScanHeader(sd_, stops_, header_, machine_.linkBaud, windows)) || !sd_.sync(stops_))
+  const uint32_t kept = header_.strategy == uv::Strategy::Scan ? count_ : 0;
+  if (source_->failed() || (kept && !sd_.sync(index_)) || !writeStopHeader(sd_, stops_, h) ||
+      (h.scan && !writeScanHeader(sd_, stops_, header_, machine_.linkBaud, kept)) || !sd_.sync(stops_))
     error_ = uv::kFileError;
   close();
   done_ = true;
@@ -143,10 +144,12 @@ bool JobPlan::stepScan() {
     close();
     return true;
   }
-  if (header_.strategy == uv::Strategy::Scan) {  // the window the search found, for the run (job_files.h)
-    char b[4];
-    putLe32(scan_->passMotion().windowUs, b);
-    if (!sd_.seek(index_, passWindowAt(header_.rows, count_)) || !sd_.write(index_, b, sizeof b)) {
+  if (header_.strategy == uv::Strategy::Scan) {  // the pass as planned here, for the run (kept_pass.h)
+    uv::KeptPass k;
+    scan_->keep(p, k);
+    char b[kKeptPassBytes];
+    putKeptPass(k, b);
+    if (!sd_.seek(index_, keptPassAt(header_.rows, count_)) || !sd_.write(index_, b, sizeof b)) {
       error_ = uv::kFileError;
       close();
       return true;

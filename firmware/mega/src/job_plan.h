@@ -1,7 +1,7 @@
 // Plans a spooled job into its stop file (name~s), a few stops each main-loop pass, so the host
 // links and the rest of the Mega keep running while it works. A scan or mixed job is planned a pass
 // at a time for its count (a mixed job's stops count one each) and time; they are planned again as
-// they run (card_scan.h), a scan job's at the windows found here (job_files.h, passWindowAt).
+// they run (card_scan.h), a scan job's from what planning here kept of each pass (kept_pass.h).
 #pragma once
 #include <stdint.h>
 

@@ -33,13 +33,13 @@ uint8_t JobRunner::start(const char* name, uint32_t from, uint32_t nowUs) {
   if (header_.scan) {
     uv::JobHeader job;
     uint32_t linkBaud;  // the speed it was planned at: it runs and resumes at it
-    uint32_t windows;   // its passes' windows, in the index file
-    if (!readScanHeader(sd_, stops_, job, linkBaud, windows) || !scanMem_ || scanBytes_ < sizeof(CardScan)) return uv::kFileError;
+    uint32_t kept;      // its passes as planning kept them, in the index file
+    if (!readScanHeader(sd_, stops_, job, linkBaud, kept) || !scanMem_ || scanBytes_ < sizeof(CardScan)) return uv::kFileError;
     // Its passes are planned again from the cells as they run: the stop file is done with, and its
     // place is another's (kCardFiles: the cells, their index, the checkpoint and the dose file).
     sd_.close(stops_);
     stops_ = -1;
-    card_ = new (scanMem_) CardScan(sd_, job, plannerMachine(config_, 0, 0, linkBaud), header_.count, windows);
+    card_ = new (scanMem_) CardScan(sd_, job, plannerMachine(config_, 0, 0, linkBaud), header_.count, kept);
     const uint8_t err = card_->open(name);
     if (err) return err;
   }

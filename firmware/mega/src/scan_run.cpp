@@ -34,9 +34,9 @@ ScanRun::Step ScanRun::fail(PrintheadLink& head, uint8_t code) {
   return Step::Failed;
 }
 
-ScanRun::Opened ScanRun::open(Motion& motion, const uv::JobHeader& h, uint32_t linkBaud, uint32_t windowUs) {
+ScanRun::Opened ScanRun::open(Motion& motion, const uv::JobHeader& h, uint32_t linkBaud, const uv::KeptPass* kept) {
   uv::ScanPass p;
-  if (!planner_.nextPass(p, windowUs)) {
+  if (!planner_.nextPass(p, kept)) {
     if (planner_.refused()) error_ = uv::kScanUnsupported;  // a window the step engine cannot run
     return planner_.refused() ? Opened::Stroke : Opened::None;
   }
@@ -110,7 +110,7 @@ bool ScanRun::sendProgram(PrintheadLink& head, uint32_t nowUs) {
   }
 }
 
-ScanRun::Step ScanRun::poll(Motion& motion, PrintheadLink& head, const uv::JobHeader& h, uint32_t nowUs, uint32_t windowUs) {
+ScanRun::Step ScanRun::poll(Motion& motion, PrintheadLink& head, const uv::JobHeader& h, uint32_t nowUs, const uv::KeptPass* kept) {
   if (error_) return Step::Failed;
   switch (phase_) {
     case Phase::Open: {
@@ -131,7 +131,7 @@ ScanRun::Step ScanRun::poll(Motion& motion, PrintheadLink& head, const uv::JobHe
       clockWaiting_ = false;
       if (head.switching()) return Step::Busy;  // the link's speed is settling: it times the G
       clockRate_ = NanoClock::rate(head.nanoClock().ppm());
-      const Opened opened = open(motion, h, head.baud(), windowUs);
+      const Opened opened = open(motion, h, head.baud(), kept);
       if (opened == Opened::None && planner_.pricing()) return Step::Busy;  // a band priced a pass at a time: open again
       if (opened == Opened::None && planner_.starved()) return Step::Starved;
       if (opened == Opened::None) return motion.idle() ? Step::End : Step::Busy;  // the last stroke at rest

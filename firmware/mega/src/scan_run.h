@@ -41,9 +41,9 @@ class ScanRun {
   // Stops: a mixed job's pass opened as stops (planner.md "Mixed mode"): the job runner takes them
   // from the planner's nextStop(), and the next poll opens the pass after it.
   enum class Step : uint8_t { Busy, Starved, PassDone, End, Failed, Stops };
-  // `h`: the job (its origin and pitch place each pass on the bed). `windowUs`: the window of the
-  // pass it may open, when known (a card job's: ScanPlanner::nextPass), else 0.
-  Step poll(Motion& motion, PrintheadLink& head, const uv::JobHeader& h, uint32_t nowUs, uint32_t windowUs = 0);
+  // `h`: the job (its origin and pitch place each pass on the bed). `kept`: the pass it may open as
+  // planning kept it (a card job's: ScanPlanner::nextPass), else null.
+  Step poll(Motion& motion, PrintheadLink& head, const uv::JobHeader& h, uint32_t nowUs, const uv::KeptPass* kept = nullptr);
   // Why it failed: an error code (29 the speed is out of the step engine's range or the Nano's clock
   // could not be measured, 34 the link stayed below the plan's speed, 30 the Nano went
   // silent before a pass, 31 the Nano cut the chain for a fault, 33 the Nano refused or cut it
@@ -61,7 +61,7 @@ class ScanRun {
   static bool jumpAt(void* ctx, uint8_t i, Motion::StrokeJump& out);
   // What open() found: no pass (starved, or the end), a pass on the move, or a mixed job's stop pass.
   enum class Opened : uint8_t { None, Stroke, Stops };
-  Opened open(Motion& motion, const uv::JobHeader& h, uint32_t linkBaud, uint32_t windowUs);
+  Opened open(Motion& motion, const uv::JobHeader& h, uint32_t linkBaud, const uv::KeptPass* kept);
   // Sends the chain's lines up to the end of one program; true once its K is answered 0.
   bool sendProgram(PrintheadLink& head, uint32_t nowUs);
   // The chain's next line into line_, unless one is held already; false once every line is written.
@@ -105,8 +105,13 @@ class ScanRun {
 // A scan job's planner and the runner of its passes, together. The stroke flies the stretches the
 // planner flies (Motion::StrokeJump).
 struct ScanJob {
-  // A band is priced a pass a main-loop pass (ScanPlanner::sliceBands): ScanRun waits it out.
-  ScanJob(const uv::JobHeader& h, uv::CellSource& cells, const uv::MotionModel& m) : planner(h, cells, m), run(planner) { planner.sliceBands(); }
+  // A band is priced a pass a main-loop pass (ScanPlanner::sliceBands): ScanRun waits it out. A scan
+  // pass is not priced (ScanPlanner::unpriced): the run has its own stroke and hop, and the job's
+  // time was planned at M29 (or is not known, a stream's).
+  ScanJob(const uv::JobHeader& h, uv::CellSource& cells, const uv::MotionModel& m) : planner(h, cells, m), run(planner) {
+    planner.sliceBands();
+    planner.unpriced();
+  }
   uv::ScanPlanner planner;
   ScanRun run;
 };

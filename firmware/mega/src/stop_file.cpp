@@ -9,7 +9,7 @@ namespace mega {
 
 namespace {
 const char kMagic[4] UV_FLASH = {'U', 'V', 'S', '1'};
-const char kScanMagic[4] UV_FLASH = {'U', 'V', 'P', '1'};  // passes
+const char kScanMagic[4] UV_FLASH = {'U', 'V', 'P', '2'};  // passes (2: kept as kept_pass.h has them)
 }  // namespace
 
 bool writeStopHeader(Storage& sd, FileHandle f, const StopFileHeader& h) {
@@ -48,19 +48,19 @@ bool readStopHeader(Storage& sd, FileHandle f, StopFileHeader& h) {
   return sd.size(f) == kStopHeaderBytes + static_cast<uint32_t>(kStopBytes) * h.count;
 }
 
-bool writeScanHeader(Storage& sd, FileHandle f, const uv::JobHeader& h, uint32_t linkBaud, uint32_t windows) {
+bool writeScanHeader(Storage& sd, FileHandle f, const uv::JobHeader& h, uint32_t linkBaud, uint32_t kept) {
   char b[8];
   putLe32(linkBaud, b);
-  putLe32(windows, b + 4);
+  putLe32(kept, b + 4);
   return sd.seek(f, kStopHeaderBytes) && sd.write(f, reinterpret_cast<const char*>(&h), sizeof h) && sd.write(f, b, sizeof b);
 }
 
-bool readScanHeader(Storage& sd, FileHandle f, uv::JobHeader& h, uint32_t& linkBaud, uint32_t& windows) {
+bool readScanHeader(Storage& sd, FileHandle f, uv::JobHeader& h, uint32_t& linkBaud, uint32_t& kept) {
   char b[8];
   if (!sd.seek(f, kStopHeaderBytes) || sd.read(f, reinterpret_cast<char*>(&h), sizeof h) != static_cast<int16_t>(sizeof h) || sd.read(f, b, sizeof b) != 8)
     return false;
   linkBaud = getLe32(b);
-  windows = getLe32(b + 4);
+  kept = getLe32(b + 4);
   return uv::nanoLinkBaud(linkBaud);
 }
 

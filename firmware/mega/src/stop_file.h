@@ -3,8 +3,8 @@
 // back, so a running job needs a few bytes of RAM however large it is.
 // A scan job's file (issue 19) holds its passes' count and time in the same header, then the job's
 // header as this firmware holds it and the printhead link's speed it was planned at (4 bytes): its
-// passes are planned again, one at a time, as they run, at that speed; and how many pass windows
-// planning put in the job's index file (4 bytes: the passes of a scan job, none for a mixed one).
+// passes are planned again, one at a time, as they run, at that speed; and how many passes planning
+// kept in the job's index file (4 bytes: the passes of a scan job, none for a mixed one; kept_pass.h).
 #pragma once
 #include <stdint.h>
 
@@ -35,8 +35,8 @@ bool writeStop(Storage& sd, FileHandle f, const uv::Stop& s);
 // written by the build that reads it (a build whose JobHeader differs in size finds the file's size
 // wrong, and the job is planned again at M23). A speed the link cannot take (uv::nanoLinkBaud) is a
 // file error.
-bool writeScanHeader(Storage& sd, FileHandle f, const uv::JobHeader& h, uint32_t linkBaud, uint32_t windows);
-bool readScanHeader(Storage& sd, FileHandle f, uv::JobHeader& h, uint32_t& linkBaud, uint32_t& windows);
+bool writeScanHeader(Storage& sd, FileHandle f, const uv::JobHeader& h, uint32_t linkBaud, uint32_t kept);
+bool readScanHeader(Storage& sd, FileHandle f, uv::JobHeader& h, uint32_t& linkBaud, uint32_t& kept);
 // Reads stop i (seeks there first).
 bool readStop(Storage& sd, FileHandle f, uint32_t i, uv::Stop& s);
 

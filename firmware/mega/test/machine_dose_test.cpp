@@ -174,12 +174,20 @@ TEST_F(DoseScanTest, APassReportsEachProgramAndTheirOnTimesAddUpToItsLight) {
 
 // A card that stops taking writes mid-job (full, or pulled): the next line it refuses, the dose
 // file's or the checkpoint's, pauses the job with E22 (as any card error), every LED off.
-TEST_F(JobTest, ACardThatRefusesTheDoseFileStopsTheJobDark) {
-  uv::JobHeader h = header(14, 9, uv::Strategy::Shortest);
-  Grid g = pattern(14, 9, 7);
-  uploadAndStart("W.UVJ", encode(h, g));
-  for (int i = 0; i < 20000 && m.nano.exposures.size() < 3; i++) m.run(1000);
-  ASSERT_GE(m.nano.exposures.size(), 3u);
+// A card that stops taking some writes while a stop job runs on it.
+class CardWriteTest : public JobTest {
+ protected:
+  // The job running, its first three stops exposed.
+  void startAndExposeThree() {
+    uv::JobHeader h = header(14, 9, uv::Strategy::Shortest);
+    uploadAndStart("W.UVJ", encode(h, pattern(14, 9, 7)));
+    for (int i = 0; i < 20000 && m.nano.exposures.size() < 3; i++) m.run(1000);
+    ASSERT_GE(m.nano.exposures.size(), 3u);
+  }
+};
+
+TEST_F(CardWriteTest, ACardThatStopsTakingWritesStopsTheJobDark) {
+  ASSERT_NO_FATAL_FAILURE(startAndExposeThree());
   m.sd.failWritesAfter = 0;
   const std::string end = runUntilJob({"failed", "done", "paused"}, 20000000);
   EXPECT_NE(end.find("reason=sd"), std::string::npos) << end;
@@ -187,4 +195,19 @@ TEST_F(JobTest, ACardThatRefusesTheDoseFileStopsTheJobDark) {
   bool said = false;
   for (const std::string& l : m.usbLines) said |= l.rfind("FAULT:E22", 0) == 0;
   EXPECT_TRUE(said);
+}
+
+// A card that refuses the dose file alone (a bad block under it) while the checkpoint's writes go on:
+// the line it refuses pauses the job with E22, every LED off, the stops before it reported.
+TEST_F(CardWriteTest, ACardThatRefusesTheDoseFileStopsTheJobDark) {
+  ASSERT_NO_FATAL_FAILURE(startAndExposeThree());
+  m.sd.refuseWritesTo = "~d";
+  const std::string end = runUntilJob({"failed", "done", "paused"}, 20000000);
+  EXPECT_EQ(end.rfind("JOB:paused", 0), 0u) << end;
+  EXPECT_NE(end.find("reason=sd"), std::string::npos) << end;
+  EXPECT_EQ(m.nano.lit(), 0);
+  bool said = false;
+  for (const std::string& l : m.usbLines) said |= l.rfind("FAULT:E22", 0) == 0;
+  EXPECT_TRUE(said);
+  EXPECT_TRUE(m.sd.contents("JOB~CKP").size() > 0);  // the checkpoint's writes were taken
 }

@@ -8,6 +8,7 @@
 #include "grid_cells.h"
 #include "job_files.h"
 #include "job_plan.h"
+#include "kept_pass.h"
 #include "le_bytes.h"
 #include "machine_scan_fixture.h"
 
@@ -154,11 +155,11 @@ TEST_F(ScanCardTest, APhotoWhosePassesWouldOutrunThePrintheadLinkRunsSlowerEvery
   expectEveryCellItsDose(f);
 }
 
-// A card job's passes open at the windows its plan found at M29, kept in its index file after the
-// rows (job_files.h, passWindowAt), so no link check walks a pass's events again before it runs:
-// what is kept is what the planner's own search finds, and a pass runs at what is kept (here the
-// second pass's window made half as long again: it runs that much slower, every cell its dose).
-TEST_F(ScanCardTest, APhotoOnTheCardOpensEachPassAtTheWindowItsIndexKeeps) {
+// A card job's passes open as its plan found them at M29, kept in its index file after the rows
+// (kept_pass.h), so no pass is laid out or walked for the link again before it runs: what is kept
+// is what the planner's own layout and search find, and a pass runs as kept (here the second pass's
+// window made half as long again: it runs that much slower, every cell its dose).
+TEST_F(ScanCardTest, APhotoOnTheCardOpensEachPassAsItsIndexKeepsIt) {
   photo(200, 8, 2000);
   ASSERT_TRUE(has(upload("KEPT.UVJ", encode(h, g)), "echo:Done saving file."));
   uvtest::GridCells cells(g);
@@ -166,16 +167,25 @@ TEST_F(ScanCardTest, APhotoOnTheCardOpensEachPassAtTheWindowItsIndexKeeps) {
   uv::ScanPlanner search(h, cells, machine);  // holds the machine by reference
   std::vector<uint32_t> found;
   std::vector<int32_t> hy;
+  std::vector<uv::KeptPass> kept;
   for (uv::ScanPass p; search.nextPass(p);) {
     found.push_back(search.passMotion().windowUs);
     hy.push_back(p.hy);
+    kept.emplace_back();
+    search.keep(p, kept.back());
   }
   ASSERT_EQ(found.size(), 2u);
   ASSERT_GT(found[1], 2000u);  // capped for the link: a search of more than one walk
   std::string index = m.sd.contents("KEPT.UVJ~i");
-  ASSERT_EQ(index.size(), passWindowAt(h.rows, 2));
-  for (uint32_t k = 0; k < 2; k++) EXPECT_EQ(getLe32(index.data() + passWindowAt(h.rows, k)), found[k]) << "pass " << k;
-  putLe32(found[1] * 3 / 2, &index[passWindowAt(h.rows, 1)]);
+  ASSERT_EQ(index.size(), keptPassAt(h.rows, 2));
+  for (uint32_t k = 0; k < 2; k++) {
+    char b[kKeptPassBytes];
+    putKeptPass(kept[k], b);
+    EXPECT_EQ(index.substr(keptPassAt(h.rows, k), kKeptPassBytes), std::string(b, sizeof b)) << "pass " << k;
+  }
+  uv::KeptPass slower = kept[1];
+  slower.windowUs = found[1] * 3 / 2;
+  putKeptPass(slower, &index[keptPassAt(h.rows, 1)]);
   m.sd.put("KEPT.UVJ~i", index);
   ASSERT_NO_FATAL_FAILURE(runToDone("KEPT.UVJ"));
   std::vector<double> windowOfRow(h.rows, 0);
@@ -185,17 +195,17 @@ TEST_F(ScanCardTest, APhotoOnTheCardOpensEachPassAtTheWindowItsIndexKeeps) {
       if (r >= 0 && r < h.rows) windowOfRow[r] = k == 1 ? found[1] * 3 / 2 : found[0];
     }
   const scandose::Figures f = measure(windowOfRow);
-  std::printf("[scan card] passes at the windows kept in the index (%u us, and %u kept for %u): worst dose error %.2f %% of full, worst edge %.2f um\n",
+  std::printf("[scan card] passes as kept in the index (at %u us, and %u kept for %u): worst dose error %.2f %% of full, worst edge %.2f um\n",
               found[0], found[1] * 3 / 2, found[1], f.worstDosePct, f.worstEdgeUm);
   expectEveryCellItsDose(f);
 }
 
-// An index whose windows are cut short (the files changed since M29) is refused before any light.
-TEST_F(ScanCardTest, AnIndexMissingItsWindowsIsAFileErrorBeforeAnyLight) {
+// An index whose kept passes are cut short (the files changed since M29) is refused before any light.
+TEST_F(ScanCardTest, AnIndexMissingItsKeptPassesIsAFileErrorBeforeAnyLight) {
   photo(200, 8, 2000);
   ASSERT_TRUE(has(upload("CUT.UVJ", encode(h, g)), "echo:Done saving file."));
   std::string index = m.sd.contents("CUT.UVJ~i");
-  m.sd.put("CUT.UVJ~i", index.substr(0, passWindowAt(h.rows, 1)));
+  m.sd.put("CUT.UVJ~i", index.substr(0, keptPassAt(h.rows, 1)));
   start("CUT.UVJ");
   const std::string end = runUntilJob({"done", "paused", "failed", "aborted"}, 20000000);
   EXPECT_EQ(end.find("JOB:done"), std::string::npos) << end;
@@ -205,4 +215,41 @@ TEST_F(ScanCardTest, AnIndexMissingItsWindowsIsAFileErrorBeforeAnyLight) {
     if (l.find("E22") != std::string::npos) said = l;
   EXPECT_NE(said, "") << end;
   std::printf("[scan card] an index cut short: %s\n", said.c_str());
+}
+
+// A kept pass the card garbled (its CRC-16 no longer that of what it holds) is a file error before
+// that pass's light: the pass before it ran, the job pauses with E22 and the LEDs off.
+TEST_F(ScanCardTest, AGarbledKeptPassIsAFileErrorBeforeItsLight) {
+  photo(200, 8, 2000);
+  ASSERT_TRUE(has(upload("BENT.UVJ", encode(h, g)), "echo:Done saving file."));
+  std::string index = m.sd.contents("BENT.UVJ~i");
+  ASSERT_EQ(index.size(), keptPassAt(h.rows, 2));
+  index[keptPassAt(h.rows, 1) + 8] ^= 1;  // pass 1's first column, one off
+  m.sd.put("BENT.UVJ~i", index);
+  start("BENT.UVJ");
+  const std::string end = runUntilJob({"done", "paused", "failed", "aborted"}, 20000000);
+  EXPECT_EQ(end.rfind("JOB:paused", 0), 0u) << end;
+  EXPECT_NE(end.find("stop=1/2"), std::string::npos) << end;
+  std::string said;
+  for (const std::string& l : m.usbLines)
+    if (l.find("E22") != std::string::npos) said = l;
+  EXPECT_NE(said, "") << end;
+  EXPECT_FALSE(m.nano.scanLight.empty());  // pass 0's
+  std::printf("[scan card] a garbled kept pass: %s, after %s\n", said.c_str(), end.c_str());
+}
+
+// A scan job planned by a build that kept only each pass's window (its `~s` marked UVP1, an index of
+// 4 bytes a pass) is planned again when selected: M23 finds no plan it can read, the new plan keeps
+// every pass whole, and the job runs every cell its dose.
+TEST_F(ScanCardTest, AJobPlannedByAnOlderBuildIsPlannedAgainWhenSelected) {
+  photo(200, 8, 2000);
+  ASSERT_TRUE(has(upload("OLD.UVJ", encode(h, g)), "echo:Done saving file."));
+  std::string stops = m.sd.contents("OLD.UVJ~s"), index = m.sd.contents("OLD.UVJ~i");
+  stops[3] = '1';
+  m.sd.put("OLD.UVJ~s", stops);
+  m.sd.put("OLD.UVJ~i", index.substr(0, keptPassAt(h.rows, 0) + 8));  // two windows of 4 bytes
+  ASSERT_NO_FATAL_FAILURE(runToDone("OLD.UVJ"));
+  EXPECT_EQ(m.sd.contents("OLD.UVJ~i"), index);
+  EXPECT_EQ(m.sd.contents("OLD.UVJ~s").substr(0, 4), "UVP2");
+  expectEveryCellItsDose(measure(scandose::passWindows(h, g, plannerMachine(m.config, 0, 0, m.head.jobBaud()))));
 }

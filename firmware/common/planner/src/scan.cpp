@@ -92,7 +92,7 @@ bool ScanPlanner::readLit(uint8_t led, int32_t& hx, uint32_t& us) {
 }
 
 bool ScanPlanner::mayFly() const {
-  return !neverFly_ && pass_.windowUs > ceilDiv(static_cast<uint64_t>(h_.pitchUm[0]) * 1000000u, m_.vmaxUmS[0]);
+  return !(mode_ & kNeverFly) && pass_.windowUs > ceilDiv(static_cast<uint64_t>(h_.pitchUm[0]) * 1000000u, m_.vmaxUmS[0]);
 }
 
 uint64_t ScanPlanner::switchSpan() const {

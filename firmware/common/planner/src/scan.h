@@ -84,6 +84,18 @@ void planStroke(const MotionModel& m, int32_t markX2Um, int32_t endX2Um, bool de
 // CellSource cursors the scan planner opens: one an LED, numbered as the LEDs.
 constexpr uint8_t kScanCursors = 4;
 
+// A pass as its planning found it: its window (the link cap's, planner.md "The printhead link"), head
+// row, extent and the blank stretches it flies. M29 keeps one for each pass of a scan job on the card
+// (firmware/mega/src/kept_pass.h), and the run opens each pass from it: nextPass() then neither reads
+// the pass's cells to lay it out (some 63 µs a cell on the Mega) nor walks its events for the link.
+struct KeptPass {
+  uint32_t windowUs;
+  int32_t hy, first, last;
+  // The flown stretches by column ascending: each one's lowest column less `first`, and its windows
+  // (0: no stretch; a kept one has at least one).
+  uint16_t jumpCol[kMaxJumps], jumpG[kMaxJumps];
+};
+
 class ScanPlanner {
  public:
   ScanPlanner(const JobHeader& h, CellSource& cells, const MotionModel& m);
@@ -96,11 +108,14 @@ class ScanPlanner {
   // The printhead link's speed the plan is made for (MotionModel::linkBaud): its passes need the link at it.
   uint32_t linkBaud() const { return m_.linkBaud; }
   // Opens the next pass with a lit cell and adds its time to the estimate; false when done.
-  // `windowUs`: that pass's window when it is known already (a card job's, found at M29 by this
-  // same search and kept in its index file): the pass is laid out at it and the link check, a walk
-  // of every event of the pass and more when the link caps it, is not made again. 0 (or any below
-  // the job's window): found here. A mixed job's passes are always found here.
-  bool nextPass(ScanPass& out, uint32_t windowUs = 0);
+  // `kept`: that pass as planning kept it (keep(); a card job's, kept at M29): opened from it, with
+  // no layout and no link check (a walk of every event of the pass, and more when the link caps it).
+  // One that is not that pass's, or not one planning could keep, is laid out and searched for here, as
+  // without it, and a pass planning dropped (no lit cell) is passed over as planning passed it over.
+  // A mixed job's passes are always found here.
+  bool nextPass(ScanPass& out, const KeptPass* kept = nullptr);
+  // The pass nextPass() just opened (`p`), as nextPass() takes it back.
+  void keep(const ScanPass& p, KeptPass& out) const;
   // The current pass's next event; false at its end.
   bool next(ScanEvent& out);
   // Or, instead of next(): the pass as the Nano runs it (protocol/nano.md "Scan programs"), one
@@ -134,9 +149,15 @@ class ScanPlanner {
   // A machine that cannot fly crosses every blank stretch at the pass's speed: no jumps, S(j) = j·W,
   // and the estimate to match. Before the first nextPass(). (P10's figure without flying.)
   void neverFly() {
-    neverFly_ = true;
+    mode_ |= kNeverFly;
     flies_ = false;
   }
+  // The Mega runs a scan job's passes and never reads their price: nextPass() then leaves a scan
+  // pass's stroke, hop and time unworked (ScanPass's moveUs to endUs, scanUs, startSteps and
+  // stopSteps, and estimateUs()), which was most of what opening a kept pass took there (its own
+  // stroke and hop are the step engine's: scan_run.cpp). A mixed job's passes are priced, as its
+  // choice between scan and stops needs. Before the first nextPass().
+  void unpriced() { mode_ |= kUnpriced; }
   // Stream mode, as Planner's: rows below `known` have arrived. nextPass() opens a pass only once
   // every row it reads has arrived; until then it says false with starved() true.
   void setKnownRows(uint16_t known) { known_ = known; }
@@ -199,7 +220,8 @@ class ScanPlanner {
   uint64_t estimate_ = 0;
   uint16_t passes_ = 0;
   bool flies_;  // the open pass's speed is below the maximum: blank stretches may be flown
-  bool neverFly_ = false;
+  static constexpr uint8_t kNeverFly = 1, kUnpriced = 2;
+  uint8_t mode_ = 0;  // neverFly(), unpriced()
   // Why the plan stopped short: a pass the link cap slowed until its switch times outgrew 32 bits
   // (not supported()), or a window the step engine cannot run (refused()).
   enum class Refusal : uint8_t { None, TooLong, Engine };
@@ -209,8 +231,11 @@ class ScanPlanner {
   uint64_t priceStops(int32_t hy, int32_t& endX);
   // Bands (planner.md "Bands", scan_band.cpp): a mixed job's passes, kMixedBand at a time, each band
   // priced pass by pass and as one group of stops column by column, and taken the cheaper way.
-  bool collect(int32_t& hy, int32_t& first, int32_t& last, uint64_t& span);
-  bool planPass(int32_t hy, int32_t first, int32_t last, uint64_t span, ScanPass& out, uint32_t windowUs = 0);
+  // `kept`: nextPass()'s; `restored`: whether it gave the pass (restore()).
+  bool collect(int32_t& hy, int32_t& first, int32_t& last, uint64_t& span, const KeptPass* kept = nullptr, bool* restored = nullptr);
+  bool restore(const KeptPass& k, int32_t& first, int32_t& last, uint64_t& span);
+  // `found`: the pass's window is known (restored), so the link cap's search is not made.
+  bool planPass(int32_t hy, int32_t first, int32_t last, uint64_t span, ScanPass& out, bool found = false);
   bool layOutAt(uint64_t w, int32_t& first, int32_t& last, uint64_t& span);
   // The windows a pass's switch times may span: cols + the LEDs' spread in X (supported()).
   uint64_t switchSpan() const;

@@ -126,6 +126,7 @@ BoardSim::BoardSim(const std::string& megaElf, const std::string& nanoElf) {
   twiIn_ = avr_io_getirq(mega_, AVR_IOCTL_TWI_GETIRQ(0), TWI_IRQ_INPUT);
   avr_irq_register_notify(avr_io_getirq(mega_, AVR_IOCTL_TWI_GETIRQ(0), TWI_IRQ_OUTPUT), onTwi, this);
   panelEntry_ = symbolAddress(megaElf, "_ZN4mega7Machine5panelEv");
+  megaElf_ = megaElf;
 
   // The stack's high-water mark: every byte between the end of static RAM (the linker's _end; the
   // firmware has no heap) and the top of RAM is painted before the firmware runs, and the lowest
@@ -184,6 +185,41 @@ void BoardSim::profilePanel(uint64_t cycles, bool wasInPanel, int wasVector) {
     passCycles_ = 0;
     inPanel_ = true;
     panelSp_ = stackPointer(mega_);
+  }
+}
+
+bool BoardSim::timeCalls(const std::string& symbol) {
+  const uint32_t entry = symbolAddress(megaElf_, symbol);
+  if (entry) timed_.push_back({symbol, entry});
+  return entry != 0;
+}
+
+const std::vector<BoardSim::TimedCall>& BoardSim::timedCalls(const std::string& symbol) const {
+  static const std::vector<TimedCall> none;
+  for (const TimedFunction& f : timed_)
+    if (f.symbol == symbol) return f.calls;
+  return none;
+}
+
+bool BoardSim::inTimed() const {
+  for (const TimedFunction& f : timed_)
+    if (f.in) return true;
+  return false;
+}
+
+void BoardSim::timeCall(uint64_t cycles, int wasVector) {
+  const int vector = runningVector(mega_);
+  for (TimedFunction& f : timed_) {
+    if (f.in && wasVector == 0) f.calls.back().cycles += cycles;
+    if (f.in && vector == 0 && stackPointer(mega_) > f.sp) {  // returned
+      f.in = false;
+      f.calls.back().to = mega_->cycle;
+    }
+    if (!f.in && vector == 0 && mega_->pc == f.entry) {
+      f.in = true;
+      f.sp = stackPointer(mega_);
+      f.calls.push_back({0, mega_->cycle, 0});
+    }
   }
 }
 
@@ -271,17 +307,18 @@ void BoardSim::step() {
   // Keep the two chips within an instruction of each other, the Nano at `nanoClock` of the Mega's rate.
   avr_t* next = static_cast<double>(mega_->cycle) * nanoClock <= static_cast<double>(nano_->cycle) ? mega_ : nano_;
   uint64_t before = next->cycle;
-  bool wasInPanel = inPanel_;
+  bool wasInPanel = inPanel_, wasTimed = !timed_.empty() && inTimed();
   int wasVector = next == mega_ ? runningVector(mega_) : 0;
   const uint32_t pc = next->pc;
   avr_run(next);
   if (next == mega_) {
-    if (megaProfile) {
+    if (megaProfile && (!profileTimedOnly || (wasTimed && wasVector == 0))) {
       if (megaProfile->size() <= pc / 2) megaProfile->resize(pc / 2 + 1);
       (*megaProfile)[pc / 2].cycles += next->cycle - before;
       (*megaProfile)[pc / 2].runs++;
     }
     profilePanel(next->cycle - before, wasInPanel, wasVector);
+    if (!timed_.empty()) timeCall(next->cycle - before, wasVector);
     bool off = !mega_->sreg[S_I];
     if (off && !megaOff_) {
       megaOffSince_ = mega_->cycle;

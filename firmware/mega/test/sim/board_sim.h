@@ -59,6 +59,7 @@ class BoardSim {
     uint64_t cycles = 0, runs = 0;
   };
   std::vector<PcCount>* megaProfile = nullptr;
+  bool profileTimedOnly = false;  // megaProfile counts only timeCalls()'s calls, their callees included
 
   // The panel on the Mega's TWI.
   Ssd1306Model panel;
@@ -70,6 +71,15 @@ class BoardSim {
   uint64_t twiIsrCycles = 0;     // all of the TWI interrupt's time
   uint64_t twiIsrMax = 0;        // its longest single run
   void resetPanelFigures() { panelPassMax = panelPasses = panelCallMax = twiIsrCycles = twiIsrMax = 0; }
+  // Times every call of a function of the Mega's image from now on: `symbol` is its mangled name (or
+  // the start of it: LTO may add a suffix). Each call's cycles, its callees' included and the
+  // interrupts taken meanwhile left out, and the Mega's cycle count as it began and returned, go to
+  // timedCalls(symbol). False when the image has no such function.
+  bool timeCalls(const std::string& symbol);
+  struct TimedCall {
+    uint64_t cycles, from, to;
+  };
+  const std::vector<TimedCall>& timedCalls(const std::string& symbol) const;
   // Sets the Nano's sensor input `ch` (TMP36: 500 mV + 10 mV/°C).
   void setNanoMv(int ch, uint32_t mv);
 
@@ -148,5 +158,16 @@ class BoardSim {
   bool inPanel_ = false;
   uint16_t panelSp_ = 0;
   uint64_t passCycles_ = 0, isrRun_ = 0, callCycles_ = 0;
+  std::string megaElf_;
+  struct TimedFunction {
+    std::string symbol;
+    uint32_t entry;
+    bool in = false;
+    uint16_t sp = 0;  // the stack pointer in the call (its return address pushed)
+    std::vector<TimedCall> calls;
+  };
+  std::vector<TimedFunction> timed_;
+  bool inTimed() const;
+  void timeCall(uint64_t cycles, int wasVector);
   int lastVector_ = 0;
 };
