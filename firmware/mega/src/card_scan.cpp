@@ -55,7 +55,7 @@ void CardScan::seek(uint32_t done) {
 
 ScanRun::Step CardScan::scanStep(Motion& motion, PrintheadLink& head, uint32_t nowUs) {
   if (!job_) seek(0);
-  if (skip_) {  // a step done before: a pass planned, its events walked, or a stop; nothing lit
+  if (skip_) {  // a step done before: a pass planned (a mixed job's, its events walked), or a stop; nothing lit
     uv::Stop stop;
     if (job_->planner.inStopPass() && job_->planner.nextStop(stop)) {
       skip_--;
@@ -71,9 +71,12 @@ ScanRun::Step CardScan::scanStep(Motion& motion, PrintheadLink& head, uint32_t n
       return ScanRun::Step::Failed;
     }
     if (p.stops) return ScanRun::Step::Busy;  // its stops are passed over one a call
+    // A kept pass (a scan job's) leaves nothing the next one reads: it opens from its own record, and
+    // walking its events (some 50 µs each on the Mega) would hold the main loop for nothing. A mixed
+    // job's pass is walked to its end, as its run walked it.
     uint32_t t;
     uint8_t m;
-    while (job_->planner.nextEvent(t, m)) {
+    while (!kept && job_->planner.nextEvent(t, m)) {
     }
     skip_--;
     opened_++;
