@@ -140,9 +140,7 @@ bool ScanPlanner::layout(int32_t& first, int32_t& last, uint64_t& span) {
       if (isLive(k) && hx_[k] == best) peek(k);
   }
   if (first > last) return false;
-  // S(n − 1) + W: every window, less what each flown stretch saves.
-  span = static_cast<uint64_t>(last - first + 1) * pass_.windowUs;
-  for (uint8_t i = 0; i < jumpCount_; i++) span -= static_cast<uint64_t>(jumpG_[i]) * pass_.windowUs - fly(jumpG_[i]);
+  flownSpan(first, last, span);  // every stretch kept flies (consider())
   for (uint8_t i = 1; i < jumpCount_; i++)  // by column, ascending
     for (uint8_t k = i; k > 0 && jumpCol_[k - 1] > jumpCol_[k]; k--) {
       const uint16_t c = jumpCol_[k], g = jumpG_[k];
@@ -191,6 +189,17 @@ bool ScanPlanner::outrunsLink(uint64_t& need, uint64_t& have) {
 #endif
   if (lines.failed()) return false;  // a gap of 2²⁸ µs: the Mega refuses the pass, whatever its speed
   return !load.fits(lastUs, need, have);
+}
+
+// S(n − 1) + W: every window, less what each flown stretch saves.
+bool ScanPlanner::flownSpan(int32_t first, int32_t last, uint64_t& span) {
+  span = static_cast<uint64_t>(last - first + 1) * pass_.windowUs;
+  for (uint8_t i = 0; i < jumpCount_; i++) {
+    const uint32_t f = fly(jumpG_[i]);
+    if (!f) return false;
+    span -= static_cast<uint64_t>(jumpG_[i]) * pass_.windowUs - f;
+  }
+  return true;
 }
 
 // F(g) when flying g blank windows saves at least a window, F(g) ≤ (g − 1)·W, else 0.

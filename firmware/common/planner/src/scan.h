@@ -228,6 +228,9 @@ class ScanPlanner {
   Refusal refusal_ = Refusal::None;
   ScanMotion pass_;       // the open pass's motion
   bool layout(int32_t& first, int32_t& last, uint64_t& span);
+  // S(n − 1) + W of the open pass from `first` to `last` with its stretches (jumpG_): false when one
+  // of them would not fly at the pass's window.
+  bool flownSpan(int32_t first, int32_t last, uint64_t& span);
   uint64_t priceStops(int32_t hy, int32_t& endX);
   // Bands (planner.md "Bands", scan_band.cpp): a mixed job's passes, kMixedBand at a time, each band
   // priced pass by pass and as one group of stops column by column, and taken the cheaper way.

@@ -86,16 +86,12 @@ bool ScanPlanner::restore(const KeptPass& k, int32_t& first, int32_t& last, uint
   flies_ = mayFly();
   first = first_ = k.first;
   last = k.last;
-  span = static_cast<uint64_t>(columns) * pass_.windowUs;
   for (jumpCount_ = 0; jumpCount_ < n; jumpCount_++) {
     jumpCol_[jumpCount_] = k.jumpCol[jumpCount_];
     jumpG_[jumpCount_] = k.jumpG[jumpCount_];
-    const uint32_t f = fly(jumpG_[jumpCount_]);
-    if (!f) return false;  // a stretch this pass would not fly
-    span -= static_cast<uint64_t>(jumpG_[jumpCount_]) * pass_.windowUs - f;
   }
   jumpNext_ = 0;
-  return true;
+  return flownSpan(first, last, span);  // false: a stretch this pass would not fly
 }
 
 // The open pass laid out again at a window of w µs (longer than the job's), its cursors reopened;

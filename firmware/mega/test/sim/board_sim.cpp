@@ -307,7 +307,7 @@ void BoardSim::step() {
   // Keep the two chips within an instruction of each other, the Nano at `nanoClock` of the Mega's rate.
   avr_t* next = static_cast<double>(mega_->cycle) * nanoClock <= static_cast<double>(nano_->cycle) ? mega_ : nano_;
   uint64_t before = next->cycle;
-  bool wasInPanel = inPanel_, wasTimed = !timed_.empty() && inTimed();
+  bool wasInPanel = inPanel_, wasTimed = profileTimedOnly && inTimed();
   int wasVector = next == mega_ ? runningVector(mega_) : 0;
   const uint32_t pc = next->pc;
   avr_run(next);
